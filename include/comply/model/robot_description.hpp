@@ -1,0 +1,60 @@
+#pragma once
+// A robot folder: `<name>/robot.yaml` + its URDF. Commands that take a robot accept either a name
+// found on the robot search path or a path to such a folder, so users add robots without code.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "comply/model/model.hpp"
+
+namespace comply::model {
+
+/// Joint friction tau_f = phi1 / (1 + exp(-phi2 (dq + phi3))) - phi1 / (1 + exp(-phi2 phi3))
+/// (Gaz et al., RA-L 2019), one entry per joint.
+struct SigmoidFriction {
+  std::vector<double> phi1;  ///< N m
+  std::vector<double> phi2;  ///< s/rad
+  std::vector<double> phi3;  ///< rad/s
+};
+
+/// Plant parameters a simulator gives each joint, so that compensation has something to do.
+struct JointDynamics {
+  std::vector<double> damping;       ///< viscous [N m s/rad]
+  std::vector<double> armature;      ///< reflected rotor inertia [kg m^2]
+  std::vector<double> frictionloss;  ///< Coulomb [N m]
+};
+
+struct RobotDescription {
+  std::string name;
+  std::string description;
+  std::filesystem::path folder;
+  std::filesystem::path urdf_path;
+  std::vector<std::string> joints;  ///< controlled joints, base to tip
+  std::string base_frame;
+  std::string flange_frame;
+  std::string tcp_frame;
+  std::vector<double> home;  ///< rad | m, in `joints` order
+  std::optional<SigmoidFriction> friction;
+  std::optional<JointDynamics> joint_dynamics;
+
+  /// Model options for a chain from base_frame to `tip` (default: tcp_frame).
+  [[nodiscard]] ModelOptions modelOptions(const std::string& tip = {}) const;
+  /// Loads the URDF and builds the model for base_frame -> tip (default: tcp_frame).
+  [[nodiscard]] Model loadModel(const std::string& tip = {}) const;
+};
+
+/// Folders searched for robot names, in order: each entry of $COMPLY_ROBOT_PATH (':'-separated),
+/// then the robots folder of this installation.
+std::vector<std::filesystem::path> robotSearchPath();
+
+/// Names of the robots found on the search path (folders holding a robot.yaml), sorted.
+std::vector<std::string> availableRobots();
+
+/// Loads a robot by name (searched on robotSearchPath()) or by folder path (anything containing
+/// a '/' or naming an existing folder). Throws ModelError with the robots available when unknown.
+RobotDescription loadRobotDescription(std::string_view name_or_path);
+
+}  // namespace comply::model

@@ -1,0 +1,325 @@
+// URDF -> serial chain. Everything that can be decided once (fixed transforms, folded inertias,
+// Rodrigues terms, index maps) is decided here, so the update only multiplies small matrices.
+
+#include <urdf_parser/urdf_parser.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "comply/model/model.hpp"
+#include "comply/model/model_error.hpp"
+
+namespace comply::model {
+namespace {
+
+Eigen::Isometry3d toIsometry(const urdf::Pose& pose) {
+  Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();
+  transform.linear() =
+      Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z)
+          .normalized()
+          .toRotationMatrix();
+  transform.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
+  return transform;
+}
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
+}
+
+std::string joinNames(const std::vector<std::string>& names) {
+  std::string joined;
+  for (const auto& name : names) {
+    joined += (joined.empty() ? "" : ", ") + name;
+  }
+  return joined;
+}
+
+bool isMovable(int type) {
+  return type == urdf::Joint::REVOLUTE || type == urdf::Joint::CONTINUOUS ||
+         type == urdf::Joint::PRISMATIC;
+}
+
+std::string_view jointTypeName(int type) {
+  switch (type) {
+    case urdf::Joint::REVOLUTE: return "revolute";
+    case urdf::Joint::CONTINUOUS: return "continuous";
+    case urdf::Joint::PRISMATIC: return "prismatic";
+    case urdf::Joint::FLOATING: return "floating";
+    case urdf::Joint::PLANAR: return "planar";
+    case urdf::Joint::FIXED: return "fixed";
+    default: return "unknown";
+  }
+}
+
+/// Mass properties of a set of rigidly connected links, accumulated in one frame.
+struct MassAccumulator {
+  double mass = 0.0;
+  Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();  // sum m c
+  Eigen::Matrix3d inertia_origin = Eigen::Matrix3d::Zero();  // about the frame origin
+
+  void add(const urdf::Inertial& inertial, const Eigen::Isometry3d& link_in_frame,
+           const std::string& link_name) {
+    const std::array<double, 7> values{inertial.mass, inertial.ixx, inertial.ixy, inertial.ixz,
+                                       inertial.iyy,  inertial.iyz, inertial.izz};
+    if (!std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); }) ||
+        inertial.mass < 0.0) {
+      throw ModelError(ModelErrc::kInvalidInertia,
+                       "link '" + link_name + "' has a negative or non-finite mass or inertia");
+    }
+    const Eigen::Isometry3d inertial_in_frame = link_in_frame * toIsometry(inertial.origin);
+    Eigen::Matrix3d inertia_local;
+    inertia_local << inertial.ixx, inertial.ixy, inertial.ixz, inertial.ixy, inertial.iyy,
+        inertial.iyz, inertial.ixz, inertial.iyz, inertial.izz;
+    const Eigen::Matrix3d& rotation = inertial_in_frame.linear();
+    const Eigen::Vector3d com = inertial_in_frame.translation();
+    // Parallel-axis theorem: inertia about the frame origin.
+    inertia_origin += rotation * inertia_local * rotation.transpose() +
+                      inertial.mass * (com.squaredNorm() * Eigen::Matrix3d::Identity() -
+                                       com * com.transpose());
+    mass += inertial.mass;
+    first_moment += inertial.mass * com;
+  }
+};
+
+}  // namespace
+
+class ModelBuilder {
+ public:
+  static Model build(const urdf::ModelInterface& urdf, const ModelOptions& options);
+
+ private:
+  static void foldSubtree(const urdf::ModelInterface& urdf, const urdf::Link& link,
+                          const Eigen::Isometry3d& link_in_body, const std::string* stop_joint,
+                          MassAccumulator& accumulator);
+};
+
+void ModelBuilder::foldSubtree(const urdf::ModelInterface& urdf, const urdf::Link& link,
+                               const Eigen::Isometry3d& link_in_body,
+                               const std::string* stop_joint, MassAccumulator& accumulator) {
+  if (link.inertial) {
+    accumulator.add(*link.inertial, link_in_body, link.name);
+  }
+  for (const auto& child_joint : link.child_joints) {
+    if (stop_joint != nullptr && child_joint->name == *stop_joint) {
+      continue;  // the next controlled joint starts the next body
+    }
+    // Off-chain branches (a gripper finger, a tool) ride along rigidly, locked at zero.
+    const auto child = urdf.getLink(child_joint->child_link_name);
+    if (child) {
+      foldSubtree(urdf, *child,
+                  link_in_body * toIsometry(child_joint->parent_to_joint_origin_transform),
+                  stop_joint, accumulator);
+    }
+  }
+}
+
+Model ModelBuilder::build(const urdf::ModelInterface& urdf, const ModelOptions& options) {
+  const auto root = urdf.getRoot();
+  if (!root) {
+    throw ModelError(ModelErrc::kInvalidUrdf, "the URDF has no root link");
+  }
+  const std::string base_name = options.base_frame.empty() ? root->name : options.base_frame;
+  const auto base_link = urdf.getLink(base_name);
+  if (!base_link) {
+    throw ModelError(ModelErrc::kUnknownFrame,
+                     "base frame '" + base_name + "' is not a link of robot '" + urdf.getName() + "'");
+  }
+  if (options.tip_frame.empty()) {
+    throw ModelError(ModelErrc::kUnknownFrame, "no tip frame given");
+  }
+  const auto tip_link = urdf.getLink(options.tip_frame);
+  if (!tip_link) {
+    throw ModelError(ModelErrc::kUnknownFrame, "tip frame '" + options.tip_frame +
+                                                   "' is not a link of robot '" + urdf.getName() +
+                                                   "'");
+  }
+  if (!options.tcp_offset.matrix().allFinite() || !options.gravity_m_per_s2.allFinite()) {
+    throw ModelError(ModelErrc::kInvalidOption, "TCP offset and gravity must be finite");
+  }
+
+  // Joints from base to tip (walk up from the tip, then reverse).
+  std::vector<urdf::JointConstSharedPtr> path;
+  for (auto link = tip_link; link->name != base_name; link = link->getParent()) {
+    if (!link->parent_joint) {
+      throw ModelError(ModelErrc::kFrameNotInChain, "tip frame '" + options.tip_frame +
+                                                        "' is not below base frame '" +
+                                                        base_name + "'");
+    }
+    path.push_back(link->parent_joint);
+  }
+  std::reverse(path.begin(), path.end());
+
+  // Validate the requested joint names against the URDF and the chain.
+  std::map<std::string, int> user_index;
+  std::vector<std::string> unknown;
+  std::vector<std::string> duplicate;
+  for (int i = 0; i < static_cast<int>(options.joint_names.size()); ++i) {
+    const std::string& name = options.joint_names[i];
+    if (!urdf.getJoint(name)) {
+      unknown.push_back(name);
+    } else if (!user_index.emplace(name, i).second) {
+      duplicate.push_back(name);
+    }
+  }
+  if (!unknown.empty()) {
+    throw ModelError(ModelErrc::kUnknownJoint, "robot '" + urdf.getName() +
+                                                   "' has no joint named: " + joinNames(unknown));
+  }
+  if (!duplicate.empty()) {
+    throw ModelError(ModelErrc::kDuplicateJoint,
+                     "joints requested more than once: " + joinNames(duplicate));
+  }
+  std::vector<std::string> missing;
+  std::vector<std::string> on_path;
+  for (const auto& joint : path) {
+    if (joint->type == urdf::Joint::FLOATING || joint->type == urdf::Joint::PLANAR ||
+        joint->type == urdf::Joint::UNKNOWN) {
+      throw ModelError(ModelErrc::kUnsupportedJoint,
+                       "joint '" + joint->name + "' between '" + base_name + "' and '" +
+                           options.tip_frame + "' is " + std::string(jointTypeName(joint->type)) +
+                           "; only revolute, continuous, prismatic and fixed joints are supported");
+    }
+    if (isMovable(joint->type)) {
+      on_path.push_back(joint->name);
+      if (user_index.count(joint->name) == 0) {
+        missing.push_back(joint->name);
+      }
+    }
+  }
+  std::vector<std::string> off_chain;
+  for (const auto& name : options.joint_names) {
+    if (std::find(on_path.begin(), on_path.end(), name) == on_path.end()) {
+      off_chain.push_back(name);
+    }
+  }
+  if (!off_chain.empty()) {
+    throw ModelError(ModelErrc::kJointNotInChain,
+                     "joints not movable between '" + base_name + "' and '" + options.tip_frame +
+                         "': " + joinNames(off_chain));
+  }
+  if (!missing.empty()) {
+    throw ModelError(ModelErrc::kMissingJoint,
+                     "movable joints between '" + base_name + "' and '" + options.tip_frame +
+                         "' not listed as controlled: " + joinNames(missing));
+  }
+  if (on_path.size() > static_cast<std::size_t>(kMaxDof)) {
+    throw ModelError(ModelErrc::kTooManyJoints, "the chain has " + std::to_string(on_path.size()) +
+                                                    " movable joints; at most " +
+                                                    std::to_string(kMaxDof) + " are supported");
+  }
+
+  Model model;
+  model.dof_ = static_cast<int>(on_path.size());
+  model.joint_names_ = options.joint_names;
+  model.limits_.resize(on_path.size());
+  model.base_frame_ = base_name;
+  model.tip_frame_ = options.tip_frame;
+  model.gravity_ = options.gravity_m_per_s2;
+
+  // Walk the path: fixed joints accumulate into the placement of the next movable joint.
+  Eigen::Isometry3d pending = Eigen::Isometry3d::Identity();  // next joint frame in current body
+  int body_index = -1;
+  std::vector<std::size_t> body_path_position;
+  for (std::size_t k = 0; k < path.size(); ++k) {
+    const auto& joint = path[k];
+    pending = pending * toIsometry(joint->parent_to_joint_origin_transform);
+    if (!isMovable(joint->type)) {
+      continue;
+    }
+    ++body_index;
+    body_path_position.push_back(k);
+    ChainBody& body = model.bodies_[body_index];
+    body.type = joint->type == urdf::Joint::PRISMATIC ? JointType::kPrismatic : JointType::kRevolute;
+    Eigen::Vector3d axis(joint->axis.x, joint->axis.y, joint->axis.z);
+    if (!axis.allFinite() || axis.norm() < 1e-9) {
+      throw ModelError(ModelErrc::kInvalidUrdf, "joint '" + joint->name + "' has a zero axis");
+    }
+    axis.normalize();
+    body.axis = axis;
+    const Eigen::Matrix3d axis_skew = skew(axis);
+    body.rotation_const = pending.linear();
+    if (body.type == JointType::kRevolute) {
+      body.rotation_sin = pending.linear() * axis_skew;
+      body.rotation_cos = pending.linear() * axis_skew * axis_skew;
+    }
+    body.translation = pending.translation();
+    body.axis_in_parent = pending.linear() * axis;
+    body.user_index = user_index.at(joint->name);
+
+    JointLimits& limits = model.limits_[body.user_index];
+    if (joint->type == urdf::Joint::CONTINUOUS) {
+      limits.lower = -std::numeric_limits<double>::infinity();
+      limits.upper = std::numeric_limits<double>::infinity();
+    }
+    if (joint->limits) {
+      if (joint->type != urdf::Joint::CONTINUOUS) {
+        limits.lower = joint->limits->lower;
+        limits.upper = joint->limits->upper;
+      }
+      limits.velocity = joint->limits->velocity;
+      limits.effort = joint->limits->effort;
+    }
+    pending = Eigen::Isometry3d::Identity();
+  }
+  model.tip_in_last_body_ = pending * options.tcp_offset;
+  model.order_is_chain_order_ = true;
+  for (int i = 0; i < model.dof_; ++i) {
+    model.order_is_chain_order_ = model.order_is_chain_order_ && model.bodies_[i].user_index == i;
+  }
+
+  // Fold each body's rigidly attached links (everything below its joint up to the next
+  // controlled joint) into one inertia in the body frame.
+  for (int i = 0; i < model.dof_; ++i) {
+    const auto& joint = path[body_path_position[i]];
+    const std::string* stop_joint =
+        i + 1 < model.dof_ ? &path[body_path_position[i + 1]]->name : nullptr;
+    MassAccumulator accumulator;
+    const auto child = urdf.getLink(joint->child_link_name);
+    foldSubtree(urdf, *child, Eigen::Isometry3d::Identity(), stop_joint, accumulator);
+    ChainBody& body = model.bodies_[i];
+    body.mass_kg = accumulator.mass;
+    if (accumulator.mass > 0.0) {
+      body.com = accumulator.first_moment / accumulator.mass;
+      body.inertia_com = accumulator.inertia_origin -
+                         accumulator.mass * (body.com.squaredNorm() * Eigen::Matrix3d::Identity() -
+                                             body.com * body.com.transpose());
+    }
+  }
+  return model;
+}
+
+Model Model::fromUrdfString(std::string_view urdf_xml, const ModelOptions& options) {
+  const auto urdf = urdf::parseURDF(std::string(urdf_xml));
+  if (!urdf) {
+    throw ModelError(ModelErrc::kInvalidUrdf,
+                     "could not parse the URDF (urdfdom printed the details above)");
+  }
+  return ModelBuilder::build(*urdf, options);
+}
+
+Model Model::fromUrdfFile(const std::filesystem::path& urdf_path, const ModelOptions& options) {
+  std::ifstream file(urdf_path);
+  if (!std::filesystem::is_regular_file(urdf_path) || !file) {
+    throw ModelError(ModelErrc::kFileNotFound, "cannot read URDF file '" + urdf_path.string() + "'");
+  }
+  std::stringstream text;
+  text << file.rdbuf();
+  const auto urdf = urdf::parseURDF(text.str());
+  if (!urdf) {
+    throw ModelError(ModelErrc::kInvalidUrdf, "could not parse URDF file '" + urdf_path.string() +
+                                                  "' (urdfdom printed the details above)");
+  }
+  try {
+    return ModelBuilder::build(*urdf, options);
+  } catch (const ModelError& error) {
+    throw ModelError(error.code(), error.detail() + " (in '" + urdf_path.string() + "')");
+  }
+}
+
+}  // namespace comply::model

@@ -1,0 +1,263 @@
+// Recursive kinematics and dynamics of a serial chain, all in base-frame coordinates.
+//
+// Spatial vectors are Plücker coordinates at the base origin, angular part first: a motion
+// (w, v_O) and a force (n_O, f). A body's spatial inertia about the base origin is stored as
+// (mass m, first moment h = m c, rotational inertia I_O about the origin), which acts on a motion
+// as I (w, v) = (I_O w + h x v, m v - h x w) (Featherstone, Rigid Body Dynamics Algorithms, 2.13).
+// Working in the base frame lets every joint reuse the same axis and origin that the Jacobian
+// needs, so one forward pass serves pose, Jacobian, gravity, RNEA and CRBA.
+
+#include "comply/model/update.hpp"
+
+#include <cmath>
+
+namespace comply::model {
+namespace {
+
+struct Motion {
+  Eigen::Vector3d angular;
+  Eigen::Vector3d linear;
+};
+
+struct Force {
+  Eigen::Vector3d moment;
+  Eigen::Vector3d force;
+};
+
+struct SpatialInertia {
+  double mass;
+  Eigen::Vector3d first_moment;
+  Eigen::Matrix3d rotational;  // about the base origin
+
+  Force apply(const Motion& m) const {
+    return {rotational * m.angular + first_moment.cross(m.linear),
+            mass * m.linear - first_moment.cross(m.angular)};
+  }
+};
+
+/// Motion cross product (v x m): the rate of change of m when it moves with velocity v.
+Motion crossMotion(const Motion& v, const Motion& m) {
+  return {v.angular.cross(m.angular), v.angular.cross(m.linear) + v.linear.cross(m.angular)};
+}
+
+/// Force cross product (v x* f).
+Force crossForce(const Motion& v, const Force& f) {
+  return {v.angular.cross(f.moment) + v.linear.cross(f.force), v.angular.cross(f.force)};
+}
+
+double dot(const Motion& m, const Force& f) {
+  return m.angular.dot(f.moment) + m.linear.dot(f.force);
+}
+
+/// Motion subspace of a joint: unit twist of the child body, in base coordinates.
+Motion jointMotion(const ChainBody& body, const Data::BodyState& state) {
+  if (body.type == JointType::kRevolute) {
+    return {state.axis, state.origin.cross(state.axis)};
+  }
+  return {Eigen::Vector3d::Zero(), state.axis};
+}
+
+SpatialInertia worldInertia(const ChainBody& body, const Data::BodyState& state) {
+  return {body.mass_kg, body.mass_kg * state.com, state.inertia_about_base_origin};
+}
+
+/// Rotational inertia of every body about the base origin (parallel-axis theorem), shared by the
+/// Coriolis and mass-matrix passes.
+void computeWorldInertias(const Model& model, Data& data) {
+  for (int i = 0; i < model.dof(); ++i) {
+    const ChainBody& body = model.body(i);
+    Data::BodyState& state = data.bodies[i];
+    const Eigen::Matrix3d& r = state.rotation;
+    const Eigen::Vector3d& c = state.com;
+    state.inertia_about_base_origin =
+        r * body.inertia_com * r.transpose() +
+        body.mass_kg * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+  }
+}
+
+void forwardKinematics(const Model& model, Data& data, std::span<const double> q) {
+  Eigen::Matrix3d parent_rotation = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d parent_origin = Eigen::Vector3d::Zero();
+  for (int i = 0; i < model.dof(); ++i) {
+    const ChainBody& body = model.body(i);
+    Data::BodyState& state = data.bodies[i];
+    const double position = q[body.user_index];
+    if (body.type == JointType::kRevolute) {
+      const double s = std::sin(position);
+      const double one_minus_c = 1.0 - std::cos(position);
+      const Eigen::Matrix3d local =
+          body.rotation_const + s * body.rotation_sin + one_minus_c * body.rotation_cos;
+      state.origin = parent_origin + parent_rotation * body.translation;
+      state.rotation = parent_rotation * local;
+    } else {
+      state.origin =
+          parent_origin + parent_rotation * (body.translation + body.axis_in_parent * position);
+      state.rotation = parent_rotation * body.rotation_const;
+    }
+    state.axis = parent_rotation * body.axis_in_parent;
+    state.com = state.origin + state.rotation * body.com;
+    parent_rotation = state.rotation;
+    parent_origin = state.origin;
+  }
+  const Eigen::Isometry3d& tip = model.tipInLastBody();
+  data.tip_rotation = parent_rotation * tip.linear();
+  data.tip_position = parent_origin + parent_rotation * tip.translation();
+}
+
+void computeJacobian(const Model& model, Data& data) {
+  for (int i = 0; i < model.dof(); ++i) {
+    const ChainBody& body = model.body(i);
+    const Data::BodyState& state = data.bodies[i];
+    auto column = data.jacobian.col(body.user_index);
+    if (body.type == JointType::kRevolute) {
+      column.head<3>() = state.axis.cross(data.tip_position - state.origin);
+      column.tail<3>() = state.axis;
+    } else {
+      column.head<3>() = state.axis;
+      column.tail<3>().setZero();
+    }
+  }
+}
+
+/// g(q)_i = a_i . ((h_sub - m_sub p_i) x (-g)) for revolute joints, a_i . (-m_sub g) for prismatic,
+/// where m_sub, h_sub are the mass and first moment of everything outboard of joint i.
+void computeGravity(const Model& model, Data& data) {
+  const Eigen::Vector3d weight_direction = -model.gravity();
+  double outboard_mass = 0.0;
+  Eigen::Vector3d outboard_first_moment = Eigen::Vector3d::Zero();
+  for (int i = model.dof() - 1; i >= 0; --i) {
+    const ChainBody& body = model.body(i);
+    const Data::BodyState& state = data.bodies[i];
+    outboard_mass += body.mass_kg;
+    outboard_first_moment += body.mass_kg * state.com;
+    if (body.type == JointType::kRevolute) {
+      data.gravity[body.user_index] =
+          state.axis.dot((outboard_first_moment - outboard_mass * state.origin)
+                             .cross(weight_direction));
+    } else {
+      data.gravity[body.user_index] = outboard_mass * state.axis.dot(weight_direction);
+    }
+  }
+}
+
+void computePayloadGravity(const Model& model, Data& data) {
+  const Eigen::Vector3d payload_weight = -data.payload.mass_kg * model.gravity();
+  const Eigen::Vector3d payload_com =
+      data.tip_position + data.tip_rotation * data.payload.com_in_tip;
+  for (int i = 0; i < model.dof(); ++i) {
+    const ChainBody& body = model.body(i);
+    const Data::BodyState& state = data.bodies[i];
+    data.payload_gravity[body.user_index] =
+        body.type == JointType::kRevolute
+            ? state.axis.dot((payload_com - state.origin).cross(payload_weight))
+            : state.axis.dot(payload_weight);
+  }
+}
+
+/// Recursive Newton-Euler with zero acceleration and zero gravity: C(q, dq) dq.
+void computeCoriolis(const Model& model, Data& data, std::span<const double> dq) {
+  std::array<Motion, kMaxDof> subspace;
+  std::array<Force, kMaxDof> body_force;
+  Motion velocity{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  Motion acceleration{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  for (int i = 0; i < model.dof(); ++i) {
+    const ChainBody& body = model.body(i);
+    const Data::BodyState& state = data.bodies[i];
+    subspace[i] = jointMotion(body, state);
+    const double rate = dq[body.user_index];
+    const Motion joint_velocity{subspace[i].angular * rate, subspace[i].linear * rate};
+    // The axis moves with the parent, so d/dt(S dq) = v_parent x S dq when ddq = 0.
+    const Motion bias = crossMotion(velocity, joint_velocity);
+    acceleration.angular += bias.angular;
+    acceleration.linear += bias.linear;
+    velocity.angular += joint_velocity.angular;
+    velocity.linear += joint_velocity.linear;
+    const SpatialInertia inertia = worldInertia(body, state);
+    const Force inertial = inertia.apply(acceleration);
+    const Force gyroscopic = crossForce(velocity, inertia.apply(velocity));
+    body_force[i] = {inertial.moment + gyroscopic.moment, inertial.force + gyroscopic.force};
+  }
+  Force outboard{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  for (int i = model.dof() - 1; i >= 0; --i) {
+    outboard.moment += body_force[i].moment;
+    outboard.force += body_force[i].force;
+    data.coriolis[model.body(i).user_index] = dot(subspace[i], outboard);
+  }
+}
+
+/// Composite-rigid-body algorithm: M_ji = S_j . (I^c_i S_i) for j <= i.
+void computeMassMatrix(const Model& model, Data& data) {
+  std::array<Motion, kMaxDof> subspace;
+  for (int i = 0; i < model.dof(); ++i) {
+    subspace[i] = jointMotion(model.body(i), data.bodies[i]);
+  }
+  SpatialInertia composite{0.0, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero()};
+  for (int i = model.dof() - 1; i >= 0; --i) {
+    const ChainBody& body = model.body(i);
+    const SpatialInertia inertia = worldInertia(body, data.bodies[i]);
+    composite.mass += inertia.mass;
+    composite.first_moment += inertia.first_moment;
+    composite.rotational += inertia.rotational;
+    const Force force = composite.apply(subspace[i]);
+    const int row_i = body.user_index;
+    for (int j = 0; j <= i; ++j) {
+      const double value = dot(subspace[j], force);
+      const int row_j = model.body(j).user_index;
+      data.mass_matrix(row_j, row_i) = value;
+      data.mass_matrix(row_i, row_j) = value;
+    }
+  }
+}
+
+bool allFinite(std::span<const double> values) {
+  for (const double v : values) {
+    if (!std::isfinite(v)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+UpdateStatus update(const Model& model, Data& data, std::span<const double> q,
+                    std::span<const double> dq, Quantity requested) noexcept {
+  const auto dof = static_cast<std::size_t>(model.dof());
+  const bool needs_velocity = contains(requested, Quantity::kCoriolis);
+  if (q.size() != dof || (needs_velocity && dq.size() != dof)) {
+    return UpdateStatus::kSizeMismatch;
+  }
+  if (!allFinite(q) || (needs_velocity && !allFinite(dq))) {
+    return UpdateStatus::kNonFinite;
+  }
+
+  forwardKinematics(model, data, q);
+  if (contains(requested, Quantity::kPose)) {
+    data.tip_orientation = Eigen::Quaterniond(data.tip_rotation);
+    if (data.tip_orientation.w() < 0.0) {
+      data.tip_orientation.coeffs() = -data.tip_orientation.coeffs();  // one hemisphere, w >= 0
+    }
+  }
+  if (contains(requested, Quantity::kJacobian)) {
+    computeJacobian(model, data);
+  }
+  if (contains(requested, Quantity::kGravity)) {
+    computeGravity(model, data);
+  }
+  if (contains(requested, Quantity::kPayloadGravity)) {
+    computePayloadGravity(model, data);
+  }
+  if (contains(requested, Quantity::kCoriolis) || contains(requested, Quantity::kMassMatrix)) {
+    computeWorldInertias(model, data);
+  }
+  if (contains(requested, Quantity::kCoriolis)) {
+    computeCoriolis(model, data, dq);
+  }
+  if (contains(requested, Quantity::kMassMatrix)) {
+    computeMassMatrix(model, data);
+  }
+  data.computed = requested;
+  return UpdateStatus::kOk;
+}
+
+}  // namespace comply::model
