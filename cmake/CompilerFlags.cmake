@@ -6,7 +6,8 @@ target_compile_options(comply_flags INTERFACE
 if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
   target_compile_options(comply_flags INTERFACE $<$<COMPILE_LANGUAGE:CXX>:-Wno-restrict>)
 endif()
+# Global, not per target: Eigen's fixed-size types change alignment with the instruction set, so
+# every translation unit that shares a struct holding them must be compiled with the same flags.
 if(COMPLY_NATIVE)
-  target_compile_options(comply_flags INTERFACE -march=native)
+  add_compile_options(-march=native)
 endif()
-# Eigen's fixed-size types are over-aligned; C++17 aligned new handles that, so no EIGEN_MAKE_ALIGNED.
