@@ -1,0 +1,28 @@
+#pragma once
+// Checks and helpers for stiffness and damping matrices (3x3 blocks expressed in a task frame).
+
+#include <Eigen/Core>
+
+namespace comply {
+
+/// True when m is symmetric (to `symmetry_tolerance` relative to its largest entry) and its
+/// smallest eigenvalue is >= -psd_tolerance * max(1, largest |entry|).
+bool isSymmetricPsd(const Eigen::Matrix3d& m, double symmetry_tolerance = 1e-9,
+                    double psd_tolerance = 1e-9);
+
+/// Critically damped damping for stiffness K acting on a unit (or `mass`) inertia:
+/// D = 2 zeta sqrt(mass) K^(1/2), the matrix square root taken on K's principal axes.
+/// K must be symmetric PSD. zeta = 1 is critical damping.
+Eigen::Matrix3d dampingFromStiffness(const Eigen::Matrix3d& stiffness, double damping_ratio = 1.0,
+                                     double mass = 1.0);
+
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+/// Critical damping for a 6x6 stiffness K acting on a full Cartesian inertia Lambda (both
+/// symmetric, Lambda positive definite) by double diagonalisation (Albu-Schaeffer et al., ICRA
+/// 2003): with Lambda = Q Q^T and K = Q diag(k) Q^T, D = Q diag(2 sqrt(k)) Q^T. Per-axis damping
+/// ratios are applied by the caller as S D S with S = sqrt(zeta) in the stiffness frame, which is
+/// zeta D for equal ratios. Fixed-size eigen solver: no allocation, usable every cycle.
+Matrix6d criticalDamping(const Matrix6d& stiffness, const Matrix6d& inertia);
+
+}  // namespace comply

@@ -1,0 +1,38 @@
+#include "comply/core/gains.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+namespace comply {
+
+bool isSymmetricPsd(const Eigen::Matrix3d& m, double symmetry_tolerance, double psd_tolerance) {
+  if (!m.allFinite()) {
+    return false;
+  }
+  const double scale = std::max(1.0, m.cwiseAbs().maxCoeff());
+  if ((m - m.transpose()).cwiseAbs().maxCoeff() > symmetry_tolerance * scale) {
+    return false;
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(0.5 * (m + m.transpose()),
+                                                             Eigen::EigenvaluesOnly);
+  return eigen.eigenvalues().minCoeff() >= -psd_tolerance * scale;
+}
+
+Eigen::Matrix3d dampingFromStiffness(const Eigen::Matrix3d& stiffness, double damping_ratio,
+                                     double mass) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(stiffness);
+  const Eigen::Vector3d root = eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  return 2.0 * damping_ratio * std::sqrt(mass) * eigen.eigenvectors() * root.asDiagonal() *
+         eigen.eigenvectors().transpose();
+}
+
+Matrix6d criticalDamping(const Matrix6d& stiffness, const Matrix6d& inertia) {
+  // Generalised problem K v = k Lambda v with V^T Lambda V = I, hence Q = V^-T = Lambda V.
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix6d> eigen(stiffness, inertia);
+  const Matrix6d q = inertia * eigen.eigenvectors();
+  const Eigen::Matrix<double, 6, 1> root = eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  return q * (2.0 * root).asDiagonal() * q.transpose();
+}
+
+}  // namespace comply

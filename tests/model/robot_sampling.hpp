@@ -1,0 +1,49 @@
+#pragma once
+// Random joint states inside a model's limits, reproducible from a seed.
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "comply/model/model.hpp"
+
+namespace comply::testing {
+
+inline const std::vector<std::string>& shippedRobots() {
+  static const std::vector<std::string> names{"fr3", "iiwa14", "rizon4s", "ur5e"};
+  return names;
+}
+
+struct JointSample {
+  std::vector<double> q;
+  std::vector<double> dq;
+};
+
+class JointSampler {
+ public:
+  JointSampler(const model::Model& model, unsigned seed) : model_(model), engine_(seed) {}
+
+  /// Positions uniform within the limits (continuous joints within +-pi), velocities uniform
+  /// within the velocity limits (1 rad/s where the URDF gives none).
+  JointSample next() {
+    JointSample sample;
+    for (int i = 0; i < model_.dof(); ++i) {
+      const model::JointLimits& limits = model_.limits(i);
+      const double lower = std::isfinite(limits.lower) ? limits.lower : -std::numbers::pi;
+      const double upper = std::isfinite(limits.upper) ? limits.upper : std::numbers::pi;
+      const double speed = limits.velocity > 0.0 ? limits.velocity : 1.0;
+      sample.q.push_back(std::uniform_real_distribution<double>(lower, upper)(engine_));
+      sample.dq.push_back(std::uniform_real_distribution<double>(-speed, speed)(engine_));
+    }
+    return sample;
+  }
+
+ private:
+  const model::Model& model_;
+  std::mt19937 engine_;
+};
+
+}  // namespace comply::testing
