@@ -1,10 +1,14 @@
 # Warning and optimisation flags shared by every comply target.
 add_library(comply_flags INTERFACE)
 target_compile_options(comply_flags INTERFACE
-  -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wconversion -Wno-sign-conversion)
+  -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion
+  $<$<COMPILE_LANGUAGE:CXX>:-Wnon-virtual-dtor>)
 # GCC 12 reports false -Wrestrict positives inside std::string concatenation (GCC bug 105329).
 if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
   target_compile_options(comply_flags INTERFACE $<$<COMPILE_LANGUAGE:CXX>:-Wno-restrict>)
+  # With AVX-512 enabled, GCC 12 flags the deliberately undefined `__Y = __Y` inside its own
+  # intrinsic headers as maybe-uninitialized when Eigen reduces a vector (GCC bug 105593).
+  target_compile_options(comply_flags INTERFACE -Wno-maybe-uninitialized)
 endif()
 # Global, not per target: Eigen's fixed-size types change alignment with the instruction set, so
 # every translation unit that shares a struct holding them must be compiled with the same flags.

@@ -46,7 +46,7 @@ TEST_P(AllocationTest, UpdatesDoNotAllocate) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Robots, AllocationTest, ::testing::ValuesIn(testing::shippedRobots()),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& param_info) { return param_info.param; });
 
 }  // namespace
 }  // namespace comply::model

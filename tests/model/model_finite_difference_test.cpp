@@ -109,7 +109,7 @@ TEST_P(FiniteDifferenceTest, DerivativesAgree) {
 
 INSTANTIATE_TEST_SUITE_P(Robots, FiniteDifferenceTest,
                          ::testing::ValuesIn(testing::shippedRobots()),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& param_info) { return param_info.param; });
 
 }  // namespace
 }  // namespace comply::model

@@ -104,7 +104,7 @@ TEST_P(ReferenceTest, MatchesMujoco) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Robots, ReferenceTest, ::testing::ValuesIn(testing::shippedRobots()),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& param_info) { return param_info.param; });
 
 }  // namespace
 }  // namespace comply::model

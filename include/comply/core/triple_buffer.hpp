@@ -27,6 +27,14 @@ class TripleBuffer {
             kIndexMask;
   }
 
+  /// Single-writer variant of write() without the writer mutex, for a real-time thread that is the
+  /// only writer (e.g. publishing measured state). Mixing it with write() is a data race.
+  void publishFromSoleWriter(const T& value) noexcept {
+    slots_[back_] = value;
+    back_ = middle_.exchange(static_cast<std::uint8_t>(back_ | kFresh), std::memory_order_acq_rel) &
+            kIndexMask;
+  }
+
   /// Real-time side: takes the newest published value if there is one. Returns true when the value
   /// returned by read() changed. Wait-free, no allocation.
   bool update() noexcept {

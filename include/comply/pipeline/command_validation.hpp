@@ -1,0 +1,51 @@
+#pragma once
+// Validation of incoming commands, on the non-real-time side, before they can reach the cycle.
+// A command is merged field group by field group into the last accepted one; a rejected command
+// changes nothing.
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "comply/core/commands.hpp"
+#include "comply/pipeline/config.hpp"
+
+namespace comply::pipeline {
+
+enum class RejectionReason : std::uint8_t {
+  kNonFinite,          ///< NaN or infinity in a field that was set
+  kInvalidQuaternion,  ///< orientation or task frame too far from unit norm
+  kInvalidGains,       ///< stiffness/damping not symmetric positive semi-definite, or negative
+  kDofMismatch,        ///< joint vectors of the wrong size
+  kStaleStamp,         ///< stamp older than the last accepted command
+  kPoseJump,           ///< target too far from the measured pose / joint position
+  kCount,
+};
+inline constexpr std::size_t kRejectionReasonCount = static_cast<std::size_t>(RejectionReason::kCount);
+
+std::string_view toString(RejectionReason reason);
+
+struct Verdict {
+  bool accepted = true;
+  RejectionReason reason = RejectionReason::kNonFinite;
+  std::string message;  ///< why, with the field name; empty when accepted
+};
+
+/// Measured state the validator compares targets with (published by the real-time side).
+struct MeasuredPose {
+  JointVector position;  ///< q
+  Eigen::Vector3d tcp_position = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond tcp_orientation = Eigen::Quaterniond::Identity();
+  bool valid = false;  ///< false until the controller has run a cycle
+};
+
+/// Validates `incoming` and, on success, writes into `merged` the last accepted command updated
+/// with the field groups `incoming` sets (quaternions renormalised). On rejection `merged` is
+/// untouched.
+Verdict validateAndMerge(const CartesianCommand& incoming, const ValidationConfig& limits, int dof,
+                         const MeasuredPose& measured, CartesianCommand& merged);
+Verdict validateAndMerge(const JointCommand& incoming, const ValidationConfig& limits, int dof,
+                         const MeasuredPose& measured, JointCommand& merged);
+
+}  // namespace comply::pipeline
