@@ -56,7 +56,7 @@ class CartesianImpedance final : public CartesianController {
 
   [[nodiscard]] std::uint32_t requiredQuantities() const override {
     return COMPLY_NEED_POSE | COMPLY_NEED_JACOBIAN |
-           (use_mass_matrix_ ? COMPLY_NEED_MASS_MATRIX : 0U);
+           (use_mass_matrix_ ? std::uint32_t{COMPLY_NEED_MASS_MATRIX} : 0U);
   }
 
   comply_status step(const comply_input& input, const comply_cartesian_command& command,

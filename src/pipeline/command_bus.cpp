@@ -11,7 +11,8 @@ static_assert(static_cast<int>(DampingMode::kRatio) == COMPLY_DAMPING_RATIO);
 static_assert(kMaxDof == COMPLY_MAX_DOF, "core capacity and ABI capacity must agree");
 
 void copyRowMajor(const Eigen::Matrix3d& m, double* out) {
-  Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(out) = m;
+  Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> target(out);
+  target = m;
 }
 
 void copyQuaternion(const Eigen::Quaterniond& q, double* xyzw) {
