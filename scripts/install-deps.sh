@@ -11,6 +11,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   liborocos-kdl-dev
   libmujoco-dev libqhull-dev
+  nlohmann-json3-dev libcli11-dev
 )
 
 missing=()
