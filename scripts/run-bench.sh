@@ -12,7 +12,7 @@ echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ */
 echo "build:   $(grep -E '^CMAKE_BUILD_TYPE|^COMPLY_NATIVE' "${build_dir}/CMakeCache.txt" | tr '\n' ' ')"
 pin=()
 if command -v taskset >/dev/null 2>&1 && [ "$(nproc)" -gt 1 ]; then
-  pin=(taskset -c 1)
+  pin=(taskset -c "$(($(nproc) - 1))")
 fi
 "${pin[@]}" "$bench" --benchmark_min_time=0.2 --benchmark_repetitions=5 \
   --benchmark_report_aggregates_only=true "${@:2}"

@@ -12,7 +12,9 @@ Verdict reject(RejectionReason reason, const std::string& message) {
   return {false, reason, std::string(toString(reason)) + ": " + message};
 }
 
-bool finite(const Eigen::Quaterniond& q) { return q.coeffs().allFinite(); }
+bool finite(const Eigen::Quaterniond& q) {
+  return q.coeffs().allFinite();
+}
 
 /// Renormalises small drift in place; false when the norm is too far from 1.
 bool normaliseQuaternion(Eigen::Quaterniond& q, double tolerance) {
@@ -35,17 +37,77 @@ bool nonNegative(const Vector& v) {
   return (v.array() >= 0.0).all();
 }
 
+/// First joint-space field set in `c` whose size is not `dof` (the message names it); nullptr if
+/// none.
+const char* wrongSizeField(const CartesianCommand& c, int dof) {
+  const CommandField f = c.fields;
+  if (has(f, CommandField::kTorqueFeedforward) && c.torque_feedforward.size() != dof) {
+    return "torque_feedforward";
+  }
+  if (has(f, CommandField::kNullspace)) {
+    if (c.nullspace_position.size() != dof) {
+      return "nullspace_position";
+    }
+    if (c.nullspace_stiffness.size() != dof) {
+      return "nullspace_stiffness";
+    }
+    if (c.nullspace_damping.size() != dof) {
+      return "nullspace_damping";
+    }
+  }
+  return nullptr;
+}
+
+/// First field set in `c` that holds NaN or infinity (the message names it); nullptr if none.
+const char* nonFiniteField(const CartesianCommand& c) {
+  const CommandField f = c.fields;
+  const struct {
+    CommandField group;
+    bool finite;
+    const char* name;
+  } checks[] = {
+      {CommandField::kPosition, c.position.allFinite(), "position"},
+      {CommandField::kPosition, finite(c.orientation), "orientation"},
+      {CommandField::kVelocity, c.twist.allFinite(), "twist"},
+      {CommandField::kAcceleration, c.acceleration.allFinite(), "acceleration"},
+      {CommandField::kStiffness, c.stiffness_translational.allFinite(), "stiffness_translational"},
+      {CommandField::kStiffness, c.stiffness_rotational.allFinite(), "stiffness_rotational"},
+      {CommandField::kDamping, c.damping_translational.allFinite(), "damping_translational"},
+      {CommandField::kDamping, c.damping_rotational.allFinite(), "damping_rotational"},
+      {CommandField::kDamping, c.damping_ratio.allFinite(), "damping_ratio"},
+      {CommandField::kTaskFrame, finite(c.task_frame), "task_frame"},
+      {CommandField::kWrenchFeedforward, c.wrench_feedforward.allFinite(), "wrench_feedforward"},
+      {CommandField::kTorqueFeedforward, c.torque_feedforward.allFinite(), "torque_feedforward"},
+      {CommandField::kNullspace, c.nullspace_position.allFinite(), "nullspace_position"},
+      {CommandField::kNullspace, c.nullspace_stiffness.allFinite(), "nullspace_stiffness"},
+      {CommandField::kNullspace, c.nullspace_damping.allFinite(), "nullspace_damping"},
+  };
+  for (const auto& check : checks) {
+    if (has(f, check.group) && !check.finite) {
+      return check.name;
+    }
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 std::string_view toString(RejectionReason reason) {
   switch (reason) {
-    case RejectionReason::kNonFinite: return "non_finite";
-    case RejectionReason::kInvalidQuaternion: return "invalid_quaternion";
-    case RejectionReason::kInvalidGains: return "invalid_gains";
-    case RejectionReason::kDofMismatch: return "dof_mismatch";
-    case RejectionReason::kStaleStamp: return "stale_stamp";
-    case RejectionReason::kPoseJump: return "pose_jump";
-    case RejectionReason::kCount: break;
+    case RejectionReason::kNonFinite:
+      return "non_finite";
+    case RejectionReason::kInvalidQuaternion:
+      return "invalid_quaternion";
+    case RejectionReason::kInvalidGains:
+      return "invalid_gains";
+    case RejectionReason::kDofMismatch:
+      return "dof_mismatch";
+    case RejectionReason::kStaleStamp:
+      return "stale_stamp";
+    case RejectionReason::kPoseJump:
+      return "pose_jump";
+    case RejectionReason::kCount:
+      break;
   }
   return "unknown";
 }
@@ -59,32 +121,14 @@ Verdict validateAndMerge(const CartesianCommand& incoming, const ValidationConfi
   if (incoming.stamp_s < merged.stamp_s) {
     return reject(RejectionReason::kStaleStamp, "stamp is older than the last accepted command");
   }
-  const auto sized = [dof](const JointVector& v) { return v.size() == dof; };
-  if ((has(f, CommandField::kTorqueFeedforward) && !sized(incoming.torque_feedforward)) ||
-      (has(f, CommandField::kNullspace) &&
-       (!sized(incoming.nullspace_position) || !sized(incoming.nullspace_stiffness) ||
-        !sized(incoming.nullspace_damping)))) {
+  const char* wrong_size = wrongSizeField(incoming, dof);
+  if (wrong_size != nullptr) {
     return reject(RejectionReason::kDofMismatch,
-                  "joint-space fields must have " + std::to_string(dof) + " entries");
+                  std::string(wrong_size) + " must have " + std::to_string(dof) + " entries");
   }
-  const bool all_finite =
-      (!has(f, CommandField::kPosition) ||
-       (incoming.position.allFinite() && finite(incoming.orientation))) &&
-      (!has(f, CommandField::kVelocity) || incoming.twist.allFinite()) &&
-      (!has(f, CommandField::kAcceleration) || incoming.acceleration.allFinite()) &&
-      (!has(f, CommandField::kStiffness) || (incoming.stiffness_translational.allFinite() &&
-                                             incoming.stiffness_rotational.allFinite())) &&
-      (!has(f, CommandField::kDamping) ||
-       (incoming.damping_translational.allFinite() && incoming.damping_rotational.allFinite() &&
-        incoming.damping_ratio.allFinite())) &&
-      (!has(f, CommandField::kTaskFrame) || finite(incoming.task_frame)) &&
-      (!has(f, CommandField::kWrenchFeedforward) || incoming.wrench_feedforward.allFinite()) &&
-      (!has(f, CommandField::kTorqueFeedforward) || incoming.torque_feedforward.allFinite()) &&
-      (!has(f, CommandField::kNullspace) ||
-       (incoming.nullspace_position.allFinite() && incoming.nullspace_stiffness.allFinite() &&
-        incoming.nullspace_damping.allFinite()));
-  if (!all_finite) {
-    return reject(RejectionReason::kNonFinite, "a field holds NaN or infinity");
+  const char* non_finite = nonFiniteField(incoming);
+  if (non_finite != nullptr) {
+    return reject(RejectionReason::kNonFinite, std::string(non_finite) + " holds NaN or infinity");
   }
 
   CartesianCommand candidate = merged;
@@ -187,8 +231,8 @@ Verdict validateAndMerge(const JointCommand& incoming, const ValidationConfig& l
       {CommandField::kAcceleration, incoming.acceleration, candidate.acceleration, "acceleration"},
       {CommandField::kStiffness, incoming.stiffness, candidate.stiffness, "stiffness"},
       {CommandField::kDamping, incoming.damping, candidate.damping, "damping"},
-      {CommandField::kTorqueFeedforward, incoming.torque_feedforward,
-       candidate.torque_feedforward, "torque_feedforward"},
+      {CommandField::kTorqueFeedforward, incoming.torque_feedforward, candidate.torque_feedforward,
+       "torque_feedforward"},
   }};
   for (const Group& group : groups) {
     if (!has(f, group.field)) {
@@ -200,7 +244,8 @@ Verdict validateAndMerge(const JointCommand& incoming, const ValidationConfig& l
                         " entries, the controller has " + std::to_string(dof) + " joints");
     }
     if (!group.source.allFinite()) {
-      return reject(RejectionReason::kNonFinite, std::string(group.name) + " holds NaN or infinity");
+      return reject(RejectionReason::kNonFinite,
+                    std::string(group.name) + " holds NaN or infinity");
     }
     group.target = group.source;
   }

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "comply/model/robot_description.hpp"
 
@@ -28,9 +29,13 @@ class Section {
                              message);
   }
 
+  /// The value at `key`; an undefined node (false in a condition) when absent. A default-made
+  /// YAML::Node would not do: it is a defined null, which reads as "present, wrong type".
   YAML::Node get(const std::string& key) {
     used_.insert(key);
-    return node_ ? node_[key] : YAML::Node();
+    static const YAML::Node kEmptyMap(YAML::NodeType::Map);
+    const YAML::Node& lookup = node_ ? node_ : kEmptyMap;
+    return lookup[key];  // const lookup: never inserts the key
   }
 
   Section section(const std::string& key) { return {get(key), path_ + "." + key, source_}; }
@@ -92,10 +97,14 @@ class Section {
       fail("must be a number or a list of numbers", key);
     }
     switch (values.size()) {
-      case 1: return values[0] * Eigen::Matrix3d::Identity();
-      case 3: return Eigen::Vector3d(values[0], values[1], values[2]).asDiagonal();
-      case 9: return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(values.data());
-      default: fail("needs 1, 3 or 9 values", key);
+      case 1:
+        return values[0] * Eigen::Matrix3d::Identity();
+      case 3:
+        return Eigen::Vector3d(values[0], values[1], values[2]).asDiagonal();
+      case 9:
+        return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(values.data());
+      default:
+        fail("needs 1, 3 or 9 values", key);
     }
   }
 
@@ -210,6 +219,12 @@ WrapperConfig parseWrapperConfig(const std::string& yaml_text, const std::string
   config.base_frame = parameters.value<std::string>("base_frame", robot.base_frame);
   config.tip_frame = parameters.value<std::string>("tip_frame", robot.tcp_frame);
   const int dof = static_cast<int>(config.joints.size());
+  if (dof < 1 || dof > kMaxDof) {
+    // Every per-joint vector downstream has inline storage for kMaxDof entries.
+    parameters.fail(
+        "has " + std::to_string(dof) + " entries, expected 1 to " + std::to_string(kMaxDof),
+        "joints");
+  }
   config.dof = dof;
 
   config.command_timeout_s = parameters.value("command_timeout_s", config.command_timeout_s);
@@ -222,7 +237,8 @@ WrapperConfig parseWrapperConfig(const std::string& yaml_text, const std::string
 
   Section validation = parameters.section("validation");
   ValidationConfig& limits = config.validation;
-  limits.quaternion_tolerance = validation.value("quaternion_tolerance", limits.quaternion_tolerance);
+  limits.quaternion_tolerance =
+      validation.value("quaternion_tolerance", limits.quaternion_tolerance);
   limits.max_position_jump_m = validation.value("max_position_jump_m", limits.max_position_jump_m);
   limits.max_orientation_jump_rad =
       validation.value("max_orientation_jump_rad", limits.max_orientation_jump_rad);
@@ -247,12 +263,15 @@ WrapperConfig parseWrapperConfig(const std::string& yaml_text, const std::string
   if (friction_model == "sigmoid") {
     f.model = FrictionModel::kSigmoid;
     const bool from_robot = robot.friction && robot.joints == config.joints;
-    f.phi1 = friction.perJoint("phi1", dof, from_robot ? robot.friction->phi1 : std::vector<double>{});
-    f.phi2 = friction.perJoint("phi2", dof, from_robot ? robot.friction->phi2 : std::vector<double>{});
-    f.phi3 = friction.perJoint("phi3", dof, from_robot ? robot.friction->phi3 : std::vector<double>{});
+    f.phi1 =
+        friction.perJoint("phi1", dof, from_robot ? robot.friction->phi1 : std::vector<double>{});
+    f.phi2 =
+        friction.perJoint("phi2", dof, from_robot ? robot.friction->phi2 : std::vector<double>{});
+    f.phi3 =
+        friction.perJoint("phi3", dof, from_robot ? robot.friction->phi3 : std::vector<double>{});
     if (f.phi1.empty() || f.phi2.empty() || f.phi3.empty()) {
-      friction.fail("model sigmoid needs phi1, phi2, phi3 (robot.yaml has none for " +
-                    robot.name + ")");
+      friction.fail("model sigmoid needs phi1, phi2, phi3 (robot.yaml has none for " + robot.name +
+                    ")");
     }
   } else if (friction_model == "viscous_coulomb") {
     f.model = FrictionModel::kViscousCoulomb;
@@ -271,8 +290,7 @@ WrapperConfig parseWrapperConfig(const std::string& yaml_text, const std::string
   Section soft = parameters.section("soft_limits");
   config.soft_limits.enabled = soft.value("enabled", true);
   config.soft_limits.margin = soft.perJoint("margin_rad", dof, std::vector<double>(dof, 0.1));
-  config.soft_limits.stiffness =
-      soft.perJoint("stiffness", dof, std::vector<double>(dof, 100.0));
+  config.soft_limits.stiffness = soft.perJoint("stiffness", dof, std::vector<double>(dof, 100.0));
   config.soft_limits.damping = soft.perJoint("damping", dof, std::vector<double>(dof, 5.0));
   soft.rejectUnknownKeys();
 
@@ -284,11 +302,15 @@ WrapperConfig parseWrapperConfig(const std::string& yaml_text, const std::string
       parameters.perJoint("torque_rate_limit_nm_per_s", dof, std::vector<double>(dof, 1000.0));
   config.effort_limit = parameters.perJoint("effort_limit_nm", dof, {});
   config.fault_damping = parameters.perJoint("fault_damping", dof, std::vector<double>(dof, 5.0));
-  for (const auto* list : {&config.torque_rate_limit, &config.fault_damping,
-                           &config.soft_limits.margin, &config.soft_limits.stiffness,
-                           &config.soft_limits.damping}) {
+  const std::pair<const char*, const std::vector<double>*> non_negative[] = {
+      {"torque_rate_limit_nm_per_s", &config.torque_rate_limit},
+      {"fault_damping", &config.fault_damping},
+      {"soft_limits.margin_rad", &config.soft_limits.margin},
+      {"soft_limits.stiffness", &config.soft_limits.stiffness},
+      {"soft_limits.damping", &config.soft_limits.damping}};
+  for (const auto& [key, list] : non_negative) {
     if (std::any_of(list->begin(), list->end(), [](double v) { return !(v >= 0.0); })) {
-      parameters.fail("per-joint limits, gains and margins must be >= 0");
+      parameters.fail("must be >= 0", key);
     }
   }
 
@@ -319,7 +341,8 @@ WrapperConfig parseWrapperConfig(const std::string& yaml_text, const std::string
   const auto ratio = initial.perJoint("damping_ratio", 6, std::vector<double>(6, 1.0));
   cartesian.damping_ratio = Eigen::Map<const Vector6d>(ratio.data());
   cartesian.task_frame = readQuaternion(initial, "task_frame");
-  const auto ns_stiffness = initial.perJoint("nullspace_stiffness", dof, std::vector<double>(dof, 2.0));
+  const auto ns_stiffness =
+      initial.perJoint("nullspace_stiffness", dof, std::vector<double>(dof, 2.0));
   const auto ns_damping = initial.perJoint("nullspace_damping", dof, std::vector<double>(dof, 0.5));
   for (int i = 0; i < dof; ++i) {
     cartesian.nullspace_stiffness[i] = ns_stiffness[i];

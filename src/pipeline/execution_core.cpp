@@ -6,34 +6,12 @@
 
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/compensation.hpp"
+#include "comply/pipeline/plugin_input.hpp"
 
 namespace comply::pipeline {
 namespace {
 
 using model::Quantity;
-
-bool wants(std::uint32_t needs, std::uint32_t flag) { return (needs & flag) != 0; }
-
-/// Model quantities behind the plugin's COMPLY_NEED_* flags.
-Quantity quantitiesFor(std::uint32_t needs) {
-  Quantity quantities = Quantity::kNone;
-  if (wants(needs, COMPLY_NEED_POSE)) {
-    quantities = quantities | Quantity::kPose;
-  }
-  if (wants(needs, COMPLY_NEED_JACOBIAN)) {
-    quantities = quantities | Quantity::kPose | Quantity::kJacobian;
-  }
-  if (wants(needs, COMPLY_NEED_MASS_MATRIX)) {
-    quantities = quantities | Quantity::kMassMatrix;
-  }
-  if (wants(needs, COMPLY_NEED_GRAVITY)) {
-    quantities = quantities | Quantity::kGravity;
-  }
-  if (wants(needs, COMPLY_NEED_CORIOLIS)) {
-    quantities = quantities | Quantity::kCoriolis;
-  }
-  return quantities;
-}
 
 JointVector toJointVector(const std::vector<double>& values) {
   JointVector result(static_cast<Eigen::Index>(values.size()));
@@ -92,11 +70,12 @@ ExecutionCore::ExecutionCore(const WrapperConfig& config, int command_kind) : co
   shaper_ = std::make_unique<TorqueShaper>(
       ShapingLimits{config_.filter_alpha, toJointVector(config_.torque_rate_limit), effort_limit_});
 
-  state_ = JointState::zero(dof_);
+  state_.position.setZero(dof_);
+  state_.velocity.setZero(dof_);
+  state_.effort.setZero(dof_);
   torque_.setZero(dof_);
   scratch_.setZero(dof_);
   input_.dof = dof_;
-  input_.available = plugin_->requiredQuantities() | COMPLY_NEED_POSE | COMPLY_NEED_GRAVITY;
 }
 
 ExecutionCore::~ExecutionCore() = default;
@@ -158,41 +137,7 @@ void ExecutionCore::activate(const void* command) {
 void ExecutionCore::deactivate() noexcept { diagnostics_.state.store(WrapperState::kInactive); }
 
 void ExecutionCore::fillInput(double period_s) noexcept {
-  input_.time_s = time_s_;
-  input_.period_s = period_s;
-  for (int i = 0; i < dof_; ++i) {
-    input_.position[i] = state_.position[i];
-    input_.velocity[i] = state_.velocity[i];
-    input_.effort[i] = state_.effort[i];
-    input_.gravity[i] = data_->gravity[i];
-  }
-  const model::Data& data = *data_;
-  for (int k = 0; k < 3; ++k) {
-    input_.tcp_position[k] = data.tip_position[k];
-  }
-  input_.tcp_orientation[0] = data.tip_orientation.x();
-  input_.tcp_orientation[1] = data.tip_orientation.y();
-  input_.tcp_orientation[2] = data.tip_orientation.z();
-  input_.tcp_orientation[3] = data.tip_orientation.w();
-  if ((quantities_ & Quantity::kJacobian) != Quantity::kNone) {
-    for (int col = 0; col < dof_; ++col) {
-      for (int row = 0; row < 6; ++row) {
-        input_.jacobian[col * 6 + row] = data.jacobian(row, col);
-      }
-    }
-  }
-  if ((quantities_ & Quantity::kMassMatrix) != Quantity::kNone) {
-    for (int col = 0; col < dof_; ++col) {
-      for (int row = 0; row < dof_; ++row) {
-        input_.mass_matrix[col * COMPLY_MAX_DOF + row] = data.mass_matrix(row, col);
-      }
-    }
-  }
-  if ((quantities_ & Quantity::kCoriolis) != Quantity::kNone) {
-    for (int i = 0; i < dof_; ++i) {
-      input_.coriolis[i] = data.coriolis[i];
-    }
-  }
+  fillPluginInput(state_, *data_, quantities_, time_s_, period_s, input_);
 }
 
 void ExecutionCore::beginCycle(const JointState& state, double period_s) noexcept {

@@ -12,20 +12,6 @@ const CartesianCommand& initialCommand(const WrapperConfig& config, const Cartes
   return config.initial_cartesian;
 }
 
-/// The reference a freshly activated (or re-anchored) controller holds: where the arm is.
-void seedReference(JointCommand& command, const MeasuredPose& pose) {
-  command.position = pose.position;
-  command.velocity.setZero(pose.position.size());
-  command.acceleration.setZero(pose.position.size());
-}
-void seedReference(CartesianCommand& command, const MeasuredPose& pose) {
-  command.position = pose.tcp_position;
-  command.orientation = pose.tcp_orientation;
-  command.twist.setZero();
-  command.acceleration.setZero();
-  command.nullspace_position = pose.position;
-}
-
 void anchorBus(comply_joint_command& bus, const comply_input& input) {
   for (int i = 0; i < input.dof; ++i) {
     bus.position[i] = input.position[i];
@@ -61,6 +47,19 @@ void stopMotion(comply_cartesian_command& bus) {
 }
 
 }  // namespace
+
+void seedReference(JointCommand& command, const MeasuredPose& pose) {
+  command.position = pose.position;
+  command.velocity.setZero(pose.position.size());
+  command.acceleration.setZero(pose.position.size());
+}
+void seedReference(CartesianCommand& command, const MeasuredPose& pose) {
+  command.position = pose.tcp_position;
+  command.orientation = pose.tcp_orientation;
+  command.twist.setZero();
+  command.acceleration.setZero();
+  command.nullspace_position = pose.position;
+}
 
 template <typename Command>
 Wrapper<Command>::Wrapper(const WrapperConfig& config)

@@ -42,6 +42,12 @@ struct CommandTraits<CartesianCommand> {
   static constexpr int kKind = COMPLY_COMMAND_CARTESIAN;
 };
 
+/// Sets the motion reference of `command` to the measured pose with zero velocity (and, for a
+/// Cartesian command, the nullspace target to the measured joints): the reference a freshly
+/// activated or re-anchored controller holds, so nothing moves.
+void seedReference(JointCommand& command, const MeasuredPose& pose);
+void seedReference(CartesianCommand& command, const MeasuredPose& pose);
+
 template <typename Command>
 class Wrapper {
  public:

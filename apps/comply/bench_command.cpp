@@ -1,0 +1,183 @@
+#include "bench_command.hpp"
+
+#include <sched.h>
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "comply/model/robot_description.hpp"
+#include "comply/pipeline/wrapper.hpp"
+#include "controller_setup.hpp"
+
+namespace comply::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Figures measured for the published implementation and a Pinocchio-based equivalent on this
+// machine class; printed beside ours so the numbers can be read in context.
+constexpr double kPublishedStepUs = 7.2;
+constexpr double kPublishedCycleUs = 8.3;
+constexpr double kPinocchioLowUs = 1.8;
+constexpr double kPinocchioHighUs = 2.5;
+constexpr double kPeriodS = 0.001;
+
+double microseconds(Clock::time_point start, Clock::time_point end) {
+  return std::chrono::duration<double, std::micro>(end - start).count();
+}
+
+/// A smooth motion around home: every joint swings 0.1 rad at its own frequency, so each cycle
+/// sees a new configuration (as on a robot) and caches/branches are not trained on one input.
+JointState stateAt(const std::vector<double>& home, int cycle) {
+  const auto dof = static_cast<int>(home.size());
+  JointState state = JointState::zero(dof);
+  const double t = cycle * kPeriodS;
+  for (int i = 0; i < dof; ++i) {
+    const double omega = 2.0 * M_PI * (0.3 + 0.1 * i);
+    state.position[i] = home[i] + 0.1 * std::sin(omega * t + i);
+    state.velocity[i] = 0.1 * omega * std::cos(omega * t + i);
+  }
+  return state;
+}
+
+template <typename Command>
+std::array<BenchRow, 2> benchWrapper(const BenchOptions& options, const std::string& wrapper_name,
+                                     const std::string& plugin_name,
+                                     const std::vector<double>& home, std::ostream& log,
+                                     DampingMode damping_mode = DampingMode::kRatio) {
+  pipeline::WrapperConfig config = controllerConfig(options.robot, plugin_name);
+  config.initial_cartesian.damping_mode = damping_mode;
+  pipeline::Wrapper<Command> wrapper(config);
+  JointState state = stateAt(home, 0);
+  wrapper.activate(state);
+  std::vector<double> torque(static_cast<std::size_t>(wrapper.dof()));
+  comply_output output{};
+  std::vector<double> step_us;
+  std::vector<double> cycle_us;
+  step_us.reserve(static_cast<std::size_t>(options.iterations));
+  cycle_us.reserve(static_cast<std::size_t>(options.iterations));
+  const int total = options.warmup + options.iterations;
+  for (int cycle = 0; cycle < total; ++cycle) {
+    state = stateAt(home, cycle);
+    const Clock::time_point cycle_start = Clock::now();
+    const pipeline::CycleStatus status = wrapper.update(state, kPeriodS, torque);
+    const Clock::time_point cycle_end = Clock::now();
+    // Same input the cycle just used: the law's share of it.
+    const Clock::time_point step_start = Clock::now();
+    const comply_status step_status =
+        wrapper.core().stepPluginOnly(&wrapper.activeCommand(), output);
+    const Clock::time_point step_end = Clock::now();
+    if (status != pipeline::CycleStatus::kOk || step_status != COMPLY_OK) {
+      throw std::runtime_error(wrapper_name + " wrapper left normal operation during the benchmark: " +
+                               wrapper.diagnostics().last_error);
+    }
+    if (cycle >= options.warmup) {
+      cycle_us.push_back(microseconds(cycle_start, cycle_end));
+      step_us.push_back(microseconds(step_start, step_end));
+    }
+  }
+  log << "  " << wrapper_name << " (" << plugin_name << "): " << options.iterations
+      << " cycles done\n";
+  return {BenchRow{wrapper_name, plugin_name, "plugin_step", summarize(step_us)},
+          BenchRow{wrapper_name, plugin_name, "full_cycle", summarize(cycle_us)}};
+}
+
+void pinToCpu(int cpu) {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  CPU_SET(cpu, &set);
+  if (sched_setaffinity(0, sizeof(set), &set) != 0) {
+    throw std::runtime_error("cannot pin to CPU " + std::to_string(cpu) + ": " +
+                             std::strerror(errno));
+  }
+}
+
+}  // namespace
+
+std::vector<BenchRow> runBench(const BenchOptions& options, std::ostream& log) {
+  if (options.iterations < 1 || options.warmup < 0) {
+    throw std::runtime_error("--iterations must be >= 1 and --warmup >= 0");
+  }
+  if (options.cpu >= 0) {
+    pinToCpu(options.cpu);
+  }
+  const model::RobotDescription robot = model::loadRobotDescription(options.robot);
+  log << "comply bench: " << robot.name << ", " << options.iterations << " iterations after "
+      << options.warmup << " warm-up cycles"
+      << (options.cpu >= 0 ? ", pinned to CPU " + std::to_string(options.cpu) : std::string())
+      << "\n";
+  std::vector<BenchRow> rows;
+  for (const BenchRow& row :
+       benchWrapper<JointCommand>(options, "joint", "joint_impedance", robot.home, log)) {
+    rows.push_back(row);
+  }
+  // Ratio damping (the default) re-derives D from K and the Cartesian inertia every cycle; the
+  // absolute mode shows what that costs.
+  for (const BenchRow& row : benchWrapper<CartesianCommand>(options, "cartesian",
+                                                           "cartesian_impedance", robot.home, log)) {
+    rows.push_back(row);
+  }
+  for (const BenchRow& row :
+       benchWrapper<CartesianCommand>(options, "cartesian_abs", "cartesian_impedance", robot.home,
+                                      log, DampingMode::kAbsolute)) {
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+void printBench(const BenchOptions& options, int dof, const std::vector<BenchRow>& rows,
+                std::ostream& out) {
+  if (options.json) {
+    nlohmann::json document;
+    document["robot"] = options.robot;
+    document["dof"] = dof;
+    document["iterations"] = options.iterations;
+    document["rows"] = nlohmann::json::array();
+    for (const BenchRow& row : rows) {
+      document["rows"].push_back({{"wrapper", row.wrapper},
+                                  {"plugin", row.plugin},
+                                  {"stage", row.stage},
+                                  {"mean_us", row.timing.mean_us},
+                                  {"sd_us", row.timing.sd_us},
+                                  {"p50_us", row.timing.p50_us},
+                                  {"p99_us", row.timing.p99_us},
+                                  {"max_us", row.timing.max_us}});
+    }
+    document["reference"] = {{"published_step_us", kPublishedStepUs},
+                             {"published_step_and_wrapper_us", kPublishedCycleUs},
+                             {"pinocchio_bundle_us", {kPinocchioLowUs, kPinocchioHighUs}}};
+    out << document.dump(2) << "\n";
+    return;
+  }
+  out << "robot " << options.robot << " (" << dof << " DOF), " << options.iterations
+      << " iterations, microseconds per call\n\n";
+  out << std::left << std::setw(15) << "wrapper" << std::setw(13) << "stage" << std::right
+      << std::setw(9) << "mean" << std::setw(9) << "sd" << std::setw(9) << "p50" << std::setw(9)
+      << "p99" << std::setw(9) << "max" << "\n";
+  out << std::fixed << std::setprecision(3);
+  for (const BenchRow& row : rows) {
+    out << std::left << std::setw(15) << row.wrapper << std::setw(13) << row.stage << std::right
+        << std::setw(9) << row.timing.mean_us << std::setw(9) << row.timing.sd_us << std::setw(9)
+        << row.timing.p50_us << std::setw(9) << row.timing.p99_us << std::setw(9)
+        << row.timing.max_us << "\n";
+  }
+  out << std::setprecision(1) << "\nfor reference, on this machine: published implementation "
+      << kPublishedStepUs << " us (step) / " << kPublishedCycleUs
+      << " us (step + wrapper); an equivalent Pinocchio bundle " << kPinocchioLowUs << "-"
+      << kPinocchioHighUs << " us\n";
+}
+
+int benchCommand(const BenchOptions& options) {
+  const std::vector<BenchRow> rows = runBench(options, std::cerr);
+  const int dof = static_cast<int>(model::loadRobotDescription(options.robot).joints.size());
+  printBench(options, dof, rows, std::cout);
+  return 0;
+}
+
+}  // namespace comply::app

@@ -1,0 +1,75 @@
+#pragma once
+// Bit-for-bit comparison of commands: a rejected command must leave the merged one untouched, and
+// "approximately equal" would hide a field that was half written before the rejection.
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstdint>
+#include <cstring>
+
+#include "comply/core/commands.hpp"
+
+namespace comply::pipeline::test {
+
+inline bool sameBits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+
+template <typename Derived>
+bool sameBits(const Eigen::PlainObjectBase<Derived>& a, const Eigen::PlainObjectBase<Derived>& b) {
+  return a.rows() == b.rows() && a.cols() == b.cols() &&
+         std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
+}
+
+inline bool sameBits(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
+  return sameBits(a.coeffs(), b.coeffs());
+}
+
+#define COMPLY_EXPECT_SAME_FIELD(a, b, field) \
+  EXPECT_TRUE(::comply::pipeline::test::sameBits((a).field, (b).field)) << #field " changed"
+
+inline void expectSameBits(const JointCommand& actual, const JointCommand& expected) {
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, stamp_s);
+  EXPECT_EQ(actual.fields, expected.fields);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, position);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, velocity);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, acceleration);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, stiffness);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, damping);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, torque_feedforward);
+}
+
+inline void expectSameBits(const CartesianCommand& actual, const CartesianCommand& expected) {
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, stamp_s);
+  EXPECT_EQ(actual.fields, expected.fields);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, position);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, orientation);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, twist);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, acceleration);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, stiffness_translational);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, stiffness_rotational);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, damping_translational);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, damping_rotational);
+  EXPECT_EQ(actual.damping_mode, expected.damping_mode);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, damping_ratio);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, task_frame);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, wrench_feedforward);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, torque_feedforward);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, nullspace_position);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, nullspace_stiffness);
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, nullspace_damping);
+}
+
+#undef COMPLY_EXPECT_SAME_FIELD
+
+inline JointVector joints(std::initializer_list<double> values) {
+  JointVector v(static_cast<Eigen::Index>(values.size()));
+  Eigen::Index i = 0;
+  for (const double value : values) {
+    v[i++] = value;
+  }
+  return v;
+}
+
+}  // namespace comply::pipeline::test
