@@ -74,7 +74,8 @@ std::array<BenchRow, 2> benchWrapper(const BenchOptions& options, const std::str
         wrapper.core().stepPluginOnly(&wrapper.activeCommand(), output);
     const Clock::time_point step_end = Clock::now();
     if (status != pipeline::CycleStatus::kOk || step_status != COMPLY_OK) {
-      throw std::runtime_error(wrapper_name + " wrapper left normal operation during the benchmark: " +
+      throw std::runtime_error(wrapper_name +
+                               " wrapper left normal operation during the benchmark: " +
                                wrapper.diagnostics().last_error);
     }
     if (cycle >= options.warmup) {
@@ -119,8 +120,8 @@ std::vector<BenchRow> runBench(const BenchOptions& options, std::ostream& log) {
   }
   // Ratio damping (the default) re-derives D from K and the Cartesian inertia every cycle; the
   // absolute mode shows what that costs.
-  for (const BenchRow& row : benchWrapper<CartesianCommand>(options, "cartesian",
-                                                           "cartesian_impedance", robot.home, log)) {
+  for (const BenchRow& row : benchWrapper<CartesianCommand>(
+           options, "cartesian", "cartesian_impedance", robot.home, log)) {
     rows.push_back(row);
   }
   for (const BenchRow& row :
@@ -159,7 +160,8 @@ void printBench(const BenchOptions& options, int dof, const std::vector<BenchRow
       << " iterations, microseconds per call\n\n";
   out << std::left << std::setw(15) << "wrapper" << std::setw(13) << "stage" << std::right
       << std::setw(9) << "mean" << std::setw(9) << "sd" << std::setw(9) << "p50" << std::setw(9)
-      << "p99" << std::setw(9) << "max" << "\n";
+      << "p99" << std::setw(9) << "max"
+      << "\n";
   out << std::fixed << std::setprecision(3);
   for (const BenchRow& row : rows) {
     out << std::left << std::setw(15) << row.wrapper << std::setw(13) << row.stage << std::right

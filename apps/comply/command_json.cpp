@@ -115,8 +115,8 @@ class Reader {
         throw CommandJsonError("'fields' must be a list of field group names");
       }
       for (const json& name : list) {
-        const auto found = name.is_string() ? fieldGroups().find(name.get<std::string>())
-                                            : fieldGroups().end();
+        const auto found =
+            name.is_string() ? fieldGroups().find(name.get<std::string>()) : fieldGroups().end();
         if (found == fieldGroups().end()) {
           throw CommandJsonError("'fields' holds an unknown group " + name.dump());
         }

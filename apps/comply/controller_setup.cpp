@@ -11,8 +11,9 @@ pipeline::WrapperConfig controllerConfig(const std::string& robot, const std::st
   if (!config_file.empty()) {
     pipeline::WrapperConfig config = pipeline::loadWrapperConfig(config_file);
     if ((!robot.empty() && robot != config.robot) || (!plugin.empty() && plugin != config.plugin)) {
-      throw std::runtime_error(config_file + " configures robot '" + config.robot + "' and plugin '" +
-                               config.plugin + "'; drop --robot/--plugin or edit the file");
+      throw std::runtime_error(config_file + " configures robot '" + config.robot +
+                               "' and plugin '" + config.plugin +
+                               "'; drop --robot/--plugin or edit the file");
     }
     return config;
   }

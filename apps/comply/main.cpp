@@ -43,8 +43,9 @@ int main(int argc, char** argv) {
   validate_command->add_option("--expected", validate.expected,
                                "expected outputs; report max error per output");
   validate_command->add_option("--out", validate.out, "write the outputs here (default stdout)");
-  validate_command->add_option("--tolerance", validate.tolerance,
-                               "max absolute error per output with --expected")
+  validate_command
+      ->add_option("--tolerance", validate.tolerance,
+                   "max absolute error per output with --expected")
       ->capture_default_str();
   validate_command->add_option("--period", validate.period_s, "cycle period of --wrapper [s]")
       ->capture_default_str()

@@ -24,8 +24,9 @@ constexpr model::Quantity kAllModelQuantities =
     model::Quantity::kPose | model::Quantity::kJacobian | model::Quantity::kGravity |
     model::Quantity::kCoriolis | model::Quantity::kMassMatrix;
 
-const std::set<std::string> kOutputKeys{"tcp_position", "tcp_orientation", "jacobian", "gravity",
-                                        "coriolis",     "mass_matrix",     "torque",   "wrapper_torque"};
+const std::set<std::string> kOutputKeys{"tcp_position", "tcp_orientation", "jacobian",
+                                        "gravity",      "coriolis",        "mass_matrix",
+                                        "torque",       "wrapper_torque"};
 
 json readJsonFile(const std::string& path) {
   std::ifstream stream(path);
@@ -41,9 +42,8 @@ json readJsonFile(const std::string& path) {
 
 /// The sample list of an inputs/outputs document: a top-level list or {"samples": [...]}.
 const json& samplesOf(const json& document, const std::string& path) {
-  const json& samples = document.is_object() && document.contains("samples")
-                            ? document.at("samples")
-                            : document;
+  const json& samples =
+      document.is_object() && document.contains("samples") ? document.at("samples") : document;
   if (!samples.is_array()) {
     throw ValidateInputError("'" + path + "' must hold a list of samples or {\"samples\": [...]}");
   }
@@ -112,7 +112,9 @@ std::vector<Sample> readSamples(const std::string& path, int dof) {
   return samples;
 }
 
-json toJson(const JointVector& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
+json toJson(const JointVector& v) {
+  return std::vector<double>(v.data(), v.data() + v.size());
+}
 
 json rowsOf(const Eigen::Ref<const Eigen::MatrixXd>& m) {
   json rows = json::array();
@@ -157,7 +159,8 @@ Command parseCommand(const json& object, int dof, const Command& base, const std
 }
 
 /// Model quantities and the law's torque, each sample on its own: the reference not given by the
-/// command is the measured pose (as on activation), gains not given are the configured initial ones.
+/// command is the measured pose (as on activation), gains not given are the configured initial
+/// ones.
 template <typename Command>
 void runLaw(const pipeline::WrapperConfig& config, const std::vector<Sample>& samples,
             const std::string& inputs_path, json& outputs) {
@@ -221,8 +224,7 @@ void runWrapper(const pipeline::WrapperConfig& config, const std::vector<Sample>
   if (!samples.front().has_effort) {
     // Without a measured effort, start as a robot holding itself still would: at gravity.
     model::Data data(wrapper.core().model());
-    model::update(wrapper.core().model(), data,
-                  std::span<const double>(first.position.data(), dof),
+    model::update(wrapper.core().model(), data, std::span<const double>(first.position.data(), dof),
                   std::span<const double>(first.velocity.data(), dof), model::Quantity::kGravity);
     first.effort = data.gravity;
   }
@@ -358,7 +360,8 @@ int validateCommand(const ValidateOptions& options, std::ostream& out, std::ostr
   if (options.expected.empty()) {
     return 0;
   }
-  const std::map<std::string, double> errors = compareOutputs(document, readJsonFile(options.expected));
+  const std::map<std::string, double> errors =
+      compareOutputs(document, readJsonFile(options.expected));
   bool within = true;
   out << std::left << std::setw(18) << "output" << std::right << std::setw(14) << "max |error|"
       << "  (tolerance " << options.tolerance << ")\n";

@@ -47,8 +47,7 @@ class CartesianImpedance final : public CartesianController {
     nullspace_damping_ = parameters.number("nullspace_dls_damping", 0.05);
     inertia_regularisation_ = parameters.number("inertia_regularisation", 1e-6);
     if (!(nullspace_damping_ >= 0.0) || !(inertia_regularisation_ >= 0.0)) {
-      throw plugin::ParameterError(
-          "nullspace_dls_damping and inertia_regularisation must be >= 0");
+      throw plugin::ParameterError("nullspace_dls_damping and inertia_regularisation must be >= 0");
     }
     // Ratio-mode damping needs M; a user who never streams ratios can save its computation.
     use_mass_matrix_ = parameters.number("inertia_aware_damping", 1.0) != 0.0;
@@ -62,8 +61,8 @@ class CartesianImpedance final : public CartesianController {
   comply_status step(const comply_input& input, const comply_cartesian_command& command,
                      comply_output& output) noexcept override {
     const int n = dof_;
-    const Jacobian jacobian = Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>>(
-        input.jacobian, 6, n);
+    const Jacobian jacobian =
+        Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>>(input.jacobian, 6, n);
     const JointVector q = Eigen::Map<const Eigen::VectorXd>(input.position, n);
     const JointVector dq = Eigen::Map<const Eigen::VectorXd>(input.velocity, n);
 
@@ -73,8 +72,8 @@ class CartesianImpedance final : public CartesianController {
                            Eigen::Map<const Eigen::Vector3d>(command.position);
     pose_error.tail<3>() = -orientationError(quaternionFromXyzw(input.tcp_orientation),
                                              quaternionFromXyzw(command.orientation));
-    const Vector6d twist_error = jacobian * dq - Vector6d(Eigen::Map<const Vector6d>(
-                                                              command.twist));
+    const Vector6d twist_error =
+        jacobian * dq - Vector6d(Eigen::Map<const Vector6d>(command.twist));
 
     // Gains from the task frame to the base frame, every cycle.
     const Eigen::Matrix3d task_rotation =
@@ -104,8 +103,9 @@ class CartesianImpedance final : public CartesianController {
     // Nullspace: tau_0 - J^T (J J^T + lambda^2 I)^-1 J tau_0, a 6x6 solve instead of an SVD.
     JointVector nullspace_torque(n);
     for (int i = 0; i < n; ++i) {
-      nullspace_torque[i] = command.nullspace_stiffness[i] * (command.nullspace_position[i] - q[i]) -
-                            command.nullspace_damping[i] * dq[i];
+      nullspace_torque[i] =
+          command.nullspace_stiffness[i] * (command.nullspace_position[i] - q[i]) -
+          command.nullspace_damping[i] * dq[i];
     }
     const Matrix6d regularised = jacobian * jacobian.transpose() +
                                  nullspace_damping_ * nullspace_damping_ * Matrix6d::Identity();
@@ -129,8 +129,8 @@ class CartesianImpedance final : public CartesianController {
     const Eigen::LLT<JointMatrix> mass_factor(mass);
     const Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::ColMajor, kMaxDof, 6> mass_inverse_jt =
         mass_factor.solve(jacobian.transpose());
-    const Matrix6d inverse_inertia = jacobian * mass_inverse_jt +
-                                     inertia_regularisation_ * Matrix6d::Identity();
+    const Matrix6d inverse_inertia =
+        jacobian * mass_inverse_jt + inertia_regularisation_ * Matrix6d::Identity();
     const Matrix6d inertia = inverse_inertia.llt().solve(Matrix6d::Identity());
     const Matrix6d critical = criticalDamping(stiffness, inertia);
     Matrix6d ratio_root = Matrix6d::Zero();
@@ -138,9 +138,9 @@ class CartesianImpedance final : public CartesianController {
     ratio_root.topLeftCorner<3, 3>() = task_rotation *
                                        zeta.head<3>().cwiseMax(0.0).cwiseSqrt().asDiagonal() *
                                        task_rotation.transpose();
-    ratio_root.bottomRightCorner<3, 3>() =
-        task_rotation * zeta.tail<3>().cwiseMax(0.0).cwiseSqrt().asDiagonal() *
-        task_rotation.transpose();
+    ratio_root.bottomRightCorner<3, 3>() = task_rotation *
+                                           zeta.tail<3>().cwiseMax(0.0).cwiseSqrt().asDiagonal() *
+                                           task_rotation.transpose();
     return ratio_root * critical * ratio_root;
   }
 

@@ -8,15 +8,17 @@ void frictionTorque(const FrictionConfig& friction, const JointVector& dq,
                     JointVector& torque) noexcept {
   const auto n = dq.size();
   switch (friction.model) {
-    case FrictionModel::kNone: torque.setZero(n); return;
+    case FrictionModel::kNone:
+      torque.setZero(n);
+      return;
     case FrictionModel::kSigmoid:
       torque.resize(n);
       for (Eigen::Index i = 0; i < n; ++i) {
         const double phi1 = friction.phi1[i];
         const double phi2 = friction.phi2[i];
         const double phi3 = friction.phi3[i];
-        torque[i] = phi1 / (1.0 + std::exp(-phi2 * (dq[i] + phi3))) -
-                    phi1 / (1.0 + std::exp(-phi2 * phi3));
+        torque[i] =
+            phi1 / (1.0 + std::exp(-phi2 * (dq[i] + phi3))) - phi1 / (1.0 + std::exp(-phi2 * phi3));
       }
       return;
     case FrictionModel::kViscousCoulomb:

@@ -7,9 +7,12 @@ namespace comply::pipeline {
 
 std::string_view toString(WrapperState state) {
   switch (state) {
-    case WrapperState::kInactive: return "inactive";
-    case WrapperState::kActive: return "active";
-    case WrapperState::kFault: return "fault";
+    case WrapperState::kInactive:
+      return "inactive";
+    case WrapperState::kActive:
+      return "active";
+    case WrapperState::kFault:
+      return "fault";
   }
   return "unknown";
 }

@@ -39,13 +39,12 @@ ExecutionCore::ExecutionCore(const WrapperConfig& config, int command_kind) : co
   dof_ = model_->dof();
   if (dof_ != config_.dof) {
     throw std::runtime_error(config_.name + ": the model has " + std::to_string(dof_) +
-                             " joints but the configuration lists " +
-                             std::to_string(config_.dof));
+                             " joints but the configuration lists " + std::to_string(config_.dof));
   }
 
   auto library = std::make_shared<const plugin::PluginLibrary>(config_.plugin, command_kind);
-  plugin_ = std::make_unique<plugin::PluginInstance>(std::move(library), dof_,
-                                                     config_.plugin_parameters);
+  plugin_ =
+      std::make_unique<plugin::PluginInstance>(std::move(library), dof_, config_.plugin_parameters);
   // The pose is always computed (validation and re-anchoring need it) and gravity too (the FAULT
   // state holds the arm against it even when gravity compensation is off).
   quantities_ = quantitiesFor(plugin_->requiredQuantities()) | Quantity::kPose | Quantity::kGravity;
@@ -134,7 +133,9 @@ void ExecutionCore::activate(const void* command) {
   diagnostics_.state.store(WrapperState::kActive);
 }
 
-void ExecutionCore::deactivate() noexcept { diagnostics_.state.store(WrapperState::kInactive); }
+void ExecutionCore::deactivate() noexcept {
+  diagnostics_.state.store(WrapperState::kInactive);
+}
 
 void ExecutionCore::fillInput(double period_s) noexcept {
   fillPluginInput(state_, *data_, quantities_, time_s_, period_s, input_);
@@ -209,14 +210,16 @@ void ExecutionCore::addCompensation() noexcept {
 
 CycleStatus ExecutionCore::finishCycle(const void* command, std::span<double> torque) noexcept {
   switch (diagnostics_.state.load(std::memory_order_relaxed)) {
-    case WrapperState::kInactive: return CycleStatus::kInactive;
+    case WrapperState::kInactive:
+      return CycleStatus::kInactive;
     case WrapperState::kFault:
       if (!reset_requested_.exchange(false)) {
         return writeSafeTorque(torque);
       }
       diagnostics_.state.store(WrapperState::kActive, std::memory_order_relaxed);
       break;
-    case WrapperState::kActive: break;
+    case WrapperState::kActive:
+      break;
   }
   if (static_cast<int>(torque.size()) < dof_) {
     enterFault("output: ", "torque buffer smaller than the number of joints");

@@ -5,7 +5,9 @@ namespace {
 
 using model::Quantity;
 
-bool has(Quantity set, Quantity quantity) { return (set & quantity) != Quantity::kNone; }
+bool has(Quantity set, Quantity quantity) {
+  return (set & quantity) != Quantity::kNone;
+}
 
 }  // namespace
 

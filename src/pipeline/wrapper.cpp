@@ -125,8 +125,8 @@ void Wrapper<Command>::reanchor() noexcept {
   for (int i = 0; i < input.dof; ++i) {
     pose.position[i] = input.position[i];
   }
-  pose.tcp_position = Eigen::Vector3d(input.tcp_position[0], input.tcp_position[1],
-                                      input.tcp_position[2]);
+  pose.tcp_position =
+      Eigen::Vector3d(input.tcp_position[0], input.tcp_position[1], input.tcp_position[2]);
   pose.tcp_orientation = Eigen::Quaterniond(input.tcp_orientation[3], input.tcp_orientation[0],
                                             input.tcp_orientation[1], input.tcp_orientation[2]);
   pose.valid = true;

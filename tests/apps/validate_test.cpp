@@ -76,10 +76,10 @@ TEST_F(ValidateTest, ModelQuantitiesAgreeWithKdl) {
                                   fr3.joints);
   double worst = 0.0;
   for (std::size_t s = 0; s < samples.size(); ++s) {
-    const Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXd>(
-        samples[s]["q"].get<std::vector<double>>().data(), 7);
-    const Eigen::VectorXd dq = Eigen::Map<const Eigen::VectorXd>(
-        samples[s]["dq"].get<std::vector<double>>().data(), 7);
+    const Eigen::VectorXd q =
+        Eigen::Map<const Eigen::VectorXd>(samples[s]["q"].get<std::vector<double>>().data(), 7);
+    const Eigen::VectorXd dq =
+        Eigen::Map<const Eigen::VectorXd>(samples[s]["dq"].get<std::vector<double>>().data(), 7);
     const testing::ReferenceResult reference = kdl.compute(q, dq);
     const json& out = output["samples"][s];
     const auto compare = [&worst](const std::vector<double>& got, const double* want, int n) {
@@ -160,15 +160,14 @@ void expectInputError(const ValidateOptions& validate, const std::string& needle
 TEST_F(ValidateTest, MalformedInputsNameTheField) {
   json unknown_sample_field = homeSample();
   unknown_sample_field["qd"] = {0.0};
-  expectInputError(options("cartesian_impedance",
-                           writeJson("e1.json", json::array({unknown_sample_field}))),
-                   "unknown field 'qd'");
+  expectInputError(
+      options("cartesian_impedance", writeJson("e1.json", json::array({unknown_sample_field}))),
+      "unknown field 'qd'");
 
   json missing_dq = homeSample();
   missing_dq.erase("dq");
-  expectInputError(
-      options("cartesian_impedance", writeJson("e2.json", json::array({missing_dq}))),
-      "missing field 'dq'");
+  expectInputError(options("cartesian_impedance", writeJson("e2.json", json::array({missing_dq}))),
+                   "missing field 'dq'");
 
   json short_q = homeSample();
   short_q["q"] = {0.0, 0.0};

@@ -22,7 +22,8 @@ enum class RejectionReason : std::uint8_t {
   kPoseJump,           ///< target too far from the measured pose / joint position
   kCount,
 };
-inline constexpr std::size_t kRejectionReasonCount = static_cast<std::size_t>(RejectionReason::kCount);
+inline constexpr std::size_t kRejectionReasonCount =
+    static_cast<std::size_t>(RejectionReason::kCount);
 
 std::string_view toString(RejectionReason reason);
 

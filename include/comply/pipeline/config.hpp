@@ -49,11 +49,11 @@ struct WrapperConfig {
   std::string name;  ///< controller name (top-level YAML key)
   std::string plugin;
   plugin::ParameterMap plugin_parameters;
-  std::string robot;               ///< name or folder
-  std::vector<std::string> joints; ///< default: robot.yaml joints
-  std::string base_frame;          ///< default: robot.yaml base_frame
-  std::string tip_frame;           ///< default: robot.yaml tcp_frame
-  int dof = 0;                     ///< number of joints (from `joints`)
+  std::string robot;                ///< name or folder
+  std::vector<std::string> joints;  ///< default: robot.yaml joints
+  std::string base_frame;           ///< default: robot.yaml base_frame
+  std::string tip_frame;            ///< default: robot.yaml tcp_frame
+  int dof = 0;                      ///< number of joints (from `joints`)
 
   double command_timeout_s = 0.5;
   TimeoutBehavior timeout_behavior = TimeoutBehavior::kHold;
@@ -65,10 +65,10 @@ struct WrapperConfig {
   FrictionConfig friction;
   SoftLimitConfig soft_limits;
 
-  double filter_alpha = 1.0;                ///< tau_f = alpha tau + (1 - alpha) tau_f,prev; 1 = off
-  std::vector<double> torque_rate_limit;    ///< N m/s per joint
-  std::vector<double> effort_limit;         ///< N m; default: URDF <limit effort>
-  std::vector<double> fault_damping;        ///< N m s/rad of the safe holding torque
+  double filter_alpha = 1.0;              ///< tau_f = alpha tau + (1 - alpha) tau_f,prev; 1 = off
+  std::vector<double> torque_rate_limit;  ///< N m/s per joint
+  std::vector<double> effort_limit;       ///< N m; default: URDF <limit effort>
+  std::vector<double> fault_damping;      ///< N m s/rad of the safe holding torque
 
   /// Initial command (gains, task frame); the pose/joint reference is seeded on activation.
   JointCommand initial_joint;

@@ -15,7 +15,7 @@ struct ShapingLimits {
 };
 
 struct ShapingResult {
-  bool finite = true;  ///< false: the filtered torque held NaN/inf; output is the previous one
+  bool finite = true;      ///< false: the filtered torque held NaN/inf; output is the previous one
   int rate_limited = 0;    ///< joints clipped by the rate limit this cycle
   int effort_limited = 0;  ///< joints clipped by the effort limit this cycle
 };
