@@ -9,7 +9,8 @@
 //
 // Damping is either the command's matrices or, in ratio mode, D = S D_crit S with D_crit from
 // double diagonalisation of K against Lambda = (J M^-1 J^T)^-1 and S = sqrt(zeta) on the task
-// axes, so damping tracks streamed stiffness on the real inertia rather than a unit mass.
+// axes, so damping tracks streamed stiffness on the real inertia rather than a unit mass. The
+// diagonalisation works on Lambda^-1 directly and is warm-started from the previous cycle.
 // The commanded acceleration is not used by this law. Fixed-capacity storage only.
 
 #include <Eigen/Cholesky>
@@ -90,7 +91,11 @@ class CartesianImpedance final : public CartesianController {
         writeMessage(output, "damping ratios need inertia_aware_damping: 1");
         return COMPLY_ERROR;
       }
-      damping = ratioDamping(input, jacobian, stiffness, task_rotation, command.damping_ratio);
+      if (!ratioDamping(input, jacobian, stiffness, task_rotation, command.damping_ratio,
+                        damping)) {
+        writeMessage(output, "Cartesian inertia not positive definite (singular mass matrix?)");
+        return COMPLY_ERROR;
+      }
     } else {
       damping.topLeftCorner<3, 3>() = rotate(command.damping_translational);
       damping.bottomRightCorner<3, 3>() = rotate(command.damping_rotational);
@@ -120,19 +125,25 @@ class CartesianImpedance final : public CartesianController {
   }
 
  private:
-  Matrix6d ratioDamping(const comply_input& input, const Jacobian& jacobian,
-                        const Matrix6d& stiffness, const Eigen::Matrix3d& task_rotation,
-                        const double* ratio) const noexcept {
+  /// D = S D_crit S; false when J M^-1 J^T is not positive definite (e.g. M not SPD).
+  bool ratioDamping(const comply_input& input, const Jacobian& jacobian, const Matrix6d& stiffness,
+                    const Eigen::Matrix3d& task_rotation, const double* ratio,
+                    Matrix6d& damping) noexcept {
     const int n = dof_;
     const JointMatrix mass = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>(
         input.mass_matrix, n, n, Eigen::OuterStride<>(COMPLY_MAX_DOF));
     const Eigen::LLT<JointMatrix> mass_factor(mass);
+    if (mass_factor.info() != Eigen::Success) {
+      return false;
+    }
     const Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::ColMajor, kMaxDof, 6> mass_inverse_jt =
         mass_factor.solve(jacobian.transpose());
     const Matrix6d inverse_inertia =
         jacobian * mass_inverse_jt + inertia_regularisation_ * Matrix6d::Identity();
-    const Matrix6d inertia = inverse_inertia.llt().solve(Matrix6d::Identity());
-    const Matrix6d critical = criticalDamping(stiffness, inertia);
+    Matrix6d critical;
+    if (!critical_damping_.compute(stiffness, inverse_inertia, critical)) {
+      return false;
+    }
     Matrix6d ratio_root = Matrix6d::Zero();
     const Eigen::Map<const Vector6d> zeta(ratio);
     ratio_root.topLeftCorner<3, 3>() = task_rotation *
@@ -141,9 +152,13 @@ class CartesianImpedance final : public CartesianController {
     ratio_root.bottomRightCorner<3, 3>() = task_rotation *
                                            zeta.tail<3>().cwiseMax(0.0).cwiseSqrt().asDiagonal() *
                                            task_rotation.transpose();
-    return ratio_root * critical * ratio_root;
+    damping = ratio_root * critical * ratio_root;
+    return true;
   }
 
+  // Keeps the eigenbasis of the last cycle: the double diagonalisation then costs 1-2 Jacobi
+  // sweeps instead of a full eigen solve.
+  CriticalDampingTracker critical_damping_;
   int dof_ = 0;
   double nullspace_damping_ = 0.05;
   double inertia_regularisation_ = 1e-6;

@@ -1,5 +1,6 @@
 #include "comply/core/gains.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -33,6 +34,22 @@ Matrix6d criticalDamping(const Matrix6d& stiffness, const Matrix6d& inertia) {
   const Matrix6d q = inertia * eigen.eigenvectors();
   const Eigen::Matrix<double, 6, 1> root = eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt();
   return q * (2.0 * root).asDiagonal() * q.transpose();
+}
+
+bool CriticalDampingTracker::compute(const Matrix6d& stiffness, const Matrix6d& inverse_inertia,
+                                     Matrix6d& damping) noexcept {
+  const Eigen::LLT<Matrix6d> factor(inverse_inertia);
+  if (factor.info() != Eigen::Success) {
+    return false;
+  }
+  const Matrix6d lower = factor.matrixL();
+  const Matrix6d symmetric = lower.transpose() * stiffness * lower;
+  Vector6d eigenvalues;
+  last_sweeps_ = symmetricEigenJacobi(symmetric, basis_, eigenvalues);
+  // Q = L^-T U, then D = Q diag(2 sqrt(k)) Q^T.
+  const Matrix6d q = lower.transpose().triangularView<Eigen::Upper>().solve(basis_);
+  damping = q * (2.0 * eigenvalues.cwiseMax(0.0).cwiseSqrt()).asDiagonal() * q.transpose();
+  return true;
 }
 
 }  // namespace comply

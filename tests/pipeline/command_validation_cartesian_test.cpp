@@ -223,6 +223,15 @@ TEST_F(CartesianValidation, RejectsTaskFrameFarFromUnitNorm) {
                  {"task_frame", "norm 0.5"});
 }
 
+TEST_F(CartesianValidation, MergedCommandAlwaysCarriesEveryGroup) {
+  // Whatever mask the sender used, the merged command holds every group (the plugin reads all).
+  merged_.fields = CommandField::kNone;
+  CartesianCommand incoming = nextCommand();
+  incoming.fields = CommandField::kVelocity;
+  ASSERT_TRUE(validate(incoming).accepted);
+  EXPECT_EQ(merged_.fields, CommandField::kAll);
+}
+
 TEST_F(CartesianValidation, RejectsNonFiniteStamp) {
   expectRejected([](auto& c) { c.stamp_s = kNaN; }, RejectionReason::kNonFinite, {"stamp"});
 }

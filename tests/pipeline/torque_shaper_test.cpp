@@ -100,6 +100,21 @@ TEST(TorqueShaper, NonFiniteTorqueDoesNotPoisonTheFilter) {
   expectJoints(torque, {4.0});
 }
 
+TEST(TorqueShaper, NonFiniteCycleLeavesTheFilterStateAsItWas) {
+  // alpha 0.5, step 2: the filter state (4) differs from the output (2), so a NaN cycle that
+  // re-seeded the filter from the output would show: 0.5 * 0 + 0.5 * 2 = 1 instead of 2.
+  TorqueShaper shaper(limits(0.5, joints({2000.0}), joints({kInactive})));
+  JointVector torque = joints({8.0});
+  shaper.apply(torque, kPeriod);
+  expectJoints(torque, {2.0});
+  torque = joints({kNaN});
+  shaper.apply(torque, kPeriod);
+  expectJoints(torque, {2.0});
+  torque = joints({0.0});
+  shaper.apply(torque, kPeriod);
+  expectJoints(torque, {2.0});
+}
+
 TEST(TorqueShaper, NonFiniteIsCaughtWithoutTheFilterToo) {
   TorqueShaper shaper(filterOnly(1.0, 1));
   shaper.reset(joints({1.5}));

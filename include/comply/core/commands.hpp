@@ -69,10 +69,10 @@ struct CartesianCommand {
   Vector6d damping_ratio = Vector6d::Ones();  ///< per task axis (x y z rx ry rz)
   Eigen::Quaterniond task_frame = Eigen::Quaterniond::Identity();  ///< task axes in base frame
   Vector6d wrench_feedforward = Vector6d::Zero();                  ///< base frame [N, N m]
-  JointVector torque_feedforward;   ///< N m
-  JointVector nullspace_position;   ///< rad
-  JointVector nullspace_stiffness;  ///< N m/rad, >= 0
-  JointVector nullspace_damping;    ///< N m s/rad, >= 0
+  JointVector torque_feedforward;                                  ///< N m
+  JointVector nullspace_position;                                  ///< rad
+  JointVector nullspace_stiffness;                                 ///< N m/rad, >= 0
+  JointVector nullspace_damping;                                   ///< N m s/rad, >= 0
 
   /// Zero gains, identity orientations, joint vectors sized `dof`.
   static CartesianCommand zero(int dof);

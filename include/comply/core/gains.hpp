@@ -3,6 +3,8 @@
 
 #include <Eigen/Core>
 
+#include "comply/core/symmetric_eigen.hpp"
+
 namespace comply {
 
 /// True when m is symmetric (to `symmetry_tolerance` relative to its largest entry) and its
@@ -16,13 +18,29 @@ bool isSymmetricPsd(const Eigen::Matrix3d& m, double symmetry_tolerance = 1e-9,
 Eigen::Matrix3d dampingFromStiffness(const Eigen::Matrix3d& stiffness, double damping_ratio = 1.0,
                                      double mass = 1.0);
 
-using Matrix6d = Eigen::Matrix<double, 6, 6>;
-
 /// Critical damping for a 6x6 stiffness K acting on a full Cartesian inertia Lambda (both
 /// symmetric, Lambda positive definite) by double diagonalisation (Albu-Schaeffer et al., ICRA
 /// 2003): with Lambda = Q Q^T and K = Q diag(k) Q^T, D = Q diag(2 sqrt(k)) Q^T. Per-axis damping
 /// ratios are applied by the caller as S D S with S = sqrt(zeta) in the stiffness frame, which is
 /// zeta D for equal ratios. Fixed-size eigen solver: no allocation, usable every cycle.
 Matrix6d criticalDamping(const Matrix6d& stiffness, const Matrix6d& inertia);
+
+/// criticalDamping() for a control loop. It takes the inverse inertia Lambda^-1 = J M^-1 J^T,
+/// which the caller has (so Lambda itself is never formed), and keeps the eigenbasis between
+/// calls to warm-start a Jacobi solver: with Lambda^-1 = L L^T and L^T K L = U diag(k) U^T,
+/// D = 2 L^-T U diag(sqrt(k)) U^T L^-1, the same D as criticalDamping(K, Lambda).
+class CriticalDampingTracker {
+ public:
+  /// Writes D into `damping`; false (damping untouched) when inverse_inertia is not positive
+  /// definite.
+  bool compute(const Matrix6d& stiffness, const Matrix6d& inverse_inertia,
+               Matrix6d& damping) noexcept;
+  /// Sweeps of the last solve: 1-2 while the inputs change smoothly.
+  [[nodiscard]] int lastSweeps() const noexcept { return last_sweeps_; }
+
+ private:
+  Matrix6d basis_ = Matrix6d::Identity();
+  int last_sweeps_ = 0;
+};
 
 }  // namespace comply

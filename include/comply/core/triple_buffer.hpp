@@ -54,9 +54,9 @@ class TripleBuffer {
 
   std::array<T, 3> slots_{};
   std::mutex writer_mutex_;
-  std::uint8_t back_ = 0;                   // owned by writers (under writer_mutex_)
-  std::atomic<std::uint8_t> middle_{1};     // shared
-  std::uint8_t front_ = 2;                  // owned by the reader
+  std::uint8_t back_ = 0;                // owned by writers (under writer_mutex_)
+  std::atomic<std::uint8_t> middle_{1};  // shared
+  std::uint8_t front_ = 2;               // owned by the reader
 };
 
 }  // namespace comply
