@@ -147,6 +147,7 @@ void ExecutionCore::beginCycle(const JointState& state, double period_s) noexcep
     period_s_ = period_s;
   }
   time_s_ += period_s_;
+  state_usable_ = false;
   const WrapperState current = diagnostics_.state.load(std::memory_order_relaxed);
   if (current == WrapperState::kInactive) {
     return;
@@ -160,6 +161,7 @@ void ExecutionCore::beginCycle(const JointState& state, double period_s) noexcep
     return;
   }
   state_ = state;
+  state_usable_ = true;
   fillInput(period_s_);
   measured_.publishFromSoleWriter(currentPose());
 }
@@ -213,7 +215,8 @@ CycleStatus ExecutionCore::finishCycle(const void* command, std::span<double> to
     case WrapperState::kInactive:
       return CycleStatus::kInactive;
     case WrapperState::kFault:
-      if (!reset_requested_.exchange(false)) {
+      // Consumed either way: a reset refused for a bad state is not carried over to a later cycle.
+      if (!reset_requested_.exchange(false) || !state_usable_) {
         return writeSafeTorque(torque);
       }
       diagnostics_.state.store(WrapperState::kActive, std::memory_order_relaxed);

@@ -30,6 +30,11 @@ void anchorBus(comply_cartesian_command& bus, const comply_input& input) {
     bus.twist[k] = 0.0;
     bus.acceleration[k] = 0.0;
   }
+  // As seedReference(): the re-anchored controller holds the measured joints in the nullspace too,
+  // instead of pulling the elbow back to where the last command left it.
+  for (int i = 0; i < input.dof; ++i) {
+    bus.nullspace_position[i] = input.position[i];
+  }
 }
 
 /// Holding the last reference means holding its pose: a velocity reference would keep pulling.
@@ -44,6 +49,14 @@ void stopMotion(comply_cartesian_command& bus) {
     bus.twist[k] = 0.0;
     bus.acceleration[k] = 0.0;
   }
+}
+void stopMotion(JointCommand& command) {
+  command.velocity.setZero();
+  command.acceleration.setZero();
+}
+void stopMotion(CartesianCommand& command) {
+  command.twist.setZero();
+  command.acceleration.setZero();
 }
 
 }  // namespace
@@ -81,7 +94,8 @@ void Wrapper<Command>::activate(const JointState& state) {
   merged_ = seeded;
   active_ = bus;
   bus_.write(bus);
-  anchor_.update();  // drop an anchor from before the deactivation
+  anchor_.update();              // drop an anchor from before the deactivation
+  motion_stopped_.store(false);  // and a stop likewise
 }
 
 template <typename Command>
@@ -95,6 +109,10 @@ Verdict Wrapper<Command>::submit(const Command& command) {
   if (anchor_.update()) {
     // The watchdog re-anchored the cycle; later partial commands build on that reference.
     seedReference(merged_, anchor_.read());
+  }
+  if (motion_stopped_.exchange(false)) {
+    // The watchdog stopped the motion reference; a partial command must not revive it.
+    stopMotion(merged_);
   }
   const MeasuredPose measured = core_.measuredPose();
   Verdict verdict =
@@ -146,6 +164,7 @@ CycleStatus Wrapper<Command>::update(const JointState& state, double period_s,
       reanchor();
     } else {
       stopMotion(active_);
+      motion_stopped_.store(true);
     }
   }
   return core_.finishCycle(&active_, torque);

@@ -56,8 +56,14 @@ class ExecutionCore {
   /// plugin::PluginError if the law fails or returns a non-finite torque; the core stays inactive.
   void activate(const void* command);
   void deactivate() noexcept;
-  /// Leaves FAULT (explicit operator action); the next cycle runs the law again.
-  void requestReset() noexcept { reset_requested_.store(true); }
+  /// Leaves FAULT (explicit operator action); the next cycle with a usable state runs the law
+  /// again. Ignored outside FAULT, so that it cannot stay armed and clear a later fault unasked; a
+  /// cycle whose state is unusable refuses it (the law would run on the last good state).
+  void requestReset() noexcept {
+    if (diagnostics_.state.load() == WrapperState::kFault) {
+      reset_requested_.store(true);
+    }
+  }
 
   // ---- real-time: no allocation, no locks, no exceptions --------------------------------------
   /// First half of a cycle: checks and stores the state, updates the model, publishes the
@@ -110,6 +116,7 @@ class ExecutionCore {
   double time_s_ = 0.0;
   double last_command_time_s_ = 0.0;
   bool watchdog_expired_ = false;
+  bool state_usable_ = false;  // this cycle's state passed beginCycle(), so input_ is current
 };
 
 }  // namespace comply::pipeline

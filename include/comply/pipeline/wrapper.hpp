@@ -13,6 +13,7 @@
 // calls (activate, deactivate) run between cycles, as in ros2_control: never concurrently with
 // update(). submit(), reset() and diagnostics() may run at any time.
 
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <span>
@@ -62,7 +63,8 @@ class Wrapper {
   void activate(const JointState& state);
   /// Non-RT. update() outputs nothing until the next activate().
   void deactivate() noexcept;
-  /// Non-RT. Leaves FAULT; the law runs again from the next cycle.
+  /// Non-RT. Leaves FAULT; the law runs again from the next cycle with a usable state. Ignored
+  /// outside FAULT (see ExecutionCore::requestReset()).
   void reset() noexcept { core_.requestReset(); }
 
   /// Any non-RT thread. Validates `command` against the last accepted one and the measured pose,
@@ -92,6 +94,8 @@ class Wrapper {
   TripleBuffer<Bus> bus_;
   // Reference the cycle re-anchored to on a watchdog timeout, for the senders' merged command.
   TripleBuffer<MeasuredPose> anchor_;
+  // Set by the cycle when a "hold" timeout stopped the motion reference, for the same reason.
+  std::atomic<bool> motion_stopped_{false};
   Bus active_{};  // real-time thread's copy
 };
 

@@ -1,0 +1,233 @@
+// FAULT handling (DESIGN.md, "Safety semantics"): a law that fails on activation is refused before
+// any torque is sent; a law that fails in the cycle, or an unusable joint state, switches to the
+// safe holding torque g(q) - D_fault dq until an explicit reset, and only a reset leaves it.
+
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <string>
+
+#include "comply/pipeline/wrapper.hpp"
+#include "wrapper_support.hpp"
+
+namespace comply::pipeline::test {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kTolerance = 1e-9;
+
+/// Per-joint fault damping, all different so a mix-up of joints shows.
+const JointVector kFaultDamping = (JointVector(kFr3Dof) << 1, 2, 3, 4, 5, 6, 7).finished();
+
+/// The Cartesian law refuses damping ratios when told not to compute the mass matrix: a law that
+/// is fine on activation (absolute damping) and fails in the cycle once a sender streams ratios.
+std::string ratioRefusingCartesian(double rate_limit) {
+  return "plugin_parameters:\n"
+         "  inertia_aware_damping: 0\n"
+         "initial:\n"
+         "  damping_mode: absolute\n"
+         "fault_damping: [1, 2, 3, 4, 5, 6, 7]\n"
+         "torque_rate_limit_nm_per_s: " +
+         std::to_string(rate_limit) + "\n";
+}
+
+CartesianCommand damping(double stamp_s, DampingMode mode) {
+  CartesianCommand command = CartesianCommand::zero(kFr3Dof);
+  command.stamp_s = stamp_s;
+  command.fields = CommandField::kDamping;
+  command.damping_mode = mode;
+  command.damping_translational = 45.0 * Eigen::Matrix3d::Identity();
+  command.damping_rotational = 3.0 * Eigen::Matrix3d::Identity();
+  command.damping_ratio.setOnes();
+  return command;
+}
+
+JointState moving(JointState state, double speed) {
+  state.velocity.setConstant(speed);
+  return state;
+}
+
+/// The safe holding torque at `state`.
+JointVector holdingTorque(const ExecutionCore& core, const JointState& state) {
+  return gravityAt(core, state.position) - kFaultDamping.cwiseProduct(state.velocity);
+}
+
+// ---- activation -------------------------------------------------------------------------------
+
+void expectActivationRefused(const std::string& fixture, plugin::PluginErrc code,
+                             const std::string& reason) {
+  SCOPED_TRACE(fixture);
+  JointWrapper wrapper(fr3Config(fixture));
+  const JointState state = restingAt(wrapper.core(), fr3Home());
+  try {
+    wrapper.activate(state);
+    ADD_FAILURE() << "activation accepted a failing law";
+  } catch (const plugin::PluginError& error) {
+    EXPECT_EQ(error.code(), code) << error.what();
+    EXPECT_NE(std::string(error.what()).find(reason), std::string::npos) << error.what();
+  }
+  EXPECT_EQ(wrapper.diagnostics().state, WrapperState::kInactive);
+  TorqueBuffer torque;
+  EXPECT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kInactive);
+  EXPECT_EQ(torque.values, TorqueBuffer{}.values) << "a refused law wrote torque";
+}
+
+TEST(WrapperFault, ActivationRefusesALawWhoseTrialStepFails) {
+  expectActivationRefused(kStepErrorPlugin, plugin::PluginErrc::kTrialStepFailed,
+                          "fixture step error");
+  expectActivationRefused(kStepNanPlugin, plugin::PluginErrc::kNonFiniteOutput, kStepNanPlugin);
+}
+
+// ---- a law failing in the cycle ---------------------------------------------------------------
+
+class CartesianLawFault : public ::testing::Test {
+ protected:
+  explicit CartesianLawFault(double rate_limit = kNoRateLimit)
+      : wrapper(fr3Config(kCartesianImpedancePlugin, ratioRefusingCartesian(rate_limit))) {}
+
+  void SetUp() override {
+    ASSERT_EQ(wrapper.core().effortLimit().size(), kFr3Dof);
+    rest = restingAt(wrapper.core(), fr3Home());
+    wrapper.activate(rest);
+    ASSERT_EQ(cycle(rest), CycleStatus::kOk);
+  }
+
+  CycleStatus cycle(const JointState& state) {
+    return wrapper.update(state, kPeriod, torque.span());
+  }
+
+  CartesianWrapper wrapper;
+  JointState rest;
+  TorqueBuffer torque;
+};
+
+TEST_F(CartesianLawFault, FailingStepHoldsTheArmUntilReset) {
+  const JointState state = moving(rest, 0.1);
+  ASSERT_EQ(cycle(state), CycleStatus::kOk);
+  ASSERT_TRUE(wrapper.submit(damping(1.0, DampingMode::kRatio)).accepted);
+
+  EXPECT_EQ(cycle(state), CycleStatus::kFault);
+  COMPLY_EXPECT_JOINTS_NEAR(torque.values, holdingTorque(wrapper.core(), state), kTolerance);
+  DiagnosticsSnapshot diagnostics = wrapper.diagnostics();
+  EXPECT_EQ(diagnostics.state, WrapperState::kFault);
+  EXPECT_EQ(diagnostics.faults, 1U);
+  EXPECT_NE(diagnostics.last_error.find("plugin: damping ratios need inertia_aware_damping: 1"),
+            std::string::npos)
+      << diagnostics.last_error;
+
+  // A valid command is accepted but does not leave FAULT by itself.
+  ASSERT_TRUE(wrapper.submit(damping(2.0, DampingMode::kAbsolute)).accepted);
+  for (int i = 0; i < 50; ++i) {
+    ASSERT_EQ(cycle(state), CycleStatus::kFault) << "cycle " << i;
+  }
+  COMPLY_EXPECT_JOINTS_NEAR(torque.values, holdingTorque(wrapper.core(), state), kTolerance);
+  EXPECT_EQ(wrapper.diagnostics().faults, 1U) << "one fault, counted once";
+
+  wrapper.reset();
+  EXPECT_EQ(cycle(rest), CycleStatus::kOk);
+  // Back on the law, whose reference is still the seeded pose: at rest it adds nothing.
+  COMPLY_EXPECT_JOINTS_NEAR(torque.values, rest.effort, kTolerance);
+  diagnostics = wrapper.diagnostics();
+  EXPECT_EQ(diagnostics.state, WrapperState::kActive);
+  EXPECT_EQ(diagnostics.faults, 1U);
+}
+
+TEST_F(CartesianLawFault, ResetWithTheFailingCommandStillInForceFaultsAgain) {
+  ASSERT_TRUE(wrapper.submit(damping(1.0, DampingMode::kRatio)).accepted);
+  EXPECT_EQ(cycle(rest), CycleStatus::kFault);
+  wrapper.reset();
+  EXPECT_EQ(cycle(rest), CycleStatus::kFault);
+  EXPECT_EQ(wrapper.diagnostics().faults, 2U);
+}
+
+TEST_F(CartesianLawFault, ResetBeforeAFaultDoesNotClearIt) {
+  // A reset while nothing is wrong must not stay armed and silently undo a later fault.
+  wrapper.reset();
+  ASSERT_EQ(cycle(rest), CycleStatus::kOk);
+  ASSERT_TRUE(wrapper.submit(damping(1.0, DampingMode::kRatio)).accepted);
+  EXPECT_EQ(cycle(rest), CycleStatus::kFault);
+  ASSERT_TRUE(wrapper.submit(damping(2.0, DampingMode::kAbsolute)).accepted);
+  EXPECT_EQ(cycle(rest), CycleStatus::kFault);
+}
+
+class RateLimitedCartesianLawFault : public CartesianLawFault {
+ protected:
+  static constexpr double kRateLimit = 100.0;  // N m/s: 0.1 N m per 1 ms cycle
+  RateLimitedCartesianLawFault() : CartesianLawFault(kRateLimit) {}
+};
+
+TEST_F(RateLimitedCartesianLawFault, HoldingTorqueIsRateLimited) {
+  ASSERT_TRUE(wrapper.submit(damping(1.0, DampingMode::kRatio)).accepted);
+  // Joint 7 damps 7 N m s/rad x 0.5 rad/s = 3.5 N m: a step the rate limit must spread out.
+  const JointState state = moving(rest, 0.5);
+  const JointVector target = holdingTorque(wrapper.core(), state);
+  JointVector previous = torque.values;
+  const std::uint64_t hits_before = wrapper.diagnostics().rate_limit_hits;
+  for (int i = 0; i < 100; ++i) {
+    ASSERT_EQ(cycle(state), CycleStatus::kFault);
+    EXPECT_LE(maxDifference(torque.values, previous), kRateLimit * kPeriod * (1.0 + 1e-9))
+        << "cycle " << i;
+    previous = torque.values;
+  }
+  EXPECT_GT(wrapper.diagnostics().rate_limit_hits, hits_before);
+  COMPLY_EXPECT_JOINTS_NEAR(torque.values, target, kTolerance);
+}
+
+// ---- an unusable joint state ------------------------------------------------------------------
+
+class JointStateFault : public ::testing::Test {
+ protected:
+  JointStateFault()
+      : wrapper(fr3Config(kJointImpedancePlugin,
+                          "fault_damping: [1, 2, 3, 4, 5, 6, 7]\n"
+                          "torque_rate_limit_nm_per_s: " +
+                              std::to_string(kNoRateLimit))) {}
+
+  void SetUp() override {
+    good = moving(restingAt(wrapper.core(), fr3Home()), 0.1);
+    broken = good;
+    broken.position[3] = kNaN;
+    wrapper.activate(good);
+    ASSERT_EQ(cycle(good), CycleStatus::kOk);
+  }
+
+  CycleStatus cycle(const JointState& state) {
+    return wrapper.update(state, kPeriod, torque.span());
+  }
+
+  JointWrapper wrapper;
+  JointState good;
+  JointState broken;
+  TorqueBuffer torque;
+};
+
+TEST_F(JointStateFault, NanStateHoldsTheArmAtTheLastGoodStateUntilReset) {
+  EXPECT_EQ(cycle(broken), CycleStatus::kFault);
+  COMPLY_EXPECT_JOINTS_NEAR(torque.values, holdingTorque(wrapper.core(), good), kTolerance);
+  const DiagnosticsSnapshot diagnostics = wrapper.diagnostics();
+  EXPECT_EQ(diagnostics.faults, 1U);
+  EXPECT_NE(diagnostics.last_error.find("state: "), std::string::npos) << diagnostics.last_error;
+
+  EXPECT_EQ(cycle(broken), CycleStatus::kFault);
+  EXPECT_EQ(cycle(good), CycleStatus::kFault) << "a good state alone does not leave FAULT";
+  EXPECT_EQ(wrapper.diagnostics().faults, 1U);
+
+  wrapper.reset();
+  EXPECT_EQ(cycle(good), CycleStatus::kOk);
+  EXPECT_EQ(wrapper.diagnostics().state, WrapperState::kActive);
+}
+
+TEST_F(JointStateFault, ResetIsRefusedWhileTheStateIsStillUnusable) {
+  ASSERT_EQ(cycle(broken), CycleStatus::kFault);
+  wrapper.reset();
+  // The law must not run on the last good state as if it were current.
+  EXPECT_EQ(cycle(broken), CycleStatus::kFault);
+  COMPLY_EXPECT_JOINTS_NEAR(torque.values, holdingTorque(wrapper.core(), good), kTolerance);
+  // Refused, not postponed: recovering later needs a reset once the state is good again.
+  EXPECT_EQ(cycle(good), CycleStatus::kFault);
+  wrapper.reset();
+  EXPECT_EQ(cycle(good), CycleStatus::kOk);
+}
+
+}  // namespace
+}  // namespace comply::pipeline::test

@@ -1,0 +1,279 @@
+// update() is the real-time path: wrapper.hpp promises it never allocates or locks. Both are
+// measured here on the thread that runs the cycles, by interposing the allocator
+// (comply_test_alloc_counter) and pthread_mutex_lock/trylock (mutex_lock_counter.cpp), over
+// 10,000 cycles of each wrapper with a moving arm, commands arriving in between, watchdog timeouts
+// and FAULT. Submitting is allowed to allocate and lock, so submits happen outside the counting.
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <numbers>
+#include <string>
+#include <thread>
+
+#include "allocation_counter.hpp"
+#include "comply/core/triple_buffer.hpp"
+#include "comply/pipeline/wrapper.hpp"
+#include "mutex_lock_counter.hpp"
+#include "wrapper_support.hpp"
+
+namespace comply::pipeline::test {
+namespace {
+
+using comply::testing::AllocationCounter;
+
+constexpr int kCycles = 10'000;
+constexpr int kCyclesPerCommand = 1'000;
+
+/// Keeps the optimiser from dropping an allocation or a lock whose result is unused.
+template <typename T>
+void escape(T* pointer) {
+  asm volatile("" : : "g"(pointer) : "memory");
+}
+
+/// Allocations and lock attempts of the calling thread inside the measured calls only.
+class RealtimeProbe {
+ public:
+  template <typename Call>
+  auto measure(Call&& call) {
+    allocation_counter_.start();
+    lock_counter_.start();
+    auto result = call();
+    locks += lock_counter_.stop();
+    allocations += allocation_counter_.stop();
+    return result;
+  }
+
+  std::size_t allocations = 0;
+  std::size_t locks = 0;
+
+ private:
+  AllocationCounter allocation_counter_;
+  MutexLockCounter lock_counter_;
+};
+
+// ---- the counters themselves ------------------------------------------------------------------
+
+TEST(RealtimeProbe, CountsLocksOfStdMutexOnThisThreadOnly) {
+  std::mutex mutex;
+  MutexLockCounter counter;
+
+  counter.start();
+  { const std::lock_guard<std::mutex> lock(mutex); }
+  EXPECT_EQ(counter.stop(), 1U) << "std::mutex::lock";
+
+  counter.start();
+  if (mutex.try_lock()) {
+    mutex.unlock();
+  }
+  EXPECT_EQ(counter.stop(), 1U) << "std::mutex::try_lock";
+
+  { const std::lock_guard<std::mutex> lock(mutex); }
+  counter.start();
+  EXPECT_EQ(counter.stop(), 0U) << "a lock before start() was counted";
+
+  // Another thread locking while this one counts is not this thread's lock.
+  std::atomic<bool> go{false};
+  std::atomic<bool> done{false};
+  std::thread other([&] {
+    while (!go.load()) {
+    }
+    { const std::lock_guard<std::mutex> lock(mutex); }
+    done.store(true);
+  });
+  counter.start();
+  go.store(true);
+  while (!done.load()) {
+  }
+  EXPECT_EQ(counter.stop(), 0U);
+  other.join();
+}
+
+TEST(RealtimeProbe, SeesTheLocksAndAllocationsOfTheSendersSide) {
+  // The same probe must see what submit() and TripleBuffer::write() do, or a zero proves nothing.
+  TripleBuffer<int> buffer;
+  RealtimeProbe probe;
+  probe.measure([&] {
+    buffer.write(1);
+    return 0;
+  });
+  EXPECT_EQ(probe.locks, 1U);
+
+  JointWrapper wrapper(fr3Config(kJointImpedancePlugin));
+  const JointState state = restingAt(wrapper.core(), fr3Home());
+  wrapper.activate(state);
+  JointCommand command = JointCommand::zero(kFr3Dof);
+  command.stamp_s = 1.0;
+  command.fields = CommandField::kPosition;
+  command.position = offset(state.position, 0, 2.0);  // rejected: the message allocates
+  RealtimeProbe sender;
+  const Verdict verdict = sender.measure([&] { return wrapper.submit(command); });
+  EXPECT_FALSE(verdict.accepted);
+  EXPECT_GE(sender.locks, 1U) << "the intake mutex";
+  EXPECT_GE(sender.allocations, 1U) << "the rejection message";
+
+  RealtimeProbe heap;
+  heap.measure([] {
+    auto* value = new int(7);
+    escape(value);
+    delete value;
+    return 0;
+  });
+  EXPECT_EQ(heap.allocations, 1U);
+}
+
+// ---- update() ---------------------------------------------------------------------------------
+
+/// A smooth motion around home, different on every joint, so the model and the laws see new
+/// numbers every cycle.
+JointState movingState(const JointVector& home, int cycle) {
+  JointState state = JointState::zero(kFr3Dof);
+  const double t = cycle * kPeriod;
+  for (int i = 0; i < kFr3Dof; ++i) {
+    const double omega = 2.0 * std::numbers::pi * (0.5 + 0.1 * i);
+    state.position[i] = home[i] + 0.05 * std::sin(omega * t + i);
+    state.velocity[i] = 0.05 * omega * std::cos(omega * t + i);
+    state.effort[i] = 0.0;
+  }
+  return state;
+}
+
+std::string realtimeLines(const std::string& behavior) {
+  // A timeout shorter than the gap between commands, so the watchdog fires in every gap.
+  return "command_timeout_s: 0.2\ntimeout_behavior: " + behavior +
+         "\ncompensation:\n  friction:\n    model: sigmoid\n";
+}
+
+/// Runs kCycles counted update() calls of an active `wrapper`, submitting `commandAt(cycle)`
+/// (uncounted) every kCyclesPerCommand cycles.
+template <typename WrapperType, typename CommandAt>
+void expectRealtimeCycles(WrapperType& wrapper, CommandAt commandAt) {
+  const JointVector home = fr3Home();
+  wrapper.activate(movingState(home, 0));
+  RealtimeProbe probe;
+  TorqueBuffer torque;
+  int not_ok = 0;
+  for (int cycle = 1; cycle <= kCycles; ++cycle) {
+    if (cycle % kCyclesPerCommand == kCyclesPerCommand / 2) {
+      const Verdict verdict = wrapper.submit(commandAt(cycle));
+      ASSERT_TRUE(verdict.accepted) << "cycle " << cycle << ": " << verdict.message;
+    }
+    const JointState state = movingState(home, cycle);
+    const CycleStatus status =
+        probe.measure([&] { return wrapper.update(state, kPeriod, torque.span()); });
+    not_ok += status != CycleStatus::kOk;
+  }
+  EXPECT_EQ(probe.allocations, 0U);
+  EXPECT_EQ(probe.locks, 0U);
+  EXPECT_EQ(not_ok, 0);
+  const DiagnosticsSnapshot diagnostics = wrapper.diagnostics();
+  EXPECT_EQ(diagnostics.commands_accepted, static_cast<std::uint64_t>(kCycles / kCyclesPerCommand));
+  EXPECT_GE(diagnostics.watchdog_timeouts, static_cast<std::uint64_t>(kCycles / kCyclesPerCommand))
+      << "the timeout path did not run";
+}
+
+TEST(WrapperRealtime, JointUpdateNeitherAllocatesNorLocks) {
+  for (const std::string behavior : {"hold", "reanchor"}) {
+    SCOPED_TRACE(behavior);
+    JointWrapper wrapper(fr3Config(kJointImpedancePlugin, realtimeLines(behavior)));
+    const JointVector home = fr3Home();
+    expectRealtimeCycles(wrapper, [&](int cycle) {
+      // Position, velocity and gains together, near where the arm is.
+      JointCommand command = JointCommand::zero(kFr3Dof);
+      command.stamp_s = cycle * kPeriod;
+      command.fields = CommandField::kPosition | CommandField::kVelocity |
+                       CommandField::kStiffness | CommandField::kDamping;
+      command.position = movingState(home, cycle).position;
+      command.velocity.setConstant(0.01);
+      command.stiffness.setConstant(100.0 + cycle * 0.01);
+      command.damping.setConstant(10.0);
+      return command;
+    });
+  }
+}
+
+TEST(WrapperRealtime, CartesianUpdateNeitherAllocatesNorLocks) {
+  for (const std::string behavior : {"hold", "reanchor"}) {
+    SCOPED_TRACE(behavior);
+    CartesianWrapper wrapper(fr3Config(kCartesianImpedancePlugin, realtimeLines(behavior)));
+    bool ratio = true;
+    expectRealtimeCycles(wrapper, [&](int cycle) {
+      // Pose and twist near the measured TCP; damping alternates between the ratio mode (mass
+      // matrix and double diagonalisation) and absolute blocks.
+      const model::Data& measured = wrapper.core().modelData();
+      CartesianCommand command = CartesianCommand::zero(kFr3Dof);
+      command.stamp_s = cycle * kPeriod;
+      command.fields = CommandField::kPosition | CommandField::kVelocity | CommandField::kDamping |
+                       CommandField::kStiffness;
+      command.position = measured.tip_position + Eigen::Vector3d(0.01, 0.0, -0.01);
+      command.orientation = measured.tip_orientation;
+      command.twist[1] = 0.02;
+      command.stiffness_translational = (400.0 + cycle * 0.01) * Eigen::Matrix3d::Identity();
+      command.stiffness_rotational = 30.0 * Eigen::Matrix3d::Identity();
+      command.damping_mode = ratio ? DampingMode::kRatio : DampingMode::kAbsolute;
+      command.damping_translational = 45.0 * Eigen::Matrix3d::Identity();
+      command.damping_rotational = 3.0 * Eigen::Matrix3d::Identity();
+      ratio = !ratio;
+      return command;
+    });
+  }
+}
+
+// ---- FAULT ------------------------------------------------------------------------------------
+
+/// Counted cycles at a moving state; returns how many were not `expected`.
+template <typename WrapperType>
+int countedCycles(WrapperType& wrapper, RealtimeProbe& probe, int first, int count,
+                  CycleStatus expected, bool nan_state = false) {
+  const JointVector home = fr3Home();
+  TorqueBuffer torque;
+  int unexpected = 0;
+  for (int cycle = first; cycle < first + count; ++cycle) {
+    JointState state = movingState(home, cycle);
+    if (nan_state) {
+      state.velocity[cycle % kFr3Dof] = std::numeric_limits<double>::quiet_NaN();
+    }
+    const CycleStatus status =
+        probe.measure([&] { return wrapper.update(state, kPeriod, torque.span()); });
+    unexpected += status != expected;
+  }
+  return unexpected;
+}
+
+TEST(WrapperRealtime, CyclesInFaultNeitherAllocateNorLock) {
+  // A Cartesian law that fails in the cycle once ratios are streamed (see wrapper_fault_test).
+  CartesianWrapper wrapper(fr3Config(kCartesianImpedancePlugin,
+                                     "plugin_parameters:\n  inertia_aware_damping: 0\n"
+                                     "initial:\n  damping_mode: absolute\n"));
+  wrapper.activate(movingState(fr3Home(), 0));
+  RealtimeProbe probe;
+  EXPECT_EQ(countedCycles(wrapper, probe, 1, 100, CycleStatus::kOk), 0);
+
+  CartesianCommand ratio = CartesianCommand::zero(kFr3Dof);
+  ratio.stamp_s = 1.0;
+  ratio.fields = CommandField::kDamping;
+  ratio.damping_mode = DampingMode::kRatio;
+  ASSERT_TRUE(wrapper.submit(ratio).accepted);
+  // Entering FAULT (error text included) and staying in it.
+  EXPECT_EQ(countedCycles(wrapper, probe, 101, 1000, CycleStatus::kFault), 0);
+
+  CartesianCommand absolute = ratio;
+  absolute.stamp_s = 2.0;
+  absolute.damping_mode = DampingMode::kAbsolute;
+  ASSERT_TRUE(wrapper.submit(absolute).accepted);
+  wrapper.reset();
+  EXPECT_EQ(countedCycles(wrapper, probe, 1101, 100, CycleStatus::kOk), 0);
+
+  // An unusable joint state: FAULT from the first half of the cycle.
+  EXPECT_EQ(countedCycles(wrapper, probe, 1201, 1000, CycleStatus::kFault, /*nan_state=*/true), 0);
+
+  EXPECT_EQ(wrapper.diagnostics().faults, 2U);
+  EXPECT_EQ(probe.allocations, 0U);
+  EXPECT_EQ(probe.locks, 0U);
+}
+
+}  // namespace
+}  // namespace comply::pipeline::test

@@ -1,0 +1,74 @@
+// Torque shaping seen through the wrapper: a large commanded step reaches the joints no faster than
+// the torque-rate limit and never beyond the effort limit, and every clipped joint-cycle is counted
+// in the diagnostics.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "comply/pipeline/wrapper.hpp"
+#include "wrapper_support.hpp"
+
+namespace comply::pipeline::test {
+namespace {
+
+constexpr double kTolerance = 1e-9;
+
+TEST(WrapperShaping, TorqueRateLimitSpreadsAStepAndCountsEveryClippedCycle) {
+  constexpr double kRateLimit = 50.0;  // N m/s: 0.05 N m per 1 ms cycle
+  JointWrapper wrapper(fr3Config(kJointImpedancePlugin,
+                                 "torque_rate_limit_nm_per_s: " + std::to_string(kRateLimit)));
+  const JointVector home = fr3Home();
+  const JointState state = restingAt(wrapper.core(), home);
+  wrapper.activate(state);
+  TorqueBuffer torque;
+  ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
+  ASSERT_EQ(wrapper.diagnostics().rate_limit_hits, 0U) << "holding still needs no clipping";
+
+  // 100 N m/rad x 0.2 rad = 20 N m on joint 1 at once: 400 cycles at 0.05 N m each.
+  JointCommand step = JointCommand::zero(kFr3Dof);
+  step.stamp_s = 1.0;
+  step.fields = CommandField::kPosition;
+  step.position = offset(home, 0, 0.2);
+  ASSERT_TRUE(wrapper.submit(step).accepted);
+
+  JointVector previous = torque.values;
+  for (int cycle = 0; cycle < 500; ++cycle) {
+    ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
+    ASSERT_LE(maxDifference(torque.values, previous), kRateLimit * kPeriod * (1.0 + 1e-9))
+        << "cycle " << cycle;
+    previous = torque.values;
+  }
+  const JointVector expected = offset(state.effort, 0, 20.0);
+  COMPLY_EXPECT_JOINTS_NEAR(torque.values, expected, kTolerance);
+  const std::uint64_t hits = wrapper.diagnostics().rate_limit_hits;
+  EXPECT_GE(hits, 399U);  // the last step may land exactly on the limit without clipping
+  EXPECT_LE(hits, 400U);
+  EXPECT_EQ(wrapper.diagnostics().effort_limit_hits, 0U);
+}
+
+TEST(WrapperShaping, EffortLimitClipsAndCountsEveryClippedCycle) {
+  JointWrapper wrapper(fr3Config(kJointImpedancePlugin,
+                                 "torque_rate_limit_nm_per_s: " + std::to_string(kNoRateLimit)));
+  const JointState state = restingAt(wrapper.core(), fr3Home());
+  wrapper.activate(state);
+  const JointVector& limit = wrapper.core().effortLimit();
+  TorqueBuffer torque;
+
+  JointCommand push = JointCommand::zero(kFr3Dof);
+  push.stamp_s = 1.0;
+  push.fields = CommandField::kTorqueFeedforward;
+  push.torque_feedforward[0] = 500.0;
+  push.torque_feedforward[5] = -500.0;
+  ASSERT_TRUE(wrapper.submit(push).accepted);
+  for (int cycle = 0; cycle < 10; ++cycle) {
+    ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
+  }
+  EXPECT_EQ(torque.values[0], limit[0]);
+  EXPECT_EQ(torque.values[5], -limit[5]);
+  EXPECT_NEAR(torque.values[3], state.effort[3], kTolerance) << "other joints unaffected";
+  EXPECT_EQ(wrapper.diagnostics().effort_limit_hits, 2U * 10U);
+}
+
+}  // namespace
+}  // namespace comply::pipeline::test
