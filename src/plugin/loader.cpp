@@ -65,7 +65,8 @@ std::filesystem::path resolvePlugin(std::string_view name_or_path) {
 }
 
 PluginLibrary::PluginLibrary(std::string_view name_or_path, int expected_kind)
-    : path_(resolvePlugin(name_or_path)) {
+    // Absolute: dlopen() would search the library path for a bare file name instead of opening it.
+    : path_(std::filesystem::absolute(resolvePlugin(name_or_path))) {
   handle_ = ::dlopen(path_.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (handle_ == nullptr) {
     const char* reason = ::dlerror();
