@@ -112,7 +112,9 @@ class CartesianImpedance final : public CartesianController {
           command.nullspace_stiffness[i] * (command.nullspace_position[i] - q[i]) -
           command.nullspace_damping[i] * dq[i];
     }
-    const Matrix6d regularised = jacobian * jacobian.transpose() +
+    // lazyProduct: a plain coefficient loop; the general matrix product kernel that a
+    // dynamic-width operand would select is several times slower at this size.
+    const Matrix6d regularised = jacobian.lazyProduct(jacobian.transpose()) +
                                  nullspace_damping_ * nullspace_damping_ * Matrix6d::Identity();
     const Eigen::LDLT<Matrix6d> projector(regularised);
     const Vector6d task_part = projector.solve(jacobian * nullspace_torque);
@@ -136,10 +138,14 @@ class CartesianImpedance final : public CartesianController {
     if (mass_factor.info() != Eigen::Success) {
       return false;
     }
-    const Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::ColMajor, kMaxDof, 6> mass_inverse_jt =
-        mass_factor.solve(jacobian.transpose());
+    // Column by column: solving all six at once selects the blocked triangular solver, which is
+    // slow for a 7x6 right-hand side.
+    Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::ColMajor, kMaxDof, 6> mass_inverse_jt(n, 6);
+    for (int column = 0; column < 6; ++column) {
+      mass_inverse_jt.col(column) = mass_factor.solve(jacobian.row(column).transpose());
+    }
     const Matrix6d inverse_inertia =
-        jacobian * mass_inverse_jt + inertia_regularisation_ * Matrix6d::Identity();
+        jacobian.lazyProduct(mass_inverse_jt) + inertia_regularisation_ * Matrix6d::Identity();
     Matrix6d critical;
     if (!critical_damping_.compute(stiffness, inverse_inertia, critical)) {
       return false;

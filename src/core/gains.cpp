@@ -47,7 +47,11 @@ bool CriticalDampingTracker::compute(const Matrix6d& stiffness, const Matrix6d& 
   Vector6d eigenvalues;
   last_sweeps_ = symmetricEigenJacobi(symmetric, basis_, eigenvalues);
   // Q = L^-T U, then D = Q diag(2 sqrt(k)) Q^T.
-  const Matrix6d q = lower.transpose().triangularView<Eigen::Upper>().solve(basis_);
+  // Column by column: a 6x6 right-hand side would select the blocked (general size) solver.
+  Matrix6d q;
+  for (int column = 0; column < 6; ++column) {
+    q.col(column) = lower.transpose().triangularView<Eigen::Upper>().solve(basis_.col(column));
+  }
   damping = q * (2.0 * eigenvalues.cwiseMax(0.0).cwiseSqrt()).asDiagonal() * q.transpose();
   return true;
 }

@@ -12,15 +12,17 @@ namespace {
 
 std::string_view kindName(int kind) {
   switch (kind) {
-    case COMPLY_COMMAND_JOINT: return "joint";
-    case COMPLY_COMMAND_CARTESIAN: return "Cartesian";
-    default: return "unknown";
+    case COMPLY_COMMAND_JOINT:
+      return "joint";
+    case COMPLY_COMMAND_CARTESIAN:
+      return "Cartesian";
+    default:
+      return "unknown";
   }
 }
 
 bool looksLikePath(std::string_view name_or_path) {
-  return name_or_path.find('/') != std::string_view::npos ||
-         name_or_path.ends_with(".so");
+  return name_or_path.find('/') != std::string_view::npos || name_or_path.ends_with(".so");
 }
 
 }  // namespace
@@ -60,8 +62,8 @@ std::filesystem::path resolvePlugin(std::string_view name_or_path) {
     }
     tried += (tried.empty() ? "" : ", ") + candidate.string();
   }
-  throw PluginError(PluginErrc::kFileNotFound, "no plugin named '" + std::string(name_or_path) +
-                                                   "' (tried " + tried + ")");
+  throw PluginError(PluginErrc::kFileNotFound,
+                    "no plugin named '" + std::string(name_or_path) + "' (tried " + tried + ")");
 }
 
 PluginLibrary::PluginLibrary(std::string_view name_or_path, int expected_kind)
@@ -106,8 +108,8 @@ PluginLibrary::PluginLibrary(std::string_view name_or_path, int expected_kind)
     const int found = api_->command_kind;
     ::dlclose(handle_);
     throw PluginError(PluginErrc::kWrongCommandKind,
-                      "plugin '" + path_.string() + "' takes " +
-                          std::string(kindName(found)) + " commands, but this wrapper sends " +
+                      "plugin '" + path_.string() + "' takes " + std::string(kindName(found)) +
+                          " commands, but this wrapper sends " +
                           std::string(kindName(expected_kind)) + " commands");
   }
 }
