@@ -128,15 +128,6 @@ json rowsOf(const Eigen::Ref<const Eigen::MatrixXd>& m) {
   return rows;
 }
 
-pipeline::MeasuredPose poseOf(const JointState& state, const model::Data& data) {
-  pipeline::MeasuredPose pose;
-  pose.position = state.position;
-  pose.tcp_position = data.tip_position;
-  pose.tcp_orientation = data.tip_orientation;
-  pose.valid = true;
-  return pose;
-}
-
 template <typename Command>
 const Command& initialCommand(const pipeline::WrapperConfig& config);
 template <>
@@ -193,7 +184,7 @@ void runLaw(const pipeline::WrapperConfig& config, const std::vector<Sample>& sa
     out["mass_matrix"] = rowsOf(data.mass_matrix);
 
     Command merged = initialCommand<Command>(config);
-    const pipeline::MeasuredPose pose = poseOf(sample.state, data);
+    const pipeline::MeasuredPose pose = pipeline::measuredPoseFrom(sample.state.position, data);
     pipeline::seedReference(merged, pose);
     const Command incoming = parseCommand(sample.command, dof, merged, where);
     const pipeline::Verdict verdict =

@@ -92,6 +92,15 @@ const char* nonFiniteField(const CartesianCommand& c) {
 
 }  // namespace
 
+MeasuredPose measuredPoseFrom(const JointVector& position, const model::Data& data) noexcept {
+  MeasuredPose pose;
+  pose.position = position;
+  pose.tcp_position = data.tip_position;
+  pose.tcp_orientation = data.tip_orientation;
+  pose.valid = true;
+  return pose;
+}
+
 std::string_view toString(RejectionReason reason) {
   switch (reason) {
     case RejectionReason::kNonFinite:

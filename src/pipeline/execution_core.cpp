@@ -91,12 +91,7 @@ bool ExecutionCore::computeModel(const JointState& state) noexcept {
 }
 
 MeasuredPose ExecutionCore::currentPose() const noexcept {
-  MeasuredPose pose;
-  pose.position = state_.position;
-  pose.tcp_position = data_->tip_position;
-  pose.tcp_orientation = data_->tip_orientation;
-  pose.valid = true;
-  return pose;
+  return measuredPoseFrom(state_.position, *data_);
 }
 
 MeasuredPose ExecutionCore::prepareActivation(const JointState& state) {

@@ -41,6 +41,9 @@ struct MeasuredPose {
   bool valid = false;  ///< false until the controller has run a cycle
 };
 
+/// The pose at joint positions `position` from a model update that computed the pose.
+MeasuredPose measuredPoseFrom(const JointVector& position, const model::Data& data) noexcept;
+
 /// Validates `incoming` and, on success, writes into `merged` the last accepted command updated
 /// with the field groups `incoming` sets (quaternions renormalised). On rejection `merged` is
 /// untouched.
