@@ -11,6 +11,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   liborocos-kdl-dev
   libmujoco-dev libqhull-dev
+  libegl-dev libegl1 libegl-mesa0 libgl1-mesa-dri libpng-dev libglfw3-dev
+  python3-matplotlib
   nlohmann-json3-dev libcli11-dev
 )
 

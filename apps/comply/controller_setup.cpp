@@ -1,6 +1,6 @@
 #include "controller_setup.hpp"
 
-#include <yaml-cpp/emitter.h>
+#include <yaml-cpp/yaml.h>
 
 #include <stdexcept>
 
@@ -27,6 +27,52 @@ pipeline::WrapperConfig controllerConfig(const std::string& robot, const std::st
        << YAML::Value << YAML::DoubleQuoted << plugin << YAML::Key << "robot" << YAML::Value
        << YAML::DoubleQuoted << robot << YAML::EndMap << YAML::EndMap << YAML::EndMap;
   return pipeline::parseWrapperConfig(yaml.c_str(), "defaults for " + robot + " / " + plugin);
+}
+
+}  // namespace comply::app
+
+namespace comply::app {
+
+pipeline::WrapperConfig simControllerConfig(const std::string& robot, const std::string& plugin,
+                                            const std::string& config_file) {
+  if (config_file.empty() || robot.empty()) {
+    return controllerConfig(robot, plugin, config_file);
+  }
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(config_file);
+  } catch (const YAML::BadFile&) {
+    throw std::runtime_error("cannot read controller config '" + config_file + "'");
+  } catch (const YAML::Exception& error) {
+    throw std::runtime_error(config_file + ": not valid YAML: " + error.what());
+  }
+  if (!root.IsMap() || root.size() != 1 || !root.begin()->second.IsMap() ||
+      !root.begin()->second["ros__parameters"].IsMap()) {
+    throw std::runtime_error(config_file +
+                             ": expected one controller: '<name>: ros__parameters: ...'");
+  }
+  YAML::Node parameters = root.begin()->second["ros__parameters"];
+  const bool other_robot = !parameters["robot"] || parameters["robot"].as<std::string>() != robot;
+  if (other_robot) {
+    for (const char* key : {"joints", "base_frame", "tip_frame"}) {
+      if (parameters[key]) {
+        throw std::runtime_error(config_file + " sets '" + key + "' for robot '" +
+                                 parameters["robot"].as<std::string>("?") +
+                                 "'; remove it to run the file on --robot " + robot);
+      }
+    }
+    parameters["robot"] = robot;
+  }
+  if (!plugin.empty()) {
+    parameters["plugin"] = plugin;
+  }
+  YAML::Emitter yaml;
+  yaml << root;
+  return pipeline::parseWrapperConfig(yaml.c_str(), config_file);
+}
+
+bool controllerIsCartesian(const pipeline::WrapperConfig& config) {
+  return plugin::PluginLibrary(config.plugin).api().command_kind == COMPLY_COMMAND_CARTESIAN;
 }
 
 }  // namespace comply::app

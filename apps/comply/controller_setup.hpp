@@ -13,4 +13,13 @@ namespace comply::app {
 pipeline::WrapperConfig controllerConfig(const std::string& robot, const std::string& plugin,
                                          const std::string& config_file = {});
 
+/// For runs that try one controller file on several robots (`comply sim`): like
+/// controllerConfig(), but a non-empty `robot` replaces the robot the file names, as long as the
+/// file leaves joints and frames to the robot's defaults (they would belong to the other robot).
+pipeline::WrapperConfig simControllerConfig(const std::string& robot, const std::string& plugin,
+                                            const std::string& config_file);
+
+/// True when the configured plugin takes Cartesian commands (loads the library to ask it).
+bool controllerIsCartesian(const pipeline::WrapperConfig& config);
+
 }  // namespace comply::app

@@ -2,13 +2,18 @@
 //
 //   comply bench    --robot fr3 --iterations 10000 [--json]
 //   comply validate --robot fr3 --plugin cartesian_impedance --inputs samples.json [...]
+//   comply sim --robot fr3 --config controller.yaml --task task.yaml [--out DIR] [...]
+//   comply experiment cross-platform [--out DIR]
 //
-// Exit codes: 0 success, 1 a check failed (validate above tolerance), 2 bad input or setup.
+// Exit codes: 0 success, 1 a check failed (validate above tolerance, a controller fault, a
+// target not reached), 2 bad input or setup.
 
 #include <CLI/CLI.hpp>
 #include <iostream>
 
 #include "bench_command.hpp"
+#include "cross_platform_experiment.hpp"
+#include "sim_command.hpp"
 #include "comply/model/robot_description.hpp"
 #include "validate_command.hpp"
 
@@ -53,10 +58,49 @@ int main(int argc, char** argv) {
   validate_command->add_flag("--wrapper", validate.wrapper,
                              "also run the samples as consecutive cycles of the full wrapper");
 
+  comply::app::SimOptions sim;
+  CLI::App* sim_command =
+      app.add_subcommand("sim", "run a controller on a simulated arm (MuJoCo), headless");
+  sim_command->add_option("--robot", sim.robot, "robot name or folder (overrides the config's)");
+  sim_command->add_option("--config", sim.config_file, "controller YAML");
+  sim_command->add_option("--plugin", sim.plugin,
+                          "without --config: plugin name (default cartesian_impedance)");
+  sim_command->add_option("--task", sim.task_file, "task file: waypoints streamed over time")
+      ->required();
+  sim_command->add_option("--duration", sim.duration_s, "simulated seconds (default: the task's)")
+      ->check(CLI::PositiveNumber);
+  sim_command->add_option("--out", sim.out_dir, "output folder (default out/sim-<robot>)");
+  sim_command->add_option("--snapshot-every", sim.snapshot_every_ms,
+                          "also a PNG every N ms of simulated time (default: the task's)")
+      ->check(CLI::NonNegativeNumber);
+  sim_command->add_flag("--realtime", sim.realtime, "pace the simulation to the wall clock");
+  sim_command->add_flag("--view", sim.view, "open an interactive window (needs a display)");
+  sim_command->add_flag("--no-plot{false}", sim.plot, "skip the matplotlib plot");
+
+  CLI::App* experiment_command =
+      app.add_subcommand("experiment", "reproduce an experiment of the evaluation");
+  experiment_command->require_subcommand(1);
+  comply::app::CrossPlatformOptions cross_platform;
+  CLI::App* cross_platform_command = experiment_command->add_subcommand(
+      "cross-platform", "one plugin, one command, four robots, one target");
+  cross_platform_command->add_option("--out", cross_platform.out_dir, "output folder")
+      ->capture_default_str();
+  cross_platform_command->add_option("--duration", cross_platform.duration_s,
+                                     "simulated seconds per robot (default: the task's)")
+      ->check(CLI::PositiveNumber);
+  cross_platform_command->add_option("--robots", cross_platform.robots, "robots to run")
+      ->capture_default_str();
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (bench_command->parsed()) {
       return comply::app::benchCommand(bench);
+    }
+    if (sim_command->parsed()) {
+      return comply::app::simCommand(sim, std::cout, std::cerr);
+    }
+    if (cross_platform_command->parsed()) {
+      return comply::app::crossPlatformCommand(cross_platform, std::cout, std::cerr);
     }
     return comply::app::validateCommand(validate, std::cout, std::cerr);
   } catch (const std::exception& error) {

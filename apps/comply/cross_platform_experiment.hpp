@@ -1,0 +1,44 @@
+#pragma once
+// `comply experiment cross-platform`: the same Cartesian plugin, the same controller file and the
+// same command drive FR3, LBR iiwa14, Rizon 4s and UR5e to one common task-space target; only the
+// URDF, joint/frame names (robot.yaml) differ. Writes a table, results.json and one PNG with the
+// robots side by side.
+
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace comply::app {
+
+struct CrossPlatformOptions {
+  std::vector<std::string> robots{"fr3", "iiwa14", "rizon4s", "ur5e"};
+  std::filesystem::path config_file;  ///< default config/sim/cartesian_impedance.yaml
+  std::filesystem::path task_file;    ///< default examples/sim/cross_platform.yaml
+  std::filesystem::path out_dir = "out/cross-platform";
+  double duration_s = 0.0;  ///< 0: the task's
+  bool pictures = true;
+  std::ostream* progress = nullptr;
+};
+
+struct CrossPlatformRow {
+  std::string robot;
+  int dof = 0;
+  double position_error_mm = 0.0;  ///< at the end, vs the common target
+  double orientation_error_deg = 0.0;
+  double settle_time_s = 0.0;  ///< NaN: never within 2 mm / 1 deg
+  double peak_torque_nm = 0.0;
+  std::uint64_t rejections = 0;
+  std::uint64_t faults = 0;
+};
+
+/// Runs every robot; writes <out>/<robot>/ (log, snapshots, plot), <out>/results.json,
+/// <out>/table.md and <out>/cross_platform.png.
+std::vector<CrossPlatformRow> runCrossPlatform(const CrossPlatformOptions& options);
+
+void printCrossPlatformTable(const std::vector<CrossPlatformRow>& rows, std::ostream& out);
+
+/// The command line: returns 0 when every robot reached the target within 2 mm / 1 deg, else 1.
+int crossPlatformCommand(const CrossPlatformOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace comply::app

@@ -1,0 +1,90 @@
+#include "sim_command.hpp"
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <iostream>
+
+#include "comply/sim/viewer.hpp"
+#include "controller_setup.hpp"
+#include "sim_session.hpp"
+
+namespace comply::app {
+namespace {
+
+/// Single-quoted for /bin/sh.
+std::string shellQuoted(const std::string& text) {
+  std::string quoted = "'";
+  for (const char c : text) {
+    quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  }
+  return quoted + "'";
+}
+
+/// Debian's interpreter carries python3-matplotlib; a python3 earlier on PATH may not.
+std::string pythonInterpreter() {
+  return std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+}
+
+}  // namespace
+
+bool plotLog(const std::filesystem::path& csv, const std::filesystem::path& png,
+             std::ostream& err) {
+  const std::filesystem::path script =
+      std::filesystem::path(COMPLY_SOURCE_DIR) / "scripts" / "plot_sim_log.py";
+  const std::string command = pythonInterpreter() + " " + shellQuoted(script.string()) + " " +
+                              shellQuoted(csv.string()) + " " + shellQuoted(png.string()) +
+                              " 2>&1";
+  const int status = std::system(command.c_str());
+  if (status != 0) {
+    err << "comply: warning: no plot: '" << command << "' failed (exit "
+        << (WIFEXITED(status) ? WEXITSTATUS(status) : -1)
+        << "); python3-matplotlib missing? scripts/install-deps.sh installs it\n";
+    return false;
+  }
+  return true;
+}
+
+int simCommand(const SimOptions& options, std::ostream& out, std::ostream& err) {
+  if (options.task_file.empty()) {
+    err << "comply sim: --task is required\n";
+    return 2;
+  }
+  if (options.view && !sim::Viewer::displayAvailable()) {
+    err << "comply sim: --view needs a display, and none is reachable (DISPLAY and "
+           "WAYLAND_DISPLAY are unset or unusable). Run without --view: snapshots and plots go "
+           "to --out.\n";
+    return 2;
+  }
+  SimRunOptions run;
+  run.config = simControllerConfig(options.robot,
+                                   options.plugin.empty() && options.config_file.empty()
+                                       ? "cartesian_impedance"
+                                       : options.plugin,
+                                   options.config_file);
+  const bool cartesian = controllerIsCartesian(run.config);
+  run.task = loadTaskFile(options.task_file, cartesian, run.config.dof,
+                          run.config.validation.quaternion_tolerance);
+  if (options.snapshot_every_ms >= 0.0) {
+    run.task.snapshot_every_ms = options.snapshot_every_ms;
+  }
+  run.duration_s = options.duration_s;
+  run.realtime = options.realtime;
+  run.view = options.view;
+  const model::RobotDescription robot = model::loadRobotDescription(run.config.robot);
+  run.out_dir = options.out_dir.empty() ? std::filesystem::path("out") / ("sim-" + robot.name)
+                                        : std::filesystem::path(options.out_dir);
+  run.progress = &err;
+
+  SimResult result = runSimulation(run);
+  if (options.plot) {
+    const std::filesystem::path png = run.out_dir / "plot.png";
+    if (plotLog(run.out_dir / "log.csv", png, err)) {
+      result.summary.files.push_back(png);
+    }
+  }
+  printSummary(result.summary, out);
+  return result.summary.faults > 0 ? 1 : 0;
+}
+
+}  // namespace comply::app

@@ -1,0 +1,31 @@
+#pragma once
+// `comply sim`: a compliant controller on a simulated arm, headless; leaves a CSV log, PNG
+// snapshots and a plot of tracking error and torque in --out.
+
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+
+namespace comply::app {
+
+struct SimOptions {
+  std::string robot;        ///< name or folder; overrides the config's robot
+  std::string plugin;       ///< without --config: the plugin (default cartesian_impedance)
+  std::string config_file;  ///< controller YAML
+  std::string task_file;
+  std::string out_dir;      ///< default out/sim-<robot>
+  double duration_s = 0.0;  ///< 0: the task's
+  double snapshot_every_ms = -1.0;  ///< < 0: the task's
+  bool realtime = false;
+  bool view = false;
+  bool plot = true;
+};
+
+/// Runs it; returns the exit code (0 ok, 1 the controller faulted, 2 bad input).
+int simCommand(const SimOptions& options, std::ostream& out, std::ostream& err);
+
+/// Draws `csv` (a `comply sim` log) into `png` with the project's plotting script. Returns false
+/// and says why on `err` when python3 with matplotlib is missing or the script fails.
+bool plotLog(const std::filesystem::path& csv, const std::filesystem::path& png, std::ostream& err);
+
+}  // namespace comply::app

@@ -1,0 +1,91 @@
+#pragma once
+// One simulated run: a wrapper (joint or Cartesian, chosen by the plugin) on a SimulatedRobot,
+// driven by a task file, logged every cycle. Used by `comply sim`, the experiments and the tests.
+
+#include <filesystem>
+#include <iosfwd>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "comply/core/commands.hpp"
+#include "comply/pipeline/config.hpp"
+#include "comply/sim/simulated_robot.hpp"
+#include "task_file.hpp"
+
+namespace comply::app {
+
+struct SimRunOptions {
+  pipeline::WrapperConfig config;  ///< names the robot and the plugin
+  TaskFile task;
+  double duration_s = 0.0;         ///< <= 0: the task's duration_s
+  bool realtime = false;           ///< pace the loop to the wall clock
+  bool view = false;               ///< interactive window (needs a display)
+  std::filesystem::path out_dir;   ///< empty: no files (log kept in memory only)
+  bool snapshots = true;           ///< PNGs at start, end and every task.snapshot_every_ms
+  int image_width = 640;
+  int image_height = 480;
+  bool plant_joint_dynamics = true;  ///< robot.yaml joint_dynamics in the plant
+  std::ostream* progress = nullptr;  ///< progress bar and warnings; nullptr: silent
+};
+
+/// Every control cycle, as the controller saw and commanded it. Poses in the base frame.
+struct SimLog {
+  int dof = 0;
+  bool cartesian = true;
+  std::vector<double> time_s;
+  std::vector<JointVector> position, velocity, torque;  ///< measured q, dq; commanded tau
+  std::vector<JointVector> joint_reference;             ///< joint control: q reference
+  std::vector<Eigen::Vector3d> tcp_position, reference_position;
+  std::vector<Eigen::Quaterniond> tcp_orientation, reference_orientation;
+  std::vector<Vector6d> contact_wrench;  ///< on the tool, base frame [N, N m]
+
+  [[nodiscard]] std::size_t size() const noexcept { return time_s.size(); }
+  /// |reference - measured| TCP position [m] and orientation angle [rad] at `row`.
+  [[nodiscard]] double positionError(std::size_t row) const;
+  [[nodiscard]] double orientationError(std::size_t row) const;
+  /// Largest |q_ref - q| over joints [rad | m] at `row` (joint control).
+  [[nodiscard]] double jointError(std::size_t row) const;
+};
+
+struct SimSummary {
+  std::string robot;
+  std::string plugin;
+  int dof = 0;
+  bool cartesian = true;
+  double simulated_s = 0.0;
+  double wall_s = 0.0;
+  double final_position_error_mm = 0.0;     ///< Cartesian: vs the final reference
+  double final_orientation_error_deg = 0.0;
+  double final_joint_error_rad = 0.0;       ///< joint control
+  double max_torque_nm = 0.0;
+  int max_torque_joint = 0;
+  double max_torque_rate_nm_per_s = 0.0;
+  /// Time from the last waypoint until the error stays within 2 mm / 1 deg (joint: 0.002 rad);
+  /// NaN when it never settles.
+  double settle_time_s = std::numeric_limits<double>::quiet_NaN();
+  std::uint64_t commands_sent = 0;
+  std::uint64_t rejections = 0;
+  std::uint64_t rate_limit_hits = 0;
+  std::uint64_t effort_limit_hits = 0;
+  std::uint64_t faults = 0;
+  std::vector<std::string> messages;  ///< rejection reasons, warnings (first few)
+  std::vector<std::filesystem::path> files;
+};
+
+struct SimResult {
+  SimSummary summary;
+  SimLog log;
+};
+
+/// Runs the task. Throws std::runtime_error (or SimError, ModelError, PluginError) with a clear
+/// message on bad input before the first cycle; a fault during the run is reported in the summary.
+SimResult runSimulation(const SimRunOptions& options);
+
+/// Writes the log as CSV (one row per cycle; columns named in the header).
+void writeLogCsv(const SimLog& log, const std::filesystem::path& file);
+
+/// Prints the summary for a human.
+void printSummary(const SimSummary& summary, std::ostream& out);
+
+}  // namespace comply::app

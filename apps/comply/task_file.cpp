@@ -1,0 +1,297 @@
+#include "task_file.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace comply::app {
+namespace {
+
+using nlohmann::json;
+
+class TaskError {
+ public:
+  explicit TaskError(std::string source) : source_(std::move(source)) {}
+  [[noreturn]] void fail(const std::string& where, const std::string& message) const {
+    throw std::runtime_error(source_ + ": " + (where.empty() ? "" : where + ": ") + message);
+  }
+
+ private:
+  std::string source_;
+};
+
+/// A YAML value as JSON, numbers as doubles; `where` names it in errors. Non-finite numbers are
+/// refused here, so no NaN or infinity reaches a command.
+json toJson(const YAML::Node& node, const std::string& where, const TaskError& error) {
+  switch (node.Type()) {
+    case YAML::NodeType::Sequence: {
+      json array = json::array();
+      for (std::size_t i = 0; i < node.size(); ++i) {
+        array.push_back(toJson(node[i], where + "[" + std::to_string(i) + "]", error));
+      }
+      return array;
+    }
+    case YAML::NodeType::Map: {
+      json object = json::object();
+      for (const auto& entry : node) {
+        const std::string key = entry.first.as<std::string>();
+        object[key] = toJson(entry.second, where + "." + key, error);
+      }
+      return object;
+    }
+    case YAML::NodeType::Scalar: {
+      double number = 0.0;
+      if (YAML::convert<double>::decode(node, number)) {
+        if (!std::isfinite(number)) {
+          error.fail(where, "'" + node.Scalar() + "' is not a finite number");
+        }
+        return number;
+      }
+      return node.Scalar();
+    }
+    default:
+      error.fail(where, "has no value");
+  }
+}
+
+std::vector<double> numbers(const json& value, std::size_t count, const std::string& where,
+                            const TaskError& error) {
+  std::vector<double> out;
+  if (!value.is_array()) {
+    error.fail(where, "must be a list of " + std::to_string(count) + " numbers");
+  }
+  for (const json& entry : value) {
+    if (!entry.is_number()) {
+      error.fail(where, "must be a list of " + std::to_string(count) + " numbers");
+    }
+    out.push_back(entry.get<double>());
+  }
+  if (out.size() != count) {
+    error.fail(where, "has " + std::to_string(out.size()) + " numbers, expected " +
+                          std::to_string(count));
+  }
+  return out;
+}
+
+void checkUnitQuaternion(const std::vector<double>& quaternion, double tolerance,
+                         const std::string& where, const TaskError& error) {
+  const double norm = std::sqrt(quaternion[0] * quaternion[0] + quaternion[1] * quaternion[1] +
+                                quaternion[2] * quaternion[2] + quaternion[3] * quaternion[3]);
+  if (std::abs(norm - 1.0) > tolerance) {
+    std::ostringstream message;
+    message << "is not a unit quaternion (x y z w): its norm is " << norm;
+    error.fail(where, message.str());
+  }
+}
+
+double positiveNumber(const json& object, const std::string& key, double fallback,
+                      const std::string& where, const TaskError& error) {
+  if (!object.contains(key)) {
+    return fallback;
+  }
+  if (!object[key].is_number() || !(object[key].get<double>() > 0.0)) {
+    error.fail(where + "." + key, "must be a number > 0");
+  }
+  return object[key].get<double>();
+}
+
+std::filesystem::path scenePath(const json& value, const std::filesystem::path& folder,
+                                const std::string& where, const TaskError& error) {
+  if (!value.is_string()) {
+    error.fail(where, "must be a file path");
+  }
+  const std::filesystem::path path(value.get<std::string>());
+  return path.is_absolute() ? path : folder / path;
+}
+
+void readScene(const json& scene, const std::filesystem::path& folder, TaskFile& task,
+               const TaskError& error) {
+  const std::set<std::string> known{"tool", "objects", "substeps", "seed"};
+  for (const auto& [key, value] : scene.items()) {
+    if (known.count(key) == 0) {
+      error.fail("task.scene", "unknown key '" + key + "' (known: tool, objects, substeps, seed)");
+    }
+  }
+  if (scene.contains("tool")) {
+    task.scene.tool = scenePath(scene["tool"], folder, "task.scene.tool", error);
+  }
+  if (scene.contains("objects")) {
+    const json& objects = scene["objects"];
+    if (!objects.is_array()) {
+      error.fail("task.scene.objects", "must be a list of file paths");
+    }
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+      task.scene.objects.push_back(scenePath(
+          objects[i], folder, "task.scene.objects[" + std::to_string(i) + "]", error));
+    }
+  }
+  const auto count = [&](const std::string& key, double minimum) {
+    const json& value = scene[key];
+    if (!value.is_number() || value.get<double>() < minimum ||
+        value.get<double>() != std::floor(value.get<double>())) {
+      error.fail("task.scene." + key, "must be a whole number >= " + std::to_string(int(minimum)));
+    }
+    return value.get<double>();
+  };
+  if (scene.contains("substeps")) {
+    task.substeps = static_cast<int>(count("substeps", 1));
+  }
+  if (scene.contains("seed")) {
+    task.seed = static_cast<std::uint64_t>(count("seed", 0));
+  }
+}
+
+void readCamera(const json& camera, TaskFile& task, const TaskError& error) {
+  for (const auto& [key, value] : camera.items()) {
+    if (key == "lookat") {
+      const std::vector<double> lookat = numbers(value, 3, "task.camera.lookat", error);
+      std::copy(lookat.begin(), lookat.end(), task.camera.lookat);
+    } else if (key == "distance_m") {
+      task.camera.distance_m = positiveNumber(camera, key, 0.0, "task.camera", error);
+    } else if (key == "azimuth_deg" || key == "elevation_deg") {
+      if (!value.is_number()) {
+        error.fail("task.camera." + key, "must be a number");
+      }
+      (key == "azimuth_deg" ? task.camera.azimuth_deg : task.camera.elevation_deg) =
+          value.get<double>();
+    } else {
+      error.fail("task.camera", "unknown key '" + key +
+                                    "' (known: lookat, distance_m, azimuth_deg, elevation_deg)");
+    }
+  }
+}
+
+Waypoint readWaypoint(json object, std::size_t index, bool cartesian, int dof,
+                      double quaternion_tolerance, const TaskError& error) {
+  const std::string where = "waypoint " + std::to_string(index);
+  if (!object.is_object()) {
+    error.fail(where, "must be a map of keys");
+  }
+  Waypoint waypoint;
+  if (!object.contains("time_s") || !object["time_s"].is_number() ||
+      object["time_s"].get<double>() < 0.0) {
+    error.fail(where, "needs time_s, a number >= 0 [s]");
+  }
+  waypoint.time_s = object["time_s"].get<double>();
+  object.erase("time_s");
+  if (object.contains("interpolate")) {
+    const json& value = object["interpolate"];
+    if (value == "linear") {
+      waypoint.interpolate = Interpolation::kLinear;
+    } else if (value == "step") {
+      waypoint.interpolate = Interpolation::kStep;
+    } else {
+      error.fail(where + ".interpolate", "must be linear or step");
+    }
+    object.erase("interpolate");
+  }
+  const std::size_t length = cartesian ? 3 : static_cast<std::size_t>(dof);
+  if (object.contains("position") && object.contains("position_offset")) {
+    error.fail(where, "give position or position_offset, not both");
+  }
+  for (const char* key : {"position", "position_offset"}) {
+    if (object.contains(key)) {
+      (std::string(key) == "position" ? waypoint.position : waypoint.position_offset) =
+          numbers(object[key], length, where + "." + key, error);
+      object.erase(key);
+    }
+  }
+  if (object.contains("orientation")) {
+    if (!cartesian) {
+      error.fail(where, "orientation is a Cartesian target; this controller takes joint targets");
+    }
+    waypoint.orientation = numbers(object["orientation"], 4, where + ".orientation", error);
+    checkUnitQuaternion(*waypoint.orientation, quaternion_tolerance, where + ".orientation",
+                        error);
+    object.erase("orientation");
+  }
+  if (object.contains("task_frame")) {
+    checkUnitQuaternion(numbers(object["task_frame"], 4, where + ".task_frame", error),
+                        quaternion_tolerance, where + ".task_frame", error);
+  }
+  for (const char* motion : {"velocity", "twist"}) {
+    if (object.contains(motion)) {
+      error.fail(where, std::string(motion) +
+                            " is derived from the waypoint times; give positions and times");
+    }
+  }
+  waypoint.fields = std::move(object);
+  return waypoint;
+}
+
+}  // namespace
+
+TaskFile parseTaskFile(const std::string& yaml_text, const std::string& source,
+                       const std::filesystem::path& folder, bool cartesian, int dof,
+                       double quaternion_tolerance) {
+  const TaskError error(source);
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& yaml_error) {
+    error.fail("", std::string("not valid YAML: ") + yaml_error.what());
+  }
+  if (!root.IsMap() || !root["task"] || !root["task"].IsMap()) {
+    error.fail("", "needs a top-level 'task' map (see config/sim/README or examples/sim)");
+  }
+  const json task_json = toJson(root["task"], "task", error);
+
+  TaskFile task;
+  task.path = source;
+  const std::set<std::string> known{"duration_s",  "command_rate_hz",   "scene",
+                                    "camera",      "snapshot_every_ms", "waypoints"};
+  for (const auto& [key, value] : task_json.items()) {
+    if (known.count(key) == 0) {
+      error.fail("task", "unknown key '" + key +
+                             "' (known: duration_s, command_rate_hz, scene, camera, "
+                             "snapshot_every_ms, waypoints)");
+    }
+  }
+  task.duration_s = positiveNumber(task_json, "duration_s", task.duration_s, "task", error);
+  task.command_rate_hz =
+      positiveNumber(task_json, "command_rate_hz", task.command_rate_hz, "task", error);
+  if (task_json.contains("snapshot_every_ms")) {
+    const json& value = task_json["snapshot_every_ms"];
+    if (!value.is_number() || value.get<double>() < 0.0) {
+      error.fail("task.snapshot_every_ms", "must be a number >= 0 (0: start and end only)");
+    }
+    task.snapshot_every_ms = value.get<double>();
+  }
+  if (task_json.contains("scene")) {
+    readScene(task_json["scene"], folder, task, error);
+  }
+  if (task_json.contains("camera")) {
+    readCamera(task_json["camera"], task, error);
+  }
+  if (!task_json.contains("waypoints") || !task_json["waypoints"].is_array() ||
+      task_json["waypoints"].empty()) {
+    error.fail("task", "needs a non-empty list 'waypoints'");
+  }
+  const json& waypoints = task_json["waypoints"];
+  for (std::size_t i = 0; i < waypoints.size(); ++i) {
+    task.waypoints.push_back(
+        readWaypoint(waypoints[i], i, cartesian, dof, quaternion_tolerance, error));
+    if (i > 0 && task.waypoints[i].time_s < task.waypoints[i - 1].time_s) {
+      error.fail("waypoint " + std::to_string(i), "time_s goes backwards");
+    }
+  }
+  return task;
+}
+
+TaskFile loadTaskFile(const std::filesystem::path& file, bool cartesian, int dof,
+                      double quaternion_tolerance) {
+  std::ifstream in(file);
+  if (!in) {
+    throw std::runtime_error("cannot read task file '" + file.string() + "'");
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  return parseTaskFile(text.str(), file.string(), file.parent_path(), cartesian, dof,
+                       quaternion_tolerance);
+}
+
+}  // namespace comply::app

@@ -1,0 +1,25 @@
+#pragma once
+// What a wrapper's control loop talks to: a real arm's driver, a simulator or a test double. One
+// cycle is read() -> Wrapper::update() -> write(); both calls are real-time (no allocation, no
+// locks a non-real-time thread holds, no throw).
+
+#include <span>
+
+#include "comply/core/state.hpp"
+
+namespace comply::pipeline {
+
+class HardwareInterface {
+ public:
+  virtual ~HardwareInterface() = default;
+
+  /// Number of controlled joints, in the order of the controller's `joints`.
+  [[nodiscard]] virtual int dof() const noexcept = 0;
+  /// Measured joint position [rad | m], velocity [rad/s | m/s] and effort [N m | N], each dof()
+  /// long. Returns false when no valid measurement exists (the caller must not run the law).
+  virtual bool read(JointState& state) noexcept = 0;
+  /// Joint effort command [N m | N], dof() long. Returns false when the hardware refused it.
+  virtual bool write(std::span<const double> torque) noexcept = 0;
+};
+
+}  // namespace comply::pipeline

@@ -1,0 +1,43 @@
+#pragma once
+// Offscreen rendering of a MuJoCo scene to an Image, headless: an EGL surfaceless context on
+// whatever OpenGL the machine has (llvmpipe when there is no GPU). No display needed.
+
+#include <memory>
+
+#include <mujoco/mujoco.h>
+
+#include "comply/sim/image.hpp"
+
+namespace comply::sim {
+
+/// A free camera looking at `lookat` [m, world frame] from `distance_m`, turned `azimuth_deg`
+/// about the world z axis and raised `elevation_deg` (negative looks down).
+struct CameraView {
+  double lookat[3] = {0.3, 0.0, 0.4};
+  double distance_m = 2.0;
+  double azimuth_deg = 135.0;
+  double elevation_deg = -20.0;
+};
+
+class Renderer {
+ public:
+  /// Creates the GL context and MuJoCo's render context for `model`. The model's offscreen buffer
+  /// (visual/global offwidth, offheight) must be at least width x height. Throws SimError saying
+  /// what is missing (no EGL display, no GL context, buffer too small).
+  Renderer(const mjModel& model, int width, int height);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  /// Renders the state in `data` (positions must be current: after mj_forward or mj_step).
+  [[nodiscard]] Image render(const mjData& data, const CameraView& view);
+
+  [[nodiscard]] int width() const noexcept;
+  [[nodiscard]] int height() const noexcept;
+
+ private:
+  struct Context;
+  std::unique_ptr<Context> context_;
+};
+
+}  // namespace comply::sim

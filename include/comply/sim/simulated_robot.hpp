@@ -1,0 +1,106 @@
+#pragma once
+// A robot simulated in MuJoCo behind the same read/write interface a real arm's driver offers.
+//
+//   SimulatedRobot robot(model::loadRobotDescription("fr3"), PlantOptions{});
+//   loop: robot.read(state); wrapper.update(state, period, torque); robot.write(torque);
+//         robot.step();
+//
+// The plant is the robot's URDF (the same file the controller's model comes from) plus what the
+// URDF cannot say: joint viscous damping, rotor armature and Coulomb friction from robot.yaml
+// (`joint_dynamics`), so that a controller's friction and gravity compensation have real work to
+// do. Effort is applied as a generalised joint force clamped to the URDF effort limit, held over
+// the physics substeps of one control period. Deterministic: the same options (and seed) give the
+// same trajectory, bit for bit.
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <mujoco/mujoco.h>
+
+#include "comply/core/commands.hpp"
+#include "comply/model/robot_description.hpp"
+#include "comply/pipeline/hardware_interface.hpp"
+#include "comply/sim/scene_xml.hpp"
+
+namespace comply::sim {
+
+struct PlantOptions {
+  double control_period_s = 0.001;  ///< one read/write cycle [s]
+  int substeps = 1;                 ///< physics steps per control period (timestep = period / n)
+  bool joint_dynamics = true;       ///< damping, armature, frictionloss from robot.yaml
+  std::string tip_frame;            ///< TCP body for pose and tool wrench; default robot.tcp_frame
+  SceneOptions scene;
+  /// Measurement noise (Gaussian, standard deviation) drawn from a generator seeded with `seed`.
+  double position_noise_rad = 0.0;
+  double velocity_noise_rad_per_s = 0.0;
+  std::uint64_t seed = 0;
+};
+
+class SimulatedRobot final : public pipeline::HardwareInterface {
+ public:
+  /// Builds and loads the scene, starts at the robot's home pose at rest. Throws SimError (scene,
+  /// MuJoCo) or model::ModelError (URDF) with a clear message.
+  SimulatedRobot(const model::RobotDescription& robot, const PlantOptions& options);
+  ~SimulatedRobot() override;
+  SimulatedRobot(const SimulatedRobot&) = delete;
+  SimulatedRobot& operator=(const SimulatedRobot&) = delete;
+
+  [[nodiscard]] int dof() const noexcept override { return static_cast<int>(qpos_address_.size()); }
+  /// Position, velocity (plus noise, if configured) and the effort applied in the last period.
+  bool read(JointState& state) noexcept override;
+  /// Applies `torque` [N m | N] from the next step() on, clamped to the URDF effort limit.
+  /// Refuses (returns false, keeps the previous torque) a wrong size or a non-finite entry.
+  bool write(std::span<const double> torque) noexcept override;
+
+  /// Advances one control period (`substeps` physics steps). No heap allocation.
+  void step() noexcept;
+  /// Puts the robot at `position` (rad | m, `joints` order) at rest and time 0 is kept. Throws
+  /// std::invalid_argument on a wrong size.
+  void setJointPositions(std::span<const double> position);
+
+  [[nodiscard]] double time_s() const noexcept { return data_->time; }
+  [[nodiscard]] double controlPeriod() const noexcept { return control_period_s_; }
+  /// TCP pose in the robot's base frame, from the simulator (not from the controller's model).
+  [[nodiscard]] Eigen::Isometry3d tcpPose() const noexcept;
+  /// Sum of the contact wrenches the environment exerts on the tool (the TCP body and everything
+  /// attached below it): force [N] and torque about the TCP origin [N m], base frame.
+  [[nodiscard]] Vector6d toolContactWrench() const noexcept;
+  /// Effort the plant applied in the last period [N m | N], after clamping.
+  [[nodiscard]] std::span<const double> appliedEffort() const noexcept { return applied_; }
+  [[nodiscard]] std::span<const double> effortLimit() const noexcept { return effort_limit_; }
+
+  [[nodiscard]] const mjModel& mujocoModel() const noexcept { return *model_; }
+  [[nodiscard]] const mjData& mujocoData() const noexcept { return *data_; }
+  /// For scene objects a task moves (e.g. a displaced fixture); call forward() after edits.
+  [[nodiscard]] mjModel& mutableMujocoModel() noexcept { return *model_; }
+  void forward() noexcept;
+
+ private:
+  struct MujocoDeleter {
+    void operator()(mjModel* model) const noexcept { mj_deleteModel(model); }
+    void operator()(mjData* data) const noexcept { mj_deleteData(data); }
+  };
+
+  std::unique_ptr<mjModel, MujocoDeleter> model_;
+  std::unique_ptr<mjData, MujocoDeleter> data_;
+  double control_period_s_ = 0.001;
+  int substeps_ = 1;
+  std::vector<int> qpos_address_;
+  std::vector<int> dof_address_;
+  std::vector<double> effort_limit_;
+  std::vector<double> applied_;
+  std::vector<bool> tool_body_;  ///< per MuJoCo body: part of the tool (TCP subtree)
+  int base_body_ = 0;
+  int tip_body_ = 0;
+  std::mt19937_64 noise_generator_;
+  std::normal_distribution<double> unit_normal_{0.0, 1.0};
+  double position_noise_rad_ = 0.0;
+  double velocity_noise_rad_per_s_ = 0.0;
+};
+
+}  // namespace comply::sim

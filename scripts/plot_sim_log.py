@@ -1,0 +1,70 @@
+#!/usr/bin/env python3
+"""Plots a `comply sim` log: tracking error, joint torques and tool contact force over time.
+
+usage: plot_sim_log.py log.csv plot.png
+"""
+import csv
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")  # no display needed
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def read_columns(path):
+    with open(path, newline="") as handle:
+        reader = csv.reader(handle)
+        header = next(reader)
+        columns = {name: [] for name in header}
+        for row in reader:
+            for name, value in zip(header, row):
+                columns[name].append(float(value))
+    return header, columns
+
+
+def main():
+    if len(sys.argv) != 3:
+        sys.exit(__doc__.strip())
+    header, data = read_columns(sys.argv[1])
+    time = data["time_s"]
+    torques = [name for name in header if name.startswith("tau")]
+    cartesian = "position_error_mm" in data
+    force = [
+        (fx * fx + fy * fy + fz * fz) ** 0.5
+        for fx, fy, fz in zip(data["contact_fx"], data["contact_fy"], data["contact_fz"])
+    ]
+    in_contact = max(force, default=0.0) > 1e-6
+
+    rows = 3 if in_contact else 2
+    figure, axes = plt.subplots(rows, 1, sharex=True, figsize=(9, 2.6 * rows + 0.6))
+    if cartesian:
+        axes[0].plot(time, data["position_error_mm"], label="position [mm]", color="tab:blue")
+        axes[0].set_ylabel("position error [mm]")
+        twin = axes[0].twinx()
+        twin.plot(time, data["orientation_error_deg"], color="tab:orange", label="orientation")
+        twin.set_ylabel("orientation error [deg]", color="tab:orange")
+        axes[0].set_title("tracking error (reference - measured TCP)")
+    else:
+        axes[0].plot(time, data["joint_error_rad"], color="tab:blue")
+        axes[0].set_ylabel("max |q_ref - q| [rad]")
+        axes[0].set_title("tracking error")
+    axes[0].grid(alpha=0.3)
+
+    for index, name in enumerate(torques):
+        axes[1].plot(time, data[name], label=f"joint {index + 1}", linewidth=1.0)
+    axes[1].set_ylabel("commanded torque [N m]")
+    axes[1].legend(ncol=min(len(torques), 7), fontsize="small", loc="upper right")
+    axes[1].grid(alpha=0.3)
+
+    if in_contact:
+        axes[2].plot(time, force, color="tab:red")
+        axes[2].set_ylabel("tool contact force [N]")
+        axes[2].grid(alpha=0.3)
+    axes[-1].set_xlabel("time [s]")
+    figure.tight_layout()
+    figure.savefig(sys.argv[2], dpi=110)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,269 @@
+#include "comply/sim/scene_xml.hpp"
+
+#include <unistd.h>
+
+#include <array>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+
+#include "comply/sim/sim_error.hpp"
+
+namespace comply::sim {
+namespace {
+
+std::string readText(const std::filesystem::path& file, const std::string& what) {
+  std::ifstream in(file);
+  if (!in) {
+    throw SimError("cannot read " + what + " '" + file.string() + "'");
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// A file with a unique name in the temporary directory, removed again on destruction: MuJoCo
+/// 2.2 loads models from files only.
+class TemporaryFile {
+ public:
+  TemporaryFile(const std::string& text, const char* suffix) {
+    std::string name =
+        (std::filesystem::temp_directory_path() / ("comply_scene_XXXXXX" + std::string(suffix)))
+            .string();
+    const int fd = mkstemps(name.data(), static_cast<int>(std::string_view(suffix).size()));
+    if (fd < 0) {
+      throw SimError("cannot create a temporary file in " +
+                     std::filesystem::temp_directory_path().string());
+    }
+    path_ = name;
+    std::size_t written = 0;
+    while (written < text.size()) {
+      const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
+      if (n <= 0) {
+        ::close(fd);
+        throw SimError("cannot write the temporary file " + path_.string());
+      }
+      written += static_cast<std::size_t>(n);
+    }
+    ::close(fd);
+  }
+  ~TemporaryFile() {
+    std::error_code ignored;
+    std::filesystem::remove(path_, ignored);
+  }
+  TemporaryFile(const TemporaryFile&) = delete;
+  TemporaryFile& operator=(const TemporaryFile&) = delete;
+  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+/// `xml` without <!-- --> comments, so that tags mentioned in comments are never matched.
+std::string withoutComments(const std::string& xml) {
+  std::string out;
+  out.reserve(xml.size());
+  std::size_t at = 0;
+  while (at < xml.size()) {
+    const std::size_t open = xml.find("<!--", at);
+    if (open == std::string::npos) {
+      out.append(xml, at);
+      break;
+    }
+    out.append(xml, at, open - at);
+    const std::size_t close = xml.find("-->", open + 4);
+    at = close == std::string::npos ? xml.size() : close + 3;
+  }
+  return out;
+}
+
+/// Position one past the '>' of the opening tag that starts at `begin` (quotes respected).
+std::size_t tagEnd(const std::string& xml, std::size_t begin) {
+  char quote = 0;
+  for (std::size_t i = begin; i < xml.size(); ++i) {
+    if (quote != 0) {
+      quote = xml[i] == quote ? 0 : quote;
+    } else if (xml[i] == '"' || xml[i] == '\'') {
+      quote = xml[i];
+    } else if (xml[i] == '>') {
+      return i + 1;
+    }
+  }
+  return std::string::npos;
+}
+
+/// Start of the first opening tag `<name` followed by a space, '>' or '/' at or after `from`.
+std::size_t findTag(const std::string& xml, std::string_view name, std::size_t from = 0) {
+  const std::string open = "<" + std::string(name);
+  for (std::size_t at = xml.find(open, from); at != std::string::npos;
+       at = xml.find(open, at + 1)) {
+    const std::size_t next = at + open.size();
+    if (next < xml.size() && std::string_view(" \t\r\n/>").find(xml[next]) != std::string::npos) {
+      return at;
+    }
+  }
+  return std::string::npos;
+}
+
+/// The URDF with our <mujoco> compiler options in place of any it had: fixed-joint frames stay
+/// bodies (the TCP must exist), inertias come from <inertial> only (as in the controller's
+/// model), and relative mesh paths resolve against the robot's folder.
+std::string urdfForMujoco(const model::RobotDescription& robot) {
+  std::string urdf = withoutComments(readText(robot.urdf_path, "URDF"));
+  if (const std::size_t begin = findTag(urdf, "mujoco"); begin != std::string::npos) {
+    const std::size_t open_end = tagEnd(urdf, begin);
+    std::size_t end = open_end;
+    if (open_end != std::string::npos && urdf[open_end - 2] != '/') {
+      const std::size_t close = urdf.find("</mujoco>", open_end);
+      end = close == std::string::npos ? std::string::npos : close + 9;
+    }
+    if (end == std::string::npos) {
+      throw SimError("URDF '" + robot.urdf_path.string() + "': unterminated <mujoco> element");
+    }
+    urdf.erase(begin, end - begin);
+  }
+  const std::size_t robot_tag = findTag(urdf, "robot");
+  const std::size_t robot_end = robot_tag == std::string::npos ? robot_tag : tagEnd(urdf, robot_tag);
+  if (robot_end == std::string::npos || urdf[robot_end - 2] == '/') {
+    throw SimError("URDF '" + robot.urdf_path.string() + "' has no <robot> element with links");
+  }
+  urdf.insert(robot_end, "<mujoco><compiler fusestatic=\"false\" discardvisual=\"true\" "
+                         "inertiafromgeom=\"false\" balanceinertia=\"true\" meshdir=\"" +
+                             robot.folder.string() + "\"/></mujoco>");
+  return urdf;
+}
+
+/// The MJCF MuJoCo writes for the robot's URDF.
+std::string robotMjcf(const model::RobotDescription& robot) {
+  const TemporaryFile urdf_file(urdfForMujoco(robot), ".urdf");
+  std::array<char, 1024> error{};
+  mjModel* model =
+      mj_loadXML(urdf_file.path().c_str(), nullptr, error.data(), static_cast<int>(error.size()));
+  if (model == nullptr) {
+    throw SimError("MuJoCo cannot load the URDF of " + robot.name + " ('" +
+                   robot.urdf_path.string() + "'): " + error.data());
+  }
+  const TemporaryFile mjcf_file("", ".xml");
+  const int saved =
+      mj_saveLastXML(mjcf_file.path().c_str(), model, error.data(), static_cast<int>(error.size()));
+  mj_deleteModel(model);
+  if (saved == 0) {
+    throw SimError("MuJoCo cannot convert the URDF of " + robot.name + ": " + error.data());
+  }
+  return readText(mjcf_file.path(), "converted model");
+}
+
+/// What stands inside the <mujocoinclude> root of a fragment file.
+std::string fragmentBody(const std::filesystem::path& file, const std::string& what) {
+  const std::string xml = withoutComments(readText(file, what));
+  const std::size_t begin = findTag(xml, "mujocoinclude");
+  const std::size_t open_end = begin == std::string::npos ? begin : tagEnd(xml, begin);
+  const std::size_t close = xml.rfind("</mujocoinclude>");
+  if (open_end == std::string::npos || close == std::string::npos || close < open_end) {
+    throw SimError(what + " '" + file.string() +
+                   "': the root element must be <mujocoinclude> ... </mujocoinclude>");
+  }
+  return xml.substr(open_end, close - open_end);
+}
+
+/// Inserts `content` as the last children of the body named `name`.
+void appendToBody(std::string& mjcf, const std::string& name, const std::string& content,
+                  const std::string& robot_name) {
+  const std::string attribute = "name=\"" + name + "\"";
+  for (std::size_t at = findTag(mjcf, "body"); at != std::string::npos;
+       at = findTag(mjcf, "body", at + 1)) {
+    const std::size_t end = tagEnd(mjcf, at);
+    if (end == std::string::npos || mjcf.substr(at, end - at).find(attribute) == std::string::npos) {
+      continue;
+    }
+    if (mjcf[end - 2] == '/') {  // <body .../>: open it up
+      mjcf.replace(end - 2, 2, ">" + content + "</body>");
+      return;
+    }
+    // The matching </body>: count nested bodies.
+    int depth = 1;
+    std::size_t cursor = end;
+    while (depth > 0) {
+      const std::size_t next_open = findTag(mjcf, "body", cursor);
+      const std::size_t next_close = mjcf.find("</body>", cursor);
+      if (next_close == std::string::npos) {
+        break;
+      }
+      if (next_open != std::string::npos && next_open < next_close) {
+        const std::size_t open_end = tagEnd(mjcf, next_open);
+        depth += mjcf[open_end - 2] == '/' ? 0 : 1;
+        cursor = open_end;
+      } else {
+        --depth;
+        cursor = depth == 0 ? next_close : next_close + 7;
+      }
+    }
+    mjcf.insert(cursor, content);
+    return;
+  }
+  throw SimError("the MuJoCo model of " + robot_name + " has no body '" + name +
+                 "' to attach the tool to");
+}
+
+void insertAfterTag(std::string& mjcf, std::string_view tag, const std::string& content) {
+  const std::size_t at = findTag(mjcf, tag);
+  const std::size_t end = at == std::string::npos ? at : tagEnd(mjcf, at);
+  if (end == std::string::npos) {
+    throw SimError("converted model has no <" + std::string(tag) + "> element");
+  }
+  mjcf.insert(end, content);
+}
+
+}  // namespace
+
+std::string buildSceneXml(const model::RobotDescription& robot, const SceneOptions& options) {
+  std::string mjcf = robotMjcf(robot);
+
+  if (!options.tool.empty()) {
+    appendToBody(mjcf, robot.tcp_frame, fragmentBody(options.tool, "tool fragment"), robot.name);
+  }
+  std::string objects;
+  for (const std::filesystem::path& file : options.objects) {
+    objects += fragmentBody(file, "object fragment");
+  }
+  const std::size_t world_end = mjcf.rfind("</worldbody>");
+  if (world_end == std::string::npos) {
+    throw SimError("converted model of " + robot.name + " has no </worldbody>");
+  }
+  mjcf.insert(world_end, objects);
+
+  // Floor at z = 0 (the robot base stands on it), a key and a fill light, a checker floor.
+  insertAfterTag(mjcf, "worldbody",
+                 "<light name=\"comply_key\" directional=\"true\" pos=\"1 -1 3\" "
+                 "dir=\"-0.4 0.4 -1\" diffuse=\"0.7 0.7 0.7\" castshadow=\"true\"/>"
+                 "<light name=\"comply_fill\" directional=\"true\" pos=\"-1 1 3\" "
+                 "dir=\"0.5 -0.3 -1\" diffuse=\"0.3 0.3 0.3\" castshadow=\"false\"/>"
+                 "<geom name=\"comply_floor\" type=\"plane\" size=\"3 3 0.1\" "
+                 "material=\"comply_floor\"/>");
+  insertAfterTag(
+      mjcf, "mujoco",
+      "<visual><global offwidth=\"" + std::to_string(options.offscreen_width) +
+          "\" offheight=\"" + std::to_string(options.offscreen_height) +
+          "\"/><quality shadowsize=\"2048\"/><headlight ambient=\"0.35 0.35 0.35\" "
+          "diffuse=\"0.3 0.3 0.3\"/></visual>"
+          "<asset><texture name=\"comply_sky\" type=\"skybox\" builtin=\"gradient\" "
+          "rgb1=\"1 1 1\" rgb2=\"0.86 0.89 0.93\" width=\"256\" height=\"256\"/>"
+          "<texture name=\"comply_checker\" type=\"2d\" builtin=\"checker\" "
+          "rgb1=\"0.82 0.82 0.8\" rgb2=\"0.72 0.72 0.7\" width=\"256\" height=\"256\"/>"
+          "<material name=\"comply_floor\" texture=\"comply_checker\" texrepeat=\"12 12\" "
+          "reflectance=\"0.05\"/></asset>");
+  return mjcf;
+}
+
+mjModel* loadModelFromXml(const std::string& xml, const std::string& what) {
+  const TemporaryFile file(xml, ".xml");
+  std::array<char, 1024> error{};
+  mjModel* model =
+      mj_loadXML(file.path().c_str(), nullptr, error.data(), static_cast<int>(error.size()));
+  if (model == nullptr) {
+    throw SimError("MuJoCo cannot load " + what + ": " + error.data());
+  }
+  return model;
+}
+
+}  // namespace comply::sim

@@ -1,0 +1,211 @@
+#include "comply/sim/simulated_robot.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "comply/model/model.hpp"
+#include "comply/sim/sim_error.hpp"
+
+namespace comply::sim {
+namespace {
+
+// Contact filter bits. Robot geoms (arm and tool) have contype kRobotBit and conaffinity
+// kWorldBit: they touch the floor and objects (contype 1, conaffinity 1, MuJoCo's default) but
+// never each other. The URDF's collision volumes are coarse and overlap between non-adjacent
+// links in ordinary poses; a real arm has no such self-contact.
+constexpr int kWorldBit = 1;
+constexpr int kRobotBit = 2;
+
+int bodyId(const mjModel& model, const std::string& name, const std::string& robot) {
+  const int id = mj_name2id(&model, mjOBJ_BODY, name.c_str());
+  if (id < 0) {
+    throw SimError("the MuJoCo model of " + robot + " has no body '" + name + "'");
+  }
+  return id;
+}
+
+void checkPerJoint(const std::vector<double>& values, std::size_t dof, const char* key,
+                   const std::string& robot) {
+  if (values.size() != dof) {
+    throw SimError("robot.yaml of " + robot + ": joint_dynamics." + key + " has " +
+                   std::to_string(values.size()) + " entries, expected " + std::to_string(dof));
+  }
+}
+
+}  // namespace
+
+SimulatedRobot::SimulatedRobot(const model::RobotDescription& robot, const PlantOptions& options)
+    : control_period_s_(options.control_period_s),
+      substeps_(options.substeps),
+      noise_generator_(options.seed),
+      position_noise_rad_(options.position_noise_rad),
+      velocity_noise_rad_per_s_(options.velocity_noise_rad_per_s) {
+  if (!(options.control_period_s > 0.0) || options.substeps < 1) {
+    throw SimError("control period must be > 0 s and substeps >= 1 (got " +
+                   std::to_string(options.control_period_s) + " s, " +
+                   std::to_string(options.substeps) + ")");
+  }
+  if (!(options.position_noise_rad >= 0.0) || !(options.velocity_noise_rad_per_s >= 0.0)) {
+    throw SimError("measurement noise must be >= 0");
+  }
+  const std::string tip = options.tip_frame.empty() ? robot.tcp_frame : options.tip_frame;
+  SceneOptions scene = options.scene;
+  model_.reset(loadModelFromXml(buildSceneXml(robot, scene), "the scene of " + robot.name));
+  model_->opt.timestep = control_period_s_ / substeps_;
+
+  // Effort limits from the URDF, as the controller's model reads them.
+  const model::Model chain = robot.loadModel(tip);
+  const std::size_t dof = robot.joints.size();
+  for (std::size_t i = 0; i < dof; ++i) {
+    const std::string& name = robot.joints[i];
+    const int joint = mj_name2id(model_.get(), mjOBJ_JOINT, name.c_str());
+    if (joint < 0) {
+      throw SimError("the MuJoCo model of " + robot.name + " has no joint '" + name + "'");
+    }
+    if (model_->jnt_type[joint] != mjJNT_HINGE && model_->jnt_type[joint] != mjJNT_SLIDE) {
+      throw SimError("joint '" + name + "' of " + robot.name + " is not revolute or prismatic");
+    }
+    qpos_address_.push_back(model_->jnt_qposadr[joint]);
+    dof_address_.push_back(model_->jnt_dofadr[joint]);
+    effort_limit_.push_back(chain.limits(static_cast<int>(i)).effort);
+  }
+  applied_.assign(dof, 0.0);
+
+  if (options.joint_dynamics && robot.joint_dynamics) {
+    const model::JointDynamics& dynamics = *robot.joint_dynamics;
+    checkPerJoint(dynamics.damping, dof, "damping", robot.name);
+    checkPerJoint(dynamics.armature, dof, "armature", robot.name);
+    checkPerJoint(dynamics.frictionloss, dof, "frictionloss", robot.name);
+    for (std::size_t i = 0; i < dof; ++i) {
+      model_->dof_damping[dof_address_[i]] = dynamics.damping[i];
+      model_->dof_armature[dof_address_[i]] = dynamics.armature[i];
+      model_->dof_frictionloss[dof_address_[i]] = dynamics.frictionloss[i];
+    }
+  }
+
+  base_body_ = bodyId(*model_, robot.base_frame, robot.name);
+  tip_body_ = bodyId(*model_, tip, robot.name);
+  const int robot_root = model_->body_rootid[base_body_];
+  tool_body_.assign(static_cast<std::size_t>(model_->nbody), false);
+  for (int body = 0; body < model_->nbody; ++body) {
+    // Bodies are numbered parents first, so one pass marks the whole TCP subtree.
+    tool_body_[body] = body == tip_body_ || (body > 0 && tool_body_[model_->body_parentid[body]]);
+  }
+  for (int geom = 0; geom < model_->ngeom; ++geom) {
+    const bool collides = model_->geom_contype[geom] != 0 || model_->geom_conaffinity[geom] != 0;
+    if (collides && robot_root != 0 && model_->body_rootid[model_->geom_bodyid[geom]] == robot_root) {
+      model_->geom_contype[geom] = kRobotBit;
+      model_->geom_conaffinity[geom] = kWorldBit;
+    }
+  }
+
+  data_.reset(mj_makeData(model_.get()));
+  if (!data_) {
+    throw SimError("MuJoCo could not allocate the simulation data of " + robot.name);
+  }
+  setJointPositions(robot.home);
+}
+
+SimulatedRobot::~SimulatedRobot() = default;
+
+void SimulatedRobot::setJointPositions(std::span<const double> position) {
+  if (position.size() != qpos_address_.size()) {
+    throw std::invalid_argument("setJointPositions: expected " +
+                                std::to_string(qpos_address_.size()) + " positions, got " +
+                                std::to_string(position.size()));
+  }
+  for (std::size_t i = 0; i < position.size(); ++i) {
+    data_->qpos[qpos_address_[i]] = position[i];
+  }
+  mju_zero(data_->qvel, model_->nv);
+  mju_zero(data_->qacc_warmstart, model_->nv);
+  forward();
+}
+
+void SimulatedRobot::forward() noexcept { mj_forward(model_.get(), data_.get()); }
+
+bool SimulatedRobot::read(JointState& state) noexcept {
+  const auto n = static_cast<Eigen::Index>(qpos_address_.size());
+  state.position.resize(n);
+  state.velocity.resize(n);
+  state.effort.resize(n);
+  for (std::size_t i = 0; i < qpos_address_.size(); ++i) {
+    const auto row = static_cast<Eigen::Index>(i);
+    state.position[row] = data_->qpos[qpos_address_[i]];
+    state.velocity[row] = data_->qvel[dof_address_[i]];
+    state.effort[row] = applied_[i];
+    if (position_noise_rad_ > 0.0) {
+      state.position[row] += position_noise_rad_ * unit_normal_(noise_generator_);
+    }
+    if (velocity_noise_rad_per_s_ > 0.0) {
+      state.velocity[row] += velocity_noise_rad_per_s_ * unit_normal_(noise_generator_);
+    }
+  }
+  return true;
+}
+
+bool SimulatedRobot::write(std::span<const double> torque) noexcept {
+  if (torque.size() != applied_.size() ||
+      !std::all_of(torque.begin(), torque.end(), [](double t) { return std::isfinite(t); })) {
+    return false;
+  }
+  for (std::size_t i = 0; i < torque.size(); ++i) {
+    applied_[i] = std::clamp(torque[i], -effort_limit_[i], effort_limit_[i]);
+    data_->qfrc_applied[dof_address_[i]] = applied_[i];
+  }
+  return true;
+}
+
+void SimulatedRobot::step() noexcept {
+  for (int i = 0; i < substeps_; ++i) {
+    mj_step(model_.get(), data_.get());
+  }
+}
+
+Eigen::Isometry3d SimulatedRobot::tcpPose() const noexcept {
+  const auto pose = [&](int body) {
+    Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();
+    // xmat is row-major; Eigen's default is column-major.
+    transform.linear() =
+        Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(data_->xmat + 9 * body);
+    transform.translation() = Eigen::Map<const Eigen::Vector3d>(data_->xpos + 3 * body);
+    return transform;
+  };
+  return pose(base_body_).inverse() * pose(tip_body_);
+}
+
+Vector6d SimulatedRobot::toolContactWrench() const noexcept {
+  Vector6d wrench_world = Vector6d::Zero();
+  const Eigen::Vector3d tcp_world(data_->xpos[3 * tip_body_], data_->xpos[3 * tip_body_ + 1],
+                                  data_->xpos[3 * tip_body_ + 2]);
+  for (int i = 0; i < data_->ncon; ++i) {
+    const mjContact& contact = data_->contact[i];
+    const bool tool1 = tool_body_[model_->geom_bodyid[contact.geom1]];
+    const bool tool2 = tool_body_[model_->geom_bodyid[contact.geom2]];
+    if (tool1 == tool2) {
+      continue;  // not touching the tool, or the tool touching itself
+    }
+    mjtNum local[6];
+    mj_contactForce(model_.get(), data_.get(), i, local);
+    // The contact frame's rows are the normal (pointing from geom1 to geom2) and two tangents;
+    // the force is the one geom1 exerts on geom2.
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> frame(contact.frame);
+    Eigen::Vector3d force = frame.transpose() * Eigen::Vector3d(local[0], local[1], local[2]);
+    if (tool1) {
+      force = -force;  // the environment (geom2) pushes back on the tool (geom1)
+    }
+    const Eigen::Vector3d arm = Eigen::Map<const Eigen::Vector3d>(contact.pos) - tcp_world;
+    wrench_world.head<3>() += force;
+    wrench_world.tail<3>() += arm.cross(force);
+  }
+  // Into the base frame.
+  const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> base_rotation(
+      data_->xmat + 9 * base_body_);
+  Vector6d wrench;
+  wrench.head<3>() = base_rotation.transpose() * wrench_world.head<3>();
+  wrench.tail<3>() = base_rotation.transpose() * wrench_world.tail<3>();
+  return wrench;
+}
+
+}  // namespace comply::sim

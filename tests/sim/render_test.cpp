@@ -1,0 +1,324 @@
+// Images, PNG files and headless rendering of a small MJCF scene (a red box on a grey floor).
+// Rendering runs on whatever EGL offers; on a machine without a GPU that is Mesa's llvmpipe.
+
+#include <gtest/gtest.h>
+#include <mujoco/mujoco.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "comply/sim/image.hpp"
+#include "comply/sim/renderer.hpp"
+#include "comply/sim/sim_error.hpp"
+#include "comply/sim/viewer.hpp"
+
+namespace comply::sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+using Rgb = std::array<std::uint8_t, 3>;
+
+Rgb pixel(const Image& image, int x, int y) {
+  const std::size_t at = (static_cast<std::size_t>(y) * image.width + x) * 3;
+  return {image.rgb[at], image.rgb[at + 1], image.rgb[at + 2]};
+}
+
+Image filled(int width, int height, Rgb colour) {
+  Image image{width, height, {}};
+  for (int i = 0; i < width * height; ++i) {
+    image.rgb.insert(image.rgb.end(), colour.begin(), colour.end());
+  }
+  return image;
+}
+
+/// A folder of its own under the system temp dir, removed with everything in it.
+class TempFolder {
+ public:
+  TempFolder() {
+    std::string pattern = (fs::temp_directory_path() / "comply_render_test_XXXXXX").string();
+    if (::mkdtemp(pattern.data()) == nullptr) {
+      throw std::runtime_error("mkdtemp failed for " + pattern);
+    }
+    path_ = pattern;
+  }
+  ~TempFolder() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  TempFolder(const TempFolder&) = delete;
+  TempFolder& operator=(const TempFolder&) = delete;
+  [[nodiscard]] const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+// ---- images and PNG ------------------------------------------------------------------------
+
+TEST(Png, RoundTripKeepsEveryByte) {
+  // Odd width: rows of 3 * 37 bytes are not 4-byte aligned.
+  Image gradient{37, 23, {}};
+  for (int y = 0; y < gradient.height; ++y) {
+    for (int x = 0; x < gradient.width; ++x) {
+      gradient.rgb.push_back(static_cast<std::uint8_t>(x * 7));
+      gradient.rgb.push_back(static_cast<std::uint8_t>(y * 11));
+      gradient.rgb.push_back(static_cast<std::uint8_t>((x * y) % 256));
+    }
+  }
+  const TempFolder folder;
+  const fs::path file = folder.path() / "gradient.png";
+  writePng(gradient, file);
+  const Image read = readPng(file);
+  EXPECT_EQ(read.width, gradient.width);
+  EXPECT_EQ(read.height, gradient.height);
+  EXPECT_EQ(read.rgb, gradient.rgb);
+}
+
+TEST(Png, WriteIntoMissingFolderNamesTheFile) {
+  const TempFolder folder;
+  const fs::path file = folder.path() / "no_such_folder" / "out.png";
+  try {
+    writePng(filled(4, 4, {1, 2, 3}), file);
+    FAIL() << "writePng into a missing folder did not throw";
+  } catch (const SimError& error) {
+    EXPECT_NE(std::string(error.what()).find(file.string()), std::string::npos) << error.what();
+  }
+}
+
+TEST(Png, ReadingSomethingElseThrowsNamingTheFile) {
+  const TempFolder folder;
+  const fs::path file = folder.path() / "not_a.png";
+  {
+    std::FILE* out = std::fopen(file.c_str(), "wb");
+    ASSERT_NE(out, nullptr);
+    std::fputs("this is text, not a PNG file", out);
+    std::fclose(out);
+  }
+  try {
+    (void)readPng(file);
+    FAIL() << "readPng of a text file did not throw";
+  } catch (const SimError& error) {
+    EXPECT_NE(std::string(error.what()).find(file.string()), std::string::npos) << error.what();
+  }
+}
+
+TEST(Image, SideBySideAlignsTopAndPadsWithBackground) {
+  const Rgb red{255, 0, 0};
+  const Rgb blue{0, 0, 255};
+  const Rgb background{10, 20, 30};
+  const Image joined = sideBySide({filled(10, 4, red), filled(6, 8, blue)}, 2, background);
+  ASSERT_EQ(joined.width, 18);
+  ASSERT_EQ(joined.height, 8);
+  ASSERT_EQ(joined.rgb.size(), 18u * 8u * 3u);
+  EXPECT_EQ(pixel(joined, 0, 0), red);
+  EXPECT_EQ(pixel(joined, 9, 3), red);
+  EXPECT_EQ(pixel(joined, 10, 0), background);  // the gap
+  EXPECT_EQ(pixel(joined, 11, 7), background);
+  EXPECT_EQ(pixel(joined, 12, 0), blue);
+  EXPECT_EQ(pixel(joined, 12, 7), blue);
+  EXPECT_EQ(pixel(joined, 17, 7), blue);
+  EXPECT_EQ(pixel(joined, 0, 4), background);  // below the short red image
+  EXPECT_EQ(pixel(joined, 9, 7), background);
+}
+
+TEST(Image, FractionDifferentCountsPixelsBeyondTolerance) {
+  Image image = filled(10, 10, {100, 100, 100});
+  image.rgb[0] = 110;          // pixel 0: beyond a tolerance of 8
+  image.rgb[3 * 5 + 2] = 105;  // pixel 5: within it
+  EXPECT_DOUBLE_EQ(fractionDifferentFrom(image, {100, 100, 100}, 8), 0.01);
+  EXPECT_DOUBLE_EQ(fractionDifferentFrom(image, {100, 100, 100}, 0), 0.02);
+  EXPECT_DOUBLE_EQ(fractionDifferentFrom(image, {0, 0, 0}), 1.0);
+}
+
+// ---- rendering -----------------------------------------------------------------------------
+
+constexpr const char* kSceneXml = R"(
+<mujoco model="render_test">
+  <visual><global offwidth="640" offheight="480"/></visual>
+  <worldbody>
+    <light pos="0 0 3" dir="0 0 -1" directional="true"/>
+    <light pos="0 -3 2" dir="0 1 -0.5" directional="true"/>
+    <geom name="floor" type="plane" size="2 2 0.1" rgba="0.6 0.6 0.6 1"/>
+    <body name="box" pos="0 0 0.1">
+      <freejoint/>
+      <geom type="box" size="0.1 0.1 0.1" rgba="1 0 0 1"/>
+    </body>
+  </worldbody>
+</mujoco>
+)";
+
+struct ModelDeleter {
+  void operator()(mjModel* model) const { mj_deleteModel(model); }
+};
+struct DataDeleter {
+  void operator()(mjData* data) const { mj_deleteData(data); }
+};
+
+std::unique_ptr<mjModel, ModelDeleter> loadModel(const std::string& xml) {
+  // mjVFS holds 2000 file names of 1000 characters: far too big for the stack.
+  auto vfs = std::make_unique<mjVFS>();
+  mj_defaultVFS(vfs.get());
+  if (mj_makeEmptyFileVFS(vfs.get(), "scene.xml", static_cast<int>(xml.size())) != 0) {
+    throw std::runtime_error("mj_makeEmptyFileVFS failed");
+  }
+  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), "scene.xml")], xml.data(), xml.size());
+  char error[1000] = "";
+  mjModel* model = mj_loadXML("scene.xml", vfs.get(), error, sizeof error);
+  mj_deleteVFS(vfs.get());
+  if (model == nullptr) {
+    throw std::runtime_error(std::string("mj_loadXML: ") + error);
+  }
+  return std::unique_ptr<mjModel, ModelDeleter>(model);
+}
+
+class RenderTest : public ::testing::Test {
+ protected:
+  RenderTest() : model_(loadModel(kSceneXml)), data_(mj_makeData(model_.get())) {
+    mj_forward(model_.get(), data_.get());
+  }
+
+  void moveBox(double dx) {
+    data_->qpos[0] += dx;  // free joint: x, y, z, then the quaternion
+    mj_forward(model_.get(), data_.get());
+  }
+
+  static CameraView view() {
+    CameraView camera;
+    camera.lookat[0] = 0.0;
+    camera.lookat[1] = 0.0;
+    camera.lookat[2] = 0.1;
+    camera.distance_m = 1.5;
+    camera.azimuth_deg = 90.0;  // looking along +y: a box moved along x moves sideways
+    camera.elevation_deg = -30.0;
+    return camera;
+  }
+
+  std::unique_ptr<mjModel, ModelDeleter> model_;
+  std::unique_ptr<mjData, DataDeleter> data_;
+};
+
+bool stronglyRed(Rgb p) {
+  return p[0] > 150 && p[1] < 100 && p[2] < 100;
+}
+
+/// Number of strongly red pixels and the mean x of them (the box's column in the image).
+std::pair<int, double> redPixels(const Image& image) {
+  int count = 0;
+  double x_sum = 0.0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      if (stronglyRed(pixel(image, x, y))) {
+        ++count;
+        x_sum += x;
+      }
+    }
+  }
+  return {count, count > 0 ? x_sum / count : -1.0};
+}
+
+TEST_F(RenderTest, DrawsTheBoxOnTheFloorRightSideUp) {
+  Renderer renderer(*model_, 320, 240);
+  EXPECT_EQ(renderer.width(), 320);
+  EXPECT_EQ(renderer.height(), 240);
+  const Image image = renderer.render(*data_, view());
+  ASSERT_EQ(image.width, 320);
+  ASSERT_EQ(image.height, 240);
+  ASSERT_EQ(image.rgb.size(), 320u * 240u * 3u);
+
+  // Above the horizon there is only the clear colour (no skybox in this scene).
+  const Rgb sky = pixel(image, 0, 0);
+  EXPECT_EQ(pixel(image, 319, 0), sky);
+  EXPECT_GT(fractionDifferentFrom(image, sky), 0.05);
+  // Rows top to bottom: the floor, not the sky, fills the bottom row.
+  EXPECT_NE(pixel(image, 0, 239), sky);
+  EXPECT_NE(pixel(image, 160, 239), sky);
+
+  const auto [red, red_x] = redPixels(image);
+  EXPECT_GT(red, 500) << "the red box should cover a few percent of the image";
+  EXPECT_NEAR(red_x, 160.0, 20.0) << "the box is at the look-at point, mid image";
+}
+
+TEST_F(RenderTest, MovingTheBoxMovesItInTheImage) {
+  Renderer renderer(*model_, 320, 240);
+  const Image before = renderer.render(*data_, view());
+  moveBox(0.3);
+  const Image after = renderer.render(*data_, view());
+
+  int changed = 0;
+  for (std::size_t i = 0; i < before.rgb.size(); i += 3) {
+    changed += std::memcmp(&before.rgb[i], &after.rgb[i], 3) != 0 ? 1 : 0;
+  }
+  EXPECT_GT(changed, 500);
+  const double shift = redPixels(after).second - redPixels(before).second;
+  EXPECT_GT(std::abs(shift), 30.0) << "box column moved by " << shift << " px";
+}
+
+TEST_F(RenderTest, SameStateRendersTheSameImage) {
+  Renderer renderer(*model_, 320, 240);
+  const Image first = renderer.render(*data_, view());
+  const Image second = renderer.render(*data_, view());
+  EXPECT_EQ(first.rgb, second.rgb);
+}
+
+TEST_F(RenderTest, SeveralRenderersTakeTurnsAndComeBackAfterTheLastIsGone) {
+  Image reference;
+  {
+    Renderer small(*model_, 320, 240);
+    Renderer large(*model_, 640, 480);
+    reference = small.render(*data_, view());
+    const Image big = large.render(*data_, view());
+    EXPECT_EQ(big.width, 640);
+    EXPECT_GT(redPixels(big).first, 3 * redPixels(reference).first);
+    EXPECT_EQ(small.render(*data_, view()).rgb, reference.rgb);
+  }
+  // Both gone: the shared EGL display was terminated and must come back for a new Renderer.
+  Renderer again(*model_, 320, 240);
+  EXPECT_EQ(again.render(*data_, view()).rgb, reference.rgb);
+}
+
+TEST_F(RenderTest, OddWidthKeepsRowsAligned) {
+  Renderer renderer(*model_, 317, 240);
+  const Image image = renderer.render(*data_, view());
+  ASSERT_EQ(image.rgb.size(), 317u * 240u * 3u);
+  // Padded rows would shear the picture: the sky would no longer be uniform along the top row.
+  const Rgb sky = pixel(image, 0, 0);
+  for (int x = 0; x < image.width; ++x) {
+    ASSERT_EQ(pixel(image, x, 0), sky) << "x = " << x;
+  }
+  EXPECT_NEAR(redPixels(image).second, 158.0, 20.0);
+}
+
+TEST_F(RenderTest, ImageLargerThanOffscreenBufferThrowsNamingOffwidth) {
+  try {
+    Renderer renderer(*model_, 800, 240);
+    FAIL() << "a Renderer wider than offwidth was created";
+  } catch (const SimError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("offwidth"), std::string::npos) << message;
+    EXPECT_NE(message.find("640"), std::string::npos) << message;
+    EXPECT_NE(message.find("800"), std::string::npos) << message;
+  }
+}
+
+// ---- viewer --------------------------------------------------------------------------------
+
+TEST(Viewer, WithoutDisplayThrowsSayingSo) {
+  ::unsetenv("DISPLAY");
+  ::unsetenv("WAYLAND_DISPLAY");
+  EXPECT_FALSE(Viewer::displayAvailable());
+  const auto model = loadModel(kSceneXml);
+  try {
+    Viewer viewer(*model, "render_test", CameraView{});
+    FAIL() << "a Viewer was created without a display";
+  } catch (const SimError& error) {
+    EXPECT_NE(std::string(error.what()).find("display"), std::string::npos) << error.what();
+  }
+}
+
+}  // namespace
+}  // namespace comply::sim
