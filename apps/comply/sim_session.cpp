@@ -338,7 +338,7 @@ SimResult runWith(const SimRunOptions& options, const model::RobotDescription& r
     previous_torque = torque;
 
     plant.step();
-    if (snapshot_every != 0 && cycle > 0 && cycle % snapshot_every == 0) {
+    if (snapshot_every != 0 && (cycle + 1) % snapshot_every == 0 && cycle + 1 < cycles) {
       std::ostringstream name;
       name << "snapshot_" << std::setw(6) << std::setfill('0')
            << std::llround(plant.time_s() * 1000.0) << "ms";

@@ -213,6 +213,20 @@ Waypoint readWaypoint(json object, std::size_t index, bool cartesian, int dof,
     checkUnitQuaternion(numbers(object["task_frame"], 4, where + ".task_frame", error),
                         quaternion_tolerance, where + ".task_frame", error);
   }
+  // As in the controller YAML: a 3x3 gain block may be one number (isotropic) or three (diagonal).
+  for (const char* key : {"stiffness_translational", "stiffness_rotational",
+                          "damping_translational", "damping_rotational"}) {
+    if (!cartesian || !object.contains(key)) {
+      continue;
+    }
+    json& value = object[key];
+    if (value.is_number()) {
+      value = json::array({value, value, value});
+    }
+    if (value.is_array() && value.size() == 3 && value[0].is_number()) {
+      value = json::array({value[0], 0.0, 0.0, 0.0, value[1], 0.0, 0.0, 0.0, value[2]});
+    }
+  }
   for (const char* motion : {"velocity", "twist"}) {
     if (object.contains(motion)) {
       error.fail(where, std::string(motion) +

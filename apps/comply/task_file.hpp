@@ -17,7 +17,8 @@
 //
 // Waypoint keys besides time_s, interpolate, position, position_offset and orientation are
 // command fields with the schema's names (command_json.hpp). For joint control, `position` and
-// `position_offset` are joint vectors [rad | m]. The reference between two waypoints moves along
+// `position_offset` are joint vectors [rad | m]. As in the controller YAML, a 3x3 gain block may be
+// given as 1 number (isotropic), 3 (diagonal) or 9 (row-major, task frame). The reference between two waypoints moves along
 // a straight line (slerp for orientation) with the matching velocity feedforward.
 
 #include <filesystem>

@@ -103,10 +103,11 @@ EGLDisplay openDisplay() {
   }
   EGLDisplay display = eglGetDisplay(EGL_DEFAULT_DISPLAY);
   if (display == EGL_NO_DISPLAY) {
-    throw SimError(eglFailure("eglGetDisplay (no surfaceless Mesa platform either)"));
+    throw SimError(eglFailure(
+        "Mesa's surfaceless platform is unavailable and eglGetDisplay(EGL_DEFAULT_DISPLAY)"));
   }
   if (!initialize(display)) {
-    throw SimError(eglFailure("eglInitialize"));
+    throw SimError(eglFailure("eglInitialize (default display)"));
   }
   return display;
 }
@@ -263,7 +264,8 @@ struct Renderer::Context {
       throw SimError("Renderer: MuJoCo could not set up its offscreen framebuffer on " +
                      std::string(reinterpret_cast<const char*>(version)));
     }
-    // Rows of width * 3 bytes need not be 4-byte aligned; the default would pad them.
+    // Rows of width * 3 bytes need not be 4-byte aligned and the GL default pads them to 4.
+    // MuJoCo 2.2 happens to set this in mjr_readPixels too; not relying on that is cheap.
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     bottom_up.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
   }

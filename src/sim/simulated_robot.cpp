@@ -120,7 +120,16 @@ void SimulatedRobot::setJointPositions(std::span<const double> position) {
   }
   mju_zero(data_->qvel, model_->nv);
   mju_zero(data_->qacc_warmstart, model_->nv);
+  mju_zero(data_->qfrc_applied, model_->nv);
   forward();
+  // The arm starts held by its drives, as a real arm in its idle holding mode before a controller
+  // takes over: they apply the gravity torque of this pose (the bias force at rest), so a wrapper
+  // that seeds its torque-rate limit from the measured effort starts without a jump.
+  for (std::size_t i = 0; i < applied_.size(); ++i) {
+    applied_[i] =
+        std::clamp(data_->qfrc_bias[dof_address_[i]], -effort_limit_[i], effort_limit_[i]);
+    data_->qfrc_applied[dof_address_[i]] = applied_[i];
+  }
 }
 
 void SimulatedRobot::forward() noexcept { mj_forward(model_.get(), data_.get()); }

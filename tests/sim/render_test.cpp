@@ -107,6 +107,30 @@ TEST(Png, ReadingSomethingElseThrowsNamingTheFile) {
   }
 }
 
+TEST(Png, GrayFileIsReadAsRgb) {
+  // A 3 x 2 8-bit grayscale PNG: rows {0, 128, 255} and {10, 20, 30}.
+  const unsigned char gray_png[] = {
+      0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44,
+      0x52, 0x00, 0x00, 0x00, 0x03, 0x00, 0x00, 0x00, 0x02, 0x08, 0x00, 0x00, 0x00, 0x00, 0xb8,
+      0x1f, 0x39, 0xc6, 0x00, 0x00, 0x00, 0x10, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9c, 0x63, 0x60,
+      0x68, 0xf8, 0xcf, 0xc0, 0x25, 0x22, 0x07, 0x00, 0x08, 0x67, 0x01, 0xbc, 0x9c, 0x67, 0x35,
+      0xa0, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+  const TempFolder folder;
+  const fs::path file = folder.path() / "gray.png";
+  {
+    std::FILE* out = std::fopen(file.c_str(), "wb");
+    ASSERT_NE(out, nullptr);
+    ASSERT_EQ(std::fwrite(gray_png, 1, sizeof gray_png, out), sizeof gray_png);
+    std::fclose(out);
+  }
+  const Image image = readPng(file);
+  ASSERT_EQ(image.width, 3);
+  ASSERT_EQ(image.height, 2);
+  EXPECT_EQ(pixel(image, 1, 0), (Rgb{128, 128, 128}));
+  EXPECT_EQ(pixel(image, 2, 0), (Rgb{255, 255, 255}));
+  EXPECT_EQ(pixel(image, 2, 1), (Rgb{30, 30, 30}));
+}
+
 TEST(Image, SideBySideAlignsTopAndPadsWithBackground) {
   const Rgb red{255, 0, 0};
   const Rgb blue{0, 0, 255};
@@ -142,7 +166,7 @@ constexpr const char* kSceneXml = R"(
   <visual><global offwidth="640" offheight="480"/></visual>
   <worldbody>
     <light pos="0 0 3" dir="0 0 -1" directional="true"/>
-    <light pos="0 -3 2" dir="0 1 -0.5" directional="true"/>
+    <light pos="0 -3 2" dir="0 1 -0.5" directional="true" castshadow="false"/>
     <geom name="floor" type="plane" size="2 2 0.1" rgba="0.6 0.6 0.6 1"/>
     <body name="box" pos="0 0 0.1">
       <freejoint/>

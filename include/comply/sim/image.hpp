@@ -18,7 +18,8 @@ struct Image {
 
 /// Writes `image` as an 8-bit RGB PNG. Throws SimError naming the file on any failure.
 void writePng(const Image& image, const std::filesystem::path& file);
-/// Reads an 8-bit RGB or RGBA PNG (alpha dropped). Throws SimError naming the file.
+/// Reads a PNG as 8-bit RGB: RGB and RGBA as they are (alpha dropped, not composited); gray,
+/// palette and 16-bit images are converted. Throws SimError naming the file.
 Image readPng(const std::filesystem::path& file);
 
 /// The images left to right, top-aligned, `gap_px` columns of `background` between them; shorter

@@ -21,15 +21,19 @@ struct CameraView {
 
 class Renderer {
  public:
-  /// Creates the GL context and MuJoCo's render context for `model`. The model's offscreen buffer
-  /// (visual/global offwidth, offheight) must be at least width x height. Throws SimError saying
-  /// what is missing (no EGL display, no GL context, buffer too small).
+  /// Creates the GL context and MuJoCo's render context for `model`, which must outlive the
+  /// Renderer. The model's offscreen buffer (visual/global offwidth, offheight) must be at least
+  /// width x height. Throws SimError saying what is missing (no EGL display, no GL context,
+  /// buffer too small).
   Renderer(const mjModel& model, int width, int height);
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
   /// Renders the state in `data` (positions must be current: after mj_forward or mj_step).
+  /// Makes this Renderer's GL context current on the calling thread and releases it before
+  /// returning, so several Renderers (and a Viewer) can take turns; one call at a time per
+  /// Renderer. Throws SimError when the context cannot be made current or GL reports an error.
   [[nodiscard]] Image render(const mjData& data, const CameraView& view);
 
   [[nodiscard]] int width() const noexcept;

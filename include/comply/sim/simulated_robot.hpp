@@ -59,8 +59,9 @@ class SimulatedRobot final : public pipeline::HardwareInterface {
 
   /// Advances one control period (`substeps` physics steps). No heap allocation.
   void step() noexcept;
-  /// Puts the robot at `position` (rad | m, `joints` order) at rest and time 0 is kept. Throws
-  /// std::invalid_argument on a wrong size.
+  /// Puts the robot at `position` (rad | m, `joints` order) at rest, held by its drives (the
+  /// applied effort is the gravity torque of that pose until the next write()). The simulated
+  /// time is kept. Throws std::invalid_argument on a wrong size.
   void setJointPositions(std::span<const double> position);
 
   [[nodiscard]] double time_s() const noexcept { return data_->time; }

@@ -20,6 +20,7 @@ class Viewer {
   Viewer& operator=(const Viewer&) = delete;
 
   /// Draws `data` and handles window events. Returns false once the user closed the window.
+  /// Does not wait for vertical sync (the caller paces frames) and leaves no GL context current.
   bool show(const mjData& data);
 
   /// True when a display is reachable (cheap check before constructing a Viewer).

@@ -1,0 +1,68 @@
+// The cross-platform check: one plugin, one controller file, one command; four robots reach the
+// common target within 2 mm / 1 deg. Also checks what the experiment leaves behind: results.json
+// with a row per robot, and a side-by-side picture that actually shows robots.
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "comply/sim/image.hpp"
+#include "cross_platform_experiment.hpp"
+#include "sim_support.hpp"
+
+namespace comply::testing {
+namespace {
+
+TEST(CrossPlatform, EveryRobotReachesTheCommonTargetAndThePicturesShowThem) {
+  app::CrossPlatformOptions options;
+  options.out_dir = std::filesystem::temp_directory_path() / "comply_cross_platform_test";
+  std::filesystem::remove_all(options.out_dir);
+  std::ostringstream progress;
+  options.progress = &progress;
+  const std::vector<app::CrossPlatformRow> rows = app::runCrossPlatform(options);
+
+  ASSERT_EQ(rows.size(), 4U);
+  for (const app::CrossPlatformRow& row : rows) {
+    SCOPED_TRACE(row.robot);
+    EXPECT_EQ(row.dof, row.robot == "ur5e" ? 6 : 7);
+    EXPECT_LT(row.position_error_mm, 2.0);
+    EXPECT_LT(row.orientation_error_deg, 1.0);
+    EXPECT_FALSE(std::isnan(row.settle_time_s));
+    EXPECT_GT(row.peak_torque_nm, 1.0);
+    EXPECT_EQ(row.rejections, 0U);
+    EXPECT_EQ(row.faults, 0U);
+  }
+
+  std::ifstream results_file(options.out_dir / "results.json");
+  ASSERT_TRUE(results_file);
+  const nlohmann::json results = nlohmann::json::parse(results_file);
+  ASSERT_TRUE(results.is_array());
+  ASSERT_EQ(results.size(), 4U);
+  EXPECT_EQ(results[1]["robot"], "iiwa14");
+  EXPECT_DOUBLE_EQ(results[3]["position_error_mm"].get<double>(), rows[3].position_error_mm);
+
+  // Side by side: four 640 x 480 frames with 8 px gaps.
+  const sim::Image combined = sim::readPng(options.out_dir / "cross_platform.png");
+  EXPECT_EQ(combined.width, 4 * 640 + 3 * 8);
+  EXPECT_EQ(combined.height, 480);
+  // Each robot's frame is mostly not sky, and the robot moved between start and end.
+  for (const std::string robot : {"fr3", "ur5e"}) {
+    SCOPED_TRACE(robot);
+    const sim::Image start = sim::readPng(options.out_dir / robot / "start.png");
+    const sim::Image end = sim::readPng(options.out_dir / robot / "end.png");
+    const std::array<std::uint8_t, 3> sky = {end.rgb[0], end.rgb[1], end.rgb[2]};
+    const double not_sky = sim::fractionDifferentFrom(end, sky, 12);
+    EXPECT_GT(not_sky, 0.3);
+    EXPECT_LT(not_sky, 0.95);
+    std::size_t changed = 0;
+    for (std::size_t i = 0; i < end.rgb.size(); i += 3) {
+      changed += std::abs(int(end.rgb[i]) - int(start.rgb[i])) > 24 ? 1 : 0;
+    }
+    EXPECT_GT(static_cast<double>(changed) / (end.width * end.height), 0.005);
+  }
+}
+
+}  // namespace
+}  // namespace comply::testing

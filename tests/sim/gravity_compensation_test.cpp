@@ -1,0 +1,51 @@
+// Compensation is real, not assumed: with zero stiffness and damping the only thing holding each
+// simulated arm at home is the wrapper's gravity compensation. With it the TCP stays put; without
+// it the arm falls. The plant keeps its joint friction (robot.yaml), as a real arm would.
+
+#include <gtest/gtest.h>
+
+#include "controller_setup.hpp"
+#include "sim_session.hpp"
+#include "sim_support.hpp"
+
+namespace comply::testing {
+namespace {
+
+constexpr double kHoldSeconds = 5.0;
+
+/// Largest TCP distance from its start position over the run [m].
+double maxDrift(const std::string& robot, bool gravity_compensation) {
+  app::SimRunOptions run;
+  run.config = app::controllerConfig(robot, "joint_impedance");
+  run.config.gravity_compensation = gravity_compensation;
+  run.config.initial_joint.stiffness.setZero();
+  run.config.initial_joint.damping.setZero();
+  run.task = taskFromYaml("task: {waypoints: [{time_s: 0.0}]}", false, run.config.dof);
+  run.duration_s = kHoldSeconds;
+  const app::SimResult result = app::runSimulation(run);
+  EXPECT_EQ(result.summary.faults, 0U);
+  EXPECT_EQ(result.log.size(), static_cast<std::size_t>(kHoldSeconds * 1000.0));
+  double drift = 0.0;
+  for (const Eigen::Vector3d& position : result.log.tcp_position) {
+    drift = std::max(drift, (position - result.log.tcp_position.front()).norm());
+  }
+  return drift;
+}
+
+class GravityCompensation : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(GravityCompensation, HoldsHomeWithinOneMillimetreAndFallsWithout) {
+  const double held = maxDrift(GetParam(), true);
+  const double unheld = maxDrift(GetParam(), false);
+  RecordProperty("drift_with_compensation_mm", std::to_string(1e3 * held));
+  RecordProperty("drift_without_compensation_mm", std::to_string(1e3 * unheld));
+  EXPECT_LT(held, 1e-3) << GetParam() << " drifted " << 1e3 * held << " mm";
+  EXPECT_GT(unheld, 0.05) << GetParam() << " only moved " << 1e3 * unheld
+                          << " mm without gravity compensation";
+}
+
+INSTANTIATE_TEST_SUITE_P(Robots, GravityCompensation,
+                         ::testing::Values("fr3", "iiwa14", "rizon4s", "ur5e"));
+
+}  // namespace
+}  // namespace comply::testing

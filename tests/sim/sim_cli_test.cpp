@@ -1,0 +1,144 @@
+// `comply sim` on bad input: each mistake gives a message that names it and exit code 2, never a
+// crash. And one good run leaves the files the README promises.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+
+#include "sim_support.hpp"
+
+namespace comply::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int exit_code = -1;
+  std::string output;  ///< stdout and stderr
+};
+
+Outcome runCli(const std::string& arguments, const std::string& environment = "") {
+  const std::string command =
+      environment + " " + std::string(COMPLY_TEST_CLI) + " " + arguments + " 2>&1";
+  Outcome outcome;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) {
+    return outcome;
+  }
+  std::array<char, 4096> buffer{};
+  while (fgets(buffer.data(), buffer.size(), pipe) != nullptr) {
+    outcome.output += buffer.data();
+  }
+  const int status = pclose(pipe);
+  outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return outcome;
+}
+
+class SimCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = fs::temp_directory_path() /
+              ("comply_sim_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(folder_);
+    fs::create_directories(folder_);
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+
+  fs::path write(const std::string& name, const std::string& text) const {
+    std::ofstream(folder_ / name) << text;
+    return folder_ / name;
+  }
+  std::string simArguments(const fs::path& task, const std::string& extra = "") const {
+    return "sim --robot fr3 --config " +
+           (kSourceDir / "config" / "sim" / "cartesian_impedance.yaml").string() + " --task " +
+           task.string() + " --out " + (folder_ / "out").string() + " --no-plot " + extra;
+  }
+
+  fs::path folder_;
+};
+
+TEST_F(SimCli, UnknownRobotNamesItAndTheKnownOnes) {
+  const Outcome outcome =
+      runCli("sim --robot nosuchbot --task " +
+             (kSourceDir / "examples" / "sim" / "step_response.yaml").string());
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find("nosuchbot"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("fr3"), std::string::npos) << outcome.output;
+}
+
+TEST_F(SimCli, MissingConfigKeyIsNamed) {
+  const fs::path config = write("no_plugin.yaml", "controller:\n  ros__parameters:\n    robot: fr3\n");
+  const Outcome outcome =
+      runCli("sim --config " + config.string() + " --task " +
+             (kSourceDir / "examples" / "sim" / "step_response.yaml").string());
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find("plugin"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("required"), std::string::npos) << outcome.output;
+}
+
+TEST_F(SimCli, NanInATaskIsRefusedBeforeTheRun) {
+  const fs::path task = write(
+      "nan.yaml", "task:\n  waypoints:\n    - {time_s: 1.0, position_offset: [0.0, .nan, 0.0]}\n");
+  const Outcome outcome = runCli(simArguments(task));
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find("waypoints[0].position_offset[1]"), std::string::npos)
+      << outcome.output;
+  EXPECT_NE(outcome.output.find("not a finite number"), std::string::npos) << outcome.output;
+  EXPECT_FALSE(fs::exists(folder_ / "out" / "log.csv"));
+}
+
+TEST_F(SimCli, NonUnitQuaternionIsRefused) {
+  const fs::path task = write(
+      "quaternion.yaml",
+      "task:\n  waypoints:\n    - {time_s: 1.0, orientation: [1.0, 0.5, 0.0, 0.0]}\n");
+  const Outcome outcome = runCli(simArguments(task));
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find("not a unit quaternion"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("1.118"), std::string::npos) << outcome.output;  // its norm
+}
+
+TEST_F(SimCli, MujocoLoadErrorIsReported) {
+  write("bad_tool.xml", "<mujocoinclude><geom type=\"sphere\" size=\"oops\"/></mujocoinclude>\n");
+  const fs::path task =
+      write("tool.yaml", "task:\n  scene: {tool: bad_tool.xml}\n  waypoints: [{time_s: 0.0}]\n");
+  const Outcome outcome = runCli(simArguments(task));
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find("MuJoCo cannot load"), std::string::npos) << outcome.output;
+}
+
+TEST_F(SimCli, ViewWithoutDisplayFailsClearly) {
+  const Outcome outcome = runCli(
+      simArguments(kSourceDir / "examples" / "sim" / "step_response.yaml", "--view"),
+      "env -u DISPLAY -u WAYLAND_DISPLAY");
+  EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
+  EXPECT_NE(outcome.output.find("needs a display"), std::string::npos) << outcome.output;
+}
+
+TEST_F(SimCli, GoodRunWritesLogSnapshotsAndSummary) {
+  const fs::path task = write("short.yaml",
+                              "task:\n  duration_s: 0.3\n  snapshot_every_ms: 100\n  waypoints:\n"
+                              "    - {time_s: 0.2, position_offset: [0.0, 0.0, 0.01]}\n");
+  const Outcome outcome = runCli(simArguments(task));
+  EXPECT_EQ(outcome.exit_code, 0) << outcome.output;
+  EXPECT_NE(outcome.output.find("final pose error"), std::string::npos) << outcome.output;
+  EXPECT_NE(outcome.output.find("rate-limit hits"), std::string::npos) << outcome.output;
+  for (const char* file : {"log.csv", "start.png", "end.png", "snapshot_000100ms.png",
+                           "snapshot_000200ms.png"}) {
+    EXPECT_TRUE(fs::exists(folder_ / "out" / file)) << file << "\n" << outcome.output;
+  }
+  std::ifstream csv(folder_ / "out" / "log.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header.rfind("time_s,q0,", 0), 0U) << header;
+  std::size_t rows = 0;
+  for (std::string line; std::getline(csv, line);) {
+    ++rows;
+  }
+  EXPECT_EQ(rows, 300U);
+}
+
+}  // namespace
+}  // namespace comply::testing

@@ -1,0 +1,135 @@
+// The simulated hardware on its own: determinism, effort clamping, refusal of bad torques, the
+// tool contact wrench against stiffness x penetration, and scene-file errors.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+#include "comply/model/robot_description.hpp"
+#include "comply/model/update.hpp"
+#include "comply/sim/sim_error.hpp"
+#include "comply/sim/simulated_robot.hpp"
+#include "controller_setup.hpp"
+#include "sim_session.hpp"
+#include "sim_support.hpp"
+
+namespace comply::testing {
+namespace {
+
+/// Positions read over 200 cycles of a fixed torque pattern, with measurement noise.
+std::vector<double> noisyTrajectory(std::uint64_t seed) {
+  sim::PlantOptions options;
+  options.seed = seed;
+  options.position_noise_rad = 1e-4;
+  options.substeps = 2;
+  sim::SimulatedRobot robot(model::loadRobotDescription("fr3"), options);
+  JointState state = JointState::zero(robot.dof());
+  std::vector<double> torque(static_cast<std::size_t>(robot.dof()), 0.0);
+  std::vector<double> positions;
+  for (int cycle = 0; cycle < 200; ++cycle) {
+    robot.read(state);
+    for (int j = 0; j < robot.dof(); ++j) {
+      torque[j] = 2.0 * std::sin(0.05 * cycle + j);
+      positions.push_back(state.position[j]);
+    }
+    robot.write(torque);
+    robot.step();
+  }
+  return positions;
+}
+
+TEST(SimulatedRobot, SameSeedSameTrajectoryBitForBit) {
+  const std::vector<double> first = noisyTrajectory(7);
+  EXPECT_EQ(first, noisyTrajectory(7));
+  EXPECT_NE(first, noisyTrajectory(8));
+}
+
+TEST(SimulatedRobot, ClampsToTheUrdfEffortLimitAndRefusesBadTorques) {
+  sim::SimulatedRobot robot(model::loadRobotDescription("fr3"), sim::PlantOptions{});
+  const int dof = robot.dof();
+  ASSERT_EQ(dof, 7);
+  std::vector<double> torque(static_cast<std::size_t>(dof), 1e4);
+  ASSERT_TRUE(robot.write(torque));
+  for (int j = 0; j < dof; ++j) {
+    EXPECT_GT(robot.effortLimit()[j], 0.0);
+    EXPECT_DOUBLE_EQ(robot.appliedEffort()[j], robot.effortLimit()[j]);
+  }
+  // FR3 datasheet: 87 N m on joints 1-4, 12 N m on 5-7.
+  EXPECT_DOUBLE_EQ(robot.effortLimit()[0], 87.0);
+  EXPECT_DOUBLE_EQ(robot.effortLimit()[6], 12.0);
+
+  std::vector<double> bad(torque.size(), 1.0);
+  bad[3] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(robot.write(bad));
+  EXPECT_FALSE(robot.write(std::vector<double>(3, 0.0)));
+  EXPECT_DOUBLE_EQ(robot.appliedEffort()[3], robot.effortLimit()[3]);  // previous torque kept
+}
+
+TEST(SimulatedRobot, HomePoseMatchesTheControllerModel) {
+  const model::RobotDescription description = model::loadRobotDescription("iiwa14");
+  sim::SimulatedRobot robot(description, sim::PlantOptions{});
+  const model::Model chain = description.loadModel();
+  model::Data data(chain);
+  const std::vector<double> zero(description.home.size(), 0.0);
+  ASSERT_EQ(model::update(chain, data, description.home, zero, model::Quantity::kPose),
+            model::UpdateStatus::kOk);
+  EXPECT_LT((robot.tcpPose().translation() - data.tip_position).norm(), 1e-9);
+  EXPECT_LT(Eigen::Quaterniond(robot.tcpPose().linear()).angularDistance(data.tip_orientation),
+            1e-9);
+}
+
+TEST(SimulatedRobot, ProbeForceEqualsStiffnessTimesPenetration) {
+  app::SimRunOptions run;
+  run.config = app::simControllerConfig(
+      "fr3", "", (kSourceDir / "config" / "sim" / "cartesian_impedance.yaml").string());
+  run.task = app::loadTaskFile(kSourceDir / "examples" / "sim" / "press_on_table.yaml", true,
+                               run.config.dof);
+  const app::SimResult result = app::runSimulation(run);
+  ASSERT_EQ(result.summary.faults, 0U);
+  // The task's z stiffness is 500 N/m and the reference lies 30 mm past the point of contact.
+  // The task frame is the base frame, so base z is the stiffness axis.
+  const Vector6d wrench = result.log.contact_wrench.back();
+  const double expected_n = 500.0 * 0.03;
+  EXPECT_NEAR(wrench[2], expected_n, 0.1 * expected_n);
+  EXPECT_LT(std::hypot(wrench[0], wrench[1]), 0.1 * expected_n);
+  // Before the approach there is no contact at all.
+  EXPECT_EQ(result.log.contact_wrench.front().norm(), 0.0);
+}
+
+TEST(SimulatedRobot, ToolFragmentWithoutMujocoincludeRootIsRefused) {
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / "comply_bad_tool_fragment.xml";
+  std::ofstream(file) << "<mujoco><worldbody/></mujoco>\n";
+  sim::PlantOptions options;
+  options.scene.tool = file;
+  try {
+    sim::SimulatedRobot robot(model::loadRobotDescription("ur5e"), options);
+    FAIL() << "expected SimError";
+  } catch (const sim::SimError& error) {
+    EXPECT_NE(std::string(error.what()).find("mujocoinclude"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find(file.string()), std::string::npos) << error.what();
+  }
+  std::filesystem::remove(file);
+}
+
+TEST(SimulatedRobot, MujocoErrorsInAFragmentAreReported) {
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / "comply_broken_object.xml";
+  std::ofstream(file) << "<mujocoinclude><geom type=\"box\" size=\"0.1 0.1\" bogus=\"1\"/>"
+                         "</mujocoinclude>\n";
+  sim::PlantOptions options;
+  options.scene.objects.push_back(file);
+  try {
+    sim::SimulatedRobot robot(model::loadRobotDescription("fr3"), options);
+    FAIL() << "expected SimError";
+  } catch (const sim::SimError& error) {
+    EXPECT_NE(std::string(error.what()).find("MuJoCo cannot load"), std::string::npos)
+        << error.what();
+  }
+  std::filesystem::remove(file);
+}
+
+}  // namespace
+}  // namespace comply::testing
