@@ -32,9 +32,10 @@ bench: build
 	@scripts/run-bench.sh $(BUILD_DIR)
 	@$(BUILD_DIR)/apps/comply/comply bench --robot fr3 --iterations 10000 --cpu $(BENCH_CPU)
 
-# Until the simulator lands, the main job is the control-cycle benchmark on the FR3.
+# The cross-platform check in simulation: four robots, one plugin, one command, one target.
+DEMO_OUT ?= out/cross-platform
 demo: build
-	@$(BUILD_DIR)/apps/comply/comply bench --robot fr3 --iterations 10000 --cpu $(BENCH_CPU)
+	@$(BUILD_DIR)/apps/comply/comply experiment cross-platform --out $(DEMO_OUT)
 
 format:
 	@git ls-files '*.hpp' '*.cpp' '*.h' '*.c' | xargs clang-format -i

@@ -27,9 +27,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr double kSettlePositionM = 0.002;
-constexpr double kSettleOrientationRad = M_PI / 180.0;
-constexpr double kSettleJointRad = 0.002;
+constexpr double kSettlePositionM = 0.001;
+constexpr double kSettleOrientationRad = 0.5 * M_PI / 180.0;
+constexpr double kSettleJointRad = 0.001;
 constexpr std::size_t kMaxMessages = 8;
 constexpr double kViewerPeriodS = 1.0 / 60.0;
 
@@ -504,7 +504,7 @@ void printSummary(const SimSummary& summary, std::ostream& out) {
   if (std::isnan(summary.settle_time_s)) {
     out << "not settled\n";
   } else {
-    out << std::setprecision(3) << summary.settle_time_s << " s after the last waypoint\n";
+    out << std::setprecision(3) << summary.settle_time_s << " s after the last waypoint (band 1 mm, 0.5 deg)\n";
   }
   out << "  max torque            " << std::setprecision(2) << summary.max_torque_nm
       << " N m (joint " << summary.max_torque_joint << ")\n"

@@ -61,7 +61,7 @@ struct SimSummary {
   double max_torque_nm = 0.0;
   int max_torque_joint = 0;
   double max_torque_rate_nm_per_s = 0.0;
-  /// Time from the last waypoint until the error stays within 2 mm / 1 deg (joint: 0.002 rad);
+  /// Time from the last waypoint until the error stays within 1 mm / 0.5 deg (joint: 0.001 rad);
   /// NaN when it never settles.
   double settle_time_s = std::numeric_limits<double>::quiet_NaN();
   std::uint64_t commands_sent = 0;
