@@ -55,8 +55,8 @@ std::vector<CrossPlatformRow> runCrossPlatform(const CrossPlatformOptions& optio
   for (const std::string& robot : options.robots) {
     SimRunOptions run;
     run.config = simControllerConfig(robot, "", config_file.string());
-    run.task = loadTaskFile(task_file, true, run.config.dof,
-                            run.config.validation.quaternion_tolerance);
+    run.task =
+        loadTaskFile(task_file, true, run.config.dof, run.config.validation.quaternion_tolerance);
     run.duration_s = options.duration_s;
     run.out_dir = options.out_dir / robot;
     run.snapshots = options.pictures;

@@ -12,9 +12,9 @@
 #include <iostream>
 
 #include "bench_command.hpp"
+#include "comply/model/robot_description.hpp"
 #include "cross_platform_experiment.hpp"
 #include "sim_command.hpp"
-#include "comply/model/robot_description.hpp"
 #include "validate_command.hpp"
 
 int main(int argc, char** argv) {
@@ -70,8 +70,9 @@ int main(int argc, char** argv) {
   sim_command->add_option("--duration", sim.duration_s, "simulated seconds (default: the task's)")
       ->check(CLI::PositiveNumber);
   sim_command->add_option("--out", sim.out_dir, "output folder (default out/sim-<robot>)");
-  sim_command->add_option("--snapshot-every", sim.snapshot_every_ms,
-                          "also a PNG every N ms of simulated time (default: the task's)")
+  sim_command
+      ->add_option("--snapshot-every", sim.snapshot_every_ms,
+                   "also a PNG every N ms of simulated time (default: the task's)")
       ->check(CLI::NonNegativeNumber);
   sim_command->add_flag("--realtime", sim.realtime, "pace the simulation to the wall clock");
   sim_command->add_flag("--view", sim.view, "open an interactive window (needs a display)");
@@ -85,8 +86,9 @@ int main(int argc, char** argv) {
       "cross-platform", "one plugin, one command, four robots, one target");
   cross_platform_command->add_option("--out", cross_platform.out_dir, "output folder")
       ->capture_default_str();
-  cross_platform_command->add_option("--duration", cross_platform.duration_s,
-                                     "simulated seconds per robot (default: the task's)")
+  cross_platform_command
+      ->add_option("--duration", cross_platform.duration_s,
+                   "simulated seconds per robot (default: the task's)")
       ->check(CLI::PositiveNumber);
   cross_platform_command->add_option("--robots", cross_platform.robots, "robots to run")
       ->capture_default_str();

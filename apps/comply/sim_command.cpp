@@ -33,8 +33,7 @@ bool plotLog(const std::filesystem::path& csv, const std::filesystem::path& png,
   const std::filesystem::path script =
       std::filesystem::path(COMPLY_SOURCE_DIR) / "scripts" / "plot_sim_log.py";
   const std::string command = pythonInterpreter() + " " + shellQuoted(script.string()) + " " +
-                              shellQuoted(csv.string()) + " " + shellQuoted(png.string()) +
-                              " 2>&1";
+                              shellQuoted(csv.string()) + " " + shellQuoted(png.string()) + " 2>&1";
   const int status = std::system(command.c_str());
   if (status != 0) {
     err << "comply: warning: no plot: '" << command << "' failed (exit "

@@ -13,8 +13,8 @@ struct SimOptions {
   std::string plugin;       ///< without --config: the plugin (default cartesian_impedance)
   std::string config_file;  ///< controller YAML
   std::string task_file;
-  std::string out_dir;      ///< default out/sim-<robot>
-  double duration_s = 0.0;  ///< 0: the task's
+  std::string out_dir;              ///< default out/sim-<robot>
+  double duration_s = 0.0;          ///< 0: the task's
   double snapshot_every_ms = -1.0;  ///< < 0: the task's
   bool realtime = false;
   bool view = false;

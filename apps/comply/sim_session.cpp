@@ -1,6 +1,5 @@
 #include "sim_session.hpp"
 
-#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -13,7 +12,6 @@
 #include <thread>
 
 #include "command_json.hpp"
-#include "comply/core/rotation.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/plugin/loader.hpp"
 #include "comply/sim/image.hpp"
@@ -56,21 +54,19 @@ class Trajectory {
           target.joint_position = Eigen::Map<const Eigen::VectorXd>(
               waypoint.position->data(), static_cast<Eigen::Index>(waypoint.position->size()));
         } else if (waypoint.position_offset) {
-          target.joint_position =
-              start.joint_position +
-              Eigen::Map<const Eigen::VectorXd>(
-                  waypoint.position_offset->data(),
-                  static_cast<Eigen::Index>(waypoint.position_offset->size()));
+          target.joint_position = start.joint_position +
+                                  Eigen::Map<const Eigen::VectorXd>(
+                                      waypoint.position_offset->data(),
+                                      static_cast<Eigen::Index>(waypoint.position_offset->size()));
         }
       } else {
         if (waypoint.position) {
           target.position = Eigen::Vector3d((*waypoint.position)[0], (*waypoint.position)[1],
                                             (*waypoint.position)[2]);
         } else if (waypoint.position_offset) {
-          target.position =
-              start.position + Eigen::Vector3d((*waypoint.position_offset)[0],
-                                               (*waypoint.position_offset)[1],
-                                               (*waypoint.position_offset)[2]);
+          target.position = start.position + Eigen::Vector3d((*waypoint.position_offset)[0],
+                                                             (*waypoint.position_offset)[1],
+                                                             (*waypoint.position_offset)[2]);
         }
         if (waypoint.orientation) {
           const std::vector<double>& q = *waypoint.orientation;
@@ -179,8 +175,8 @@ class Pictures {
       }
     }
     if (options.view) {
-      viewer_ = std::make_unique<sim::Viewer>(robot.mujocoModel(), "comply sim",
-                                              options.task.camera);
+      viewer_ =
+          std::make_unique<sim::Viewer>(robot.mujocoModel(), "comply sim", options.task.camera);
     }
   }
 
@@ -346,11 +342,12 @@ SimResult runWith(const SimRunOptions& options, const model::RobotDescription& r
     }
     window_open = pictures.show(plant, plant.time_s());
     if (options.realtime || options.view) {
-      std::this_thread::sleep_until(
-          wall_start + std::chrono::duration_cast<Clock::duration>(
-                           std::chrono::duration<double>(plant.time_s())));
+      std::this_thread::sleep_until(wall_start +
+                                    std::chrono::duration_cast<Clock::duration>(
+                                        std::chrono::duration<double>(plant.time_s())));
     }
-    progress.update(plant.time_s(), std::chrono::duration<double>(Clock::now() - wall_start).count());
+    progress.update(plant.time_s(),
+                    std::chrono::duration<double>(Clock::now() - wall_start).count());
   }
   progress.finish();
   summary.wall_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
@@ -469,8 +466,7 @@ void writeLogCsv(const SimLog& log, const std::filesystem::path& file) {
       const Eigen::Vector3d& r = log.reference_position[row];
       out << ',' << r.x() << ',' << r.y() << ',' << r.z();
       quaternion(log.reference_orientation[row]);
-      out << ',' << 1e3 * log.positionError(row) << ','
-          << log.orientationError(row) * 180.0 / M_PI;
+      out << ',' << 1e3 * log.positionError(row) << ',' << log.orientationError(row) * 180.0 / M_PI;
     } else {
       for (int j = 0; j < log.dof; ++j) {
         out << ',' << log.joint_reference[row][j];
@@ -490,8 +486,8 @@ void writeLogCsv(const SimLog& log, const std::filesystem::path& file) {
 void printSummary(const SimSummary& summary, std::ostream& out) {
   out << std::fixed;
   out << "robot " << summary.robot << " (" << summary.dof << " DOF), plugin " << summary.plugin
-      << ": " << std::setprecision(2) << summary.simulated_s << " s simulated in "
-      << summary.wall_s << " s (" << std::setprecision(1)
+      << ": " << std::setprecision(2) << summary.simulated_s << " s simulated in " << summary.wall_s
+      << " s (" << std::setprecision(1)
       << (summary.wall_s > 0 ? summary.simulated_s / summary.wall_s : 0.0) << "x real time)\n";
   if (summary.cartesian) {
     out << "  final pose error      " << std::setprecision(3) << summary.final_position_error_mm
@@ -504,7 +500,8 @@ void printSummary(const SimSummary& summary, std::ostream& out) {
   if (std::isnan(summary.settle_time_s)) {
     out << "not settled\n";
   } else {
-    out << std::setprecision(3) << summary.settle_time_s << " s after the last waypoint (band 1 mm, 0.5 deg)\n";
+    out << std::setprecision(3) << summary.settle_time_s
+        << " s after the last waypoint (band 1 mm, 0.5 deg)\n";
   }
   out << "  max torque            " << std::setprecision(2) << summary.max_torque_nm
       << " N m (joint " << summary.max_torque_joint << ")\n"

@@ -18,11 +18,11 @@ namespace comply::app {
 struct SimRunOptions {
   pipeline::WrapperConfig config;  ///< names the robot and the plugin
   TaskFile task;
-  double duration_s = 0.0;         ///< <= 0: the task's duration_s
-  bool realtime = false;           ///< pace the loop to the wall clock
-  bool view = false;               ///< interactive window (needs a display)
-  std::filesystem::path out_dir;   ///< empty: no files (log kept in memory only)
-  bool snapshots = true;           ///< PNGs at start, end and every task.snapshot_every_ms
+  double duration_s = 0.0;        ///< <= 0: the task's duration_s
+  bool realtime = false;          ///< pace the loop to the wall clock
+  bool view = false;              ///< interactive window (needs a display)
+  std::filesystem::path out_dir;  ///< empty: no files (log kept in memory only)
+  bool snapshots = true;          ///< PNGs at start, end and every task.snapshot_every_ms
   int image_width = 640;
   int image_height = 480;
   bool plant_joint_dynamics = true;  ///< robot.yaml joint_dynamics in the plant
@@ -55,9 +55,9 @@ struct SimSummary {
   bool cartesian = true;
   double simulated_s = 0.0;
   double wall_s = 0.0;
-  double final_position_error_mm = 0.0;     ///< Cartesian: vs the final reference
+  double final_position_error_mm = 0.0;  ///< Cartesian: vs the final reference
   double final_orientation_error_deg = 0.0;
-  double final_joint_error_rad = 0.0;       ///< joint control
+  double final_joint_error_rad = 0.0;  ///< joint control
   double max_torque_nm = 0.0;
   int max_torque_joint = 0;
   double max_torque_rate_nm_per_s = 0.0;

@@ -71,8 +71,8 @@ std::vector<double> numbers(const json& value, std::size_t count, const std::str
     out.push_back(entry.get<double>());
   }
   if (out.size() != count) {
-    error.fail(where, "has " + std::to_string(out.size()) + " numbers, expected " +
-                          std::to_string(count));
+    error.fail(where,
+               "has " + std::to_string(out.size()) + " numbers, expected " + std::to_string(count));
   }
   return out;
 }
@@ -125,8 +125,8 @@ void readScene(const json& scene, const std::filesystem::path& folder, TaskFile&
       error.fail("task.scene.objects", "must be a list of file paths");
     }
     for (std::size_t i = 0; i < objects.size(); ++i) {
-      task.scene.objects.push_back(scenePath(
-          objects[i], folder, "task.scene.objects[" + std::to_string(i) + "]", error));
+      task.scene.objects.push_back(
+          scenePath(objects[i], folder, "task.scene.objects[" + std::to_string(i) + "]", error));
     }
   }
   const auto count = [&](const std::string& key, double minimum) {
@@ -205,8 +205,7 @@ Waypoint readWaypoint(json object, std::size_t index, bool cartesian, int dof,
       error.fail(where, "orientation is a Cartesian target; this controller takes joint targets");
     }
     waypoint.orientation = numbers(object["orientation"], 4, where + ".orientation", error);
-    checkUnitQuaternion(*waypoint.orientation, quaternion_tolerance, where + ".orientation",
-                        error);
+    checkUnitQuaternion(*waypoint.orientation, quaternion_tolerance, where + ".orientation", error);
     object.erase("orientation");
   }
   if (object.contains("task_frame")) {
@@ -256,8 +255,8 @@ TaskFile parseTaskFile(const std::string& yaml_text, const std::string& source,
 
   TaskFile task;
   task.path = source;
-  const std::set<std::string> known{"duration_s",  "command_rate_hz",   "scene",
-                                    "camera",      "snapshot_every_ms", "waypoints"};
+  const std::set<std::string> known{"duration_s", "command_rate_hz",   "scene",
+                                    "camera",     "snapshot_every_ms", "waypoints"};
   for (const auto& [key, value] : task_json.items()) {
     if (known.count(key) == 0) {
       error.fail("task", "unknown key '" + key +

@@ -4,8 +4,8 @@
 //   task:
 //     duration_s: 6.0                 # run length (comply sim --duration overrides)
 //     command_rate_hz: 100            # how often the reference is streamed
-//     scene: {tool: probe.xml, objects: [box.xml], substeps: 2, seed: 0}  # paths: this file's folder
-//     camera: {lookat: [0.3, 0, 0.4], distance_m: 2.0, azimuth_deg: 135, elevation_deg: -20}
+//     scene: {tool: probe.xml, objects: [box.xml], substeps: 2, seed: 0}  # paths: this file's
+//     folder camera: {lookat: [0.3, 0, 0.4], distance_m: 2.0, azimuth_deg: 135, elevation_deg: -20}
 //     snapshot_every_ms: 0            # 0: start and end only
 //     waypoints:
 //       - time_s: 0.0                 # gains, task frame, ... apply from this time
@@ -18,15 +18,15 @@
 // Waypoint keys besides time_s, interpolate, position, position_offset and orientation are
 // command fields with the schema's names (command_json.hpp). For joint control, `position` and
 // `position_offset` are joint vectors [rad | m]. As in the controller YAML, a 3x3 gain block may be
-// given as 1 number (isotropic), 3 (diagonal) or 9 (row-major, task frame). The reference between two waypoints moves along
-// a straight line (slerp for orientation) with the matching velocity feedforward.
+// given as 1 number (isotropic), 3 (diagonal) or 9 (row-major, task frame). The reference between
+// two waypoints moves along a straight line (slerp for orientation) with the matching velocity
+// feedforward.
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "comply/sim/renderer.hpp"
 #include "comply/sim/scene_xml.hpp"

@@ -123,13 +123,15 @@ std::string urdfForMujoco(const model::RobotDescription& robot) {
     urdf.erase(begin, end - begin);
   }
   const std::size_t robot_tag = findTag(urdf, "robot");
-  const std::size_t robot_end = robot_tag == std::string::npos ? robot_tag : tagEnd(urdf, robot_tag);
+  const std::size_t robot_end =
+      robot_tag == std::string::npos ? robot_tag : tagEnd(urdf, robot_tag);
   if (robot_end == std::string::npos || urdf[robot_end - 2] == '/') {
     throw SimError("URDF '" + robot.urdf_path.string() + "' has no <robot> element with links");
   }
-  urdf.insert(robot_end, "<mujoco><compiler fusestatic=\"false\" discardvisual=\"true\" "
-                         "inertiafromgeom=\"false\" balanceinertia=\"true\" meshdir=\"" +
-                             robot.folder.string() + "\"/></mujoco>");
+  urdf.insert(robot_end,
+              "<mujoco><compiler fusestatic=\"false\" discardvisual=\"true\" "
+              "inertiafromgeom=\"false\" balanceinertia=\"true\" meshdir=\"" +
+                  robot.folder.string() + "\"/></mujoco>");
   return urdf;
 }
 
@@ -173,7 +175,8 @@ void appendToBody(std::string& mjcf, const std::string& name, const std::string&
   for (std::size_t at = findTag(mjcf, "body"); at != std::string::npos;
        at = findTag(mjcf, "body", at + 1)) {
     const std::size_t end = tagEnd(mjcf, at);
-    if (end == std::string::npos || mjcf.substr(at, end - at).find(attribute) == std::string::npos) {
+    if (end == std::string::npos ||
+        mjcf.substr(at, end - at).find(attribute) == std::string::npos) {
       continue;
     }
     if (mjcf[end - 2] == '/') {  // <body .../>: open it up
@@ -242,8 +245,8 @@ std::string buildSceneXml(const model::RobotDescription& robot, const SceneOptio
                  "material=\"comply_floor\"/>");
   insertAfterTag(
       mjcf, "mujoco",
-      "<visual><global offwidth=\"" + std::to_string(options.offscreen_width) +
-          "\" offheight=\"" + std::to_string(options.offscreen_height) +
+      "<visual><global offwidth=\"" + std::to_string(options.offscreen_width) + "\" offheight=\"" +
+          std::to_string(options.offscreen_height) +
           "\"/><quality shadowsize=\"2048\"/><headlight ambient=\"0.35 0.35 0.35\" "
           "diffuse=\"0.3 0.3 0.3\"/></visual>"
           "<asset><texture name=\"comply_sky\" type=\"skybox\" builtin=\"gradient\" "

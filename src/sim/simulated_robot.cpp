@@ -94,7 +94,8 @@ SimulatedRobot::SimulatedRobot(const model::RobotDescription& robot, const Plant
   }
   for (int geom = 0; geom < model_->ngeom; ++geom) {
     const bool collides = model_->geom_contype[geom] != 0 || model_->geom_conaffinity[geom] != 0;
-    if (collides && robot_root != 0 && model_->body_rootid[model_->geom_bodyid[geom]] == robot_root) {
+    if (collides && robot_root != 0 &&
+        model_->body_rootid[model_->geom_bodyid[geom]] == robot_root) {
       model_->geom_contype[geom] = kRobotBit;
       model_->geom_conaffinity[geom] = kWorldBit;
     }
@@ -132,7 +133,9 @@ void SimulatedRobot::setJointPositions(std::span<const double> position) {
   }
 }
 
-void SimulatedRobot::forward() noexcept { mj_forward(model_.get(), data_.get()); }
+void SimulatedRobot::forward() noexcept {
+  mj_forward(model_.get(), data_.get());
+}
 
 bool SimulatedRobot::read(JointState& state) noexcept {
   const auto n = static_cast<Eigen::Index>(qpos_address_.size());

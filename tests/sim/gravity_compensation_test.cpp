@@ -45,8 +45,8 @@ TEST_P(GravityCompensation, HoldsHomeWithinOneMillimetreAndFallsWithout) {
   RecordProperty("drift_with_compensation_mm", std::to_string(1e3 * held));
   RecordProperty("drift_without_compensation_mm", std::to_string(1e3 * unheld));
   EXPECT_LT(held, 1e-3) << GetParam() << " drifted " << 1e3 * held << " mm";
-  EXPECT_LT(held_frictionless, 1e-3) << GetParam() << " drifted " << 1e3 * held_frictionless
-                                     << " mm with a frictionless plant";
+  EXPECT_LT(held_frictionless, 1e-3)
+      << GetParam() << " drifted " << 1e3 * held_frictionless << " mm with a frictionless plant";
   EXPECT_GT(unheld, 0.05) << GetParam() << " only moved " << 1e3 * unheld
                           << " mm without gravity compensation";
 }

@@ -41,7 +41,8 @@ class SimCli : public ::testing::Test {
  protected:
   void SetUp() override {
     folder_ = fs::temp_directory_path() /
-              ("comply_sim_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+              ("comply_sim_cli_" +
+               std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(folder_);
     fs::create_directories(folder_);
   }
@@ -61,19 +62,18 @@ class SimCli : public ::testing::Test {
 };
 
 TEST_F(SimCli, UnknownRobotNamesItAndTheKnownOnes) {
-  const Outcome outcome =
-      runCli("sim --robot nosuchbot --task " +
-             (kSourceDir / "examples" / "sim" / "step_response.yaml").string());
+  const Outcome outcome = runCli("sim --robot nosuchbot --task " +
+                                 (kSourceDir / "examples" / "sim" / "step_response.yaml").string());
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find("nosuchbot"), std::string::npos) << outcome.output;
   EXPECT_NE(outcome.output.find("fr3"), std::string::npos) << outcome.output;
 }
 
 TEST_F(SimCli, MissingConfigKeyIsNamed) {
-  const fs::path config = write("no_plugin.yaml", "controller:\n  ros__parameters:\n    robot: fr3\n");
-  const Outcome outcome =
-      runCli("sim --config " + config.string() + " --task " +
-             (kSourceDir / "examples" / "sim" / "step_response.yaml").string());
+  const fs::path config =
+      write("no_plugin.yaml", "controller:\n  ros__parameters:\n    robot: fr3\n");
+  const Outcome outcome = runCli("sim --config " + config.string() + " --task " +
+                                 (kSourceDir / "examples" / "sim" / "step_response.yaml").string());
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find("plugin"), std::string::npos) << outcome.output;
   EXPECT_NE(outcome.output.find("required"), std::string::npos) << outcome.output;
@@ -91,9 +91,9 @@ TEST_F(SimCli, NanInATaskIsRefusedBeforeTheRun) {
 }
 
 TEST_F(SimCli, NonUnitQuaternionIsRefused) {
-  const fs::path task = write(
-      "quaternion.yaml",
-      "task:\n  waypoints:\n    - {time_s: 1.0, orientation: [1.0, 0.5, 0.0, 0.0]}\n");
+  const fs::path task =
+      write("quaternion.yaml",
+            "task:\n  waypoints:\n    - {time_s: 1.0, orientation: [1.0, 0.5, 0.0, 0.0]}\n");
   const Outcome outcome = runCli(simArguments(task));
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find("not a unit quaternion"), std::string::npos) << outcome.output;
@@ -110,9 +110,9 @@ TEST_F(SimCli, MujocoLoadErrorIsReported) {
 }
 
 TEST_F(SimCli, ViewWithoutDisplayFailsClearly) {
-  const Outcome outcome = runCli(
-      simArguments(kSourceDir / "examples" / "sim" / "step_response.yaml", "--view"),
-      "env -u DISPLAY -u WAYLAND_DISPLAY");
+  const Outcome outcome =
+      runCli(simArguments(kSourceDir / "examples" / "sim" / "step_response.yaml", "--view"),
+             "env -u DISPLAY -u WAYLAND_DISPLAY");
   EXPECT_EQ(outcome.exit_code, 2) << outcome.output;
   EXPECT_NE(outcome.output.find("needs a display"), std::string::npos) << outcome.output;
 }
@@ -125,8 +125,8 @@ TEST_F(SimCli, GoodRunWritesLogSnapshotsAndSummary) {
   EXPECT_EQ(outcome.exit_code, 0) << outcome.output;
   EXPECT_NE(outcome.output.find("final pose error"), std::string::npos) << outcome.output;
   EXPECT_NE(outcome.output.find("rate-limit hits"), std::string::npos) << outcome.output;
-  for (const char* file : {"log.csv", "start.png", "end.png", "snapshot_000100ms.png",
-                           "snapshot_000200ms.png"}) {
+  for (const char* file :
+       {"log.csv", "start.png", "end.png", "snapshot_000100ms.png", "snapshot_000200ms.png"}) {
     EXPECT_TRUE(fs::exists(folder_ / "out" / file)) << file << "\n" << outcome.output;
   }
   std::ifstream csv(folder_ / "out" / "log.csv");

@@ -1,6 +1,8 @@
 // The simulated hardware on its own: determinism, effort clamping, refusal of bad torques, the
 // tool contact wrench against stiffness x penetration, and scene-file errors.
 
+#include "comply/sim/simulated_robot.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,7 +12,6 @@
 #include "comply/model/robot_description.hpp"
 #include "comply/model/update.hpp"
 #include "comply/sim/sim_error.hpp"
-#include "comply/sim/simulated_robot.hpp"
 #include "controller_setup.hpp"
 #include "sim_session.hpp"
 #include "sim_support.hpp"

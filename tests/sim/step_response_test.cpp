@@ -18,8 +18,8 @@ TEST(StepResponse, SettlesWithoutSustainedOscillationWithinTheTorqueRateLimit) {
   app::SimRunOptions run;
   run.config = app::simControllerConfig(
       "fr3", "", (kSourceDir / "config" / "sim" / "cartesian_impedance.yaml").string());
-  run.task =
-      app::loadTaskFile(kSourceDir / "examples" / "sim" / "step_response.yaml", true, run.config.dof);
+  run.task = app::loadTaskFile(kSourceDir / "examples" / "sim" / "step_response.yaml", true,
+                               run.config.dof);
   const app::SimResult result = app::runSimulation(run);
   const app::SimLog& log = result.log;
   ASSERT_EQ(result.summary.faults, 0U);
@@ -35,7 +35,8 @@ TEST(StepResponse, SettlesWithoutSustainedOscillationWithinTheTorqueRateLimit) {
   double max_rate = 0.0;
   for (std::size_t row = 1; row < log.size(); ++row) {
     const double dt = log.time_s[row] - log.time_s[row - 1];
-    max_rate = std::max(max_rate, (log.torque[row] - log.torque[row - 1]).cwiseAbs().maxCoeff() / dt);
+    max_rate =
+        std::max(max_rate, (log.torque[row] - log.torque[row - 1]).cwiseAbs().maxCoeff() / dt);
   }
   EXPECT_LE(max_rate, limit * (1.0 + 1e-9));
   EXPECT_GT(max_rate, 0.5 * limit) << "the step should have pushed the torque rate to its limit";

@@ -1,5 +1,6 @@
 #pragma once
-// An RGB image in memory and its PNG file form: what snapshots and side-by-side figures are made of.
+// An RGB image in memory and its PNG file form: what snapshots and side-by-side figures are made
+// of.
 
 #include <array>
 #include <cstdint>

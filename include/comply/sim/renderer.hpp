@@ -2,9 +2,9 @@
 // Offscreen rendering of a MuJoCo scene to an Image, headless: an EGL surfaceless context on
 // whatever OpenGL the machine has (llvmpipe when there is no GPU). No display needed.
 
-#include <memory>
-
 #include <mujoco/mujoco.h>
+
+#include <memory>
 
 #include "comply/sim/image.hpp"
 

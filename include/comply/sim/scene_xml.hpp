@@ -12,11 +12,11 @@
 // A tool fragment is placed in the TCP body, in TCP coordinates; an object fragment in the world
 // body, in world (= robot base) coordinates.
 
+#include <mujoco/mujoco.h>
+
 #include <filesystem>
 #include <string>
 #include <vector>
-
-#include <mujoco/mujoco.h>
 
 #include "comply/model/robot_description.hpp"
 
@@ -31,7 +31,8 @@ struct SceneOptions {
 
 /// The robot's URDF as MuJoCo MJCF: MuJoCo converts it (fixed frames kept as bodies, inertias
 /// from <inertial> only), then the scene is added around it. Throws SimError naming the file on
-/// an unreadable URDF or fragment, a fragment that is not <mujocoinclude>, or a URDF MuJoCo rejects.
+/// an unreadable URDF or fragment, a fragment that is not <mujocoinclude>, or a URDF MuJoCo
+/// rejects.
 std::string buildSceneXml(const model::RobotDescription& robot, const SceneOptions& options);
 
 /// Loads MJCF text into a model. Throws SimError with MuJoCo's message, prefixed by `what`.

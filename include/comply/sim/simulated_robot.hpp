@@ -12,6 +12,8 @@
 // the physics substeps of one control period. Deterministic: the same options (and seed) give the
 // same trajectory, bit for bit.
 
+#include <mujoco/mujoco.h>
+
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <memory>
@@ -19,8 +21,6 @@
 #include <span>
 #include <string>
 #include <vector>
-
-#include <mujoco/mujoco.h>
 
 #include "comply/core/commands.hpp"
 #include "comply/model/robot_description.hpp"

@@ -2,9 +2,9 @@
 // An interactive window on a running simulation (GLFW): left drag rotates, right drag pans, the
 // wheel zooms. Only where a display exists; headless runs use Renderer.
 
-#include <memory>
-
 #include <mujoco/mujoco.h>
+
+#include <memory>
 
 #include "comply/sim/renderer.hpp"
 
