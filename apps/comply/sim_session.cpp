@@ -337,21 +337,21 @@ SimResult runWith(const SimRunOptions& options, const model::RobotDescription& r
     if (snapshot_every != 0 && (cycle + 1) % snapshot_every == 0 && cycle + 1 < cycles) {
       std::ostringstream name;
       name << "snapshot_" << std::setw(6) << std::setfill('0')
-           << std::llround(plant.time_s() * 1000.0) << "ms";
+           << std::llround(plant.simTime() * 1000.0) << "ms";
       pictures.snapshot(plant, name.str());
     }
-    window_open = pictures.show(plant, plant.time_s());
+    window_open = pictures.show(plant, plant.simTime());
     if (options.realtime || options.view) {
       std::this_thread::sleep_until(wall_start +
                                     std::chrono::duration_cast<Clock::duration>(
-                                        std::chrono::duration<double>(plant.time_s())));
+                                        std::chrono::duration<double>(plant.simTime())));
     }
-    progress.update(plant.time_s(),
+    progress.update(plant.simTime(),
                     std::chrono::duration<double>(Clock::now() - wall_start).count());
   }
   progress.finish();
   summary.wall_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
-  summary.simulated_s = plant.time_s();
+  summary.simulated_s = plant.simTime();
   pictures.snapshot(plant, "end");
 
   const pipeline::DiagnosticsSnapshot diagnostics = wrapper.diagnostics();

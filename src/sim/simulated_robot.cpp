@@ -179,9 +179,10 @@ Eigen::Isometry3d SimulatedRobot::tcpPose() const noexcept {
   const auto pose = [&](int body) {
     Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();
     // xmat is row-major; Eigen's default is column-major.
-    transform.linear() =
-        Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(data_->xmat + 9 * body);
-    transform.translation() = Eigen::Map<const Eigen::Vector3d>(data_->xpos + 3 * body);
+    transform.linear() = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(
+        data_->xmat + 9 * static_cast<std::ptrdiff_t>(body));
+    transform.translation() =
+        Eigen::Map<const Eigen::Vector3d>(data_->xpos + 3 * static_cast<std::ptrdiff_t>(body));
     return transform;
   };
   return pose(base_body_).inverse() * pose(tip_body_);
@@ -213,7 +214,7 @@ Vector6d SimulatedRobot::toolContactWrench() const noexcept {
   }
   // Into the base frame.
   const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> base_rotation(
-      data_->xmat + 9 * base_body_);
+      data_->xmat + 9 * static_cast<std::ptrdiff_t>(base_body_));
   Vector6d wrench;
   wrench.head<3>() = base_rotation.transpose() * wrench_world.head<3>();
   wrench.tail<3>() = base_rotation.transpose() * wrench_world.tail<3>();

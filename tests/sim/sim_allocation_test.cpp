@@ -32,7 +32,7 @@ TEST(SimulatedRobotAllocation, ReadWriteStepAllocateNothing) {
     (void)robot.tcpPose();
   }
   EXPECT_EQ(counter.stop(), 0U);
-  EXPECT_GT(robot.time_s(), 1.99);  // the loop did run
+  EXPECT_GT(robot.simTime(), 1.99);  // the loop did run
 }
 
 }  // namespace

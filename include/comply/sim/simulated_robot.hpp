@@ -64,7 +64,7 @@ class SimulatedRobot final : public pipeline::HardwareInterface {
   /// time is kept. Throws std::invalid_argument on a wrong size.
   void setJointPositions(std::span<const double> position);
 
-  [[nodiscard]] double time_s() const noexcept { return data_->time; }
+  [[nodiscard]] double simTime() const noexcept { return data_->time; }
   [[nodiscard]] double controlPeriod() const noexcept { return control_period_s_; }
   /// TCP pose in the robot's base frame, from the simulator (not from the controller's model).
   [[nodiscard]] Eigen::Isometry3d tcpPose() const noexcept;
