@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Runs the benchmarks pinned to one core (the timing protocol of the README) and prints the build
-# flags beside the figures, since numbers without them cannot be compared.
+# flags beside the figures, since numbers without them cannot be compared. BENCH_BINARY picks the
+# benchmark (default model_bench; sim_bench times the simulated cycle).
 set -euo pipefail
 build_dir=${1:-build}
-bench=${build_dir}/bench/model_bench
+bench=${build_dir}/bench/${BENCH_BINARY:-model_bench}
 if [ ! -x "$bench" ]; then
   echo "run-bench: $bench not built; run 'make build' first" >&2
   exit 1
