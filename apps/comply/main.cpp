@@ -15,6 +15,7 @@
 #include "comply/model/robot_description.hpp"
 #include "cross_platform_experiment.hpp"
 #include "sim_command.hpp"
+#include "surface_following_experiment.hpp"
 #include "validate_command.hpp"
 
 int main(int argc, char** argv) {
@@ -93,6 +94,18 @@ int main(int argc, char** argv) {
   cross_platform_command->add_option("--robots", cross_platform.robots, "robots to run")
       ->capture_default_str();
 
+  comply::app::SurfaceFollowingOptions surface;
+  CLI::App* surface_command = experiment_command->add_subcommand(
+      "surface-following", "probe along a curved fixture: fixed-frame vs task-aligned gains");
+  surface_command->add_option("--out", surface.out_dir, "output folder")->capture_default_str();
+  surface_command->add_option("--speed", surface.speed_m_per_s, "traverse speed [m/s]")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  surface_command
+      ->add_option("--path-fraction", surface.path_fraction, "traverse only this share of the path")
+      ->capture_default_str()
+      ->check(CLI::Range(0.05, 1.0));
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (bench_command->parsed()) {
@@ -100,6 +113,9 @@ int main(int argc, char** argv) {
     }
     if (sim_command->parsed()) {
       return comply::app::simCommand(sim, std::cout, std::cerr);
+    }
+    if (surface_command->parsed()) {
+      return comply::app::surfaceFollowingCommand(surface, std::cout, std::cerr);
     }
     if (cross_platform_command->parsed()) {
       return comply::app::crossPlatformCommand(cross_platform, std::cout, std::cerr);

@@ -1,6 +1,5 @@
 #include "sim_session.hpp"
 
-
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -287,8 +286,16 @@ SimResult runWith(const SimRunOptions& options, const model::RobotDescription& r
       ++next_waypoint;
       send = true;
     }
-    if (send) {
+    if constexpr (kCartesian) {
+      if (options.cartesian_source && send) {
+        command = options.cartesian_source(t);
+      } else if (send) {
+        setMotion(command, trajectory.at(t));
+      }
+    } else if (send) {
       setMotion(command, trajectory.at(t));
+    }
+    if (send) {
       command.stamp_s = t;
       const pipeline::Verdict verdict = wrapper.submit(command);
       ++summary.commands_sent;

@@ -3,6 +3,7 @@
 // driven by a task file, logged every cycle. Used by `comply sim`, the experiments and the tests.
 
 #include <filesystem>
+#include <functional>
 #include <iosfwd>
 #include <limits>
 #include <string>
@@ -27,6 +28,10 @@ struct SimRunOptions {
   int image_height = 480;
   bool plant_joint_dynamics = true;  ///< robot.yaml joint_dynamics in the plant
   std::ostream* progress = nullptr;  ///< progress bar and warnings; nullptr: silent
+  /// Cartesian controllers only: when set, the command sent at each command period (e.g. a
+  /// task::PathCommand stream) in place of the task's waypoints, which then only give the time
+  /// the settle time counts from.
+  std::function<CartesianCommand(double t)> cartesian_source;
 };
 
 /// Every control cycle, as the controller saw and commanded it. Poses in the base frame.

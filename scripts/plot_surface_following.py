@@ -1,0 +1,66 @@
+#!/usr/bin/env python3
+"""Plots `comply experiment surface-following`: a top view of the probe paths over the fixture, and
+lateral error, tangential error and contact force over time for each condition.
+
+usage: plot_surface_following.py OUT_DIR   (writes OUT_DIR/surface_following.png)
+"""
+import csv
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+CONDITIONS = [
+    ("fixed_frame", "fixed-frame gains", "tab:red"),
+    ("task_aligned", "task-aligned gains", "tab:blue"),
+    ("task_aligned_displaced", "task-aligned, fixture displaced", "tab:green"),
+]
+
+
+def read(path):
+    with open(path, newline="") as handle:
+        rows = list(csv.DictReader(handle))
+    return {key: [float(row[key]) for row in rows] for key in rows[0]}
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit(__doc__.strip())
+    out = sys.argv[1]
+    fixture = read(os.path.join(out, "fixture.csv"))
+    figure = plt.figure(figsize=(11, 8))
+    top = figure.add_subplot(2, 1, 1)
+    mm = lambda values: [1e3 * v for v in values]  # noqa: E731
+    top.plot(mm(fixture["x"]), mm(fixture["face_y"]), color="0.3", linewidth=3, label="fixture face")
+    top.plot(mm(fixture["x"]), mm(fixture["face_y_displaced"]), color="0.6", linewidth=3,
+             linestyle="--", label="displaced fixture face")
+    axes = [figure.add_subplot(2, 3, 4 + i) for i in range(3)]
+    for name, label, colour in CONDITIONS:
+        trace_file = os.path.join(out, name, "trace.csv")
+        if not os.path.exists(trace_file):
+            continue
+        trace = read(trace_file)
+        top.plot(mm(trace["tip_x"]), mm(trace["tip_y"]), color=colour, linewidth=1, label=label)
+        axes[0].plot(trace["time_s"], trace["lateral_mm"], color=colour, linewidth=1)
+        axes[1].plot(trace["time_s"], trace["tangential_mm"], color=colour, linewidth=1)
+        axes[2].plot(trace["time_s"], trace["force_n"], color=colour, linewidth=1)
+    top.set_xlabel("x [mm]")
+    top.set_ylabel("y [mm]")
+    top.set_title("top view: probe tip (ball centre) over the fixture face")
+    top.set_aspect("equal", adjustable="datalim")
+    top.legend(fontsize="small", loc="lower right")
+    top.grid(alpha=0.3)
+    for axis, title in zip(axes, ["lateral error [mm]", "tangential error [mm]",
+                                  "contact force [N] (20 ms mean)"]):
+        axis.set_title(title, fontsize="medium")
+        axis.set_xlabel("time [s]")
+        axis.grid(alpha=0.3)
+    figure.tight_layout()
+    figure.savefig(os.path.join(out, "surface_following.png"), dpi=100)
+
+
+if __name__ == "__main__":
+    main()
