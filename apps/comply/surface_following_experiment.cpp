@@ -328,8 +328,8 @@ std::vector<SurfaceFollowingRow> runSurfaceFollowing(const SurfaceFollowingOptio
                            options.speed_m_per_s, options.path_fraction, dof);
     run.task = parseTaskFile(
         "task:\n  command_rate_hz: 100\n  scene: {tool: probe_tool.xml, substeps: 2}\n"
-        "  camera: {lookat: [0.44, 0.02, 0.25], distance_m: 0.9, azimuth_deg: 60, "
-        "elevation_deg: -55}\n  waypoints: [{time_s: " +
+        "  camera: {lookat: [0.42, 0.0, 0.3], distance_m: 1.4, azimuth_deg: 110, "
+        "elevation_deg: -35}\n  waypoints: [{time_s: " +
             std::to_string(command.traverseEnd()) + "}]\n",
         "surface-following task", std::filesystem::path(COMPLY_SOURCE_DIR) / "examples" / "sim",
         true, dof);
