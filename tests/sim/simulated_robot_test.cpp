@@ -12,7 +12,6 @@
 #include "comply/model/robot_description.hpp"
 #include "comply/model/update.hpp"
 #include "comply/sim/sim_error.hpp"
-#include "controller_setup.hpp"
 #include "sim_session.hpp"
 #include "sim_support.hpp"
 
@@ -83,8 +82,7 @@ TEST(SimulatedRobot, HomePoseMatchesTheControllerModel) {
 
 TEST(SimulatedRobot, ProbeForceEqualsStiffnessTimesPenetration) {
   app::SimRunOptions run;
-  run.config = app::simControllerConfig(
-      "fr3", "", (kSourceDir / "config" / "sim" / "cartesian_impedance.yaml").string());
+  run.config = simCartesianConfig("fr3");
   run.task = app::loadTaskFile(kSourceDir / "examples" / "sim" / "press_on_table.yaml", true,
                                run.config.dof);
   const app::SimResult result = app::runSimulation(run);

@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "controller_setup.hpp"
 #include "sim_session.hpp"
 #include "sim_support.hpp"
 
@@ -16,8 +15,7 @@ namespace {
 
 TEST(StepResponse, SettlesWithoutSustainedOscillationWithinTheTorqueRateLimit) {
   app::SimRunOptions run;
-  run.config = app::simControllerConfig(
-      "fr3", "", (kSourceDir / "config" / "sim" / "cartesian_impedance.yaml").string());
+  run.config = simCartesianConfig("fr3");
   run.task = app::loadTaskFile(kSourceDir / "examples" / "sim" / "step_response.yaml", true,
                                run.config.dof);
   const app::SimResult result = app::runSimulation(run);
