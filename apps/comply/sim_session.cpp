@@ -250,6 +250,14 @@ SimResult runWith(const SimRunOptions& options, const model::RobotDescription& r
   plant.read(state);
   wrapper.activate(state);
   const Trajectory trajectory(options.task, startReference(wrapper.lastAccepted()));
+  std::optional<task::PathCommand> path_stream;
+  double end_of_motion = trajectory.endTime();
+  if (options.task.path_points) {
+    path_stream.emplace(task::Path(*options.task.path_points), options.task.path_options);
+    end_of_motion = std::max(
+        end_of_motion, options.task.path_options.start_time_s +
+                           path_stream->path().length() / options.task.path_options.speed_m_per_s);
+  }
 
   const double period_s = plant.controlPeriod();
   const double duration_s = options.duration_s > 0.0 ? options.duration_s : options.task.duration_s;
@@ -287,7 +295,9 @@ SimResult runWith(const SimRunOptions& options, const model::RobotDescription& r
       send = true;
     }
     if constexpr (kCartesian) {
-      if (options.cartesian_source && send) {
+      if (path_stream && t >= options.task.path_options.start_time_s && send) {
+        command = path_stream->commandAt(t, dof);
+      } else if (options.cartesian_source && send) {
         command = options.cartesian_source(t);
       } else if (send) {
         setMotion(command, trajectory.at(t));
@@ -388,7 +398,6 @@ SimResult runWith(const SimRunOptions& options, const model::RobotDescription& r
         last_outside = row;
       }
     }
-    const double end_of_motion = trajectory.endTime();
     if (!last_outside) {
       summary.settle_time_s = 0.0;
     } else if (*last_outside < last) {

@@ -165,6 +165,99 @@ void readCamera(const json& camera, TaskFile& task, const TaskError& error) {
   }
 }
 
+Eigen::Vector3d vector3(const json& value, const std::string& where, const TaskError& error) {
+  const std::vector<double> v = numbers(value, 3, where, error);
+  return {v[0], v[1], v[2]};
+}
+
+void readPath(const json& path, double quaternion_tolerance, TaskFile& task,
+              const TaskError& error) {
+  const std::set<std::string> known{"start_time_s",
+                                    "speed_m_per_s",
+                                    "points",
+                                    "frame",
+                                    "surface_normal",
+                                    "task_frame",
+                                    "stiffness_translational",
+                                    "stiffness_rotational",
+                                    "damping_ratio",
+                                    "offset",
+                                    "orientation"};
+  for (const auto& [key, value] : path.items()) {
+    if (known.count(key) == 0) {
+      error.fail("task.path", "unknown key '" + key + "'");
+    }
+  }
+  task::PathCommandOptions& options = task.path_options;
+  if (!path.contains("start_time_s") || !path["start_time_s"].is_number() ||
+      path["start_time_s"].get<double>() < 0.0) {
+    error.fail("task.path", "needs start_time_s, a number >= 0 [s]");
+  }
+  options.start_time_s = path["start_time_s"].get<double>();
+  options.speed_m_per_s =
+      positiveNumber(path, "speed_m_per_s", options.speed_m_per_s, "task.path", error);
+  if (!path.contains("points") || !path["points"].is_array() || path["points"].size() < 2) {
+    error.fail("task.path.points", "needs a list of at least two [x, y, z] points");
+  }
+  std::vector<Eigen::Vector3d> points;
+  for (std::size_t i = 0; i < path["points"].size(); ++i) {
+    points.push_back(
+        vector3(path["points"][i], "task.path.points[" + std::to_string(i) + "]", error));
+  }
+  task.path_points = points;
+  const std::string frame = path.value("frame", std::string("frenet"));
+  if (frame == "frenet") {
+    options.frame = task::FrameSource::kFrenet;
+  } else if (frame == "darboux") {
+    options.frame = task::FrameSource::kDarboux;
+    if (!path.contains("surface_normal")) {
+      error.fail("task.path", "frame darboux needs surface_normal [x, y, z]");
+    }
+    const Eigen::Vector3d normal =
+        vector3(path["surface_normal"], "task.path.surface_normal", error);
+    if (normal.norm() < 1e-9) {
+      error.fail("task.path.surface_normal", "must not be zero");
+    }
+    options.surface_normal = [unit = normal.normalized()](const Eigen::Vector3d&) { return unit; };
+  } else if (frame == "fixed") {
+    options.frame = task::FrameSource::kFixed;
+  } else {
+    error.fail("task.path.frame", "must be frenet, darboux or fixed");
+  }
+  const auto quaternion = [&](const char* key) {
+    const std::vector<double> q = numbers(path[key], 4, std::string("task.path.") + key, error);
+    checkUnitQuaternion(q, quaternion_tolerance, std::string("task.path.") + key, error);
+    return Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized();
+  };
+  if (path.contains("task_frame")) {
+    options.fixed_task_frame = quaternion("task_frame");
+  }
+  if (path.contains("orientation")) {
+    options.orientation = quaternion("orientation");
+  }
+  for (const char* key : {"stiffness_translational", "stiffness_rotational"}) {
+    if (path.contains(key)) {
+      const Eigen::Vector3d k = vector3(path[key], std::string("task.path.") + key, error);
+      if ((k.array() < 0.0).any()) {
+        error.fail(std::string("task.path.") + key, "must be >= 0 per task axis");
+      }
+      (std::string(key) == "stiffness_translational" ? options.stiffness_translational
+                                                     : options.stiffness_rotational) = k;
+    }
+  }
+  if (path.contains("damping_ratio")) {
+    options.damping_ratio = positiveNumber(path, "damping_ratio", 1.0, "task.path", error);
+  }
+  if (path.contains("offset")) {
+    options.offset_in_task_frame = vector3(path["offset"], "task.path.offset", error);
+  }
+  try {
+    (void)task::Path(points);
+  } catch (const std::invalid_argument& invalid) {
+    error.fail("task.path.points", invalid.what());
+  }
+}
+
 Waypoint readWaypoint(json object, std::size_t index, bool cartesian, int dof,
                       double quaternion_tolerance, const TaskError& error) {
   const std::string where = "waypoint " + std::to_string(index);
@@ -255,13 +348,13 @@ TaskFile parseTaskFile(const std::string& yaml_text, const std::string& source,
 
   TaskFile task;
   task.path = source;
-  const std::set<std::string> known{"duration_s", "command_rate_hz",   "scene",
-                                    "camera",     "snapshot_every_ms", "waypoints"};
+  const std::set<std::string> known{"duration_s",        "command_rate_hz", "scene", "camera",
+                                    "snapshot_every_ms", "waypoints",       "path"};
   for (const auto& [key, value] : task_json.items()) {
     if (known.count(key) == 0) {
       error.fail("task", "unknown key '" + key +
                              "' (known: duration_s, command_rate_hz, scene, camera, "
-                             "snapshot_every_ms, waypoints)");
+                             "snapshot_every_ms, waypoints, path)");
     }
   }
   task.duration_s = positiveNumber(task_json, "duration_s", task.duration_s, "task", error);
@@ -279,6 +372,13 @@ TaskFile parseTaskFile(const std::string& yaml_text, const std::string& source,
   }
   if (task_json.contains("camera")) {
     readCamera(task_json["camera"], task, error);
+  }
+  if (task_json.contains("path")) {
+    if (!cartesian) {
+      error.fail("task.path",
+                 "a path streams Cartesian commands; this controller takes joint ones");
+    }
+    readPath(task_json["path"], quaternion_tolerance, task, error);
   }
   if (!task_json.contains("waypoints") || !task_json["waypoints"].is_array() ||
       task_json["waypoints"].empty()) {

@@ -15,6 +15,18 @@
 //         orientation: [1, 0, 0, 0]          # x y z w, base frame
 //         interpolate: linear                # linear (default): from the previous pose; step
 //
+//     path:                           # optional, Cartesian: stream along a path afterwards
+//       start_time_s: 3.0               # leaves the first point at this time
+//       speed_m_per_s: 0.02
+//       points: [[0.4, 0.0, 0.3], ...]  # m, base frame (TCP), dense enough to be a curve
+//       frame: frenet                   # frenet | darboux (with surface_normal) | fixed
+//       (task_frame) surface_normal: [0, 0, 1]       # darboux: a plane's outward normal
+//       stiffness_translational: [1000, 1000, 50]  # per task axis [N/m]
+//       stiffness_rotational: [50, 50, 50]         # per task axis [N m/rad]
+//       damping_ratio: 1.0              # critically damped
+//       offset: [0, 0, 0]               # reference offset in the task frame [m]
+//       orientation: [1, 0, 0, 0]       # TCP orientation held along the path (x y z w)
+//
 // Waypoint keys besides time_s, interpolate, position, position_offset and orientation are
 // command fields with the schema's names (command_json.hpp). For joint control, `position` and
 // `position_offset` are joint vectors [rad | m]. As in the controller YAML, a 3x3 gain block may be
@@ -30,6 +42,7 @@
 
 #include "comply/sim/renderer.hpp"
 #include "comply/sim/scene_xml.hpp"
+#include "comply/task/path_command.hpp"
 
 namespace comply::app {
 
@@ -54,6 +67,10 @@ struct TaskFile {
   sim::CameraView camera;
   double snapshot_every_ms = 0.0;
   std::vector<Waypoint> waypoints;  ///< sorted by time_s
+  /// Optional (Cartesian only): from path_options.start_time_s on, commands stream along this
+  /// path (task::PathCommand) instead of following the waypoints.
+  std::optional<std::vector<Eigen::Vector3d>> path_points;
+  task::PathCommandOptions path_options;
 };
 
 /// Reads and checks a task file: every number finite, quaternions of unit norm (within
