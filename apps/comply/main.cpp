@@ -13,6 +13,7 @@
 
 #include "bench_command.hpp"
 #include "comply/model/robot_description.hpp"
+#include "connector_mating_experiment.hpp"
 #include "cross_platform_experiment.hpp"
 #include "sim_command.hpp"
 #include "surface_following_experiment.hpp"
@@ -106,6 +107,18 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::Range(0.05, 1.0));
 
+  comply::app::ConnectorMatingOptions mating;
+  CLI::App* mating_command = experiment_command->add_subcommand(
+      "connector-mating", "peg into a tilted socket: TCP-fixed vs task-aligned compliance");
+  mating_command->add_option("--out", mating.out_dir, "output folder")->capture_default_str();
+  mating_command->add_option("--offsets", mating.offsets_deg, "angular offsets [deg]")
+      ->capture_default_str();
+  mating_command
+      ->add_option("--force-limit", mating.axial_force_limit_n,
+                   "axial force that ends a trial before seating [N]")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (bench_command->parsed()) {
@@ -113,6 +126,9 @@ int main(int argc, char** argv) {
     }
     if (sim_command->parsed()) {
       return comply::app::simCommand(sim, std::cout, std::cerr);
+    }
+    if (mating_command->parsed()) {
+      return comply::app::connectorMatingCommand(mating, std::cout, std::cerr);
     }
     if (surface_command->parsed()) {
       return comply::app::surfaceFollowingCommand(surface, std::cout, std::cerr);

@@ -442,6 +442,19 @@ SimResult runSimulation(const SimRunOptions& options) {
   return result;
 }
 
+std::vector<Eigen::Vector3d> averagedContactForce(const SimLog& log, std::size_t window) {
+  std::vector<Eigen::Vector3d> averaged(log.size(), Eigen::Vector3d::Zero());
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < log.size(); ++i) {
+    sum += log.contact_wrench[i].head<3>();
+    if (i >= window) {
+      sum -= log.contact_wrench[i - window].head<3>();
+    }
+    averaged[i] = sum / static_cast<double>(std::min(i + 1, window));
+  }
+  return averaged;
+}
+
 void writeLogCsv(const SimLog& log, const std::filesystem::path& file) {
   std::ofstream out(file);
   if (!out) {

@@ -87,6 +87,11 @@ struct SimResult {
 /// message on bad input before the first cycle; a fault during the run is reported in the summary.
 SimResult runSimulation(const SimRunOptions& options);
 
+/// The tool contact force [N, base frame] averaged over the last `window` cycles at each row:
+/// what a force sensor's filter reports. MuJoCo's rigid contacts (small solref) chatter at the
+/// physics step, micrometres in amplitude, so a single cycle's force is on or off.
+std::vector<Eigen::Vector3d> averagedContactForce(const SimLog& log, std::size_t window);
+
 /// Writes the log as CSV (one row per cycle; columns named in the header).
 void writeLogCsv(const SimLog& log, const std::filesystem::path& file);
 

@@ -198,21 +198,8 @@ SurfaceFollowingRow measure(const Condition& condition, const SimLog& log,
   row.condition = condition.name;
   std::vector<double> lateral, tangential, total, force;
   std::size_t in_contact = 0;
-  // MuJoCo's rigid contact (solref 5 ms) chatters at the simulation step: the ball is in contact
-  // every few steps, at a few micrometres of motion. A force sensor sees the average, so the
-  // force is read through a 20 ms moving average, as a force/torque sensor's filter would.
-  std::vector<double> filtered_force(log.size(), 0.0);
-  {
-    constexpr std::size_t kWindow = 20;
-    double sum = 0.0;
-    for (std::size_t i = 0; i < log.size(); ++i) {
-      sum += log.contact_wrench[i].head<3>().norm();
-      if (i >= kWindow) {
-        sum -= log.contact_wrench[i - kWindow].head<3>().norm();
-      }
-      filtered_force[i] = sum / static_cast<double>(std::min(i + 1, kWindow));
-    }
-  }
+  // A force sensor's view: a 20 ms moving average (see averagedContactForce()).
+  const std::vector<Eigen::Vector3d> averaged_force = averagedContactForce(log, 20);
   std::ofstream trace(trace_file);
   trace << "time_s,tip_x,tip_y,tip_z,nominal_x,nominal_y,lateral_mm,tangential_mm,force_n\n";
   for (std::size_t row_index = 0; row_index < log.size(); ++row_index) {
@@ -220,7 +207,7 @@ SurfaceFollowingRow measure(const Condition& condition, const SimLog& log,
     const Eigen::Vector3d tip =
         log.tcp_position[row_index] +
         log.tcp_orientation[row_index] * Eigen::Vector3d(0, 0, kProbeLength);
-    const double contact_n = filtered_force[row_index];
+    const double contact_n = averaged_force[row_index].norm();
     const bool traversing = t >= command.traverseStart() && t <= command.traverseEnd();
     const double s =
         std::clamp((t - command.traverseStart()) * command.speed(), 0.0, tip_path.length());

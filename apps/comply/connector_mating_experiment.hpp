@@ -1,0 +1,38 @@
+#pragma once
+// `comply experiment connector-mating`: a peg on the FR3 is inserted into a socket whose axis is
+// tilted 1..6 deg from the peg's (angular misalignment); tight fit (0.25 mm radial clearance) with
+// friction. Baseline: compliance fixed in the TCP frame (1000 N/m along the peg, 50 N/m
+// laterally); task-aligned: the same gains in the socket's frame, updated with every command.
+// Both get the same command: the TCP straight down the socket axis past the seat. A trial fails
+// when the axial contact force exceeds a threshold before the peg is seated.
+
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace comply::app {
+
+struct ConnectorMatingOptions {
+  std::filesystem::path out_dir = "out/connector-mating";
+  std::vector<double> offsets_deg{1, 2, 3, 4, 5, 6};
+  double axial_force_limit_n = 15.0;
+  bool pictures = true;
+  std::ostream* progress = nullptr;
+};
+
+struct ConnectorMatingRow {
+  std::string condition;  ///< tcp_fixed, task_aligned
+  double offset_deg = 0.0;
+  bool seated = false;
+  double depth_mm = 0.0;            ///< deepest insertion along the socket axis
+  double peak_axial_force_n = 0.0;  ///< before seating (or over the trial)
+  double seat_time_s = 0.0;         ///< NaN when not seated
+};
+
+std::vector<ConnectorMatingRow> runConnectorMating(const ConnectorMatingOptions& options);
+void printConnectorMatingTable(const std::vector<ConnectorMatingRow>& rows, std::ostream& out);
+int connectorMatingCommand(const ConnectorMatingOptions& options, std::ostream& out,
+                           std::ostream& err);
+
+}  // namespace comply::app
