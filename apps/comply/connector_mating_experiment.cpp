@@ -8,8 +8,6 @@
 #include <ostream>
 #include <sstream>
 
-#include "comply/model/robot_description.hpp"
-#include "comply/model/update.hpp"
 #include "controller_setup.hpp"
 #include "sim_session.hpp"
 
@@ -189,11 +187,7 @@ ConnectorMatingRow evaluate(const Trial& trial, const SimLog& log, const MatingC
 
 std::vector<ConnectorMatingRow> runConnectorMating(const ConnectorMatingOptions& options) {
   std::filesystem::create_directories(options.out_dir);
-  const model::RobotDescription robot = model::loadRobotDescription("fr3");
-  const model::Model chain = robot.loadModel();
-  model::Data data(chain);
-  const std::vector<double> zero(robot.home.size(), 0.0);
-  model::update(chain, data, robot.home, zero, model::Quantity::kPose);
+  const TcpPose home = homeTcpPose("fr3");
   const std::filesystem::path peg_file = options.out_dir / "peg.xml";
   std::ofstream(peg_file) << pegFragment();
 
@@ -212,7 +206,7 @@ std::vector<ConnectorMatingRow> runConnectorMating(const ConnectorMatingOptions&
           "fr3", "",
           (std::filesystem::path(COMPLY_SOURCE_DIR) / "config/sim/cartesian_impedance.yaml")
               .string());
-      const MatingCommand command(trial, data.tip_position, data.tip_orientation, run.config.dof);
+      const MatingCommand command(trial, home.position, home.orientation, run.config.dof);
       run.task = parseTaskFile(
           "task:\n  command_rate_hz: 100\n  scene: {substeps: 4}\n  camera: {lookat: [0.45, 0.0, "
           "0.22], distance_m: 0.5, azimuth_deg: 90, elevation_deg: -15}\n  waypoints: "

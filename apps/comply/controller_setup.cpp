@@ -4,6 +4,9 @@
 
 #include <stdexcept>
 
+#include "comply/model/robot_description.hpp"
+#include "comply/model/update.hpp"
+
 namespace comply::app {
 
 pipeline::WrapperConfig controllerConfig(const std::string& robot, const std::string& plugin,
@@ -69,6 +72,18 @@ pipeline::WrapperConfig simControllerConfig(const std::string& robot, const std:
   YAML::Emitter yaml;
   yaml << root;
   return pipeline::parseWrapperConfig(yaml.c_str(), config_file);
+}
+
+TcpPose homeTcpPose(const std::string& robot) {
+  const model::RobotDescription description = model::loadRobotDescription(robot);
+  const model::Model chain = description.loadModel();
+  model::Data data(chain);
+  const std::vector<double> zero(description.home.size(), 0.0);
+  if (model::update(chain, data, description.home, zero, model::Quantity::kPose) !=
+      model::UpdateStatus::kOk) {
+    throw std::runtime_error("cannot compute the home pose of " + robot);
+  }
+  return {data.tip_position, data.tip_orientation};
 }
 
 bool controllerIsCartesian(const pipeline::WrapperConfig& config) {

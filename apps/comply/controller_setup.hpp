@@ -2,6 +2,7 @@
 // Builds a wrapper configuration for the command line: from a controller YAML file, or, without
 // one, the defaults for a robot and a plugin.
 
+#include <Eigen/Geometry>
 #include <string>
 
 #include "comply/pipeline/config.hpp"
@@ -18,6 +19,13 @@ pipeline::WrapperConfig controllerConfig(const std::string& robot, const std::st
 /// file leaves joints and frames to the robot's defaults (they would belong to the other robot).
 pipeline::WrapperConfig simControllerConfig(const std::string& robot, const std::string& plugin,
                                             const std::string& config_file);
+
+/// TCP pose of a robot at its home joint positions, base frame: where a simulated run starts.
+struct TcpPose {
+  Eigen::Vector3d position;
+  Eigen::Quaterniond orientation;
+};
+TcpPose homeTcpPose(const std::string& robot);
 
 /// True when the configured plugin takes Cartesian commands (loads the library to ask it).
 bool controllerIsCartesian(const pipeline::WrapperConfig& config);

@@ -8,8 +8,6 @@
 #include <ostream>
 #include <sstream>
 
-#include "comply/model/robot_description.hpp"
-#include "comply/model/update.hpp"
 #include "comply/task/path_command.hpp"
 #include "controller_setup.hpp"
 #include "sim_command.hpp"
@@ -272,11 +270,7 @@ std::vector<SurfaceFollowingRow> runSurfaceFollowing(const SurfaceFollowingOptio
         "surface-following: speed must be > 0 and the path fraction in (0, 1]");
   }
   std::filesystem::create_directories(options.out_dir);
-  const model::RobotDescription robot = model::loadRobotDescription("fr3");
-  const model::Model chain = robot.loadModel();
-  model::Data data(chain);
-  const std::vector<double> zero(robot.home.size(), 0.0);
-  model::update(chain, data, robot.home, zero, model::Quantity::kPose);
+  const TcpPose home = homeTcpPose("fr3");
 
   const task::Path tip_path(nominalTipPoints(options.path_fraction));
   {
@@ -311,8 +305,8 @@ std::vector<SurfaceFollowingRow> runSurfaceFollowing(const SurfaceFollowingOptio
     // Within reach of the pressing reference, which lies 100 mm inside the fixture.
     run.config.validation.max_position_jump_m = 0.15;
     const int dof = run.config.dof;
-    SurfaceCommand command(condition, data.tip_position, data.tip_orientation,
-                           options.speed_m_per_s, options.path_fraction, dof);
+    SurfaceCommand command(condition, home.position, home.orientation, options.speed_m_per_s,
+                           options.path_fraction, dof);
     run.task = parseTaskFile(
         "task:\n  command_rate_hz: 100\n  scene: {tool: probe_tool.xml, substeps: 2}\n"
         "  camera: {lookat: [0.42, 0.0, 0.3], distance_m: 1.4, azimuth_deg: 110, "
