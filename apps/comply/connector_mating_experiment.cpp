@@ -29,7 +29,6 @@ constexpr double kStartAbove = 0.02;  // tip above the entrance along the axis
 constexpr double kPastSeat = 0.01;    // the reference ends this far beyond the seat
 constexpr double kLateralNPerM = 50.0;
 constexpr double kAxialNPerM = 1000.0;
-constexpr double kRotationalNmPerRad = 10.0;
 
 std::string pegFragment() {
   std::ostringstream xml;
@@ -92,8 +91,12 @@ Eigen::Vector3d socketAxis(double tilt) {
 class MatingCommand {
  public:
   MatingCommand(const Trial& trial, const Eigen::Vector3d& home_tcp,
-                const Eigen::Quaterniond& peg_down, int dof)
-      : trial_(trial), home_tcp_(home_tcp), peg_down_(peg_down), dof_(dof) {
+                const Eigen::Quaterniond& peg_down, double rotational_nm_per_rad, int dof)
+      : trial_(trial),
+        home_tcp_(home_tcp),
+        peg_down_(peg_down),
+        rotational_nm_per_rad_(rotational_nm_per_rad),
+        dof_(dof) {
     axis_ = socketAxis(trial.offset_rad);
     // TCP = tip - R (0, 0, kPegTip); the commanded orientation keeps the peg vertical.
     tip_to_tcp_ = -(peg_down_ * Eigen::Vector3d(0.0, 0.0, kPegTip));
@@ -111,7 +114,7 @@ class MatingCommand {
     command.orientation = peg_down_;
     command.damping_mode = DampingMode::kRatio;
     command.damping_ratio.setOnes();
-    command.stiffness_rotational = Eigen::Matrix3d::Identity() * kRotationalNmPerRad;
+    command.stiffness_rotational = Eigen::Matrix3d::Identity() * rotational_nm_per_rad_;
     if (t < kApproachS) {
       const double s = std::min(1.0, t / (kApproachS - 1.0));
       command.position = home_tcp_ + s * (start_tcp_ - home_tcp_);
@@ -144,6 +147,7 @@ class MatingCommand {
   Trial trial_;
   Eigen::Vector3d home_tcp_;
   Eigen::Quaterniond peg_down_;
+  double rotational_nm_per_rad_;
   int dof_;
   Eigen::Vector3d axis_;
   Eigen::Vector3d tip_to_tcp_;
@@ -180,6 +184,9 @@ ConnectorMatingRow evaluate(const Trial& trial, const SimLog& log, const MatingC
       }
     }
   }
+  if (!row.seated) {
+    row.failure = failed ? "force_limit" : "time_out";
+  }
   return row;
 }
 
@@ -206,7 +213,8 @@ std::vector<ConnectorMatingRow> runConnectorMating(const ConnectorMatingOptions&
           "fr3", "",
           (std::filesystem::path(COMPLY_SOURCE_DIR) / "config/sim/cartesian_impedance.yaml")
               .string());
-      const MatingCommand command(trial, home.position, home.orientation, run.config.dof);
+      const MatingCommand command(trial, home.position, home.orientation,
+                                  options.rotational_stiffness_nm_per_rad, run.config.dof);
       run.task = parseTaskFile(
           "task:\n  command_rate_hz: 100\n  scene: {substeps: 4}\n  camera: {lookat: [0.45, 0.0, "
           "0.22], distance_m: 0.5, azimuth_deg: 90, elevation_deg: -15}\n  waypoints: "
@@ -219,6 +227,7 @@ std::vector<ConnectorMatingRow> runConnectorMating(const ConnectorMatingOptions&
       run.out_dir = folder;
       run.snapshots = options.pictures;
       run.progress = options.progress;
+      run.plant_friction_scale = options.plant_friction_scale;
       run.cartesian_source = [&command](double t) { return command(t); };
       const SimResult result = runSimulation(run);
       rows.push_back(
@@ -232,6 +241,7 @@ std::vector<ConnectorMatingRow> runConnectorMating(const ConnectorMatingOptions&
         {{"condition", row.condition},
          {"offset_deg", row.offset_deg},
          {"seated", row.seated},
+         {"failure", row.failure.empty() ? nlohmann::json(nullptr) : nlohmann::json(row.failure)},
          {"depth_mm", row.depth_mm},
          {"peak_axial_force_n", row.peak_axial_force_n},
          {"seat_time_s", std::isfinite(row.seat_time_s) ? nlohmann::json(row.seat_time_s)
@@ -245,7 +255,7 @@ std::vector<ConnectorMatingRow> runConnectorMating(const ConnectorMatingOptions&
 
 void printConnectorMatingTable(const std::vector<ConnectorMatingRow>& rows, std::ostream& out) {
   out << "| offset [deg] | condition | seated | depth [mm] | peak axial force [N] | seat time [s] "
-         "|\n|---|---|---|---|---|---|\n"
+         "| failure |\n|---|---|---|---|---|---|---|\n"
       << std::fixed;
   for (const ConnectorMatingRow& row : rows) {
     out << "| " << std::setprecision(0) << row.offset_deg << " | " << row.condition << " | "
@@ -256,7 +266,7 @@ void printConnectorMatingTable(const std::vector<ConnectorMatingRow>& rows, std:
     } else {
       out << "-";
     }
-    out << " |\n";
+    out << " | " << (row.failure.empty() ? "-" : row.failure) << " |\n";
   }
 }
 

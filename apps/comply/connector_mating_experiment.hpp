@@ -17,6 +17,9 @@ struct ConnectorMatingOptions {
   std::filesystem::path out_dir = "out/connector-mating";
   std::vector<double> offsets_deg{1, 2, 3, 4, 5, 6};
   double axial_force_limit_n = 15.0;
+  double rotational_stiffness_nm_per_rad = 10.0;  ///< during insertion, both conditions
+  /// Ablation: multiplies the plant's joint Coulomb friction (robot.yaml joint_dynamics).
+  double plant_friction_scale = 1.0;
   bool pictures = true;
   std::ostream* progress = nullptr;
 };
@@ -25,6 +28,9 @@ struct ConnectorMatingRow {
   std::string condition;  ///< tcp_fixed, task_aligned
   double offset_deg = 0.0;
   bool seated = false;
+  /// Why a trial that did not seat failed: "force_limit" (the axial force passed the limit) or
+  /// "time_out" (still short of the seat when the run ended); empty when seated.
+  std::string failure;
   double depth_mm = 0.0;            ///< deepest insertion along the socket axis
   double peak_axial_force_n = 0.0;  ///< before seating (or over the trial)
   double seat_time_s = 0.0;         ///< NaN when not seated

@@ -118,6 +118,16 @@ int main(int argc, char** argv) {
                    "axial force that ends a trial before seating [N]")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  mating_command
+      ->add_option("--rotational-stiffness", mating.rotational_stiffness_nm_per_rad,
+                   "rotational stiffness during insertion [N m/rad]")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  mating_command
+      ->add_option("--plant-friction-scale", mating.plant_friction_scale,
+                   "ablation: multiplies the simulated arm's joint Coulomb friction")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
 
   CLI11_PARSE(app, argc, argv);
   try {

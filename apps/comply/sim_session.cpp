@@ -222,6 +222,7 @@ SimResult runWith(const SimRunOptions& options, const model::RobotDescription& r
   plant_options.scene.offscreen_height = std::max(options.image_height, 960);
   plant_options.tip_frame = options.config.tip_frame;
   plant_options.joint_dynamics = options.plant_joint_dynamics;
+  plant_options.friction_scale = options.plant_friction_scale;
   sim::SimulatedRobot plant(robot, plant_options);
 
   pipeline::Wrapper<Command> wrapper(options.config);

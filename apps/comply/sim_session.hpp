@@ -26,8 +26,9 @@ struct SimRunOptions {
   bool snapshots = true;          ///< PNGs at start, end and every task.snapshot_every_ms
   int image_width = 640;
   int image_height = 480;
-  bool plant_joint_dynamics = true;  ///< robot.yaml joint_dynamics in the plant
-  std::ostream* progress = nullptr;  ///< progress bar and warnings; nullptr: silent
+  bool plant_joint_dynamics = true;   ///< robot.yaml joint_dynamics in the plant
+  double plant_friction_scale = 1.0;  ///< multiplies the plant's Coulomb friction
+  std::ostream* progress = nullptr;   ///< progress bar and warnings; nullptr: silent
   /// Cartesian controllers only: when set, the command sent at each command period (e.g. a
   /// task::PathCommand stream) in place of the task's waypoints, which then only give the time
   /// the settle time counts from.

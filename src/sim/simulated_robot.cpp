@@ -49,6 +49,10 @@ SimulatedRobot::SimulatedRobot(const model::RobotDescription& robot, const Plant
   if (!(options.position_noise_rad >= 0.0) || !(options.velocity_noise_rad_per_s >= 0.0)) {
     throw SimError("measurement noise must be >= 0");
   }
+  if (!(options.friction_scale >= 0.0) || !std::isfinite(options.friction_scale)) {
+    throw SimError("friction scale must be finite and >= 0 (got " +
+                   std::to_string(options.friction_scale) + ")");
+  }
   const std::string tip = options.tip_frame.empty() ? robot.tcp_frame : options.tip_frame;
   SceneOptions scene = options.scene;
   model_.reset(loadModelFromXml(buildSceneXml(robot, scene), "the scene of " + robot.name));
@@ -80,7 +84,7 @@ SimulatedRobot::SimulatedRobot(const model::RobotDescription& robot, const Plant
     for (std::size_t i = 0; i < dof; ++i) {
       model_->dof_damping[dof_address_[i]] = dynamics.damping[i];
       model_->dof_armature[dof_address_[i]] = dynamics.armature[i];
-      model_->dof_frictionloss[dof_address_[i]] = dynamics.frictionloss[i];
+      model_->dof_frictionloss[dof_address_[i]] = options.friction_scale * dynamics.frictionloss[i];
     }
   }
 

@@ -67,6 +67,54 @@ TEST(SimulatedRobot, ClampsToTheUrdfEffortLimitAndRefusesBadTorques) {
   EXPECT_DOUBLE_EQ(robot.appliedEffort()[3], robot.effortLimit()[3]);  // previous torque kept
 }
 
+/// How far FR3 joint 4 turns in 0.5 s under its gravity-holding torque plus `extra_nm`, with the
+/// plant's Coulomb friction scaled by `friction_scale`.
+double jointFourTravel(double friction_scale, double extra_nm) {
+  sim::PlantOptions options;
+  options.friction_scale = friction_scale;
+  sim::SimulatedRobot robot(model::loadRobotDescription("fr3"), options);
+  std::vector<double> torque(robot.appliedEffort().begin(), robot.appliedEffort().end());
+  constexpr int kJoint = 3;
+  torque[kJoint] += extra_nm;
+  JointState state = JointState::zero(robot.dof());
+  robot.read(state);
+  const double start = state.position[kJoint];
+  for (int cycle = 0; cycle < 500; ++cycle) {
+    robot.write(torque);
+    robot.step();
+  }
+  robot.read(state);
+  return std::abs(state.position[kJoint] - start);
+}
+
+TEST(SimulatedRobot, FrictionScaleMultipliesTheCoulombFrictionOnly) {
+  const model::RobotDescription fr3 = model::loadRobotDescription("fr3");
+  ASSERT_TRUE(fr3.joint_dynamics.has_value());
+  sim::PlantOptions options;
+  options.friction_scale = 0.5;
+  const sim::SimulatedRobot robot(fr3, options);
+  const mjModel& mujoco = robot.mujocoModel();
+  for (int j = 0; j < robot.dof(); ++j) {
+    const int dof_address =
+        mujoco.jnt_dofadr[mj_name2id(&mujoco, mjOBJ_JOINT, fr3.joints[j].c_str())];
+    EXPECT_DOUBLE_EQ(mujoco.dof_frictionloss[dof_address],
+                     0.5 * fr3.joint_dynamics->frictionloss[j]);
+    EXPECT_DOUBLE_EQ(mujoco.dof_damping[dof_address], fr3.joint_dynamics->damping[j]);
+    EXPECT_DOUBLE_EQ(mujoco.dof_armature[dof_address], fr3.joint_dynamics->armature[j]);
+  }
+  // 0.15 N m on joint 4 is below its 1.137 N m of Coulomb friction. MuJoCo's friction loss is a
+  // soft constraint, so the joint creeps rather than sticks; without it the joint turns freely.
+  const double with_friction = jointFourTravel(1.0, 0.15);
+  const double without_friction = jointFourTravel(0.0, 0.15);
+  EXPECT_GT(without_friction, 0.01);
+  EXPECT_LT(with_friction, 0.1 * without_friction);
+
+  for (const double bad : {-1.0, std::numeric_limits<double>::quiet_NaN()}) {
+    options.friction_scale = bad;
+    EXPECT_THROW(sim::SimulatedRobot(fr3, options), sim::SimError);
+  }
+}
+
 TEST(SimulatedRobot, HomePoseMatchesTheControllerModel) {
   const model::RobotDescription description = model::loadRobotDescription("iiwa14");
   sim::SimulatedRobot robot(description, sim::PlantOptions{});

@@ -33,7 +33,10 @@ struct PlantOptions {
   double control_period_s = 0.001;  ///< one read/write cycle [s]
   int substeps = 1;                 ///< physics steps per control period (timestep = period / n)
   bool joint_dynamics = true;       ///< damping, armature, frictionloss from robot.yaml
-  std::string tip_frame;            ///< TCP body for pose and tool wrench; default robot.tcp_frame
+  /// Multiplies robot.yaml's Coulomb friction (frictionloss); 0 removes it while keeping damping
+  /// and armature, which the plant's stability at 1 kHz relies on. For ablations.
+  double friction_scale = 1.0;
+  std::string tip_frame;  ///< TCP body for pose and tool wrench; default robot.tcp_frame
   SceneOptions scene;
   /// Measurement noise (Gaussian, standard deviation) drawn from a generator seeded with `seed`.
   double position_noise_rad = 0.0;
