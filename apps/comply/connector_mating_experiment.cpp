@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <sstream>
+#include <stdexcept>
 
 #include "controller_setup.hpp"
 #include "sim_session.hpp"
@@ -77,11 +78,32 @@ std::string socketFragment(double tilt) {
   return xml.str();
 }
 
+/// Where the insertion gains (stiff along z, soft across) are expressed.
+enum class ComplianceFrame {
+  kCommandedTcp,  ///< the commanded TCP orientation: z along the peg as commanded
+  kMeasuredTcp,   ///< the measured TCP, every cycle: z along the peg as it is
+  kSocket,        ///< the socket's frame: z along the insertion axis
+};
+
 struct Trial {
   std::string condition;
-  bool task_aligned = false;
+  ComplianceFrame frame = ComplianceFrame::kCommandedTcp;
   double offset_rad = 0.0;
 };
+
+ComplianceFrame complianceFrameOf(const std::string& condition) {
+  if (condition == "tcp_fixed") {
+    return ComplianceFrame::kCommandedTcp;
+  }
+  if (condition == "tcp_measured") {
+    return ComplianceFrame::kMeasuredTcp;
+  }
+  if (condition == "task_aligned") {
+    return ComplianceFrame::kSocket;
+  }
+  throw std::invalid_argument("unknown connector-mating condition '" + condition +
+                              "' (tcp_fixed, tcp_measured or task_aligned)");
+}
 
 /// Unit axis into the socket, base frame.
 Eigen::Vector3d socketAxis(double tilt) {
@@ -132,11 +154,16 @@ class MatingCommand {
     }
     command.stiffness_translational =
         Eigen::Vector3d(kLateralNPerM, kLateralNPerM, kAxialNPerM).asDiagonal();
-    if (trial_.task_aligned) {
-      // The socket's frame: z along the insertion axis.
-      command.task_frame = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d(0, 0, 1), axis_);
-    } else {
-      command.task_frame = peg_down_;  // the TCP frame as commanded: z along the peg
+    switch (trial_.frame) {
+      case ComplianceFrame::kCommandedTcp:
+        command.task_frame = peg_down_;
+        break;
+      case ComplianceFrame::kMeasuredTcp:
+        command.task_frame = Eigen::Quaterniond::Identity();  // relative to the measured TCP
+        break;
+      case ComplianceFrame::kSocket:
+        command.task_frame = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis_);
+        break;
     }
     return command;
   }
@@ -200,8 +227,8 @@ std::vector<ConnectorMatingRow> runConnectorMating(const ConnectorMatingOptions&
 
   std::vector<ConnectorMatingRow> rows;
   for (const double offset_deg : options.offsets_deg) {
-    for (const bool aligned : {false, true}) {
-      const Trial trial{aligned ? "task_aligned" : "tcp_fixed", aligned, offset_deg * M_PI / 180.0};
+    for (const std::string& condition : options.conditions) {
+      const Trial trial{condition, complianceFrameOf(condition), offset_deg * M_PI / 180.0};
       std::ostringstream name;
       name << trial.condition << "_" << offset_deg << "deg";
       const std::filesystem::path folder = options.out_dir / name.str();
@@ -213,6 +240,12 @@ std::vector<ConnectorMatingRow> runConnectorMating(const ConnectorMatingOptions&
           "fr3", "",
           (std::filesystem::path(COMPLY_SOURCE_DIR) / "config/sim/cartesian_impedance.yaml")
               .string());
+      if (trial.frame == ComplianceFrame::kMeasuredTcp) {
+        plugin::ParameterValue reference;
+        reference.text = "tcp";
+        reference.is_text = true;
+        run.config.plugin_parameters["task_frame_reference"] = reference;
+      }
       const MatingCommand command(trial, home.position, home.orientation,
                                   options.rotational_stiffness_nm_per_rad, run.config.dof);
       run.task = parseTaskFile(

@@ -16,6 +16,9 @@ namespace comply::app {
 struct ConnectorMatingOptions {
   std::filesystem::path out_dir = "out/connector-mating";
   std::vector<double> offsets_deg{1, 2, 3, 4, 5, 6};
+  /// tcp_fixed: gains in the commanded TCP frame; tcp_measured: in the measured TCP frame (the
+  /// plugin's task_frame_reference: tcp); task_aligned: in the socket's frame.
+  std::vector<std::string> conditions{"tcp_fixed", "task_aligned"};
   double axial_force_limit_n = 15.0;
   double rotational_stiffness_nm_per_rad = 10.0;  ///< during insertion, both conditions
   /// Ablation: multiplies the plant's joint Coulomb friction (robot.yaml joint_dynamics).

@@ -119,6 +119,12 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   mating_command
+      ->add_option("--conditions", mating.conditions,
+                   "where the insertion gains are expressed: tcp_fixed (commanded TCP), "
+                   "tcp_measured (measured TCP), task_aligned (socket)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"tcp_fixed", "tcp_measured", "task_aligned"}));
+  mating_command
       ->add_option("--rotational-stiffness", mating.rotational_stiffness_nm_per_rad,
                    "rotational stiffness during insertion [N m/rad]")
       ->capture_default_str()

@@ -4,6 +4,7 @@
 //   e   = [p - p_d; -R phi],  phi = 2 log(eta^-1 eta_d)      pose error, base frame
 //   e_v = J dq - v_d                                         twist error, base frame
 //   K   = R_task K_task R_task^T (both blocks), D likewise   gains follow the task frame
+//   R_task = R_cmd (task_frame_reference: base) or R_tcp R_cmd (tcp: follows the measured tool)
 //   tau = J^T (-K e - D e_v + w_ff) + N^T (K_ns (q_ns - q) - D_ns dq) + tau_ff
 //   N^T = I - J^T (J^+)^T,  J^+ = J^T (J J^T + lambda^2 I)^-1
 //
@@ -17,6 +18,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "comply/core/capacity.hpp"
 #include "comply/core/gains.hpp"
@@ -52,6 +54,12 @@ class CartesianImpedance final : public CartesianController {
     }
     // Ratio-mode damping needs M; a user who never streams ratios can save its computation.
     use_mass_matrix_ = parameters.number("inertia_aware_damping", 1.0) != 0.0;
+    const std::string reference = parameters.text("task_frame_reference", "base");
+    if (reference != "base" && reference != "tcp") {
+      throw plugin::ParameterError("task_frame_reference must be base or tcp, not '" + reference +
+                                   "'");
+    }
+    task_frame_in_tcp_ = reference == "tcp";
   }
 
   [[nodiscard]] std::uint32_t requiredQuantities() const override {
@@ -76,9 +84,14 @@ class CartesianImpedance final : public CartesianController {
     const Vector6d twist_error =
         jacobian * dq - Vector6d(Eigen::Map<const Vector6d>(command.twist));
 
-    // Gains from the task frame to the base frame, every cycle.
-    const Eigen::Matrix3d task_rotation =
+    // Gains from the task frame to the base frame, every cycle. Relative to the measured TCP,
+    // the compliance turns with the tool itself, whatever the reference orientation.
+    Eigen::Matrix3d task_rotation =
         quaternionFromXyzw(command.task_frame).normalized().toRotationMatrix();
+    if (task_frame_in_tcp_) {
+      task_rotation =
+          quaternionFromXyzw(input.tcp_orientation).normalized().toRotationMatrix() * task_rotation;
+    }
     const auto rotate = [&](const double* block) {
       return Eigen::Matrix3d(task_rotation * rowMajor3x3(block) * task_rotation.transpose());
     };
@@ -169,6 +182,7 @@ class CartesianImpedance final : public CartesianController {
   double nullspace_damping_ = 0.05;
   double inertia_regularisation_ = 1e-6;
   bool use_mass_matrix_ = true;
+  bool task_frame_in_tcp_ = false;  ///< command.task_frame relative to the measured TCP
 };
 
 }  // namespace

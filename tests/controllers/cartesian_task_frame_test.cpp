@@ -111,5 +111,42 @@ TEST_F(CartesianTaskFrame, TaskFrameQuaternionIsNormalised) {
   EXPECT_LT(relativeError(stepTorque(law_, input_, &scaled), expected), kRelativeTolerance);
 }
 
+TEST_F(CartesianTaskFrame, TaskFrameRelativeToTheMeasuredTcpTurnsWithTheTool) {
+  // Same command, gains relative to the TCP: the compliant axis is R_tcp R_task e_z, and it
+  // moves when only the measured orientation does.
+  plugin::ParameterMap parameters;
+  parameters["task_frame_reference"].text = "tcp";
+  parameters["task_frame_reference"].is_text = true;
+  plugin::PluginInstance tool_law(cartesianImpedanceLibrary(), fr3_.model.dof(), parameters);
+  const Eigen::Matrix3d tcp_rotation =
+      Eigen::Quaterniond(input_.tcp_orientation[3], input_.tcp_orientation[0],
+                         input_.tcp_orientation[1], input_.tcp_orientation[2])
+          .toRotationMatrix();
+  const Eigen::Vector3d axis = tcp_rotation * task_rotation_ * Eigen::Vector3d::UnitZ();
+  const comply_cartesian_command command = displaced(axis, task_rotation_);
+  const Vector6d wrench =
+      wrenchFromTorque(jacobianOf(input_), stepTorque(tool_law, input_, &command));
+  Vector6d expected = Vector6d::Zero();
+  expected.head<3>() = kCompliant * kDisplacement * axis;
+  EXPECT_LT(relativeError(wrench, expected), kRelativeTolerance) << wrench.transpose();
+  // The base-frame law reads the same command differently unless the TCP is base-aligned.
+  ASSERT_GT((tcp_rotation - Eigen::Matrix3d::Identity()).norm(), 0.1);
+  EXPECT_GT(relativeError(wrenchFor(command), expected), 0.1);
+}
+
+TEST_F(CartesianTaskFrame, UnknownTaskFrameReferenceIsRefusedAtCreation) {
+  plugin::ParameterMap parameters;
+  parameters["task_frame_reference"].text = "flange";
+  parameters["task_frame_reference"].is_text = true;
+  try {
+    plugin::PluginInstance law(cartesianImpedanceLibrary(), fr3_.model.dof(), parameters);
+    FAIL() << "created with task_frame_reference: flange";
+  } catch (const std::exception& error) {
+    EXPECT_NE(std::string(error.what()).find("task_frame_reference must be base or tcp"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 }  // namespace
 }  // namespace comply::law_test
