@@ -20,7 +20,7 @@ struct ConnectorMatingOptions {
   /// plugin's task_frame_reference: tcp); task_aligned: in the socket's frame.
   std::vector<std::string> conditions{"tcp_fixed", "task_aligned"};
   double axial_force_limit_n = 15.0;
-  double rotational_stiffness_nm_per_rad = 10.0;  ///< during insertion, both conditions
+  double rotational_stiffness_nm_per_rad = 10.0;  ///< during insertion, every condition
   /// Ablation: multiplies the plant's joint Coulomb friction (robot.yaml joint_dynamics).
   double plant_friction_scale = 1.0;
   bool pictures = true;
@@ -28,7 +28,7 @@ struct ConnectorMatingOptions {
 };
 
 struct ConnectorMatingRow {
-  std::string condition;  ///< tcp_fixed, task_aligned
+  std::string condition;  ///< tcp_fixed, tcp_measured, task_aligned
   double offset_deg = 0.0;
   bool seated = false;
   /// Why a trial that did not seat failed: "force_limit" (the axial force passed the limit) or
