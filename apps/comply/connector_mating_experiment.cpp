@@ -225,6 +225,10 @@ std::vector<ConnectorMatingRow> runConnectorMating(const ConnectorMatingOptions&
   const std::filesystem::path peg_file = options.out_dir / "peg.xml";
   std::ofstream(peg_file) << pegFragment();
 
+  // Refuse an unknown condition before the first trial rather than after minutes of others.
+  for (const std::string& condition : options.conditions) {
+    complianceFrameOf(condition);
+  }
   std::vector<ConnectorMatingRow> rows;
   for (const double offset_deg : options.offsets_deg) {
     for (const std::string& condition : options.conditions) {
