@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "comply/core/commands.hpp"
+#include "comply/core/state.hpp"
 #include "comply/pipeline/config.hpp"
 
 namespace comply::pipeline {
@@ -31,14 +32,6 @@ struct Verdict {
   bool accepted = true;
   RejectionReason reason = RejectionReason::kNonFinite;
   std::string message;  ///< why, with the field name; empty when accepted
-};
-
-/// Measured state the validator compares targets with (published by the real-time side).
-struct MeasuredPose {
-  JointVector position;  ///< q
-  Eigen::Vector3d tcp_position = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond tcp_orientation = Eigen::Quaterniond::Identity();
-  bool valid = false;  ///< false until the controller has run a cycle
 };
 
 /// The pose at joint positions `position` from a model update that computed the pose.
