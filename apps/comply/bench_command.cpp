@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "comply/hardware/control_loop.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "controller_setup.hpp"
@@ -46,6 +47,49 @@ JointState stateAt(const std::vector<double>& home, int cycle) {
   return state;
 }
 
+/// Hardware that replays the benchmark trajectory, computed before the timed loop so that read()
+/// costs a copy; write() accepts everything.
+class ReplayHardware final : public hardware::HardwareInterface {
+ public:
+  ReplayHardware(const std::vector<double>& home, int cycles) {
+    states_.reserve(static_cast<std::size_t>(cycles));
+    for (int cycle = 0; cycle < cycles; ++cycle) {
+      states_.push_back(stateAt(home, cycle));
+    }
+  }
+  [[nodiscard]] int dof() const noexcept override {
+    return static_cast<int>(states_.front().position.size());
+  }
+  bool read(JointState& state) noexcept override {
+    state = states_[next_++ % states_.size()];
+    return true;
+  }
+  bool write(std::span<const double> /*torque*/) noexcept override { return true; }
+  [[nodiscard]] const JointState& at(int cycle) const {
+    return states_[static_cast<std::size_t>(cycle)];
+  }
+
+ private:
+  std::vector<JointState> states_;
+  std::size_t next_ = 0;
+};
+
+/// Keeps the controller's own time of every cycle after the warm-up; stops at the first cycle
+/// that leaves normal operation.
+class CycleTimer final : public hardware::LoopObserver {
+ public:
+  CycleTimer(int warmup, std::vector<double>& cycle_us) : warmup_(warmup), cycle_us_(cycle_us) {}
+  void afterCycle(const hardware::CycleRecord& record) override {
+    if (record.index >= static_cast<std::uint64_t>(warmup_)) {
+      cycle_us_.push_back(record.controller_s * 1e6);
+    }
+  }
+
+ private:
+  int warmup_;
+  std::vector<double>& cycle_us_;
+};
+
 template <typename Command>
 std::array<BenchRow, 2> benchWrapper(const BenchOptions& options, const std::string& wrapper_name,
                                      const std::string& plugin_name,
@@ -54,36 +98,35 @@ std::array<BenchRow, 2> benchWrapper(const BenchOptions& options, const std::str
   pipeline::WrapperConfig config = controllerConfig(options.robot, plugin_name);
   config.initial_cartesian.damping_mode = damping_mode;
   pipeline::Wrapper<Command> wrapper(config);
-  JointState state = stateAt(home, 0);
-  wrapper.activate(state);
-  std::vector<double> torque(static_cast<std::size_t>(wrapper.dof()));
-  comply_output output{};
+  const int total = options.warmup + options.iterations;
+  ReplayHardware replay(home, total);
+  wrapper.activate(replay.at(0));
   std::vector<double> step_us;
   std::vector<double> cycle_us;
   step_us.reserve(static_cast<std::size_t>(options.iterations));
   cycle_us.reserve(static_cast<std::size_t>(options.iterations));
-  const int total = options.warmup + options.iterations;
-  // Full cycles first. Then the law alone on the same trajectory, with the model updated untimed
-  // before each step: a step must see a new input every time, as in the cycle (a law that keeps
-  // state between cycles, such as a warm-started solver, would look faster on a repeated input).
-  for (int cycle = 0; cycle < total; ++cycle) {
-    state = stateAt(home, cycle);
-    const Clock::time_point start = Clock::now();
-    const pipeline::CycleStatus status = wrapper.update(state, kPeriodS, torque);
-    const Clock::time_point end = Clock::now();
-    if (status != pipeline::CycleStatus::kOk) {
-      throw std::runtime_error(wrapper_name +
-                               " wrapper left normal operation during the benchmark: " +
-                               wrapper.diagnostics().last_error);
-    }
-    if (cycle >= options.warmup) {
-      cycle_us.push_back(microseconds(start, end));
-    }
+
+  // Full cycles first, through the control loop every host runs.
+  hardware::FreeRunningClock clock;
+  hardware::ControlLoop loop(replay, wrapper, clock,
+                             {.period_s = kPeriodS, .cycles = static_cast<std::uint64_t>(total)});
+  CycleTimer timer(options.warmup, cycle_us);
+  loop.setObserver(&timer);
+  loop.run();
+  if (wrapper.diagnostics().state != pipeline::WrapperState::kActive) {
+    throw std::runtime_error(
+        wrapper_name +
+        " wrapper left normal operation during the benchmark: " + wrapper.diagnostics().last_error);
   }
+  // Then the law alone on the same trajectory, with the model updated untimed before each step:
+  // a step must see a new input every time, as in the cycle (a law that keeps state between
+  // cycles, such as a warm-started solver, would look faster on a repeated input).
+  pipeline::Controller& controller = wrapper.controller();
+  comply_output output{};
   for (int cycle = 0; cycle < total; ++cycle) {
-    wrapper.core().beginCycle(stateAt(home, cycle), kPeriodS);
+    controller.measureOnly(replay.at(cycle));
     const Clock::time_point start = Clock::now();
-    const comply_status status = wrapper.core().stepPluginOnly(&wrapper.activeCommand(), output);
+    const comply_status status = controller.stepPluginOnly(output);
     const Clock::time_point end = Clock::now();
     if (status != COMPLY_OK) {
       throw std::runtime_error(wrapper_name +

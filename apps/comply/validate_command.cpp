@@ -8,11 +8,13 @@
 #include <vector>
 
 #include "command_json.hpp"
+#include "comply/hardware/control_loop.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/model/update.hpp"
 #include "comply/pipeline/command_bus.hpp"
 #include "comply/pipeline/plugin_input.hpp"
 #include "comply/pipeline/wrapper.hpp"
+#include "comply/schema/command_bus.hpp"
 #include "controller_setup.hpp"
 
 namespace comply::app {
@@ -149,22 +151,25 @@ Command parseCommand(const json& object, int dof, const Command& base, const std
   }
 }
 
+/// `command` with its motion reference seeded from `pose`, as activation does.
+template <typename Command>
+Command seeded(const Command& command, const MeasuredPose& pose, int dof) {
+  pipeline::CommandBus bus = pipeline::toBus(command, dof);
+  pipeline::seedFromMeasured(bus, pose);
+  return schema::fromBus(std::get<typename pipeline::BusOf<Command>::type>(bus));
+}
+
 /// Model quantities and the law's torque, each sample on its own: the reference not given by the
 /// command is the measured pose (as on activation), gains not given are the configured initial
 /// ones.
 template <typename Command>
-void runLaw(const pipeline::WrapperConfig& config, const std::vector<Sample>& samples,
+void runLaw(const pipeline::ResolvedController& resolved, const std::vector<Sample>& samples,
             const std::string& inputs_path, json& outputs) {
-  const model::RobotDescription robot = model::loadRobotDescription(config.robot);
-  model::ModelOptions options = robot.modelOptions(config.tip_frame);
-  options.joint_names = config.joints;
-  options.base_frame = config.base_frame;
-  const model::Model model = model::Model::fromUrdfFile(robot.urdf_path, options);
+  const pipeline::WrapperConfig& config = resolved.config;
+  const model::Model& model = *resolved.model;
   model::Data data(model);
-  const int dof = model.dof();
-  auto library = std::make_shared<const plugin::PluginLibrary>(
-      config.plugin, pipeline::CommandTraits<Command>::kKind);
-  plugin::PluginInstance law(library, dof, config.plugin_parameters);
+  const int dof = resolved.dof;
+  plugin::PluginInstance law(resolved.plugin, dof, config.plugin_parameters);
 
   for (std::size_t i = 0; i < samples.size(); ++i) {
     const Sample& sample = samples[i];
@@ -183,9 +188,8 @@ void runLaw(const pipeline::WrapperConfig& config, const std::vector<Sample>& sa
     out["coriolis"] = toJson(data.coriolis);
     out["mass_matrix"] = rowsOf(data.mass_matrix);
 
-    Command merged = initialCommand<Command>(config);
     const MeasuredPose pose = pipeline::measuredPoseFrom(sample.state.position, data);
-    pipeline::seedReference(merged, pose);
+    Command merged = seeded(initialCommand<Command>(config), pose, dof);
     const Command incoming = parseCommand(sample.command, dof, merged, where);
     const pipeline::Verdict verdict =
         pipeline::validateAndMerge(incoming, config.validation, dof, pose, merged);
@@ -205,39 +209,86 @@ void runLaw(const pipeline::WrapperConfig& config, const std::vector<Sample>& sa
   }
 }
 
-/// The samples as consecutive cycles of one wrapper, activated at the first sample.
+/// The samples as the measurements of a robot, one per cycle.
+class SampleHardware final : public hardware::HardwareInterface {
+ public:
+  explicit SampleHardware(const std::vector<Sample>& samples) : samples_(samples) {}
+  [[nodiscard]] int dof() const noexcept override {
+    return static_cast<int>(samples_.front().state.position.size());
+  }
+  bool read(JointState& state) noexcept override {
+    state = samples_[std::min(next_++, samples_.size() - 1)].state;
+    return true;
+  }
+  bool write(std::span<const double> /*torque*/) noexcept override { return true; }
+
+ private:
+  const std::vector<Sample>& samples_;
+  std::size_t next_ = 0;
+};
+
+/// Submits each sample's command before its cycle and records what the cycle did.
 template <typename Command>
-void runWrapper(const pipeline::WrapperConfig& config, const std::vector<Sample>& samples,
-                double period_s, const std::string& inputs_path, json& outputs) {
-  pipeline::Wrapper<Command> wrapper(config);
+class SampleRecorder final : public hardware::LoopObserver {
+ public:
+  SampleRecorder(pipeline::Wrapper<Command>& wrapper, const std::vector<Sample>& samples,
+                 const std::string& inputs_path, json& outputs)
+      : wrapper_(wrapper), samples_(samples), inputs_path_(inputs_path), outputs_(outputs) {}
+
+  void beforeCycle(std::uint64_t index, double time_s) override {
+    const json& command = samples_[index].command;
+    if (command.empty()) {
+      return;
+    }
+    const std::string where = inputs_path_ + ": sample " + std::to_string(index);
+    Command incoming = parseCommand(command, wrapper_.dof(), wrapper_.lastAccepted(), where);
+    if (!command.contains("stamp")) {
+      incoming.stamp_s = time_s;
+    }
+    const pipeline::Verdict verdict = wrapper_.submit(incoming);
+    if (!verdict.accepted) {
+      outputs_[index]["wrapper_rejected"] = verdict.message;
+    }
+  }
+
+  void afterCycle(const hardware::CycleRecord& record) override {
+    json& out = outputs_[record.index];
+    out["wrapper_torque"] = std::vector<double>(record.torque.begin(), record.torque.end());
+    const bool fault = wrapper_.diagnostics().state == pipeline::WrapperState::kFault;
+    out["wrapper_state"] = fault ? "fault" : "ok";
+  }
+
+ private:
+  pipeline::Wrapper<Command>& wrapper_;
+  const std::vector<Sample>& samples_;
+  const std::string& inputs_path_;
+  json& outputs_;
+};
+
+/// The samples as consecutive cycles of one wrapper, activated at the first sample, run by the
+/// control loop every host uses.
+template <typename Command>
+void runWrapper(const std::shared_ptr<const pipeline::ResolvedController>& resolved,
+                const std::vector<Sample>& samples, double period_s, const std::string& inputs_path,
+                json& outputs) {
+  pipeline::Wrapper<Command> wrapper(resolved);
   const int dof = wrapper.dof();
   JointState first = samples.front().state;
   if (!samples.front().has_effort) {
     // Without a measured effort, start as a robot holding itself still would: at gravity.
-    model::Data data(wrapper.core().model());
-    model::update(wrapper.core().model(), data, std::span<const double>(first.position.data(), dof),
+    model::Data data(*resolved->model);
+    model::update(*resolved->model, data, std::span<const double>(first.position.data(), dof),
                   std::span<const double>(first.velocity.data(), dof), model::Quantity::kGravity);
     first.effort = data.gravity;
   }
   wrapper.activate(first);
-  std::vector<double> torque(static_cast<std::size_t>(dof));
-  for (std::size_t i = 0; i < samples.size(); ++i) {
-    const std::string where = inputs_path + ": sample " + std::to_string(i);
-    json& out = outputs[i];
-    if (!samples[i].command.empty()) {
-      Command incoming = parseCommand(samples[i].command, dof, wrapper.lastAccepted(), where);
-      if (!samples[i].command.contains("stamp")) {
-        incoming.stamp_s = static_cast<double>(i) * period_s;
-      }
-      const pipeline::Verdict verdict = wrapper.submit(incoming);
-      if (!verdict.accepted) {
-        out["wrapper_rejected"] = verdict.message;
-      }
-    }
-    const pipeline::CycleStatus status = wrapper.update(samples[i].state, period_s, torque);
-    out["wrapper_torque"] = torque;
-    out["wrapper_state"] = status == pipeline::CycleStatus::kFault ? "fault" : "ok";
-  }
+  SampleHardware hardware(samples);
+  hardware::FreeRunningClock clock;
+  hardware::ControlLoop loop(hardware, wrapper, clock,
+                             {.period_s = period_s, .cycles = samples.size()});
+  SampleRecorder<Command> recorder(wrapper, samples, inputs_path, outputs);
+  loop.setObserver(&recorder);
+  loop.run();
 }
 
 std::vector<double> flatten(const json& value, const std::string& where) {
@@ -260,8 +311,8 @@ std::vector<double> flatten(const json& value, const std::string& where) {
 json runValidation(const ValidateOptions& options) {
   const pipeline::WrapperConfig config =
       controllerConfig(options.robot, options.plugin, options.config_file);
-  const plugin::PluginLibrary probe(config.plugin);  // either kind: the plugin decides
-  const bool cartesian = probe.api().command_kind == COMPLY_COMMAND_CARTESIAN;
+  const auto resolved = pipeline::resolveController(config);  // the plugin decides the kind
+  const bool cartesian = resolved->cartesian();
   const std::vector<Sample> samples = readSamples(options.inputs, config.dof);
 
   json document;
@@ -275,15 +326,15 @@ json runValidation(const ValidateOptions& options) {
     outputs.push_back(json::object());
   }
   if (cartesian) {
-    runLaw<CartesianCommand>(config, samples, options.inputs, outputs);
+    runLaw<CartesianCommand>(*resolved, samples, options.inputs, outputs);
   } else {
-    runLaw<JointCommand>(config, samples, options.inputs, outputs);
+    runLaw<JointCommand>(*resolved, samples, options.inputs, outputs);
   }
   if (options.wrapper) {
     if (cartesian) {
-      runWrapper<CartesianCommand>(config, samples, options.period_s, options.inputs, outputs);
+      runWrapper<CartesianCommand>(resolved, samples, options.period_s, options.inputs, outputs);
     } else {
-      runWrapper<JointCommand>(config, samples, options.period_s, options.inputs, outputs);
+      runWrapper<JointCommand>(resolved, samples, options.period_s, options.inputs, outputs);
     }
   }
   document["samples"] = outputs;

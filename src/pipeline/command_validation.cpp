@@ -115,6 +115,8 @@ std::string_view toString(RejectionReason reason) {
       return "stale_stamp";
     case RejectionReason::kPoseJump:
       return "pose_jump";
+    case RejectionReason::kQueueFull:
+      return "queue_full";
     case RejectionReason::kCount:
       break;
   }

@@ -4,7 +4,7 @@
 
 namespace comply::pipeline {
 
-void frictionTorque(const FrictionConfig& friction, const JointVector& dq,
+void frictionTorque(const FrictionParameters& friction, const JointVector& dq,
                     JointVector& torque) noexcept {
   const auto n = dq.size();
   switch (friction.model) {
@@ -31,8 +31,7 @@ void frictionTorque(const FrictionConfig& friction, const JointVector& dq,
   }
 }
 
-void softLimitTorque(const SoftLimitConfig& limits, const JointVector& lower,
-                     const JointVector& upper, const JointVector& q, const JointVector& dq,
+void softLimitTorque(const SoftLimitParameters& limits, const JointVector& q, const JointVector& dq,
                      JointVector& torque) noexcept {
   const auto n = q.size();
   torque.setZero(n);
@@ -40,8 +39,8 @@ void softLimitTorque(const SoftLimitConfig& limits, const JointVector& lower,
     return;
   }
   for (Eigen::Index i = 0; i < n; ++i) {
-    const double upper_start = upper[i] - limits.margin[i];
-    const double lower_start = lower[i] + limits.margin[i];
+    const double upper_start = limits.upper[i] - limits.margin[i];
+    const double lower_start = limits.lower[i] + limits.margin[i];
     if (q[i] > upper_start) {
       torque[i] = -limits.stiffness[i] * (q[i] - upper_start) - limits.damping[i] * dq[i];
     } else if (q[i] < lower_start) {

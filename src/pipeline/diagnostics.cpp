@@ -21,19 +21,47 @@ std::uint64_t DiagnosticsSnapshot::rejectionsTotal() const {
   return std::accumulate(rejections.begin(), rejections.end(), std::uint64_t{0});
 }
 
-void Diagnostics::setError(const char* prefix, const char* detail) noexcept {
-  // Seqlock writer: odd sequence while writing; the writer is one thread at a time (the cycle, or
-  // a non-RT caller while the cycle is not running).
-  const std::uint32_t sequence = message_sequence_.load(std::memory_order_relaxed);
-  message_sequence_.store(sequence + 1, std::memory_order_relaxed);
+void MessageSlot::write(const char* prefix, const char* detail, std::uint64_t order) noexcept {
+  const std::uint32_t sequence = sequence_.load(std::memory_order_relaxed);
+  sequence_.store(sequence + 1, std::memory_order_relaxed);  // odd: being written
   std::atomic_thread_fence(std::memory_order_release);
-  std::array<char, kMessageCapacity> text{};
+  std::array<char, kCapacity> text{};
   std::snprintf(text.data(), text.size(), "%s%s", prefix, detail);
   for (std::size_t i = 0; i < text.size(); ++i) {
-    message_[i].store(text[i], std::memory_order_relaxed);
+    text_[i].store(text[i], std::memory_order_relaxed);
   }
+  order_.store(order, std::memory_order_relaxed);
   std::atomic_thread_fence(std::memory_order_release);
-  message_sequence_.store(sequence + 2, std::memory_order_relaxed);
+  sequence_.store(sequence + 2, std::memory_order_relaxed);
+}
+
+std::pair<std::string, std::uint64_t> MessageSlot::read() const {
+  std::array<char, kCapacity> copy{};
+  std::uint64_t order = 0;
+  for (;;) {
+    const std::uint32_t before = sequence_.load(std::memory_order_acquire);
+    if (before % 2 != 0) {
+      continue;  // the one writer is mid-write; it never waits, so this ends
+    }
+    for (std::size_t i = 0; i < copy.size(); ++i) {
+      copy[i] = text_[i].load(std::memory_order_relaxed);
+    }
+    order = order_.load(std::memory_order_relaxed);
+    std::atomic_thread_fence(std::memory_order_acquire);
+    if (sequence_.load(std::memory_order_relaxed) == before) {
+      break;
+    }
+  }
+  copy.back() = '\0';
+  return {copy.data(), order};
+}
+
+void Diagnostics::setFault(const char* prefix, const char* detail) noexcept {
+  fault_.write(prefix, detail, events_.fetch_add(1, std::memory_order_relaxed) + 1);
+}
+
+void Diagnostics::setRejection(const char* prefix, const char* detail) noexcept {
+  rejection_.write(prefix, detail, events_.fetch_add(1, std::memory_order_relaxed) + 1);
 }
 
 DiagnosticsSnapshot Diagnostics::snapshot() const {
@@ -48,22 +76,11 @@ DiagnosticsSnapshot Diagnostics::snapshot() const {
   result.effort_limit_hits = effort_limit_hits.load();
   result.faults = faults.load();
   result.watchdog_timeouts = watchdog_timeouts.load();
-  std::array<char, kMessageCapacity> copy{};
-  for (;;) {
-    const std::uint32_t before = message_sequence_.load(std::memory_order_acquire);
-    if (before % 2 != 0) {
-      continue;
-    }
-    for (std::size_t i = 0; i < copy.size(); ++i) {
-      copy[i] = message_[i].load(std::memory_order_relaxed);
-    }
-    std::atomic_thread_fence(std::memory_order_acquire);
-    if (message_sequence_.load(std::memory_order_relaxed) == before) {
-      break;
-    }
-  }
-  copy.back() = '\0';
-  result.last_error = copy.data();
+  auto [fault, fault_order] = fault_.read();
+  auto [rejection, rejection_order] = rejection_.read();
+  result.last_error = fault_order >= rejection_order ? fault : rejection;
+  result.last_fault = std::move(fault);
+  result.last_rejection = std::move(rejection);
   return result;
 }
 

@@ -48,7 +48,7 @@ JointState moving(JointState state, double speed) {
 }
 
 /// The safe holding torque at `state`.
-JointVector holdingTorque(const ExecutionCore& core, const JointState& state) {
+JointVector holdingTorque(const Controller& core, const JointState& state) {
   return gravityAt(core, state.position) - kFaultDamping.cwiseProduct(state.velocity);
 }
 
@@ -58,7 +58,7 @@ void expectActivationRefused(const std::string& fixture, plugin::PluginErrc code
                              const std::string& reason) {
   SCOPED_TRACE(fixture);
   JointWrapper wrapper(fr3Config(fixture));
-  const JointState state = restingAt(wrapper.core(), fr3Home());
+  const JointState state = restingAt(wrapper.controller(), fr3Home());
   try {
     wrapper.activate(state);
     ADD_FAILURE() << "activation accepted a failing law";
@@ -86,8 +86,8 @@ class CartesianLawFault : public ::testing::Test {
       : wrapper(fr3Config(kCartesianImpedancePlugin, ratioRefusingCartesian(rate_limit))) {}
 
   void SetUp() override {
-    ASSERT_EQ(wrapper.core().effortLimit().size(), kFr3Dof);
-    rest = restingAt(wrapper.core(), fr3Home());
+    ASSERT_EQ(wrapper.controller().effortLimit().size(), kFr3Dof);
+    rest = restingAt(wrapper.controller(), fr3Home());
     wrapper.activate(rest);
     ASSERT_EQ(cycle(rest), CycleStatus::kOk);
   }
@@ -107,7 +107,7 @@ TEST_F(CartesianLawFault, FailingStepHoldsTheArmUntilReset) {
   ASSERT_TRUE(wrapper.submit(damping(1.0, DampingMode::kRatio)).accepted);
 
   EXPECT_EQ(cycle(state), CycleStatus::kFault);
-  COMPLY_EXPECT_JOINTS_NEAR(torque.values, holdingTorque(wrapper.core(), state), kTolerance);
+  COMPLY_EXPECT_JOINTS_NEAR(torque.values, holdingTorque(wrapper.controller(), state), kTolerance);
   DiagnosticsSnapshot diagnostics = wrapper.diagnostics();
   EXPECT_EQ(diagnostics.state, WrapperState::kFault);
   EXPECT_EQ(diagnostics.faults, 1U);
@@ -120,7 +120,7 @@ TEST_F(CartesianLawFault, FailingStepHoldsTheArmUntilReset) {
   for (int i = 0; i < 50; ++i) {
     ASSERT_EQ(cycle(state), CycleStatus::kFault) << "cycle " << i;
   }
-  COMPLY_EXPECT_JOINTS_NEAR(torque.values, holdingTorque(wrapper.core(), state), kTolerance);
+  COMPLY_EXPECT_JOINTS_NEAR(torque.values, holdingTorque(wrapper.controller(), state), kTolerance);
   EXPECT_EQ(wrapper.diagnostics().faults, 1U) << "one fault, counted once";
 
   wrapper.reset();
@@ -160,7 +160,7 @@ TEST_F(RateLimitedCartesianLawFault, HoldingTorqueIsRateLimited) {
   ASSERT_TRUE(wrapper.submit(damping(1.0, DampingMode::kRatio)).accepted);
   // Joint 7 damps 7 N m s/rad x 0.5 rad/s = 3.5 N m: a step the rate limit must spread out.
   const JointState state = moving(rest, 0.5);
-  const JointVector target = holdingTorque(wrapper.core(), state);
+  const JointVector target = holdingTorque(wrapper.controller(), state);
   JointVector previous = torque.values;
   const std::uint64_t hits_before = wrapper.diagnostics().rate_limit_hits;
   for (int i = 0; i < 100; ++i) {
@@ -184,7 +184,7 @@ class JointStateFault : public ::testing::Test {
                               std::to_string(kNoRateLimit))) {}
 
   void SetUp() override {
-    good = moving(restingAt(wrapper.core(), fr3Home()), 0.1);
+    good = moving(restingAt(wrapper.controller(), fr3Home()), 0.1);
     broken = good;
     broken.position[3] = kNaN;
     wrapper.activate(good);
@@ -203,7 +203,7 @@ class JointStateFault : public ::testing::Test {
 
 TEST_F(JointStateFault, NanStateHoldsTheArmAtTheLastGoodStateUntilReset) {
   EXPECT_EQ(cycle(broken), CycleStatus::kFault);
-  COMPLY_EXPECT_JOINTS_NEAR(torque.values, holdingTorque(wrapper.core(), good), kTolerance);
+  COMPLY_EXPECT_JOINTS_NEAR(torque.values, holdingTorque(wrapper.controller(), good), kTolerance);
   const DiagnosticsSnapshot diagnostics = wrapper.diagnostics();
   EXPECT_EQ(diagnostics.faults, 1U);
   EXPECT_NE(diagnostics.last_error.find("state: "), std::string::npos) << diagnostics.last_error;
@@ -222,7 +222,7 @@ TEST_F(JointStateFault, ResetIsRefusedWhileTheStateIsStillUnusable) {
   wrapper.reset();
   // The law must not run on the last good state as if it were current.
   EXPECT_EQ(cycle(broken), CycleStatus::kFault);
-  COMPLY_EXPECT_JOINTS_NEAR(torque.values, holdingTorque(wrapper.core(), good), kTolerance);
+  COMPLY_EXPECT_JOINTS_NEAR(torque.values, holdingTorque(wrapper.controller(), good), kTolerance);
   // Refused, not postponed: recovering later needs a reset once the state is good again.
   EXPECT_EQ(cycle(good), CycleStatus::kFault);
   wrapper.reset();

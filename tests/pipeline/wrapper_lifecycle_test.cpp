@@ -63,7 +63,7 @@ using Wrappers = ::testing::Types<JointWrapper, CartesianWrapper>;
 TYPED_TEST_SUITE(WrapperLifecycle, Wrappers, WrapperName);
 
 TYPED_TEST(WrapperLifecycle, UpdateBeforeActivationIsInactiveAndWritesNothing) {
-  const JointState state = restingAt(this->wrapper.core(), this->home);
+  const JointState state = restingAt(this->wrapper.controller(), this->home);
   for (int i = 0; i < 5; ++i) {
     EXPECT_EQ(this->cycle(state), CycleStatus::kInactive);
   }
@@ -81,7 +81,7 @@ TYPED_TEST(WrapperLifecycle, UpdateBeforeActivationIsInactiveAndWritesNothing) {
 TYPED_TEST(WrapperLifecycle, ActivationSeedsTheReferenceFromTheMeasuredState) {
   // Away from home and from zero, so neither the configured nor a default reference would pass.
   const JointVector q = offset(offset(this->home, 0, 0.3), 3, -0.2);
-  const JointState state = restingAt(this->wrapper.core(), q);
+  const JointState state = restingAt(this->wrapper.controller(), q);
   this->wrapper.activate(state);
   EXPECT_EQ(this->wrapper.diagnostics().state, WrapperState::kActive);
 
@@ -94,7 +94,7 @@ TYPED_TEST(WrapperLifecycle, ActivationSeedsTheReferenceFromTheMeasuredState) {
 }
 
 TYPED_TEST(WrapperLifecycle, DeactivationStopsTheOutput) {
-  const JointState state = restingAt(this->wrapper.core(), this->home);
+  const JointState state = restingAt(this->wrapper.controller(), this->home);
   this->wrapper.activate(state);
   ASSERT_EQ(this->cycle(state), CycleStatus::kOk);
 
@@ -106,14 +106,14 @@ TYPED_TEST(WrapperLifecycle, DeactivationStopsTheOutput) {
 }
 
 TYPED_TEST(WrapperLifecycle, ReactivationSeedsAgainAtTheNewState) {
-  const JointState first = restingAt(this->wrapper.core(), this->home);
+  const JointState first = restingAt(this->wrapper.controller(), this->home);
   this->wrapper.activate(first);
   ASSERT_EQ(this->cycle(first), CycleStatus::kOk);
   this->wrapper.deactivate();
 
   // The arm was moved by hand while the controller was inactive.
   const JointVector moved = offset(offset(this->home, 1, 0.2), 5, -0.15);
-  const JointState second = restingAt(this->wrapper.core(), moved);
+  const JointState second = restingAt(this->wrapper.controller(), moved);
   this->wrapper.activate(second);
   ASSERT_EQ(this->cycle(second), CycleStatus::kOk);
   // Pulled back towards the first pose, the law would add hundreds of N m here.
@@ -122,7 +122,7 @@ TYPED_TEST(WrapperLifecycle, ReactivationSeedsAgainAtTheNewState) {
 }
 
 TYPED_TEST(WrapperLifecycle, ActivationRefusesAnUnusableStateAndStaysInactive) {
-  JointState nan_state = restingAt(this->wrapper.core(), this->home);
+  JointState nan_state = restingAt(this->wrapper.controller(), this->home);
   nan_state.velocity[4] = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(this->wrapper.activate(nan_state), std::runtime_error);
 
@@ -130,7 +130,7 @@ TYPED_TEST(WrapperLifecycle, ActivationRefusesAnUnusableStateAndStaysInactive) {
   EXPECT_THROW(this->wrapper.activate(short_state), std::runtime_error);
 
   EXPECT_EQ(this->wrapper.diagnostics().state, WrapperState::kInactive);
-  EXPECT_EQ(this->cycle(restingAt(this->wrapper.core(), this->home)), CycleStatus::kInactive);
+  EXPECT_EQ(this->cycle(restingAt(this->wrapper.controller(), this->home)), CycleStatus::kInactive);
   EXPECT_TRUE(this->torqueUntouched());
 }
 

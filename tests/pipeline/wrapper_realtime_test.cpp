@@ -103,7 +103,7 @@ TEST(RealtimeProbe, SeesTheLocksAndAllocationsOfTheSendersSide) {
   EXPECT_EQ(probe.locks, 1U);
 
   JointWrapper wrapper(fr3Config(kJointImpedancePlugin));
-  const JointState state = restingAt(wrapper.core(), fr3Home());
+  const JointState state = restingAt(wrapper.controller(), fr3Home());
   wrapper.activate(state);
   JointCommand command = JointCommand::zero(kFr3Dof);
   command.stamp_s = 1.0;
@@ -203,7 +203,7 @@ TEST(WrapperRealtime, CartesianUpdateNeitherAllocatesNorLocks) {
     expectRealtimeCycles(wrapper, [&](int cycle) {
       // Pose and twist near the measured TCP; damping alternates between the ratio mode (mass
       // matrix and double diagonalisation) and absolute blocks.
-      const model::Data& measured = wrapper.core().modelData();
+      const model::Data& measured = wrapper.controller().modelData();
       CartesianCommand command = CartesianCommand::zero(kFr3Dof);
       command.stamp_s = cycle * kPeriod;
       command.fields = CommandField::kPosition | CommandField::kVelocity | CommandField::kDamping |

@@ -19,7 +19,7 @@ TEST(WrapperShaping, TorqueRateLimitSpreadsAStepAndCountsEveryClippedCycle) {
   JointWrapper wrapper(fr3Config(kJointImpedancePlugin,
                                  "torque_rate_limit_nm_per_s: " + std::to_string(kRateLimit)));
   const JointVector home = fr3Home();
-  const JointState state = restingAt(wrapper.core(), home);
+  const JointState state = restingAt(wrapper.controller(), home);
   wrapper.activate(state);
   TorqueBuffer torque;
   ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
@@ -50,9 +50,9 @@ TEST(WrapperShaping, TorqueRateLimitSpreadsAStepAndCountsEveryClippedCycle) {
 TEST(WrapperShaping, EffortLimitClipsAndCountsEveryClippedCycle) {
   JointWrapper wrapper(fr3Config(kJointImpedancePlugin,
                                  "torque_rate_limit_nm_per_s: " + std::to_string(kNoRateLimit)));
-  const JointState state = restingAt(wrapper.core(), fr3Home());
+  const JointState state = restingAt(wrapper.controller(), fr3Home());
   wrapper.activate(state);
-  const JointVector& limit = wrapper.core().effortLimit();
+  const JointVector& limit = wrapper.controller().effortLimit();
   TorqueBuffer torque;
 
   JointCommand push = JointCommand::zero(kFr3Dof);

@@ -29,7 +29,7 @@ class SubmitFixture : public ::testing::Test {
       : wrapper(fr3Config(plugin, lines)) {}
 
   void SetUp() override {
-    state = restingAt(wrapper.core(), home);
+    state = restingAt(wrapper.controller(), home);
     wrapper.activate(state);
   }
 
@@ -142,7 +142,7 @@ TEST_F(JointWrapperSubmit, GainsOnlyCommandKeepsTheReference) {
 TEST_F(JointWrapperSubmit, ReactivationKeepsTheGainsInForce) {
   ASSERT_TRUE(wrapper.submit(stiffness(1.0, 300.0)).accepted);
   wrapper.deactivate();
-  state = restingAt(wrapper.core(), offset(home, 1, 0.1));
+  state = restingAt(wrapper.controller(), offset(home, 1, 0.1));
   wrapper.activate(state);
   EXPECT_EQ(wrapper.lastAccepted().stiffness, JointVector(JointVector::Constant(kFr3Dof, 300.0)));
 
@@ -187,7 +187,7 @@ TEST_F(CartesianWrapperSubmit, AcceptedCommandDrivesTheNextCycle) {
   ASSERT_TRUE(wrapper.submit(poseTarget(1.0, {0.02, 0.0, 0.0})).accepted);
 
   // At rest, only the spring acts: tau = J^T K (p_d - p) with the default K = 500 N/m.
-  const Jacobian& jacobian = wrapper.core().modelData().jacobian;
+  const Jacobian& jacobian = wrapper.controller().modelData().jacobian;
   Vector6d wrench = Vector6d::Zero();
   wrench[0] = 500.0 * 0.02;
   const JointVector law = lawTorque();

@@ -34,7 +34,7 @@ JointVector fr3Home() {
   return q;
 }
 
-JointVector gravityAt(const ExecutionCore& core, const JointVector& q) {
+JointVector gravityAt(const Controller& core, const JointVector& q) {
   model::Data data(core.model());
   const std::span<const double> positions(q.data(), static_cast<std::size_t>(q.size()));
   if (model::update(core.model(), data, positions, positions, model::Quantity::kGravity) !=
@@ -45,7 +45,7 @@ JointVector gravityAt(const ExecutionCore& core, const JointVector& q) {
   return data.gravity;
 }
 
-JointState restingAt(const ExecutionCore& core, const JointVector& q) {
+JointState restingAt(const Controller& core, const JointVector& q) {
   JointState state = JointState::zero(static_cast<int>(q.size()));
   state.position = q;
   state.effort = gravityAt(core, q);

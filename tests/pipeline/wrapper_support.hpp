@@ -10,7 +10,7 @@
 
 #include "comply/core/state.hpp"
 #include "comply/pipeline/config.hpp"
-#include "comply/pipeline/execution_core.hpp"
+#include "comply/pipeline/controller.hpp"
 
 namespace comply::pipeline::test {
 
@@ -32,11 +32,11 @@ WrapperConfig fr3Config(const std::string& plugin, const std::string& parameter_
 JointVector fr3Home();
 
 /// Gravity torque g(q) of the core's model.
-JointVector gravityAt(const ExecutionCore& core, const JointVector& q);
+JointVector gravityAt(const Controller& core, const JointVector& q);
 
 /// The arm at rest at `q`, its joints carrying the gravity torque (what a holding arm measures, so
 /// the torque-rate limit starts from there).
-JointState restingAt(const ExecutionCore& core, const JointVector& q);
+JointState restingAt(const Controller& core, const JointVector& q);
 
 /// `q` with `delta` added to joint `joint`.
 JointVector offset(const JointVector& q, int joint, double delta);

@@ -29,7 +29,7 @@ class Watchdog : public ::testing::Test {
       : wrapper(fr3Config(plugin, lines)) {}
 
   void SetUp() override {
-    state = restingAt(wrapper.core(), fr3Home());
+    state = restingAt(wrapper.controller(), fr3Home());
     wrapper.activate(state);
   }
 
@@ -142,7 +142,7 @@ TEST_F(CartesianHold, TimeoutDropsTheTwistReference) {
 TEST(WatchdogReanchor, JointReferenceMovesToTheMeasuredPosition) {
   JointWrapper wrapper(fr3Config(kJointImpedancePlugin, watchdogLines("reanchor")));
   const JointVector home = fr3Home();
-  JointState state = restingAt(wrapper.core(), home);
+  JointState state = restingAt(wrapper.controller(), home);
   wrapper.activate(state);
   TorqueBuffer torque;
   const auto law = [&] {
@@ -159,7 +159,7 @@ TEST(WatchdogReanchor, JointReferenceMovesToTheMeasuredPosition) {
 
   // The arm gets part of the way (an obstacle) and the sender goes quiet.
   const JointVector stuck = offset(home, 0, 0.03);
-  state = restingAt(wrapper.core(), stuck);
+  state = restingAt(wrapper.controller(), stuck);
   EXPECT_NEAR(law()[0], 100.0 * 0.02, kTolerance);
   for (int i = 0; i < 2 * kTimeoutCycles; ++i) {
     law();
@@ -184,7 +184,7 @@ TEST(WatchdogReanchor, CartesianReferenceAndNullspaceTargetMoveToTheMeasuredPose
                 watchdogLines("reanchor",
                               "initial:\n  damping_mode: absolute\n  nullspace_stiffness: 20\n")));
   const JointVector home = fr3Home();
-  JointState state = restingAt(wrapper.core(), home);
+  JointState state = restingAt(wrapper.controller(), home);
   wrapper.activate(state);
   const CartesianCommand seeded = wrapper.lastAccepted();
   TorqueBuffer torque;
@@ -203,7 +203,7 @@ TEST(WatchdogReanchor, CartesianReferenceAndNullspaceTargetMoveToTheMeasuredPose
 
   // Pushed aside, elbow included: both the TCP pose and the joint configuration changed.
   const JointVector pushed = offset(offset(home, 0, 0.04), 2, 0.1);
-  state = restingAt(wrapper.core(), pushed);
+  state = restingAt(wrapper.controller(), pushed);
   for (int i = 0; i < 2 * kTimeoutCycles; ++i) {
     law();
   }
@@ -219,7 +219,7 @@ TEST(WatchdogReanchor, CartesianReferenceAndNullspaceTargetMoveToTheMeasuredPose
   COMPLY_EXPECT_JOINTS_NEAR(law(), JointVector::Zero(kFr3Dof), kTolerance);
 
   const CartesianCommand in_force = wrapper.lastAccepted();
-  EXPECT_TRUE(in_force.position.isApprox(wrapper.core().modelData().tip_position, 1e-15));
+  EXPECT_TRUE(in_force.position.isApprox(wrapper.controller().modelData().tip_position, 1e-15));
   COMPLY_EXPECT_JOINTS_NEAR(in_force.nullspace_position, pushed, 0.0);
 }
 

@@ -10,15 +10,15 @@
 namespace comply {
 
 enum class InputErrc {
-  kCannotRead,     ///< the file does not exist or cannot be read
-  kSyntax,         ///< not valid YAML / JSON
-  kMissingKey,     ///< a required key is absent
-  kUnknownKey,     ///< a key that no option or field has (typo)
-  kWrongType,      ///< a string where a number belongs, a map where a list belongs, ...
-  kWrongSize,      ///< a list with the wrong number of entries
-  kOutOfRange,     ///< a number outside its allowed range (negative gain, NaN, ...)
-  kInvalidValue,   ///< a value of the right type that is not allowed (unknown enum name, ...)
-  kInconsistent,   ///< values that contradict each other or the robot
+  kCannotRead,    ///< the file does not exist or cannot be read
+  kSyntax,        ///< not valid YAML / JSON
+  kMissingKey,    ///< a required key is absent
+  kUnknownKey,    ///< a key that no option or field has (typo)
+  kWrongType,     ///< a string where a number belongs, a map where a list belongs, ...
+  kWrongSize,     ///< a list with the wrong number of entries
+  kOutOfRange,    ///< a number outside its allowed range (negative gain, NaN, ...)
+  kInvalidValue,  ///< a value of the right type that is not allowed (unknown enum name, ...)
+  kInconsistent,  ///< values that contradict each other or the robot
 };
 
 /// Name of a code as it appears in messages ("unknown_key", ...).

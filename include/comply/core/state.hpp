@@ -24,9 +24,9 @@ struct JointState {
 /// The measured configuration a controller last saw: joint positions and the TCP pose in the base
 /// frame. Command validation compares targets with it; references are seeded from it.
 struct MeasuredPose {
-  JointVector position;  ///< q [rad | m]
-  Eigen::Vector3d tcp_position = Eigen::Vector3d::Zero();                ///< base frame [m]
-  Eigen::Quaterniond tcp_orientation = Eigen::Quaterniond::Identity();   ///< base frame
+  JointVector position;                                                 ///< q [rad | m]
+  Eigen::Vector3d tcp_position = Eigen::Vector3d::Zero();               ///< base frame [m]
+  Eigen::Quaterniond tcp_orientation = Eigen::Quaterniond::Identity();  ///< base frame
   bool valid = false;  ///< false until the controller has measured anything
 };
 

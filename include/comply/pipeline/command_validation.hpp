@@ -21,6 +21,7 @@ enum class RejectionReason : std::uint8_t {
   kDofMismatch,        ///< joint vectors of the wrong size
   kStaleStamp,         ///< stamp older than the last accepted command
   kPoseJump,           ///< target too far from the measured pose / joint position
+  kQueueFull,          ///< the cycle has not taken the commands queued before (sender too fast)
   kCount,
 };
 inline constexpr std::size_t kRejectionReasonCount =

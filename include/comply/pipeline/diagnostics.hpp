@@ -1,12 +1,15 @@
 #pragma once
 // Counters the real-time cycle writes and any thread reads. Writers use relaxed atomics (one
-// cycle's counts need no ordering with each other); the last error text is guarded by a sequence
-// counter, so the real-time side never waits for a reader.
+// cycle's counts need no ordering with each other). The last fault (written by the cycle) and the
+// last rejection (written by the intake) each have their own text slot guarded by a sequence
+// counter: every slot has exactly one writer, so the real-time side never waits for anyone and a
+// reader never sees a torn text.
 
 #include <array>
 #include <atomic>
 #include <cstdint>
 #include <string>
+#include <utility>
 
 #include "comply/pipeline/command_validation.hpp"
 
@@ -24,15 +27,30 @@ struct DiagnosticsSnapshot {
   std::uint64_t effort_limit_hits = 0;  ///< joint-cycles clipped by the effort limit
   std::uint64_t faults = 0;
   std::uint64_t watchdog_timeouts = 0;
-  std::string last_error;
+  std::string last_fault;      ///< why the controller last entered FAULT ("" if never)
+  std::string last_rejection;  ///< why the last rejected command was rejected ("" if none)
+  std::string last_error;      ///< the newer of the two
 
   [[nodiscard]] std::uint64_t rejectionsTotal() const;
 };
 
+/// One text written by one thread, read by any: a sequence lock over atomic characters.
+class MessageSlot {
+ public:
+  static constexpr std::size_t kCapacity = 256;
+  /// Single writer; no allocation, no lock. `order` ranks this text against other slots.
+  void write(const char* prefix, const char* detail, std::uint64_t order) noexcept;
+  /// The text and its order (0: never written).
+  [[nodiscard]] std::pair<std::string, std::uint64_t> read() const;
+
+ private:
+  std::atomic<std::uint32_t> sequence_{0};
+  std::atomic<std::uint64_t> order_{0};
+  std::array<std::atomic<char>, kCapacity> text_{};  // atomics: race-free under TSan
+};
+
 class Diagnostics {
  public:
-  static constexpr std::size_t kMessageCapacity = 256;
-
   std::atomic<WrapperState> state{WrapperState::kInactive};
   std::atomic<std::uint64_t> cycles{0};
   std::atomic<std::uint64_t> commands_accepted{0};
@@ -42,13 +60,16 @@ class Diagnostics {
   std::atomic<std::uint64_t> faults{0};
   std::atomic<std::uint64_t> watchdog_timeouts{0};
 
-  /// Records the last error; callable from the real-time thread (no allocation, no lock).
-  void setError(const char* prefix, const char* detail) noexcept;
+  /// The cycle's side (or the lifecycle's, between cycles): why FAULT was entered.
+  void setFault(const char* prefix, const char* detail) noexcept;
+  /// The intake's side (one sender at a time): why a command was rejected.
+  void setRejection(const char* prefix, const char* detail) noexcept;
   [[nodiscard]] DiagnosticsSnapshot snapshot() const;
 
  private:
-  std::atomic<std::uint32_t> message_sequence_{0};
-  std::array<std::atomic<char>, kMessageCapacity> message_{};  // atomics: race-free under TSan
+  std::atomic<std::uint64_t> events_{0};
+  MessageSlot fault_;
+  MessageSlot rejection_;
 };
 
 }  // namespace comply::pipeline

@@ -1,102 +1,80 @@
 #pragma once
-// The joint and Cartesian wrappers: command intake (any non-real-time thread), lifecycle, and the
-// real-time update around the execution core.
+// The joint and Cartesian wrappers: command intake (any non-real-time thread) around the control
+// cycle (controller.hpp), which is the same for both.
 //
-//   configure  WrapperT wrapper(loadWrapperConfig("controller.yaml"));
+//   resolve    auto resolved = resolveController(loadWrapperConfig("controller.yaml"));
+//   configure  CartesianWrapper wrapper(resolved);
 //   activate   wrapper.activate(measured_state);            // seeds the reference from the state
 //   command    wrapper.submit(command);                      // any thread, returns a Verdict
 //   cycle      wrapper.update(state, period_s, torque);      // real-time thread
 //   deactivate wrapper.deactivate();
 //
-// Commands are validated and merged off the real-time thread and handed over through a triple
-// buffer, so update() never blocks on a sender and never sees a half-written command. Lifecycle
-// calls (activate, deactivate) run between cycles, as in ros2_control: never concurrently with
-// update(). submit(), reset() and diagnostics() may run at any time.
+// A submitted command is validated here, against the pose the cycle last published, and queued
+// with its field mask; the cycle merges it into the command in force. So update() never blocks on
+// a sender, never sees a half-written command, and a rejected command changes nothing. Lifecycle
+// calls (activate, deactivate) run between cycles, as in ros2_control. submit(), reset(),
+// lastAccepted() and diagnostics() may run at any time.
 
-#include <atomic>
 #include <memory>
 #include <mutex>
 #include <span>
-#include <type_traits>
 
 #include "comply/core/commands.hpp"
 #include "comply/core/state.hpp"
-#include "comply/core/triple_buffer.hpp"
+#include "comply/hardware/control_loop.hpp"
 #include "comply/pipeline/command_validation.hpp"
 #include "comply/pipeline/config.hpp"
+#include "comply/pipeline/controller.hpp"
 #include "comply/pipeline/diagnostics.hpp"
-#include "comply/pipeline/execution_core.hpp"
-#include "comply/plugin/abi.h"
+#include "comply/pipeline/resolved_controller.hpp"
 
 namespace comply::pipeline {
 
 template <typename Command>
-struct CommandTraits;
-template <>
-struct CommandTraits<JointCommand> {
-  using Bus = comply_joint_command;
-  static constexpr int kKind = COMPLY_COMMAND_JOINT;
-};
-template <>
-struct CommandTraits<CartesianCommand> {
-  using Bus = comply_cartesian_command;
-  static constexpr int kKind = COMPLY_COMMAND_CARTESIAN;
-};
-
-/// Sets the motion reference of `command` to the measured pose with zero velocity (and, for a
-/// Cartesian command, the nullspace target to the measured joints): the reference a freshly
-/// activated or re-anchored controller holds, so nothing moves.
-void seedReference(JointCommand& command, const MeasuredPose& pose);
-void seedReference(CartesianCommand& command, const MeasuredPose& pose);
-
-template <typename Command>
-class Wrapper {
+class Wrapper final : public hardware::CycleController {
  public:
-  using Bus = typename CommandTraits<Command>::Bus;
-
-  /// configure. Throws with a clear message (see ExecutionCore).
+  /// configure from an already resolved controller. Throws plugin::PluginError
+  /// (kWrongCommandKind) when the plugin takes the other kind of command.
+  explicit Wrapper(std::shared_ptr<const ResolvedController> resolved);
+  /// configure: resolves `config` first (see resolveController()).
   explicit Wrapper(const WrapperConfig& config);
 
-  /// Non-RT. Seeds the reference (pose or joint target, nullspace target) from `state`, keeps the
-  /// gains and task frame in force, checks the law with a trial step and starts the cycle.
-  /// Reactivation after deactivate() seeds again. Throws on a bad state or a failing plugin.
-  void activate(const JointState& state);
+  /// Non-RT. See Controller::activate(). Reactivation after deactivate() seeds again.
+  void activate(const JointState& state) { controller_.activate(state); }
   /// Non-RT. update() outputs nothing until the next activate().
-  void deactivate() noexcept;
-  /// Non-RT. Leaves FAULT; the law runs again from the next cycle with a usable state. Ignored
-  /// outside FAULT (see ExecutionCore::requestReset()).
-  void reset() noexcept { core_.requestReset(); }
+  void deactivate() noexcept { controller_.deactivate(); }
+  /// Any thread. Asks the cycle to leave FAULT; the law runs again from the next cycle with a
+  /// usable state. Ignored outside FAULT.
+  void reset();
 
-  /// Any non-RT thread. Validates `command` against the last accepted one and the measured pose,
-  /// merges the fields it sets, and hands the result to the cycle. A rejected command changes
+  /// Any non-RT thread. Validates `command` (the field groups it sets) against the measured pose
+  /// and the last accepted stamp and queues it for the next cycle. A rejected command changes
   /// nothing; the reason is counted in the diagnostics.
   Verdict submit(const Command& command);
-  /// The command in force (last accepted, merged), as the senders' side sees it.
+  /// The command in force (merged) as of the last cycle.
   [[nodiscard]] Command lastAccepted() const;
 
   /// Real-time. One control cycle at measured `state`; writes dof() torques [N m] to `torque`
   /// unless inactive. Never allocates, locks or throws.
-  CycleStatus update(const JointState& state, double period_s, std::span<double> torque) noexcept;
+  CycleStatus update(const JointState& state, double period_s, std::span<double> torque) noexcept {
+    return controller_.update(state, period_s, torque);
+  }
+  /// The same for a control loop (hardware/control_loop.hpp): true when a torque was written.
+  bool cycle(const JointState& state, double period_s, std::span<double> torque) noexcept override {
+    return update(state, period_s, torque) != CycleStatus::kInactive;
+  }
 
-  [[nodiscard]] DiagnosticsSnapshot diagnostics() const { return core_.diagnostics().snapshot(); }
-  [[nodiscard]] int dof() const noexcept { return core_.dof(); }
-  [[nodiscard]] ExecutionCore& core() noexcept { return core_; }
-  [[nodiscard]] const ExecutionCore& core() const noexcept { return core_; }
-  /// The bus the cycle currently runs on (real-time thread only, e.g. for benchmarks).
-  [[nodiscard]] const Bus& activeCommand() const noexcept { return active_; }
+  [[nodiscard]] DiagnosticsSnapshot diagnostics() const {
+    return controller_.diagnostics().snapshot();
+  }
+  [[nodiscard]] int dof() const noexcept override { return controller_.dof(); }
+  [[nodiscard]] Controller& controller() noexcept { return controller_; }
+  [[nodiscard]] const Controller& controller() const noexcept { return controller_; }
 
  private:
-  void reanchor() noexcept;
-
-  ExecutionCore core_;
+  mutable Controller controller_;    // mutable: reading its published values is a reader's update
   mutable std::mutex intake_mutex_;  // senders and lifecycle calls only, never the cycle
-  Command merged_;
-  TripleBuffer<Bus> bus_;
-  // Reference the cycle re-anchored to on a watchdog timeout, for the senders' merged command.
-  TripleBuffer<MeasuredPose> anchor_;
-  // Set by the cycle when a "hold" timeout stopped the motion reference, for the same reason.
-  std::atomic<bool> motion_stopped_{false};
-  Bus active_{};  // real-time thread's copy
+  double last_stamp_s_ = 0.0;
 };
 
 using JointWrapper = Wrapper<JointCommand>;

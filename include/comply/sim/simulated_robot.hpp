@@ -24,7 +24,7 @@
 
 #include "comply/core/commands.hpp"
 #include "comply/model/robot_description.hpp"
-#include "comply/pipeline/hardware_interface.hpp"
+#include "comply/hardware/hardware_interface.hpp"
 #include "comply/sim/scene_xml.hpp"
 
 namespace comply::sim {
@@ -44,7 +44,7 @@ struct PlantOptions {
   std::uint64_t seed = 0;
 };
 
-class SimulatedRobot final : public pipeline::HardwareInterface {
+class SimulatedRobot final : public hardware::HardwareInterface {
  public:
   /// Builds and loads the scene, starts at the robot's home pose at rest. Throws SimError (scene,
   /// MuJoCo) or model::ModelError (URDF) with a clear message.

@@ -1,13 +1,13 @@
 #pragma once
-// What a wrapper's control loop talks to: a real arm's driver, a simulator or a test double. One
-// cycle is read() -> Wrapper::update() -> write(); both calls are real-time (no allocation, no
-// locks a non-real-time thread holds, no throw).
+// What a control loop talks to: a real arm's driver, a simulator or a test double. One cycle is
+// read() -> controller -> write(); both calls are real-time (no allocation, no locks a
+// non-real-time thread holds, no throw).
 
 #include <span>
 
 #include "comply/core/state.hpp"
 
-namespace comply::pipeline {
+namespace comply::hardware {
 
 class HardwareInterface {
  public:
@@ -22,4 +22,4 @@ class HardwareInterface {
   virtual bool write(std::span<const double> torque) noexcept = 0;
 };
 
-}  // namespace comply::pipeline
+}  // namespace comply::hardware

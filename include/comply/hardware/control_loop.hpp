@@ -1,0 +1,106 @@
+#pragma once
+// The control loop every host runs: wait for the cycle's start on a clock, read the hardware, run
+// the controller, write the torque, tell an observer. The simulator, `comply bench`,
+// `comply validate --wrapper` and live hosts differ only in the hardware, the clock and the
+// observer they plug in.
+//
+//   ControlLoop loop(hardware, controller, clock, {.period_s = 0.001, .cycles = 5000});
+//   loop.setObserver(&logger);
+//   const LoopStats stats = loop.run();
+//
+// run() itself never allocates; whether a cycle is real-time safe depends on what is plugged in
+// (the wrappers and SimulatedRobot are; an observer that logs to a vector is not).
+
+#include <atomic>
+#include <cstdint>
+#include <span>
+
+#include "comply/core/capacity.hpp"
+#include "comply/core/state.hpp"
+#include "comply/hardware/hardware_interface.hpp"
+#include "comply/hardware/loop_clock.hpp"
+
+namespace comply::hardware {
+
+/// The controller as the loop sees it (the joint and Cartesian wrappers implement it).
+class CycleController {
+ public:
+  virtual ~CycleController() = default;
+  [[nodiscard]] virtual int dof() const noexcept = 0;
+  /// One control cycle at `state`; true when `torque` (dof() long) holds a command to write.
+  virtual bool cycle(const JointState& state, double period_s,
+                     std::span<double> torque) noexcept = 0;
+};
+
+/// What the observer learns about one cycle.
+struct CycleRecord {
+  std::uint64_t index = 0;      ///< 0 for the first cycle
+  double time_s = 0.0;          ///< scheduled start on the loop's clock [s]
+  double period_s = 0.0;        ///< nominal period [s]
+  double start_lateness_s = 0;  ///< actual start minus scheduled start on the clock [s]
+  double compute_s = 0.0;       ///< wall time from read() to the end of write() [s]
+  double controller_s = 0.0;    ///< wall time of the controller's cycle alone [s]
+  bool wrote = false;           ///< a torque was written
+  bool overrun = false;         ///< compute_s exceeded the period
+  const JointState* state = nullptr;
+  std::span<const double> torque;
+};
+
+class LoopObserver {
+ public:
+  virtual ~LoopObserver() = default;
+  /// Before the cycle at `time_s` reads the hardware: command sources submit here.
+  virtual void beforeCycle(std::uint64_t /*index*/, double /*time_s*/) {}
+  /// After the cycle wrote its torque.
+  virtual void afterCycle(const CycleRecord& /*record*/) {}
+};
+
+struct LoopOptions {
+  double period_s = 0.001;   ///< [s], > 0
+  std::uint64_t cycles = 0;  ///< run() stops after this many; 0: until stop()
+};
+
+struct LoopStats {
+  std::uint64_t cycles = 0;
+  std::uint64_t overruns = 0;        ///< cycles whose compute time exceeded the period
+  std::uint64_t read_failures = 0;   ///< cycles skipped: the hardware had no valid measurement
+  std::uint64_t write_failures = 0;  ///< torques the hardware refused
+  double max_compute_s = 0.0;
+};
+
+class ControlLoop {
+ public:
+  /// Throws std::invalid_argument when the hardware and the controller disagree on the number of
+  /// joints or the period is not a positive finite number.
+  ControlLoop(HardwareInterface& hardware, CycleController& controller, LoopClock& clock,
+              LoopOptions options);
+
+  void setObserver(LoopObserver* observer) noexcept { observer_ = observer; }
+
+  /// Runs cycles until options.cycles are done or stop() is called.
+  LoopStats run();
+  /// One cycle at the next scheduled time; false when stop() was called.
+  bool runOnce();
+  /// Any thread: run() returns after the current cycle.
+  void stop() noexcept { stop_requested_.store(true, std::memory_order_relaxed); }
+
+  [[nodiscard]] const LoopStats& stats() const noexcept { return stats_; }
+  [[nodiscard]] double period() const noexcept { return options_.period_s; }
+  /// Scheduled time of the next cycle on the loop's clock [s].
+  [[nodiscard]] double nextCycleTime() const noexcept;
+
+ private:
+  HardwareInterface& hardware_;
+  CycleController& controller_;
+  LoopClock& clock_;
+  LoopOptions options_;
+  LoopObserver* observer_ = nullptr;
+  std::atomic<bool> stop_requested_{false};
+  LoopStats stats_;
+  std::uint64_t next_index_ = 0;
+  double start_s_ = 0.0;
+  JointState state_;
+  JointVector torque_;
+};
+
+}  // namespace comply::hardware

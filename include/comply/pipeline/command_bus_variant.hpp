@@ -1,0 +1,39 @@
+#pragma once
+// The command in force on the real-time side: the plugin bus of the controller's command kind.
+// Held as a variant so one cycle serves joint and Cartesian control; the reference rules (merge a
+// partial command, seed from the measured pose, stop the motion) are the schema's, per bus type.
+
+#include <variant>
+
+#include "comply/core/commands.hpp"
+#include "comply/core/state.hpp"
+#include "comply/plugin/abi.h"
+
+namespace comply::pipeline {
+
+using CommandBus = std::variant<comply_joint_command, comply_cartesian_command>;
+
+/// The bus type of a C++ command type.
+template <typename Command>
+struct BusOf;
+template <>
+struct BusOf<JointCommand> {
+  using type = comply_joint_command;
+};
+template <>
+struct BusOf<CartesianCommand> {
+  using type = comply_cartesian_command;
+};
+
+/// An empty bus of `command_kind` (COMPLY_COMMAND_*).
+CommandBus emptyBus(int command_kind) noexcept;
+/// The bus as the plugin's step() takes it.
+const void* busPointer(const CommandBus& bus) noexcept;
+/// Copies the field groups `incoming` sets into `active` (same kind; otherwise nothing).
+void mergeInto(CommandBus& active, const CommandBus& incoming) noexcept;
+/// Motion reference = the measured pose at rest (and the nullspace target = measured joints).
+void seedFromMeasured(CommandBus& bus, const MeasuredPose& measured) noexcept;
+/// Rates (velocity, twist, acceleration) to zero: the reference holds where it is.
+void stopMotion(CommandBus& bus) noexcept;
+
+}  // namespace comply::pipeline

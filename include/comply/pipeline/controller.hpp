@@ -1,0 +1,151 @@
+#pragma once
+// The control cycle. One function, update(), is the whole cycle as a table of contents over
+// stages that live in their own files (cycle_*.cpp):
+//
+//   measure      state check, model update, plugin input, publish the measured pose
+//   commands     take every command the intake queued, merged by field mask
+//   watchdog     no command for command_timeout_s: hold (stop the motion) or re-anchor
+//   law          plugin step, finite check                      -> FAULT on failure
+//   compensate   gravity, payload, friction, soft joint limits
+//   shape        low-pass, finite check, torque-rate limit, effort limit
+//   write        torque out; in FAULT a safe holding torque instead
+//
+// Threads. update() runs on the real-time thread. The lifecycle (activate, deactivate) runs
+// between cycles, never concurrently with update(), as in ros2_control. Exactly two things cross
+// between the real-time thread and the others, both without a lock on the real-time side:
+//   - the intake queue (commands and operator requests such as reset), pushed by the wrapper's
+//     intake under its own mutex, drained by the cycle;
+//   - the published measurement (measured pose every cycle, the command in force when it
+//     changes), written by the cycle and read by the intake.
+// Diagnostics counters are atomics the cycle writes and anyone reads.
+
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include "comply/core/spsc_queue.hpp"
+#include "comply/core/state.hpp"
+#include "comply/core/triple_buffer.hpp"
+#include "comply/model/data.hpp"
+#include "comply/model/update.hpp"
+#include "comply/pipeline/command_bus_variant.hpp"
+#include "comply/pipeline/diagnostics.hpp"
+#include "comply/pipeline/resolved_controller.hpp"
+#include "comply/pipeline/torque_shaper.hpp"
+#include "comply/plugin/loader.hpp"
+
+namespace comply::pipeline {
+
+enum class CycleStatus {
+  kOk,
+  kInactive,  ///< not activated: torque output untouched
+  kFault,     ///< in FAULT: the safe holding torque was written
+};
+
+/// One entry of the intake queue.
+struct IntakeMessage {
+  enum class Type : std::uint8_t { kCommand, kReset };
+  Type type = Type::kCommand;
+  CommandBus command;  ///< kCommand: a validated command with its field mask
+};
+
+class Controller {
+ public:
+  /// Commands the intake may queue between two cycles before it refuses more.
+  static constexpr std::size_t kIntakeCapacity = 64;
+
+  /// configure: creates the plugin instance and the model scratch data. Throws
+  /// plugin::PluginError when the plugin refuses its parameters.
+  explicit Controller(std::shared_ptr<const ResolvedController> resolved);
+  ~Controller();
+  Controller(const Controller&) = delete;
+  Controller& operator=(const Controller&) = delete;
+
+  // ---- lifecycle (non-real-time, between cycles) ----------------------------------------------
+  /// Checks `state`, takes what the intake queued, seeds the motion reference from the measured
+  /// pose (gains and task frame stay), runs the plugin's activate() and a trial step, and starts
+  /// the cycle. Throws std::runtime_error on a bad state, plugin::PluginError if the law refuses;
+  /// the controller then stays inactive.
+  void activate(const JointState& state);
+  /// update() outputs nothing until the next activate().
+  void deactivate() noexcept;
+
+  // ---- real-time: no allocation, no locks, no exceptions --------------------------------------
+  /// One control cycle at measured `state`; writes dof() torques [N m] to `torque` unless
+  /// inactive.
+  CycleStatus update(const JointState& state, double period_s, std::span<double> torque) noexcept;
+
+  // ---- intake side (one producer at a time: the wrapper serialises its senders) ---------------
+  /// Queues a message for the next cycle; false when the queue is full.
+  bool enqueue(const IntakeMessage& message) noexcept { return intake_.push(message); }
+  /// The pose the cycle last measured (reader: the intake, under its mutex).
+  [[nodiscard]] MeasuredPose measuredPose();
+  /// The command in force as of the last cycle (same reader).
+  [[nodiscard]] const CommandBus& commandInForce();
+
+  // ---- read-only -------------------------------------------------------------------------------
+  [[nodiscard]] const ResolvedController& resolved() const noexcept { return *resolved_; }
+  [[nodiscard]] int dof() const noexcept { return dof_; }
+  [[nodiscard]] const model::Model& model() const noexcept { return *resolved_->model; }
+  [[nodiscard]] const model::Data& modelData() const noexcept { return data_; }
+  [[nodiscard]] model::Quantity modelQuantities() const noexcept { return quantities_; }
+  [[nodiscard]] const plugin::PluginInstance& plugin() const noexcept { return *plugin_; }
+  [[nodiscard]] Diagnostics& diagnostics() noexcept { return diagnostics_; }
+  [[nodiscard]] const Diagnostics& diagnostics() const noexcept { return diagnostics_; }
+  [[nodiscard]] const JointVector& effortLimit() const noexcept {
+    return resolved_->parameters.effort_limit;
+  }
+  /// The plugin input of the last cycle and the bus in force (real-time thread; benchmarks).
+  [[nodiscard]] const comply_input& input() const noexcept { return input_; }
+  [[nodiscard]] const CommandBus& activeCommand() const noexcept { return active_; }
+  /// Benchmark protocol, the law's cost alone: measureOnly() runs the measure stage at `state`
+  /// (false on a bad state), stepPluginOnly() the plugin step on its input and the command in
+  /// force, without shaping or any other state change.
+  bool measureOnly(const JointState& state) noexcept { return measure(state); }
+  comply_status stepPluginOnly(comply_output& output) noexcept;
+
+ private:
+  // Stages, one file each (cycle_*.cpp).
+  bool measure(const JointState& state) noexcept;
+  void takeCommands() noexcept;
+  void watchdog() noexcept;
+  bool runLaw() noexcept;
+  void compensate() noexcept;
+  bool shape() noexcept;
+  CycleStatus write(std::span<double> torque) noexcept;
+  CycleStatus hold(std::span<double> torque) noexcept;
+
+  void advanceClock(double period_s) noexcept;
+  void enterFault(const char* prefix, const char* detail) noexcept;
+  [[nodiscard]] MeasuredPose currentPose() const noexcept;
+  void publishInForce() noexcept;
+
+  std::shared_ptr<const ResolvedController> resolved_;
+  const CycleParameters& parameters_;
+  int dof_ = 0;
+  model::Data data_;
+  std::unique_ptr<plugin::PluginInstance> plugin_;
+  model::Quantity quantities_ = model::Quantity::kNone;
+  TorqueShaper shaper_;
+  Diagnostics diagnostics_;
+
+  SpscQueue<IntakeMessage> intake_{kIntakeCapacity};
+  TripleBuffer<MeasuredPose> measured_;
+  TripleBuffer<CommandBus> in_force_;
+
+  // Cycle state: real-time thread only (or the lifecycle, between cycles).
+  CommandBus active_;
+  bool reset_pending_ = false;
+  JointState state_;
+  bool state_usable_ = false;  // this cycle's state passed measure(), so input_ is current
+  comply_input input_{};
+  comply_output output_{};
+  JointVector torque_;
+  JointVector scratch_;
+  double period_s_ = 0.001;
+  double time_s_ = 0.0;
+  double last_command_time_s_ = 0.0;
+  bool watchdog_expired_ = false;
+};
+
+}  // namespace comply::pipeline

@@ -1,0 +1,78 @@
+#pragma once
+// A controller resolved once, before any cycle: the robot description, its model, the plugin
+// library and the kind of command it takes, and every configuration number compiled into the
+// fixed-size form the cycle reads. The simulator, the benchmarks, `comply validate` and every
+// live host build one and share it; nothing is looked up, parsed or loaded again later.
+//
+//   auto resolved = resolveController(loadWrapperConfig("controller.yaml"));
+//   CartesianWrapper wrapper(resolved);   // or JointWrapper, per resolved->cartesian()
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "comply/core/capacity.hpp"
+#include "comply/core/commands.hpp"
+#include "comply/model/data.hpp"
+#include "comply/model/model.hpp"
+#include "comply/model/robot_description.hpp"
+#include "comply/pipeline/config.hpp"
+#include "comply/plugin/loader.hpp"
+
+namespace comply::pipeline {
+
+/// Friction compensation with one entry per joint (see compensation.hpp for the formulas).
+struct FrictionParameters {
+  FrictionModel model = FrictionModel::kNone;
+  JointVector phi1, phi2, phi3;      ///< sigmoid [N m], [s/rad], [rad/s]
+  JointVector viscous, coulomb;      ///< [N m s/rad], [N m]
+  double smoothing_velocity = 0.01;  ///< [rad/s]
+};
+
+/// Soft joint limits with one entry per joint, the URDF limits included.
+struct SoftLimitParameters {
+  bool enabled = true;
+  JointVector lower, upper;  ///< URDF position limits [rad | m]
+  JointVector margin;        ///< [rad | m] inside each limit where the spring starts
+  JointVector stiffness;     ///< [N m/rad]
+  JointVector damping;       ///< [N m s/rad]
+};
+
+/// Everything the cycle reads, each per-joint value sized to the controller's dof.
+struct CycleParameters {
+  double command_timeout_s = 0.5;
+  TimeoutBehavior timeout_behavior = TimeoutBehavior::kHold;
+  bool gravity_compensation = true;
+  bool payload_compensation = false;
+  model::Payload payload;
+  FrictionParameters friction;
+  SoftLimitParameters soft_limits;
+  double filter_alpha = 1.0;
+  JointVector torque_rate_limit;  ///< [N m/s]
+  JointVector effort_limit;       ///< [N m]
+  JointVector fault_damping;      ///< [N m s/rad]
+};
+
+struct ResolvedController {
+  WrapperConfig config;  ///< as read (names, plugin parameters, initial command)
+  model::RobotDescription robot;
+  std::shared_ptr<const model::Model> model;  ///< immutable: one serves many controllers
+  std::shared_ptr<const plugin::PluginLibrary> plugin;
+  int command_kind = 0;  ///< COMPLY_COMMAND_JOINT or COMPLY_COMMAND_CARTESIAN (the plugin's)
+  int dof = 0;
+  CycleParameters parameters;
+
+  [[nodiscard]] bool cartesian() const noexcept;
+};
+
+/// Loads the robot, builds the model, opens the plugin and compiles the parameters. Throws
+/// model::ModelError, plugin::PluginError or InputError naming the option at fault.
+std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig& config);
+
+/// Friction parameters sized to `dof` from a configuration.
+FrictionParameters compileFriction(const FrictionConfig& friction, int dof);
+/// Soft-limit parameters from a configuration and the URDF limits.
+SoftLimitParameters compileSoftLimits(const SoftLimitConfig& soft_limits, const JointVector& lower,
+                                      const JointVector& upper);
+
+}  // namespace comply::pipeline

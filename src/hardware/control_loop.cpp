@@ -1,0 +1,87 @@
+#include "comply/hardware/control_loop.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace comply::hardware {
+namespace {
+
+using SteadyClock = std::chrono::steady_clock;
+
+double secondsBetween(SteadyClock::time_point from, SteadyClock::time_point to) {
+  return std::chrono::duration<double>(to - from).count();
+}
+
+}  // namespace
+
+ControlLoop::ControlLoop(HardwareInterface& hardware, CycleController& controller, LoopClock& clock,
+                         LoopOptions options)
+    : hardware_(hardware), controller_(controller), clock_(clock), options_(options) {
+  if (!(std::isfinite(options_.period_s) && options_.period_s > 0.0)) {
+    throw std::invalid_argument("control loop: the period must be a positive number of seconds");
+  }
+  const int dof = controller_.dof();
+  if (hardware_.dof() != dof || dof < 1 || dof > kMaxDof) {
+    throw std::invalid_argument("control loop: the controller has " + std::to_string(dof) +
+                                " joints, the hardware " + std::to_string(hardware_.dof()));
+  }
+  state_ = JointState::zero(dof);
+  torque_.setZero(dof);
+  start_s_ = clock_.now();
+}
+
+double ControlLoop::nextCycleTime() const noexcept {
+  return start_s_ + static_cast<double>(next_index_) * options_.period_s;
+}
+
+bool ControlLoop::runOnce() {
+  if (stop_requested_.load(std::memory_order_relaxed)) {
+    return false;
+  }
+  const double scheduled_s = nextCycleTime();
+  clock_.waitUntil(scheduled_s);
+  const double started_s = clock_.now();
+  if (observer_ != nullptr) {
+    observer_->beforeCycle(next_index_, scheduled_s - start_s_);
+  }
+
+  CycleRecord record;
+  record.index = next_index_++;
+  record.time_s = scheduled_s - start_s_;
+  record.period_s = options_.period_s;
+  record.start_lateness_s = started_s - scheduled_s;
+  const auto compute_start = SteadyClock::now();
+  if (hardware_.read(state_)) {
+    const std::span<double> torque(torque_.data(), static_cast<std::size_t>(torque_.size()));
+    const auto controller_start = SteadyClock::now();
+    record.wrote = controller_.cycle(state_, options_.period_s, torque);
+    record.controller_s = secondsBetween(controller_start, SteadyClock::now());
+    if (record.wrote && !hardware_.write(torque)) {
+      ++stats_.write_failures;
+    }
+  } else {
+    ++stats_.read_failures;
+  }
+  record.compute_s = secondsBetween(compute_start, SteadyClock::now());
+  record.overrun = record.compute_s > options_.period_s;
+  record.state = &state_;
+  record.torque = std::span<const double>(torque_.data(), static_cast<std::size_t>(torque_.size()));
+
+  ++stats_.cycles;
+  stats_.overruns += record.overrun ? 1 : 0;
+  stats_.max_compute_s = std::max(stats_.max_compute_s, record.compute_s);
+  if (observer_ != nullptr) {
+    observer_->afterCycle(record);
+  }
+  return true;
+}
+
+LoopStats ControlLoop::run() {
+  while ((options_.cycles == 0 || stats_.cycles < options_.cycles) && runOnce()) {
+  }
+  return stats_;
+}
+
+}  // namespace comply::hardware

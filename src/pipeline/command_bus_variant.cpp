@@ -1,0 +1,37 @@
+#include "comply/pipeline/command_bus_variant.hpp"
+
+#include "comply/schema/command_bus.hpp"
+
+namespace comply::pipeline {
+
+CommandBus emptyBus(int command_kind) noexcept {
+  if (command_kind == COMPLY_COMMAND_CARTESIAN) {
+    return comply_cartesian_command{};
+  }
+  return comply_joint_command{};
+}
+
+const void* busPointer(const CommandBus& bus) noexcept {
+  return std::visit([](const auto& typed) -> const void* { return &typed; }, bus);
+}
+
+void mergeInto(CommandBus& active, const CommandBus& incoming) noexcept {
+  std::visit(
+      [&incoming](auto& into) {
+        using Bus = std::decay_t<decltype(into)>;
+        if (const Bus* from = std::get_if<Bus>(&incoming)) {
+          schema::mergeBus(into, *from);
+        }
+      },
+      active);
+}
+
+void seedFromMeasured(CommandBus& bus, const MeasuredPose& measured) noexcept {
+  std::visit([&measured](auto& typed) { schema::seedReference(typed, measured); }, bus);
+}
+
+void stopMotion(CommandBus& bus) noexcept {
+  std::visit([](auto& typed) { schema::stopMotion(typed); }, bus);
+}
+
+}  // namespace comply::pipeline

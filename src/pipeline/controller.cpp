@@ -1,0 +1,145 @@
+#include "comply/pipeline/controller.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "comply/pipeline/command_bus.hpp"
+#include "comply/pipeline/command_validation.hpp"
+#include "comply/pipeline/plugin_input.hpp"
+
+namespace comply::pipeline {
+namespace {
+
+using model::Quantity;
+
+CommandBus initialBus(const ResolvedController& resolved) {
+  CommandBus bus = resolved.cartesian()
+                       ? CommandBus(toBus(resolved.config.initial_cartesian, resolved.dof))
+                       : CommandBus(toBus(resolved.config.initial_joint, resolved.dof));
+  std::visit([](auto& typed) { typed.fields = static_cast<std::uint32_t>(CommandField::kAll); },
+             bus);
+  return bus;
+}
+
+bool usable(const JointState& state, int dof) {
+  return state.position.size() == dof && state.velocity.size() == dof &&
+         state.effort.size() == dof && state.position.allFinite() && state.velocity.allFinite();
+}
+
+}  // namespace
+
+Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
+    : resolved_(std::move(resolved)),
+      parameters_(resolved_->parameters),
+      dof_(resolved_->dof),
+      data_(*resolved_->model),
+      shaper_(ShapingLimits{parameters_.filter_alpha, parameters_.torque_rate_limit,
+                            parameters_.effort_limit}),
+      measured_(MeasuredPose{}),
+      in_force_(emptyBus(resolved_->command_kind)),
+      active_(initialBus(*resolved_)) {
+  data_.payload = parameters_.payload;
+  plugin_ = std::make_unique<plugin::PluginInstance>(resolved_->plugin, dof_,
+                                                     resolved_->config.plugin_parameters);
+  // The pose is always computed (validation and re-anchoring need it) and gravity too (the FAULT
+  // state holds the arm against it even when gravity compensation is off).
+  quantities_ = quantitiesFor(plugin_->requiredQuantities()) | Quantity::kPose | Quantity::kGravity;
+  if (parameters_.payload_compensation) {
+    quantities_ = quantities_ | Quantity::kPayloadGravity;
+  }
+  state_ = JointState::zero(dof_);
+  torque_.setZero(dof_);
+  scratch_.setZero(dof_);
+  input_.dof = dof_;
+}
+
+Controller::~Controller() = default;
+
+void Controller::activate(const JointState& state) {
+  deactivate();
+  if (!usable(state, dof_)) {
+    throw std::runtime_error(resolved_->config.name +
+                             ": activation needs a finite joint state with " +
+                             std::to_string(dof_) + " positions, velocities and efforts");
+  }
+  const std::span<const double> q(state.position.data(), static_cast<std::size_t>(dof_));
+  const std::span<const double> dq(state.velocity.data(), static_cast<std::size_t>(dof_));
+  if (model::update(*resolved_->model, data_, q, dq, quantities_) != model::UpdateStatus::kOk) {
+    throw std::runtime_error(resolved_->config.name +
+                             ": the model could not be evaluated at this state");
+  }
+  state_ = state;
+  time_s_ = 0.0;
+  fillPluginInput(state_, data_, quantities_, time_s_, period_s_, input_);
+
+  // Commands sent while inactive apply; then the motion reference starts where the arm is.
+  CommandBus seeded = active_;
+  for (const IntakeMessage* message = intake_.front(); message != nullptr;
+       message = intake_.front()) {
+    if (message->type == IntakeMessage::Type::kCommand) {
+      mergeInto(seeded, message->command);
+    }
+    intake_.pop();
+  }
+  seedFromMeasured(seeded, currentPose());
+  if (plugin_->activate(input_) != COMPLY_OK) {
+    throw plugin::PluginError(plugin::PluginErrc::kTrialStepFailed,
+                              plugin_->library().path().string() + ": activate() failed");
+  }
+  plugin_->trialStep(input_, busPointer(seeded));  // throws before anything changes
+  active_ = seeded;
+  // Start the rate limit from what the joints carry now, so the first torque does not jump.
+  shaper_.reset(state_.effort.allFinite() ? state_.effort : data_.gravity.head(dof_));
+  last_command_time_s_ = 0.0;
+  watchdog_expired_ = false;
+  reset_pending_ = false;
+  state_usable_ = true;
+  measured_.publishFromSoleWriter(currentPose());  // the cycle is not running during activation
+  publishInForce();
+  diagnostics_.state.store(WrapperState::kActive);
+}
+
+void Controller::deactivate() noexcept {
+  diagnostics_.state.store(WrapperState::kInactive);
+}
+
+MeasuredPose Controller::measuredPose() {
+  measured_.update();
+  return measured_.read();
+}
+
+const CommandBus& Controller::commandInForce() {
+  in_force_.update();
+  return in_force_.read();
+}
+
+comply_status Controller::stepPluginOnly(comply_output& output) noexcept {
+  return plugin_->step(input_, busPointer(active_), output);
+}
+
+void Controller::advanceClock(double period_s) noexcept {
+  diagnostics_.cycles.fetch_add(1, std::memory_order_relaxed);
+  if (std::isfinite(period_s) && period_s > 0.0) {
+    period_s_ = period_s;  // else the last good one: a glitch in the host's clock is not a fault
+  }
+  time_s_ += period_s_;
+}
+
+void Controller::enterFault(const char* prefix, const char* detail) noexcept {
+  if (diagnostics_.state.load(std::memory_order_relaxed) != WrapperState::kFault) {
+    diagnostics_.faults.fetch_add(1, std::memory_order_relaxed);
+    diagnostics_.setFault(prefix, detail);
+  }
+  diagnostics_.state.store(WrapperState::kFault, std::memory_order_relaxed);
+}
+
+MeasuredPose Controller::currentPose() const noexcept {
+  return measuredPoseFrom(state_.position, data_);
+}
+
+void Controller::publishInForce() noexcept {
+  in_force_.publishFromSoleWriter(active_);
+}
+
+}  // namespace comply::pipeline

@@ -1,0 +1,30 @@
+// Stage "measure": the joint state is checked, the model computes what the plugin asked for (and
+// the pose and gravity, which validation and the safe state need), the plugin input is filled and
+// the measured pose is published for the intake's validation.
+
+#include "comply/pipeline/command_validation.hpp"
+#include "comply/pipeline/controller.hpp"
+#include "comply/pipeline/plugin_input.hpp"
+
+namespace comply::pipeline {
+
+bool Controller::measure(const JointState& state) noexcept {
+  const bool sized =
+      state.position.size() == dof_ && state.velocity.size() == dof_ && state.effort.size() == dof_;
+  if (!sized || !state.position.allFinite() || !state.velocity.allFinite()) {
+    enterFault("state: ", "joint state of the wrong size or with NaN/inf position or velocity");
+    return false;
+  }
+  const std::span<const double> q(state.position.data(), static_cast<std::size_t>(dof_));
+  const std::span<const double> dq(state.velocity.data(), static_cast<std::size_t>(dof_));
+  if (model::update(*resolved_->model, data_, q, dq, quantities_) != model::UpdateStatus::kOk) {
+    enterFault("model: ", "update failed");
+    return false;
+  }
+  state_ = state;
+  fillPluginInput(state_, data_, quantities_, time_s_, period_s_, input_);
+  measured_.publishFromSoleWriter(currentPose());
+  return true;
+}
+
+}  // namespace comply::pipeline

@@ -1,0 +1,63 @@
+// Stages "compensate", "shape" and "write", and the safe state "hold": what is added to the law's
+// torque, how the sum is shaped for the motors, and what goes out in FAULT.
+
+#include "comply/pipeline/compensation.hpp"
+#include "comply/pipeline/controller.hpp"
+
+namespace comply::pipeline {
+
+void Controller::compensate() noexcept {
+  if (parameters_.gravity_compensation) {
+    torque_ += data_.gravity.head(dof_);
+  }
+  if (parameters_.payload_compensation) {
+    torque_ += data_.payload_gravity.head(dof_);
+  }
+  if (parameters_.friction.model != FrictionModel::kNone) {
+    frictionTorque(parameters_.friction, state_.velocity, scratch_);
+    torque_ += scratch_;
+  }
+  if (parameters_.soft_limits.enabled) {
+    softLimitTorque(parameters_.soft_limits, state_.position, state_.velocity, scratch_);
+    torque_ += scratch_;
+  }
+}
+
+bool Controller::shape() noexcept {
+  const ShapingResult shaped = shaper_.apply(torque_, period_s_);
+  if (!shaped.finite) {
+    enterFault("shaping: ", "non-finite torque after compensation and filtering");
+    return false;
+  }
+  diagnostics_.rate_limit_hits.fetch_add(shaped.rate_limited, std::memory_order_relaxed);
+  diagnostics_.effort_limit_hits.fetch_add(shaped.effort_limited, std::memory_order_relaxed);
+  return true;
+}
+
+CycleStatus Controller::write(std::span<double> torque) noexcept {
+  for (int i = 0; i < dof_; ++i) {
+    torque[i] = torque_[i];
+  }
+  return CycleStatus::kOk;
+}
+
+CycleStatus Controller::hold(std::span<double> torque) noexcept {
+  // Hold the arm against gravity (and the payload) and damp every joint: the arm comes to rest
+  // where it is, without a reference that may be the cause of the fault. The state is the last
+  // usable one when this cycle's was not.
+  for (int i = 0; i < dof_; ++i) {
+    torque_[i] = data_.gravity[i] - parameters_.fault_damping[i] * state_.velocity[i];
+  }
+  if (parameters_.payload_compensation) {
+    torque_ += data_.payload_gravity.head(dof_);
+  }
+  const ShapingResult shaped = shaper_.apply(torque_, period_s_, /*filter=*/false);
+  diagnostics_.rate_limit_hits.fetch_add(shaped.rate_limited, std::memory_order_relaxed);
+  diagnostics_.effort_limit_hits.fetch_add(shaped.effort_limited, std::memory_order_relaxed);
+  for (int i = 0; i < dof_ && i < static_cast<int>(torque.size()); ++i) {
+    torque[i] = torque_[i];
+  }
+  return CycleStatus::kFault;
+}
+
+}  // namespace comply::pipeline

@@ -1,0 +1,103 @@
+#include <stdexcept>
+#include <string>
+
+#include "comply/core/input_error.hpp"
+#include "comply/pipeline/resolved_controller.hpp"
+
+namespace comply::pipeline {
+namespace {
+
+JointVector toJointVector(const std::vector<double>& values, int dof, double fallback = 0.0) {
+  JointVector result = JointVector::Constant(dof, fallback);
+  for (int i = 0; i < dof && i < static_cast<int>(values.size()); ++i) {
+    result[i] = values[static_cast<std::size_t>(i)];
+  }
+  return result;
+}
+
+JointVector effortLimits(const WrapperConfig& config, const model::Model& model) {
+  JointVector limit(config.dof);
+  for (int i = 0; i < config.dof; ++i) {
+    limit[i] = config.effort_limit.empty() ? model.limits(i).effort
+                                           : config.effort_limit[static_cast<std::size_t>(i)];
+    if (!(limit[i] > 0.0)) {
+      throw InputError(InputErrc::kInconsistent, config.name, "effort_limit_nm",
+                       "joint '" + config.joints[static_cast<std::size_t>(i)] +
+                           "' has no effort limit in the URDF; set effort_limit_nm");
+    }
+  }
+  return limit;
+}
+
+}  // namespace
+
+bool ResolvedController::cartesian() const noexcept {
+  return command_kind == COMPLY_COMMAND_CARTESIAN;
+}
+
+FrictionParameters compileFriction(const FrictionConfig& friction, int dof) {
+  FrictionParameters compiled;
+  compiled.model = friction.model;
+  compiled.phi1 = toJointVector(friction.phi1, dof);
+  compiled.phi2 = toJointVector(friction.phi2, dof);
+  compiled.phi3 = toJointVector(friction.phi3, dof);
+  compiled.viscous = toJointVector(friction.viscous, dof);
+  compiled.coulomb = toJointVector(friction.coulomb, dof);
+  compiled.smoothing_velocity = friction.smoothing_velocity;
+  return compiled;
+}
+
+SoftLimitParameters compileSoftLimits(const SoftLimitConfig& soft_limits, const JointVector& lower,
+                                      const JointVector& upper) {
+  const auto dof = static_cast<int>(lower.size());
+  SoftLimitParameters compiled;
+  compiled.enabled = soft_limits.enabled;
+  compiled.lower = lower;
+  compiled.upper = upper;
+  compiled.margin = toJointVector(soft_limits.margin, dof);
+  compiled.stiffness = toJointVector(soft_limits.stiffness, dof);
+  compiled.damping = toJointVector(soft_limits.damping, dof);
+  return compiled;
+}
+
+std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig& config) {
+  auto resolved = std::make_shared<ResolvedController>();
+  resolved->config = config;
+  resolved->robot = model::loadRobotDescription(config.robot);
+  model::ModelOptions options = resolved->robot.modelOptions(config.tip_frame);
+  options.joint_names = config.joints;
+  options.base_frame = config.base_frame;
+  resolved->model = std::make_shared<const model::Model>(
+      model::Model::fromUrdfFile(resolved->robot.urdf_path, options));
+  const model::Model& model = *resolved->model;
+  resolved->dof = model.dof();
+  if (resolved->dof != config.dof) {
+    throw std::runtime_error(config.name + ": the model has " + std::to_string(resolved->dof) +
+                             " joints but the configuration lists " + std::to_string(config.dof));
+  }
+  resolved->plugin = std::make_shared<const plugin::PluginLibrary>(config.plugin);
+  resolved->command_kind = resolved->plugin->api().command_kind;
+
+  const int dof = resolved->dof;
+  JointVector lower(dof);
+  JointVector upper(dof);
+  for (int i = 0; i < dof; ++i) {
+    lower[i] = model.limits(i).lower;
+    upper[i] = model.limits(i).upper;
+  }
+  CycleParameters& parameters = resolved->parameters;
+  parameters.command_timeout_s = config.command_timeout_s;
+  parameters.timeout_behavior = config.timeout_behavior;
+  parameters.gravity_compensation = config.gravity_compensation;
+  parameters.payload_compensation = config.payload_compensation;
+  parameters.payload = config.payload;
+  parameters.friction = compileFriction(config.friction, dof);
+  parameters.soft_limits = compileSoftLimits(config.soft_limits, lower, upper);
+  parameters.filter_alpha = config.filter_alpha;
+  parameters.torque_rate_limit = toJointVector(config.torque_rate_limit, dof);
+  parameters.effort_limit = effortLimits(config, model);
+  parameters.fault_damping = toJointVector(config.fault_damping, dof);
+  return resolved;
+}
+
+}  // namespace comply::pipeline
