@@ -265,7 +265,8 @@ std::vector<ConnectorMatingRow> runConnectorMating(const ConnectorMatingOptions&
       run.snapshots = options.pictures;
       run.progress = options.progress;
       run.plant_friction_scale = options.plant_friction_scale;
-      run.cartesian_source = [&command](double t) { return command(t); };
+      run.cartesian_source = std::make_shared<task::FunctionSource<CartesianCommand>>(
+          [&command](double t, const MeasuredPose&) { return command(t); });
       const SimResult result = runSimulation(run);
       rows.push_back(
           evaluate(trial, result.log, command, options.axial_force_limit_n, folder / "trace.csv"));

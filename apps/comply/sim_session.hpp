@@ -3,7 +3,7 @@
 // driven by a task file, logged every cycle. Used by `comply sim`, the experiments and the tests.
 
 #include <filesystem>
-#include <functional>
+#include <memory>
 #include <iosfwd>
 #include <limits>
 #include <string>
@@ -12,6 +12,7 @@
 #include "comply/core/commands.hpp"
 #include "comply/pipeline/config.hpp"
 #include "comply/sim/simulated_robot.hpp"
+#include "comply/task/command_source.hpp"
 #include "task_file.hpp"
 
 namespace comply::app {
@@ -29,10 +30,9 @@ struct SimRunOptions {
   bool plant_joint_dynamics = true;   ///< robot.yaml joint_dynamics in the plant
   double plant_friction_scale = 1.0;  ///< multiplies the plant's Coulomb friction
   std::ostream* progress = nullptr;   ///< progress bar and warnings; nullptr: silent
-  /// Cartesian controllers only: when set, the command sent at each command period (e.g. a
-  /// task::PathCommand stream) in place of the task's waypoints, which then only give the time
-  /// the settle time counts from.
-  std::function<CartesianCommand(double t)> cartesian_source;
+  /// Cartesian controllers only: when set, the command source (e.g. a task::PathCommand or an
+  /// experiment's stream) asked before every cycle, in place of the task's waypoints.
+  std::shared_ptr<task::CartesianSource> cartesian_source;
 };
 
 /// Every control cycle, as the controller saw and commanded it. Poses in the base frame.
@@ -95,6 +95,12 @@ std::vector<Eigen::Vector3d> averagedContactForce(const SimLog& log, std::size_t
 
 /// Writes the log as CSV (one row per cycle; columns named in the header).
 void writeLogCsv(const SimLog& log, const std::filesystem::path& file);
+
+/// Final errors and settle time (counted from `end_of_motion_s`) from the log.
+void summarizeLog(const SimLog& log, double end_of_motion_s, SimSummary& summary);
+
+/// Keeps `message` in the summary's notes (the first few) and shows it on `progress`.
+void addMessage(SimSummary& summary, const std::string& message, std::ostream* progress);
 
 /// Prints the summary for a human.
 void printSummary(const SimSummary& summary, std::ostream& out);

@@ -319,7 +319,8 @@ std::vector<SurfaceFollowingRow> runSurfaceFollowing(const SurfaceFollowingOptio
     run.out_dir = folder;
     run.snapshots = options.pictures;
     run.progress = options.progress;
-    run.cartesian_source = [&command](double t) { return command(t); };
+    run.cartesian_source = std::make_shared<task::FunctionSource<CartesianCommand>>(
+          [&command](double t, const MeasuredPose&) { return command(t); });
     const SimResult result = runSimulation(run);
     if (result.summary.faults > 0) {
       throw std::runtime_error("surface-following " + condition.name +

@@ -81,6 +81,12 @@ Command Wrapper<Command>::lastAccepted() const {
   return schema::fromBus(std::get<Bus>(controller_.commandInForce()));
 }
 
+template <typename Command>
+MeasuredPose Wrapper<Command>::measuredPose() const {
+  const std::lock_guard<std::mutex> lock(intake_mutex_);
+  return controller_.measuredPose();
+}
+
 template class Wrapper<JointCommand>;
 template class Wrapper<CartesianCommand>;
 

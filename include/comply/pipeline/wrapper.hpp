@@ -53,6 +53,8 @@ class Wrapper final : public hardware::CycleController {
   Verdict submit(const Command& command);
   /// The command in force (merged) as of the last cycle.
   [[nodiscard]] Command lastAccepted() const;
+  /// The pose the cycle last measured (what commands are validated against).
+  [[nodiscard]] MeasuredPose measuredPose() const;
 
   /// Real-time. One control cycle at measured `state`; writes dof() torques [N m] to `torque`
   /// unless inactive. Never allocates, locks or throws.

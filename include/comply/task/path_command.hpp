@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "comply/core/commands.hpp"
+#include "comply/task/command_source.hpp"
 #include "comply/task/path.hpp"
 
 namespace comply::task {
@@ -41,9 +42,18 @@ struct PathCommandOptions {
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< TCP orientation held
 };
 
-class PathCommand {
+class PathCommand final : public CartesianSource {
  public:
   PathCommand(Path path, PathCommandOptions options);
+
+  /// CommandSource: commandAt(t, number of measured joints), every call.
+  std::optional<CartesianCommand> next(double t_s, const MeasuredPose& measured) override {
+    return commandAt(t_s, static_cast<int>(measured.position.size()));
+  }
+  /// When the reference reaches the path's end [s].
+  [[nodiscard]] double motionEndTime() const override {
+    return options_.start_time_s + path_.length() / options_.speed_m_per_s;
+  }
 
   /// The command at time `t` [s]: before start_time_s the path's start, after the end its end
   /// (zero twist). Sets position, velocity, stiffness, damping and task-frame fields.
