@@ -13,10 +13,8 @@
 
 #include "bench_command.hpp"
 #include "comply/model/robot_description.hpp"
-#include "connector_mating_experiment.hpp"
-#include "cross_platform_experiment.hpp"
+#include "experiment_commands.hpp"
 #include "sim_command.hpp"
-#include "surface_following_experiment.hpp"
 #include "validate_command.hpp"
 
 int main(int argc, char** argv) {
@@ -80,60 +78,7 @@ int main(int argc, char** argv) {
   sim_command->add_flag("--view", sim.view, "open an interactive window (needs a display)");
   sim_command->add_flag("--no-plot{false}", sim.plot, "skip the matplotlib plot");
 
-  CLI::App* experiment_command =
-      app.add_subcommand("experiment", "reproduce an experiment of the evaluation");
-  experiment_command->require_subcommand(1);
-  comply::app::CrossPlatformOptions cross_platform;
-  CLI::App* cross_platform_command = experiment_command->add_subcommand(
-      "cross-platform", "one plugin, one command, four robots, one target");
-  cross_platform_command->add_option("--out", cross_platform.out_dir, "output folder")
-      ->capture_default_str();
-  cross_platform_command
-      ->add_option("--duration", cross_platform.duration_s,
-                   "simulated seconds per robot (default: the task's)")
-      ->check(CLI::PositiveNumber);
-  cross_platform_command->add_option("--robots", cross_platform.robots, "robots to run")
-      ->capture_default_str();
-
-  comply::app::SurfaceFollowingOptions surface;
-  CLI::App* surface_command = experiment_command->add_subcommand(
-      "surface-following", "probe along a curved fixture: fixed-frame vs task-aligned gains");
-  surface_command->add_option("--out", surface.out_dir, "output folder")->capture_default_str();
-  surface_command->add_option("--speed", surface.speed_m_per_s, "traverse speed [m/s]")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  surface_command
-      ->add_option("--path-fraction", surface.path_fraction, "traverse only this share of the path")
-      ->capture_default_str()
-      ->check(CLI::Range(0.05, 1.0));
-
-  comply::app::ConnectorMatingOptions mating;
-  CLI::App* mating_command = experiment_command->add_subcommand(
-      "connector-mating", "peg into a tilted socket: TCP-fixed vs task-aligned compliance");
-  mating_command->add_option("--out", mating.out_dir, "output folder")->capture_default_str();
-  mating_command->add_option("--offsets", mating.offsets_deg, "angular offsets [deg]")
-      ->capture_default_str();
-  mating_command
-      ->add_option("--force-limit", mating.axial_force_limit_n,
-                   "axial force that ends a trial before seating [N]")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  mating_command
-      ->add_option("--conditions", mating.conditions,
-                   "where the insertion gains are expressed: tcp_fixed (commanded TCP), "
-                   "tcp_measured (measured TCP), task_aligned (socket)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"tcp_fixed", "tcp_measured", "task_aligned"}));
-  mating_command
-      ->add_option("--rotational-stiffness", mating.rotational_stiffness_nm_per_rad,
-                   "rotational stiffness during insertion [N m/rad]")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  mating_command
-      ->add_option("--plant-friction-scale", mating.plant_friction_scale,
-                   "ablation: multiplies the simulated arm's joint Coulomb friction")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+  const comply::experiments::Commands experiments = comply::experiments::addCommands(app);
 
   CLI11_PARSE(app, argc, argv);
   try {
@@ -143,14 +88,8 @@ int main(int argc, char** argv) {
     if (sim_command->parsed()) {
       return comply::app::simCommand(sim, std::cout, std::cerr);
     }
-    if (mating_command->parsed()) {
-      return comply::app::connectorMatingCommand(mating, std::cout, std::cerr);
-    }
-    if (surface_command->parsed()) {
-      return comply::app::surfaceFollowingCommand(surface, std::cout, std::cerr);
-    }
-    if (cross_platform_command->parsed()) {
-      return comply::app::crossPlatformCommand(cross_platform, std::cout, std::cerr);
+    if (experiments.parsed()) {
+      return experiments.run(std::cout, std::cerr);
     }
     return comply::app::validateCommand(validate, std::cout, std::cerr);
   } catch (const std::exception& error) {

@@ -32,7 +32,7 @@ struct SimRunOptions {
   std::ostream* progress = nullptr;   ///< progress bar and warnings; nullptr: silent
   /// Cartesian controllers only: when set, the command source (e.g. a task::PathCommand or an
   /// experiment's stream) asked before every cycle, in place of the task's waypoints.
-  std::shared_ptr<task::CartesianSource> cartesian_source;
+  task::CartesianSource* cartesian_source = nullptr;  ///< not owned; outlives the run
 };
 
 /// Every control cycle, as the controller saw and commanded it. Poses in the base frame.

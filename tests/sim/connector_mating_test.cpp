@@ -11,24 +11,25 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "connector_mating_experiment.hpp"
+#include "connector_mating/connector_mating_experiment.hpp"
 #include "sim_support.hpp"
 
 namespace comply::testing {
 namespace {
 
 TEST(ConnectorMating, SeatsAtOneDegreeInBothConditionsAndTheBaselineFailsAtSix) {
-  app::ConnectorMatingOptions options;
+  experiments::ConnectorMatingOptions options;
   options.out_dir = std::filesystem::temp_directory_path() / "comply_connector_mating_test";
   std::filesystem::remove_all(options.out_dir);
   options.offsets_deg = {1.0, 6.0};
   options.pictures = false;
   std::ostringstream progress;
   options.progress = &progress;
-  const std::vector<app::ConnectorMatingRow> rows = app::runConnectorMating(options);
+  const std::vector<experiments::ConnectorMatingRow> rows =
+      experiments::runConnectorMating(options);
   ASSERT_EQ(rows.size(), 4U);
   for (int i = 0; i < 2; ++i) {
-    const app::ConnectorMatingRow& row = rows[i];
+    const experiments::ConnectorMatingRow& row = rows[i];
     SCOPED_TRACE(row.condition);
     EXPECT_EQ(row.offset_deg, 1.0);
     EXPECT_TRUE(row.seated);
@@ -37,7 +38,7 @@ TEST(ConnectorMating, SeatsAtOneDegreeInBothConditionsAndTheBaselineFailsAtSix) 
     EXPECT_LT(row.depth_mm, 21.0);  // on the seat, not through it
     EXPECT_LT(row.peak_axial_force_n, options.axial_force_limit_n);
   }
-  const app::ConnectorMatingRow& baseline_six = rows[2];
+  const experiments::ConnectorMatingRow& baseline_six = rows[2];
   ASSERT_EQ(baseline_six.condition, "tcp_fixed");
   EXPECT_EQ(baseline_six.offset_deg, 6.0);
   EXPECT_FALSE(baseline_six.seated);

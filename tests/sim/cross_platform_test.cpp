@@ -9,22 +9,22 @@
 #include <sstream>
 
 #include "comply/sim/image.hpp"
-#include "cross_platform_experiment.hpp"
+#include "cross_platform/cross_platform_experiment.hpp"
 #include "sim_support.hpp"
 
 namespace comply::testing {
 namespace {
 
 TEST(CrossPlatform, EveryRobotReachesTheCommonTargetAndThePicturesShowThem) {
-  app::CrossPlatformOptions options;
+  experiments::CrossPlatformOptions options;
   options.out_dir = std::filesystem::temp_directory_path() / "comply_cross_platform_test";
   std::filesystem::remove_all(options.out_dir);
   std::ostringstream progress;
   options.progress = &progress;
-  const std::vector<app::CrossPlatformRow> rows = app::runCrossPlatform(options);
+  const std::vector<experiments::CrossPlatformRow> rows = experiments::runCrossPlatform(options);
 
   ASSERT_EQ(rows.size(), 4U);
-  for (const app::CrossPlatformRow& row : rows) {
+  for (const experiments::CrossPlatformRow& row : rows) {
     SCOPED_TRACE(row.robot);
     EXPECT_EQ(row.dof, row.robot == "ur5e" ? 6 : 7);
     EXPECT_LT(row.position_error_mm, 2.0);

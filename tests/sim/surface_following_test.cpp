@@ -10,24 +10,25 @@
 #include <sstream>
 
 #include "sim_support.hpp"
-#include "surface_following_experiment.hpp"
+#include "surface_following/surface_following_experiment.hpp"
 
 namespace comply::testing {
 namespace {
 
 TEST(SurfaceFollowing, TaskAlignedBeatsFixedFrameAndTheDisplacedRunKeepsContact) {
-  app::SurfaceFollowingOptions options;
+  experiments::SurfaceFollowingOptions options;
   options.out_dir = std::filesystem::temp_directory_path() / "comply_surface_following_test";
   std::filesystem::remove_all(options.out_dir);
   options.path_fraction = 0.5;
   options.pictures = false;
   std::ostringstream progress;
   options.progress = &progress;
-  const std::vector<app::SurfaceFollowingRow> rows = app::runSurfaceFollowing(options);
+  const std::vector<experiments::SurfaceFollowingRow> rows =
+      experiments::runSurfaceFollowing(options);
   ASSERT_EQ(rows.size(), 3U);
-  const app::SurfaceFollowingRow& fixed = rows[0];
-  const app::SurfaceFollowingRow& aligned = rows[1];
-  const app::SurfaceFollowingRow& displaced = rows[2];
+  const experiments::SurfaceFollowingRow& fixed = rows[0];
+  const experiments::SurfaceFollowingRow& aligned = rows[1];
+  const experiments::SurfaceFollowingRow& displaced = rows[2];
   ASSERT_EQ(fixed.condition, "fixed_frame");
   ASSERT_EQ(aligned.condition, "task_aligned");
   ASSERT_EQ(displaced.condition, "task_aligned_displaced");
@@ -35,7 +36,7 @@ TEST(SurfaceFollowing, TaskAlignedBeatsFixedFrameAndTheDisplacedRunKeepsContact)
   EXPECT_LT(aligned.lateral_rms_mm, fixed.lateral_rms_mm);
   EXPECT_LT(aligned.tangential_rms_mm, fixed.tangential_rms_mm);
   EXPECT_LT(aligned.total_rmse_mm, fixed.total_rmse_mm);
-  for (const app::SurfaceFollowingRow& row : rows) {
+  for (const experiments::SurfaceFollowingRow& row : rows) {
     SCOPED_TRACE(row.condition);
     EXPECT_EQ(row.contact_fraction, 1.0);
     EXPECT_GT(row.force_mean_n, 2.5);

@@ -4,12 +4,15 @@
 // URDF, joint/frame names (robot.yaml) differ. Writes a table, results.json and one PNG with the
 // robots side by side.
 
+#include <cstdint>
 #include <filesystem>
 #include <iosfwd>
 #include <string>
 #include <vector>
 
-namespace comply::app {
+#include "results_writer.hpp"
+
+namespace comply::experiments {
 
 struct CrossPlatformOptions {
   std::vector<std::string> robots{"fr3", "iiwa14", "rizon4s", "ur5e"};
@@ -36,9 +39,10 @@ struct CrossPlatformRow {
 /// <out>/table.md and <out>/cross_platform.png.
 std::vector<CrossPlatformRow> runCrossPlatform(const CrossPlatformOptions& options);
 
-void printCrossPlatformTable(const std::vector<CrossPlatformRow>& rows, std::ostream& out);
+/// The rows as table.md and results.json show them.
+ResultsTable crossPlatformTable(const std::vector<CrossPlatformRow>& rows);
 
 /// The command line: returns 0 when every robot reached the target within 2 mm / 1 deg, else 1.
 int crossPlatformCommand(const CrossPlatformOptions& options, std::ostream& out, std::ostream& err);
 
-}  // namespace comply::app
+}  // namespace comply::experiments

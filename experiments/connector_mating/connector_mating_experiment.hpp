@@ -11,7 +11,9 @@
 #include <string>
 #include <vector>
 
-namespace comply::app {
+#include "results_writer.hpp"
+
+namespace comply::experiments {
 
 struct ConnectorMatingOptions {
   std::filesystem::path out_dir = "out/connector-mating";
@@ -39,9 +41,15 @@ struct ConnectorMatingRow {
   double seat_time_s = 0.0;         ///< NaN when not seated
 };
 
+/// Runs every condition at every offset; writes <out>/<condition>_<offset>deg/ (log, snapshots,
+/// trace), <out>/peg.xml, <out>/results.json and <out>/table.md.
 std::vector<ConnectorMatingRow> runConnectorMating(const ConnectorMatingOptions& options);
-void printConnectorMatingTable(const std::vector<ConnectorMatingRow>& rows, std::ostream& out);
+
+/// The rows as table.md and results.json show them.
+ResultsTable connectorMatingTable(const std::vector<ConnectorMatingRow>& rows);
+
+/// The command line: returns 0 (failed trials are results, not errors).
 int connectorMatingCommand(const ConnectorMatingOptions& options, std::ostream& out,
                            std::ostream& err);
 
-}  // namespace comply::app
+}  // namespace comply::experiments

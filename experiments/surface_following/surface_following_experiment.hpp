@@ -13,7 +13,9 @@
 #include <string>
 #include <vector>
 
-namespace comply::app {
+#include "results_writer.hpp"
+
+namespace comply::experiments {
 
 struct SurfaceFollowingOptions {
   std::filesystem::path out_dir = "out/surface-following";
@@ -35,9 +37,15 @@ struct SurfaceFollowingRow {
   double contact_fraction = 0.0;  ///< share of traverse cycles with contact force > 0.5 N
 };
 
+/// Runs the three conditions; writes <out>/<condition>/ (log, snapshots, trace), <out>/fixture.csv,
+/// <out>/results.json, <out>/table.md and, with pictures, <out>/surface_following.png.
 std::vector<SurfaceFollowingRow> runSurfaceFollowing(const SurfaceFollowingOptions& options);
-void printSurfaceFollowingTable(const std::vector<SurfaceFollowingRow>& rows, std::ostream& out);
+
+/// The rows as table.md (one column per condition, beside the paper's) and results.json show them.
+ResultsTable surfaceFollowingTable(const std::vector<SurfaceFollowingRow>& rows);
+
+/// The command line: returns 0 (a controller fault throws).
 int surfaceFollowingCommand(const SurfaceFollowingOptions& options, std::ostream& out,
                             std::ostream& err);
 
-}  // namespace comply::app
+}  // namespace comply::experiments

@@ -1,0 +1,121 @@
+#include "cross_platform/cross_platform_experiment.hpp"
+
+#include <iostream>
+#include <ostream>
+
+#include "comply/sim/image.hpp"
+#include "controller_setup.hpp"
+#include "sim_session.hpp"
+#include "source_dir.hpp"
+#include "task_file.hpp"
+
+namespace comply::experiments {
+namespace {
+
+constexpr double kReachedPositionMm = 2.0;
+constexpr double kReachedOrientationDeg = 1.0;
+
+bool reached(const CrossPlatformRow& row) {
+  return row.position_error_mm <= kReachedPositionMm &&
+         row.orientation_error_deg <= kReachedOrientationDeg && row.faults == 0;
+}
+
+/// One robot's run into <out>/<robot>/, with its plot when pictures are on.
+app::SimResult runRobot(const std::string& robot, const CrossPlatformOptions& options,
+                        const std::filesystem::path& config_file,
+                        const std::filesystem::path& task_file) {
+  app::SimRunOptions run;
+  run.config = app::simControllerConfig(robot, "", config_file.string());
+  run.task = app::loadTaskFile(task_file, true, run.config.dof,
+                               run.config.validation.quaternion_tolerance);
+  run.duration_s = options.duration_s;
+  run.out_dir = options.out_dir / robot;
+  run.snapshots = options.pictures;
+  run.progress = options.progress;
+  app::SimResult result = app::runSimulation(run);
+  if (options.pictures) {
+    runPlotScript("plot_sim_log.py",
+                  {(run.out_dir / "log.csv").string(), (run.out_dir / "plot.png").string()},
+                  options.progress != nullptr ? *options.progress : std::cerr);
+  }
+  return result;
+}
+
+CrossPlatformRow rowOf(const app::SimSummary& summary) {
+  return CrossPlatformRow{summary.robot,
+                          summary.dof,
+                          summary.final_position_error_mm,
+                          summary.final_orientation_error_deg,
+                          summary.settle_time_s,
+                          summary.max_torque_nm,
+                          summary.rejections,
+                          summary.faults};
+}
+
+}  // namespace
+
+std::vector<CrossPlatformRow> runCrossPlatform(const CrossPlatformOptions& options) {
+  const std::filesystem::path config_file =
+      sourcePathOr(options.config_file, "config/sim/cartesian_impedance.yaml");
+  const std::filesystem::path task_file =
+      sourcePathOr(options.task_file, "examples/sim/cross_platform.yaml");
+  std::filesystem::create_directories(options.out_dir);
+
+  std::vector<CrossPlatformRow> rows;
+  std::vector<sim::Image> pictures;
+  for (const std::string& robot : options.robots) {
+    const app::SimResult result = runRobot(robot, options, config_file, task_file);
+    const std::filesystem::path end_picture = options.out_dir / robot / "end.png";
+    if (options.pictures && std::filesystem::exists(end_picture)) {
+      pictures.push_back(sim::readPng(end_picture));
+    }
+    rows.push_back(rowOf(result.summary));
+  }
+  writeResults(crossPlatformTable(rows), options.out_dir);
+  if (!pictures.empty()) {
+    sim::writePng(sim::sideBySide(pictures), options.out_dir / "cross_platform.png");
+  }
+  return rows;
+}
+
+ResultsTable crossPlatformTable(const std::vector<CrossPlatformRow>& rows) {
+  ResultsTable table;
+  table.columns = {
+      Column("robot", "robot"),
+      Column("dof", "DOF"),
+      Column("position_error_mm", "position error", "mm", 3),
+      Column("orientation_error_deg", "orientation error", "deg", 3),
+      Column("settle_time_s", "settle time", "s", 2).missingAs("not settled"),
+      Column("peak_torque_nm", "peak torque", "N m", 1),
+      Column("rejections", "rejections").jsonOnly(),
+      Column("faults", "faults").jsonOnly(),
+  };
+  for (const CrossPlatformRow& row : rows) {
+    table.rows.push_back({row.robot, std::int64_t{row.dof}, row.position_error_mm,
+                          row.orientation_error_deg, row.settle_time_s, row.peak_torque_nm,
+                          static_cast<std::int64_t>(row.rejections),
+                          static_cast<std::int64_t>(row.faults)});
+  }
+  return table;
+}
+
+int crossPlatformCommand(const CrossPlatformOptions& options, std::ostream& out,
+                         std::ostream& err) {
+  CrossPlatformOptions run = options;
+  run.progress = &err;
+  const std::vector<CrossPlatformRow> rows = runCrossPlatform(run);
+  writeMarkdownTable(crossPlatformTable(rows), out);
+  bool all_reached = true;
+  for (const CrossPlatformRow& row : rows) {
+    if (!reached(row)) {
+      err << "comply experiment cross-platform: " << row.robot << " did not reach the target "
+          << "within " << kReachedPositionMm << " mm / " << kReachedOrientationDeg << " deg\n";
+      all_reached = false;
+    }
+  }
+  out << "results in " << std::filesystem::absolute(options.out_dir).string()
+      << " (results.json, table.md, cross_platform.png, one folder per robot)\n";
+  return all_reached ? 0 : 1;
+}
+
+}  // namespace comply::experiments

@@ -1,0 +1,135 @@
+#include "surface_following/surface_following_experiment.hpp"
+
+#include <fstream>
+#include <iostream>
+#include <ostream>
+#include <stdexcept>
+
+#include "comply/task/path.hpp"
+#include "controller_setup.hpp"
+#include "sim_session.hpp"
+#include "source_dir.hpp"
+#include "surface_following/fixture.hpp"
+#include "surface_following/surface_stream.hpp"
+#include "surface_following/tracking_metrics.hpp"
+#include "task_file.hpp"
+
+namespace comply::experiments {
+namespace {
+
+using surface_following::SurfaceCondition;
+using surface_following::SurfaceStream;
+
+/// The task around the stream: scene, camera, and the waypoint the settle time counts from.
+app::TaskFile surfaceTask(double motion_end_s, int dof) {
+  return app::parseTaskFile(
+      "task:\n  command_rate_hz: 100\n  scene: {tool: probe_tool.xml, substeps: 2}\n"
+      "  camera: {lookat: [0.42, 0.0, 0.3], distance_m: 1.4, azimuth_deg: 110, "
+      "elevation_deg: -35}\n  waypoints: [{time_s: " +
+          std::to_string(motion_end_s) + "}]\n",
+      "surface-following task", sourcePath("examples/sim"), true, dof);
+}
+
+/// One condition's run into <out>/<condition>/, measured against `tip_path`.
+SurfaceFollowingRow runCondition(const SurfaceCondition& condition,
+                                 const SurfaceFollowingOptions& options, const app::TcpPose& home,
+                                 const task::Path& tip_path) {
+  const std::filesystem::path folder = options.out_dir / condition.name;
+  std::filesystem::create_directories(folder);
+  const std::filesystem::path fixture_file = folder / "fixture.xml";
+  std::ofstream(fixture_file) << surface_following::fixtureFragment(
+      condition.displaced ? surface_following::kDisplacementY : 0.0,
+      condition.displaced ? surface_following::kDisplacementYawRad : 0.0);
+
+  app::SimRunOptions run;
+  run.config = app::simControllerConfig("fr3", "",
+                                        sourcePath("config/sim/cartesian_impedance.yaml").string());
+  // Within reach of the pressing reference, which lies 100 mm inside the fixture.
+  run.config.validation.max_position_jump_m = 0.15;
+  SurfaceStream stream(condition, home.position, home.orientation, options.speed_m_per_s,
+                       options.path_fraction, run.config.dof);
+  run.task = surfaceTask(stream.motionEndTime(), run.config.dof);
+  run.task.scene.objects.push_back(fixture_file);
+  run.duration_s = stream.duration();
+  run.out_dir = folder;
+  run.snapshots = options.pictures;
+  run.progress = options.progress;
+  run.cartesian_source = &stream;
+  const app::SimResult result = app::runSimulation(run);
+  if (result.summary.faults > 0) {
+    throw std::runtime_error("surface-following " + condition.name +
+                             ": controller FAULT: " + result.summary.messages.back());
+  }
+  return surface_following::measureTracking(condition.name, result.log, stream, tip_path,
+                                            folder / "trace.csv");
+}
+
+}  // namespace
+
+std::vector<SurfaceFollowingRow> runSurfaceFollowing(const SurfaceFollowingOptions& options) {
+  if (!(options.speed_m_per_s > 0.0) ||
+      !(options.path_fraction > 0.0 && options.path_fraction <= 1.0)) {
+    throw std::runtime_error(
+        "surface-following: speed must be > 0 and the path fraction in (0, 1]");
+  }
+  std::filesystem::create_directories(options.out_dir);
+  const app::TcpPose home = app::homeTcpPose("fr3");
+  const task::Path tip_path(surface_following::nominalTipPoints(options.path_fraction));
+  surface_following::writeFixtureCsv(options.out_dir / "fixture.csv");
+
+  const std::vector<SurfaceCondition> conditions{{"fixed_frame", false, false},
+                                                 {"task_aligned", true, false},
+                                                 {"task_aligned_displaced", true, true}};
+  std::vector<SurfaceFollowingRow> rows;
+  for (const SurfaceCondition& condition : conditions) {
+    rows.push_back(runCondition(condition, options, home, tip_path));
+  }
+  writeResults(surfaceFollowingTable(rows), options.out_dir);
+  if (options.pictures) {
+    runPlotScript("plot_surface_following.py", {options.out_dir.string()},
+                  options.progress != nullptr ? *options.progress : std::cerr);
+  }
+  return rows;
+}
+
+ResultsTable surfaceFollowingTable(const std::vector<SurfaceFollowingRow>& rows) {
+  ResultsTable table;
+  // The paper's FR3 numbers (fixed-frame, task-aligned), as README.md (Evaluation) quotes them.
+  table.transposed = ResultsTable::Transposed{.corner = "metric",
+                                              .label_key = "condition",
+                                              .reference_titles = {"paper fixed", "paper aligned"}};
+  const auto metric = [](const char* key, const char* title, const char* unit, int precision,
+                         const char* paper_fixed, const char* paper_aligned) {
+    return Column(key, title, unit, precision).withReference({paper_fixed, paper_aligned});
+  };
+  table.columns = {
+      Column("condition", "condition"),
+      metric("lateral_rms_mm", "lateral RMS", "mm", 1, "16.3", "7.4"),
+      metric("lateral_max_mm", "lateral max", "mm", 1, "40.4", "13.7"),
+      metric("tangential_rms_mm", "tangential RMS", "mm", 1, "101.7", "18.8"),
+      metric("total_rmse_mm", "total RMSE", "mm", 1, "103.0", "20.2"),
+      metric("max_distance_mm", "max distance to path", "mm", 1, "-", "-"),
+      metric("force_mean_n", "contact force mean", "N", 2, "5.22", "5.07"),
+      metric("force_sd_n", "contact force SD", "N", 2, "1.49", "1.30"),
+      metric("contact_fraction", "in contact", "share", 3, "-", "-"),
+  };
+  for (const SurfaceFollowingRow& row : rows) {
+    table.rows.push_back({row.condition, row.lateral_rms_mm, row.lateral_max_mm,
+                          row.tangential_rms_mm, row.total_rmse_mm, row.max_distance_mm,
+                          row.force_mean_n, row.force_sd_n, row.contact_fraction});
+  }
+  return table;
+}
+
+int surfaceFollowingCommand(const SurfaceFollowingOptions& options, std::ostream& out,
+                            std::ostream& err) {
+  SurfaceFollowingOptions run = options;
+  run.progress = &err;
+  const std::vector<SurfaceFollowingRow> rows = runSurfaceFollowing(run);
+  writeMarkdownTable(surfaceFollowingTable(rows), out);
+  out << "results in " << std::filesystem::absolute(options.out_dir).string()
+      << " (results.json, table.md, surface_following.png, one folder per condition)\n";
+  return 0;
+}
+
+}  // namespace comply::experiments
