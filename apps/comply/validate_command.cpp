@@ -184,7 +184,7 @@ void runLaw(const pipeline::WrapperConfig& config, const std::vector<Sample>& sa
     out["mass_matrix"] = rowsOf(data.mass_matrix);
 
     Command merged = initialCommand<Command>(config);
-    const pipeline::MeasuredPose pose = pipeline::measuredPoseFrom(sample.state.position, data);
+    const MeasuredPose pose = pipeline::measuredPoseFrom(sample.state.position, data);
     pipeline::seedReference(merged, pose);
     const Command incoming = parseCommand(sample.command, dof, merged, where);
     const pipeline::Verdict verdict =
