@@ -10,9 +10,9 @@
 #include <sstream>
 #include <thread>
 
-#include "command_json.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/plugin/loader.hpp"
+#include "comply/schema/schema.hpp"
 #include "comply/sim/image.hpp"
 #include "comply/sim/renderer.hpp"
 #include "comply/sim/sim_error.hpp"
@@ -237,16 +237,6 @@ SimResult runWith(const SimRunOptions& options, const model::RobotDescription& r
   log.dof = dof;
   log.cartesian = kCartesian;
 
-  // Every waypoint's command fields are parsed now, so that a bad task fails before the run.
-  for (std::size_t i = 0; i < options.task.waypoints.size(); ++i) {
-    try {
-      (void)commandFromJson(options.task.waypoints[i].fields, dof, wrapper.lastAccepted());
-    } catch (const CommandJsonError& error) {
-      throw std::runtime_error(options.task.path.string() + ": waypoint " + std::to_string(i) +
-                               ": " + error.what());
-    }
-  }
-
   JointState state = JointState::zero(dof);
   plant.read(state);
   wrapper.activate(state);
@@ -290,8 +280,10 @@ SimResult runWith(const SimRunOptions& options, const model::RobotDescription& r
     command.fields = CommandField::kPosition | CommandField::kVelocity;
     while (next_waypoint < options.task.waypoints.size() &&
            options.task.waypoints[next_waypoint].time_s <= t + 0.5 * period_s) {
-      command = commandFromJson(options.task.waypoints[next_waypoint].fields, dof, command);
-      command.fields = command.fields | CommandField::kPosition | CommandField::kVelocity;
+      const Waypoint& waypoint = options.task.waypoints[next_waypoint];
+      const Command& given = std::get<Command>(waypoint.command);  // typed at load
+      schema::assign(command, given, waypoint.keys);
+      command.fields = command.fields | given.fields;
       ++next_waypoint;
       send = true;
     }

@@ -7,12 +7,13 @@
 #include <set>
 #include <vector>
 
-#include "command_json.hpp"
+#include "comply/core/input_error.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/model/update.hpp"
 #include "comply/pipeline/command_bus.hpp"
 #include "comply/pipeline/plugin_input.hpp"
 #include "comply/pipeline/wrapper.hpp"
+#include "comply/schema/json.hpp"
 #include "controller_setup.hpp"
 
 namespace comply::app {
@@ -143,9 +144,12 @@ const CartesianCommand& initialCommand<CartesianCommand>(const pipeline::Wrapper
 template <typename Command>
 Command parseCommand(const json& object, int dof, const Command& base, const std::string& where) {
   try {
-    return commandFromJson(object, dof, base);
-  } catch (const CommandJsonError& error) {
-    throw ValidateInputError(where + ": command: " + error.what());
+    schema::ReadOptions<Command> options;
+    options.base = base;
+    options.source = where + ": command";
+    return schema::fromJson(object, dof, options).command;
+  } catch (const InputError& error) {
+    throw ValidateInputError(error.what());
   }
 }
 

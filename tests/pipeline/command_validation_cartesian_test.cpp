@@ -291,14 +291,14 @@ TEST_F(CartesianValidation, RejectsInvalidDampingBlocks) {
 
 TEST_F(CartesianValidation, RejectsNegativeDampingRatio) {
   expectRejected([](auto& c) { c.damping_ratio[4] = -0.1; }, RejectionReason::kInvalidGains,
-                 {"ratios >= 0"});
+                 {"damping_ratio", ">= 0"});
 }
 
 TEST_F(CartesianValidation, RejectsNegativeNullspaceGains) {
   expectRejected([](auto& c) { c.nullspace_stiffness[0] = -1.0; }, RejectionReason::kInvalidGains,
-                 {"nullspace gains"});
+                 {"nullspace_stiffness", ">= 0"});
   expectRejected([](auto& c) { c.nullspace_damping[2] = -1.0; }, RejectionReason::kInvalidGains,
-                 {"nullspace gains"});
+                 {"nullspace_damping", ">= 0"});
 }
 
 TEST_F(CartesianValidation, RejectsJointSpaceFieldsOfTheWrongSize) {
