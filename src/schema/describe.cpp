@@ -32,7 +32,7 @@ std::string typeText(const FieldInfo& field) {
     case FieldKind::kVector3:
       return "3";
     case FieldKind::kVector6:
-      return "6, linear first";
+      return "6";
     case FieldKind::kJointVector:
       return "dof";
     case FieldKind::kBlock3:
@@ -40,9 +40,18 @@ std::string typeText(const FieldInfo& field) {
     case FieldKind::kQuaternion:
       return "4, x y z w";
     case FieldKind::kEnum:
-      return valueNames(field, " \\| ");
+      return valueNames(field, " | ");
   }
   return "?";
+}
+
+/// A markdown table cell: `|` would end it.
+std::string cell(std::string_view text) {
+  std::string out;
+  for (const char c : text) {
+    out += c == '|' ? std::string("\\|") : std::string(1, c);
+  }
+  return out;
 }
 
 std::string constraintText(Constraint constraint) {
@@ -131,9 +140,9 @@ std::string markdownTable(CommandKind kind) {
   out << "| field | group | type | unit | constraint | description |\n"
       << "|---|---|---|---|---|---|\n";
   for (const FieldInfo& field : fields(kind)) {
-    out << "| `" << field.name << "` | " << groupName(field.group) << " | " << typeText(field)
-        << " | " << field.unit << " | " << constraintText(field.constraint) << " | "
-        << field.description << " |\n";
+    out << "| `" << field.name << "` | " << groupName(field.group) << " | "
+        << cell(typeText(field)) << " | " << cell(field.unit) << " | "
+        << constraintText(field.constraint) << " | " << cell(field.description) << " |\n";
   }
   return out.str();
 }
@@ -151,7 +160,7 @@ std::string markdownDocument() {
       << "## Field groups\n\n| group | bit | meaning |\n|---|---|---|\n";
   for (const GroupInfo& group : groups()) {
     out << "| `" << group.name << "` | " << static_cast<std::uint32_t>(group.field) << " | "
-        << group.description << " |\n";
+        << cell(group.description) << " |\n";
   }
   out << "\n## Cartesian command\n\n"
       << markdownTable(CommandKind::kCartesian)
