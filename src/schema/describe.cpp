@@ -140,9 +140,9 @@ std::string markdownTable(CommandKind kind) {
   out << "| field | group | type | unit | constraint | description |\n"
       << "|---|---|---|---|---|---|\n";
   for (const FieldInfo& field : fields(kind)) {
-    out << "| `" << field.name << "` | " << groupName(field.group) << " | "
-        << cell(typeText(field)) << " | " << cell(field.unit) << " | "
-        << constraintText(field.constraint) << " | " << cell(field.description) << " |\n";
+    out << "| `" << field.name << "` | " << groupName(field.group) << " | " << cell(typeText(field))
+        << " | " << cell(field.unit) << " | " << constraintText(field.constraint) << " | "
+        << cell(field.description) << " |\n";
   }
   return out.str();
 }

@@ -105,6 +105,18 @@ constexpr int fixedSize() {
   return -1;
 }
 
+/// A default command with its joint vectors sized `dof` and zero (what Command::zero() does).
+template <typename Schema>
+typename Schema::Command zeroCommand(int dof) {
+  typename Schema::Command command;
+  forEachField<Schema>([&](const auto& f, std::size_t) {
+    if constexpr (FieldOf<decltype(f)>::kKind == FieldKind::kJointVector) {
+      (command.*f.member).setZero(dof);
+    }
+  });
+  return command;
+}
+
 // --- one value to and from its bus array; the bus is zero-initialised by the caller ---
 
 template <FieldKind K, typename Value, typename BusValue>
