@@ -383,5 +383,22 @@ TEST_F(CartesianValidation, LateRejectionLeavesNoPartialMerge) {
                  {"measured pose"});
 }
 
+TEST_F(CartesianValidation, ValidateCommandChecksAndNormalisesWithoutMerging) {
+  CartesianCommand incoming = nextCommand();
+  incoming.orientation.coeffs() *= 1.0 + 5e-4;
+  const CartesianCommand before = merged_;
+  ASSERT_TRUE(validateCommand(incoming, limits_, kDof, measured_, 1.0).accepted);
+  EXPECT_NEAR(incoming.orientation.norm(), 1.0, 1e-15);  // in place
+  expectSameBits(merged_, before);
+
+  incoming.stamp_s = 0.5;
+  EXPECT_EQ(validateCommand(incoming, limits_, kDof, measured_, 1.0).reason,
+            RejectionReason::kStaleStamp);
+  incoming = nextCommand();
+  incoming.position.z() += 1.0;
+  EXPECT_EQ(validateCommand(incoming, limits_, kDof, measured_, 1.0).reason,
+            RejectionReason::kPoseJump);
+}
+
 }  // namespace
 }  // namespace comply::pipeline
