@@ -1,29 +1,24 @@
 #pragma once
-// Commands as JSON objects, with the field names of the command schema (DESIGN.md): quaternions
-// [x, y, z, w], 3x3 gain blocks as 9 numbers row-major, twists and wrenches linear first.
-//
-//   {"stamp": 0.1, "fields": ["stiffness"], "stiffness_translational": [...], ...}
-//
-// `fields` lists the field groups the command sets (position, velocity, acceleration, stiffness,
-// damping, task_frame, wrench_feedforward, torque_feedforward, nullspace); without it, the groups
-// whose keys are present. Keys of a group that are absent keep the value of `base`.
+// Commands as JSON objects, read by the schema's reader (comply/schema/json.hpp, which documents
+// the format): these names stay for the callers of `comply validate` and its tests.
 
 #include <nlohmann/json_fwd.hpp>
-#include <stdexcept>
-#include <string>
 
-#include "comply/core/commands.hpp"
+#include "comply/core/input_error.hpp"
+#include "comply/schema/json.hpp"
 
 namespace comply::app {
 
-/// Thrown for unknown keys, wrong lengths, wrong types; the message names the key.
-class CommandJsonError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+/// Unknown keys, wrong lengths, wrong types; the message names the key.
+using CommandJsonError = InputError;
 
-JointCommand commandFromJson(const nlohmann::json& object, int dof, const JointCommand& base);
-CartesianCommand commandFromJson(const nlohmann::json& object, int dof,
-                                 const CartesianCommand& base);
+/// The command `object` sets on top of `base` (keys of a set group that are absent keep base's
+/// values); `fields` is the groups it sets.
+template <typename Command>
+Command commandFromJson(const nlohmann::json& object, int dof, const Command& base) {
+  schema::ReadOptions<Command> options;
+  options.base = base;
+  return schema::fromJson(object, dof, options).command;
+}
 
 }  // namespace comply::app

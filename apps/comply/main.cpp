@@ -4,6 +4,7 @@
 //   comply validate --robot fr3 --plugin cartesian_impedance --inputs samples.json [...]
 //   comply sim --robot fr3 --config controller.yaml --task task.yaml [--out DIR] [...]
 //   comply experiment cross-platform [--out DIR]
+//   comply schema [--format markdown|json|msg] [--kind cartesian|joint]
 //
 // Exit codes: 0 success, 1 a check failed (validate above tolerance, a controller fault, a
 // target not reached), 2 bad input or setup.
@@ -14,6 +15,7 @@
 #include "bench_command.hpp"
 #include "comply/model/robot_description.hpp"
 #include "experiment_commands.hpp"
+#include "schema_command.hpp"
 #include "sim_command.hpp"
 #include "validate_command.hpp"
 
@@ -80,10 +82,22 @@ int main(int argc, char** argv) {
 
   const comply::experiments::Commands experiments = comply::experiments::addCommands(app);
 
+  comply::app::SchemaOptions schema;
+  CLI::App* schema_command = app.add_subcommand(
+      "schema", "print the command schema (docs/command-schema.md, msg/*.msg are its output)");
+  schema_command->add_option("--format", schema.format, "markdown, json or msg (ROS 2)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"markdown", "json", "msg"}));
+  schema_command->add_option("--kind", schema.kind, "cartesian or joint (default: both)")
+      ->check(CLI::IsMember({"cartesian", "joint"}));
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (bench_command->parsed()) {
       return comply::app::benchCommand(bench);
+    }
+    if (schema_command->parsed()) {
+      return comply::app::schemaCommand(schema, std::cout, std::cerr);
     }
     if (sim_command->parsed()) {
       return comply::app::simCommand(sim, std::cout, std::cerr);

@@ -4,9 +4,12 @@
 
 #include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <stdexcept>
+
+#include "comply/schema/json.hpp"
 
 namespace comply::app {
 namespace {
@@ -16,6 +19,7 @@ using nlohmann::json;
 class TaskError {
  public:
   explicit TaskError(std::string source) : source_(std::move(source)) {}
+  [[nodiscard]] const std::string& source() const { return source_; }
   [[noreturn]] void fail(const std::string& where, const std::string& message) const {
     throw std::runtime_error(source_ + ": " + (where.empty() ? "" : where + ": ") + message);
   }
@@ -23,40 +27,6 @@ class TaskError {
  private:
   std::string source_;
 };
-
-/// A YAML value as JSON, numbers as doubles; `where` names it in errors. Non-finite numbers are
-/// refused here, so no NaN or infinity reaches a command.
-json toJson(const YAML::Node& node, const std::string& where, const TaskError& error) {
-  switch (node.Type()) {
-    case YAML::NodeType::Sequence: {
-      json array = json::array();
-      for (std::size_t i = 0; i < node.size(); ++i) {
-        array.push_back(toJson(node[i], where + "[" + std::to_string(i) + "]", error));
-      }
-      return array;
-    }
-    case YAML::NodeType::Map: {
-      json object = json::object();
-      for (const auto& entry : node) {
-        const std::string key = entry.first.as<std::string>();
-        object[key] = toJson(entry.second, where + "." + key, error);
-      }
-      return object;
-    }
-    case YAML::NodeType::Scalar: {
-      double number = 0.0;
-      if (YAML::convert<double>::decode(node, number)) {
-        if (!std::isfinite(number)) {
-          error.fail(where, "'" + node.Scalar() + "' is not a finite number");
-        }
-        return number;
-      }
-      return node.Scalar();
-    }
-    default:
-      error.fail(where, "has no value");
-  }
-}
 
 std::vector<double> numbers(const json& value, std::size_t count, const std::string& where,
                             const TaskError& error) {
@@ -227,7 +197,7 @@ void readPath(const json& path, double quaternion_tolerance, TaskFile& task,
   const auto quaternion = [&](const char* key) {
     const std::vector<double> q = numbers(path[key], 4, std::string("task.path.") + key, error);
     checkUnitQuaternion(q, quaternion_tolerance, std::string("task.path.") + key, error);
-    return Eigen::Quaterniond(q[3], q[0], q[1], q[2]).normalized();
+    return schema::fromXyzw(q.data()).normalized();
   };
   if (path.contains("task_frame")) {
     options.fixed_task_frame = quaternion("task_frame");
@@ -256,6 +226,26 @@ void readPath(const json& path, double quaternion_tolerance, TaskFile& task,
   } catch (const std::invalid_argument& invalid) {
     error.fail("task.path.points", invalid.what());
   }
+}
+
+/// The command fields of a waypoint (every key left in `object`), typed and checked now so that a
+/// bad task fails before the run; `keys` says which were given.
+template <typename Command>
+Command commandFields(const json& object, int dof, const std::string& where, schema::FieldSet& keys,
+                      const TaskError& error, double quaternion_tolerance) {
+  schema::ReadOptions<Command> options;
+  options.allow_shorthand = true;
+  options.source = error.source();
+  options.key_prefix = where + ".";
+  schema::Parsed<Command> parsed = schema::fromJson(object, dof, options);
+  schema::CheckOptions check;
+  check.quaternion_tolerance = quaternion_tolerance;
+  const schema::CheckResult result = schema::checkFields(parsed.command, dof, check);
+  if (!result.ok()) {
+    error.fail(where + "." + result.field, result.message);
+  }
+  keys = parsed.keys;
+  return parsed.command;
 }
 
 Waypoint readWaypoint(json object, std::size_t index, bool cartesian, int dof,
@@ -301,31 +291,19 @@ Waypoint readWaypoint(json object, std::size_t index, bool cartesian, int dof,
     checkUnitQuaternion(*waypoint.orientation, quaternion_tolerance, where + ".orientation", error);
     object.erase("orientation");
   }
-  if (object.contains("task_frame")) {
-    checkUnitQuaternion(numbers(object["task_frame"], 4, where + ".task_frame", error),
-                        quaternion_tolerance, where + ".task_frame", error);
-  }
-  // As in the controller YAML: a 3x3 gain block may be one number (isotropic) or three (diagonal).
-  for (const char* key : {"stiffness_translational", "stiffness_rotational",
-                          "damping_translational", "damping_rotational"}) {
-    if (!cartesian || !object.contains(key)) {
-      continue;
-    }
-    json& value = object[key];
-    if (value.is_number()) {
-      value = json::array({value, value, value});
-    }
-    if (value.is_array() && value.size() == 3 && value[0].is_number()) {
-      value = json::array({value[0], 0.0, 0.0, 0.0, value[1], 0.0, 0.0, 0.0, value[2]});
-    }
-  }
   for (const char* motion : {"velocity", "twist"}) {
     if (object.contains(motion)) {
       error.fail(where, std::string(motion) +
                             " is derived from the waypoint times; give positions and times");
     }
   }
-  waypoint.fields = std::move(object);
+  if (cartesian) {
+    waypoint.command = commandFields<CartesianCommand>(object, dof, where, waypoint.keys, error,
+                                                       quaternion_tolerance);
+  } else {
+    waypoint.command =
+        commandFields<JointCommand>(object, dof, where, waypoint.keys, error, quaternion_tolerance);
+  }
   return waypoint;
 }
 
@@ -344,7 +322,7 @@ TaskFile parseTaskFile(const std::string& yaml_text, const std::string& source,
   if (!root.IsMap() || !root["task"] || !root["task"].IsMap()) {
     error.fail("", "needs a top-level 'task' map (see config/sim/README or examples/sim)");
   }
-  const json task_json = toJson(root["task"], "task", error);
+  const json task_json = schema::yamlToJson(root["task"], source, "task");
 
   TaskFile task;
   task.path = source;

@@ -28,18 +28,20 @@
 //       orientation: [1, 0, 0, 0]       # TCP orientation held along the path (x y z w)
 //
 // Waypoint keys besides time_s, interpolate, position, position_offset and orientation are
-// command fields with the schema's names (command_json.hpp). For joint control, `position` and
-// `position_offset` are joint vectors [rad | m]. As in the controller YAML, a 3x3 gain block may be
-// given as 1 number (isotropic), 3 (diagonal) or 9 (row-major, task frame). The reference between
-// two waypoints moves along a straight line (slerp for orientation) with the matching velocity
-// feedforward.
+// command fields with the schema's names (docs/command-schema.md), read once at load. For joint
+// control, `position` and `position_offset` are joint vectors [rad | m]. As in the controller YAML,
+// a 3x3 gain block may be given as 1 number (isotropic), 3 (diagonal) or 9 (row-major, task frame).
+// The reference between two waypoints moves along a straight line (slerp for orientation) with the
+// matching velocity feedforward.
 
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
+#include "comply/core/commands.hpp"
+#include "comply/schema/schema.hpp"
 #include "comply/sim/renderer.hpp"
 #include "comply/sim/scene_xml.hpp"
 #include "comply/task/path_command.hpp"
@@ -54,7 +56,9 @@ struct Waypoint {
   std::optional<std::vector<double>> position;         ///< Cartesian [m] (3) or joint (dof)
   std::optional<std::vector<double>> position_offset;  ///< from the start, same units
   std::optional<std::vector<double>> orientation;      ///< x y z w (Cartesian only)
-  nlohmann::json fields = nlohmann::json::object();    ///< the other command fields
+  /// The other command fields, typed (the controller's kind); its `fields` are their groups.
+  std::variant<CartesianCommand, JointCommand> command;
+  schema::FieldSet keys = 0;  ///< which of them the waypoint gives (the rest: the command in force)
 };
 
 struct TaskFile {

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "command_json.hpp"
+#include "comply/schema/schema.hpp"
 
 namespace comply::app {
 namespace {
@@ -143,8 +143,10 @@ std::optional<Command> TaskSource<Command>::next(double t_s, const MeasuredPose&
   command.fields = CommandField::kPosition | CommandField::kVelocity;
   while (next_waypoint_ < task_.waypoints.size() &&
          task_.waypoints[next_waypoint_].time_s <= t_s + 0.5 * period_s_) {
-    command = commandFromJson(task_.waypoints[next_waypoint_].fields, dof_, command);
-    command.fields = command.fields | CommandField::kPosition | CommandField::kVelocity;
+    const Waypoint& waypoint = task_.waypoints[next_waypoint_];
+    const Command& given = std::get<Command>(waypoint.command);  // typed when the file was read
+    schema::assign(command, given, waypoint.keys);
+    command.fields = command.fields | given.fields;
     ++next_waypoint_;
     send = true;
   }

@@ -7,14 +7,15 @@
 #include <set>
 #include <vector>
 
-#include "command_json.hpp"
+#include "comply/core/input_error.hpp"
 #include "comply/hardware/control_loop.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/model/update.hpp"
 #include "comply/pipeline/command_bus.hpp"
 #include "comply/pipeline/plugin_input.hpp"
 #include "comply/pipeline/wrapper.hpp"
-#include "comply/schema/command_bus.hpp"
+#include "comply/schema/json.hpp"
+#include "comply/schema/schema.hpp"
 #include "controller_setup.hpp"
 
 namespace comply::app {
@@ -145,18 +146,13 @@ const CartesianCommand& initialCommand<CartesianCommand>(const pipeline::Wrapper
 template <typename Command>
 Command parseCommand(const json& object, int dof, const Command& base, const std::string& where) {
   try {
-    return commandFromJson(object, dof, base);
-  } catch (const CommandJsonError& error) {
-    throw ValidateInputError(where + ": command: " + error.what());
+    schema::ReadOptions<Command> options;
+    options.base = base;
+    options.source = where + ": command";
+    return schema::fromJson(object, dof, options).command;
+  } catch (const InputError& error) {
+    throw ValidateInputError(error.what());
   }
-}
-
-/// `command` with its motion reference seeded from `pose`, as activation does.
-template <typename Command>
-Command seeded(const Command& command, const MeasuredPose& pose, int dof) {
-  pipeline::CommandBus bus = pipeline::toBus(command, dof);
-  pipeline::seedFromMeasured(bus, pose);
-  return schema::fromBus(std::get<typename pipeline::BusOf<Command>::type>(bus));
 }
 
 /// Model quantities and the law's torque, each sample on its own: the reference not given by the
@@ -188,8 +184,9 @@ void runLaw(const pipeline::ResolvedController& resolved, const std::vector<Samp
     out["coriolis"] = toJson(data.coriolis);
     out["mass_matrix"] = rowsOf(data.mass_matrix);
 
+    Command merged = initialCommand<Command>(config);
     const MeasuredPose pose = pipeline::measuredPoseFrom(sample.state.position, data);
-    Command merged = seeded(initialCommand<Command>(config), pose, dof);
+    schema::seedReference(merged, pose);
     const Command incoming = parseCommand(sample.command, dof, merged, where);
     const pipeline::Verdict verdict =
         pipeline::validateAndMerge(incoming, config.validation, dof, pose, merged);

@@ -1,6 +1,6 @@
 #include "comply/pipeline/command_bus_variant.hpp"
 
-#include "comply/schema/command_bus.hpp"
+#include "comply/schema/schema.hpp"
 
 namespace comply::pipeline {
 

@@ -3,7 +3,7 @@
 #include <string>
 
 #include "comply/pipeline/command_bus.hpp"
-#include "comply/schema/command_bus.hpp"
+#include "comply/schema/schema.hpp"
 
 namespace comply::pipeline {
 namespace {

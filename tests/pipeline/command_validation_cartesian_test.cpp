@@ -291,14 +291,14 @@ TEST_F(CartesianValidation, RejectsInvalidDampingBlocks) {
 
 TEST_F(CartesianValidation, RejectsNegativeDampingRatio) {
   expectRejected([](auto& c) { c.damping_ratio[4] = -0.1; }, RejectionReason::kInvalidGains,
-                 {"ratios >= 0"});
+                 {"damping_ratio", ">= 0"});
 }
 
 TEST_F(CartesianValidation, RejectsNegativeNullspaceGains) {
   expectRejected([](auto& c) { c.nullspace_stiffness[0] = -1.0; }, RejectionReason::kInvalidGains,
-                 {"nullspace gains"});
+                 {"nullspace_stiffness", ">= 0"});
   expectRejected([](auto& c) { c.nullspace_damping[2] = -1.0; }, RejectionReason::kInvalidGains,
-                 {"nullspace gains"});
+                 {"nullspace_damping", ">= 0"});
 }
 
 TEST_F(CartesianValidation, RejectsJointSpaceFieldsOfTheWrongSize) {
@@ -381,6 +381,23 @@ TEST_F(CartesianValidation, LateRejectionLeavesNoPartialMerge) {
   // Gains, task frame and feedforwards are valid and processed before the jump check fails.
   expectRejected([](auto& c) { c.position.z() += 1.0; }, RejectionReason::kPoseJump,
                  {"measured pose"});
+}
+
+TEST_F(CartesianValidation, ValidateCommandChecksAndNormalisesWithoutMerging) {
+  CartesianCommand incoming = nextCommand();
+  incoming.orientation.coeffs() *= 1.0 + 5e-4;
+  const CartesianCommand before = merged_;
+  ASSERT_TRUE(validateCommand(incoming, limits_, kDof, measured_, 1.0).accepted);
+  EXPECT_NEAR(incoming.orientation.norm(), 1.0, 1e-15);  // in place
+  expectSameBits(merged_, before);
+
+  incoming.stamp_s = 0.5;
+  EXPECT_EQ(validateCommand(incoming, limits_, kDof, measured_, 1.0).reason,
+            RejectionReason::kStaleStamp);
+  incoming = nextCommand();
+  incoming.position.z() += 1.0;
+  EXPECT_EQ(validateCommand(incoming, limits_, kDof, measured_, 1.0).reason,
+            RejectionReason::kPoseJump);
 }
 
 }  // namespace

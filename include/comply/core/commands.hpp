@@ -1,12 +1,14 @@
 #pragma once
-// The command schemas a user sends (DESIGN.md "Command schemas"). Field names are the same in the
-// C buses (plugin/abi.h), JSON files and messages. Poses, twists and wrenches are in the base
+// The command schemas a user sends (DESIGN.md "Command schemas"). The members come from the field
+// tables of schema/table.hpp, so names are the same in the C buses (plugin/abi.h), JSON files and
+// messages. Poses, twists and wrenches are in the base
 // frame; gain blocks in the task frame, whose orientation travels with the command.
 
 #include <Eigen/Geometry>
 #include <cstdint>
 
 #include "comply/core/capacity.hpp"
+#include "comply/schema/table.hpp"
 
 namespace comply {
 
@@ -35,15 +37,12 @@ constexpr bool has(CommandField set, CommandField field) {
   return (static_cast<std::uint32_t>(set) & static_cast<std::uint32_t>(field)) != 0;
 }
 
+/// Joint impedance command; the fields (units, constraints) are the rows of
+/// COMPLY_JOINT_COMMAND_FIELDS in schema/table.hpp.
 struct JointCommand {
   double stamp_s = 0.0;  ///< sender time [s]; must not go backwards
   CommandField fields = CommandField::kAll;
-  JointVector position;            ///< rad | m
-  JointVector velocity;            ///< rad/s | m/s
-  JointVector acceleration;        ///< rad/s^2 | m/s^2
-  JointVector stiffness;           ///< N m/rad | N/m, >= 0
-  JointVector damping;             ///< N m s/rad | N s/m, >= 0
-  JointVector torque_feedforward;  ///< N m | N
+  COMPLY_JOINT_COMMAND_FIELDS(COMPLY_SCHEMA_MEMBER)
 
   /// All vectors sized `dof` and zero.
   static JointCommand zero(int dof);
@@ -54,27 +53,14 @@ enum class DampingMode : std::int32_t {
   kRatio = 1,     ///< damping ratios per task axis, turned into D against the Cartesian inertia
 };
 
+/// Cartesian impedance command; the fields (units, constraints) are the rows of
+/// COMPLY_CARTESIAN_COMMAND_FIELDS in schema/table.hpp.
 struct CartesianCommand {
-  double stamp_s = 0.0;
+  double stamp_s = 0.0;  ///< sender time [s]; must not go backwards
   CommandField fields = CommandField::kAll;
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();                 ///< TCP target [m]
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();    ///< TCP target
-  Vector6d twist = Vector6d::Zero();                                  ///< [m/s, rad/s]
-  Vector6d acceleration = Vector6d::Zero();                           ///< [m/s^2, rad/s^2]
-  Eigen::Matrix3d stiffness_translational = Eigen::Matrix3d::Zero();  ///< task frame [N/m]
-  Eigen::Matrix3d stiffness_rotational = Eigen::Matrix3d::Zero();     ///< task frame [N m/rad]
-  Eigen::Matrix3d damping_translational = Eigen::Matrix3d::Zero();    ///< task frame [N s/m]
-  Eigen::Matrix3d damping_rotational = Eigen::Matrix3d::Zero();       ///< task frame [N m s/rad]
-  DampingMode damping_mode = DampingMode::kAbsolute;
-  Vector6d damping_ratio = Vector6d::Ones();  ///< per task axis (x y z rx ry rz)
-  Eigen::Quaterniond task_frame = Eigen::Quaterniond::Identity();  ///< task axes in base frame
-  Vector6d wrench_feedforward = Vector6d::Zero();                  ///< base frame [N, N m]
-  JointVector torque_feedforward;                                  ///< N m
-  JointVector nullspace_position;                                  ///< rad
-  JointVector nullspace_stiffness;                                 ///< N m/rad, >= 0
-  JointVector nullspace_damping;                                   ///< N m s/rad, >= 0
+  COMPLY_CARTESIAN_COMMAND_FIELDS(COMPLY_SCHEMA_MEMBER)
 
-  /// Zero gains, identity orientations, joint vectors sized `dof`.
+  /// Zero gains, identity orientations, joint vectors sized `dof` and zero.
   static CartesianCommand zero(int dof);
 };
 

@@ -1,12 +1,11 @@
 #pragma once
-// Conversion between the C++ command types (core) and the plugin buses (abi.h).
+// Conversion between the C++ command types (core) and the plugin buses (abi.h): derived from the
+// command schema tables, see schema/schema.hpp.
 
-#include "comply/core/commands.hpp"
-#include "comply/plugin/abi.h"
+#include "comply/schema/schema.hpp"
 
 namespace comply::pipeline {
 
-comply_cartesian_command toBus(const CartesianCommand& command, int dof);
-comply_joint_command toBus(const JointCommand& command, int dof);
+using schema::toBus;
 
 }  // namespace comply::pipeline

@@ -38,9 +38,17 @@ struct Verdict {
 /// The pose at joint positions `position` from a model update that computed the pose.
 MeasuredPose measuredPoseFrom(const JointVector& position, const model::Data& data) noexcept;
 
-/// Validates `incoming` and, on success, writes into `merged` the last accepted command updated
-/// with the field groups `incoming` sets (quaternions renormalised). On rejection `merged` is
-/// untouched.
+/// Checks `incoming` without merging: stamp (finite, not older than `last_stamp_s`), the fields of
+/// the groups it sets (schema::checkFields: sizes, finiteness, unit quaternions, gains) and the
+/// jump of its target from `measured`. Renormalises its quaternions in place.
+Verdict validateCommand(CartesianCommand& incoming, const ValidationConfig& limits, int dof,
+                        const MeasuredPose& measured, double last_stamp_s);
+Verdict validateCommand(JointCommand& incoming, const ValidationConfig& limits, int dof,
+                        const MeasuredPose& measured, double last_stamp_s);
+
+/// validateCommand() and, on success, writes into `merged` the last accepted command updated
+/// with the field groups `incoming` sets (quaternions renormalised), carrying every group. On
+/// rejection `merged` is untouched.
 Verdict validateAndMerge(const CartesianCommand& incoming, const ValidationConfig& limits, int dof,
                          const MeasuredPose& measured, CartesianCommand& merged);
 Verdict validateAndMerge(const JointCommand& incoming, const ValidationConfig& limits, int dof,

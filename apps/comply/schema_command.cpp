@@ -1,0 +1,29 @@
+#include "schema_command.hpp"
+
+#include <ostream>
+
+#include "comply/schema/describe.hpp"
+
+namespace comply::app {
+
+int schemaCommand(const SchemaOptions& options, std::ostream& out, std::ostream& err) {
+  const bool both = options.kind.empty();
+  const schema::CommandKind kind =
+      options.kind == "joint" ? schema::CommandKind::kJoint : schema::CommandKind::kCartesian;
+  if (options.format == "markdown") {
+    out << (both ? schema::markdownDocument() : schema::markdownTable(kind));
+  } else if (options.format == "json") {
+    out << (both ? schema::jsonDescription() : schema::jsonDescription(kind));
+  } else if (options.format == "msg" && !both) {
+    out << schema::rosMessage(kind);
+  } else if (options.format == "msg") {
+    err << "comply schema: --format msg needs --kind cartesian or --kind joint (one message)\n";
+    return 2;
+  } else {
+    err << "comply schema: unknown --format '" << options.format << "' (markdown, json, msg)\n";
+    return 2;
+  }
+  return 0;
+}
+
+}  // namespace comply::app

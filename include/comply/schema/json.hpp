@@ -1,0 +1,77 @@
+#pragma once
+// Commands as JSON objects (and YAML, through yamlToJson), with the schema's field names:
+// quaternions [x, y, z, w], 3x3 gain blocks as 9 numbers row-major (or 3x3 nested), twists and
+// wrenches linear first, damping_mode by name.
+//
+//   {"stamp": 0.1, "fields": ["stiffness"], "stiffness_translational": [...], ...}
+//
+// `fields` lists the field groups the command sets (schema::groups()); without it, the groups
+// whose keys are present. Errors throw comply::InputError naming the key.
+
+#include <nlohmann/json_fwd.hpp>
+#include <optional>
+#include <string>
+
+#include "comply/schema/schema.hpp"
+
+namespace YAML {
+class Node;
+}
+
+namespace comply::schema {
+
+template <typename Command>
+struct ReadOptions {
+  /// YAML-file shorthand: a 3x3 block as 1 number (isotropic) or 3 (diagonal), any vector as 1
+  /// number for every entry.
+  bool allow_shorthand = false;
+  /// Values kept for absent keys; Command::zero(dof) without it.
+  std::optional<Command> base;
+  std::string source = "command";  ///< InputError::source(): file name, "command", ...
+  std::string key_prefix;          ///< before each key in errors, e.g. "waypoints[2]."
+};
+
+template <typename Command>
+struct Parsed {
+  Command command;    ///< `fields`: the groups set (from `fields` or the keys present)
+  FieldSet keys = 0;  ///< the table rows whose keys were present
+};
+
+template <typename Command>
+Parsed<Command> fromJson(const nlohmann::json& object, int dof,
+                         const ReadOptions<Command>& options = {});
+extern template Parsed<CartesianCommand> fromJson(const nlohmann::json&, int,
+                                                  const ReadOptions<CartesianCommand>&);
+extern template Parsed<JointCommand> fromJson(const nlohmann::json&, int,
+                                              const ReadOptions<JointCommand>&);
+
+/// Every field, the stamp and the `fields` list; fromJson() reads it back bit for bit.
+nlohmann::json toJson(const CartesianCommand& command);
+nlohmann::json toJson(const JointCommand& command);
+
+/// A YAML value as JSON: numbers as doubles (refusing NaN and infinity), other scalars as
+/// strings. `where` names the value in errors ("task.waypoints[0]").
+nlohmann::json yamlToJson(const YAML::Node& node, const std::string& source,
+                          const std::string& where);
+
+/// The commands a controller starts from (the `initial:` block of a controller file).
+struct InitialCommands {
+  JointCommand joint;
+  CartesianCommand cartesian;
+};
+
+/// Defaults for `dof` joints: joint 100 N m/rad and 10 N m s/rad; Cartesian 500 N/m, 30 N m/rad,
+/// 45 N s/m, 3 N m s/rad (isotropic), ratio damping with ratio 1, nullspace 2 N m/rad and
+/// 0.5 N m s/rad.
+InitialCommands defaultInitialCommands(int dof);
+
+/// Reads an `initial`-style object (shorthand allowed) on top of defaultInitialCommands(dof).
+/// Its keys are the fields of either table that the reference rules leave alone (gains, damping
+/// mode and ratios, task frame, feedforwards); a key of both tables (torque_feedforward) sets
+/// both. The result is checked (schema::checkFields, quaternion tolerance 1e-6); errors throw
+/// InputError with `source` and `key_prefix` + key.
+InitialCommands readInitialCommands(const nlohmann::json& object, int dof,
+                                    const std::string& source,
+                                    const std::string& key_prefix = "initial.");
+
+}  // namespace comply::schema

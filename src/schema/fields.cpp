@@ -1,0 +1,101 @@
+// The tables of schema/table.hpp as data, for documentation and messages.
+
+#include <type_traits>
+
+#include "comply/schema/generic_json.hpp"
+
+namespace comply::schema {
+namespace {
+
+template <typename T>
+std::vector<EnumValue> enumValues() {
+  std::vector<EnumValue> values;
+  if constexpr (std::is_enum_v<T>) {
+    for (const auto& [enumerator, name] : generic::EnumNames<T>::kNames) {
+      values.push_back({name, static_cast<int>(enumerator)});
+    }
+  }
+  return values;
+}
+
+#define COMPLY_SCHEMA_FIELD_INFO(name, group, kind, type, unit, constraint, role, init, doc) \
+  FieldInfo{#name,                                                                           \
+            CommandField::group,                                                             \
+            FieldKind::kind,                                                                 \
+            #type,                                                                           \
+            unit,                                                                            \
+            Constraint::constraint,                                                          \
+            Role::role,                                                                      \
+            doc,                                                                             \
+            enumValues<type>()},
+
+#define COMPLY_SCHEMA_GROUP_INFO(enumerator, name, doc) \
+  GroupInfo{CommandField::enumerator, name, doc},
+
+}  // namespace
+
+std::span<const FieldInfo> fields(CommandKind kind) {
+  static const std::vector<FieldInfo> cartesian{
+      COMPLY_CARTESIAN_COMMAND_FIELDS(COMPLY_SCHEMA_FIELD_INFO)};
+  static const std::vector<FieldInfo> joint{COMPLY_JOINT_COMMAND_FIELDS(COMPLY_SCHEMA_FIELD_INFO)};
+  return kind == CommandKind::kCartesian ? cartesian : joint;
+}
+
+std::span<const GroupInfo> groups() {
+  static const std::vector<GroupInfo> list{COMPLY_COMMAND_FIELD_GROUPS(COMPLY_SCHEMA_GROUP_INFO)};
+  return list;
+}
+
+std::string_view toString(CommandKind kind) {
+  return kind == CommandKind::kCartesian ? "cartesian" : "joint";
+}
+
+std::string_view toString(FieldKind kind) {
+  switch (kind) {
+    case FieldKind::kVector3:
+      return "vector3";
+    case FieldKind::kVector6:
+      return "vector6";
+    case FieldKind::kJointVector:
+      return "joint_vector";
+    case FieldKind::kBlock3:
+      return "block3x3";
+    case FieldKind::kQuaternion:
+      return "quaternion_xyzw";
+    case FieldKind::kEnum:
+      return "enum";
+  }
+  return "unknown";
+}
+
+std::string_view toString(Constraint constraint) {
+  switch (constraint) {
+    case Constraint::kNone:
+      return "none";
+    case Constraint::kNonNegative:
+      return "non_negative";
+    case Constraint::kSymmetricPsd:
+      return "symmetric_psd";
+    case Constraint::kUnitQuaternion:
+      return "unit_quaternion";
+  }
+  return "unknown";
+}
+
+std::string_view toString(Role role) {
+  switch (role) {
+    case Role::kNone:
+      return "none";
+    case Role::kSeedTcpPosition:
+      return "seed_tcp_position";
+    case Role::kSeedTcpOrientation:
+      return "seed_tcp_orientation";
+    case Role::kSeedJointPosition:
+      return "seed_joint_position";
+    case Role::kZeroOnStop:
+      return "zero_on_stop";
+  }
+  return "unknown";
+}
+
+}  // namespace comply::schema
