@@ -86,8 +86,4 @@ TcpPose homeTcpPose(const std::string& robot) {
   return {data.tip_position, data.tip_orientation};
 }
 
-bool controllerIsCartesian(const pipeline::WrapperConfig& config) {
-  return plugin::PluginLibrary(config.plugin).api().command_kind == COMPLY_COMMAND_CARTESIAN;
-}
-
 }  // namespace comply::app

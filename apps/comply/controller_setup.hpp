@@ -27,7 +27,4 @@ struct TcpPose {
 };
 TcpPose homeTcpPose(const std::string& robot);
 
-/// True when the configured plugin takes Cartesian commands (loads the library to ask it).
-bool controllerIsCartesian(const pipeline::WrapperConfig& config);
-
 }  // namespace comply::app

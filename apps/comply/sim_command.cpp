@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "comply/pipeline/resolved_controller.hpp"
 #include "comply/sim/viewer.hpp"
 #include "controller_setup.hpp"
 #include "sim_session.hpp"
@@ -61,8 +62,9 @@ int simCommand(const SimOptions& options, std::ostream& out, std::ostream& err) 
                                        ? "cartesian_impedance"
                                        : options.plugin,
                                    options.config_file);
-  const bool cartesian = controllerIsCartesian(run.config);
-  run.task = loadTaskFile(options.task_file, cartesian, run.config.dof,
+  // Resolved once: the robot, the model and the plugin (whose kind decides the task's commands).
+  run.resolved = pipeline::resolveController(run.config);
+  run.task = loadTaskFile(options.task_file, run.resolved->cartesian(), run.config.dof,
                           run.config.validation.quaternion_tolerance);
   if (options.snapshot_every_ms >= 0.0) {
     run.task.snapshot_every_ms = options.snapshot_every_ms;
@@ -70,9 +72,9 @@ int simCommand(const SimOptions& options, std::ostream& out, std::ostream& err) 
   run.duration_s = options.duration_s;
   run.realtime = options.realtime;
   run.view = options.view;
-  const model::RobotDescription robot = model::loadRobotDescription(run.config.robot);
-  run.out_dir = options.out_dir.empty() ? std::filesystem::path("out") / ("sim-" + robot.name)
-                                        : std::filesystem::path(options.out_dir);
+  run.out_dir = options.out_dir.empty()
+                    ? std::filesystem::path("out") / ("sim-" + run.resolved->robot.name)
+                    : std::filesystem::path(options.out_dir);
   run.progress = &err;
 
   SimResult result = runSimulation(run);

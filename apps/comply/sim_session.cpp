@@ -171,11 +171,11 @@ SimResult runWith(const SimRunOptions& options,
   sim::SimulatedClock clock(plant, options.realtime || options.view);
   hardware::ControlLoop loop(plant, wrapper, clock, {.period_s = period_s, .cycles = cycles});
   SimRecorder<Command> recorder(options, wrapper, *source, plant, pictures, progress, result);
-  recorder.setLoop(&loop, cycles,
-                   options.task.snapshot_every_ms > 0.0
-                       ? std::max<std::uint64_t>(
-                             1, cyclesIn(options.task.snapshot_every_ms * 1e-3, period_s))
-                       : 0);
+  recorder.setLoop(
+      &loop, cycles,
+      options.task.snapshot_every_ms > 0.0
+          ? std::max<std::uint64_t>(1, cyclesIn(options.task.snapshot_every_ms * 1e-3, period_s))
+          : 0);
   loop.setObserver(&recorder);
   loop.run();
   clock.waitUntil(loop.nextCycleTime());  // the plant carries out the last torque written
@@ -199,7 +199,8 @@ SimResult runWith(const SimRunOptions& options,
 }  // namespace
 
 SimResult runSimulation(const SimRunOptions& options) {
-  const auto resolved = pipeline::resolveController(options.config);
+  const auto resolved =
+      options.resolved ? options.resolved : pipeline::resolveController(options.config);
   if (!options.out_dir.empty()) {
     std::error_code error;
     std::filesystem::create_directories(options.out_dir, error);

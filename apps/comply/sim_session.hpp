@@ -3,14 +3,15 @@
 // driven by a task file, logged every cycle. Used by `comply sim`, the experiments and the tests.
 
 #include <filesystem>
-#include <memory>
 #include <iosfwd>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "comply/core/commands.hpp"
 #include "comply/pipeline/config.hpp"
+#include "comply/pipeline/resolved_controller.hpp"
 #include "comply/sim/simulated_robot.hpp"
 #include "comply/task/command_source.hpp"
 #include "task_file.hpp"
@@ -19,6 +20,8 @@ namespace comply::app {
 
 struct SimRunOptions {
   pipeline::WrapperConfig config;  ///< names the robot and the plugin
+  /// `config` already resolved (robot, model, plugin loaded); null: runSimulation resolves it.
+  std::shared_ptr<const pipeline::ResolvedController> resolved;
   TaskFile task;
   double duration_s = 0.0;        ///< <= 0: the task's duration_s
   bool realtime = false;          ///< pace the loop to the wall clock

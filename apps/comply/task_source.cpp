@@ -72,8 +72,8 @@ Reference Trajectory::target(const Waypoint& waypoint, const Reference& previous
 }
 
 Reference Trajectory::at(double t) const {
-  const auto next = static_cast<std::size_t>(
-      std::upper_bound(times_.begin(), times_.end(), t) - times_.begin());
+  const auto next =
+      static_cast<std::size_t>(std::upper_bound(times_.begin(), times_.end(), t) - times_.begin());
   if (next == times_.size()) {
     return targets_.back();
   }

@@ -1,355 +1,287 @@
+// Reading a controller file: the YAML text, then every option of the table (config_options.cpp)
+// at its key or its default, then the names, plugin parameters and the initial block.
+
 #include "comply/pipeline/config.hpp"
 
 #include <yaml-cpp/yaml.h>
 
-#include <algorithm>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
-#include <stdexcept>
-#include <utility>
 
-#include "comply/model/robot_description.hpp"
+#include "comply/core/input_error.hpp"
+#include "comply/schema/json.hpp"
+#include "config_options.hpp"
 
 namespace comply::pipeline {
 namespace {
 
-/// Reads one YAML mapping, remembering which keys were used so typos are reported.
-class Section {
+/// Errors of one controller file: every one names the file and the full key.
+class Reporter {
  public:
-  Section(YAML::Node node, std::string path, const std::string& source)
-      : node_(std::move(node)), path_(std::move(path)), source_(source) {
-    if (node_ && !node_.IsMap()) {
-      fail("must be a mapping");
-    }
+  Reporter(std::string source, std::string root)
+      : source_(std::move(source)), root_(std::move(root)) {}
+  [[noreturn]] void fail(InputErrc code, const std::string& key, const std::string& message) const {
+    throw InputError(code, source_, key.empty() ? root_ : root_ + "." + key, message);
   }
-
-  [[noreturn]] void fail(const std::string& message, const std::string& key = {}) const {
-    throw std::runtime_error(source_ + ": " + (key.empty() ? path_ : path_ + "." + key) + " " +
-                             message);
-  }
-
-  /// The value at `key`; an undefined node (false in a condition) when absent. A default-made
-  /// YAML::Node would not do: it is a defined null, which reads as "present, wrong type".
-  YAML::Node get(const std::string& key) {
-    used_.insert(key);
-    static const YAML::Node kEmptyMap(YAML::NodeType::Map);
-    const YAML::Node& lookup = node_ ? node_ : kEmptyMap;
-    return lookup[key];  // const lookup: never inserts the key
-  }
-
-  Section section(const std::string& key) { return {get(key), path_ + "." + key, source_}; }
-
-  template <typename T>
-  T value(const std::string& key, const T& fallback) {
-    const YAML::Node node = get(key);
-    if (!node) {
-      return fallback;
-    }
-    try {
-      return node.as<T>();
-    } catch (const YAML::Exception&) {
-      fail("has the wrong type", key);
-    }
-  }
-
-  std::string required(const std::string& key) {
-    const YAML::Node node = get(key);
-    if (!node || !node.IsScalar()) {
-      fail("is required", key);
-    }
-    return node.as<std::string>();
-  }
-
-  /// One number for all, or `count` numbers; `fallback` when absent.
-  std::vector<double> perJoint(const std::string& key, int count,
-                               const std::vector<double>& fallback) {
-    const YAML::Node node = get(key);
-    if (!node) {
-      return fallback;
-    }
-    std::vector<double> values;
-    try {
-      values = node.IsSequence() ? node.as<std::vector<double>>()
-                                 : std::vector<double>(count, node.as<double>());
-    } catch (const YAML::Exception&) {
-      fail("must be a number or a list of numbers", key);
-    }
-    if (static_cast<int>(values.size()) != count) {
-      fail("has " + std::to_string(values.size()) + " values, expected 1 or " +
-               std::to_string(count),
-           key);
-    }
-    return values;
-  }
-
-  /// A 3x3 gain block: 1 number (isotropic), 3 (diagonal) or 9 (row-major).
-  Eigen::Matrix3d block(const std::string& key, const Eigen::Matrix3d& fallback) {
-    const YAML::Node node = get(key);
-    if (!node) {
-      return fallback;
-    }
-    std::vector<double> values;
-    try {
-      values = node.IsSequence() ? node.as<std::vector<double>>()
-                                 : std::vector<double>{node.as<double>()};
-    } catch (const YAML::Exception&) {
-      fail("must be a number or a list of numbers", key);
-    }
-    switch (values.size()) {
-      case 1:
-        return values[0] * Eigen::Matrix3d::Identity();
-      case 3:
-        return Eigen::Vector3d(values[0], values[1], values[2]).asDiagonal();
-      case 9:
-        return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(values.data());
-      default:
-        fail("needs 1, 3 or 9 values", key);
-    }
-  }
-
-  void rejectUnknownKeys() const {
-    if (!node_) {
-      return;
-    }
-    for (const auto& entry : node_) {
-      const auto key = entry.first.as<std::string>();
-      if (used_.count(key) == 0) {
-        fail("is not a known option", key);
-      }
-    }
-  }
+  [[nodiscard]] const std::string& source() const { return source_; }
+  [[nodiscard]] const std::string& root() const { return root_; }
 
  private:
-  YAML::Node node_;
-  std::string path_;
-  const std::string& source_;
-  std::set<std::string> used_;
+  std::string source_;
+  std::string root_;
 };
 
-plugin::ParameterMap readPluginParameters(Section& section, const std::string& source) {
-  plugin::ParameterMap parameters;
-  const YAML::Node node = section.get("plugin_parameters");
-  if (!node) {
-    return parameters;
+/// The node at a dotted key; undefined when absent.
+YAML::Node lookup(const YAML::Node& parameters, const std::string& key) {
+  YAML::Node node;
+  node.reset(parameters);  // reset(), not '=': assigning a YAML::Node overwrites its target
+  std::stringstream path(key);
+  for (std::string part; std::getline(path, part, '.');) {
+    if (!node.IsMap()) {
+      return YAML::Node(YAML::NodeType::Undefined);
+    }
+    const YAML::Node next = static_cast<const YAML::Node&>(node)[part];  // const: never inserts
+    if (!next.IsDefined()) {
+      return YAML::Node(YAML::NodeType::Undefined);
+    }
+    node.reset(next);
   }
+  return node;
+}
+
+std::vector<double> numberList(const YAML::Node& node) {
+  return node.IsSequence() ? node.as<std::vector<double>>()
+                           : std::vector<double>{node.as<double>()};
+}
+
+std::string rangeText(const options::Option& option) {
+  std::ostringstream text;
+  if (option.max < 1e300) {
+    text << "must be in " << (option.min_exclusive ? "(" : "[") << option.min << ", " << option.max
+         << "]";
+  } else {
+    text << "must be " << (option.min_exclusive ? "> " : ">= ") << option.min;
+  }
+  return text.str();
+}
+
+bool inRange(const options::Option& option, double value) {
+  const bool above = option.min_exclusive ? value > option.min : value >= option.min;
+  return above && value <= option.max;  // false for NaN
+}
+
+options::Value readValue(const options::Option& option, const YAML::Node& node,
+                         const Reporter& report) {
+  using options::Kind;
+  options::Value value;
+  try {
+    switch (option.kind) {
+      case Kind::kNumber:
+        value.number = node.as<double>();
+        break;
+      case Kind::kFlag:
+        value.flag = node.as<bool>();
+        break;
+      case Kind::kChoice:
+        value.text = node.as<std::string>();
+        break;
+      case Kind::kVector3:
+      case Kind::kPerJoint:
+        value.numbers = numberList(node);
+        break;
+    }
+  } catch (const YAML::Exception&) {
+    report.fail(InputErrc::kWrongType, option.key,
+                option.kind == Kind::kPerJoint ? "must be a number or a list of numbers"
+                                               : "has the wrong type");
+  }
+  if (option.kind == Kind::kChoice &&
+      ("|" + std::string(option.choices) + "|").find("|" + value.text + "|") == std::string::npos) {
+    std::string choices = option.choices;
+    for (std::size_t bar = choices.find('|'); bar != std::string::npos; bar = choices.find('|')) {
+      choices.replace(bar, 1, choices.find('|', bar + 1) == std::string::npos ? " or " : ", ");
+    }
+    report.fail(InputErrc::kInvalidValue, option.key, "must be " + choices);
+  }
+  if (option.kind == Kind::kVector3 && value.numbers.size() != 3) {
+    report.fail(InputErrc::kWrongSize, option.key, "must be [x, y, z]");
+  }
+  if (option.kind == Kind::kNumber && !inRange(option, value.number)) {
+    report.fail(InputErrc::kOutOfRange, option.key, rangeText(option));
+  }
+  for (const double entry : value.numbers) {
+    if (!inRange(option, entry)) {
+      report.fail(InputErrc::kOutOfRange, option.key, rangeText(option));
+    }
+  }
+  return value;
+}
+
+void readOptions(const YAML::Node& parameters, const Reporter& report, WrapperConfig& config) {
+  for (const options::Option& option : options::table()) {
+    YAML::Node node = lookup(parameters, option.key);
+    if (!node) {
+      if (option.default_text == nullptr) {
+        continue;  // no default: the robot's, the URDF's, or unused
+      }
+      node = YAML::Load(option.default_text);
+    }
+    option.apply(config, readValue(option, node, report));
+  }
+}
+
+/// Every key of `node` must be an option, a section holding options, or a special key.
+void rejectUnknownKeys(const YAML::Node& node, const std::string& prefix, const Reporter& report) {
+  static const std::set<std::string> kLeaves = [] {
+    std::set<std::string> leaves(std::begin(options::kSpecialKeys),
+                                 std::end(options::kSpecialKeys));
+    for (const options::Option& option : options::table()) {
+      leaves.insert(option.key);
+    }
+    return leaves;
+  }();
+  static const std::set<std::string> kSections = [] {
+    std::set<std::string> sections;
+    for (const options::Option& option : options::table()) {
+      std::string key = option.key;
+      for (std::size_t dot = key.rfind('.'); dot != std::string::npos; dot = key.rfind('.')) {
+        key.resize(dot);
+        sections.insert(key);
+      }
+    }
+    return sections;
+  }();
   if (!node.IsMap()) {
-    section.fail("must be a mapping", "plugin_parameters");
+    report.fail(InputErrc::kWrongType, prefix.substr(0, prefix.size() - 1), "must be a mapping");
   }
   for (const auto& entry : node) {
-    plugin::ParameterValue value;
+    const std::string key = prefix + entry.first.as<std::string>();
+    if (kSections.count(key) != 0) {
+      rejectUnknownKeys(entry.second, key + ".", report);
+    } else if (kLeaves.count(key) == 0) {
+      report.fail(InputErrc::kUnknownKey, key, "is not a known option");
+    }
+  }
+}
+
+plugin::ParameterMap readPluginParameters(const YAML::Node& parameters, const Reporter& report) {
+  plugin::ParameterMap result;
+  const YAML::Node node = parameters["plugin_parameters"];
+  if (!node) {
+    return result;
+  }
+  if (!node.IsMap()) {
+    report.fail(InputErrc::kWrongType, "plugin_parameters", "must be a mapping");
+  }
+  for (const auto& entry : node) {
     const auto name = entry.first.as<std::string>();
+    plugin::ParameterValue value;
     try {
       if (entry.second.IsSequence()) {
         value.numbers = entry.second.as<std::vector<double>>();
-      } else {
-        try {
-          value.numbers = {entry.second.as<double>()};
-        } catch (const YAML::Exception&) {
-          value.text = entry.second.as<std::string>();
-          value.is_text = true;
-        }
+      } else if (!YAML::convert<double>::decode(entry.second, value.numbers.emplace_back())) {
+        value.numbers.clear();
+        value.text = entry.second.as<std::string>();
+        value.is_text = true;
       }
     } catch (const YAML::Exception&) {
-      throw std::runtime_error(source + ": plugin_parameters." + name +
-                               " must be a number, a list of numbers or a string");
+      report.fail(InputErrc::kWrongType, "plugin_parameters." + name,
+                  "must be a number, a list of numbers or a string");
     }
-    parameters[name] = value;
+    result[name] = value;
   }
-  return parameters;
+  return result;
 }
 
-Eigen::Quaterniond readQuaternion(Section& section, const std::string& key) {
-  const YAML::Node node = section.get(key);
-  if (!node) {
-    return Eigen::Quaterniond::Identity();
+void readNames(const YAML::Node& parameters, const Reporter& report, WrapperConfig& config) {
+  const auto text = [&](const char* key, bool required) {
+    const YAML::Node node = parameters[key];
+    if (!node || !node.IsScalar()) {
+      if (required) {
+        report.fail(InputErrc::kMissingKey, key, "is required");
+      }
+      return std::string();
+    }
+    return node.as<std::string>();
+  };
+  config.plugin = text("plugin", true);
+  config.robot = text("robot", true);
+  config.base_frame = text("base_frame", false);
+  config.tip_frame = text("tip_frame", false);
+  if (const YAML::Node joints = parameters["joints"]) {
+    try {
+      config.joints = joints.as<std::vector<std::string>>();
+    } catch (const YAML::Exception&) {
+      report.fail(InputErrc::kWrongType, "joints", "must be a list of joint names");
+    }
+    const auto count = static_cast<int>(config.joints.size());
+    if (count < 1 || count > kMaxDof) {
+      // Every per-joint vector downstream has inline storage for kMaxDof entries.
+      report.fail(
+          InputErrc::kWrongSize, "joints",
+          "has " + std::to_string(count) + " entries, expected 1 to " + std::to_string(kMaxDof));
+    }
   }
-  std::vector<double> xyzw;
-  try {
-    xyzw = node.as<std::vector<double>>();
-  } catch (const YAML::Exception&) {
-    section.fail("must be [x, y, z, w]", key);
-  }
-  if (xyzw.size() != 4) {
-    section.fail("must be [x, y, z, w]", key);
-  }
-  const Eigen::Quaterniond q(xyzw[3], xyzw[0], xyzw[1], xyzw[2]);
-  if (std::abs(q.norm() - 1.0) > 1e-6) {
-    section.fail("is not a unit quaternion", key);
-  }
-  return q;
 }
 
-}  // namespace
-
-WrapperConfig parseWrapperConfig(const std::string& yaml_text, const std::string& source,
-                                 const std::string& controller_name) {
+YAML::Node controllerParameters(const std::string& yaml_text, const std::string& source,
+                                const std::string& controller_name, std::string& name) {
   YAML::Node root;
   try {
     root = YAML::Load(yaml_text);
   } catch (const YAML::Exception& error) {
-    throw std::runtime_error(source + ": not valid YAML: " + error.what());
+    throw InputError(InputErrc::kSyntax, source, "",
+                     std::string("not valid YAML: ") + error.what());
   }
   if (!root || !root.IsMap() || root.size() == 0) {
-    throw std::runtime_error(source + ": expected '<controller_name>: ros__parameters: ...'");
+    throw InputError(InputErrc::kMissingKey, source, "",
+                     "expected '<controller_name>: ros__parameters: ...'");
   }
+  if (controller_name.empty() && root.size() != 1) {
+    throw InputError(InputErrc::kInconsistent, source, "",
+                     "holds several controllers; name the one to use");
+  }
+  name = controller_name.empty() ? root.begin()->first.as<std::string>() : controller_name;
+  if (!root[name]) {
+    throw InputError(InputErrc::kMissingKey, source, "", "no controller named '" + name + "'");
+  }
+  const YAML::Node parameters = root[name]["ros__parameters"];
+  if (!parameters || !parameters.IsMap()) {
+    throw InputError(InputErrc::kMissingKey, source, name, "has no 'ros__parameters' section");
+  }
+  return parameters;
+}
+
+}  // namespace
+
+WrapperConfig parseWrapperText(const std::string& yaml_text, const std::string& source,
+                               const std::string& controller_name) {
   WrapperConfig config;
-  if (controller_name.empty()) {
-    if (root.size() != 1) {
-      throw std::runtime_error(source + ": holds several controllers; name the one to use");
-    }
-    config.name = root.begin()->first.as<std::string>();
-  } else {
-    config.name = controller_name;
-    if (!root[controller_name]) {
-      throw std::runtime_error(source + ": no controller named '" + controller_name + "'");
-    }
+  config.source = source;
+  const YAML::Node parameters =
+      controllerParameters(yaml_text, source, controller_name, config.name);
+  const Reporter report(source, config.name + ".ros__parameters");
+  readNames(parameters, report, config);
+  rejectUnknownKeys(parameters, "", report);
+  readOptions(parameters, report, config);
+  config.plugin_parameters = readPluginParameters(parameters, report);
+  const YAML::Node initial = parameters["initial"];
+  if (initial && !initial.IsMap()) {
+    report.fail(InputErrc::kWrongType, "initial", "must be a mapping");
   }
-  const YAML::Node parameters_node = root[config.name]["ros__parameters"];
-  if (!parameters_node) {
-    throw std::runtime_error(source + ": " + config.name + " has no 'ros__parameters' section");
-  }
-  Section parameters(parameters_node, config.name + ".ros__parameters", source);
+  config.initial_block = std::make_shared<const nlohmann::json>(
+      initial ? schema::yamlToJson(initial, source, report.root() + ".initial")
+              : nlohmann::json::object());
+  return config;
+}
 
-  config.plugin = parameters.required("plugin");
-  config.plugin_parameters = readPluginParameters(parameters, source);
-  config.robot = parameters.required("robot");
-  const model::RobotDescription robot = model::loadRobotDescription(config.robot);
-  config.joints = parameters.value<std::vector<std::string>>("joints", robot.joints);
-  config.base_frame = parameters.value<std::string>("base_frame", robot.base_frame);
-  config.tip_frame = parameters.value<std::string>("tip_frame", robot.tcp_frame);
-  const int dof = static_cast<int>(config.joints.size());
-  if (dof < 1 || dof > kMaxDof) {
-    // Every per-joint vector downstream has inline storage for kMaxDof entries.
-    parameters.fail(
-        "has " + std::to_string(dof) + " entries, expected 1 to " + std::to_string(kMaxDof),
-        "joints");
-  }
-  config.dof = dof;
-
-  config.command_timeout_s = parameters.value("command_timeout_s", config.command_timeout_s);
-  const auto behavior = parameters.value<std::string>("timeout_behavior", "hold");
-  if (behavior != "hold" && behavior != "reanchor") {
-    parameters.fail("must be 'hold' or 'reanchor'", "timeout_behavior");
-  }
-  config.timeout_behavior =
-      behavior == "hold" ? TimeoutBehavior::kHold : TimeoutBehavior::kReanchor;
-
-  Section validation = parameters.section("validation");
-  ValidationConfig& limits = config.validation;
-  limits.quaternion_tolerance =
-      validation.value("quaternion_tolerance", limits.quaternion_tolerance);
-  limits.max_position_jump_m = validation.value("max_position_jump_m", limits.max_position_jump_m);
-  limits.max_orientation_jump_rad =
-      validation.value("max_orientation_jump_rad", limits.max_orientation_jump_rad);
-  limits.max_joint_jump_rad = validation.value("max_joint_jump_rad", limits.max_joint_jump_rad);
-  validation.rejectUnknownKeys();
-
-  Section compensation = parameters.section("compensation");
-  config.gravity_compensation = compensation.value("gravity", true);
-  Section payload = compensation.section("payload");
-  config.payload_compensation = payload.value("enabled", false);
-  config.payload.mass_kg = payload.value("mass_kg", 0.0);
-  const auto com = payload.value<std::vector<double>>("com_m", {0.0, 0.0, 0.0});
-  if (com.size() != 3 || config.payload.mass_kg < 0.0) {
-    payload.fail("needs mass_kg >= 0 and com_m [x, y, z] in the tip frame");
-  }
-  config.payload.com_in_tip = Eigen::Vector3d(com[0], com[1], com[2]);
-  payload.rejectUnknownKeys();
-
-  Section friction = compensation.section("friction");
-  const auto friction_model = friction.value<std::string>("model", "none");
-  FrictionConfig& f = config.friction;
-  if (friction_model == "sigmoid") {
-    f.model = FrictionModel::kSigmoid;
-    const bool from_robot = robot.friction && robot.joints == config.joints;
-    f.phi1 =
-        friction.perJoint("phi1", dof, from_robot ? robot.friction->phi1 : std::vector<double>{});
-    f.phi2 =
-        friction.perJoint("phi2", dof, from_robot ? robot.friction->phi2 : std::vector<double>{});
-    f.phi3 =
-        friction.perJoint("phi3", dof, from_robot ? robot.friction->phi3 : std::vector<double>{});
-    if (f.phi1.empty() || f.phi2.empty() || f.phi3.empty()) {
-      friction.fail("model sigmoid needs phi1, phi2, phi3 (robot.yaml has none for " + robot.name +
-                    ")");
-    }
-  } else if (friction_model == "viscous_coulomb") {
-    f.model = FrictionModel::kViscousCoulomb;
-    f.viscous = friction.perJoint("viscous", dof, std::vector<double>(dof, 0.0));
-    f.coulomb = friction.perJoint("coulomb", dof, std::vector<double>(dof, 0.0));
-    f.smoothing_velocity = friction.value("smoothing_velocity", f.smoothing_velocity);
-    if (!(f.smoothing_velocity > 0.0)) {
-      friction.fail("must be > 0", "smoothing_velocity");
-    }
-  } else if (friction_model != "none") {
-    friction.fail("must be none, sigmoid or viscous_coulomb", "model");
-  }
-  friction.rejectUnknownKeys();
-  compensation.rejectUnknownKeys();
-
-  Section soft = parameters.section("soft_limits");
-  config.soft_limits.enabled = soft.value("enabled", true);
-  config.soft_limits.margin = soft.perJoint("margin_rad", dof, std::vector<double>(dof, 0.1));
-  config.soft_limits.stiffness = soft.perJoint("stiffness", dof, std::vector<double>(dof, 100.0));
-  config.soft_limits.damping = soft.perJoint("damping", dof, std::vector<double>(dof, 5.0));
-  soft.rejectUnknownKeys();
-
-  config.filter_alpha = parameters.value("filter_alpha", 1.0);
-  if (!(config.filter_alpha > 0.0 && config.filter_alpha <= 1.0)) {
-    parameters.fail("must be in (0, 1]", "filter_alpha");
-  }
-  config.torque_rate_limit =
-      parameters.perJoint("torque_rate_limit_nm_per_s", dof, std::vector<double>(dof, 1000.0));
-  config.effort_limit = parameters.perJoint("effort_limit_nm", dof, {});
-  config.fault_damping = parameters.perJoint("fault_damping", dof, std::vector<double>(dof, 5.0));
-  const std::pair<const char*, const std::vector<double>*> non_negative[] = {
-      {"torque_rate_limit_nm_per_s", &config.torque_rate_limit},
-      {"fault_damping", &config.fault_damping},
-      {"soft_limits.margin_rad", &config.soft_limits.margin},
-      {"soft_limits.stiffness", &config.soft_limits.stiffness},
-      {"soft_limits.damping", &config.soft_limits.damping}};
-  for (const auto& [key, list] : non_negative) {
-    if (std::any_of(list->begin(), list->end(), [](double v) { return !(v >= 0.0); })) {
-      parameters.fail("must be >= 0", key);
-    }
-  }
-
-  Section initial = parameters.section("initial");
-  JointCommand& joint = config.initial_joint;
-  joint = JointCommand::zero(dof);
-  const auto joint_stiffness = initial.perJoint("stiffness", dof, std::vector<double>(dof, 100.0));
-  const auto joint_damping = initial.perJoint("damping", dof, std::vector<double>(dof, 10.0));
-  for (int i = 0; i < dof; ++i) {
-    joint.stiffness[i] = joint_stiffness[i];
-    joint.damping[i] = joint_damping[i];
-  }
-  CartesianCommand& cartesian = config.initial_cartesian;
-  cartesian = CartesianCommand::zero(dof);
-  cartesian.stiffness_translational =
-      initial.block("stiffness_translational", 500.0 * Eigen::Matrix3d::Identity());
-  cartesian.stiffness_rotational =
-      initial.block("stiffness_rotational", 30.0 * Eigen::Matrix3d::Identity());
-  cartesian.damping_translational =
-      initial.block("damping_translational", 45.0 * Eigen::Matrix3d::Identity());
-  cartesian.damping_rotational =
-      initial.block("damping_rotational", 3.0 * Eigen::Matrix3d::Identity());
-  const auto mode = initial.value<std::string>("damping_mode", "ratio");
-  if (mode != "ratio" && mode != "absolute") {
-    initial.fail("must be 'ratio' or 'absolute'", "damping_mode");
-  }
-  cartesian.damping_mode = mode == "ratio" ? DampingMode::kRatio : DampingMode::kAbsolute;
-  const auto ratio = initial.perJoint("damping_ratio", 6, std::vector<double>(6, 1.0));
-  cartesian.damping_ratio = Eigen::Map<const Vector6d>(ratio.data());
-  cartesian.task_frame = readQuaternion(initial, "task_frame");
-  const auto ns_stiffness =
-      initial.perJoint("nullspace_stiffness", dof, std::vector<double>(dof, 2.0));
-  const auto ns_damping = initial.perJoint("nullspace_damping", dof, std::vector<double>(dof, 0.5));
-  for (int i = 0; i < dof; ++i) {
-    cartesian.nullspace_stiffness[i] = ns_stiffness[i];
-    cartesian.nullspace_damping[i] = ns_damping[i];
-  }
-  initial.rejectUnknownKeys();
-  parameters.rejectUnknownKeys();
+WrapperConfig parseWrapperConfig(const std::string& yaml_text, const std::string& source,
+                                 const std::string& controller_name) {
+  WrapperConfig config = parseWrapperText(yaml_text, source, controller_name);
+  completeForRobot(config, std::make_shared<const model::RobotDescription>(
+                               model::loadRobotDescription(config.robot)));
   return config;
 }
 
@@ -357,7 +289,8 @@ WrapperConfig loadWrapperConfig(const std::filesystem::path& file,
                                 const std::string& controller_name) {
   std::ifstream stream(file);
   if (!stream) {
-    throw std::runtime_error("cannot read controller configuration '" + file.string() + "'");
+    throw InputError(InputErrc::kCannotRead, file.string(), "",
+                     "cannot read the controller configuration");
   }
   std::stringstream text;
   text << stream.rdbuf();

@@ -60,10 +60,15 @@ SoftLimitParameters compileSoftLimits(const SoftLimitConfig& soft_limits, const 
   return compiled;
 }
 
-std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig& config) {
+std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig& input) {
   auto resolved = std::make_shared<ResolvedController>();
-  resolved->config = config;
-  resolved->robot = model::loadRobotDescription(config.robot);
+  resolved->config = input;
+  WrapperConfig& config = resolved->config;
+  if (!config.robot_description) {
+    completeForRobot(config, std::make_shared<const model::RobotDescription>(
+                                 model::loadRobotDescription(config.robot)));
+  }
+  resolved->robot = *config.robot_description;
   model::ModelOptions options = resolved->robot.modelOptions(config.tip_frame);
   options.joint_names = config.joints;
   options.base_frame = config.base_frame;

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "comply/core/input_error.hpp"
+
 namespace comply::pipeline {
 namespace {
 
@@ -186,23 +188,23 @@ TEST(WrapperConfig, PerJointListsFollowAShorterJointList) {
 
 TEST(WrapperConfig, PerJointListOfTheWrongLengthNamesTheKey) {
   expectError(controllerYaml("torque_rate_limit_nm_per_s: [1, 2, 3]"),
-              {kPrefix + "torque_rate_limit_nm_per_s has 3 values, expected 1 or 7"});
+              {kPrefix + "torque_rate_limit_nm_per_s: has 3 values, expected 1 or 7"});
   expectError(controllerYaml("soft_limits:\n  stiffness: [1, 2]"),
-              {kPrefix + "soft_limits.stiffness has 2 values, expected 1 or 7"});
+              {kPrefix + "soft_limits.stiffness: has 2 values, expected 1 or 7"});
   expectError(controllerYaml("initial:\n  damping_ratio: [1, 1, 1, 1, 1, 1, 1]"),
-              {kPrefix + "initial.damping_ratio has 7 values, expected 1 or 6"});
+              {kPrefix + "initial.damping_ratio: 'damping_ratio' has 7 numbers, expected 1 or 6"});
 }
 
 TEST(WrapperConfig, PerJointListOfTheWrongTypeNamesTheKey) {
   expectError(controllerYaml("fault_damping: soft"),
-              {kPrefix + "fault_damping must be a number or a list of numbers"});
+              {kPrefix + "fault_damping: must be a number or a list of numbers"});
 }
 
 TEST(WrapperConfig, NegativePerJointLimitNamesTheKey) {
   expectError(controllerYaml("soft_limits:\n  stiffness: -1"),
-              {kPrefix + "soft_limits.stiffness must be >= 0"});
+              {kPrefix + "soft_limits.stiffness: must be >= 0"});
   expectError(controllerYaml("torque_rate_limit_nm_per_s: [1, 1, 1, -1, 1, 1, 1]"),
-              {kPrefix + "torque_rate_limit_nm_per_s must be >= 0"});
+              {kPrefix + "torque_rate_limit_nm_per_s: must be >= 0"});
 }
 
 TEST(WrapperConfig, JointListBeyondTheCapacityIsRefused) {
@@ -210,8 +212,8 @@ TEST(WrapperConfig, JointListBeyondTheCapacityIsRefused) {
   for (int i = 2; i <= kMaxDof + 1; ++i) {
     joints += ", j" + std::to_string(i);
   }
-  expectError(controllerYaml(joints + "]"), {kPrefix + "joints has 13 entries, expected 1 to 12"});
-  expectError(controllerYaml("joints: []"), {kPrefix + "joints has 0 entries"});
+  expectError(controllerYaml(joints + "]"), {kPrefix + "joints: has 13 entries, expected 1 to 12"});
+  expectError(controllerYaml("joints: []"), {kPrefix + "joints: has 0 entries"});
 }
 
 TEST(WrapperConfig, GainBlocksTakeOneThreeOrNineValues) {
@@ -219,22 +221,32 @@ TEST(WrapperConfig, GainBlocksTakeOneThreeOrNineValues) {
       "initial:\n"
       "  stiffness_translational: 800\n"
       "  stiffness_rotational: [10, 20, 30]\n"
-      "  damping_translational: [1, 2, 3, 4, 5, 6, 7, 8, 9]\n");
+      "  damping_translational: [4, 1, 0, 1, 5, 2, 0, 2, 6]\n");
   const CartesianCommand& c = config.initial_cartesian;
   EXPECT_EQ(c.stiffness_translational, 800.0 * Eigen::Matrix3d::Identity());
   EXPECT_EQ(c.stiffness_rotational, Eigen::Vector3d(10, 20, 30).asDiagonal().toDenseMatrix());
-  // Nine values are row-major: the second value is row 0, column 1.
-  Eigen::Matrix3d row_major;
-  row_major << 1, 2, 3, 4, 5, 6, 7, 8, 9;
-  EXPECT_EQ(c.damping_translational, row_major);
-  EXPECT_EQ(c.damping_translational(0, 1), 2.0);
-  EXPECT_EQ(c.damping_translational(1, 0), 4.0);
+  Eigen::Matrix3d full;
+  full << 4, 1, 0, 1, 5, 2, 0, 2, 6;  // symmetric positive definite, as every gain block must be
+  EXPECT_EQ(c.damping_translational, full);
   EXPECT_EQ(c.damping_rotational, 3.0 * Eigen::Matrix3d::Identity());  // default kept
 }
 
+TEST(WrapperConfig, InitialGainsAreCheckedLikeACommand) {
+  // An asymmetric, an indefinite and a negative gain run away on a robot: refused at load, as the
+  // same values in a command are.
+  expectError(controllerYaml("initial:\n  damping_translational: [1, 2, 3, 4, 5, 6, 7, 8, 9]"),
+              {kPrefix + "initial.damping_translational: ", "symmetric positive semi-definite"});
+  expectError(controllerYaml("initial:\n  stiffness_translational: [100, -5, 100]"),
+              {kPrefix + "initial.stiffness_translational: "});
+  expectError(controllerYaml("initial:\n  nullspace_damping: -1"),
+              {kPrefix + "initial.nullspace_damping: "});
+}
+
 TEST(WrapperConfig, GainBlockOfTheWrongLengthNamesTheKey) {
-  expectError(controllerYaml("initial:\n  damping_rotational: [1, 2]"),
-              {kPrefix + "initial.damping_rotational needs 1, 3 or 9 values"});
+  expectError(
+      controllerYaml("initial:\n  damping_rotational: [1, 2]"),
+      {kPrefix +
+       "initial.damping_rotational: 'damping_rotational' has 2 numbers, expected 1, 3 or 9"});
 }
 
 TEST(WrapperConfig, ReadsInitialJointAndNullspaceGains) {
@@ -263,7 +275,7 @@ TEST(WrapperConfig, ReadsInitialJointAndNullspaceGains) {
 
 TEST(WrapperConfig, BadDampingModeNamesTheKey) {
   expectError(controllerYaml("initial:\n  damping_mode: critical"),
-              {kPrefix + "initial.damping_mode must be 'ratio' or 'absolute'"});
+              {kPrefix + "initial.damping_mode: 'damping_mode' must be \"absolute\" or \"ratio\""});
 }
 
 TEST(WrapperConfig, TaskFrameIsXyzw) {
@@ -277,9 +289,9 @@ TEST(WrapperConfig, TaskFrameIsXyzw) {
 
 TEST(WrapperConfig, NonUnitTaskFrameNamesTheKey) {
   expectError(controllerYaml("initial:\n  task_frame: [0, 0, 0, 2]"),
-              {kPrefix + "initial.task_frame is not a unit quaternion"});
+              {kPrefix + "initial.task_frame: task_frame is not a unit quaternion"});
   expectError(controllerYaml("initial:\n  task_frame: [0, 0, 1]"),
-              {kPrefix + "initial.task_frame must be [x, y, z, w]"});
+              {kPrefix + "initial.task_frame: 'task_frame' has 3 numbers, expected 4"});
 }
 
 TEST(WrapperConfig, FilterAlphaMustBeInTheHalfOpenUnitInterval) {
@@ -287,39 +299,39 @@ TEST(WrapperConfig, FilterAlphaMustBeInTheHalfOpenUnitInterval) {
   for (const char* bad : {"0", "1.5", "-0.2", ".nan"}) {
     SCOPED_TRACE(bad);
     expectError(controllerYaml(std::string("filter_alpha: ") + bad),
-                {kPrefix + "filter_alpha must be in (0, 1]"});
+                {kPrefix + "filter_alpha: must be in (0, 1]"});
   }
   expectError(controllerYaml("filter_alpha: strong"),
-              {kPrefix + "filter_alpha has the wrong type"});
+              {kPrefix + "filter_alpha: has the wrong type"});
 }
 
 TEST(WrapperConfig, BadTimeoutBehaviorNamesTheKey) {
   expectError(controllerYaml("timeout_behavior: drop"),
-              {kPrefix + "timeout_behavior must be 'hold' or 'reanchor'"});
+              {kPrefix + "timeout_behavior: must be hold or reanchor"});
 }
 
 TEST(WrapperConfig, UnknownKeysAreNamedAtEveryLevel) {
   expectError(controllerYaml("filter_alpah: 0.5"),
-              {kPrefix + "filter_alpah is not a known option"});
+              {kPrefix + "filter_alpah: is not a known option"});
   expectError(controllerYaml("validation:\n  max_jump: 1"),
-              {kPrefix + "validation.max_jump is not a known option"});
+              {kPrefix + "validation.max_jump: is not a known option"});
   expectError(controllerYaml("compensation:\n  friction:\n    model: none\n    phi: 1"),
-              {kPrefix + "compensation.friction.phi is not a known option"});
+              {kPrefix + "compensation.friction.phi: is not a known option"});
   expectError(controllerYaml("initial:\n  stiffnes: 1"),
-              {kPrefix + "initial.stiffnes is not a known option"});
+              {kPrefix + "initial.stiffnes: is not a known option"});
 }
 
 TEST(WrapperConfig, MissingPluginOrRobotNamesTheKey) {
   expectError("c:\n  ros__parameters:\n    robot: fr3\n",
-              {"arm.yaml: c.ros__parameters.plugin is required"});
+              {"arm.yaml: c.ros__parameters.plugin: is required"});
   expectError("c:\n  ros__parameters:\n    plugin: joint_impedance\n",
-              {"arm.yaml: c.ros__parameters.robot is required"});
+              {"arm.yaml: c.ros__parameters.robot: is required"});
 }
 
 TEST(WrapperConfig, InvalidYamlIsReportedWithTheSource) {
   expectError("arm_controller: [unclosed\n", {"arm.yaml: not valid YAML"});
   expectError("", {"arm.yaml: expected '<controller_name>: ros__parameters: ...'"});
-  expectError("arm_controller:\n  plugin: x\n", {"arm_controller has no 'ros__parameters'"});
+  expectError("arm_controller:\n  plugin: x\n", {"arm_controller: has no 'ros__parameters'"});
 }
 
 TEST(WrapperConfig, SeveralControllersNeedAName) {
@@ -350,7 +362,7 @@ TEST(WrapperConfig, SigmoidFrictionDefaultsToTheRobotFile) {
 TEST(WrapperConfig, SigmoidFrictionForOtherJointsNeedsItsOwnParameters) {
   expectError(controllerYaml("joints: [fr3_joint1, fr3_joint2]\n"
                              "compensation:\n  friction:\n    model: sigmoid"),
-              {kPrefix + "compensation.friction model sigmoid needs phi1, phi2, phi3"});
+              {kPrefix + "compensation.friction: model sigmoid needs phi1, phi2, phi3"});
   const WrapperConfig config = parse(
       "joints: [fr3_joint1, fr3_joint2]\n"
       "compensation:\n  friction:\n    model: sigmoid\n    phi1: 1\n    phi2: [2, 3]\n"
@@ -374,9 +386,9 @@ TEST(WrapperConfig, ViscousCoulombFriction) {
   EXPECT_EQ(config.friction.smoothing_velocity, 0.05);
   expectError(controllerYaml("compensation:\n  friction:\n    model: viscous_coulomb\n"
                              "    smoothing_velocity: 0"),
-              {kPrefix + "compensation.friction.smoothing_velocity must be > 0"});
+              {kPrefix + "compensation.friction.smoothing_velocity: must be > 0"});
   expectError(controllerYaml("compensation:\n  friction:\n    model: lugre"),
-              {kPrefix + "compensation.friction.model must be none, sigmoid or viscous_coulomb"});
+              {kPrefix + "compensation.friction.model: must be none, sigmoid or viscous_coulomb"});
 }
 
 TEST(WrapperConfig, ReadsPayload) {
@@ -392,9 +404,9 @@ TEST(WrapperConfig, ReadsPayload) {
   EXPECT_EQ(config.payload.mass_kg, 1.25);
   EXPECT_EQ(config.payload.com_in_tip, Eigen::Vector3d(0.0, 0.01, 0.1));
   expectError(controllerYaml("compensation:\n  payload:\n    com_m: [0, 0]"),
-              {kPrefix + "compensation.payload needs mass_kg >= 0"});
+              {kPrefix + "compensation.payload.com_m: must be [x, y, z]"});
   expectError(controllerYaml("compensation:\n  payload:\n    mass_kg: -1"),
-              {kPrefix + "compensation.payload needs mass_kg >= 0"});
+              {kPrefix + "compensation.payload.mass_kg: must be in [0, 1000]"});
 }
 
 TEST(WrapperConfig, LoadsFromAFileAndNamesItInErrors) {
@@ -418,6 +430,63 @@ TEST(WrapperConfig, LoadsFromAFileAndNamesItInErrors) {
   }
   std::filesystem::remove(file);
   EXPECT_THROW(loadWrapperConfig(file), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace comply::pipeline
+
+namespace comply::pipeline {
+namespace {
+
+TEST(DocumentedDefaults, TheDocumentedFileIsWhatTheOptionTablePrints) {
+  // config/cartesian_impedance.yaml is `comply config --defaults` for the FR3: regenerate it with
+  // that command when an option changes.
+  const std::filesystem::path file =
+      std::filesystem::path(COMPLY_SOURCE_DIR) / "config" / "cartesian_impedance.yaml";
+  std::ifstream stream(file);
+  ASSERT_TRUE(stream) << file;
+  std::stringstream committed;
+  committed << stream.rdbuf();
+  EXPECT_EQ(committed.str(), documentedDefaults("cartesian_impedance", "cartesian_impedance", "fr3",
+                                                "fr3_tcp", /*cartesian=*/true));
+}
+
+TEST(DocumentedDefaults, PrintedDefaultsReadBackAsTheDefaults) {
+  for (const bool cartesian : {true, false}) {
+    const WrapperConfig printed = parseWrapperConfig(
+        documentedDefaults("arm", cartesian ? "cartesian_impedance" : "joint_impedance", "fr3",
+                           "fr3_tcp", cartesian),
+        "printed");
+    const WrapperConfig bare = parseWrapperConfig(
+        "arm:\n  ros__parameters:\n    plugin: x\n    robot: fr3\n    tip_frame: fr3_tcp\n",
+        "bare");
+    EXPECT_EQ(printed.command_timeout_s, bare.command_timeout_s);
+    EXPECT_EQ(printed.validation.quaternion_tolerance, bare.validation.quaternion_tolerance);
+    EXPECT_EQ(printed.validation.max_position_jump_m, bare.validation.max_position_jump_m);
+    EXPECT_EQ(printed.payload.com_in_tip, bare.payload.com_in_tip);
+    EXPECT_EQ(printed.friction.smoothing_velocity, bare.friction.smoothing_velocity);
+    EXPECT_EQ(printed.soft_limits.stiffness, bare.soft_limits.stiffness);
+    EXPECT_EQ(printed.torque_rate_limit, bare.torque_rate_limit);
+    EXPECT_EQ(printed.fault_damping, bare.fault_damping);
+    EXPECT_EQ(printed.initial_cartesian.stiffness_translational,
+              bare.initial_cartesian.stiffness_translational);
+    EXPECT_EQ(printed.initial_cartesian.damping_mode, bare.initial_cartesian.damping_mode);
+    EXPECT_EQ(printed.initial_cartesian.nullspace_damping,
+              bare.initial_cartesian.nullspace_damping);
+    EXPECT_EQ(printed.initial_joint.stiffness, bare.initial_joint.stiffness);
+    EXPECT_EQ(printed.initial_joint.damping, bare.initial_joint.damping);
+  }
+}
+
+TEST(WrapperConfig, NonFiniteOrNegativeValidationLimitsAreRefused) {
+  // A NaN jump limit would switch the check off; a NaN tolerance would reject every command.
+  for (const char* line :
+       {"validation:\n  max_position_jump_m: .nan", "validation:\n  quaternion_tolerance: -1.0e-3",
+        "validation:\n  max_orientation_jump_rad: .inf", "command_timeout_s: .nan",
+        "effort_limit_nm: .nan", "compensation:\n  payload:\n    mass_kg: .nan"}) {
+    SCOPED_TRACE(line);
+    EXPECT_THROW(parse(line), InputError);
+  }
 }
 
 }  // namespace

@@ -8,13 +8,23 @@
 //       ...                                  # every key below, with its default
 //
 // Every option has a default that is safe on a real arm; units are in the key or the comment.
+// The options, their defaults and their documentation are declared once, in config_options.cpp;
+// `comply config --defaults` prints them as the documented file (config/cartesian_impedance.yaml).
+//
+// Two steps, so that reading a file never touches another one:
+//   parseWrapperText()   the file as written: types, ranges, unknown keys; no robot needed
+//   completeForRobot()   robot defaults (joints, frames, friction), per-joint sizes, the initial
+//                        commands for that many joints
 
 #include <filesystem>
+#include <memory>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
 #include "comply/core/commands.hpp"
 #include "comply/model/data.hpp"
+#include "comply/model/robot_description.hpp"
 #include "comply/plugin/loader.hpp"
 
 namespace comply::pipeline {
@@ -46,14 +56,20 @@ struct ValidationConfig {
 };
 
 struct WrapperConfig {
-  std::string name;  ///< controller name (top-level YAML key)
+  std::string name;    ///< controller name (top-level YAML key)
+  std::string source;  ///< where it was read from (file name), for messages
   std::string plugin;
   plugin::ParameterMap plugin_parameters;
   std::string robot;                ///< name or folder
   std::vector<std::string> joints;  ///< default: robot.yaml joints
   std::string base_frame;           ///< default: robot.yaml base_frame
   std::string tip_frame;            ///< default: robot.yaml tcp_frame
-  int dof = 0;                      ///< number of joints (from `joints`)
+  int dof = 0;                      ///< number of joints; 0 until completeForRobot()
+  /// The robot the configuration was completed for (completeForRobot()); read once, reused by
+  /// resolveController().
+  std::shared_ptr<const model::RobotDescription> robot_description;
+  /// The `initial:` block as written; completeForRobot() turns it into the initial commands.
+  std::shared_ptr<const nlohmann::json> initial_block;
 
   double command_timeout_s = 0.5;
   TimeoutBehavior timeout_behavior = TimeoutBehavior::kHold;
@@ -65,24 +81,42 @@ struct WrapperConfig {
   FrictionConfig friction;
   SoftLimitConfig soft_limits;
 
+  // Per-joint lists hold one value (every joint) or one per joint until completeForRobot(), then
+  // one per joint.
   double filter_alpha = 1.0;              ///< tau_f = alpha tau + (1 - alpha) tau_f,prev; 1 = off
   std::vector<double> torque_rate_limit;  ///< N m/s per joint
-  std::vector<double> effort_limit;       ///< N m; default: URDF <limit effort>
+  std::vector<double> effort_limit;       ///< N m; empty: URDF <limit effort>
   std::vector<double> fault_damping;      ///< N m s/rad of the safe holding torque
 
   /// Initial command (gains, task frame); the pose/joint reference is seeded on activation.
+  /// Sized by completeForRobot().
   JointCommand initial_joint;
   CartesianCommand initial_cartesian;
 };
 
-/// Reads `controller_name` (or the only controller in the file when empty) from a YAML file.
-/// Per-joint lists accept one number (applied to every joint) or one per joint. Throws
-/// std::runtime_error naming the file and the key on any error.
-WrapperConfig loadWrapperConfig(const std::filesystem::path& file,
-                                const std::string& controller_name = {});
+/// Reads `controller_name` (or the only controller in the file when empty) from YAML text
+/// (`source` names it in messages). Touches no file. Throws InputError naming the source and the
+/// key on any error.
+WrapperConfig parseWrapperText(const std::string& yaml_text, const std::string& source,
+                               const std::string& controller_name = {});
 
-/// Same from YAML text (`source` names it in messages).
+/// Completes `config` for `robot`: joints and frames default to the robot's, per-joint lists are
+/// expanded (one value) or checked (one per joint), sigmoid friction defaults to robot.yaml, and
+/// the initial commands are read for that many joints. Throws InputError naming the key.
+void completeForRobot(WrapperConfig& config, std::shared_ptr<const model::RobotDescription> robot);
+
+/// The documented controller file with every option at its default, for `plugin` on `robot`
+/// (`comply config --defaults`). `cartesian` selects the initial gains that are listed.
+std::string documentedDefaults(const std::string& controller_name, const std::string& plugin,
+                               const std::string& robot, const std::string& tip_frame,
+                               bool cartesian);
+
+/// parseWrapperText() + completeForRobot() with the robot the file names (loaded once).
 WrapperConfig parseWrapperConfig(const std::string& yaml_text, const std::string& source,
                                  const std::string& controller_name = {});
+
+/// The same from a file.
+WrapperConfig loadWrapperConfig(const std::filesystem::path& file,
+                                const std::string& controller_name = {});
 
 }  // namespace comply::pipeline

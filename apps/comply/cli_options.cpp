@@ -1,0 +1,83 @@
+// The options of each `comply` subcommand, declared next to each other so that `main` stays a
+// dispatcher. Defaults live in the option structs (the *_command.hpp headers).
+
+#include "cli_options.hpp"
+
+#include <CLI/CLI.hpp>
+
+namespace comply::app {
+
+CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
+  CLI::App* command =
+      app.add_subcommand("bench", "time the plugin step and the full wrapper cycle");
+  command->add_option("--robot", options.robot, "robot name under robots/ or a robot folder")
+      ->capture_default_str();
+  command->add_option("--iterations", options.iterations, "timed cycles per wrapper")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  command->add_option("--warmup", options.warmup, "untimed cycles first")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--cpu", options.cpu, "pin to this CPU (-1: do not pin)")
+      ->capture_default_str();
+  command->add_flag("--json", options.json, "print one JSON object instead of the table");
+  return command;
+}
+
+CLI::App* addValidateCommand(CLI::App& app, ValidateOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "validate", "feed synthetic samples through model + plugin (+ wrapper) on the host");
+  command->add_option("--robot", options.robot, "robot name or folder");
+  command->add_option("--plugin", options.plugin, "plugin name or .so path");
+  command->add_option("--config", options.config_file,
+                      "controller YAML (instead of the defaults for robot + plugin)");
+  command->add_option("--inputs", options.inputs, "samples: [{q, dq, command}, ...]")->required();
+  command->add_option("--expected", options.expected,
+                      "expected outputs; report max error per output");
+  command->add_option("--out", options.out, "write the outputs here (default stdout)");
+  command
+      ->add_option("--tolerance", options.tolerance,
+                   "max absolute error per output with --expected")
+      ->capture_default_str();
+  command->add_option("--period", options.period_s, "cycle period of --wrapper [s]")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  command->add_flag("--wrapper", options.wrapper,
+                    "also run the samples as consecutive cycles of the full wrapper");
+  return command;
+}
+
+CLI::App* addSimCommand(CLI::App& app, SimOptions& options) {
+  CLI::App* command =
+      app.add_subcommand("sim", "run a controller on a simulated arm (MuJoCo), headless");
+  command->add_option("--robot", options.robot, "robot name or folder (overrides the config's)");
+  command->add_option("--config", options.config_file, "controller YAML");
+  command->add_option("--plugin", options.plugin,
+                      "without --config: plugin name (default cartesian_impedance)");
+  command->add_option("--task", options.task_file, "task file: waypoints streamed over time")
+      ->required();
+  command->add_option("--duration", options.duration_s, "simulated seconds (default: the task's)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--out", options.out_dir, "output folder (default out/sim-<robot>)");
+  command
+      ->add_option("--snapshot-every", options.snapshot_every_ms,
+                   "also a PNG every N ms of simulated time (default: the task's)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_flag("--realtime", options.realtime, "pace the simulation to the wall clock");
+  command->add_flag("--view", options.view, "open an interactive window (needs a display)");
+  command->add_flag("--no-plot{false}", options.plot, "skip the matplotlib plot");
+  return command;
+}
+
+CLI::App* addSchemaCommand(CLI::App& app, SchemaOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "schema", "print the command schema (docs/command-options.md, msg/*.msg are its output)");
+  command->add_option("--format", options.format, "markdown, json or msg (ROS 2)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"markdown", "json", "msg"}));
+  command->add_option("--kind", options.kind, "cartesian or joint (default: both)")
+      ->check(CLI::IsMember({"cartesian", "joint"}));
+  return command;
+}
+
+}  // namespace comply::app

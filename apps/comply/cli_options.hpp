@@ -1,0 +1,21 @@
+#pragma once
+// Registers each subcommand's options with the command line; the returned App says whether it
+// was chosen.
+
+#include "bench_command.hpp"
+#include "schema_command.hpp"
+#include "sim_command.hpp"
+#include "validate_command.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace comply::app {
+
+CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options);
+CLI::App* addValidateCommand(CLI::App& app, ValidateOptions& options);
+CLI::App* addSimCommand(CLI::App& app, SimOptions& options);
+CLI::App* addSchemaCommand(CLI::App& app, SchemaOptions& options);
+
+}  // namespace comply::app

@@ -1,0 +1,148 @@
+#include "config_options.hpp"
+
+#include <limits>
+
+namespace comply::pipeline::options {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+Option number(const char* key, const char* default_text, const char* comment, double min,
+              double max, bool min_exclusive, std::function<void(WrapperConfig&, double)> set) {
+  Option option{key, Kind::kNumber, default_text, comment, min, max, min_exclusive};
+  option.apply = [set = std::move(set)](WrapperConfig& config, const Value& value) {
+    set(config, value.number);
+  };
+  return option;
+}
+
+Option flag(const char* key, const char* default_text, const char* comment,
+            std::function<void(WrapperConfig&, bool)> set) {
+  Option option{key, Kind::kFlag, default_text, comment};
+  option.apply = [set = std::move(set)](WrapperConfig& config, const Value& value) {
+    set(config, value.flag);
+  };
+  return option;
+}
+
+Option perJoint(const char* key, const char* default_text, const char* comment, double min,
+                bool min_exclusive, std::vector<double> WrapperConfig::*list) {
+  Option option{key, Kind::kPerJoint, default_text, comment, min, kInfinity, min_exclusive};
+  option.apply = [list](WrapperConfig& config, const Value& value) {
+    config.*list = value.numbers;
+  };
+  return option;
+}
+
+Option perJointIn(const char* key, const char* default_text, const char* comment,
+                  std::function<std::vector<double>&(WrapperConfig&)> list, double min = 0.0) {
+  Option option{key, Kind::kPerJoint, default_text, comment, min, kInfinity};
+  option.apply = [list = std::move(list)](WrapperConfig& config, const Value& value) {
+    list(config) = value.numbers;
+  };
+  return option;
+}
+
+Option spaced(Option option) {
+  option.blank_line_before = true;
+  return option;
+}
+
+std::vector<Option> makeTable() {
+  std::vector<Option> table;
+  table.push_back(spaced(
+      number("command_timeout_s", "0.5", "no command for this long -> timeout_behavior; 0: never",
+             0.0, kInfinity, false, [](WrapperConfig& c, double v) { c.command_timeout_s = v; })));
+  Option behavior{"timeout_behavior", Kind::kChoice, "hold",
+                  "hold: keep the last pose, stop its motion; reanchor: measured pose"};
+  behavior.choices = "hold|reanchor";
+  behavior.apply = [](WrapperConfig& c, const Value& v) {
+    c.timeout_behavior = v.text == "hold" ? TimeoutBehavior::kHold : TimeoutBehavior::kReanchor;
+  };
+  table.push_back(behavior);
+  table.push_back(number(
+      "validation.quaternion_tolerance", "1.0e-3", "|norm - 1| renormalised below, rejected above",
+      0.0, 0.5, true, [](WrapperConfig& c, double v) { c.validation.quaternion_tolerance = v; }));
+  table.push_back(number("validation.max_position_jump_m", "0.10",
+                         "target vs measured TCP position", 0.0, kInfinity, true,
+                         [](WrapperConfig& c, double v) { c.validation.max_position_jump_m = v; }));
+  table.push_back(number(
+      "validation.max_orientation_jump_rad", "0.60", "target vs measured TCP orientation", 0.0,
+      M_PI, true, [](WrapperConfig& c, double v) { c.validation.max_orientation_jump_rad = v; }));
+  table.push_back(number("validation.max_joint_jump_rad", "0.50",
+                         "joint target vs measured position (joint commands)", 0.0, kInfinity, true,
+                         [](WrapperConfig& c, double v) { c.validation.max_joint_jump_rad = v; }));
+
+  table.push_back(spaced(flag("compensation.gravity", "true", "g(q) from the URDF",
+                              [](WrapperConfig& c, bool v) { c.gravity_compensation = v; })));
+  table.push_back(flag("compensation.payload.enabled", "false", "a load held at the tip",
+                       [](WrapperConfig& c, bool v) { c.payload_compensation = v; }));
+  table.push_back(number("compensation.payload.mass_kg", "0.0", "kg", 0.0, 1e3, false,
+                         [](WrapperConfig& c, double v) { c.payload.mass_kg = v; }));
+  Option com{"compensation.payload.com_m", Kind::kVector3, "[0.0, 0.0, 0.0]",
+             "in the tip frame",           -10.0,          10.0};
+  com.apply = [](WrapperConfig& c, const Value& v) {
+    c.payload.com_in_tip = Eigen::Vector3d(v.numbers[0], v.numbers[1], v.numbers[2]);
+  };
+  table.push_back(com);
+  Option friction{"compensation.friction.model", Kind::kChoice, "none",
+                  "none | sigmoid (phi1..3, default robot.yaml) | viscous_coulomb"};
+  friction.choices = "none|sigmoid|viscous_coulomb";
+  friction.apply = [](WrapperConfig& c, const Value& v) {
+    c.friction.model = v.text == "sigmoid"           ? FrictionModel::kSigmoid
+                       : v.text == "viscous_coulomb" ? FrictionModel::kViscousCoulomb
+                                                     : FrictionModel::kNone;
+  };
+  table.push_back(friction);
+  table.push_back(perJointIn(
+      "compensation.friction.phi1", nullptr, "sigmoid: N m",
+      [](WrapperConfig& c) -> std::vector<double>& { return c.friction.phi1; }, -kInfinity));
+  table.push_back(perJointIn(
+      "compensation.friction.phi2", nullptr, "sigmoid: s/rad",
+      [](WrapperConfig& c) -> std::vector<double>& { return c.friction.phi2; }, -kInfinity));
+  table.push_back(perJointIn(
+      "compensation.friction.phi3", nullptr, "sigmoid: rad/s",
+      [](WrapperConfig& c) -> std::vector<double>& { return c.friction.phi3; }, -kInfinity));
+  table.push_back(
+      perJointIn("compensation.friction.viscous", nullptr, "viscous_coulomb: N m s/rad",
+                 [](WrapperConfig& c) -> std::vector<double>& { return c.friction.viscous; }));
+  table.push_back(
+      perJointIn("compensation.friction.coulomb", nullptr, "viscous_coulomb: N m",
+                 [](WrapperConfig& c) -> std::vector<double>& { return c.friction.coulomb; }));
+  table.push_back(number("compensation.friction.smoothing_velocity", "0.01",
+                         "rad/s: tanh(dq / v) replaces sign(dq)", 0.0, kInfinity, true,
+                         [](WrapperConfig& c, double v) { c.friction.smoothing_velocity = v; }));
+
+  table.push_back(spaced(flag("soft_limits.enabled", "true", "spring-damper near the URDF limits",
+                              [](WrapperConfig& c, bool v) { c.soft_limits.enabled = v; })));
+  table.push_back(
+      perJointIn("soft_limits.margin_rad", "0.1", "spring starts this far inside each URDF limit",
+                 [](WrapperConfig& c) -> std::vector<double>& { return c.soft_limits.margin; }));
+  table.push_back(
+      perJointIn("soft_limits.stiffness", "100.0", "N m/rad",
+                 [](WrapperConfig& c) -> std::vector<double>& { return c.soft_limits.stiffness; }));
+  table.push_back(
+      perJointIn("soft_limits.damping", "5.0", "N m s/rad",
+                 [](WrapperConfig& c) -> std::vector<double>& { return c.soft_limits.damping; }));
+
+  table.push_back(
+      spaced(number("filter_alpha", "1.0", "first-order low-pass on the torque; 1 = off", 0.0, 1.0,
+                    true, [](WrapperConfig& c, double v) { c.filter_alpha = v; })));
+  table.push_back(perJoint("torque_rate_limit_nm_per_s", "1000.0", "N m/s per joint", 0.0, false,
+                           &WrapperConfig::torque_rate_limit));
+  table.push_back(perJoint("effort_limit_nm", nullptr, "default from the URDF <limit effort>", 0.0,
+                           true, &WrapperConfig::effort_limit));
+  table.push_back(perJoint("fault_damping", "5.0",
+                           "N m s/rad of the FAULT holding torque (gravity + damping)", 0.0, false,
+                           &WrapperConfig::fault_damping));
+  return table;
+}
+
+}  // namespace
+
+std::span<const Option> table() {
+  static const std::vector<Option> kTable = makeTable();
+  return kTable;
+}
+
+}  // namespace comply::pipeline::options
