@@ -9,9 +9,11 @@
 #include <string>
 #include <vector>
 
+#include "comply/hardware/control_loop.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/sim/renderer.hpp"
+#include "comply/sim/simulated_clock.hpp"
 #include "comply/sim/simulated_robot.hpp"
 
 namespace {
@@ -45,46 +47,56 @@ void plantCycle(benchmark::State& state, const std::string& robot_name) {
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
-/// The Cartesian wrapper holding the arm at home; with contact, the FR3's probe is first brought
-/// down onto the table so that every cycle has an active contact.
+/// Submits a reference 5 mm lower every 50 cycles until z = 0.38 m: the FR3's probe (0.11 m below
+/// the TCP) then presses on the table top at 0.30 m.
+class Approach final : public comply::hardware::LoopObserver {
+ public:
+  explicit Approach(comply::pipeline::CartesianWrapper& wrapper)
+      : wrapper_(wrapper), command_(wrapper.lastAccepted()) {
+    command_.fields = comply::CommandField::kPosition;
+  }
+  void beforeCycle(std::uint64_t index, double time_s) override {
+    if (index % 50 == 0 && command_.position.z() > 0.38) {
+      command_.position.z() -= 0.005;
+      command_.stamp_s = time_s;
+      wrapper_.submit(command_);
+    }
+  }
+
+ private:
+  comply::pipeline::CartesianWrapper& wrapper_;
+  comply::CartesianCommand command_;
+};
+
+/// The Cartesian wrapper holding the arm at home, run by the control loop every host uses with the
+/// plant's time as its clock; with contact, the FR3's probe is first brought down onto the table
+/// so that every cycle has an active contact.
 void closedLoop(benchmark::State& state, const std::string& robot_name, bool contact) {
   const comply::model::RobotDescription description =
       comply::model::loadRobotDescription(robot_name);
   comply::sim::SimulatedRobot robot(description, plantOptions(contact));
-  comply::pipeline::WrapperConfig config = comply::pipeline::parseWrapperConfig(
+  const comply::pipeline::WrapperConfig config = comply::pipeline::parseWrapperConfig(
       "c: {ros__parameters: {plugin: cartesian_impedance, robot: " + robot_name + "}}", "bench");
   comply::pipeline::CartesianWrapper wrapper(config);
   JointState joint_state = JointState::zero(robot.dof());
   robot.read(joint_state);
   wrapper.activate(joint_state);
+  comply::sim::SimulatedClock clock(robot);
+  comply::hardware::ControlLoop loop(robot, wrapper, clock, {.period_s = 0.001});
   if (contact) {
-    // Home TCP of the FR3 is at z = 0.59 m; the table top at 0.30 m, the probe reaches 0.11 m
-    // below the TCP: a reference at z = 0.38 m presses. Approach in 5 mm steps.
-    comply::CartesianCommand command = wrapper.lastAccepted();
-    command.fields = comply::CommandField::kPosition;
+    Approach approach(wrapper);
+    loop.setObserver(&approach);
     for (int cycle = 0; cycle < 3000; ++cycle) {
-      if (cycle % 50 == 0 && command.position.z() > 0.38) {
-        command.position.z() -= 0.005;
-        command.stamp_s = cycle * 0.001;
-        wrapper.submit(command);
-      }
-      std::vector<double> torque(static_cast<std::size_t>(robot.dof()));
-      robot.read(joint_state);
-      wrapper.update(joint_state, 0.001, torque);
-      robot.write(torque);
-      robot.step();
+      loop.runOnce();
     }
+    loop.setObserver(nullptr);
     if (robot.toolContactWrench().head<3>().norm() < 1.0) {
       state.SkipWithError("the probe is not in contact");
       return;
     }
   }
-  std::vector<double> torque(static_cast<std::size_t>(robot.dof()));
   for (auto _ : state) {
-    robot.read(joint_state);
-    wrapper.update(joint_state, 0.001, torque);
-    robot.write(torque);
-    robot.step();
+    loop.runOnce();
   }
   state.counters["cycles_per_s"] =
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
