@@ -1,4 +1,4 @@
-// FAULT handling (DESIGN.md, "Safety semantics"): a law that fails on activation is refused before
+// FAULT handling (docs/design.md, "Safety semantics"): a law that fails on activation is refused before
 // any torque is sent; a law that fails in the cycle, or an unusable joint state, switches to the
 // safe holding torque g(q) - D_fault dq until an explicit reset, and only a reset leaves it.
 

@@ -1,6 +1,6 @@
 // Lifecycle of both wrappers: nothing is written before activation or after deactivation, and
 // every activation seeds the reference from the measured state, so the law starts at zero torque
-// and the arm does not jump (DESIGN.md, "Safety semantics").
+// and the arm does not jump (docs/design.md, "Safety semantics").
 
 #include <gtest/gtest.h>
 

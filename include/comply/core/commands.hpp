@@ -1,5 +1,5 @@
 #pragma once
-// The command schemas a user sends (DESIGN.md "Command schemas"). The members come from the field
+// The command schemas a user sends (docs/design.md, "Command schema"). The members come from the field
 // tables of schema/table.hpp, so names are the same in the C buses (plugin/abi.h), JSON files and
 // messages. Poses, twists and wrenches are in the base
 // frame; gain blocks in the task frame, whose orientation travels with the command.
