@@ -61,9 +61,4 @@ nlohmann::json toJson(const ResultsTable& table);
 /// Writes <out_dir>/results.json and <out_dir>/table.md.
 void writeResults(const ResultsTable& table, const std::filesystem::path& out_dir);
 
-/// Runs scripts/<script> with python3 and `arguments`. When it fails, for instance because
-/// matplotlib is missing, says so on `err` and returns false: a missing plot never fails a run.
-bool runPlotScript(const std::string& script, const std::vector<std::string>& arguments,
-                   std::ostream& err);
-
 }  // namespace comply::experiments

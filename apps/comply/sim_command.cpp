@@ -1,48 +1,19 @@
 #include "sim_command.hpp"
 
-#include <sys/wait.h>
-
 #include <cstdlib>
 #include <iostream>
 
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/sim/viewer.hpp"
 #include "controller_setup.hpp"
+#include "plot_script.hpp"
 #include "sim_session.hpp"
 
 namespace comply::app {
-namespace {
-
-/// Single-quoted for /bin/sh.
-std::string shellQuoted(const std::string& text) {
-  std::string quoted = "'";
-  for (const char c : text) {
-    quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  }
-  return quoted + "'";
-}
-
-/// Debian's interpreter carries python3-matplotlib; a python3 earlier on PATH may not.
-std::string pythonInterpreter() {
-  return std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-}
-
-}  // namespace
 
 bool plotLog(const std::filesystem::path& csv, const std::filesystem::path& png,
              std::ostream& err) {
-  const std::filesystem::path script =
-      std::filesystem::path(COMPLY_SOURCE_DIR) / "scripts" / "plot_sim_log.py";
-  const std::string command = pythonInterpreter() + " " + shellQuoted(script.string()) + " " +
-                              shellQuoted(csv.string()) + " " + shellQuoted(png.string()) + " 2>&1";
-  const int status = std::system(command.c_str());
-  if (status != 0) {
-    err << "comply: warning: no plot: '" << command << "' failed (exit "
-        << (WIFEXITED(status) ? WEXITSTATUS(status) : -1)
-        << "); python3-matplotlib missing? scripts/install-deps.sh installs it\n";
-    return false;
-  }
-  return true;
+  return runPlotScript("plot_sim_log.py", {csv.string(), png.string()}, err);
 }
 
 int simCommand(const SimOptions& options, std::ostream& out, std::ostream& err) {

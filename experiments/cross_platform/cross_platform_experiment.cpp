@@ -1,3 +1,4 @@
+#include "plot_script.hpp"
 #include "cross_platform/cross_platform_experiment.hpp"
 
 #include <iostream>
@@ -34,7 +35,7 @@ app::SimResult runRobot(const std::string& robot, const CrossPlatformOptions& op
   run.progress = options.progress;
   app::SimResult result = app::runSimulation(run);
   if (options.pictures) {
-    runPlotScript("plot_sim_log.py",
+    app::runPlotScript("plot_sim_log.py",
                   {(run.out_dir / "log.csv").string(), (run.out_dir / "plot.png").string()},
                   options.progress != nullptr ? *options.progress : std::cerr);
   }

@@ -1,3 +1,4 @@
+#include "plot_script.hpp"
 #include "surface_following/surface_following_experiment.hpp"
 
 #include <fstream>
@@ -86,7 +87,7 @@ std::vector<SurfaceFollowingRow> runSurfaceFollowing(const SurfaceFollowingOptio
   }
   writeResults(surfaceFollowingTable(rows), options.out_dir);
   if (options.pictures) {
-    runPlotScript("plot_surface_following.py", {options.out_dir.string()},
+    app::runPlotScript("plot_surface_following.py", {options.out_dir.string()},
                   options.progress != nullptr ? *options.progress : std::cerr);
   }
   return rows;
