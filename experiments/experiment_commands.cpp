@@ -61,9 +61,12 @@ CLI::App* addConnectorMating(CLI::App& experiment, ConnectorMatingOptions& optio
   command
       ->add_option("--conditions", options.conditions,
                    "where the insertion gains are expressed: tcp_fixed (commanded TCP), "
-                   "tcp_measured (measured TCP), task_aligned (socket)")
+                   "tcp_measured (measured TCP), task_aligned (socket), online_fsf (Frenet-Serret "
+                   "frame of the measured TCP path, the reference advancing along it; orientation "
+                   "held), online_fsf_oriented (the same, the peg turned onto the frame)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"tcp_fixed", "tcp_measured", "task_aligned"}));
+      ->check(CLI::IsMember(
+          {"tcp_fixed", "tcp_measured", "task_aligned", "online_fsf", "online_fsf_oriented"}));
   command
       ->add_option("--rotational-stiffness", options.rotational_stiffness_nm_per_rad,
                    "rotational stiffness during insertion [N m/rad]")
@@ -73,6 +76,11 @@ CLI::App* addConnectorMating(CLI::App& experiment, ConnectorMatingOptions& optio
       ->add_option("--plant-friction-scale", options.plant_friction_scale,
                    "ablation: multiplies the simulated arm's joint Coulomb friction")
       ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  command
+      ->add_option("--nullspace-stiffness", options.nullspace_stiffness_nm_per_rad,
+                   "ablation: posture spring during insertion, towards the joints at its start "
+                   "[N m/rad] (default: the controller's)")
       ->check(CLI::NonNegativeNumber);
   return command;
 }

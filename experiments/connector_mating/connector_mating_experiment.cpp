@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <ostream>
 #include <sstream>
 
@@ -9,6 +10,7 @@
 #include "connector_mating/peg_and_socket.hpp"
 #include "connector_mating/trial_evaluation.hpp"
 #include "controller_setup.hpp"
+#include "plot_script.hpp"
 #include "sim_session.hpp"
 #include "source_dir.hpp"
 #include "task_file.hpp"
@@ -56,6 +58,9 @@ ConnectorMatingRow runTrial(const Trial& trial, double offset_deg,
   run.config = trialConfig(trial);
   MatingStream stream(trial, home.position, home.orientation,
                       options.rotational_stiffness_nm_per_rad, run.config.dof);
+  if (options.nullspace_stiffness_nm_per_rad) {
+    stream.overrideNullspace(*options.nullspace_stiffness_nm_per_rad);
+  }
   run.task = matingTask(stream.motionEndTime(), options.out_dir, run.config.dof);
   run.task.scene.tool = peg_file;
   run.task.scene.objects.push_back(folder / "socket.xml");
@@ -80,17 +85,20 @@ std::vector<ConnectorMatingRow> runConnectorMating(const ConnectorMatingOptions&
 
   // Refuse an unknown condition before the first trial rather than after minutes of others.
   for (const std::string& condition : options.conditions) {
-    connector_mating::complianceFrameOf(condition);
+    connector_mating::trialOf(condition, 0.0);
   }
   std::vector<ConnectorMatingRow> rows;
   for (const double offset_deg : options.offsets_deg) {
     for (const std::string& condition : options.conditions) {
-      const Trial trial{condition, connector_mating::complianceFrameOf(condition),
-                        offset_deg * M_PI / 180.0};
+      const Trial trial = connector_mating::trialOf(condition, offset_deg * M_PI / 180.0);
       rows.push_back(runTrial(trial, offset_deg, options, home, peg_file));
     }
   }
   writeResults(connectorMatingTable(rows), options.out_dir);
+  if (options.pictures) {
+    app::runPlotScript("plot_connector_mating.py", {options.out_dir.string()},
+                       options.progress != nullptr ? *options.progress : std::cerr);
+  }
   return rows;
 }
 
@@ -103,12 +111,15 @@ ResultsTable connectorMatingTable(const std::vector<ConnectorMatingRow>& rows) {
       Column("depth_mm", "depth", "mm", 1),
       Column("peak_axial_force_n", "peak axial force", "N", 1),
       Column("seat_time_s", "seat time", "s", 2),
+      Column("task_axis_to_socket_deg", "task z to socket axis", "deg", 1),
+      Column("peg_to_socket_deg", "peg to socket axis", "deg", 1),
       Column("failure", "failure"),
   };
   for (const ConnectorMatingRow& row : rows) {
     // NaN seat time (not seated) and no failure (seated) are "no value": null and "-".
     table.rows.push_back({row.offset_deg, row.condition, row.seated, row.depth_mm,
-                          row.peak_axial_force_n, row.seat_time_s,
+                          row.peak_axial_force_n, row.seat_time_s, row.task_axis_to_socket_deg,
+                          row.peg_to_socket_deg,
                           row.failure.empty() ? Value{} : Value{row.failure}});
   }
   return table;

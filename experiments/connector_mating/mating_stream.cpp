@@ -1,6 +1,8 @@
 #include "connector_mating/mating_stream.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "connector_mating/peg_and_socket.hpp"
@@ -18,18 +20,21 @@ constexpr double kAxialNPerM = 1000.0;
 
 }  // namespace
 
-ComplianceFrame complianceFrameOf(const std::string& condition) {
-  if (condition == "tcp_fixed") {
-    return ComplianceFrame::kCommandedTcp;
-  }
+Trial trialOf(const std::string& condition, double offset_rad) {
+  Trial trial{condition, ComplianceFrame::kCommandedTcp, offset_rad};
   if (condition == "tcp_measured") {
-    return ComplianceFrame::kMeasuredTcp;
+    trial.frame = ComplianceFrame::kMeasuredTcp;
+  } else if (condition == "task_aligned") {
+    trial.frame = ComplianceFrame::kSocket;
+  } else if (condition == "online_fsf" || condition == "online_fsf_oriented") {
+    trial.frame = ComplianceFrame::kOnlinePathFrame;
+    trial.orientation_follows_frame = condition == "online_fsf_oriented";
+  } else if (condition != "tcp_fixed") {
+    throw std::invalid_argument(
+        "unknown connector-mating condition '" + condition +
+        "' (tcp_fixed, tcp_measured, task_aligned, online_fsf or online_fsf_oriented)");
   }
-  if (condition == "task_aligned") {
-    return ComplianceFrame::kSocket;
-  }
-  throw std::invalid_argument("unknown connector-mating condition '" + condition +
-                              "' (tcp_fixed, tcp_measured or task_aligned)");
+  return trial;
 }
 
 MatingStream::MatingStream(const Trial& trial, const Eigen::Vector3d& home_tcp,
@@ -45,6 +50,41 @@ MatingStream::MatingStream(const Trial& trial, const Eigen::Vector3d& home_tcp,
   tip_to_tcp_ = -(peg_down_ * Eigen::Vector3d(0.0, 0.0, kPegTip));
   start_tcp_ = socketEntrance() - kStartAbove * axis_ + tip_to_tcp_;
   end_tcp_ = socketEntrance() + (kHoleDepth + kPastSeat) * axis_ + tip_to_tcp_;
+  if (trial.frame == ComplianceFrame::kOnlinePathFrame) {
+    // The same speed and travel as the reference of the other conditions.
+    const double travel_m = (end_tcp_ - start_tcp_).norm();
+    online_.emplace(travel_m / kInsertS, travel_m, peg_down_, trial.orientation_follows_frame);
+  }
+}
+
+double MatingStream::insertionStart() {
+  return kApproachS;
+}
+
+Eigen::Vector3d MatingStream::taskAxis(double t_s, const Eigen::Quaterniond& measured_tcp) const {
+  if (t_s < kApproachS) {
+    return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  }
+  switch (trial_.frame) {
+    case ComplianceFrame::kCommandedTcp:
+      return peg_down_ * Eigen::Vector3d::UnitZ();
+    case ComplianceFrame::kMeasuredTcp:
+      return measured_tcp * Eigen::Vector3d::UnitZ();
+    case ComplianceFrame::kSocket:
+      return axis_;
+    case ComplianceFrame::kOnlinePathFrame:
+      break;
+  }
+  // The last command sent at or before t_s.
+  const std::vector<OnlineRecord>& records = online_->records();
+  const auto after = std::upper_bound(records.begin(), records.end(), t_s,
+                                      [](double t, const OnlineRecord& r) { return t < r.t_s; });
+  return after == records.begin() ? peg_down_ * Eigen::Vector3d::UnitZ() : std::prev(after)->task_z;
+}
+
+const std::vector<OnlineRecord>& MatingStream::onlineRecords() const {
+  static const std::vector<OnlineRecord> kNone;
+  return online_ ? online_->records() : kNone;
 }
 
 double MatingStream::motionEndTime() const {
@@ -55,7 +95,7 @@ double MatingStream::duration() {
   return kApproachS + kInsertS + kHoldS;
 }
 
-std::optional<CartesianCommand> MatingStream::next(double t_s, const MeasuredPose& /*measured*/) {
+std::optional<CartesianCommand> MatingStream::next(double t_s, const MeasuredPose& measured) {
   CartesianCommand command = CartesianCommand::zero(dof_);
   command.stamp_s = t_s;
   command.fields = CommandField::kPosition | CommandField::kVelocity | CommandField::kStiffness |
@@ -64,7 +104,23 @@ std::optional<CartesianCommand> MatingStream::next(double t_s, const MeasuredPos
   command.damping_mode = DampingMode::kRatio;
   command.damping_ratio.setOnes();
   command.stiffness_rotational = Eigen::Matrix3d::Identity() * rotational_nm_per_rad_;
-  return t_s < kApproachS ? approach(t_s, std::move(command)) : insertion(t_s, std::move(command));
+  if (t_s < kApproachS) {
+    return approach(t_s, std::move(command));
+  }
+  command = insertion(t_s, std::move(command));
+  if (nullspace_nm_per_rad_) {
+    if (insertion_start_joints_.size() == 0) {
+      insertion_start_joints_ = measured.position;
+    }
+    command.fields = command.fields | CommandField::kNullspace;
+    command.nullspace_position = insertion_start_joints_;
+    command.nullspace_stiffness = JointVector::Constant(dof_, *nullspace_nm_per_rad_);
+    command.nullspace_damping = JointVector::Constant(dof_, 1.0);
+  }
+  if (online_) {
+    online_->apply(t_s, measured, command);
+  }
+  return command;
 }
 
 CartesianCommand MatingStream::approach(double t_s, CartesianCommand command) const {
@@ -97,6 +153,8 @@ CartesianCommand MatingStream::insertion(double t_s, CartesianCommand command) c
     case ComplianceFrame::kSocket:
       command.task_frame = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), axis_);
       break;
+    case ComplianceFrame::kOnlinePathFrame:
+      break;  // OnlineInsertion sets the frame, the position and the orientation
   }
   return command;
 }

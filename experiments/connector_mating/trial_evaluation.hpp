@@ -1,7 +1,8 @@
 #pragma once
 // Whether one connector-mating trial seated, and if not why: the peg tip's depth along the socket
 // axis and the axial contact force as a force sensor's filter reports it. Also writes the
-// per-cycle trace.
+// per-cycle trace: depth, forces, the peg's and the task axis's angles to the socket axis, the
+// tip's distance from it and the reference's lead and lateral lag.
 
 #include <filesystem>
 

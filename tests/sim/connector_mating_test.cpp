@@ -4,6 +4,10 @@
 // results.json carries one row per trial. Whether task-aligned compliance seats at more offsets
 // than the baseline is reported by the experiment (README, Evaluation), not asserted: this
 // simulation does not show it (the README explains what the two conditions differ by here).
+//
+// The online Frenet-Serret conditions, as the run shows them: the frame estimated from the
+// measured TCP path turns away from the insertion direction before the peg reaches the socket,
+// and the peg never touches it, at 1 deg where the baseline seats.
 
 #include <gtest/gtest.h>
 
@@ -22,6 +26,7 @@ TEST(ConnectorMating, SeatsAtOneDegreeInBothConditionsAndTheBaselineFailsAtSix) 
   options.out_dir = std::filesystem::temp_directory_path() / "comply_connector_mating_test";
   std::filesystem::remove_all(options.out_dir);
   options.offsets_deg = {1.0, 6.0};
+  options.conditions = {"tcp_fixed", "task_aligned"};
   options.pictures = false;
   std::ostringstream progress;
   options.progress = &progress;
@@ -54,6 +59,30 @@ TEST(ConnectorMating, SeatsAtOneDegreeInBothConditionsAndTheBaselineFailsAtSix) 
   EXPECT_EQ(results[1]["seated"], true);
   EXPECT_TRUE(results[1]["failure"].is_null());
   EXPECT_EQ(results[2]["failure"], baseline_six.failure);
+}
+
+TEST(ConnectorMating, OnlineFrenetFrameTurnsAwayAndThePegMissesTheSocketAtOneDegree) {
+  experiments::ConnectorMatingOptions options;
+  options.out_dir = std::filesystem::temp_directory_path() / "comply_connector_mating_online_test";
+  std::filesystem::remove_all(options.out_dir);
+  options.offsets_deg = {1.0};
+  options.conditions = {"online_fsf", "online_fsf_oriented"};
+  options.pictures = false;
+  std::ostringstream progress;
+  options.progress = &progress;
+  const std::vector<experiments::ConnectorMatingRow> rows =
+      experiments::runConnectorMating(options);
+  ASSERT_EQ(rows.size(), 2U);
+  for (const experiments::ConnectorMatingRow& row : rows) {
+    SCOPED_TRACE(row.condition);
+    EXPECT_FALSE(row.seated);
+    EXPECT_EQ(row.failure, "time_out");
+    EXPECT_LT(row.depth_mm, 0.0);                  // the tip never reached the entrance
+    EXPECT_LT(row.peak_axial_force_n, 1.0);        // nor touched the socket
+    EXPECT_GT(row.task_axis_to_socket_deg, 45.0);  // the frame turned away
+  }
+  EXPECT_LT(rows[0].peg_to_socket_deg, 3.0);   // orientation held: the peg still points down
+  EXPECT_GT(rows[1].peg_to_socket_deg, 10.0);  // orientation following: turned with the frame
 }
 
 }  // namespace
