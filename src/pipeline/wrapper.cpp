@@ -54,7 +54,7 @@ Verdict Wrapper<Command>::submit(const Command& command) {
   if (verdict.accepted) {
     IntakeMessage message;
     message.command = toBus(checked, dof);
-    std::get<typename BusOf<Command>::type>(message.command).fields =
+    std::get<BusOf<Command>>(message.command).fields =
         static_cast<std::uint32_t>(command.fields);
     if (!controller_.enqueue(message)) {
       verdict = {false, RejectionReason::kQueueFull,
@@ -77,7 +77,7 @@ Verdict Wrapper<Command>::submit(const Command& command) {
 template <typename Command>
 Command Wrapper<Command>::lastAccepted() const {
   const std::lock_guard<std::mutex> lock(intake_mutex_);
-  using Bus = typename BusOf<Command>::type;
+  using Bus = BusOf<Command>;
   return schema::fromBus(std::get<Bus>(controller_.commandInForce()));
 }
 

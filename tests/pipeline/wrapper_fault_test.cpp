@@ -1,6 +1,6 @@
-// FAULT handling (docs/design.md, "Safety semantics"): a law that fails on activation is refused before
-// any torque is sent; a law that fails in the cycle, or an unusable joint state, switches to the
-// safe holding torque g(q) - D_fault dq until an explicit reset, and only a reset leaves it.
+// FAULT handling (docs/design.md, "Safety semantics"): a law that fails on activation is refused
+// before any torque is sent; a law that fails in the cycle, or an unusable joint state, switches to
+// the safe holding torque g(q) - D_fault dq until an explicit reset, and only a reset leaves it.
 
 #include <gtest/gtest.h>
 

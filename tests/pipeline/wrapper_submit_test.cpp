@@ -151,6 +151,47 @@ TEST_F(JointWrapperSubmit, ReactivationKeepsTheGainsInForce) {
   COMPLY_EXPECT_JOINTS_NEAR(lawTorque(), offset(JointVector::Zero(kFr3Dof), 6, 3.0), kTolerance);
 }
 
+// ---- the intake queue: every command between two cycles applied in order; a sender faster than
+// the cycle refused with queue_full instead of overwriting accepted commands
+// -----------------------
+
+TEST_F(JointWrapperSubmit, EveryCommandBetweenTwoCyclesIsAppliedInOrder) {
+  JointCommand damping = JointCommand::zero(kFr3Dof);
+  damping.stamp_s = 1.0;
+  damping.fields = CommandField::kDamping;
+  damping.damping.setConstant(7.0);
+  ASSERT_TRUE(wrapper.submit(damping).accepted);
+  ASSERT_TRUE(wrapper.submit(stiffness(2.0, 150.0)).accepted);
+  ASSERT_TRUE(wrapper.submit(stiffness(3.0, 160.0)).accepted);
+  ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
+  const JointCommand in_force = wrapper.lastAccepted();
+  EXPECT_EQ(in_force.damping, JointVector(JointVector::Constant(kFr3Dof, 7.0)));
+  EXPECT_EQ(in_force.stiffness, JointVector(JointVector::Constant(kFr3Dof, 160.0)));
+  EXPECT_EQ(in_force.stamp_s, 3.0);
+}
+
+TEST_F(JointWrapperSubmit, ASenderFasterThanTheCycleIsRefusedWithQueueFull) {
+  const auto capacity = static_cast<int>(Controller::kIntakeCapacity);
+  for (int i = 0; i < capacity; ++i) {
+    ASSERT_TRUE(wrapper.submit(stiffness(1.0 + i, 100.0 + i)).accepted) << i;
+  }
+  const Verdict refused = wrapper.submit(stiffness(1000.0, 999.0));
+  EXPECT_FALSE(refused.accepted);
+  EXPECT_EQ(refused.reason, RejectionReason::kQueueFull);
+  const DiagnosticsSnapshot diagnostics = wrapper.diagnostics();
+  EXPECT_EQ(diagnostics.rejections[static_cast<std::size_t>(RejectionReason::kQueueFull)], 1U);
+  EXPECT_EQ(diagnostics.commands_accepted, static_cast<std::uint64_t>(capacity));
+
+  // The cycle applies the accepted ones (the last accepted is in force, not the refused one) and
+  // the queue takes commands again.
+  ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
+  EXPECT_EQ(wrapper.lastAccepted().stiffness[0], 100.0 + capacity - 1);
+  // The refused command's stamp was not taken: an older stamp than it is still accepted.
+  EXPECT_TRUE(wrapper.submit(stiffness(capacity + 1.0, 321.0)).accepted);
+  ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
+  EXPECT_EQ(wrapper.lastAccepted().stiffness[0], 321.0);
+}
+
 // ---- Cartesian wrapper ------------------------------------------------------------------------
 
 class CartesianWrapperSubmit : public SubmitFixture<CartesianWrapper> {

@@ -1,7 +1,7 @@
-// Command watchdog (docs/design.md, "Safety semantics"): when senders go quiet for command_timeout_s,
-// "hold" keeps the last pose reference but drops any motion (velocity, twist) reference, and
-// "reanchor" moves the reference to the measured pose. Either way, a later partial command builds
-// on what the cycle holds, not on what the sender last sent.
+// Command watchdog (docs/design.md, "Safety semantics"): when senders go quiet for
+// command_timeout_s, "hold" keeps the last pose reference but drops any motion (velocity, twist)
+// reference, and "reanchor" moves the reference to the measured pose. Either way, a later partial
+// command builds on what the cycle holds, not on what the sender last sent.
 
 #include <gtest/gtest.h>
 

@@ -21,17 +21,24 @@
 namespace comply::testing {
 namespace {
 
-TEST(ConnectorMating, SeatsAtOneDegreeInBothConditionsAndTheBaselineFailsAtSix) {
+/// The experiment at `offsets_deg` for `conditions`, without pictures, into a fresh folder.
+std::vector<experiments::ConnectorMatingRow> runTrials(const std::string& folder,
+                                                       std::vector<double> offsets_deg,
+                                                       std::vector<std::string> conditions) {
   experiments::ConnectorMatingOptions options;
-  options.out_dir = std::filesystem::temp_directory_path() / "comply_connector_mating_test";
+  options.out_dir = std::filesystem::temp_directory_path() / folder;
   std::filesystem::remove_all(options.out_dir);
-  options.offsets_deg = {1.0, 6.0};
-  options.conditions = {"tcp_fixed", "task_aligned"};
+  options.offsets_deg = std::move(offsets_deg);
+  options.conditions = std::move(conditions);
   options.pictures = false;
   std::ostringstream progress;
   options.progress = &progress;
+  return experiments::runConnectorMating(options);
+}
+
+TEST(ConnectorMating, SeatsAtOneDegreeInBothConditionsAndTheBaselineFailsAtSix) {
   const std::vector<experiments::ConnectorMatingRow> rows =
-      experiments::runConnectorMating(options);
+      runTrials("comply_connector_mating_test", {1.0, 6.0}, {"tcp_fixed", "task_aligned"});
   ASSERT_EQ(rows.size(), 4U);
   for (int i = 0; i < 2; ++i) {
     const experiments::ConnectorMatingRow& row = rows[i];
@@ -41,7 +48,7 @@ TEST(ConnectorMating, SeatsAtOneDegreeInBothConditionsAndTheBaselineFailsAtSix) 
     EXPECT_TRUE(row.failure.empty());
     EXPECT_GT(row.depth_mm, 19.0);
     EXPECT_LT(row.depth_mm, 21.0);  // on the seat, not through it
-    EXPECT_LT(row.peak_axial_force_n, options.axial_force_limit_n);
+    EXPECT_LT(row.peak_axial_force_n, experiments::ConnectorMatingOptions{}.axial_force_limit_n);
   }
   const experiments::ConnectorMatingRow& baseline_six = rows[2];
   ASSERT_EQ(baseline_six.condition, "tcp_fixed");
@@ -51,7 +58,8 @@ TEST(ConnectorMating, SeatsAtOneDegreeInBothConditionsAndTheBaselineFailsAtSix) 
   EXPECT_TRUE(baseline_six.failure == "force_limit" || baseline_six.failure == "time_out")
       << baseline_six.failure;
 
-  std::ifstream results_file(options.out_dir / "results.json");
+  std::ifstream results_file(std::filesystem::temp_directory_path() /
+                             "comply_connector_mating_test" / "results.json");
   ASSERT_TRUE(results_file);
   const nlohmann::json results = nlohmann::json::parse(results_file);
   ASSERT_EQ(results.size(), 4U);
@@ -62,16 +70,8 @@ TEST(ConnectorMating, SeatsAtOneDegreeInBothConditionsAndTheBaselineFailsAtSix) 
 }
 
 TEST(ConnectorMating, OnlineFrenetFrameTurnsAwayAndThePegMissesTheSocketAtOneDegree) {
-  experiments::ConnectorMatingOptions options;
-  options.out_dir = std::filesystem::temp_directory_path() / "comply_connector_mating_online_test";
-  std::filesystem::remove_all(options.out_dir);
-  options.offsets_deg = {1.0};
-  options.conditions = {"online_fsf", "online_fsf_oriented"};
-  options.pictures = false;
-  std::ostringstream progress;
-  options.progress = &progress;
-  const std::vector<experiments::ConnectorMatingRow> rows =
-      experiments::runConnectorMating(options);
+  const std::vector<experiments::ConnectorMatingRow> rows = runTrials(
+      "comply_connector_mating_online_test", {1.0}, {"online_fsf", "online_fsf_oriented"});
   ASSERT_EQ(rows.size(), 2U);
   for (const experiments::ConnectorMatingRow& row : rows) {
     SCOPED_TRACE(row.condition);

@@ -3,27 +3,21 @@
 // Held as a variant so one cycle serves joint and Cartesian control; the reference rules (merge a
 // partial command, seed from the measured pose, stop the motion) are the schema's, per bus type.
 
+#include <utility>
 #include <variant>
 
 #include "comply/core/commands.hpp"
 #include "comply/core/state.hpp"
 #include "comply/plugin/abi.h"
+#include "comply/schema/schema.hpp"
 
 namespace comply::pipeline {
 
 using CommandBus = std::variant<comply_joint_command, comply_cartesian_command>;
 
-/// The bus type of a C++ command type.
+/// The bus type of a C++ command type, as the schema converts it.
 template <typename Command>
-struct BusOf;
-template <>
-struct BusOf<JointCommand> {
-  using type = comply_joint_command;
-};
-template <>
-struct BusOf<CartesianCommand> {
-  using type = comply_cartesian_command;
-};
+using BusOf = decltype(schema::toBus(std::declval<const Command&>(), 0));
 
 /// An empty bus of `command_kind` (COMPLY_COMMAND_*).
 CommandBus emptyBus(int command_kind) noexcept;
