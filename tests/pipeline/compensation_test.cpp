@@ -8,19 +8,12 @@
 #include <cmath>
 #include <limits>
 
+#include "joint_literals.hpp"
+
 namespace comply::pipeline {
 namespace {
 
 constexpr double kTight = 1e-12;
-
-JointVector joints(std::initializer_list<double> values) {
-  JointVector v(static_cast<Eigen::Index>(values.size()));
-  Eigen::Index i = 0;
-  for (const double value : values) {
-    v[i++] = value;
-  }
-  return v;
-}
 
 FrictionParameters sigmoid(std::vector<double> phi1, std::vector<double> phi2,
                            std::vector<double> phi3) {

@@ -8,6 +8,8 @@
 
 #include <limits>
 
+#include "joint_literals.hpp"
+
 namespace comply::pipeline {
 namespace {
 
@@ -16,15 +18,6 @@ constexpr double kPeriod = 0.001;  // 1 kHz
 constexpr double kInactive = 1e9;  // a rate or effort limit that never binds
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-JointVector joints(std::initializer_list<double> values) {
-  JointVector v(static_cast<Eigen::Index>(values.size()));
-  Eigen::Index i = 0;
-  for (const double value : values) {
-    v[i++] = value;
-  }
-  return v;
-}
 
 ShapingLimits limits(double alpha, JointVector rate, JointVector effort) {
   return ShapingLimits{alpha, std::move(rate), std::move(effort)};

@@ -6,6 +6,7 @@
 
 #include "comply/pipeline/config.hpp"
 #include "controller_setup.hpp"
+#include "sim_session.hpp"
 #include "task_file.hpp"
 
 namespace comply::testing {
@@ -21,6 +22,14 @@ inline app::TaskFile taskFromYaml(const std::string& yaml, bool cartesian, int d
 inline pipeline::WrapperConfig simCartesianConfig(const std::string& robot) {
   return app::simControllerConfig(
       robot, "", (kSourceDir / "config" / "sim" / "cartesian_impedance.yaml").string());
+}
+
+/// A run of config/sim/cartesian_impedance.yaml on the FR3 with the task examples/sim/<task>.
+inline app::SimRunOptions fr3ExampleRun(const std::string& task) {
+  app::SimRunOptions run;
+  run.config = simCartesianConfig("fr3");
+  run.task = app::loadTaskFile(kSourceDir / "examples" / "sim" / task, true, run.config.dof);
+  return run;
 }
 
 }  // namespace comply::testing

@@ -129,10 +129,7 @@ TEST(SimulatedRobot, HomePoseMatchesTheControllerModel) {
 }
 
 TEST(SimulatedRobot, ProbeForceEqualsStiffnessTimesPenetration) {
-  app::SimRunOptions run;
-  run.config = simCartesianConfig("fr3");
-  run.task = app::loadTaskFile(kSourceDir / "examples" / "sim" / "press_on_table.yaml", true,
-                               run.config.dof);
+  app::SimRunOptions run = fr3ExampleRun("press_on_table.yaml");
   const app::SimResult result = app::runSimulation(run);
   ASSERT_EQ(result.summary.faults, 0U);
   // The task's z stiffness is 500 N/m and the reference lies 30 mm past the point of contact.

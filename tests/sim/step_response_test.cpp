@@ -14,10 +14,7 @@ namespace comply::testing {
 namespace {
 
 TEST(StepResponse, SettlesWithoutSustainedOscillationWithinTheTorqueRateLimit) {
-  app::SimRunOptions run;
-  run.config = simCartesianConfig("fr3");
-  run.task = app::loadTaskFile(kSourceDir / "examples" / "sim" / "step_response.yaml", true,
-                               run.config.dof);
+  app::SimRunOptions run = fr3ExampleRun("step_response.yaml");
   const app::SimResult result = app::runSimulation(run);
   const app::SimLog& log = result.log;
   ASSERT_EQ(result.summary.faults, 0U);

@@ -12,10 +12,7 @@ namespace comply::testing {
 namespace {
 
 TEST(TaskPath, ProbeFollowsTheSOnTheTableAndPressesWithStiffnessTimesOffset) {
-  app::SimRunOptions run;
-  run.config = simCartesianConfig("fr3");
-  run.task = app::loadTaskFile(kSourceDir / "examples" / "sim" / "path_on_table.yaml", true,
-                               run.config.dof);
+  app::SimRunOptions run = fr3ExampleRun("path_on_table.yaml");
   ASSERT_TRUE(run.task.path_points);
   const task::Path path(*run.task.path_points);
   const double start = run.task.path_options.start_time_s;
