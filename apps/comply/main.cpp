@@ -4,7 +4,9 @@
 //   comply validate --robot fr3 --plugin cartesian_impedance --inputs samples.json [...]
 //   comply sim --robot fr3 --config controller.yaml --task task.yaml [--out DIR] [...]
 //   comply experiment cross-platform [--out DIR]
-//   comply schema [--format markdown|json|msg] [--kind cartesian|joint]
+//   comply run --config controller.yaml --sim [--robot R] [--rate HZ] [--domain N] [--name NAME]
+//   comply send --json '{"position": [...]}' | --file F [--rate HZ];  comply echo
+//   [state|diagnostics] comply schema [--format markdown|json|msg|idl] [--kind cartesian|joint]
 //
 // Exit codes: 0 success, 1 a check failed (validate above tolerance, a controller fault, a
 // target not reached), 2 bad input or setup.
@@ -15,6 +17,7 @@
 #include "bench_command.hpp"
 #include "comply/model/robot_description.hpp"
 #include "experiment_commands.hpp"
+#include "live_commands.hpp"
 #include "schema_command.hpp"
 #include "sim_command.hpp"
 #include "validate_command.hpp"
@@ -81,13 +84,14 @@ int main(int argc, char** argv) {
   sim_command->add_flag("--no-plot{false}", sim.plot, "skip the matplotlib plot");
 
   const comply::experiments::Commands experiments = comply::experiments::addCommands(app);
+  const comply::app::LiveCommands live = comply::app::addLiveCommands(app);
 
   comply::app::SchemaOptions schema;
   CLI::App* schema_command = app.add_subcommand(
       "schema", "print the command schema (docs/command-schema.md, msg/*.msg are its output)");
-  schema_command->add_option("--format", schema.format, "markdown, json or msg (ROS 2)")
+  schema_command->add_option("--format", schema.format, "markdown, json, msg (ROS 2) or idl (DDS)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"markdown", "json", "msg"}));
+      ->check(CLI::IsMember({"markdown", "json", "msg", "idl"}));
   schema_command->add_option("--kind", schema.kind, "cartesian or joint (default: both)")
       ->check(CLI::IsMember({"cartesian", "joint"}));
 
@@ -101,6 +105,9 @@ int main(int argc, char** argv) {
     }
     if (sim_command->parsed()) {
       return comply::app::simCommand(sim, std::cout, std::cerr);
+    }
+    if (live.parsed()) {
+      return live.run(std::cout, std::cerr);
     }
     if (experiments.parsed()) {
       return experiments.run(std::cout, std::cerr);

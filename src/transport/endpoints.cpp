@@ -50,8 +50,11 @@ dds_duration_t durationOf(double seconds) {
 
 /// ROS 2's profiles (rmw_qos_profile_default, rmw_qos_profile_sensor_data), in XCDR1 as ROS 2
 /// writes.
-dds_qos_t* qosFor(Topic topic) {
-  const QosProfile profile = qosOf(topic);
+dds_qos_t* qosFor(Topic topic, int depth) {
+  QosProfile profile = qosOf(topic);
+  if (depth > 0) {
+    profile.depth = depth;
+  }
   dds_qos_t* qos = dds_create_qos();
   dds_qset_reliability(qos,
                        profile.reliable ? DDS_RELIABILITY_RELIABLE : DDS_RELIABILITY_BEST_EFFORT,
@@ -86,13 +89,14 @@ QosProfile qosOf(Topic topic) {
   }
 }
 
-Endpoint::Endpoint(Participant& participant, std::string_view host_name, Topic topic, bool writer)
+Endpoint::Endpoint(Participant& participant, std::string_view host_name, Topic topic, bool writer,
+                   int depth)
     : writer_(writer) {
   const std::string name = topicName(host_name, topic);
   topic_ =
       dds_create_topic(participant.handle(), descriptorOf(topic), name.c_str(), nullptr, nullptr);
   check(topic_, "cannot create topic " + name);
-  dds_qos_t* qos = qosFor(topic);
+  dds_qos_t* qos = qosFor(topic, depth);
   entity_ = writer ? dds_create_writer(participant.handle(), topic_, qos, nullptr)
                    : dds_create_reader(participant.handle(), topic_, qos, nullptr);
   dds_delete_qos(qos);
@@ -142,8 +146,8 @@ bool Writer<Message>::flush(double timeout_s) {
 }
 
 template <typename Message>
-Reader<Message>::Reader(Participant& participant, std::string_view host_name)
-    : Endpoint(participant, host_name, TopicOf<Message>::kTopic, false) {
+Reader<Message>::Reader(Participant& participant, std::string_view host_name, int depth)
+    : Endpoint(participant, host_name, TopicOf<Message>::kTopic, false, depth) {
   waitset_ = dds_create_waitset(participant.handle());
   check(waitset_, "waitset");
   condition_ = dds_create_readcondition(entity_, DDS_ANY_STATE);

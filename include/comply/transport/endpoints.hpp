@@ -80,7 +80,8 @@ class Endpoint {
   [[nodiscard]] std::uint64_t instanceHandle() const;
 
  protected:
-  Endpoint(Participant& participant, std::string_view host_name, Topic topic, bool writer);
+  Endpoint(Participant& participant, std::string_view host_name, Topic topic, bool writer,
+           int depth = 0);
   ~Endpoint();
   bool writer_;
   std::int32_t topic_ = 0;
@@ -111,7 +112,9 @@ struct Sample {
 template <typename Message>
 class Reader final : public Endpoint {
  public:
-  Reader(Participant& participant, std::string_view host_name);
+  /// `depth` > 0 replaces the topic's keep-last depth for this reader alone (history depth is not
+  /// matched against the writers', so any depth stays compatible with ROS 2 peers).
+  Reader(Participant& participant, std::string_view host_name, int depth = 0);
   ~Reader();
   /// Appends up to `max` waiting samples to `out` in arrival order; how many.
   std::size_t take(std::vector<Sample<Message>>& out, std::size_t max = 64);
