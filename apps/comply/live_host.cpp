@@ -35,8 +35,10 @@ struct HostEndpoints {
   // is descheduled waits here instead of being dropped unaccounted.
   static constexpr int kCommandDepth = 1000;
   explicit HostEndpoints(const RunOptions& options)
-      : participant({options.domain_id, options.network == "all" ? transport::Network::kAll
-                                                                 : transport::Network::kLoopback}),
+      : participant(
+            {options.domain_id,
+             options.network == "all" ? transport::Network::kAll : transport::Network::kLoopback,
+             options.priority > 1 ? options.priority - 1 : 0}),
         cartesian(participant, options.name, kCommandDepth),
         joint(participant, options.name, kCommandDepth),
         request(participant, options.name),
@@ -190,7 +192,11 @@ int runWith(const RunOptions& options,
     loop.run();
     loop_running = false;
   });
-  std::thread reader([&] { readerThread(dds, intake, io_running); });
+  std::thread reader([&] {
+    // Just below the control thread: a command waits for the reader, not for the scheduler.
+    makeRealtime(options.priority > 1 ? options.priority - 1 : 0);
+    readerThread(dds, intake, io_running);
+  });
   PublisherContext<Command> context{options,    *resolved, wrapper, observer,
                                     accounting, lock,      dds,     period_s};
   std::thread publisher([&] { publisherThread(context, io_running); });

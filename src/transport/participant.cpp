@@ -25,10 +25,10 @@ std::map<int, DomainUse>& domains() {
 void acquireDomain(const ParticipantOptions& options) {
   const std::lock_guard<std::mutex> lock(domains_mutex);
   DomainUse& use = domains()[options.domain_id];
-  if (use.users++ > 0 || options.network == Network::kAll) {
+  const std::string config = cycloneConfig(options);
+  if (use.users++ > 0 || config.empty()) {
     return;
   }
-  const std::string config = cycloneConfig(options);
   use.domain = dds_create_domain(static_cast<dds_domainid_t>(options.domain_id), config.c_str());
   if (use.domain < 0) {
     --use.users;
@@ -49,8 +49,19 @@ void releaseDomain(int domain_id) {
 }  // namespace
 
 std::string cycloneConfig(const ParticipantOptions& options) {
+  std::string threads;
+  if (options.receive_priority > 0) {
+    threads = "<Threads>";
+    for (const char* name : {"recv", "dq.user"}) {
+      threads += std::string("<Thread Name=\"") + name +
+                 "\"><Scheduling><Class>realtime</Class><Priority>" +
+                 std::to_string(options.receive_priority) + "</Priority></Scheduling></Thread>";
+    }
+    threads += "</Threads>";
+  }
   if (options.network == Network::kAll) {
-    return {};
+    return threads.empty() ? ""
+                           : "<CycloneDDS><Domain Id=\"any\">" + threads + "</Domain></CycloneDDS>";
   }
   // Unicast discovery on 127.0.0.1 reaches participant indices 0..MaxAutoParticipantIndex, one
   // port each: room for the host, its clients and a few tools per domain on one machine.
@@ -59,8 +70,8 @@ std::string cycloneConfig(const ParticipantOptions& options) {
          "<AllowMulticast>false</AllowMulticast></General>"
          "<Discovery><ParticipantIndex>auto</ParticipantIndex>"
          "<MaxAutoParticipantIndex>31</MaxAutoParticipantIndex>"
-         "<Peers><Peer address=\"127.0.0.1\"/></Peers></Discovery>"
-         "</Domain></CycloneDDS>";
+         "<Peers><Peer address=\"127.0.0.1\"/></Peers></Discovery>" +
+         threads + "</Domain></CycloneDDS>";
 }
 
 Participant::Participant(const ParticipantOptions& options) : options_(options) {

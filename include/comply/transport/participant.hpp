@@ -26,6 +26,9 @@ enum class Network : std::uint8_t {
 struct ParticipantOptions {
   int domain_id = 0;  ///< DDS domain, 0..232 (ROS_DOMAIN_ID)
   Network network = Network::kLoopback;
+  /// > 0: CycloneDDS's receive threads (which deliver samples to readers) run SCHED_FIFO at this
+  /// priority, so a real-time host hears commands without waiting for the scheduler.
+  int receive_priority = 0;
 };
 
 /// The CycloneDDS configuration (XML) for `options`; empty for Network::kAll.
