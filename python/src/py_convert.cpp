@@ -103,7 +103,11 @@ py::dict toDict(const transport::CommandOutcomeMessage& o) {
   d["reason"] = std::string(toString(o.reason));
   d["cycle"] = o.cycle;
   d["message"] = o.message;
-  d["latency_s"] = 1e-9 * static_cast<double>(o.applied.nanoseconds() - o.stamp.nanoseconds());
+  // Send (the stamp) to the end of the cycle that applied it; one clock only on one machine.
+  d["latency_s"] = o.outcome == transport::Outcome::kApplied
+                       ? py::object(py::float_(1e-9 * static_cast<double>(o.applied.nanoseconds() -
+                                                                          o.stamp.nanoseconds())))
+                       : py::object(py::none());
   return d;
 }
 
