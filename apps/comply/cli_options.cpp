@@ -72,9 +72,9 @@ CLI::App* addSimCommand(CLI::App& app, SimOptions& options) {
 CLI::App* addSchemaCommand(CLI::App& app, SchemaOptions& options) {
   CLI::App* command = app.add_subcommand(
       "schema", "print the command schema (docs/command-options.md, msg/*.msg are its output)");
-  command->add_option("--format", options.format, "markdown, json or msg (ROS 2)")
+  command->add_option("--format", options.format, "markdown, json, msg (ROS 2) or idl (DDS)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"markdown", "json", "msg"}));
+      ->check(CLI::IsMember({"markdown", "json", "msg", "idl"}));
   command->add_option("--kind", options.kind, "cartesian or joint (default: both)")
       ->check(CLI::IsMember({"cartesian", "joint"}));
   return command;

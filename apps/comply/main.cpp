@@ -4,7 +4,10 @@
 //   comply validate --robot fr3 --plugin cartesian_impedance --inputs samples.json [...]
 //   comply sim --robot fr3 --config controller.yaml --task task.yaml [--out DIR] [...]
 //   comply experiment cross-platform|surface-following|connector-mating [--out DIR]
-//   comply schema [--format markdown|json|msg] [--kind cartesian|joint]
+//   comply run --config controller.yaml --sim [--robot R] [--rate HZ] [--domain N] [--name NAME]
+//   comply send --json '{"position": [...]}' | --file F [--rate HZ]
+//   comply echo [state|diagnostics]
+//   comply schema [--format markdown|json|msg|idl] [--kind cartesian|joint]
 //   comply config --defaults [--robot fr3] [--plugin cartesian_impedance]
 //
 // Exit codes: 0 success, 1 a check failed (validate above tolerance, a controller fault, a
@@ -16,6 +19,7 @@
 #include "cli_options.hpp"
 #include "config_command.hpp"
 #include "experiment_commands.hpp"
+#include "live_commands.hpp"
 
 int main(int argc, char** argv) {
   using namespace comply::app;
@@ -30,6 +34,7 @@ int main(int argc, char** argv) {
   CLI::App* validate_command = addValidateCommand(app, validate);
   CLI::App* sim_command = addSimCommand(app, sim);
   const comply::experiments::Commands experiments = comply::experiments::addCommands(app);
+  const LiveCommands live = addLiveCommands(app);
   CLI::App* schema_command = addSchemaCommand(app, schema);
   CLI::App* config_command = addConfigCommand(app, config);
 
@@ -43,6 +48,9 @@ int main(int argc, char** argv) {
     }
     if (sim_command->parsed()) {
       return simCommand(sim, std::cout, std::cerr);
+    }
+    if (live.parsed()) {
+      return live.run(std::cout, std::cerr);
     }
     if (experiments.parsed()) {
       return experiments.run(std::cout, std::cerr);

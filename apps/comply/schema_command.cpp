@@ -16,11 +16,15 @@ int schemaCommand(const SchemaOptions& options, std::ostream& out, std::ostream&
     out << (both ? schema::jsonDescription() : schema::jsonDescription(kind));
   } else if (options.format == "msg" && !both) {
     out << schema::rosMessage(kind);
-  } else if (options.format == "msg") {
-    err << "comply schema: --format msg needs --kind cartesian or --kind joint (one message)\n";
+  } else if (options.format == "idl" && !both) {
+    out << schema::ddsIdl(kind);
+  } else if (options.format == "msg" || options.format == "idl") {
+    err << "comply schema: --format " << options.format
+        << " needs --kind cartesian or --kind joint (one message)\n";
     return 2;
   } else {
-    err << "comply schema: unknown --format '" << options.format << "' (markdown, json, msg)\n";
+    err << "comply schema: unknown --format '" << options.format
+        << "' (markdown, json, msg, idl)\n";
     return 2;
   }
   return 0;

@@ -17,5 +17,8 @@ std::string jsonDescription(CommandKind kind);
 std::string jsonDescription();
 /// ROS 2 interface text of comply_msgs/CartesianCommand or JointCommand (msg/*.msg).
 std::string rosMessage(CommandKind kind);
+/// The DDS IDL of the same message as ROS 2's rosidl puts it on the wire (module
+/// comply_msgs::msg::dds_, type CartesianCommand_ or JointCommand_): src/transport/idl/.
+std::string ddsIdl(CommandKind kind);
 
 }  // namespace comply::schema

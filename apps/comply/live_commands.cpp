@@ -1,0 +1,91 @@
+// The command-line options of `comply run`, `send` and `echo`.
+
+#include "live_commands.hpp"
+
+#include "run_command.hpp"
+#include "send_command.hpp"
+
+namespace comply::app {
+namespace {
+
+void addClientOptions(CLI::App* command, ClientOptions& client) {
+  command->add_option("--domain", client.domain_id, "DDS domain id (ROS_DOMAIN_ID)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 232));
+  command->add_option("--network", client.network, "loopback (127.0.0.1 only) or all")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"loopback", "all"}));
+  command->add_option("--name", client.name, "the host's name: topics /<name>/...")
+      ->capture_default_str();
+  command->add_option("--timeout", client.timeout_s, "seconds to find the host / an outcome")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+}
+
+}  // namespace
+
+LiveCommands addLiveCommands(CLI::App& app) {
+  auto run = std::make_shared<RunOptions>();
+  CLI::App* run_command = app.add_subcommand(
+      "run", "the controller host: live commands over DDS (ROS 2 topics), state and diagnostics");
+  run_command->add_option("--config", run->config_file, "controller YAML")->required();
+  run_command->add_option("--robot", run->robot, "robot name or folder (overrides the config's)");
+  run_command->add_flag("--sim", run->sim, "a simulated arm (MuJoCo) as the hardware");
+  run_command->add_flag("--view", run->view, "interactive window (not yet)");
+  run_command->add_option("--rate", run->rate_hz, "control rate [Hz]")->capture_default_str();
+  run_command->add_option("--state-rate", run->state_rate_hz, "state topic rate [Hz]")
+      ->capture_default_str();
+  run_command->add_option("--duration", run->duration_s, "stop after this many seconds (0: never)")
+      ->check(CLI::NonNegativeNumber);
+  run_command->add_option("--domain", run->domain_id, "DDS domain id")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 232));
+  run_command->add_option("--network", run->network, "loopback (127.0.0.1 only) or all")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"loopback", "all"}));
+  run_command->add_option("--name", run->name, "topics /<name>/...")->capture_default_str();
+  run_command->add_option("--priority", run->priority, "SCHED_FIFO priority (0: normal)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 99));
+
+  auto send = std::make_shared<SendOptions>();
+  CLI::App* send_command = app.add_subcommand("send", "send a command (or a stream) to a host");
+  addClientOptions(send_command, send->client);
+  send_command->add_option("--json", send->json, "one command as a JSON object");
+  send_command->add_option("--file", send->file,
+                           "a command (JSON/YAML object), or a stream (a list, or JSON lines)");
+  send_command->add_option("--kind", send->kind, "cartesian or joint (default: the host's)")
+      ->check(CLI::IsMember({"cartesian", "joint"}));
+  send_command->add_option("--rate", send->rate_hz, "stream rate [Hz] (default 100)")
+      ->check(CLI::PositiveNumber);
+  send_command->add_option("--request", send->request, "activate, deactivate or reset")
+      ->check(CLI::IsMember({"activate", "deactivate", "reset"}));
+  send_command->add_flag("--no-wait", send->no_wait, "do not wait for the outcomes");
+
+  auto echo = std::make_shared<EchoOptions>();
+  CLI::App* echo_command = app.add_subcommand("echo", "print a host's state or diagnostics");
+  addClientOptions(echo_command, echo->client);
+  echo_command->add_option("topic", echo->topic, "state, diagnostics or both")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"state", "diagnostics", "both"}));
+  echo_command->add_flag("--json", echo->json, "one JSON object per line");
+  echo_command->add_option("--count", echo->count, "stop after this many messages")
+      ->check(CLI::NonNegativeNumber);
+
+  LiveCommands commands;
+  commands.parsed = [=] {
+    return run_command->parsed() || send_command->parsed() || echo_command->parsed();
+  };
+  commands.run = [=](std::ostream& out, std::ostream& err) {
+    if (run_command->parsed()) {
+      return runCommand(*run, out, err);
+    }
+    if (send_command->parsed()) {
+      return sendCommand(*send, out, err);
+    }
+    return echoCommand(*echo, out, err);
+  };
+  return commands;
+}
+
+}  // namespace comply::app

@@ -1,0 +1,74 @@
+// `comply run`: options, memory locking and signals around the host (live_host.cpp).
+
+#include "run_command.hpp"
+
+#include <sys/mman.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstring>
+#include <ostream>
+
+#include "comply/pipeline/resolved_controller.hpp"
+#include "comply/sim/viewer.hpp"
+#include "controller_setup.hpp"
+#include "live_host.hpp"
+
+namespace comply::app {
+namespace {
+
+std::atomic<bool> stop_requested{false};  // lock-free: set from a signal handler
+
+extern "C" void onStopSignal(int /*signal*/) {
+  stop_requested.store(true);
+}
+
+void installSignalHandlers() {
+  struct sigaction action {};
+  action.sa_handler = onStopSignal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+std::string checkOptions(const RunOptions& options) {
+  if (options.config_file.empty()) {
+    return "--config is required";
+  }
+  if (!options.sim) {
+    return "only --sim is built in so far: a real robot needs its driver as a "
+           "hardware::HardwareInterface (include/comply/hardware/hardware_interface.hpp)";
+  }
+  if (options.view) {
+    return "--view is not supported by comply run yet; watch /" + options.name +
+           "/state with `comply echo`";
+  }
+  if (!(options.rate_hz > 0.0) || !(options.state_rate_hz > 0.0)) {
+    return "--rate and --state-rate must be positive";
+  }
+  if (options.network != "loopback" && options.network != "all") {
+    return "--network must be loopback or all";
+  }
+  return {};
+}
+
+}  // namespace
+
+int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) {
+  if (const std::string problem = checkOptions(options); !problem.empty()) {
+    err << "comply run: " << problem << "\n";
+    return 2;
+  }
+  const auto resolved =
+      pipeline::resolveController(simControllerConfig(options.robot, "", options.config_file));
+  // Page faults in the control loop are latency: keep everything resident when allowed.
+  if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
+    err << "comply run: warning: mlockall failed (" << std::strerror(errno)
+        << "): memory may be paged; raise memlock in /etc/security/limits.conf\n";
+  }
+  stop_requested = false;
+  installSignalHandlers();
+  return runLiveHost(options, resolved, stop_requested, out, err);
+}
+
+}  // namespace comply::app

@@ -1,0 +1,227 @@
+// `comply send` and `comply echo`: a client of a host's topics.
+
+#include "send_command.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <ostream>
+#include <sstream>
+#include <thread>
+
+#include "comply/core/input_error.hpp"
+#include "comply/schema/json.hpp"
+#include "comply/transport/endpoints.hpp"
+#include "live_json.hpp"
+
+namespace comply::app {
+namespace {
+
+using transport::Participant;
+
+transport::ParticipantOptions participantOptions(const ClientOptions& client) {
+  return {client.domain_id,
+          client.network == "all" ? transport::Network::kAll : transport::Network::kLoopback};
+}
+
+/// The host's first state message: its command kind and joints. Throws when none arrives.
+transport::ControllerStateMessage hostState(Participant& participant, const ClientOptions& client) {
+  transport::Reader<transport::ControllerStateMessage> reader(participant, client.name);
+  std::vector<transport::Sample<transport::ControllerStateMessage>> samples;
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(client.timeout_s);
+  while (samples.empty() && std::chrono::steady_clock::now() < deadline) {
+    reader.wait(0.1);
+    reader.take(samples, 1);
+  }
+  if (samples.empty()) {
+    throw transport::TransportError("no host '" + client.name + "' on domain " +
+                                    std::to_string(client.domain_id) + " within " +
+                                    std::to_string(client.timeout_s) + " s (is `comply run` up?)");
+  }
+  return samples.front().message;
+}
+
+/// The commands of --json or --file: one object, a list, or JSON lines.
+std::vector<nlohmann::json> commandObjects(const SendOptions& options) {
+  if (!options.json.empty()) {
+    return {nlohmann::json::parse(options.json)};
+  }
+  std::ifstream in(options.file);
+  if (!in) {
+    throw InputError(InputErrc::kCannotRead, options.file, "", "cannot read the file");
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  nlohmann::json all;
+  const std::string name = options.file;
+  if (name.ends_with(".yaml") || name.ends_with(".yml")) {
+    all = schema::yamlToJson(YAML::Load(text.str()), name, "");
+  } else if (!nlohmann::json::accept(text.str())) {
+    std::vector<nlohmann::json> lines;  // JSON lines
+    for (std::string line; std::getline(text, line);) {
+      if (line.find_first_not_of(" \t\r") != std::string::npos) {
+        lines.push_back(nlohmann::json::parse(line));
+      }
+    }
+    return lines;
+  } else {
+    all = nlohmann::json::parse(text.str());
+  }
+  return all.is_array() ? std::vector<nlohmann::json>(all.begin(), all.end())
+                        : std::vector<nlohmann::json>{all};
+}
+
+/// Strictly increasing wall-clock stamps: the host refuses a stamp that is not newer.
+transport::Stamp nextStamp(transport::Stamp& last) {
+  transport::Stamp now = transport::Stamp::now();
+  if (now <= last) {
+    now = transport::Stamp::fromNanoseconds(last.nanoseconds() + 1);
+  }
+  last = now;
+  return now;
+}
+
+/// Waits for the outcome of every stamp in `sent`; prints each; true when all were applied.
+bool awaitOutcomes(transport::Reader<transport::DiagnosticsMessage>& diagnostics,
+                   std::map<std::int64_t, bool>& sent, double timeout_s, std::ostream& out) {
+  std::size_t settled = 0;
+  bool all_applied = true;
+  std::vector<transport::Sample<transport::DiagnosticsMessage>> samples;
+  auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (settled < sent.size() && std::chrono::steady_clock::now() < deadline) {
+    diagnostics.wait(0.05);
+    samples.clear();
+    diagnostics.take(samples);
+    for (const auto& sample : samples) {
+      for (const auto& outcome : sample.message.outcomes) {
+        const auto it = sent.find(outcome.stamp.nanoseconds());
+        if (it == sent.end() || it->second) {
+          continue;
+        }
+        it->second = true;
+        ++settled;
+        all_applied = all_applied && outcome.outcome == transport::Outcome::kApplied;
+        out << outcomeLine(outcome) << "\n";
+      }
+    }
+  }
+  if (settled < sent.size()) {
+    out << (sent.size() - settled) << " of " << sent.size() << " commands without an outcome\n";
+  }
+  return all_applied && settled == sent.size();
+}
+
+/// Sends empty commands (no field group: the host accounts them and changes nothing) until one
+/// has an outcome: the host's reader has then discovered this writer, so no later command is
+/// dropped by discovery (a reader drops samples of a writer it does not know yet).
+template <typename Message>
+bool handshake(transport::Writer<Message>& writer,
+               transport::Reader<transport::DiagnosticsMessage>& diagnostics, int dof,
+               transport::Stamp& last, double timeout_s) {
+  std::vector<transport::Sample<transport::DiagnosticsMessage>> samples;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (std::chrono::steady_clock::now() < deadline) {
+    Message probe;
+    probe.command = decltype(probe.command)::zero(dof);
+    probe.command.fields = CommandField::kNone;
+    probe.header.stamp = nextStamp(last);
+    writer.write(probe);
+    const auto wait_until = std::chrono::steady_clock::now() + std::chrono::milliseconds(100);
+    while (std::chrono::steady_clock::now() < wait_until) {
+      diagnostics.wait(0.02);
+      samples.clear();
+      diagnostics.take(samples);
+      for (const auto& sample : samples) {
+        for (const auto& outcome : sample.message.outcomes) {
+          if (outcome.stamp == probe.header.stamp) {
+            return true;
+          }
+        }
+      }
+    }
+  }
+  return false;
+}
+
+template <typename Message>
+int sendAll(Participant& participant, const SendOptions& options,
+            const std::vector<nlohmann::json>& objects, int dof, std::ostream& out) {
+  using Command = decltype(Message{}.command);
+  transport::Writer<Message> writer(participant, options.client.name);
+  transport::Reader<transport::DiagnosticsMessage> diagnostics(participant, options.client.name);
+  if (!writer.waitForMatch(1, options.client.timeout_s)) {
+    throw transport::TransportError("the host's command reader did not match");
+  }
+  diagnostics.waitForMatch(1, options.client.timeout_s);
+  transport::Stamp last;
+  if (!handshake(writer, diagnostics, dof, last, options.client.timeout_s)) {
+    throw transport::TransportError("the host did not account a probe command");
+  }
+  const double rate_hz = options.rate_hz > 0.0 ? options.rate_hz : 100.0;
+  const auto period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(1.0 / rate_hz));
+  std::map<std::int64_t, bool> sent;
+  auto next = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    schema::ReadOptions<Command> read;
+    read.source = options.file.empty() ? "--json" : options.file;
+    read.allow_shorthand = true;  // typed by hand: a block as 1 or 3 numbers, a vector as 1
+    read.key_prefix = objects.size() > 1 ? "[" + std::to_string(i) + "]." : "";
+    Message message{{{}, ""}, schema::fromJson<Command>(objects[i], dof, read).command};
+    std::this_thread::sleep_until(next);
+    next += period;
+    message.header.stamp = nextStamp(last);
+    writer.write(message);
+    sent[message.header.stamp.nanoseconds()] = false;
+  }
+  writer.flush(options.client.timeout_s);
+  out << "sent " << sent.size() << " command" << (sent.size() == 1 ? "" : "s") << "\n";
+  if (options.no_wait) {
+    return 0;
+  }
+  return awaitOutcomes(diagnostics, sent, options.client.timeout_s, out) ? 0 : 1;
+}
+
+int sendRequest(Participant& participant, const SendOptions& options, std::ostream& out) {
+  transport::Writer<transport::RequestMessage> writer(participant, options.client.name);
+  if (!writer.waitForMatch(1, options.client.timeout_s)) {
+    throw transport::TransportError("the host's request reader did not match");
+  }
+  transport::RequestMessage message;
+  message.header.stamp = transport::Stamp::now();
+  message.request = options.request == "activate"     ? transport::RequestType::kActivate
+                    : options.request == "deactivate" ? transport::RequestType::kDeactivate
+                                                      : transport::RequestType::kReset;
+  writer.write(message);
+  writer.flush(options.client.timeout_s);
+  out << "sent request " << options.request << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int sendCommand(const SendOptions& options, std::ostream& out, std::ostream& err) {
+  const int given = (options.json.empty() ? 0 : 1) + (options.file.empty() ? 0 : 1) +
+                    (options.request.empty() ? 0 : 1);
+  if (given != 1) {
+    err << "comply send: give exactly one of --json, --file and --request\n";
+    return 2;
+  }
+  Participant participant(participantOptions(options.client));
+  if (!options.request.empty()) {
+    return sendRequest(participant, options, out);
+  }
+  const transport::ControllerStateMessage state = hostState(participant, options.client);
+  const std::vector<nlohmann::json> objects = commandObjects(options);
+  const bool joint = options.kind.empty() ? state.command_kind == transport::WireCommandKind::kJoint
+                                          : options.kind == "joint";
+  const int dof = static_cast<int>(state.position.size());
+  return joint
+             ? sendAll<transport::JointCommandMessage>(participant, options, objects, dof, out)
+             : sendAll<transport::CartesianCommandMessage>(participant, options, objects, dof, out);
+}
+
+}  // namespace comply::app

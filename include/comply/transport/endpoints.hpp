@@ -1,0 +1,159 @@
+#pragma once
+// Typed DDS writers and readers for comply's topics, named and configured as ROS 2 names and
+// configures them, so a ROS 2 node (rmw_cyclonedds) talks to a comply host as to any node. For
+// a host named <name> (the ROS topic /<name>/x is the DDS topic rt/<name>/x):
+//
+//   ROS topic                   DDS type (module comply_msgs::msg::dds_)   QoS
+//   /<name>/cartesian_command   CartesianCommand_                          R
+//   /<name>/joint_command       JointCommand_                              R
+//   /<name>/request             Request_                                   R
+//   /<name>/state               ControllerState_                           S
+//   /<name>/diagnostics         Diagnostics_                               D
+//
+// R: ROS 2's default (reliable, volatile, keep last 10). S: the sensor-data profile (best effort,
+// volatile, keep last 5). D: reliable, volatile, keep last 100, so that a reader that keeps up
+// loses no command outcome. Samples are written in XCDR1 (plain CDR, little-endian), as ROS 2.
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "comply/transport/messages.hpp"
+#include "comply/transport/participant.hpp"
+
+namespace comply::transport {
+
+enum class Topic : std::uint8_t {
+  kCartesianCommand,
+  kJointCommand,
+  kRequest,
+  kState,
+  kDiagnostics
+};
+
+/// "rt/<host_name>/<topic>": the DDS name of the ROS topic /<host_name>/<topic>.
+std::string topicName(std::string_view host_name, Topic topic);
+
+struct QosProfile {
+  bool reliable = true;
+  int depth = 10;  ///< keep last
+};
+QosProfile qosOf(Topic topic);
+
+/// The topic each message travels on.
+template <typename Message>
+struct TopicOf;
+template <>
+struct TopicOf<CartesianCommandMessage> {
+  static constexpr Topic kTopic = Topic::kCartesianCommand;
+};
+template <>
+struct TopicOf<JointCommandMessage> {
+  static constexpr Topic kTopic = Topic::kJointCommand;
+};
+template <>
+struct TopicOf<RequestMessage> {
+  static constexpr Topic kTopic = Topic::kRequest;
+};
+template <>
+struct TopicOf<ControllerStateMessage> {
+  static constexpr Topic kTopic = Topic::kState;
+};
+template <>
+struct TopicOf<DiagnosticsMessage> {
+  static constexpr Topic kTopic = Topic::kDiagnostics;
+};
+
+/// What the entities of every message type share: the DDS handles and their matching.
+class Endpoint {
+ public:
+  Endpoint(const Endpoint&) = delete;
+  Endpoint& operator=(const Endpoint&) = delete;
+  [[nodiscard]] std::int32_t handle() const noexcept { return entity_; }
+  /// Remote (or local) endpoints currently matched.
+  [[nodiscard]] std::size_t matched() const;
+  /// Waits until at least `count` endpoints match; false on timeout.
+  bool waitForMatch(std::size_t count, double timeout_s) const;
+  /// This endpoint's DDS instance handle: what a reader reports as a sample's publisher.
+  [[nodiscard]] std::uint64_t instanceHandle() const;
+
+ protected:
+  Endpoint(Participant& participant, std::string_view host_name, Topic topic, bool writer,
+           int depth = 0);
+  ~Endpoint();
+  bool writer_;
+  std::int32_t topic_ = 0;
+  std::int32_t entity_ = 0;
+};
+
+template <typename Message>
+class Writer final : public Endpoint {
+ public:
+  Writer(Participant& participant, std::string_view host_name)
+      : Endpoint(participant, host_name, TopicOf<Message>::kTopic, true) {}
+  /// False when DDS refused the sample (it is then not sent).
+  bool write(const Message& message);
+  /// Waits until every matched reliable reader acknowledged what was written; false on timeout.
+  bool flush(double timeout_s);
+};
+
+/// A received message and who wrote it.
+template <typename Message>
+struct Sample {
+  Message message;
+  std::uint64_t publisher = 0;  ///< the writer's instance handle
+  /// Non-empty when the wire held something the C++ type cannot (a joint vector longer than
+  /// kMaxDof): names the field. The message is then not to be used.
+  std::string malformed;
+};
+
+template <typename Message>
+class Reader final : public Endpoint {
+ public:
+  /// `depth` > 0 replaces the topic's keep-last depth for this reader alone (history depth is not
+  /// matched against the writers', so any depth stays compatible with ROS 2 peers).
+  Reader(Participant& participant, std::string_view host_name, int depth = 0);
+  ~Reader();
+  /// Appends up to `max` waiting samples to `out` in arrival order; how many.
+  std::size_t take(std::vector<Sample<Message>>& out, std::size_t max = 64);
+  /// Waits until a sample waits to be taken; false on timeout.
+  bool wait(double timeout_s);
+
+ private:
+  std::int32_t waitset_ = 0;
+  std::int32_t condition_ = 0;
+};
+
+/// Waits on several readers at once (the host's reader thread).
+class WaitSet {
+ public:
+  explicit WaitSet(Participant& participant);
+  ~WaitSet();
+  WaitSet(const WaitSet&) = delete;
+  WaitSet& operator=(const WaitSet&) = delete;
+  void attach(const Endpoint& reader);
+  /// Waits until one of the readers has data or trigger() was called; false on timeout.
+  bool wait(double timeout_s);
+  /// Any thread: wakes wait() (to shut down).
+  void trigger();
+
+ private:
+  std::int32_t waitset_ = 0;
+  std::int32_t guard_ = 0;
+  std::vector<std::int32_t> conditions_;
+};
+
+extern template class Writer<CartesianCommandMessage>;
+extern template class Writer<JointCommandMessage>;
+extern template class Writer<RequestMessage>;
+extern template class Writer<ControllerStateMessage>;
+extern template class Writer<DiagnosticsMessage>;
+extern template class Reader<CartesianCommandMessage>;
+extern template class Reader<JointCommandMessage>;
+extern template class Reader<RequestMessage>;
+extern template class Reader<ControllerStateMessage>;
+extern template class Reader<DiagnosticsMessage>;
+
+}  // namespace comply::transport

@@ -1,0 +1,144 @@
+#pragma once
+// The messages of comply's live interface as C++ values, one per ROS 2 interface in msg/:
+// commands (CartesianCommand, JointCommand) carry the schema's C++ command, the others mirror
+// their .msg field for field. Conversion to and from the DDS types idlc generates from
+// src/transport/idl/ happens inside the transport; a user of these types never sees DDS.
+
+#include <array>
+#include <compare>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "comply/core/commands.hpp"
+
+namespace comply::transport {
+
+/// builtin_interfaces/Time: seconds and nanoseconds since the epoch of the sender's clock.
+struct Stamp {
+  std::int32_t sec = 0;
+  std::uint32_t nanosec = 0;
+
+  /// The wall clock (CLOCK_REALTIME), as ROS time is.
+  static Stamp now() noexcept;
+  static Stamp fromNanoseconds(std::int64_t nanoseconds) noexcept;
+  [[nodiscard]] std::int64_t nanoseconds() const noexcept;
+  /// What a command's stamp_s becomes [s].
+  [[nodiscard]] double seconds() const noexcept;
+  friend auto operator<=>(const Stamp&, const Stamp&) = default;
+};
+
+/// std_msgs/Header.
+struct Header {
+  Stamp stamp;
+  std::string frame_id;
+};
+
+/// comply_msgs/CartesianCommand. On the wire header.stamp is the stamp; command.stamp_s is
+/// derived from it when read (and ignored when written).
+struct CartesianCommandMessage {
+  Header header;
+  CartesianCommand command;
+};
+
+/// comply_msgs/JointCommand (see CartesianCommandMessage).
+struct JointCommandMessage {
+  Header header;
+  JointCommand command;
+};
+
+/// ControllerState.STATE_*.
+enum class HostState : std::uint8_t { kInactive = 0, kActive = 1, kFault = 2 };
+/// ControllerState.COMMAND_KIND_*.
+enum class WireCommandKind : std::uint8_t { kCartesian = 0, kJoint = 1 };
+std::string_view toString(HostState state);
+std::string_view toString(WireCommandKind kind);
+
+/// comply_msgs/ControllerState (units in msg/ControllerState.msg).
+struct ControllerStateMessage {
+  Header header;
+  HostState state = HostState::kInactive;
+  WireCommandKind command_kind = WireCommandKind::kCartesian;
+  std::uint64_t cycle = 0;
+  std::vector<std::string> joint_names;
+  std::vector<double> position, velocity, effort, torque_command;
+  std::array<double, 3> tcp_position{};
+  std::array<double, 4> tcp_orientation{0.0, 0.0, 0.0, 1.0};  ///< x y z w
+  std::array<double, 6> tcp_twist{};
+  Stamp reference_stamp;
+  std::uint32_t reference_fields = 0;
+  std::array<double, 3> reference_position{};
+  std::array<double, 4> reference_orientation{0.0, 0.0, 0.0, 1.0};  ///< x y z w
+  std::vector<double> reference_joint_position;
+  std::array<double, 6> contact_wrench{};
+};
+
+/// CommandOutcome.OUTCOME_*.
+enum class Outcome : std::uint8_t { kApplied = 0, kRejected = 1 };
+
+/// CommandOutcome.REASON_*: the wrapper's rejection reasons (pipeline::RejectionReason, same
+/// numbers) followed by the host's own.
+enum class Reason : std::uint8_t {
+  kNonFinite = 0,
+  kInvalidQuaternion = 1,
+  kInvalidGains = 2,
+  kDofMismatch = 3,
+  kStaleStamp = 4,
+  kPoseJump = 5,
+  kQueueFull = 6,
+  kOtherPublisher = 7,  ///< another writer holds the command topics
+  kWrongKind = 8,       ///< a joint command to a Cartesian controller, or the reverse
+  kInactive = 9,        ///< the controller is not active
+  kNone = 255,
+};
+inline constexpr std::size_t kReasonCount = 10;
+std::string_view toString(Reason reason);
+
+/// comply_msgs/CommandOutcome.
+struct CommandOutcomeMessage {
+  Stamp stamp;  ///< the command's header.stamp
+  WireCommandKind command_kind = WireCommandKind::kCartesian;
+  Outcome outcome = Outcome::kApplied;
+  Reason reason = Reason::kNone;
+  std::uint64_t cycle = 0;
+  Stamp received;
+  Stamp applied;
+  std::string message;
+};
+
+/// comply_msgs/Diagnostics (units in msg/Diagnostics.msg).
+struct DiagnosticsMessage {
+  Header header;
+  HostState state = HostState::kInactive;
+  std::uint64_t cycles = 0;
+  std::uint64_t overruns = 0;
+  double period_s = 0.0;
+  std::uint64_t commands_received = 0;
+  std::uint64_t commands_applied = 0;
+  std::uint64_t commands_rejected = 0;
+  std::vector<std::uint64_t> rejections;  ///< per Reason
+  std::uint64_t watchdog_timeouts = 0;
+  std::uint64_t faults = 0;
+  std::uint64_t rate_limit_hits = 0;
+  std::uint64_t effort_limit_hits = 0;
+  double histogram_bin_s = 0.0;
+  std::vector<std::uint64_t> compute_time_histogram;
+  std::vector<std::uint64_t> start_lateness_histogram;
+  std::string last_fault;
+  std::string last_rejection;
+  std::string publisher;
+  std::vector<CommandOutcomeMessage> outcomes;
+};
+
+/// Request.REQUEST_*.
+enum class RequestType : std::uint8_t { kActivate = 1, kDeactivate = 2, kReset = 3 };
+std::string_view toString(RequestType request);
+
+/// comply_msgs/Request.
+struct RequestMessage {
+  Header header;
+  RequestType request = RequestType::kReset;
+};
+
+}  // namespace comply::transport

@@ -1,0 +1,198 @@
+// comply.Client (see py_client.hpp).
+
+#include "py_client.hpp"
+
+#include <chrono>
+
+#include "py_convert.hpp"
+
+namespace comply::python {
+namespace {
+
+using SteadyClock = std::chrono::steady_clock;
+constexpr std::size_t kOutcomesKept = 100000;
+
+SteadyClock::time_point deadlineAfter(double seconds) {
+  return SteadyClock::now() +
+         std::chrono::duration_cast<SteadyClock::duration>(std::chrono::duration<double>(seconds));
+}
+
+}  // namespace
+
+Client::Client(const std::string& name, int domain, const std::string& network, double timeout_s)
+    : name_(name),
+      participant_(
+          {domain, network == "all" ? transport::Network::kAll : transport::Network::kLoopback}),
+      cartesian_writer_(participant_, name),
+      joint_writer_(participant_, name),
+      request_writer_(participant_, name),
+      state_reader_(participant_, name),
+      diagnostics_reader_(participant_, name, 10000) {
+  const auto deadline = deadlineAfter(timeout_s);
+  {
+    const py::gil_scoped_release release;
+    while (!state_ && SteadyClock::now() < deadline) {
+      poll(0.05);
+    }
+  }
+  if (!state_) {
+    throw py::value_error("no comply host named '" + name + "' on domain " +
+                          std::to_string(domain) + " (is `comply run` up?)");
+  }
+  dof_ = static_cast<int>(state_->position.size());
+  cartesian_ = state_->command_kind == transport::WireCommandKind::kCartesian;
+  handshake(std::chrono::duration<double>(deadline - SteadyClock::now()).count() + 1.0);
+}
+
+void Client::handshake(double timeout_s) {
+  const py::gil_scoped_release release;
+  const auto deadline = deadlineAfter(timeout_s);
+  while (SteadyClock::now() < deadline) {
+    const transport::Stamp stamp = nextStamp();
+    if (cartesian_) {
+      transport::CartesianCommandMessage probe{{stamp, ""}, CartesianCommand::zero(dof_)};
+      probe.command.fields = CommandField::kNone;
+      cartesian_writer_.write(probe);
+    } else {
+      transport::JointCommandMessage probe{{stamp, ""}, JointCommand::zero(dof_)};
+      probe.command.fields = CommandField::kNone;
+      joint_writer_.write(probe);
+    }
+    const auto wait_until = deadlineAfter(0.1);
+    while (SteadyClock::now() < wait_until) {
+      poll(0.02);
+      if (outcomes_.count(stamp.nanoseconds()) > 0) {
+        return;
+      }
+    }
+  }
+  throw std::runtime_error("the host '" + name_ + "' did not account a probe command");
+}
+
+transport::Stamp Client::nextStamp() {
+  transport::Stamp now = transport::Stamp::now();
+  if (now <= last_stamp_) {
+    now = transport::Stamp::fromNanoseconds(last_stamp_.nanoseconds() + 1);
+  }
+  last_stamp_ = now;
+  return now;
+}
+
+bool Client::poll(double wait_s) {
+  std::vector<transport::Sample<transport::ControllerStateMessage>> states;
+  std::vector<transport::Sample<transport::DiagnosticsMessage>> diagnostics;
+  if (wait_s > 0.0) {
+    state_reader_.wait(wait_s);
+  }
+  state_reader_.take(states);
+  diagnostics_reader_.take(diagnostics, 100000);
+  if (!states.empty()) {
+    state_ = std::move(states.back().message);
+  }
+  for (auto& sample : diagnostics) {
+    for (const auto& outcome : sample.message.outcomes) {
+      const std::int64_t stamp = outcome.stamp.nanoseconds();
+      if (outcomes_.emplace(stamp, outcome).second) {
+        outcome_order_.push_back(stamp);
+      }
+    }
+    sample.message.outcomes.clear();
+    diagnostics_ = std::move(sample.message);
+  }
+  while (outcome_order_.size() > kOutcomesKept) {
+    outcomes_.erase(outcome_order_.front());
+    outcome_order_.pop_front();
+  }
+  return !states.empty();
+}
+
+std::int64_t Client::sendCartesian(const py::kwargs& kwargs) {
+  // Keywords a group leaves out keep the reference in force (position alone keeps orientation).
+  CartesianCommand base = CartesianCommand::zero(dof_);
+  if (state_) {
+    const auto& p = state_->reference_position;
+    const auto& q = state_->reference_orientation;
+    base.position = Eigen::Vector3d(p[0], p[1], p[2]);
+    base.orientation = Eigen::Quaterniond(q[3], q[0], q[1], q[2]);
+  }
+  transport::CartesianCommandMessage message{{{}, ""}, cartesianFromKwargs(kwargs, dof_, base)};
+  message.header.stamp = nextStamp();
+  if (!cartesian_writer_.write(message)) {
+    throw std::runtime_error("DDS refused the command");
+  }
+  return message.header.stamp.nanoseconds();
+}
+
+std::int64_t Client::sendJoint(const py::kwargs& kwargs) {
+  JointCommand base = JointCommand::zero(dof_);
+  if (state_ && state_->reference_joint_position.size() == static_cast<std::size_t>(dof_)) {
+    base.position =
+        Eigen::Map<const Eigen::VectorXd>(state_->reference_joint_position.data(), dof_);
+  }
+  transport::JointCommandMessage message{{{}, ""}, jointFromKwargs(kwargs, dof_, base)};
+  message.header.stamp = nextStamp();
+  if (!joint_writer_.write(message)) {
+    throw std::runtime_error("DDS refused the command");
+  }
+  return message.header.stamp.nanoseconds();
+}
+
+void Client::request(transport::RequestType request) {
+  transport::RequestMessage message;
+  message.header.stamp = nextStamp();
+  message.request = request;
+  request_writer_.write(message);
+}
+
+py::object Client::state(double timeout_s) {
+  {
+    const py::gil_scoped_release release;
+    const auto deadline = deadlineAfter(timeout_s);
+    bool fresh = poll(0.0);
+    while (!fresh && SteadyClock::now() < deadline) {
+      fresh = poll(0.01);
+    }
+  }
+  return state_ ? py::object(toDict(*state_)) : py::object(py::none());
+}
+
+py::object Client::diagnostics(double timeout_s) {
+  {
+    const py::gil_scoped_release release;
+    const auto deadline = deadlineAfter(timeout_s);
+    do {
+      poll(0.01);
+    } while (!diagnostics_ && SteadyClock::now() < deadline);
+  }
+  return diagnostics_ ? py::object(toDict(*diagnostics_)) : py::object(py::none());
+}
+
+py::object Client::outcome(std::int64_t stamp, double timeout_s) {
+  {
+    const py::gil_scoped_release release;
+    const auto deadline = deadlineAfter(timeout_s);
+    poll(0.0);
+    while (outcomes_.count(stamp) == 0 && SteadyClock::now() < deadline) {
+      poll(0.01);
+    }
+  }
+  const auto found = outcomes_.find(stamp);
+  return found != outcomes_.end() ? py::object(toDict(found->second)) : py::object(py::none());
+}
+
+bool Client::waitUntil(const py::function& predicate, double timeout_s) {
+  const auto deadline = deadlineAfter(timeout_s);
+  while (SteadyClock::now() < deadline) {
+    bool fresh = false;
+    {
+      const py::gil_scoped_release release;
+      fresh = poll(0.05);
+    }
+    if (fresh && predicate(toDict(*state_)).cast<bool>()) {
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace comply::python

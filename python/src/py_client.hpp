@@ -1,0 +1,68 @@
+#pragma once
+// comply.Client: a connection to a `comply run` host by name and DDS domain. It waits for the
+// host's state (which tells the command kind and the number of joints), makes sure the host has
+// discovered it (a probe command with no field group, accounted and otherwise ignored), and
+// then sends commands with strictly increasing wall-clock stamps. A restarted host is found
+// again by DDS discovery: the client carries on without being recreated.
+
+#include <pybind11/pybind11.h>
+
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "comply/transport/endpoints.hpp"
+
+namespace comply::python {
+
+namespace py = pybind11;
+
+class Client {
+ public:
+  Client(const std::string& name, int domain, const std::string& network, double timeout_s);
+
+  /// Schema keywords (position=..., stiffness_translational=..., task_frame=...); the stamp [ns]
+  /// that identifies the command in outcome().
+  std::int64_t sendCartesian(const py::kwargs& kwargs);
+  std::int64_t sendJoint(const py::kwargs& kwargs);
+  void request(transport::RequestType request);
+
+  /// The newest state (dict of numpy arrays), waiting up to `timeout_s` for a new one; None
+  /// when none arrived.
+  py::object state(double timeout_s);
+  /// The newest diagnostics (dict), or None.
+  py::object diagnostics(double timeout_s);
+  /// What became of the command sent with `stamp`: a dict, or None after `timeout_s`.
+  py::object outcome(std::int64_t stamp, double timeout_s);
+  /// Calls predicate(state) on every new state until it returns true (true) or `timeout_s`.
+  bool waitUntil(const py::function& predicate, double timeout_s);
+
+  [[nodiscard]] int dof() const noexcept { return dof_; }
+  [[nodiscard]] bool cartesian() const noexcept { return cartesian_; }
+
+ private:
+  /// Takes what arrived; true when a state arrived.
+  bool poll(double wait_s);
+  transport::Stamp nextStamp();
+  void handshake(double timeout_s);
+
+  std::string name_;
+  transport::Participant participant_;
+  transport::Writer<transport::CartesianCommandMessage> cartesian_writer_;
+  transport::Writer<transport::JointCommandMessage> joint_writer_;
+  transport::Writer<transport::RequestMessage> request_writer_;
+  transport::Reader<transport::ControllerStateMessage> state_reader_;
+  transport::Reader<transport::DiagnosticsMessage> diagnostics_reader_;
+  std::optional<transport::ControllerStateMessage> state_;
+  std::optional<transport::DiagnosticsMessage> diagnostics_;
+  std::map<std::int64_t, transport::CommandOutcomeMessage> outcomes_;
+  std::deque<std::int64_t> outcome_order_;  // oldest first, to bound outcomes_
+  transport::Stamp last_stamp_;
+  int dof_ = 0;
+  bool cartesian_ = true;
+};
+
+}  // namespace comply::python

@@ -1,0 +1,136 @@
+// Conversions between Python values and comply's (see py_convert.hpp).
+
+#include "py_convert.hpp"
+
+#include <pybind11/stl.h>
+
+#include "comply/core/input_error.hpp"
+#include "comply/schema/json.hpp"
+
+namespace comply::python {
+namespace {
+
+nlohmann::json valueToJson(const py::handle& value) {
+  if (py::isinstance<py::str>(value)) {
+    return value.cast<std::string>();
+  }
+  const auto numbers =
+      py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
+  if (!numbers) {
+    throw py::type_error("expected a number, a sequence of numbers or a numpy array");
+  }
+  if (numbers.ndim() == 0) {
+    return *numbers.data();
+  }
+  nlohmann::json list = nlohmann::json::array();
+  for (py::ssize_t i = 0; i < numbers.size(); ++i) {
+    list.push_back(numbers.data()[i]);
+  }
+  return list;
+}
+
+template <typename Command>
+Command fromKwargs(const py::dict& kwargs, int dof, const std::optional<Command>& base) {
+  schema::ReadOptions<Command> options;
+  options.base = base;
+  options.allow_shorthand = true;
+  options.source = "keyword arguments";
+  try {
+    return schema::fromJson<Command>(kwargsToJson(kwargs), dof, options).command;
+  } catch (const InputError& error) {
+    throw py::value_error(error.what());
+  }
+}
+
+py::dict stampDict(const transport::Stamp& stamp) {
+  py::dict d;
+  d["sec"] = stamp.sec;
+  d["nanosec"] = stamp.nanosec;
+  return d;
+}
+
+}  // namespace
+
+nlohmann::json kwargsToJson(const py::dict& kwargs) {
+  nlohmann::json object = nlohmann::json::object();
+  for (const auto& [key, value] : kwargs) {
+    object[key.cast<std::string>()] = valueToJson(value);
+  }
+  return object;
+}
+
+CartesianCommand cartesianFromKwargs(const py::dict& kwargs, int dof,
+                                     const std::optional<CartesianCommand>& base) {
+  return fromKwargs<CartesianCommand>(kwargs, dof, base);
+}
+
+JointCommand jointFromKwargs(const py::dict& kwargs, int dof,
+                             const std::optional<JointCommand>& base) {
+  return fromKwargs<JointCommand>(kwargs, dof, base);
+}
+
+py::array_t<double> array(const double* values, std::size_t size) {
+  py::array_t<double> out(static_cast<py::ssize_t>(size));
+  std::copy(values, values + size, out.mutable_data());
+  return out;
+}
+
+py::dict toDict(const transport::ControllerStateMessage& s) {
+  py::dict d;
+  d["stamp"] = s.header.stamp.seconds();
+  d["state"] = std::string(toString(s.state));
+  d["cycle"] = s.cycle;
+  d["joint_names"] = s.joint_names;
+  d["position"] = array(s.position);
+  d["velocity"] = array(s.velocity);
+  d["effort"] = array(s.effort);
+  d["torque_command"] = array(s.torque_command);
+  d["tcp_position"] = array(s.tcp_position);
+  d["tcp_orientation"] = array(s.tcp_orientation);
+  d["tcp_twist"] = array(s.tcp_twist);
+  d["reference_stamp"] = s.reference_stamp.seconds();
+  d["reference_position"] = array(s.reference_position);
+  d["reference_orientation"] = array(s.reference_orientation);
+  d["reference_joint_position"] = array(s.reference_joint_position);
+  d["contact_wrench"] = array(s.contact_wrench);
+  return d;
+}
+
+py::dict toDict(const transport::CommandOutcomeMessage& o) {
+  py::dict d;
+  d["stamp"] = o.stamp.nanoseconds();
+  d["applied"] = o.outcome == transport::Outcome::kApplied;
+  d["reason"] = std::string(toString(o.reason));
+  d["cycle"] = o.cycle;
+  d["message"] = o.message;
+  // Send (the stamp) to the end of the cycle that applied it; one clock only on one machine.
+  d["latency_s"] = o.outcome == transport::Outcome::kApplied
+                       ? py::object(py::float_(1e-9 * static_cast<double>(o.applied.nanoseconds() -
+                                                                          o.stamp.nanoseconds())))
+                       : py::object(py::none());
+  return d;
+}
+
+py::dict toDict(const transport::DiagnosticsMessage& m) {
+  py::dict d;
+  d["stamp"] = stampDict(m.header.stamp);
+  d["state"] = std::string(toString(m.state));
+  d["cycles"] = m.cycles;
+  d["overruns"] = m.overruns;
+  d["commands_received"] = m.commands_received;
+  d["commands_applied"] = m.commands_applied;
+  d["commands_rejected"] = m.commands_rejected;
+  py::dict rejections;
+  for (std::size_t i = 0; i < m.rejections.size(); ++i) {
+    rejections[py::str(std::string(toString(static_cast<transport::Reason>(i))))] = m.rejections[i];
+  }
+  d["rejections"] = rejections;
+  d["watchdog_timeouts"] = m.watchdog_timeouts;
+  d["faults"] = m.faults;
+  d["last_fault"] = m.last_fault;
+  d["last_rejection"] = m.last_rejection;
+  d["publisher"] = m.publisher;
+  return d;
+}
+
+}  // namespace comply::python

@@ -1,0 +1,41 @@
+#pragma once
+// Python values to and from comply's: keyword arguments to a command (through the schema's JSON
+// reader, so the keywords are the schema's field names and every check applies), messages and
+// observations to dicts of numpy arrays.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "comply/core/commands.hpp"
+#include "comply/transport/messages.hpp"
+
+namespace comply::python {
+
+namespace py = pybind11;
+
+/// {name: value} with numpy arrays and sequences flattened to lists of numbers, strings kept.
+nlohmann::json kwargsToJson(const py::dict& kwargs);
+
+/// A command from schema keywords (shorthand allowed: a 3x3 block as 1 or 3 numbers); `fields`
+/// are the groups of the keywords given. Raises ValueError naming the keyword.
+/// `base`: what the keywords a given group leaves out keep (the reference in force, say), so
+/// position=... alone keeps the orientation in force; without it, Command::zero(dof).
+CartesianCommand cartesianFromKwargs(const py::dict& kwargs, int dof,
+                                     const std::optional<CartesianCommand>& base = std::nullopt);
+JointCommand jointFromKwargs(const py::dict& kwargs, int dof,
+                             const std::optional<JointCommand>& base = std::nullopt);
+
+py::array_t<double> array(const double* values, std::size_t size);
+template <typename Container>
+py::array_t<double> array(const Container& values) {
+  return array(values.data(), static_cast<std::size_t>(values.size()));
+}
+
+py::dict toDict(const transport::ControllerStateMessage& state);
+py::dict toDict(const transport::CommandOutcomeMessage& outcome);
+py::dict toDict(const transport::DiagnosticsMessage& diagnostics);
+
+}  // namespace comply::python

@@ -1,0 +1,90 @@
+// Stamps and the names of the message enumerations.
+
+#include "comply/transport/messages.hpp"
+
+#include <ctime>
+
+namespace comply::transport {
+
+Stamp Stamp::now() noexcept {
+  timespec now{};
+  clock_gettime(CLOCK_REALTIME, &now);
+  return {static_cast<std::int32_t>(now.tv_sec), static_cast<std::uint32_t>(now.tv_nsec)};
+}
+
+Stamp Stamp::fromNanoseconds(std::int64_t nanoseconds) noexcept {
+  const std::int64_t kPerSecond = 1'000'000'000;
+  std::int64_t sec = nanoseconds / kPerSecond;
+  std::int64_t rest = nanoseconds % kPerSecond;
+  if (rest < 0) {
+    rest += kPerSecond;
+    --sec;
+  }
+  return {static_cast<std::int32_t>(sec), static_cast<std::uint32_t>(rest)};
+}
+
+std::int64_t Stamp::nanoseconds() const noexcept {
+  return static_cast<std::int64_t>(sec) * 1'000'000'000 + nanosec;
+}
+
+double Stamp::seconds() const noexcept {
+  return static_cast<double>(sec) + 1e-9 * static_cast<double>(nanosec);
+}
+
+std::string_view toString(HostState state) {
+  switch (state) {
+    case HostState::kInactive:
+      return "inactive";
+    case HostState::kActive:
+      return "active";
+    case HostState::kFault:
+      return "fault";
+  }
+  return "unknown";
+}
+
+std::string_view toString(WireCommandKind kind) {
+  return kind == WireCommandKind::kJoint ? "joint" : "cartesian";
+}
+
+std::string_view toString(Reason reason) {
+  switch (reason) {
+    case Reason::kNonFinite:
+      return "non_finite";
+    case Reason::kInvalidQuaternion:
+      return "invalid_quaternion";
+    case Reason::kInvalidGains:
+      return "invalid_gains";
+    case Reason::kDofMismatch:
+      return "dof_mismatch";
+    case Reason::kStaleStamp:
+      return "stale_stamp";
+    case Reason::kPoseJump:
+      return "pose_jump";
+    case Reason::kQueueFull:
+      return "queue_full";
+    case Reason::kOtherPublisher:
+      return "other_publisher";
+    case Reason::kWrongKind:
+      return "wrong_kind";
+    case Reason::kInactive:
+      return "inactive";
+    case Reason::kNone:
+      return "none";
+  }
+  return "unknown";
+}
+
+std::string_view toString(RequestType request) {
+  switch (request) {
+    case RequestType::kActivate:
+      return "activate";
+    case RequestType::kDeactivate:
+      return "deactivate";
+    case RequestType::kReset:
+      return "reset";
+  }
+  return "unknown";
+}
+
+}  // namespace comply::transport

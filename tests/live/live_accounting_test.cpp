@@ -1,0 +1,147 @@
+// comply run with a client streaming 10,000 commands at 1 kHz, a tenth of them invalid in seven
+// different ways: every command shows up exactly once, applied or rejected with the right reason.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+#include "live_support.hpp"
+
+namespace comply::live_test {
+namespace {
+
+using transport::Reason;
+
+constexpr int kCommands = 10000;
+
+/// The i-th command of the stream and the reason it must be refused for (kNone: applied).
+struct Planned {
+  bool joint = false;
+  transport::CartesianCommandMessage cartesian;
+  transport::JointCommandMessage joint_message;
+  Reason reason = Reason::kNone;
+};
+
+Planned plan(int i, const transport::ControllerStateMessage& state, std::int64_t base_ns) {
+  const auto stampAt = [&](double ms) {
+    return transport::Stamp::fromNanoseconds(base_ns + static_cast<std::int64_t>(ms * 1e6));
+  };
+  const double angle = 2.0 * M_PI * i / 2000.0;  // a 1 cm circle every 2 s
+  Planned p;
+  p.cartesian =
+      poseCommand(state, {0.0, 0.01 * std::sin(angle), 0.01 * (std::cos(angle) - 1.0)}, stampAt(i));
+  CartesianCommand& c = p.cartesian.command;
+  if (i % 10 != 9) {
+    return p;
+  }
+  switch ((i / 10) % 7) {
+    case 0:
+      c.position.x() = std::nan("");
+      p.reason = Reason::kNonFinite;
+      break;
+    case 1:
+      c.orientation.coeffs() *= 1.1;
+      p.reason = Reason::kInvalidQuaternion;
+      break;
+    case 2:
+      c.fields = CommandField::kStiffness;
+      c.stiffness_translational = -Eigen::Matrix3d::Identity();
+      c.stiffness_rotational = Eigen::Matrix3d::Identity();
+      p.reason = Reason::kInvalidGains;
+      break;
+    case 3:
+      c.fields = CommandField::kNullspace;
+      c.nullspace_position.setZero(3);
+      c.nullspace_stiffness.setZero(3);
+      c.nullspace_damping.setZero(3);
+      p.reason = Reason::kDofMismatch;
+      break;
+    case 4:
+      p.cartesian.header.stamp = stampAt(i - 5.5);  // older than the commands before it
+      p.reason = Reason::kStaleStamp;
+      break;
+    case 5:
+      c.position.x() += 0.5;
+      p.reason = Reason::kPoseJump;
+      break;
+    default:
+      p.joint = true;
+      p.joint_message.header.stamp = p.cartesian.header.stamp;
+      p.joint_message.command = JointCommand::zero(static_cast<int>(state.position.size()));
+      p.reason = Reason::kWrongKind;
+      break;
+  }
+  return p;
+}
+
+TEST(LiveHost, MixedStreamIsAccountedExactlyOnce) {
+  const int domain = randomDomain();
+  Process host(hostArgs(domain, "mixed"));
+  Client client(domain, "mixed");
+  const auto state = client.state(20s);
+  ASSERT_TRUE(state) << "no state from comply run";
+  transport::Writer<transport::CartesianCommandMessage> writer(client.participant(), "mixed");
+  transport::Writer<transport::JointCommandMessage> joint_writer(client.participant(), "mixed");
+  ASSERT_TRUE(writer.waitForMatch(1, 10.0));
+  ASSERT_TRUE(joint_writer.waitForMatch(1, 10.0));
+  const int dof = static_cast<int>(state->position.size());
+  ASSERT_TRUE(handshake(writer, client, dof)) << "no outcome for a probe command";
+  ASSERT_TRUE(handshake(joint_writer, client, dof)) << "no outcome for a joint probe command";
+  client.poll(300ms, [](const auto&) { return false; });  // the probes' last outcomes
+  client.outcomes().clear();
+  const transport::DiagnosticsMessage before = client.last();
+
+  std::map<std::int64_t, Reason> expected;
+  const std::int64_t base_ns = transport::Stamp::now().nanoseconds();
+  const auto start = Clock::now();
+  for (int i = 0; i < kCommands; ++i) {
+    const Planned p = plan(i, *state, base_ns);
+    std::this_thread::sleep_until(start + std::chrono::microseconds(1000 * i));
+    if (p.joint) {
+      ASSERT_TRUE(joint_writer.write(p.joint_message));
+    } else {
+      ASSERT_TRUE(writer.write(p.cartesian));
+    }
+    expected[(p.joint ? p.joint_message.header.stamp : p.cartesian.header.stamp).nanoseconds()] =
+        p.reason;
+  }
+  client.poll(20s, [&](const auto&) { return client.outcomes().size() >= expected.size(); });
+
+  const transport::DiagnosticsMessage& last = client.last();
+  std::cerr << "outcomes " << client.outcomes().size() << " of " << expected.size()
+            << "; host received " << last.commands_received << ", applied " << last.commands_applied
+            << ", rejected " << last.commands_rejected << "\n";
+  std::map<Reason, int> refused;
+  int applied = 0;
+  std::uint64_t last_cycle = 0;
+  for (const auto& [stamp, reason] : expected) {
+    const auto found = client.outcomes().find(stamp);
+    ASSERT_NE(found, client.outcomes().end()) << "command " << stamp << " has no outcome";
+    ASSERT_EQ(found->second.size(), 1U) << "command " << stamp << " accounted twice";
+    const transport::CommandOutcomeMessage& outcome = found->second.front();
+    if (reason == Reason::kNone) {
+      EXPECT_EQ(outcome.outcome, transport::Outcome::kApplied) << outcome.message;
+      EXPECT_GE(outcome.cycle, last_cycle) << "applied out of order";
+      last_cycle = outcome.cycle;
+      ++applied;
+    } else {
+      EXPECT_EQ(outcome.outcome, transport::Outcome::kRejected);
+      EXPECT_EQ(outcome.reason, reason) << outcome.message;
+      ++refused[outcome.reason];
+    }
+  }
+  EXPECT_EQ(client.outcomes().size(), expected.size()) << "outcomes of commands never sent";
+  EXPECT_EQ(applied, kCommands * 9 / 10);
+  EXPECT_EQ(refused.size(), 7U);
+  EXPECT_EQ(last.commands_received - before.commands_received,
+            static_cast<std::uint64_t>(kCommands));
+  EXPECT_EQ(last.commands_applied - before.commands_applied, static_cast<std::uint64_t>(applied));
+  const auto pose_jump = static_cast<std::size_t>(Reason::kPoseJump);
+  EXPECT_EQ(last.rejections.at(pose_jump) - before.rejections.at(pose_jump),
+            static_cast<std::uint64_t>(refused[Reason::kPoseJump]));
+  EXPECT_EQ(last.faults, 0U);
+}
+
+}  // namespace
+}  // namespace comply::live_test

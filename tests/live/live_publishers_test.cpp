@@ -1,0 +1,153 @@
+// comply run against senders that die, compete or outlive the host: the watchdog holds within the
+// command timeout of a killed sender, a second publisher is refused until the first goes silent,
+// and a client carries on across a host restart (SIGTERM: exit 0).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "live_support.hpp"
+
+namespace comply::live_test {
+namespace {
+
+constexpr double kCommandTimeoutS = 0.5;  // config/sim/cartesian_impedance.yaml
+
+/// A JSON-lines stream for `comply send`: `count` poses wobbling 2 cm around the state's TCP.
+std::string writeStream(const transport::ControllerStateMessage& state, int count,
+                        const std::string& name) {
+  const std::string file =
+      (std::filesystem::temp_directory_path() / (name + std::to_string(getpid()) + ".jsonl"))
+          .string();
+  std::ofstream out(file);
+  for (int i = 0; i < count; ++i) {
+    const double y = state.tcp_position[1] + 0.02 * std::sin(2.0 * M_PI * i / 1000.0);
+    out << "{\"position\": [" << state.tcp_position[0] << ", " << y << ", " << state.tcp_position[2]
+        << "], \"orientation\": [" << state.tcp_orientation[0] << ", " << state.tcp_orientation[1]
+        << ", " << state.tcp_orientation[2] << ", " << state.tcp_orientation[3] << "]}\n";
+  }
+  return file;
+}
+
+std::vector<std::string> senderArgs(int domain, const std::string& name, const std::string& file) {
+  return {"send", "--domain", std::to_string(domain), "--name", name, "--file", file, "--rate",
+          "1000", "--no-wait"};
+}
+
+TEST(LiveHost, WatchdogHoldsWithinTheTimeoutOfAKilledSender) {
+  const int domain = randomDomain();
+  Process host(hostArgs(domain, "watchdog"));
+  Client client(domain, "watchdog");
+  const auto state = client.state(20s);
+  ASSERT_TRUE(state);
+  Process sender(senderArgs(domain, "watchdog", writeStream(*state, 20000, "watchdog")));
+  ASSERT_TRUE(client.poll(20s, [](const auto& d) { return d.commands_applied >= 500; }));
+  const std::uint64_t timeouts = client.last().watchdog_timeouts;
+  sender.signal(SIGKILL);
+  const auto killed = Clock::now();
+  ASSERT_TRUE(client.poll(3s, [&](const auto& d) { return d.watchdog_timeouts > timeouts; }));
+  const double after_s = std::chrono::duration<double>(Clock::now() - killed).count();
+  EXPECT_LE(after_s, kCommandTimeoutS + 0.25) << "the watchdog took too long";
+  EXPECT_GE(after_s, kCommandTimeoutS - 0.2) << "the watchdog fired before the timeout";
+  // Holding: the reference stays where the last command left it.
+  const auto first = client.state(1s);
+  std::this_thread::sleep_for(200ms);
+  const auto second = client.state(1s);
+  ASSERT_TRUE(first && second);
+  EXPECT_EQ(first->reference_position, second->reference_position);
+  EXPECT_EQ(second->state, transport::HostState::kActive);
+}
+
+TEST(LiveHost, SecondPublisherIsRefusedUntilTheFirstGoesSilent) {
+  const int domain = randomDomain();
+  Process host(hostArgs(domain, "lockout"));
+  Client client(domain, "lockout");
+  const auto state = client.state(20s);
+  ASSERT_TRUE(state);
+  Process first(senderArgs(domain, "lockout", writeStream(*state, 20000, "lockout")));
+  ASSERT_TRUE(client.poll(20s, [](const auto& d) { return d.commands_applied >= 200; }));
+
+  transport::Writer<transport::CartesianCommandMessage> second(client.participant(), "lockout");
+  ASSERT_TRUE(second.waitForMatch(1, 10.0));
+  std::this_thread::sleep_for(200ms);                // the host's reader discovers this writer too
+  std::map<std::int64_t, double> sent_after_kill_s;  // by stamp; negative: before the kill
+  std::optional<Clock::time_point> killed;
+  const auto start = Clock::now();
+  for (int i = 0; i < 100; ++i) {  // 2 s at 50 Hz; the first sender dies after 0.6 s
+    std::this_thread::sleep_until(start + i * 20ms);
+    if (i == 30) {
+      first.signal(SIGKILL);
+      killed = Clock::now();
+    }
+    const auto message = poseCommand(*state, Eigen::Vector3d::Zero(), transport::Stamp::now());
+    ASSERT_TRUE(second.write(message));
+    sent_after_kill_s[message.header.stamp.nanoseconds()] =
+        killed ? std::chrono::duration<double>(Clock::now() - *killed).count() : -1.0;
+  }
+  client.poll(5s, [&](const auto&) {
+    return std::all_of(sent_after_kill_s.begin(), sent_after_kill_s.end(),
+                       [&](const auto& sent) { return client.outcomes().count(sent.first) > 0; });
+  });
+  int refused = 0;
+  int applied = 0;
+  for (const auto& [stamp, after_s] : sent_after_kill_s) {
+    ASSERT_EQ(client.outcomes()[stamp].size(), 1U) << "no (or two) outcomes for " << stamp;
+    const auto& outcome = client.outcomes()[stamp].front();
+    if (after_s < kCommandTimeoutS - 0.1) {  // the first sender is alive or not yet silent
+      EXPECT_EQ(outcome.reason, transport::Reason::kOtherPublisher) << after_s << " s";
+      refused += outcome.reason == transport::Reason::kOtherPublisher ? 1 : 0;
+    } else if (after_s > kCommandTimeoutS + 0.2) {  // silent long enough: the second takes over
+      EXPECT_EQ(outcome.outcome, transport::Outcome::kApplied)
+          << after_s << " s " << outcome.message;
+      applied += outcome.outcome == transport::Outcome::kApplied ? 1 : 0;
+    }
+  }
+  EXPECT_GE(refused, 30);
+  EXPECT_GE(applied, 30);
+}
+
+TEST(LiveHost, ClientCarriesOnAcrossAHostRestart) {
+  const int domain = randomDomain();
+  Client client(domain, "restart");
+  transport::Writer<transport::CartesianCommandMessage> writer(client.participant(), "restart");
+  const auto sendTen = [&](const transport::ControllerStateMessage& state) {
+    std::vector<std::int64_t> stamps;
+    for (int i = 0; i < 10; ++i) {
+      const auto message = poseCommand(state, Eigen::Vector3d::Zero(), transport::Stamp::now());
+      EXPECT_TRUE(writer.write(message));
+      stamps.push_back(message.header.stamp.nanoseconds());
+      std::this_thread::sleep_for(10ms);
+    }
+    return stamps;
+  };
+  const auto allApplied = [&](const std::vector<std::int64_t>& stamps) {
+    return client.poll(5s, [&](const auto&) {
+      return std::all_of(stamps.begin(), stamps.end(), [&](std::int64_t stamp) {
+        const auto& outcomes = client.outcomes()[stamp];
+        return outcomes.size() == 1 && outcomes[0].outcome == transport::Outcome::kApplied;
+      });
+    });
+  };
+  {
+    Process host(hostArgs(domain, "restart"));
+    const auto state = client.state(20s);
+    ASSERT_TRUE(state);
+    ASSERT_TRUE(writer.waitForMatch(1, 10.0));
+    ASSERT_TRUE(handshake(writer, client, 7));
+    EXPECT_TRUE(allApplied(sendTen(*state)));
+    host.signal(SIGTERM);
+    EXPECT_EQ(host.wait(10s), 0) << "comply run did not exit 0 on SIGTERM";
+  }
+  Process host(hostArgs(domain, "restart"));
+  client.state(100ms);  // drop the old host's last states
+  const auto state = client.state(20s);
+  ASSERT_TRUE(state);
+  ASSERT_TRUE(writer.waitForMatch(1, 10.0));
+  ASSERT_TRUE(handshake(writer, client, 7)) << "the same writer does not reach the new host";
+  EXPECT_TRUE(allApplied(sendTen(*state)));
+}
+
+}  // namespace
+}  // namespace comply::live_test

@@ -1,0 +1,188 @@
+#pragma once
+// Two-process tests of `comply run`: the host (and `comply send` senders) as child processes on a
+// random loopback domain, this test process as a client with its own participant.
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <functional>
+#include <map>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "comply/transport/endpoints.hpp"
+
+namespace comply::live_test {
+
+using namespace std::chrono_literals;
+using Clock = std::chrono::steady_clock;
+
+inline const std::string kComply = COMPLY_CLI;
+inline const std::string kSourceDir = COMPLY_SOURCE_DIR;
+
+/// A domain of its own per test run, so parallel tests do not meet.
+inline int randomDomain() {
+  std::random_device random;
+  return 1 + static_cast<int>(random() % 230);
+}
+
+/// A child process running `comply` with `args`; killed (SIGKILL) if still running at the end.
+class Process {
+ public:
+  explicit Process(const std::vector<std::string>& args) {
+    pid_ = fork();
+    if (pid_ == 0) {
+      std::vector<char*> argv;
+      static std::string program = kComply;
+      argv.push_back(program.data());
+      std::vector<std::string> copy = args;
+      for (std::string& arg : copy) {
+        argv.push_back(arg.data());
+      }
+      argv.push_back(nullptr);
+      execv(program.c_str(), argv.data());
+      _exit(127);
+    }
+  }
+  ~Process() {
+    if (pid_ > 0 && !exited_) {
+      kill(pid_, SIGKILL);
+      waitpid(pid_, nullptr, 0);
+    }
+  }
+  Process(const Process&) = delete;
+  Process& operator=(const Process&) = delete;
+
+  void signal(int number) const { kill(pid_, number); }
+  /// Waits for the exit; its status code, or -1 (and SIGKILL) after `timeout`.
+  int wait(std::chrono::milliseconds timeout) {
+    const auto deadline = Clock::now() + timeout;
+    while (Clock::now() < deadline) {
+      int status = 0;
+      if (waitpid(pid_, &status, WNOHANG) == pid_) {
+        exited_ = true;
+        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+      }
+      std::this_thread::sleep_for(10ms);
+    }
+    return -1;
+  }
+
+ private:
+  pid_t pid_ = -1;
+  bool exited_ = false;
+};
+
+inline std::vector<std::string> hostArgs(int domain, const std::string& name) {
+  return {"run",
+          "--config",
+          kSourceDir + "/config/sim/cartesian_impedance.yaml",
+          "--robot",
+          "fr3",
+          "--sim",
+          "--domain",
+          std::to_string(domain),
+          "--name",
+          name};
+}
+
+/// The client side: state and diagnostics readers and the outcome of every command by stamp.
+class Client {
+ public:
+  Client(int domain, const std::string& name)
+      : participant_({.domain_id = domain}),
+        state_(participant_, name),
+        diagnostics_(participant_, name, 10000) {}
+
+  transport::Participant& participant() { return participant_; }
+
+  /// The newest state, waiting up to `timeout` for one.
+  std::optional<transport::ControllerStateMessage> state(std::chrono::milliseconds timeout) {
+    std::vector<transport::Sample<transport::ControllerStateMessage>> samples;
+    const auto deadline = Clock::now() + timeout;
+    while (Clock::now() < deadline) {
+      state_.wait(0.05);
+      state_.take(samples);
+      if (!samples.empty()) {
+        return samples.back().message;
+      }
+    }
+    return std::nullopt;
+  }
+
+  /// Reads diagnostics until `done(last)` holds or `timeout`; true when it held.
+  bool poll(std::chrono::milliseconds timeout,
+            const std::function<bool(const transport::DiagnosticsMessage&)>& done) {
+    const auto deadline = Clock::now() + timeout;
+    std::vector<transport::Sample<transport::DiagnosticsMessage>> samples;
+    while (Clock::now() < deadline) {
+      diagnostics_.wait(0.05);
+      samples.clear();
+      diagnostics_.take(samples);
+      for (const auto& sample : samples) {
+        last_ = sample.message;
+        for (const auto& outcome : sample.message.outcomes) {
+          outcomes_[outcome.stamp.nanoseconds()].push_back(outcome);
+        }
+      }
+      if (!samples.empty() && done(last_)) {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  /// Every outcome seen, by the command's stamp [ns].
+  std::map<std::int64_t, std::vector<transport::CommandOutcomeMessage>>& outcomes() {
+    return outcomes_;
+  }
+  const transport::DiagnosticsMessage& last() const { return last_; }
+
+ private:
+  transport::Participant participant_;
+  transport::Reader<transport::ControllerStateMessage> state_;
+  transport::Reader<transport::DiagnosticsMessage> diagnostics_;
+  transport::DiagnosticsMessage last_;
+  std::map<std::int64_t, std::vector<transport::CommandOutcomeMessage>> outcomes_;
+};
+
+/// Sends empty commands (no field group: a no-op the host still accounts) until the host reports
+/// one: after that the host's reader has matched `writer`, and nothing sent later is lost to
+/// discovery (a reader that has not yet discovered a writer drops its first samples).
+template <typename Message>
+bool handshake(transport::Writer<Message>& writer, Client& client, int dof) {
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    Message message;
+    message.header.stamp = transport::Stamp::now();
+    message.command = decltype(message.command)::zero(dof);
+    message.command.fields = CommandField::kNone;
+    writer.write(message);
+    const std::int64_t stamp = message.header.stamp.nanoseconds();
+    if (client.poll(100ms, [&](const auto&) { return client.outcomes().count(stamp) > 0; })) {
+      client.outcomes().clear();
+      return true;
+    }
+  }
+  return false;
+}
+
+/// A Cartesian command holding `state`'s TCP pose moved by `offset` [m].
+inline transport::CartesianCommandMessage poseCommand(
+    const transport::ControllerStateMessage& state, const Eigen::Vector3d& offset,
+    transport::Stamp stamp) {
+  transport::CartesianCommandMessage message;
+  message.header.stamp = stamp;
+  message.command = CartesianCommand::zero(static_cast<int>(state.position.size()));
+  message.command.fields = CommandField::kPosition;
+  message.command.position =
+      Eigen::Vector3d(state.tcp_position[0], state.tcp_position[1], state.tcp_position[2]) + offset;
+  const auto& q = state.tcp_orientation;
+  message.command.orientation = Eigen::Quaterniond(q[3], q[0], q[1], q[2]);
+  return message;
+}
+
+}  // namespace comply::live_test

@@ -1,0 +1,90 @@
+"""comply run --sim and a Python client streaming 10,000 commands at 1 kHz, a tenth of them
+invalid in six ways: every command has exactly one outcome, applied or rejected with the right
+reason. Then SIGTERM: the host exits 0. Usage: live_client_test.py COMPLY_CLI SOURCE_DIR."""
+
+import math
+import random
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+import comply
+
+COMMANDS = 10000
+
+
+def invalid(i, pose):
+    """The i-th invalid command: (keywords, is_joint, expected reason)."""
+    position, orientation = pose
+    kind = (i // 10) % 6
+    if kind == 0:
+        return dict(position=[math.nan, 0.0, 0.0], orientation=orientation), False, "non_finite"
+    if kind == 1:
+        return dict(position=position, orientation=orientation * 1.1), False, "invalid_quaternion"
+    if kind == 2:
+        return dict(stiffness_translational=-np.eye(3), stiffness_rotational=np.eye(3)), False, \
+            "invalid_gains"
+    if kind == 3:  # (a joint vector of the wrong size is refused by the client itself)
+        return dict(damping_mode="ratio", damping_ratio=[1, 1, -1, 1, 1, 1]), False, \
+            "invalid_gains"
+    if kind == 4:
+        return dict(position=position + [0.5, 0, 0], orientation=orientation), False, "pose_jump"
+    return dict(stiffness=np.full(7, 10.0)), True, "wrong_kind"
+
+
+def main():
+    cli, source = sys.argv[1], sys.argv[2]
+    domain = random.randint(1, 230)
+    host = subprocess.Popen([cli, "run", "--config", f"{source}/config/sim/cartesian_impedance.yaml",
+                             "--robot", "fr3", "--sim", "--domain", str(domain), "--name", "py"])
+    try:
+        client = comply.Client(name="py", domain=domain, timeout=30.0)
+        state = client.state()
+        start_position = state["tcp_position"].copy()
+        orientation = state["tcp_orientation"]
+        expected = {}
+        t0 = time.perf_counter()
+        for i in range(COMMANDS):
+            while time.perf_counter() < t0 + i * 1e-3:
+                pass
+            angle = 2 * math.pi * i / 2000
+            position = start_position + [0.0, 0.01 * math.sin(angle), 0.01 * (math.cos(angle) - 1)]
+            if i % 10 == 9:
+                keywords, joint, reason = invalid(i, (position, orientation))
+                stamp = client.send_joint(**keywords) if joint else client.send_cartesian(**keywords)
+            else:
+                stamp = client.send_cartesian(position=position, orientation=orientation)
+                reason = None
+            expected[stamp] = reason
+        elapsed = time.perf_counter() - t0
+        wrong, missing, applied = [], 0, 0
+        for stamp, reason in expected.items():
+            outcome = client.outcome(stamp, timeout=10.0)
+            if outcome is None:
+                missing += 1
+            elif reason is None and not outcome["applied"]:
+                wrong.append(("applied", outcome))
+            elif reason is not None and outcome["reason"] != reason:
+                wrong.append((reason, outcome))
+            else:
+                applied += 1 if reason is None else 0
+        print(f"sent {COMMANDS} in {elapsed:.2f} s; applied {applied}; missing {missing}; "
+              f"wrong {len(wrong)}")
+        assert missing == 0, f"{missing} commands without an outcome"
+        assert not wrong, f"wrong outcomes, first: {wrong[:3]}"
+        assert applied == COMMANDS * 9 // 10
+        diagnostics = client.diagnostics()
+        assert diagnostics["rejections"]["pose_jump"] >= COMMANDS // 60, diagnostics
+        assert client.wait_until(lambda s: s["state"] == "active", timeout=2.0)
+    finally:
+        host.send_signal(signal.SIGTERM)
+        code = host.wait(timeout=10)
+    assert code == 0, f"comply run exited {code} on SIGTERM"
+    print("ok")
+
+
+if __name__ == "__main__":
+    main()

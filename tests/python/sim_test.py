@@ -1,0 +1,40 @@
+"""comply.Sim: the in-process simulator shaped like a Gymnasium env. Usage: sim_test.py SOURCE."""
+
+import sys
+
+import numpy as np
+
+import comply
+
+
+def main():
+    source = sys.argv[1]
+    sim = comply.Sim(f"{source}/config/sim/cartesian_impedance.yaml", robot="fr3",
+                     steps_per_action=50)
+    obs = sim.reset()
+    assert obs["position"].shape == (sim.dof,) and sim.cartesian
+    target = obs["tcp_position"] + np.array([0.0, 0.03, -0.05])
+    for _ in range(60):  # 3 s at 20 Hz
+        result = sim.step({"position": target, "stiffness_translational": [2000, 2000, 2000]})
+        assert len(result) == 5
+        obs, reward, terminated, truncated, info = result
+        assert info["accepted"], info
+        assert not terminated and not truncated
+    error = np.linalg.norm(obs["tcp_position"] - target)
+    assert error < 0.002, f"TCP {obs['tcp_position']} is {error * 1000:.1f} mm from {target}"
+    assert abs(sim.time - 3.0) < 1e-6, sim.time
+    _, _, _, _, info = sim.step({"stiffness_translational": -np.eye(3)})
+    assert not info["accepted"] and info["reason"] == "invalid_gains", info
+    try:
+        sim.step({"positon": target})
+        raise AssertionError("a misspelt keyword was accepted")
+    except ValueError as error:
+        assert "positon" in str(error)
+    frame = comply.darboux_frame([1, 0, 0], [0, 0, 1])
+    assert np.allclose(np.linalg.norm(frame), 1.0)
+    assert sim.reset()["position"].shape == (sim.dof,)
+    print("ok")
+
+
+if __name__ == "__main__":
+    main()

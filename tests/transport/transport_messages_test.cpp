@@ -1,0 +1,210 @@
+// The interface files agree with each other and with the schema: the command IDLs are what
+// `comply schema --format idl` prints now, and every IDL struct has the members of its .msg in
+// the same order with the types rosidl maps them to. Then every message survives a round trip
+// through a writer and a reader on a loopback participant.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <regex>
+#include <sstream>
+
+#include "comply/schema/describe.hpp"
+#include "comply/transport/endpoints.hpp"
+
+namespace comply::transport {
+namespace {
+
+const std::filesystem::path kSourceDir = COMPLY_SOURCE_DIR;
+const std::filesystem::path kIdlDir = kSourceDir / "src" / "transport" / "idl";
+
+std::string contents(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  EXPECT_TRUE(in) << "cannot read " << file;
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string trim(const std::string& text) {
+  const auto first = text.find_first_not_of(" \t");
+  const auto last = text.find_last_not_of(" \t");
+  return first == std::string::npos ? "" : text.substr(first, last - first + 1);
+}
+
+/// rosidl's DDS spelling of a .msg type (IDL keyword or module path).
+std::string idlType(const std::string& msg_type) {
+  static const std::map<std::string, std::string> kTypes = {
+      {"float64", "double"},
+      {"uint8", "octet"},
+      {"uint32", "unsigned long"},
+      {"uint64", "unsigned long long"},
+      {"int32", "long"},
+      {"string", "string"},
+      {"std_msgs/Header", "std_msgs::msg::dds_::Header_"},
+      {"builtin_interfaces/Time", "builtin_interfaces::msg::dds_::Time_"}};
+  const auto known = kTypes.find(msg_type);
+  return known != kTypes.end() ? known->second : "comply_msgs::msg::dds_::" + msg_type + "_";
+}
+
+/// The members of a .msg file as IDL declarations ("double position[3]").
+std::vector<std::string> msgMembers(const std::filesystem::path& file) {
+  std::vector<std::string> members;
+  std::istringstream lines(contents(file));
+  const std::regex member(R"(([A-Za-z0-9_/]+)(\[(\d*)\])?\s+([a-z0-9_]+))");
+  for (std::string line; std::getline(lines, line);) {
+    line = trim(line.substr(0, line.find('#')));
+    std::smatch match;
+    if (line.empty() || line.find('=') != std::string::npos) {
+      continue;  // a constant: not on the wire
+    }
+    EXPECT_TRUE(std::regex_match(line, match, member)) << file << ": " << line;
+    const std::string type = idlType(match[1]);
+    if (!match[2].matched) {
+      members.push_back(type + " " + match[4].str());
+    } else if (match[3].length() == 0) {
+      members.push_back("sequence<" + type + "> " + match[4].str());
+    } else {
+      members.push_back(type + " " + match[4].str() + "[" + match[3].str() + "]");
+    }
+  }
+  return members;
+}
+
+/// The members of `struct <name>_` in an IDL file.
+std::vector<std::string> idlMembers(const std::filesystem::path& file, const std::string& name) {
+  const std::string text = contents(file);
+  const auto start = text.find("struct " + name + "_ {");
+  EXPECT_NE(start, std::string::npos) << file << " has no struct " << name << "_";
+  std::vector<std::string> members;
+  std::istringstream lines(text.substr(start, text.find("};", start) - start));
+  std::string line;
+  std::getline(lines, line);  // struct ... {
+  while (std::getline(lines, line)) {
+    line = trim(line);
+    if (!line.empty()) {
+      members.push_back(line.substr(0, line.find(';')));
+    }
+  }
+  return members;
+}
+
+TEST(TransportMessages, CommandIdlIsGeneratedFromTheSchema) {
+  EXPECT_EQ(contents(kIdlDir / "comply_msgs" / "msg" / "CartesianCommand.idl"),
+            schema::ddsIdl(schema::CommandKind::kCartesian))
+      << "regenerate with: comply schema --format idl --kind cartesian";
+  EXPECT_EQ(contents(kIdlDir / "comply_msgs" / "msg" / "JointCommand.idl"),
+            schema::ddsIdl(schema::CommandKind::kJoint))
+      << "regenerate with: comply schema --format idl --kind joint";
+}
+
+TEST(TransportMessages, EveryIdlStructMatchesItsMsg) {
+  for (const std::string name : {"CartesianCommand", "JointCommand", "ControllerState",
+                                 "CommandOutcome", "Diagnostics", "Request"}) {
+    const std::vector<std::string> msg = msgMembers(kSourceDir / "msg" / (name + ".msg"));
+    const std::vector<std::string> idl =
+        idlMembers(kIdlDir / "comply_msgs" / "msg" / (name + ".idl"), name);
+    EXPECT_GE(msg.size(), 2U) << name;
+    EXPECT_EQ(msg, idl) << name << ".msg and " << name << ".idl disagree";
+  }
+}
+
+TEST(TransportMessages, TopicNamesAndQosAreRos2s) {
+  EXPECT_EQ(topicName("comply", Topic::kCartesianCommand), "rt/comply/cartesian_command");
+  EXPECT_EQ(topicName("arm2", Topic::kState), "rt/arm2/state");
+  EXPECT_TRUE(qosOf(Topic::kJointCommand).reliable);
+  EXPECT_EQ(qosOf(Topic::kJointCommand).depth, 10);
+  EXPECT_FALSE(qosOf(Topic::kState).reliable);
+  EXPECT_EQ(qosOf(Topic::kState).depth, 5);
+  EXPECT_NE(cycloneConfig({}).find("127.0.0.1"), std::string::npos);
+  EXPECT_NE(cycloneConfig({}).find("<AllowMulticast>false"), std::string::npos);
+  EXPECT_TRUE(cycloneConfig({.network = Network::kAll}).empty());
+}
+
+int testDomain() {
+  std::random_device random;
+  return 100 + static_cast<int>(random() % 100);
+}
+
+template <typename Message>
+Sample<Message> roundTrip(const Message& message) {
+  Participant participant({.domain_id = testDomain()});
+  Writer<Message> writer(participant, "round_trip");
+  Reader<Message> reader(participant, "round_trip");
+  EXPECT_TRUE(writer.waitForMatch(1, 5.0));
+  EXPECT_TRUE(writer.write(message));
+  EXPECT_TRUE(reader.wait(5.0));
+  std::vector<Sample<Message>> samples;
+  EXPECT_EQ(reader.take(samples), 1U);
+  return samples.empty() ? Sample<Message>{} : samples.front();
+}
+
+TEST(TransportMessages, CartesianCommandRoundTrip) {
+  CartesianCommandMessage message;
+  message.header = {{1700000000, 123456789}, "base"};
+  message.command = CartesianCommand::zero(7);
+  message.command.fields = CommandField::kPosition | CommandField::kNullspace;
+  message.command.position = {0.4, -0.1, 0.5};
+  message.command.orientation = Eigen::Quaterniond(0.0, 1.0, 0.0, 0.0);
+  message.command.stiffness_translational(0, 1) = 3.0;  // row-major on the wire
+  message.command.damping_mode = DampingMode::kRatio;
+  message.command.nullspace_position.setLinSpaced(7, 0.1, 0.7);
+  const Sample<CartesianCommandMessage> got = roundTrip(message);
+  EXPECT_TRUE(got.malformed.empty());
+  EXPECT_EQ(got.message.header.stamp, message.header.stamp);
+  EXPECT_EQ(got.message.header.frame_id, "base");
+  EXPECT_DOUBLE_EQ(got.message.command.stamp_s, 1700000000.123456789);
+  EXPECT_EQ(got.message.command.fields, message.command.fields);
+  EXPECT_EQ(got.message.command.position, message.command.position);
+  EXPECT_EQ(got.message.command.orientation.coeffs(), message.command.orientation.coeffs());
+  EXPECT_EQ(got.message.command.stiffness_translational(0, 1), 3.0);
+  EXPECT_EQ(got.message.command.stiffness_translational(1, 0), 0.0);
+  EXPECT_EQ(got.message.command.damping_mode, DampingMode::kRatio);
+  EXPECT_EQ(got.message.command.nullspace_position, message.command.nullspace_position);
+  EXPECT_NE(got.publisher, 0U);
+}
+
+TEST(TransportMessages, DiagnosticsRoundTrip) {
+  DiagnosticsMessage message;
+  message.header.frame_id = "comply";
+  message.state = HostState::kFault;
+  message.cycles = 1234;
+  message.rejections = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
+  message.compute_time_histogram = {5, 0, 1};
+  message.last_fault = "plugin returned NaN";
+  CommandOutcomeMessage outcome;
+  outcome.stamp = {5, 6};
+  outcome.outcome = Outcome::kRejected;
+  outcome.reason = Reason::kOtherPublisher;
+  outcome.message = "another publisher holds the command topics";
+  message.outcomes = {outcome, CommandOutcomeMessage{}};
+  const DiagnosticsMessage got = roundTrip(message).message;
+  EXPECT_EQ(got.state, HostState::kFault);
+  EXPECT_EQ(got.cycles, 1234U);
+  EXPECT_EQ(got.rejections, message.rejections);
+  EXPECT_EQ(got.compute_time_histogram, message.compute_time_histogram);
+  EXPECT_EQ(got.last_fault, message.last_fault);
+  ASSERT_EQ(got.outcomes.size(), 2U);
+  EXPECT_EQ(got.outcomes[0].stamp, outcome.stamp);
+  EXPECT_EQ(got.outcomes[0].reason, Reason::kOtherPublisher);
+  EXPECT_EQ(got.outcomes[0].message, outcome.message);
+  EXPECT_EQ(got.outcomes[1].outcome, Outcome::kApplied);
+}
+
+TEST(TransportMessages, StateRoundTrip) {
+  ControllerStateMessage message;
+  message.joint_names = {"j1", "j2"};
+  message.position = {0.1, 0.2};
+  message.tcp_orientation = {0.0, 0.0, 1.0, 0.0};
+  message.contact_wrench[2] = -15.5;
+  const ControllerStateMessage got = roundTrip(message).message;
+  EXPECT_EQ(got.joint_names, message.joint_names);
+  EXPECT_EQ(got.position, message.position);
+  EXPECT_EQ(got.tcp_orientation, message.tcp_orientation);
+  EXPECT_EQ(got.contact_wrench[2], -15.5);
+}
+
+}  // namespace
+}  // namespace comply::transport
