@@ -73,15 +73,16 @@ void Controller::activate(const JointState& state) {
   time_s_ = 0.0;
   fillPluginInput(state_, data_, quantities_, time_s_, period_s_, input_);
 
-  // Commands sent while inactive apply; then the motion reference starts where the arm is.
-  CommandBus seeded = active_;
+  // Commands accepted while inactive are in force (whether or not this activation succeeds);
+  // the motion reference then starts where the arm is.
   for (const IntakeMessage* message = intake_.front(); message != nullptr;
        message = intake_.front()) {
     if (message->type == IntakeMessage::Type::kCommand) {
-      mergeInto(seeded, message->command);
+      mergeInto(active_, message->command);
     }
     intake_.pop();
   }
+  CommandBus seeded = active_;
   seedFromMeasured(seeded, currentPose());
   if (plugin_->activate(input_) != COMPLY_OK) {
     throw plugin::PluginError(plugin::PluginErrc::kTrialStepFailed,
