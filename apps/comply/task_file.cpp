@@ -140,6 +140,62 @@ Eigen::Vector3d vector3(const json& value, const std::string& where, const TaskE
   return {v[0], v[1], v[2]};
 }
 
+// The darboux frame needs a surface normal that the other two frames ignore, so the two keys are
+// checked together.
+void readPathFrame(const json& path, task::PathCommandOptions& options, const TaskError& error) {
+  const std::string frame = path.value("frame", std::string("frenet"));
+  if (frame == "frenet") {
+    options.frame = task::FrameSource::kFrenet;
+  } else if (frame == "darboux") {
+    options.frame = task::FrameSource::kDarboux;
+    if (!path.contains("surface_normal")) {
+      error.fail("task.path", "frame darboux needs surface_normal [x, y, z]");
+    }
+    const Eigen::Vector3d normal =
+        vector3(path["surface_normal"], "task.path.surface_normal", error);
+    if (normal.norm() < 1e-9) {
+      error.fail("task.path.surface_normal", "must not be zero");
+    }
+    options.surface_normal = [unit = normal.normalized()](const Eigen::Vector3d&) { return unit; };
+  } else if (frame == "fixed") {
+    options.frame = task::FrameSource::kFixed;
+  } else {
+    error.fail("task.path.frame", "must be frenet, darboux or fixed");
+  }
+}
+
+// Orientation, gains and offset are all given in the task frame, so they are read as one group.
+void readPathTaskFrame(const json& path, double quaternion_tolerance,
+                       task::PathCommandOptions& options, const TaskError& error) {
+  const auto quaternion = [&](const char* key) {
+    const std::vector<double> q = numbers(path[key], 4, std::string("task.path.") + key, error);
+    checkUnitQuaternion(q, quaternion_tolerance, std::string("task.path.") + key, error);
+    return schema::fromXyzw(q.data()).normalized();
+  };
+  if (path.contains("task_frame")) {
+    options.fixed_task_frame = quaternion("task_frame");
+  }
+  if (path.contains("orientation")) {
+    options.orientation = quaternion("orientation");
+  }
+  for (const char* key : {"stiffness_translational", "stiffness_rotational"}) {
+    if (path.contains(key)) {
+      const Eigen::Vector3d k = vector3(path[key], std::string("task.path.") + key, error);
+      if ((k.array() < 0.0).any()) {
+        error.fail(std::string("task.path.") + key, "must be >= 0 per task axis");
+      }
+      (std::string(key) == "stiffness_translational" ? options.stiffness_translational
+                                                     : options.stiffness_rotational) = k;
+    }
+  }
+  if (path.contains("damping_ratio")) {
+    options.damping_ratio = positiveNumber(path, "damping_ratio", 1.0, "task.path", error);
+  }
+  if (path.contains("offset")) {
+    options.offset_in_task_frame = vector3(path["offset"], "task.path.offset", error);
+  }
+}
+
 void readPath(const json& path, double quaternion_tolerance, TaskFile& task,
               const TaskError& error) {
   const std::set<std::string> known{"start_time_s",
@@ -175,52 +231,8 @@ void readPath(const json& path, double quaternion_tolerance, TaskFile& task,
         vector3(path["points"][i], "task.path.points[" + std::to_string(i) + "]", error));
   }
   task.path_points = points;
-  const std::string frame = path.value("frame", std::string("frenet"));
-  if (frame == "frenet") {
-    options.frame = task::FrameSource::kFrenet;
-  } else if (frame == "darboux") {
-    options.frame = task::FrameSource::kDarboux;
-    if (!path.contains("surface_normal")) {
-      error.fail("task.path", "frame darboux needs surface_normal [x, y, z]");
-    }
-    const Eigen::Vector3d normal =
-        vector3(path["surface_normal"], "task.path.surface_normal", error);
-    if (normal.norm() < 1e-9) {
-      error.fail("task.path.surface_normal", "must not be zero");
-    }
-    options.surface_normal = [unit = normal.normalized()](const Eigen::Vector3d&) { return unit; };
-  } else if (frame == "fixed") {
-    options.frame = task::FrameSource::kFixed;
-  } else {
-    error.fail("task.path.frame", "must be frenet, darboux or fixed");
-  }
-  const auto quaternion = [&](const char* key) {
-    const std::vector<double> q = numbers(path[key], 4, std::string("task.path.") + key, error);
-    checkUnitQuaternion(q, quaternion_tolerance, std::string("task.path.") + key, error);
-    return schema::fromXyzw(q.data()).normalized();
-  };
-  if (path.contains("task_frame")) {
-    options.fixed_task_frame = quaternion("task_frame");
-  }
-  if (path.contains("orientation")) {
-    options.orientation = quaternion("orientation");
-  }
-  for (const char* key : {"stiffness_translational", "stiffness_rotational"}) {
-    if (path.contains(key)) {
-      const Eigen::Vector3d k = vector3(path[key], std::string("task.path.") + key, error);
-      if ((k.array() < 0.0).any()) {
-        error.fail(std::string("task.path.") + key, "must be >= 0 per task axis");
-      }
-      (std::string(key) == "stiffness_translational" ? options.stiffness_translational
-                                                     : options.stiffness_rotational) = k;
-    }
-  }
-  if (path.contains("damping_ratio")) {
-    options.damping_ratio = positiveNumber(path, "damping_ratio", 1.0, "task.path", error);
-  }
-  if (path.contains("offset")) {
-    options.offset_in_task_frame = vector3(path["offset"], "task.path.offset", error);
-  }
+  readPathFrame(path, options, error);
+  readPathTaskFrame(path, quaternion_tolerance, options, error);
   try {
     (void)task::Path(points);
   } catch (const std::invalid_argument& invalid) {

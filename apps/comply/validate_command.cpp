@@ -7,8 +7,6 @@
 #include <set>
 #include <vector>
 
-#include "comply/core/input_error.hpp"
-#include "comply/hardware/control_loop.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/model/update.hpp"
 #include "comply/pipeline/command_bus.hpp"
@@ -17,6 +15,7 @@
 #include "comply/schema/json.hpp"
 #include "comply/schema/schema.hpp"
 #include "controller_setup.hpp"
+#include "validate_wrapper.hpp"
 
 namespace comply::app {
 namespace {
@@ -53,12 +52,6 @@ const json& samplesOf(const json& document, const std::string& path) {
   return samples;
 }
 
-struct Sample {
-  JointState state;
-  bool has_effort = false;
-  json command = json::object();
-};
-
 JointVector jointVector(const json& sample, const std::string& key, int dof,
                         const std::string& where) {
   std::vector<double> values;
@@ -78,9 +71,9 @@ JointVector jointVector(const json& sample, const std::string& key, int dof,
   return result;
 }
 
-std::vector<Sample> readSamples(const std::string& path, int dof) {
+std::vector<ValidateSample> readSamples(const std::string& path, int dof) {
   const json document = readJsonFile(path);
-  std::vector<Sample> samples;
+  std::vector<ValidateSample> samples;
   int index = 0;
   for (const json& entry : samplesOf(document, path)) {
     const std::string where = path + ": sample " + std::to_string(index++);
@@ -98,7 +91,7 @@ std::vector<Sample> readSamples(const std::string& path, int dof) {
         throw ValidateInputError(where + ": missing field '" + std::string(required) + "'");
       }
     }
-    Sample sample;
+    ValidateSample sample;
     sample.state.position = jointVector(entry, "q", dof, where);
     sample.state.velocity = jointVector(entry, "dq", dof, where);
     sample.has_effort = entry.contains("effort");
@@ -142,25 +135,13 @@ const CartesianCommand& initialCommand<CartesianCommand>(const pipeline::Wrapper
   return config.initial_cartesian;
 }
 
-/// Parses a sample's command on top of `base`; a malformed command is an input error.
-template <typename Command>
-Command parseCommand(const json& object, int dof, const Command& base, const std::string& where) {
-  try {
-    schema::ReadOptions<Command> options;
-    options.base = base;
-    options.source = where + ": command";
-    return schema::fromJson(object, dof, options).command;
-  } catch (const InputError& error) {
-    throw ValidateInputError(error.what());
-  }
-}
-
 /// Model quantities and the law's torque, each sample on its own: the reference not given by the
 /// command is the measured pose (as on activation), gains not given are the configured initial
 /// ones.
 template <typename Command>
-void runLaw(const pipeline::ResolvedController& resolved, const std::vector<Sample>& samples,
-            const std::string& inputs_path, json& outputs) {
+void runLaw(const pipeline::ResolvedController& resolved,
+            const std::vector<ValidateSample>& samples, const std::string& inputs_path,
+            json& outputs) {
   const pipeline::WrapperConfig& config = resolved.config;
   const model::Model& model = *resolved.model;
   model::Data data(model);
@@ -168,7 +149,7 @@ void runLaw(const pipeline::ResolvedController& resolved, const std::vector<Samp
   plugin::PluginInstance law(resolved.plugin, dof, config.plugin_parameters);
 
   for (std::size_t i = 0; i < samples.size(); ++i) {
-    const Sample& sample = samples[i];
+    const ValidateSample& sample = samples[i];
     const std::string where = inputs_path + ": sample " + std::to_string(i);
     json& out = outputs[i];
     const auto q = std::span<const double>(sample.state.position.data(), dof);
@@ -187,7 +168,7 @@ void runLaw(const pipeline::ResolvedController& resolved, const std::vector<Samp
     Command merged = initialCommand<Command>(config);
     const MeasuredPose pose = pipeline::measuredPoseFrom(sample.state.position, data);
     schema::seedReference(merged, pose);
-    const Command incoming = parseCommand(sample.command, dof, merged, where);
+    const Command incoming = parseSampleCommand(sample.command, dof, merged, where);
     const pipeline::Verdict verdict =
         pipeline::validateAndMerge(incoming, config.validation, dof, pose, merged);
     if (!verdict.accepted) {
@@ -204,88 +185,6 @@ void runLaw(const pipeline::ResolvedController& resolved, const std::vector<Samp
     }
     out["torque"] = std::vector<double>(output.torque, output.torque + dof);
   }
-}
-
-/// The samples as the measurements of a robot, one per cycle.
-class SampleHardware final : public hardware::HardwareInterface {
- public:
-  explicit SampleHardware(const std::vector<Sample>& samples) : samples_(samples) {}
-  [[nodiscard]] int dof() const noexcept override {
-    return static_cast<int>(samples_.front().state.position.size());
-  }
-  bool read(JointState& state) noexcept override {
-    state = samples_[std::min(next_++, samples_.size() - 1)].state;
-    return true;
-  }
-  bool write(std::span<const double> /*torque*/) noexcept override { return true; }
-
- private:
-  const std::vector<Sample>& samples_;
-  std::size_t next_ = 0;
-};
-
-/// Submits each sample's command before its cycle and records what the cycle did.
-template <typename Command>
-class SampleRecorder final : public hardware::LoopObserver {
- public:
-  SampleRecorder(pipeline::Wrapper<Command>& wrapper, const std::vector<Sample>& samples,
-                 const std::string& inputs_path, json& outputs)
-      : wrapper_(wrapper), samples_(samples), inputs_path_(inputs_path), outputs_(outputs) {}
-
-  void beforeCycle(std::uint64_t index, double time_s) override {
-    const json& command = samples_[index].command;
-    if (command.empty()) {
-      return;
-    }
-    const std::string where = inputs_path_ + ": sample " + std::to_string(index);
-    Command incoming = parseCommand(command, wrapper_.dof(), wrapper_.lastAccepted(), where);
-    if (!command.contains("stamp")) {
-      incoming.stamp_s = time_s;
-    }
-    const pipeline::Verdict verdict = wrapper_.submit(incoming);
-    if (!verdict.accepted) {
-      outputs_[index]["wrapper_rejected"] = verdict.message;
-    }
-  }
-
-  void afterCycle(const hardware::CycleRecord& record) override {
-    json& out = outputs_[record.index];
-    out["wrapper_torque"] = std::vector<double>(record.torque.begin(), record.torque.end());
-    const bool fault = wrapper_.diagnostics().state == pipeline::WrapperState::kFault;
-    out["wrapper_state"] = fault ? "fault" : "ok";
-  }
-
- private:
-  pipeline::Wrapper<Command>& wrapper_;
-  const std::vector<Sample>& samples_;
-  const std::string& inputs_path_;
-  json& outputs_;
-};
-
-/// The samples as consecutive cycles of one wrapper, activated at the first sample, run by the
-/// control loop every host uses.
-template <typename Command>
-void runWrapper(const std::shared_ptr<const pipeline::ResolvedController>& resolved,
-                const std::vector<Sample>& samples, double period_s, const std::string& inputs_path,
-                json& outputs) {
-  pipeline::Wrapper<Command> wrapper(resolved);
-  const int dof = wrapper.dof();
-  JointState first = samples.front().state;
-  if (!samples.front().has_effort) {
-    // Without a measured effort, start as a robot holding itself still would: at gravity.
-    model::Data data(*resolved->model);
-    model::update(*resolved->model, data, std::span<const double>(first.position.data(), dof),
-                  std::span<const double>(first.velocity.data(), dof), model::Quantity::kGravity);
-    first.effort = data.gravity;
-  }
-  wrapper.activate(first);
-  SampleHardware hardware(samples);
-  hardware::FreeRunningClock clock;
-  hardware::ControlLoop loop(hardware, wrapper, clock,
-                             {.period_s = period_s, .cycles = samples.size()});
-  SampleRecorder<Command> recorder(wrapper, samples, inputs_path, outputs);
-  loop.setObserver(&recorder);
-  loop.run();
 }
 
 std::vector<double> flatten(const json& value, const std::string& where) {
@@ -310,7 +209,7 @@ json runValidation(const ValidateOptions& options) {
       controllerConfig(options.robot, options.plugin, options.config_file);
   const auto resolved = pipeline::resolveController(config);  // the plugin decides the kind
   const bool cartesian = resolved->cartesian();
-  const std::vector<Sample> samples = readSamples(options.inputs, config.dof);
+  const std::vector<ValidateSample> samples = readSamples(options.inputs, config.dof);
 
   json document;
   document["robot"] = config.robot;
@@ -328,11 +227,7 @@ json runValidation(const ValidateOptions& options) {
     runLaw<JointCommand>(*resolved, samples, options.inputs, outputs);
   }
   if (options.wrapper) {
-    if (cartesian) {
-      runWrapper<CartesianCommand>(resolved, samples, options.period_s, options.inputs, outputs);
-    } else {
-      runWrapper<JointCommand>(resolved, samples, options.period_s, options.inputs, outputs);
-    }
+    runWrapper(resolved, samples, options.period_s, options.inputs, outputs);
   }
   document["samples"] = outputs;
   return document;

@@ -47,20 +47,27 @@ bool isMovable(int type) {
 
 std::string_view jointTypeName(int type) {
   switch (type) {
-    case urdf::Joint::REVOLUTE: return "revolute";
-    case urdf::Joint::CONTINUOUS: return "continuous";
-    case urdf::Joint::PRISMATIC: return "prismatic";
-    case urdf::Joint::FLOATING: return "floating";
-    case urdf::Joint::PLANAR: return "planar";
-    case urdf::Joint::FIXED: return "fixed";
-    default: return "unknown";
+    case urdf::Joint::REVOLUTE:
+      return "revolute";
+    case urdf::Joint::CONTINUOUS:
+      return "continuous";
+    case urdf::Joint::PRISMATIC:
+      return "prismatic";
+    case urdf::Joint::FLOATING:
+      return "floating";
+    case urdf::Joint::PLANAR:
+      return "planar";
+    case urdf::Joint::FIXED:
+      return "fixed";
+    default:
+      return "unknown";
   }
 }
 
 /// Mass properties of a set of rigidly connected links, accumulated in one frame.
 struct MassAccumulator {
   double mass = 0.0;
-  Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();  // sum m c
+  Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();    // sum m c
   Eigen::Matrix3d inertia_origin = Eigen::Matrix3d::Zero();  // about the frame origin
 
   void add(const urdf::Inertial& inertial, const Eigen::Isometry3d& link_in_frame,
@@ -79,47 +86,22 @@ struct MassAccumulator {
     const Eigen::Matrix3d& rotation = inertial_in_frame.linear();
     const Eigen::Vector3d com = inertial_in_frame.translation();
     // Parallel-axis theorem: inertia about the frame origin.
-    inertia_origin += rotation * inertia_local * rotation.transpose() +
-                      inertial.mass * (com.squaredNorm() * Eigen::Matrix3d::Identity() -
-                                       com * com.transpose());
+    inertia_origin +=
+        rotation * inertia_local * rotation.transpose() +
+        inertial.mass * (com.squaredNorm() * Eigen::Matrix3d::Identity() - com * com.transpose());
     mass += inertial.mass;
     first_moment += inertial.mass * com;
   }
 };
 
-}  // namespace
-
-class ModelBuilder {
- public:
-  static Model build(const urdf::ModelInterface& urdf, const ModelOptions& options);
-
- private:
-  static void foldSubtree(const urdf::ModelInterface& urdf, const urdf::Link& link,
-                          const Eigen::Isometry3d& link_in_body, const std::string* stop_joint,
-                          MassAccumulator& accumulator);
+/// The two ends of the chain, as named by the options and found in the URDF.
+struct ChainEnds {
+  std::string base_name;
+  urdf::LinkConstSharedPtr tip_link;
 };
 
-void ModelBuilder::foldSubtree(const urdf::ModelInterface& urdf, const urdf::Link& link,
-                               const Eigen::Isometry3d& link_in_body,
-                               const std::string* stop_joint, MassAccumulator& accumulator) {
-  if (link.inertial) {
-    accumulator.add(*link.inertial, link_in_body, link.name);
-  }
-  for (const auto& child_joint : link.child_joints) {
-    if (stop_joint != nullptr && child_joint->name == *stop_joint) {
-      continue;  // the next controlled joint starts the next body
-    }
-    // Off-chain branches (a gripper finger, a tool) ride along rigidly, locked at zero.
-    const auto child = urdf.getLink(child_joint->child_link_name);
-    if (child) {
-      foldSubtree(urdf, *child,
-                  link_in_body * toIsometry(child_joint->parent_to_joint_origin_transform),
-                  stop_joint, accumulator);
-    }
-  }
-}
-
-Model ModelBuilder::build(const urdf::ModelInterface& urdf, const ModelOptions& options) {
+// Every later pass walks between these two links, so both must exist before anything else is read.
+ChainEnds findChainEnds(const urdf::ModelInterface& urdf, const ModelOptions& options) {
   const auto root = urdf.getRoot();
   if (!root) {
     throw ModelError(ModelErrc::kInvalidUrdf, "the URDF has no root link");
@@ -127,40 +109,49 @@ Model ModelBuilder::build(const urdf::ModelInterface& urdf, const ModelOptions& 
   const std::string base_name = options.base_frame.empty() ? root->name : options.base_frame;
   const auto base_link = urdf.getLink(base_name);
   if (!base_link) {
-    throw ModelError(ModelErrc::kUnknownFrame,
-                     "base frame '" + base_name + "' is not a link of robot '" + urdf.getName() + "'");
+    throw ModelError(
+        ModelErrc::kUnknownFrame,
+        "base frame '" + base_name + "' is not a link of robot '" + urdf.getName() + "'");
   }
   if (options.tip_frame.empty()) {
     throw ModelError(ModelErrc::kUnknownFrame, "no tip frame given");
   }
   const auto tip_link = urdf.getLink(options.tip_frame);
   if (!tip_link) {
-    throw ModelError(ModelErrc::kUnknownFrame, "tip frame '" + options.tip_frame +
-                                                   "' is not a link of robot '" + urdf.getName() +
-                                                   "'");
+    throw ModelError(
+        ModelErrc::kUnknownFrame,
+        "tip frame '" + options.tip_frame + "' is not a link of robot '" + urdf.getName() + "'");
   }
   if (!options.tcp_offset.matrix().allFinite() || !options.gravity_m_per_s2.allFinite()) {
     throw ModelError(ModelErrc::kInvalidOption, "TCP offset and gravity must be finite");
   }
+  return {base_name, tip_link};
+}
 
-  // Joints from base to tip (walk up from the tip, then reverse).
+// A URDF only links children to their parents, so the chain is found by walking up from the tip.
+std::vector<urdf::JointConstSharedPtr> baseToTipJoints(const ChainEnds& ends,
+                                                       const std::string& tip_frame) {
   std::vector<urdf::JointConstSharedPtr> path;
-  for (auto link = tip_link; link->name != base_name; link = link->getParent()) {
+  for (auto link = ends.tip_link; link->name != ends.base_name; link = link->getParent()) {
     if (!link->parent_joint) {
-      throw ModelError(ModelErrc::kFrameNotInChain, "tip frame '" + options.tip_frame +
-                                                        "' is not below base frame '" +
-                                                        base_name + "'");
+      throw ModelError(
+          ModelErrc::kFrameNotInChain,
+          "tip frame '" + tip_frame + "' is not below base frame '" + ends.base_name + "'");
     }
     path.push_back(link->parent_joint);
   }
   std::reverse(path.begin(), path.end());
+  return path;
+}
 
-  // Validate the requested joint names against the URDF and the chain.
+// The caller's joint order is kept, so each requested name must name exactly one URDF joint.
+std::map<std::string, int> indexRequestedJoints(const urdf::ModelInterface& urdf,
+                                                const std::vector<std::string>& joint_names) {
   std::map<std::string, int> user_index;
   std::vector<std::string> unknown;
   std::vector<std::string> duplicate;
-  for (int i = 0; i < static_cast<int>(options.joint_names.size()); ++i) {
-    const std::string& name = options.joint_names[i];
+  for (int i = 0; i < static_cast<int>(joint_names.size()); ++i) {
+    const std::string& name = joint_names[i];
     if (!urdf.getJoint(name)) {
       unknown.push_back(name);
     } else if (!user_index.emplace(name, i).second) {
@@ -168,13 +159,21 @@ Model ModelBuilder::build(const urdf::ModelInterface& urdf, const ModelOptions& 
     }
   }
   if (!unknown.empty()) {
-    throw ModelError(ModelErrc::kUnknownJoint, "robot '" + urdf.getName() +
-                                                   "' has no joint named: " + joinNames(unknown));
+    throw ModelError(ModelErrc::kUnknownJoint,
+                     "robot '" + urdf.getName() + "' has no joint named: " + joinNames(unknown));
   }
   if (!duplicate.empty()) {
     throw ModelError(ModelErrc::kDuplicateJoint,
                      "joints requested more than once: " + joinNames(duplicate));
   }
+  return user_index;
+}
+
+// Every movable joint on the path is controlled and nothing else is, so no joint is silently
+// locked or ignored; returns the number of controlled joints.
+std::size_t checkChainMatchesRequest(const std::vector<urdf::JointConstSharedPtr>& path,
+                                     const std::map<std::string, int>& user_index,
+                                     const ModelOptions& options, const std::string& base_name) {
   std::vector<std::string> missing;
   std::vector<std::string> on_path;
   for (const auto& joint : path) {
@@ -199,9 +198,9 @@ Model ModelBuilder::build(const urdf::ModelInterface& urdf, const ModelOptions& 
     }
   }
   if (!off_chain.empty()) {
-    throw ModelError(ModelErrc::kJointNotInChain,
-                     "joints not movable between '" + base_name + "' and '" + options.tip_frame +
-                         "': " + joinNames(off_chain));
+    throw ModelError(ModelErrc::kJointNotInChain, "joints not movable between '" + base_name +
+                                                      "' and '" + options.tip_frame +
+                                                      "': " + joinNames(off_chain));
   }
   if (!missing.empty()) {
     throw ModelError(ModelErrc::kMissingJoint,
@@ -213,16 +212,69 @@ Model ModelBuilder::build(const urdf::ModelInterface& urdf, const ModelOptions& 
                                                     " movable joints; at most " +
                                                     std::to_string(kMaxDof) + " are supported");
   }
+  return on_path.size();
+}
 
-  Model model;
-  model.dof_ = static_cast<int>(on_path.size());
-  model.joint_names_ = options.joint_names;
-  model.limits_.resize(on_path.size());
-  model.base_frame_ = base_name;
-  model.tip_frame_ = options.tip_frame;
-  model.gravity_ = options.gravity_m_per_s2;
+// Precomputes the Rodrigues terms so the update evaluates a joint with one sin and one cos.
+void placeBody(const urdf::Joint& joint, const Eigen::Isometry3d& joint_in_parent,
+               ChainBody& body) {
+  body.type = joint.type == urdf::Joint::PRISMATIC ? JointType::kPrismatic : JointType::kRevolute;
+  Eigen::Vector3d axis(joint.axis.x, joint.axis.y, joint.axis.z);
+  if (!axis.allFinite() || axis.norm() < 1e-9) {
+    throw ModelError(ModelErrc::kInvalidUrdf, "joint '" + joint.name + "' has a zero axis");
+  }
+  axis.normalize();
+  body.axis = axis;
+  const Eigen::Matrix3d axis_skew = skew(axis);
+  body.rotation_const = joint_in_parent.linear();
+  if (body.type == JointType::kRevolute) {
+    body.rotation_sin = joint_in_parent.linear() * axis_skew;
+    body.rotation_cos = joint_in_parent.linear() * axis_skew * axis_skew;
+  }
+  body.translation = joint_in_parent.translation();
+  body.axis_in_parent = joint_in_parent.linear() * axis;
+}
 
-  // Walk the path: fixed joints accumulate into the placement of the next movable joint.
+// A continuous joint has no position bounds even when its URDF <limit> carries some.
+void readLimits(const urdf::Joint& joint, JointLimits& limits) {
+  if (joint.type == urdf::Joint::CONTINUOUS) {
+    limits.lower = -std::numeric_limits<double>::infinity();
+    limits.upper = std::numeric_limits<double>::infinity();
+  }
+  if (joint.limits) {
+    if (joint.type != urdf::Joint::CONTINUOUS) {
+      limits.lower = joint.limits->lower;
+      limits.upper = joint.limits->upper;
+    }
+    limits.velocity = joint.limits->velocity;
+    limits.effort = joint.limits->effort;
+  }
+}
+
+}  // namespace
+
+class ModelBuilder {
+ public:
+  static Model build(const urdf::ModelInterface& urdf, const ModelOptions& options);
+
+ private:
+  static std::vector<std::size_t> placeBodies(const std::vector<urdf::JointConstSharedPtr>& path,
+                                              const std::map<std::string, int>& user_index,
+                                              const Eigen::Isometry3d& tcp_offset, Model& model);
+  static void foldInertias(const urdf::ModelInterface& urdf,
+                           const std::vector<urdf::JointConstSharedPtr>& path,
+                           const std::vector<std::size_t>& body_path_position, Model& model);
+  static void foldSubtree(const urdf::ModelInterface& urdf, const urdf::Link& link,
+                          const Eigen::Isometry3d& link_in_body, const std::string* stop_joint,
+                          MassAccumulator& accumulator);
+};
+
+// Fixed joints vanish here: they accumulate into the placement of the next movable joint, so the
+// update walks controlled joints only. Returns each body's position in the path.
+std::vector<std::size_t> ModelBuilder::placeBodies(
+    const std::vector<urdf::JointConstSharedPtr>& path,
+    const std::map<std::string, int>& user_index, const Eigen::Isometry3d& tcp_offset,
+    Model& model) {
   Eigen::Isometry3d pending = Eigen::Isometry3d::Identity();  // next joint frame in current body
   int body_index = -1;
   std::vector<std::size_t> body_path_position;
@@ -235,46 +287,24 @@ Model ModelBuilder::build(const urdf::ModelInterface& urdf, const ModelOptions& 
     ++body_index;
     body_path_position.push_back(k);
     ChainBody& body = model.bodies_[body_index];
-    body.type = joint->type == urdf::Joint::PRISMATIC ? JointType::kPrismatic : JointType::kRevolute;
-    Eigen::Vector3d axis(joint->axis.x, joint->axis.y, joint->axis.z);
-    if (!axis.allFinite() || axis.norm() < 1e-9) {
-      throw ModelError(ModelErrc::kInvalidUrdf, "joint '" + joint->name + "' has a zero axis");
-    }
-    axis.normalize();
-    body.axis = axis;
-    const Eigen::Matrix3d axis_skew = skew(axis);
-    body.rotation_const = pending.linear();
-    if (body.type == JointType::kRevolute) {
-      body.rotation_sin = pending.linear() * axis_skew;
-      body.rotation_cos = pending.linear() * axis_skew * axis_skew;
-    }
-    body.translation = pending.translation();
-    body.axis_in_parent = pending.linear() * axis;
+    placeBody(*joint, pending, body);
     body.user_index = user_index.at(joint->name);
-
-    JointLimits& limits = model.limits_[body.user_index];
-    if (joint->type == urdf::Joint::CONTINUOUS) {
-      limits.lower = -std::numeric_limits<double>::infinity();
-      limits.upper = std::numeric_limits<double>::infinity();
-    }
-    if (joint->limits) {
-      if (joint->type != urdf::Joint::CONTINUOUS) {
-        limits.lower = joint->limits->lower;
-        limits.upper = joint->limits->upper;
-      }
-      limits.velocity = joint->limits->velocity;
-      limits.effort = joint->limits->effort;
-    }
+    readLimits(*joint, model.limits_[body.user_index]);
     pending = Eigen::Isometry3d::Identity();
   }
-  model.tip_in_last_body_ = pending * options.tcp_offset;
+  model.tip_in_last_body_ = pending * tcp_offset;
   model.order_is_chain_order_ = true;
   for (int i = 0; i < model.dof_; ++i) {
     model.order_is_chain_order_ = model.order_is_chain_order_ && model.bodies_[i].user_index == i;
   }
+  return body_path_position;
+}
 
-  // Fold each body's rigidly attached links (everything below its joint up to the next
-  // controlled joint) into one inertia in the body frame.
+// The dynamics see one rigid body per controlled joint: everything below its joint up to the next
+// controlled joint is folded into one inertia in the body frame.
+void ModelBuilder::foldInertias(const urdf::ModelInterface& urdf,
+                                const std::vector<urdf::JointConstSharedPtr>& path,
+                                const std::vector<std::size_t>& body_path_position, Model& model) {
   for (int i = 0; i < model.dof_; ++i) {
     const auto& joint = path[body_path_position[i]];
     const std::string* stop_joint =
@@ -291,6 +321,45 @@ Model ModelBuilder::build(const urdf::ModelInterface& urdf, const ModelOptions& 
                                              body.com * body.com.transpose());
     }
   }
+}
+
+void ModelBuilder::foldSubtree(const urdf::ModelInterface& urdf, const urdf::Link& link,
+                               const Eigen::Isometry3d& link_in_body, const std::string* stop_joint,
+                               MassAccumulator& accumulator) {
+  if (link.inertial) {
+    accumulator.add(*link.inertial, link_in_body, link.name);
+  }
+  for (const auto& child_joint : link.child_joints) {
+    if (stop_joint != nullptr && child_joint->name == *stop_joint) {
+      continue;  // the next controlled joint starts the next body
+    }
+    // Off-chain branches (a gripper finger, a tool) ride along rigidly, locked at zero.
+    const auto child = urdf.getLink(child_joint->child_link_name);
+    if (child) {
+      foldSubtree(urdf, *child,
+                  link_in_body * toIsometry(child_joint->parent_to_joint_origin_transform),
+                  stop_joint, accumulator);
+    }
+  }
+}
+
+// The passes run in this order because callers rely on which error a faulty set-up reports first:
+// frames, then joint names, then the chain, and only then the geometry.
+Model ModelBuilder::build(const urdf::ModelInterface& urdf, const ModelOptions& options) {
+  const ChainEnds ends = findChainEnds(urdf, options);
+  const auto path = baseToTipJoints(ends, options.tip_frame);
+  const auto user_index = indexRequestedJoints(urdf, options.joint_names);
+  const std::size_t dof = checkChainMatchesRequest(path, user_index, options, ends.base_name);
+
+  Model model;
+  model.dof_ = static_cast<int>(dof);
+  model.joint_names_ = options.joint_names;
+  model.limits_.resize(dof);
+  model.base_frame_ = ends.base_name;
+  model.tip_frame_ = options.tip_frame;
+  model.gravity_ = options.gravity_m_per_s2;
+  const auto body_path_position = placeBodies(path, user_index, options.tcp_offset, model);
+  foldInertias(urdf, path, body_path_position, model);
   return model;
 }
 
@@ -306,7 +375,8 @@ Model Model::fromUrdfString(std::string_view urdf_xml, const ModelOptions& optio
 Model Model::fromUrdfFile(const std::filesystem::path& urdf_path, const ModelOptions& options) {
   std::ifstream file(urdf_path);
   if (!std::filesystem::is_regular_file(urdf_path) || !file) {
-    throw ModelError(ModelErrc::kFileNotFound, "cannot read URDF file '" + urdf_path.string() + "'");
+    throw ModelError(ModelErrc::kFileNotFound,
+                     "cannot read URDF file '" + urdf_path.string() + "'");
   }
   std::stringstream text;
   text << file.rdbuf();

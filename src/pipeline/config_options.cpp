@@ -48,8 +48,8 @@ Option spaced(Option option) {
   return option;
 }
 
-std::vector<Option> makeTable() {
-  std::vector<Option> table;
+// What the wrapper accepts from a command source and when it stops waiting for one.
+void addCommandOptions(std::vector<Option>& table) {
   table.push_back(spaced(
       number("command_timeout_s", "0.5", "no command for this long -> timeout_behavior; 0: never",
              0.0, kInfinity, false, [](WrapperConfig& c, double v) { c.command_timeout_s = v; })));
@@ -72,7 +72,10 @@ std::vector<Option> makeTable() {
   table.push_back(number("validation.max_joint_jump_rad", "0.50",
                          "joint target vs measured position (joint commands)", 0.0, kInfinity, true,
                          [](WrapperConfig& c, double v) { c.validation.max_joint_jump_rad = v; }));
+}
 
+// Model-based torques added to the control law: gravity, a held payload, joint friction.
+void addCompensationOptions(std::vector<Option>& table) {
   table.push_back(spaced(flag("compensation.gravity", "true", "g(q) from the URDF",
                               [](WrapperConfig& c, bool v) { c.gravity_compensation = v; })));
   table.push_back(flag("compensation.payload.enabled", "false", "a load held at the tip",
@@ -112,7 +115,10 @@ std::vector<Option> makeTable() {
   table.push_back(number("compensation.friction.smoothing_velocity", "0.01",
                          "rad/s: tanh(dq / v) replaces sign(dq)", 0.0, kInfinity, true,
                          [](WrapperConfig& c, double v) { c.friction.smoothing_velocity = v; }));
+}
 
+// What stands between the control law and the motors: limit springs and torque shaping.
+void addLimitAndShapingOptions(std::vector<Option>& table) {
   table.push_back(spaced(flag("soft_limits.enabled", "true", "spring-damper near the URDF limits",
                               [](WrapperConfig& c, bool v) { c.soft_limits.enabled = v; })));
   table.push_back(
@@ -135,6 +141,14 @@ std::vector<Option> makeTable() {
   table.push_back(perJoint("fault_damping", "5.0",
                            "N m s/rad of the FAULT holding torque (gravity + damping)", 0.0, false,
                            &WrapperConfig::fault_damping));
+}
+
+// The sections are added in the order the YAML file prints them; the order is part of the file.
+std::vector<Option> makeTable() {
+  std::vector<Option> table;
+  addCommandOptions(table);
+  addCompensationOptions(table);
+  addLimitAndShapingOptions(table);
   return table;
 }
 
