@@ -24,6 +24,16 @@ struct Value {
 };
 
 struct Option {
+  Option(const char* key_in, Kind kind_in, const char* default_in, const char* comment_in,
+         double min_in = 0.0, double max_in = 1e300, bool min_exclusive_in = false)
+      : key(key_in),
+        kind(kind_in),
+        default_text(default_in),
+        comment(comment_in),
+        min(min_in),
+        max(max_in),
+        min_exclusive(min_exclusive_in) {}
+
   const char* key;  ///< dotted path under ros__parameters ("soft_limits.stiffness")
   Kind kind;
   const char* default_text;  ///< YAML of the default; nullptr: none (the comment says what then)
