@@ -4,17 +4,14 @@
 
 #include <ctime>
 
+#include "comply/hardware/loop_clock.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/schema/schema.hpp"
 
 namespace comply::app {
 namespace {
 
-double monotonicSeconds() noexcept {
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-}
+using hardware::monotonicSeconds;
 
 void count(std::array<std::atomic<std::uint64_t>, LoopCounters::kBins>& bins,
            double seconds) noexcept {

@@ -5,15 +5,11 @@
 #include <ctime>
 
 namespace comply::hardware {
-namespace {
-
 double monotonicSeconds() noexcept {
   timespec now{};
   clock_gettime(CLOCK_MONOTONIC, &now);
   return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
-
-}  // namespace
 
 WallClock::WallClock() : origin_s_(monotonicSeconds()) {}
 

@@ -8,10 +8,12 @@
 #include <cmath>
 #include <limits>
 
-#include "joint_literals.hpp"
+#include "command_bits.hpp"
 
 namespace comply::pipeline {
 namespace {
+
+using test::joints;
 
 constexpr double kTight = 1e-12;
 

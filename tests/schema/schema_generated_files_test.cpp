@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "comply/schema/describe.hpp"
+#include "text_file.hpp"
 
 namespace comply::schema {
 namespace {
@@ -18,11 +19,7 @@ namespace {
 const std::filesystem::path kSourceDir = COMPLY_SOURCE_DIR;
 
 std::string contents(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  EXPECT_TRUE(in) << "cannot read " << file;
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return comply::testing::textOf(file);
 }
 
 TEST(SchemaGeneratedFiles, MarkdownIsUpToDate) {

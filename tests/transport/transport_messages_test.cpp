@@ -13,6 +13,7 @@
 
 #include "comply/schema/describe.hpp"
 #include "comply/transport/endpoints.hpp"
+#include "text_file.hpp"
 
 namespace comply::transport {
 namespace {
@@ -21,11 +22,7 @@ const std::filesystem::path kSourceDir = COMPLY_SOURCE_DIR;
 const std::filesystem::path kIdlDir = kSourceDir / "src" / "transport" / "idl";
 
 std::string contents(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  EXPECT_TRUE(in) << "cannot read " << file;
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return comply::testing::textOf(file);
 }
 
 std::string trim(const std::string& text) {

@@ -5,6 +5,9 @@
 
 namespace comply::hardware {
 
+/// CLOCK_MONOTONIC in seconds: what every loop clock and cycle timestamp is measured on.
+double monotonicSeconds() noexcept;
+
 class LoopClock {
  public:
   virtual ~LoopClock() = default;
