@@ -15,12 +15,8 @@ namespace {
 constexpr double kRotationalStiffness = 40.0;  // N m/rad
 constexpr double kRelativeTolerance = 1e-9;
 
-class CartesianOrientation : public ::testing::Test {
+class CartesianOrientation : public CartesianLawAtHome {
  protected:
-  Fr3 fr3_;
-  comply_input input_ = fr3_.inputAtHome();
-  plugin::PluginInstance law_{cartesianImpedanceLibrary(), fr3_.model.dof(), {}};
-
   /// Reference orientation turned by `angle` about base z; translation held stiffly in place.
   [[nodiscard]] comply_cartesian_command turnedAboutBaseZ(double angle) const {
     comply_cartesian_command command = holdCommand(input_);

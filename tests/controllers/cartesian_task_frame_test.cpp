@@ -19,11 +19,8 @@ constexpr double kCompliant = 50.0;
 constexpr double kDisplacement = 0.01;  // m
 constexpr double kRelativeTolerance = 1e-9;
 
-class CartesianTaskFrame : public ::testing::Test {
+class CartesianTaskFrame : public CartesianLawAtHome {
  protected:
-  Fr3 fr3_;
-  comply_input input_ = fr3_.inputAtHome();
-  plugin::PluginInstance law_{cartesianImpedanceLibrary(), fr3_.model.dof(), {}};
   Eigen::Matrix3d task_rotation_ =
       Eigen::AngleAxisd(std::numbers::pi / 6.0, Eigen::Vector3d(1.0, 2.0, -0.5).normalized())
           .toRotationMatrix();

@@ -184,4 +184,12 @@ inline double relativeError(const Eigen::VectorXd& actual, const Eigen::VectorXd
   return (actual - expected).norm() / std::max(expected.norm(), floor);
 }
 
+/// The Cartesian impedance law with default parameters and its input at the FR3's home pose.
+class CartesianLawAtHome : public ::testing::Test {
+ protected:
+  Fr3 fr3_;
+  comply_input input_ = fr3_.inputAtHome();
+  plugin::PluginInstance law_{cartesianImpedanceLibrary(), fr3_.model.dof(), {}};
+};
+
 }  // namespace comply::law_test

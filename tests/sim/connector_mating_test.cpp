@@ -25,14 +25,11 @@ namespace {
 std::vector<experiments::ConnectorMatingRow> runTrials(const std::string& folder,
                                                        std::vector<double> offsets_deg,
                                                        std::vector<std::string> conditions) {
-  experiments::ConnectorMatingOptions options;
-  options.out_dir = std::filesystem::temp_directory_path() / folder;
-  std::filesystem::remove_all(options.out_dir);
+  std::ostringstream progress;
+  auto options = freshExperiment<experiments::ConnectorMatingOptions>(folder, progress);
   options.offsets_deg = std::move(offsets_deg);
   options.conditions = std::move(conditions);
   options.pictures = false;
-  std::ostringstream progress;
-  options.progress = &progress;
   return experiments::runConnectorMating(options);
 }
 

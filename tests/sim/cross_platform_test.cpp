@@ -16,11 +16,9 @@ namespace comply::testing {
 namespace {
 
 TEST(CrossPlatform, EveryRobotReachesTheCommonTargetAndThePicturesShowThem) {
-  experiments::CrossPlatformOptions options;
-  options.out_dir = std::filesystem::temp_directory_path() / "comply_cross_platform_test";
-  std::filesystem::remove_all(options.out_dir);
   std::ostringstream progress;
-  options.progress = &progress;
+  auto options =
+      freshExperiment<experiments::CrossPlatformOptions>("comply_cross_platform_test", progress);
   const std::vector<experiments::CrossPlatformRow> rows = experiments::runCrossPlatform(options);
 
   ASSERT_EQ(rows.size(), 4U);

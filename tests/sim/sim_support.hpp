@@ -2,6 +2,7 @@
 // Shared set-up of the simulation tests: controller configs and task files for the runs.
 
 #include <filesystem>
+#include <ostream>
 #include <string>
 
 #include "comply/pipeline/config.hpp"
@@ -30,6 +31,16 @@ inline app::SimRunOptions fr3ExampleRun(const std::string& task) {
   run.config = simCartesianConfig("fr3");
   run.task = app::loadTaskFile(kSourceDir / "examples" / "sim" / task, true, run.config.dof);
   return run;
+}
+
+/// An experiment's options writing into a fresh temporary `folder`, its progress into `progress`.
+template <typename Options>
+Options freshExperiment(const std::string& folder, std::ostream& progress) {
+  Options options;
+  options.out_dir = std::filesystem::temp_directory_path() / folder;
+  std::filesystem::remove_all(options.out_dir);
+  options.progress = &progress;
+  return options;
 }
 
 }  // namespace comply::testing

@@ -16,13 +16,11 @@ namespace comply::testing {
 namespace {
 
 TEST(SurfaceFollowing, TaskAlignedBeatsFixedFrameAndTheDisplacedRunKeepsContact) {
-  experiments::SurfaceFollowingOptions options;
-  options.out_dir = std::filesystem::temp_directory_path() / "comply_surface_following_test";
-  std::filesystem::remove_all(options.out_dir);
+  std::ostringstream progress;
+  auto options = freshExperiment<experiments::SurfaceFollowingOptions>(
+      "comply_surface_following_test", progress);
   options.path_fraction = 0.5;
   options.pictures = false;
-  std::ostringstream progress;
-  options.progress = &progress;
   const std::vector<experiments::SurfaceFollowingRow> rows =
       experiments::runSurfaceFollowing(options);
   ASSERT_EQ(rows.size(), 3U);

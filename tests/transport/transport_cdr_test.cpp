@@ -13,27 +13,20 @@
 
 #include "comply/transport/endpoints.hpp"
 #include "comply_msgs/msg/JointCommand.h"
+#include "loopback.hpp"
 
 namespace comply::transport {
 namespace {
 
-int testDomain() {
-  std::random_device random;
-  return 100 + static_cast<int>(random() % 100);
-}
-
 /// Writes `message` and returns the serialised sample a reader receives (header included).
 template <typename Message>
 std::vector<std::uint8_t> wireBytes(const Message& message) {
-  Participant participant({.domain_id = testDomain()});
-  Writer<Message> writer(participant, "cdr_test");
-  Reader<Message> reader(participant, "cdr_test");
-  EXPECT_TRUE(writer.waitForMatch(1, 5.0));
-  EXPECT_TRUE(writer.write(message));
-  EXPECT_TRUE(reader.wait(5.0));
+  Loopback<Message> loopback("cdr_test");
+  loopback.send(message);
   ddsi_serdata* serdata = nullptr;
   dds_sample_info_t info;
-  const dds_return_t count = dds_takecdr(reader.handle(), &serdata, 1, &info, DDS_ANY_STATE);
+  const dds_return_t count =
+      dds_takecdr(loopback.reader.handle(), &serdata, 1, &info, DDS_ANY_STATE);
   EXPECT_EQ(count, 1);
   if (count != 1) {
     return {};

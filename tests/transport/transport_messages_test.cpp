@@ -13,6 +13,7 @@
 
 #include "comply/schema/describe.hpp"
 #include "comply/transport/endpoints.hpp"
+#include "loopback.hpp"
 #include "text_file.hpp"
 
 namespace comply::transport {
@@ -120,21 +121,12 @@ TEST(TransportMessages, TopicNamesAndQosAreRos2s) {
   EXPECT_TRUE(cycloneConfig({.network = Network::kAll}).empty());
 }
 
-int testDomain() {
-  std::random_device random;
-  return 100 + static_cast<int>(random() % 100);
-}
-
 template <typename Message>
 Sample<Message> roundTrip(const Message& message) {
-  Participant participant({.domain_id = testDomain()});
-  Writer<Message> writer(participant, "round_trip");
-  Reader<Message> reader(participant, "round_trip");
-  EXPECT_TRUE(writer.waitForMatch(1, 5.0));
-  EXPECT_TRUE(writer.write(message));
-  EXPECT_TRUE(reader.wait(5.0));
+  Loopback<Message> loopback("round_trip");
+  loopback.send(message);
   std::vector<Sample<Message>> samples;
-  EXPECT_EQ(reader.take(samples), 1U);
+  EXPECT_EQ(loopback.reader.take(samples), 1U);
   return samples.empty() ? Sample<Message>{} : samples.front();
 }
 
