@@ -25,11 +25,17 @@ const char* simulinkType(ScalarType type) {
   return "double";
 }
 
+// A MATLAB character vector literal: quotes doubled.
+std::string quoted(std::string_view text) {
+  return "'" + replaceAll(std::string(text), "'", "''") + "'";
+}
+
 void writeBus(std::ostream& out, const plugin::abi_layout::Struct& bus) {
-  out << "assignin('base', '" << bus.name << "', make_bus('" << bus.description << "', { ...\n";
+  out << "assignin('base', " << quoted(bus.name) << ", make_bus(" << quoted(bus.description)
+      << ", { ...\n";
   for (const auto& element : bus.elements) {
-    out << "  '" << element.name << "', " << element.count << ", '" << simulinkType(element.type)
-        << "', '" << element.description << "'; ...\n";
+    out << "  " << quoted(element.name) << ", " << element.count << ", "
+        << quoted(simulinkType(element.type)) << ", " << quoted(element.description) << "; ...\n";
   }
   out << "}));\n";
 }
