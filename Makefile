@@ -7,7 +7,7 @@ CTEST_ARGS ?= -LE long
 # Benchmarks run pinned to the last CPU, away from most interrupt and housekeeping work.
 BENCH_CPU ?= $(shell echo $$(($$(nproc) - 1)))
 
-.PHONY: deps configure build test test-all bench demo format tidy clean
+.PHONY: deps configure build install test test-all bench demo format tidy clean
 
 deps:
 	@scripts/install-deps.sh
@@ -20,6 +20,12 @@ configure: deps
 
 build: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
+
+# Libraries, headers, the CLI, the reference plugins, robots and the CMake package `comply` under
+# PREFIX; the installed comply finds its plugins and robots relative to its own location.
+PREFIX ?= $(HOME)/.local
+install: build
+	@cmake --install $(BUILD_DIR) --prefix $(PREFIX)
 
 # Unit and integration tests; long experiments carry the CTest label `long` and run with test-all.
 test: build

@@ -1,5 +1,8 @@
 # Warning and optimisation flags shared by every comply target.
 add_library(comply_flags INTERFACE)
+# Exported only because static libraries of the package name it as a link-only dependency.
+set_target_properties(comply_flags PROPERTIES EXPORT_NAME flags)
+install(TARGETS comply_flags EXPORT complyTargets)
 target_compile_options(comply_flags INTERFACE
   -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion
   $<$<COMPILE_LANGUAGE:CXX>:-Wnon-virtual-dtor>)

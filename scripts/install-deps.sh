@@ -16,6 +16,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev
   cyclonedds-dev cyclonedds-tools
   pybind11-dev python3-numpy
+  octave
 )
 
 missing=()

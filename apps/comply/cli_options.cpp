@@ -80,4 +80,13 @@ CLI::App* addSchemaCommand(CLI::App& app, SchemaOptions& options) {
   return command;
 }
 
+CLI::App* addCodegenCommand(CLI::App& app, CodegenOptions& options) {
+  CLI::App* command = app.add_subcommand("codegen", "generate files for other tools");
+  command->require_subcommand(1);
+  CLI::App* simulink = command->add_subcommand(
+      "simulink", "Simulink buses, template model and Embedded Coder adapter from the plugin ABI");
+  simulink->add_option("--out", options.out, "output folder")->capture_default_str();
+  return simulink;
+}
+
 }  // namespace comply::app

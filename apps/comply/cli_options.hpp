@@ -3,6 +3,7 @@
 // was chosen.
 
 #include "bench_command.hpp"
+#include "codegen_command.hpp"
 #include "schema_command.hpp"
 #include "sim_command.hpp"
 #include "validate_command.hpp"
@@ -17,5 +18,7 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options);
 CLI::App* addValidateCommand(CLI::App& app, ValidateOptions& options);
 CLI::App* addSimCommand(CLI::App& app, SimOptions& options);
 CLI::App* addSchemaCommand(CLI::App& app, SchemaOptions& options);
+/// `comply codegen simulink`; returns the `simulink` subcommand.
+CLI::App* addCodegenCommand(CLI::App& app, CodegenOptions& options);
 
 }  // namespace comply::app

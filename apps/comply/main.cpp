@@ -8,6 +8,7 @@
 //   comply send --json '{"position": [...]}' | --file F [--rate HZ]
 //   comply echo [state|diagnostics]
 //   comply schema [--format markdown|json|msg|idl] [--kind cartesian|joint]
+//   comply codegen simulink [--out DIR]
 //   comply config --defaults [--robot fr3] [--plugin cartesian_impedance]
 //
 // Exit codes: 0 success, 1 a check failed (validate above tolerance, a controller fault, a
@@ -30,6 +31,7 @@ int main(int argc, char** argv) {
   SimOptions sim;
   SchemaOptions schema;
   ConfigOptions config;
+  CodegenOptions codegen;
   CLI::App* bench_command = addBenchCommand(app, bench);
   CLI::App* validate_command = addValidateCommand(app, validate);
   CLI::App* sim_command = addSimCommand(app, sim);
@@ -37,6 +39,7 @@ int main(int argc, char** argv) {
   const LiveCommands live = addLiveCommands(app);
   CLI::App* schema_command = addSchemaCommand(app, schema);
   CLI::App* config_command = addConfigCommand(app, config);
+  CLI::App* codegen_simulink = addCodegenCommand(app, codegen);
 
   CLI11_PARSE(app, argc, argv);
   try {
@@ -60,6 +63,9 @@ int main(int argc, char** argv) {
     }
     if (config_command->parsed()) {
       return configCommand(config, std::cout, std::cerr);
+    }
+    if (codegen_simulink->parsed()) {
+      return codegenSimulinkCommand(codegen, std::cout, std::cerr);
     }
     return 2;
   } catch (const std::exception& error) {

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "comply/core/install_paths.hpp"
 #include "comply/model/model_error.hpp"
 
 namespace comply::model {
@@ -47,15 +48,15 @@ std::vector<T> readList(const YAML::Node& root, const char* key, const std::file
 }
 
 bool looksLikePath(std::string_view name_or_path) {
-  return name_or_path.find('/') != std::string_view::npos ||
-         name_or_path.find('.') == 0 || std::filesystem::is_directory(name_or_path);
+  return name_or_path.find('/') != std::string_view::npos || name_or_path.find('.') == 0 ||
+         std::filesystem::is_directory(name_or_path);
 }
 
 RobotDescription parseFolder(const std::filesystem::path& folder) {
   const std::filesystem::path file = folder / kRobotFile;
   if (!std::filesystem::is_regular_file(file)) {
-    throw ModelError(ModelErrc::kFileNotFound, "no " + std::string(kRobotFile) + " in '" +
-                                                   folder.string() + "'");
+    throw ModelError(ModelErrc::kFileNotFound,
+                     "no " + std::string(kRobotFile) + " in '" + folder.string() + "'");
   }
   YAML::Node root;
   try {
@@ -118,6 +119,9 @@ std::vector<std::filesystem::path> robotSearchPath() {
         folders.emplace_back(entry);
       }
     }
+  }
+  if (const auto installed = installedFolder(COMPLY_ROBOTS_RELDIR)) {
+    folders.push_back(*installed);
   }
   folders.emplace_back(COMPLY_DEFAULT_ROBOTS_DIR);
   return folders;

@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "comply/core/install_paths.hpp"
+
 namespace comply::plugin {
 namespace {
 
@@ -40,6 +42,9 @@ std::vector<std::filesystem::path> pluginSearchPath() {
         folders.emplace_back(entry);
       }
     }
+  }
+  if (const auto installed = installedFolder(COMPLY_PLUGIN_RELDIR)) {
+    folders.push_back(*installed);
   }
   folders.emplace_back(COMPLY_DEFAULT_PLUGIN_DIR);
   return folders;
