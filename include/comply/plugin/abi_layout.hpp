@@ -13,6 +13,7 @@
 #include <type_traits>
 
 #include "comply/plugin/abi.h"
+#include "comply/schema/table.hpp"
 
 namespace comply::plugin::abi_layout {
 
@@ -85,44 +86,28 @@ inline constexpr std::array kInputElements{
     COMPLY_ABI_ELEMENT(comply_input, coriolis, "C(q, dq) dq [N m]"),
 };
 
+// The command buses after their header: the schema table's fields in its order (its descriptions
+// included), so that the bus objects and the schema cannot drift apart.
+#define COMPLY_ABI_JOINT_FIELD(name, group, kind, type, unit, constraint, role, init, description) \
+  COMPLY_ABI_ELEMENT(comply_joint_command, name, description),
+#define COMPLY_ABI_CARTESIAN_FIELD(name, group, kind, type, unit, constraint, role, init, \
+                                   description)                                           \
+  COMPLY_ABI_ELEMENT(comply_cartesian_command, name, description),
+
 inline constexpr std::array kJointCommandElements{
     COMPLY_ABI_ELEMENT(comply_joint_command, stamp_s, "sender time [s]"),
     COMPLY_ABI_ELEMENT(comply_joint_command, fields, "COMPLY_FIELD_* present"),
     COMPLY_ABI_ELEMENT(comply_joint_command, dof, "joints in use"),
-    COMPLY_ABI_ELEMENT(comply_joint_command, position, "rad | m"),
-    COMPLY_ABI_ELEMENT(comply_joint_command, velocity, "rad/s | m/s"),
-    COMPLY_ABI_ELEMENT(comply_joint_command, acceleration, "rad/s^2 | m/s^2"),
-    COMPLY_ABI_ELEMENT(comply_joint_command, stiffness, "N m/rad | N/m"),
-    COMPLY_ABI_ELEMENT(comply_joint_command, damping, "N m s/rad | N s/m"),
-    COMPLY_ABI_ELEMENT(comply_joint_command, torque_feedforward, "N m | N"),
-};
+    COMPLY_JOINT_COMMAND_FIELDS(COMPLY_ABI_JOINT_FIELD)};
 
 inline constexpr std::array kCartesianCommandElements{
     COMPLY_ABI_ELEMENT(comply_cartesian_command, stamp_s, "sender time [s]"),
     COMPLY_ABI_ELEMENT(comply_cartesian_command, fields, "COMPLY_FIELD_* present"),
     COMPLY_ABI_ELEMENT(comply_cartesian_command, dof, "joints in use"),
-    COMPLY_ABI_ELEMENT(comply_cartesian_command, position, "TCP target, base frame [m]"),
-    COMPLY_ABI_ELEMENT(comply_cartesian_command, orientation, "TCP target, base frame, x y z w"),
-    COMPLY_ABI_ELEMENT(comply_cartesian_command, twist, "target TCP velocity [m/s, rad/s]"),
-    COMPLY_ABI_ELEMENT(comply_cartesian_command, acceleration, "target TCP acceleration"),
-    COMPLY_ABI_ELEMENT(comply_cartesian_command, stiffness_translational,
-                       "task frame, row-major [N/m]"),
-    COMPLY_ABI_ELEMENT(comply_cartesian_command, stiffness_rotational,
-                       "task frame, row-major [N m/rad]"),
-    COMPLY_ABI_ELEMENT(comply_cartesian_command, damping_translational,
-                       "task frame, row-major [N s/m]"),
-    COMPLY_ABI_ELEMENT(comply_cartesian_command, damping_rotational,
-                       "task frame, row-major [N m s/rad]"),
-    COMPLY_ABI_ELEMENT(comply_cartesian_command, damping_mode, "0 absolute, 1 ratio"),
-    COMPLY_ABI_ELEMENT(comply_cartesian_command, damping_ratio, "per task axis, 1 = critical"),
-    COMPLY_ABI_ELEMENT(comply_cartesian_command, task_frame,
-                       "task frame orientation in base, x y z w"),
-    COMPLY_ABI_ELEMENT(comply_cartesian_command, wrench_feedforward, "base frame [N, N m]"),
-    COMPLY_ABI_ELEMENT(comply_cartesian_command, torque_feedforward, "N m"),
-    COMPLY_ABI_ELEMENT(comply_cartesian_command, nullspace_position, "rad"),
-    COMPLY_ABI_ELEMENT(comply_cartesian_command, nullspace_stiffness, "N m/rad"),
-    COMPLY_ABI_ELEMENT(comply_cartesian_command, nullspace_damping, "N m s/rad"),
-};
+    COMPLY_CARTESIAN_COMMAND_FIELDS(COMPLY_ABI_CARTESIAN_FIELD)};
+
+#undef COMPLY_ABI_JOINT_FIELD
+#undef COMPLY_ABI_CARTESIAN_FIELD
 
 inline constexpr std::array kOutputElements{
     COMPLY_ABI_ELEMENT(comply_output, torque, "joint torque of the law [N m | N]"),
