@@ -107,15 +107,4 @@ static comply_status step(void* instance, const comply_input* input, const void*
   return COMPLY_OK;
 }
 
-static const comply_plugin_api api = {.abi_version = COMPLY_ABI_VERSION,
-                                      .name = "joint_impedance_c",
-                                      .command_kind = COMPLY_COMMAND_JOINT,
-                                      .create = create,
-                                      .destroy = destroy,
-                                      .required_quantities = required_quantities,
-                                      .activate = activate,
-                                      .step = step};
-
-__attribute__((visibility("default"))) const comply_plugin_api* comply_plugin_entry(void) {
-  return &api;
-}
+COMPLY_EXPORT_C_PLUGIN("joint_impedance_c", COMPLY_COMMAND_JOINT)

@@ -161,6 +161,23 @@ typedef struct comply_plugin_api {
 /* The one symbol a plugin exports. */
 typedef const comply_plugin_api* (*comply_plugin_entry_fn)(void);
 
+/* For a plugin written in C: defines its function table from the functions `create`, `destroy`,
+ * `required_quantities`, `activate` and `step` of the file and exports comply_plugin_entry.
+ * `plugin_name` is a string; `kind` a comply_command_kind. (C++ plugins use the SDK's macro.) */
+#define COMPLY_EXPORT_C_PLUGIN(plugin_name, kind)                                          \
+  static const comply_plugin_api comply_plugin_table = {.abi_version = COMPLY_ABI_VERSION, \
+                                                        .name = (plugin_name),             \
+                                                        .command_kind = (kind),            \
+                                                        .create = create,                  \
+                                                        .destroy = destroy,                \
+                                                        .required_quantities =             \
+                                                            required_quantities,           \
+                                                        .activate = activate,              \
+                                                        .step = step};                     \
+  __attribute__((visibility("default"))) const comply_plugin_api* comply_plugin_entry(void) { \
+    return &comply_plugin_table;                                                           \
+  }
+
 #ifdef __cplusplus
 }
 #endif

@@ -157,15 +157,4 @@ static comply_status step(void* instance_pointer, const comply_input* input, con
   return COMPLY_OK;
 }
 
-static const comply_plugin_api api = {.abi_version = COMPLY_ABI_VERSION,
-                                      .name = COMPLY_MODEL_NAME,
-                                      .command_kind = COMPLY_MODEL_COMMAND_KIND,
-                                      .create = create,
-                                      .destroy = destroy,
-                                      .required_quantities = required_quantities,
-                                      .activate = activate,
-                                      .step = step};
-
-__attribute__((visibility("default"))) const comply_plugin_api* comply_plugin_entry(void) {
-  return &api;
-}
+COMPLY_EXPORT_C_PLUGIN(COMPLY_MODEL_NAME, COMPLY_MODEL_COMMAND_KIND)
