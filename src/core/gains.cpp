@@ -4,15 +4,18 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+
+#include "jacobi_tracking.hpp"
 
 namespace comply {
 namespace {
 
-// Stopping criterion of the tracking Jacobi solver. The first-order square root below leaves an
-// error of the order of the square of the off-diagonal rest, relative: ~1e-12 for 1e-6, below the
-// 1e-10 the law promises and without a further sweep (measured: one sweep per cycle on a smooth
-// trajectory at 1 kHz, two after a jump).
-constexpr double kJacobiTolerance = 1e-6;
+// Stopping criterion of the tracking Jacobi solver. The square root below is exact to second
+// order in the off-diagonal rest, so its error is of the order of the cube of this, relative
+// (~1e-12), below the 1e-10 the tracker promises and reached with one sweep per cycle on a
+// smooth trajectory at 1 kHz (two or three after a jump).
+constexpr double kJacobiTolerance = 1e-4;
 
 /// Lower Cholesky factor L of an SPD matrix and L^-1, unblocked: Eigen's LLT plus a triangular
 /// inverse cost several times more at 6x6. False when a pivot is not positive (or is NaN).
@@ -51,22 +54,30 @@ bool choleskyWithInverse(const Matrix6d& a, Matrix6d& lower, Matrix6d& lower_inv
   return true;
 }
 
-/// 2 sqrt(A) for a symmetric PSD A = diag(a) + E with a small off-diagonal rest E, to first order:
-/// sqrt(A) ~ diag(r) + C with r = sqrt(a) and r_i C_ij + C_ij r_j = E_ij (the Frechet derivative
-/// of the square root, Higham, Functions of Matrices, 6.1). Unlike eigenvectors, this needs no
-/// gap between eigenvalues, and its error is second order in E.
-Matrix6d twiceSquareRoot(const Matrix6d& a) noexcept {
-  Vector6d root;
+/// 2 sqrt(A) for a symmetric PSD A = diag(a) + E with a small off-diagonal rest E, to second
+/// order: sqrt(A) ~ R + X1 + X2 with R = diag(sqrt(a)), R X1 + X1 R = E and R X2 + X2 R = -X1^2
+/// (the Frechet derivatives of the square root, Higham, Functions of Matrices, 6.1). Unlike
+/// eigenvectors, this needs no gap between eigenvalues.
+lanes::Matrix twiceSquareRoot(const lanes::Matrix& a) noexcept {
+  lanes::Lanes root = {0, 0, 0, 0, 0, 0, 0, 0};
   for (int i = 0; i < 6; ++i) {
-    root[i] = std::sqrt(std::max(a(i, i), 0.0));
+    root[i] = std::sqrt(std::max(a.col[i][i], 0.0));
   }
-  Matrix6d result;
+  lanes::Matrix inverse_sum;  // 1 / (r_i + r_j); 0 for two zero roots (then |a_ij| <= 0 for PSD)
+  lanes::Matrix first;
   for (int j = 0; j < 6; ++j) {
-    for (int i = 0; i < 6; ++i) {
-      const double sum = root[i] + root[j];
-      // A PSD matrix has |a_ij| <= sqrt(a_ii a_jj): two zero roots mean a zero entry.
-      result(i, j) = i == j ? 2.0 * root[i] : (sum > 0.0 ? 2.0 * a(i, j) / sum : 0.0);
-    }
+    const lanes::Lanes sum = root + root[j];
+    inverse_sum.col[j] = sum > 0.0 ? 1.0 / sum : 0.0;
+    lanes::Lanes off_diagonal = a.col[j];
+    off_diagonal[j] = 0.0;
+    first.col[j] = off_diagonal * inverse_sum.col[j];
+  }
+  const lanes::Matrix first_squared = lanes::product(first, first);
+  lanes::Matrix result;
+  for (int j = 0; j < 6; ++j) {
+    lanes::Lanes column = first.col[j] - first_squared.col[j] * inverse_sum.col[j];
+    column[j] += root[j];
+    result.col[j] = 2.0 * column;
   }
   return result;
 }
@@ -102,6 +113,14 @@ Matrix6d criticalDamping(const Matrix6d& stiffness, const Matrix6d& inertia) {
   return q * (2.0 * root).asDiagonal() * q.transpose();
 }
 
+CriticalDampingTracker::CriticalDampingTracker() noexcept {
+  for (int c = 0; c < 6; ++c) {
+    for (int r = 0; r < 8; ++r) {
+      basis_[c][r] = r == c ? 1.0 : 0.0;
+    }
+  }
+}
+
 bool CriticalDampingTracker::compute(const Matrix6d& stiffness, const Matrix6d& inverse_inertia,
                                      Matrix6d& damping) noexcept {
   Matrix6d lower;
@@ -109,12 +128,18 @@ bool CriticalDampingTracker::compute(const Matrix6d& stiffness, const Matrix6d& 
   if (!choleskyWithInverse(inverse_inertia, lower, lower_inverse)) {
     return false;
   }
-  const Matrix6d symmetric = lower.transpose() * stiffness * lower;
-  Matrix6d nearly_diagonal;
-  last_sweeps_ = trackSymmetricEigen(symmetric, basis_, nearly_diagonal, kJacobiTolerance);
+  lanes::Matrix basis;
+  std::memcpy(&basis, basis_, sizeof(basis));
+  const lanes::Matrix symmetric = lanes::product(
+      lanes::loadTransposed(lower), lanes::product(lanes::load(stiffness), lanes::load(lower)));
+  lanes::Matrix nearly_diagonal;
+  last_sweeps_ = lanes::trackEigen(symmetric, basis, nearly_diagonal, kJacobiTolerance);
+  std::memcpy(basis_, &basis, sizeof(basis));
   // D = 2 L^-T sqrt(L^T K L) L^-1 with sqrt(L^T K L) = U sqrt(A) U^T.
-  const Matrix6d modes = lower_inverse.transpose() * basis_;
-  damping = modes * twiceSquareRoot(nearly_diagonal) * modes.transpose();
+  const lanes::Matrix modes = lanes::product(lanes::loadTransposed(lower_inverse), basis);
+  lanes::store(lanes::product(lanes::product(modes, twiceSquareRoot(nearly_diagonal)),
+                              lanes::transpose(modes)),
+               damping);
   return true;
 }
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "jacobi_tracking.hpp"
+
 namespace comply {
 namespace {
 
@@ -33,119 +35,172 @@ constexpr int kRounds[5][3][2] = {{{0, 1}, {2, 5}, {3, 4}},
                                   {{0, 4}, {3, 5}, {1, 2}},
                                   {{0, 5}, {1, 4}, {2, 3}}};
 
+/// Lane i -> lane of its partner in each round (lanes 6 and 7 map to themselves).
+constexpr lanes::LaneIndex kPartners[5] = {{1, 0, 5, 4, 3, 2, 6, 7},
+                                           {2, 3, 0, 1, 5, 4, 6, 7},
+                                           {3, 5, 4, 0, 2, 1, 6, 7},
+                                           {4, 2, 1, 5, 0, 3, 6, 7},
+                                           {5, 4, 3, 2, 1, 0, 6, 7}};
+
+/// 1 on the lanes of pair k of round r.
+constexpr lanes::Lanes pairLanes(int r, int k) {
+  lanes::Lanes mask = {0, 0, 0, 0, 0, 0, 0, 0};
+  mask[kRounds[r][k][0]] = 1.0;
+  mask[kRounds[r][k][1]] = 1.0;
+  return mask;
+}
+
+/// -1 on the first lane of pair k of round r, +1 on the second.
+constexpr lanes::Lanes signLanes(int r, int k) {
+  lanes::Lanes mask = {0, 0, 0, 0, 0, 0, 0, 0};
+  mask[kRounds[r][k][0]] = -1.0;
+  mask[kRounds[r][k][1]] = 1.0;
+  return mask;
+}
+
 struct Rotation {
-  double t;  // tan of the angle
   double c;
   double s;
 };
 
-/// The smaller of the two rotations that zero a_pq: tan(2 phi) = 2 a_pq / (a_qq - a_pp), written
-/// as t = 2 a_pq sign(d) / (|d| + sqrt(d^2 + 4 a_pq^2)) (Rutishauser's t, one square root and
-/// one division fewer than through theta = d / (2 a_pq)).
+/// The smaller of the two rotations that zero a_pq: tan(2 phi) = 2 a_pq / d, d = a_qq - a_pp,
+/// t = tan(phi) = 2 a_pq sign(d) / (|d| + sqrt(d^2 + 4 a_pq^2)) (Rutishauser's t without theta).
+/// Warm-started sweeps see small angles: there the series in r = a_pq / d,
+/// t = r - r^3 + 2 r^5 (next term 5 r^7) and c = 1 - t^2 / 2 + 3 t^4 / 8 (next 5 t^6 / 16), are
+/// exact to rounding for |r| < 1e-3 and replace two square roots and a division by products.
 Rotation rotationFor(double app, double aqq, double apq) noexcept {
   const double d = aqq - app;
+  if (std::abs(apq) < 1e-3 * std::abs(d)) {
+    const double r = apq / d;
+    const double r2 = r * r;
+    const double t = r * (1.0 - r2 * (1.0 - 2.0 * r2));
+    const double t2 = t * t;
+    const double c = 1.0 - t2 * (0.5 - 0.375 * t2);
+    return {c, t * c};
+  }
   const double h = std::sqrt(d * d + 4.0 * apq * apq);
   const double t = 2.0 * apq / (d >= 0.0 ? d + h : d - h);
   const double c = 1.0 / std::sqrt(t * t + 1.0);
-  return {t, c, t * c};
+  return {c, t * c};
 }
 
-/// Column-major 6x6 storage; column j of a symmetric matrix is also its row j.
-struct Columns {
-  double a[6][6];  // a[column][row]
-  double v[6][6];
+struct Pair {
+  lanes::Matrix& a;  // the matrix being diagonalised, symmetric: column j is also row j
+  lanes::Matrix& v;  // the basis
 };
 
-/// A <- G^T A G and V <- V G for the rotation G in the (p, q) plane: mixes columns p and q
-/// (contiguous), copies them into rows p and q, and sets the 2x2 pivot block exactly.
-void rotate(Columns& m, int p, int q, const Rotation& g) noexcept {
-  const double app = m.a[p][p];
-  const double aqq = m.a[q][q];
-  const double apq = m.a[q][p];
-  for (int r = 0; r < 6; ++r) {
-    const double x = m.a[p][r];
-    const double y = m.a[q][r];
-    m.a[p][r] = g.c * x - g.s * y;
-    m.a[q][r] = g.s * x + g.c * y;
-    const double vx = m.v[p][r];
-    const double vy = m.v[q][r];
-    m.v[p][r] = g.c * vx - g.s * vy;
-    m.v[q][r] = g.s * vx + g.c * vy;
+/// One round: A <- G^T A G and V <- V G, G the product of the round's three disjoint rotations
+/// (identity for pairs that meet the criterion). False, and nothing changed, when all three do.
+template <int R>
+bool round(Pair m, double tolerance_squared, double floor_squared) noexcept {
+  Rotation g[3] = {{1.0, 0.0}, {1.0, 0.0}, {1.0, 0.0}};
+  bool rotated = false;
+  for (int k = 0; k < 3; ++k) {
+    const int p = kRounds[R][k][0];
+    const int q = kRounds[R][k][1];
+    const double app = m.a.col[p][p];
+    const double aqq = m.a.col[q][q];
+    const double apq = m.a.col[q][p];
+    if (apq * apq > tolerance_squared * std::abs(app * aqq) + floor_squared) {
+      g[k] = rotationFor(app, aqq, apq);
+      rotated = true;
+    }
   }
-  for (int r = 0; r < 6; ++r) {
-    m.a[r][p] = m.a[p][r];
-    m.a[r][q] = m.a[q][r];
+  if (!rotated) {
+    return false;
   }
-  m.a[p][p] = app - g.t * apq;
-  m.a[q][q] = aqq + g.t * apq;
-  m.a[p][q] = 0.0;
-  m.a[q][p] = 0.0;
+  // Right: columns p and q mix (A G, V G).
+  for (int k = 0; k < 3; ++k) {
+    const int p = kRounds[R][k][0];
+    const int q = kRounds[R][k][1];
+    const lanes::Lanes ap = m.a.col[p];
+    const lanes::Lanes aq = m.a.col[q];
+    m.a.col[p] = g[k].c * ap - g[k].s * aq;
+    m.a.col[q] = g[k].s * ap + g[k].c * aq;
+    const lanes::Lanes vp = m.v.col[p];
+    const lanes::Lanes vq = m.v.col[q];
+    m.v.col[p] = g[k].c * vp - g[k].s * vq;
+    m.v.col[q] = g[k].s * vp + g[k].c * vq;
+  }
+  // Left: G^T mixes entries p and q inside every column; the lane factors are built from
+  // constant masks, not by writing single lanes.
+  const lanes::Lanes c_lanes =
+      pairLanes(R, 0) * g[0].c + pairLanes(R, 1) * g[1].c + pairLanes(R, 2) * g[2].c;
+  const lanes::Lanes s_lanes =
+      signLanes(R, 0) * g[0].s + signLanes(R, 1) * g[1].s + signLanes(R, 2) * g[2].s;
+  for (lanes::Lanes& column : m.a.col) {
+    column = c_lanes * column + s_lanes * __builtin_shuffle(column, kPartners[R]);
+  }
+  return true;
 }
 
 /// One round-robin sweep over the pairs that miss the relative criterion; false when none did.
-bool sweep(Columns& m, double tolerance_squared, double floor_squared) noexcept {
-  bool rotated = false;
-  for (const auto& round : kRounds) {
-    bool needed[3];
-    Rotation rotation[3];
-    for (int k = 0; k < 3; ++k) {
-      const int p = round[k][0];
-      const int q = round[k][1];
-      const double apq = m.a[q][p];
-      needed[k] = apq * apq > tolerance_squared * std::abs(m.a[p][p] * m.a[q][q]) + floor_squared;
-      if (needed[k]) {
-        rotation[k] = rotationFor(m.a[p][p], m.a[q][q], apq);
-      }
-    }
-    for (int k = 0; k < 3; ++k) {
-      if (needed[k]) {
-        rotate(m, round[k][0], round[k][1], rotation[k]);
-        rotated = true;
-      }
-    }
-  }
-  return rotated;
+bool sweep(Pair m, double tolerance_squared, double floor_squared) noexcept {
+  // Non-short-circuit |: every round runs.
+  return round<0>(m, tolerance_squared, floor_squared) |
+         round<1>(m, tolerance_squared, floor_squared) |
+         round<2>(m, tolerance_squared, floor_squared) |
+         round<3>(m, tolerance_squared, floor_squared) |
+         round<4>(m, tolerance_squared, floor_squared);
 }
 
 /// One Newton-Schulz step B <- B (3 I - B^T B) / 2: squares the departure from orthonormality
-/// (Higham, Functions of Matrices, 8.3) for a few products instead of six square roots. A basis
+/// (Higham, Functions of Matrices, 8.3) for two products instead of six square roots. A basis
 /// that is far off (not a previous result) gets the full Gram-Schmidt instead.
-void keepOrthonormal(Matrix6d& basis) noexcept {
-  const Matrix6d gram = basis.transpose() * basis;
-  if ((gram - Matrix6d::Identity()).cwiseAbs().maxCoeff() > 1e-6) {
-    orthonormalise(basis);
+void keepOrthonormal(lanes::Matrix& basis) noexcept {
+  const lanes::Matrix gram = lanes::product(lanes::transpose(basis), basis);
+  lanes::Matrix correction;
+  double departure = 0.0;
+  for (int c = 0; c < 6; ++c) {
+    lanes::Lanes identity = {0, 0, 0, 0, 0, 0, 0, 0};
+    identity[c] = 1.0;
+    const lanes::Lanes difference = gram.col[c] - identity;
+    for (int r = 0; r < 6; ++r) {
+      departure = std::max(departure, std::abs(difference[r]));
+    }
+    correction.col[c] = 1.5 * identity - 0.5 * gram.col[c];
+  }
+  if (departure > 1e-6) {
+    Matrix6d full;
+    lanes::store(basis, full);
+    orthonormalise(full);
+    basis = lanes::load(full);
     return;
   }
-  basis = basis * (1.5 * Matrix6d::Identity() - 0.5 * gram);
+  basis = lanes::product(basis, correction);
 }
 
 }  // namespace
 
-int trackSymmetricEigen(const Matrix6d& matrix, Matrix6d& basis, Matrix6d& rotated,
-                        double relative_tolerance, int max_sweeps) noexcept {
+namespace lanes {
+
+int trackEigen(const Matrix& matrix, Matrix& basis, Matrix& rotated, double relative_tolerance,
+               int max_sweeps) noexcept {
   keepOrthonormal(basis);
-  const Matrix6d start = basis.transpose() * matrix * basis;
-  Columns m;
+  rotated = product(transpose(basis), product(matrix, basis));
   double largest_diagonal = 0.0;
   for (int c = 0; c < 6; ++c) {
-    for (int r = 0; r < 6; ++r) {
-      m.a[c][r] = 0.5 * (start(r, c) + start(c, r));
-      m.v[c][r] = basis(r, c);
-    }
-    largest_diagonal = std::max(largest_diagonal, std::abs(start(c, c)));
+    largest_diagonal = std::max(largest_diagonal, std::abs(rotated.col[c][c]));
   }
   const double floor = 1e-15 * largest_diagonal;
   int sweeps = 0;
   while (sweeps < max_sweeps &&
-         sweep(m, relative_tolerance * relative_tolerance, floor * floor)) {
+         sweep({rotated, basis}, relative_tolerance * relative_tolerance, floor * floor)) {
     ++sweeps;
   }
-  for (int c = 0; c < 6; ++c) {
-    for (int r = 0; r < 6; ++r) {
-      rotated(r, c) = m.a[c][r];
-      basis(r, c) = m.v[c][r];
-    }
-  }
+  return sweeps;
+}
+
+}  // namespace lanes
+
+int trackSymmetricEigen(const Matrix6d& matrix, Matrix6d& basis, Matrix6d& rotated,
+                        double relative_tolerance, int max_sweeps) noexcept {
+  lanes::Matrix v = lanes::load(basis);
+  lanes::Matrix a;
+  const int sweeps = lanes::trackEigen(lanes::load(matrix), v, a, relative_tolerance, max_sweeps);
+  lanes::store(v, basis);
+  lanes::store(a, rotated);
+  rotated = (0.5 * (rotated + rotated.transpose())).eval();
   return sweeps;
 }
 

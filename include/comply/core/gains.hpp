@@ -34,6 +34,7 @@ Matrix6d criticalDamping(const Matrix6d& stiffness, const Matrix6d& inertia);
 /// of the exact result with one sweep per cycle.
 class CriticalDampingTracker {
  public:
+  CriticalDampingTracker() noexcept;
   /// Writes D into `damping`; false (damping untouched) when inverse_inertia is not positive
   /// definite.
   bool compute(const Matrix6d& stiffness, const Matrix6d& inverse_inertia,
@@ -42,7 +43,9 @@ class CriticalDampingTracker {
   [[nodiscard]] int lastSweeps() const noexcept { return last_sweeps_; }
 
  private:
-  Matrix6d basis_ = Matrix6d::Identity();
+  // The eigenbasis as six columns of eight lanes (the solver's layout, see src/core/lanes6.hpp),
+  // so that no cycle converts it.
+  alignas(64) double basis_[6][8];
   int last_sweeps_ = 0;
 };
 
