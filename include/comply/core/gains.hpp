@@ -43,9 +43,10 @@ class CriticalDampingTracker {
   [[nodiscard]] int lastSweeps() const noexcept { return last_sweeps_; }
 
  private:
-  // The eigenbasis as six columns of eight lanes (the solver's layout, see src/core/lanes6.hpp),
-  // so that no cycle converts it.
+  // The eigenbases of the last two calls as six columns of eight lanes (the solver's layout, see
+  // src/core/lanes6.hpp), so that no cycle converts them.
   alignas(64) double basis_[6][8];
+  alignas(64) double previous_basis_[6][8];
   int last_sweeps_ = 0;
 };
 
