@@ -1,6 +1,6 @@
 // The `comply` command line.
 //
-//   comply bench    --robot fr3 --iterations 10000 [--json]
+//   comply bench    --robot fr3|all|fr3,ur5e,chain12 --iterations 10000 [--processes 5] [--json]
 //   comply validate --robot fr3 --plugin cartesian_impedance --inputs samples.json [...]
 //   comply sim --robot fr3 --config controller.yaml --task task.yaml [--out DIR] [...]
 //   comply experiment cross-platform [--out DIR]
@@ -26,7 +26,10 @@ int main(int argc, char** argv) {
   comply::app::BenchOptions bench;
   CLI::App* bench_command =
       app.add_subcommand("bench", "time the plugin step and the full wrapper cycle");
-  bench_command->add_option("--robot", bench.robot, "robot name under robots/ or a robot folder")
+  bench_command
+      ->add_option("--robot", bench.robot,
+                   "robot name or folder, a comma-separated list, or 'all' (the four robots and "
+                   "the synthetic 12-DOF chain 'chain12')")
       ->capture_default_str();
   bench_command->add_option("--iterations", bench.iterations, "timed cycles per wrapper")
       ->capture_default_str()
@@ -37,6 +40,13 @@ int main(int argc, char** argv) {
   bench_command->add_option("--cpu", bench.cpu, "pin to this CPU (-1: do not pin)")
       ->capture_default_str();
   bench_command->add_flag("--json", bench.json, "print one JSON object instead of the table");
+  bench_command
+      ->add_option("--processes", bench.processes,
+                   "measuring processes per robot, each with another stack offset (median)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  // Internal: one measuring process of the above, JSON rows on stdout.
+  bench_command->add_flag("--worker", bench.worker)->group("");
 
   comply::app::ValidateOptions validate;
   CLI::App* validate_command = app.add_subcommand(

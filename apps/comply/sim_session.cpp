@@ -83,6 +83,7 @@ class SimRecorder final : public hardware::LoopObserver {
     log.tcp_position.push_back(tcp.translation());
     log.tcp_orientation.push_back(Eigen::Quaterniond(tcp.linear()));
     log.contact_wrench.push_back(plant_.toolContactWrench());
+    log.cycle_cost_us.push_back(record.controller_s * 1e6);
     const Command in_force = wrapper_.lastAccepted();
     if constexpr (std::is_same_v<Command, CartesianCommand>) {
       log.reference_position.push_back(in_force.position);
@@ -171,11 +172,11 @@ SimResult runWith(const SimRunOptions& options,
   sim::SimulatedClock clock(plant, options.realtime || options.view);
   hardware::ControlLoop loop(plant, wrapper, clock, {.period_s = period_s, .cycles = cycles});
   SimRecorder<Command> recorder(options, wrapper, *source, plant, pictures, progress, result);
-  recorder.setLoop(&loop, cycles,
-                   options.task.snapshot_every_ms > 0.0
-                       ? std::max<std::uint64_t>(
-                             1, cyclesIn(options.task.snapshot_every_ms * 1e-3, period_s))
-                       : 0);
+  recorder.setLoop(
+      &loop, cycles,
+      options.task.snapshot_every_ms > 0.0
+          ? std::max<std::uint64_t>(1, cyclesIn(options.task.snapshot_every_ms * 1e-3, period_s))
+          : 0);
   loop.setObserver(&recorder);
   loop.run();
   clock.waitUntil(loop.nextCycleTime());  // the plant carries out the last torque written
@@ -193,6 +194,9 @@ SimResult runWith(const SimRunOptions& options,
     addMessage(summary, "controller FAULT: " + diagnostics.last_fault, options.progress);
   }
   summarizeLog(result.log, task_source.motionEndTime(), summary);
+  if (!result.log.cycle_cost_us.empty()) {
+    summary.cycle_cost = summarize(result.log.cycle_cost_us);
+  }
   return result;
 }
 
