@@ -37,7 +37,7 @@ bool inverseCartesianInertia(const double* mass_matrix, const typename Sized<N>:
   typename Sized<N>::Matrix lower(n, n);   // unit diagonal, not stored
   typename Sized<N>::Matrix scaled(n, n);  // L_ik d_k
   typename Sized<N>::Jacobian z(6, n);
-  inverse_inertia.setZero();
+  typename Sized<N>::Jacobian z_scaled(6, n);  // Z D^-1
   for (int j = 0; j < n; ++j) {
     const double* column = mass_matrix + j * COMPLY_MAX_DOF;
     double pivot = column[j];
@@ -62,8 +62,10 @@ bool inverseCartesianInertia(const double* mass_matrix, const typename Sized<N>:
       zj -= lower(j, k) * z.col(k);
     }
     z.col(j) = zj;
-    inverse_inertia.noalias() += (reciprocal * zj) * zj.transpose();
+    z_scaled.col(j) = reciprocal * zj;
   }
+  // One product at the end: seven 6x6 rank-one updates in the loop were twice as slow.
+  inverse_inertia = z_scaled.lazyProduct(z.transpose());
   return true;
 }
 

@@ -68,7 +68,7 @@ struct Rotation {
 /// Warm-started sweeps see small angles: there the series in r = a_pq / d,
 /// t = r - r^3 + 2 r^5 (next term 5 r^7) and c = 1 - t^2 / 2 + 3 t^4 / 8 (next 5 t^6 / 16), are
 /// exact to rounding for |r| < 1e-3 and replace two square roots and a division by products.
-Rotation rotationFor(double app, double aqq, double apq) noexcept {
+[[gnu::always_inline]] inline Rotation rotationFor(double app, double aqq, double apq) noexcept {
   const double d = aqq - app;
   if (std::abs(apq) < 1e-3 * std::abs(d)) {
     const double r = apq / d;
@@ -144,23 +144,48 @@ bool sweep(Pair m, double tolerance_squared, double floor_squared) noexcept {
          round<4>(m, tolerance_squared, floor_squared);
 }
 
+/// Whether every off-diagonal entry meets the relative criterion: a column at a time, so the
+/// check that ends the iteration costs six vector comparisons instead of a sweep of scalar ones.
+bool converged(const lanes::Matrix& a, double tolerance_squared, double floor_squared) noexcept {
+  lanes::Lanes diagonal = {};
+  for (int c = 0; c < 6; ++c) {
+    diagonal[c] = a.col[c][c];
+  }
+  lanes::LaneIndex violated = {};
+  for (int c = 0; c < 6; ++c) {
+    lanes::Lanes off_diagonal = a.col[c];
+    off_diagonal[c] = 0.0;
+    const lanes::Lanes scale = diagonal * diagonal[c];
+    const lanes::Lanes magnitude = scale < 0.0 ? -scale : scale;
+    violated |= off_diagonal * off_diagonal > tolerance_squared * magnitude + floor_squared;
+  }
+  for (int r = 0; r < 6; ++r) {
+    if (violated[r] != 0) {
+      return false;
+    }
+  }
+  return true;
+}
+
 /// One Newton-Schulz step B <- B (3 I - B^T B) / 2: squares the departure from orthonormality
 /// (Higham, Functions of Matrices, 8.3) for two products instead of six square roots. A basis
-/// that is far off (not a previous result) gets the full Gram-Schmidt instead.
+/// that is far off (|B^T B - I| > 1e-6, not a previous result) gets Gram-Schmidt instead.
 void keepOrthonormal(lanes::Matrix& basis) noexcept {
   const lanes::Matrix gram = lanes::product(lanes::transpose(basis), basis);
   lanes::Matrix correction;
-  double departure = 0.0;
+  lanes::Lanes departure = {};
   for (int c = 0; c < 6; ++c) {
-    lanes::Lanes identity = {0, 0, 0, 0, 0, 0, 0, 0};
+    lanes::Lanes identity = {};
     identity[c] = 1.0;
     const lanes::Lanes difference = gram.col[c] - identity;
-    for (int r = 0; r < 6; ++r) {
-      departure = std::max(departure, std::abs(difference[r]));
-    }
+    departure += difference * difference;
     correction.col[c] = 1.5 * identity - 0.5 * gram.col[c];
   }
-  if (departure > 1e-6) {
+  double departure_squared = 0.0;
+  for (int r = 0; r < 6; ++r) {
+    departure_squared += departure[r];
+  }
+  if (departure_squared > 1e-12) {
     Matrix6d full;
     lanes::store(basis, full);
     orthonormalise(full);
@@ -175,17 +200,24 @@ void keepOrthonormal(lanes::Matrix& basis) noexcept {
 namespace lanes {
 
 int trackEigen(const Matrix& matrix, Matrix& basis, Matrix& rotated, double relative_tolerance,
-               int max_sweeps) noexcept {
-  keepOrthonormal(basis);
+               bool reorthonormalise, int max_sweeps) noexcept {
+  if (reorthonormalise) {
+    keepOrthonormal(basis);
+  }
   rotated = product(transpose(basis), product(matrix, basis));
+  Lanes diagonal = {};
+  for (int c = 0; c < 6; ++c) {
+    diagonal[c] = rotated.col[c][c];
+  }
   double largest_diagonal = 0.0;
   for (int c = 0; c < 6; ++c) {
-    largest_diagonal = std::max(largest_diagonal, std::abs(rotated.col[c][c]));
+    largest_diagonal = std::max(largest_diagonal, std::abs(diagonal[c]));
   }
   const double floor = 1e-15 * largest_diagonal;
+  const double tolerance_squared = relative_tolerance * relative_tolerance;
   int sweeps = 0;
-  while (sweeps < max_sweeps &&
-         sweep({rotated, basis}, relative_tolerance * relative_tolerance, floor * floor)) {
+  while (sweeps < max_sweeps && !converged(rotated, tolerance_squared, floor * floor)) {
+    sweep({rotated, basis}, tolerance_squared, floor * floor);
     ++sweeps;
   }
   return sweeps;
@@ -197,7 +229,8 @@ int trackSymmetricEigen(const Matrix6d& matrix, Matrix6d& basis, Matrix6d& rotat
                         double relative_tolerance, int max_sweeps) noexcept {
   lanes::Matrix v = lanes::load(basis);
   lanes::Matrix a;
-  const int sweeps = lanes::trackEigen(lanes::load(matrix), v, a, relative_tolerance, max_sweeps);
+  const int sweeps =
+      lanes::trackEigen(lanes::load(matrix), v, a, relative_tolerance, true, max_sweeps);
   lanes::store(v, basis);
   lanes::store(a, rotated);
   rotated = (0.5 * (rotated + rotated.transpose())).eval();
