@@ -61,6 +61,24 @@ Lanes4 apply(const Lanes4 (&r)[3], const Vector& v) {
 }
 
 template <typename Vector>
+Lanes4 load4(const Vector& v) {
+  return Lanes4{v[0], v[1], v[2], 0.0};
+}
+
+Lanes4 cross(const Lanes4& a, const Lanes4& b) {
+  using Index4 = long long __attribute__((vector_size(32)));
+  const Index4 yzx = {1, 2, 0, 3};
+  const Index4 zxy = {2, 0, 1, 3};
+  return __builtin_shuffle(a, yzx) * __builtin_shuffle(b, zxy) -
+         __builtin_shuffle(a, zxy) * __builtin_shuffle(b, yzx);
+}
+
+double dot3(const Lanes4& a, const Lanes4& b) {
+  const Lanes4 product = a * b;
+  return product[0] + product[1] + product[2];
+}
+
+template <typename Vector>
 void store(const Lanes4& lanes, Vector&& v) {
   v[0] = lanes[0];
   v[1] = lanes[1];
@@ -85,11 +103,23 @@ void computeWorldInertias(const Model& model, Data& data) {
   for (int i = 0; i < model.dof(); ++i) {
     const ChainBody& body = model.body(i);
     Data::BodyState& state = data.bodies[i];
-    const Eigen::Matrix3d& r = state.rotation;
-    const Eigen::Vector3d& c = state.com;
-    state.inertia_about_base_origin =
-        r * body.inertia_com * r.transpose() +
-        body.mass_kg * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+    Lanes4 r[3];
+    Lanes4 r_inertia[3];  // R I_com
+    for (int k = 0; k < 3; ++k) {
+      r[k] = load4(state.rotation.col(k));
+    }
+    for (int k = 0; k < 3; ++k) {
+      r_inertia[k] = apply(r, body.inertia_com.col(k));
+    }
+    const Lanes4 c = load4(state.com);
+    const double c_squared = dot3(c, c);
+    for (int k = 0; k < 3; ++k) {
+      // Column k of R I_com R^T + m (|c|^2 I - c c^T).
+      Lanes4 column = r_inertia[0] * r[0][k] + r_inertia[1] * r[1][k] + r_inertia[2] * r[2][k] -
+                      body.mass_kg * c * c[k];
+      column[k] += body.mass_kg * c_squared;
+      store(column, state.inertia_about_base_origin.col(k));
+    }
   }
 }
 
@@ -243,23 +273,39 @@ void computeCoriolis(const Model& model, Data& data, std::span<const double> dq)
   }
 }
 
-/// Composite-rigid-body algorithm: M_ji = S_j . (I^c_i S_i) for j <= i.
+/// Composite-rigid-body algorithm: M_ji = S_j . (I^c_i S_i) for j <= i. In 4-lane registers like
+/// the forward kinematics (the composite inertia is carried from body to body).
 void computeMassMatrix(const Model& model, Data& data) {
-  std::array<Motion, kMaxDof> subspace;
+  Lanes4 angular[kMaxDof];  // motion subspace S_i = (a_i, o_i x a_i), or (0, a_i) if prismatic
+  Lanes4 linear[kMaxDof];
   for (int i = 0; i < model.dof(); ++i) {
-    subspace[i] = jointMotion(model.body(i), data.bodies[i]);
+    const Data::BodyState& state = data.bodies[i];
+    const Lanes4 axis = load4(state.axis);
+    if (model.body(i).type == JointType::kRevolute) {
+      angular[i] = axis;
+      linear[i] = cross(load4(state.origin), axis);
+    } else {
+      angular[i] = Lanes4{};
+      linear[i] = axis;
+    }
   }
-  SpatialInertia composite{0.0, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero()};
+  double mass = 0.0;
+  Lanes4 first_moment = {};
+  Lanes4 rotational[3] = {};
   for (int i = model.dof() - 1; i >= 0; --i) {
     const ChainBody& body = model.body(i);
-    const SpatialInertia inertia = worldInertia(body, data.bodies[i]);
-    composite.mass += inertia.mass;
-    composite.first_moment += inertia.first_moment;
-    composite.rotational += inertia.rotational;
-    const Force force = composite.apply(subspace[i]);
+    const Data::BodyState& state = data.bodies[i];
+    mass += body.mass_kg;
+    first_moment += body.mass_kg * load4(state.com);
+    for (int k = 0; k < 3; ++k) {
+      rotational[k] += load4(state.inertia_about_base_origin.col(k));
+    }
+    // I S_i = (I_O a + h x v, m v - h x a) (Featherstone 2.13).
+    const Lanes4 moment = apply(rotational, angular[i]) + cross(first_moment, linear[i]);
+    const Lanes4 force = mass * linear[i] - cross(first_moment, angular[i]);
     const int row_i = body.user_index;
     for (int j = 0; j <= i; ++j) {
-      const double value = dot(subspace[j], force);
+      const double value = dot3(angular[j], moment) + dot3(linear[j], force);
       const int row_j = model.body(j).user_index;
       data.mass_matrix(row_j, row_i) = value;
       data.mass_matrix(row_i, row_j) = value;
