@@ -172,8 +172,21 @@ class CartesianImpedance final : public CartesianController {
                             Vector6d(Eigen::Map<const Vector6d>(command.wrench_feedforward));
     typename Joints::Vector torque = jacobian.transpose().lazyProduct(wrench);
 
-    // Nullspace: tau_0 - J^T (J J^T + lambda^2 I)^-1 J tau_0, a 6x6 solve instead of an SVD.
-    typename Joints::Vector nullspace_torque(n);
+    torque += nullspaceTorque<N>(jacobian, q, dq, command);
+
+    for (int i = 0; i < n; ++i) {
+      output.torque[i] = torque[i] + command.torque_feedforward[i];
+    }
+    return COMPLY_OK;
+  }
+
+  /// Nullspace: tau_0 - J^T (J J^T + lambda^2 I)^-1 J tau_0, a 6x6 solve instead of an SVD.
+  template <int N>
+  typename Sized<N>::Vector nullspaceTorque(
+      const typename Sized<N>::Jacobian& jacobian, const typename Sized<N>::Vector& q,
+      const typename Sized<N>::Vector& dq, const comply_cartesian_command& command) const noexcept {
+    const int n = dof_;
+    typename Sized<N>::Vector nullspace_torque(n);
     for (int i = 0; i < n; ++i) {
       nullspace_torque[i] =
           command.nullspace_stiffness[i] * (command.nullspace_position[i] - q[i]) -
@@ -190,12 +203,7 @@ class CartesianImpedance final : public CartesianController {
       // answer where a Cholesky factorisation stops.
       task_part = Eigen::LDLT<Matrix6d>(regularised).solve(projected);
     }
-    torque += nullspace_torque - jacobian.transpose().lazyProduct(task_part);
-
-    for (int i = 0; i < n; ++i) {
-      output.torque[i] = torque[i] + command.torque_feedforward[i];
-    }
-    return COMPLY_OK;
+    return nullspace_torque - jacobian.transpose().lazyProduct(task_part);
   }
 
   // Keeps the eigenbasis of the last cycle: the double diagonalisation then costs about one
