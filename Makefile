@@ -37,7 +37,7 @@ test-all: build
 bench: build
 	@scripts/run-bench.sh $(BUILD_DIR)
 	@BENCH_BINARY=sim_bench scripts/run-bench.sh $(BUILD_DIR)
-	@$(BUILD_DIR)/apps/comply/comply bench --robot fr3 --iterations 10000 --cpu $(BENCH_CPU)
+	@$(BUILD_DIR)/apps/comply/comply bench --robot all --iterations 10000 --cpu $(BENCH_CPU)
 
 # The cross-platform check in simulation: four robots, one plugin, one command, one target.
 DEMO_OUT ?= out/cross-platform

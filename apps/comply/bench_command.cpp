@@ -9,6 +9,7 @@
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <stdexcept>
 
 #include "comply/hardware/control_loop.hpp"
@@ -138,8 +139,16 @@ std::array<BenchRow, 2> benchWrapper(const BenchOptions& options, const std::str
   }
   log << "  " << wrapper_name << " (" << plugin_name << "): " << options.iterations
       << " cycles done\n";
-  return {BenchRow{wrapper_name, plugin_name, "plugin_step", summarize(step_us)},
-          BenchRow{wrapper_name, plugin_name, "full_cycle", summarize(cycle_us)}};
+  const auto row = [&](const char* stage, std::vector<double>& samples) {
+    BenchRow result;
+    result.wrapper = wrapper_name;
+    result.plugin = plugin_name;
+    result.stage = stage;
+    result.timing = summarize(samples);
+    result.p50_min_us = result.p50_max_us = result.timing.p50_us;
+    return result;
+  };
+  return {row("plugin_step", step_us), row("full_cycle", cycle_us)};
 }
 
 void pinToCpu(int cpu) {
@@ -167,71 +176,107 @@ std::vector<BenchRow> runBench(const BenchOptions& options, std::ostream& log) {
       << (options.cpu >= 0 ? ", pinned to CPU " + std::to_string(options.cpu) : std::string())
       << "\n";
   std::vector<BenchRow> rows;
-  for (const BenchRow& row :
-       benchWrapper<JointCommand>(options, "joint", "joint_impedance", robot.home, log)) {
-    rows.push_back(row);
-  }
+  const auto add = [&](const std::array<BenchRow, 2>& pair) {
+    for (BenchRow row : pair) {
+      row.robot = robot.name;
+      row.dof = static_cast<int>(robot.joints.size());
+      rows.push_back(row);
+    }
+  };
+  add(benchWrapper<JointCommand>(options, "joint", "joint_impedance", robot.home, log));
   // Ratio damping (the default) re-derives D from K and the Cartesian inertia every cycle; the
   // absolute mode shows what that costs.
-  for (const BenchRow& row : benchWrapper<CartesianCommand>(
-           options, "cartesian", "cartesian_impedance", robot.home, log)) {
-    rows.push_back(row);
+  add(benchWrapper<CartesianCommand>(options, "cartesian", "cartesian_impedance", robot.home, log));
+  add(benchWrapper<CartesianCommand>(options, "cartesian_abs", "cartesian_impedance", robot.home,
+                                     log, DampingMode::kAbsolute));
+  return rows;
+}
+
+std::string benchRowsToJson(const BenchOptions& options, const std::vector<BenchRow>& rows) {
+  nlohmann::json document;
+  document["iterations"] = options.iterations;
+  document["rows"] = nlohmann::json::array();
+  for (const BenchRow& row : rows) {
+    document["rows"].push_back({{"robot", row.robot},
+                                {"dof", row.dof},
+                                {"wrapper", row.wrapper},
+                                {"plugin", row.plugin},
+                                {"stage", row.stage},
+                                {"mean_us", row.timing.mean_us},
+                                {"sd_us", row.timing.sd_us},
+                                {"p50_us", row.timing.p50_us},
+                                {"p99_us", row.timing.p99_us},
+                                {"max_us", row.timing.max_us},
+                                {"p50_min_us", row.p50_min_us},
+                                {"p50_max_us", row.p50_max_us},
+                                {"processes", row.processes}});
   }
-  for (const BenchRow& row :
-       benchWrapper<CartesianCommand>(options, "cartesian_abs", "cartesian_impedance", robot.home,
-                                      log, DampingMode::kAbsolute)) {
+  document["reference"] = {{"published_step_us", kPublishedStepUs},
+                           {"published_step_and_wrapper_us", kPublishedCycleUs},
+                           {"pinocchio_bundle_us", {kPinocchioLowUs, kPinocchioHighUs}}};
+  return document.dump(2);
+}
+
+std::vector<BenchRow> benchRowsFromJson(const std::string& text) {
+  const nlohmann::json document = nlohmann::json::parse(text);
+  std::vector<BenchRow> rows;
+  for (const nlohmann::json& item : document.at("rows")) {
+    BenchRow row;
+    row.robot = item.at("robot").get<std::string>();
+    row.dof = item.at("dof").get<int>();
+    row.wrapper = item.at("wrapper").get<std::string>();
+    row.plugin = item.at("plugin").get<std::string>();
+    row.stage = item.at("stage").get<std::string>();
+    row.timing = {item.at("mean_us").get<double>(), item.at("sd_us").get<double>(),
+                  item.at("p50_us").get<double>(), item.at("p99_us").get<double>(),
+                  item.at("max_us").get<double>()};
+    row.p50_min_us = item.value("p50_min_us", row.timing.p50_us);
+    row.p50_max_us = item.value("p50_max_us", row.timing.p50_us);
+    row.processes = item.value("processes", 1);
     rows.push_back(row);
   }
   return rows;
 }
 
-void printBench(const BenchOptions& options, int dof, const std::vector<BenchRow>& rows,
-                std::ostream& out) {
+void printBench(const BenchOptions& options, const std::vector<BenchRow>& rows, std::ostream& out) {
   if (options.json) {
-    nlohmann::json document;
-    document["robot"] = options.robot;
-    document["dof"] = dof;
-    document["iterations"] = options.iterations;
-    document["rows"] = nlohmann::json::array();
-    for (const BenchRow& row : rows) {
-      document["rows"].push_back({{"wrapper", row.wrapper},
-                                  {"plugin", row.plugin},
-                                  {"stage", row.stage},
-                                  {"mean_us", row.timing.mean_us},
-                                  {"sd_us", row.timing.sd_us},
-                                  {"p50_us", row.timing.p50_us},
-                                  {"p99_us", row.timing.p99_us},
-                                  {"max_us", row.timing.max_us}});
-    }
-    document["reference"] = {{"published_step_us", kPublishedStepUs},
-                             {"published_step_and_wrapper_us", kPublishedCycleUs},
-                             {"pinocchio_bundle_us", {kPinocchioLowUs, kPinocchioHighUs}}};
-    out << document.dump(2) << "\n";
+    out << benchRowsToJson(options, rows) << "\n";
     return;
   }
-  out << "robot " << options.robot << " (" << dof << " DOF), " << options.iterations
-      << " iterations, microseconds per call\n\n";
-  out << std::left << std::setw(15) << "wrapper" << std::setw(13) << "stage" << std::right
-      << std::setw(9) << "mean" << std::setw(9) << "sd" << std::setw(9) << "p50" << std::setw(9)
-      << "p99" << std::setw(9) << "max"
+  const int processes = rows.empty() ? 0 : rows.front().processes;
+  out << options.iterations << " iterations per process, " << processes
+      << " processes per robot with different stack offsets; microseconds per call, median over "
+         "the processes;\nspread: smallest and largest p50 of one process, relative to the "
+         "median\n\n";
+  out << std::left << std::setw(9) << "robot" << std::right << std::setw(4) << "dof"
+      << "  " << std::left << std::setw(15) << "wrapper" << std::setw(13) << "stage" << std::right
+      << std::setw(9) << "mean" << std::setw(9) << "p50" << std::setw(9) << "p99" << std::setw(9)
+      << "max" << std::setw(17) << "p50 spread"
       << "\n";
-  out << std::fixed << std::setprecision(3);
   for (const BenchRow& row : rows) {
-    out << std::left << std::setw(15) << row.wrapper << std::setw(13) << row.stage << std::right
-        << std::setw(9) << row.timing.mean_us << std::setw(9) << row.timing.sd_us << std::setw(9)
+    const double median = row.timing.p50_us;
+    out << std::left << std::setw(9) << row.robot << std::right << std::setw(4) << row.dof << "  "
+        << std::left << std::setw(15) << row.wrapper << std::setw(13) << row.stage << std::right
+        << std::fixed << std::setprecision(3) << std::setw(9) << row.timing.mean_us << std::setw(9)
         << row.timing.p50_us << std::setw(9) << row.timing.p99_us << std::setw(9)
-        << row.timing.max_us << "\n";
+        << row.timing.max_us << std::setprecision(1) << std::setw(8)
+        << 100.0 * (row.p50_min_us - median) / median << "% " << std::showpos << std::setw(6)
+        << 100.0 * (row.p50_max_us - median) / median << "%" << std::noshowpos << "\n";
   }
-  out << std::setprecision(1) << "\nfor reference, on this machine: published implementation "
+  out << std::setprecision(1) << "\nfor reference, fr3 on this machine: published implementation "
       << kPublishedStepUs << " us (step) / " << kPublishedCycleUs
       << " us (step + wrapper); an equivalent Pinocchio bundle " << kPinocchioLowUs << "-"
       << kPinocchioHighUs << " us\n";
 }
 
 int benchCommand(const BenchOptions& options) {
-  const std::vector<BenchRow> rows = runBench(options, std::cerr);
-  const int dof = static_cast<int>(model::loadRobotDescription(options.robot).joints.size());
-  printBench(options, dof, rows, std::cout);
+  if (options.worker) {
+    std::ostringstream quiet;  // the parent reports progress, once per process
+    const std::vector<BenchRow> rows = runBench(options, quiet);
+    std::cout << benchRowsToJson(options, rows) << "\n";
+    return 0;
+  }
+  printBench(options, runBenchProcesses(options, std::cerr), std::cout);
   return 0;
 }
 

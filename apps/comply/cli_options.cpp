@@ -10,7 +10,10 @@ namespace comply::app {
 CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
   CLI::App* command =
       app.add_subcommand("bench", "time the plugin step and the full wrapper cycle");
-  command->add_option("--robot", options.robot, "robot name under robots/ or a robot folder")
+  command
+      ->add_option("--robot", options.robot,
+                   "robot name or folder, a comma-separated list, or 'all' (the four robots and "
+                   "the synthetic 12-DOF chain 'chain12')")
       ->capture_default_str();
   command->add_option("--iterations", options.iterations, "timed cycles per wrapper")
       ->capture_default_str()
@@ -21,6 +24,13 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
   command->add_option("--cpu", options.cpu, "pin to this CPU (-1: do not pin)")
       ->capture_default_str();
   command->add_flag("--json", options.json, "print one JSON object instead of the table");
+  command
+      ->add_option("--processes", options.processes,
+                   "measuring processes per robot, each with another stack offset (median)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  // Internal: one measuring process of the above, JSON rows on stdout.
+  command->add_flag("--worker", options.worker)->group("");
   return command;
 }
 

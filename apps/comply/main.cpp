@@ -1,6 +1,6 @@
 // The `comply` command line.
 //
-//   comply bench    --robot fr3 --iterations 10000 [--json]
+//   comply bench    --robot fr3|all|fr3,ur5e,chain12 --iterations 10000 [--processes 5] [--json]
 //   comply validate --robot fr3 --plugin cartesian_impedance --inputs samples.json [...]
 //   comply sim --robot fr3 --config controller.yaml --task task.yaml [--out DIR] [...]
 //   comply experiment cross-platform|surface-following|connector-mating [--out DIR]

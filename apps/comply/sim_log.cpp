@@ -163,7 +163,10 @@ void printSummary(const SimSummary& summary, std::ostream& out) {
       << "  effort-limit hits     " << summary.effort_limit_hits << " joint-cycles\n"
       << "  commands              " << summary.commands_sent << " sent, " << summary.rejections
       << " rejected\n"
-      << "  faults                " << summary.faults << "\n";
+      << "  faults                " << summary.faults << "\n"
+      << "  cycle cost            p50 " << std::setprecision(2) << summary.cycle_cost.p50_us
+      << " us, p99 " << summary.cycle_cost.p99_us << " us, mean " << summary.cycle_cost.mean_us
+      << " us (controller only, plant excluded; unpinned)\n";
   for (const std::string& message : summary.messages) {
     out << "  note: " << message << "\n";
   }

@@ -83,6 +83,7 @@ class SimRecorder final : public hardware::LoopObserver {
     log.tcp_position.push_back(tcp.translation());
     log.tcp_orientation.push_back(Eigen::Quaterniond(tcp.linear()));
     log.contact_wrench.push_back(plant_.toolContactWrench());
+    log.cycle_cost_us.push_back(record.controller_s * 1e6);
     const Command in_force = wrapper_.lastAccepted();
     if constexpr (std::is_same_v<Command, CartesianCommand>) {
       log.reference_position.push_back(in_force.position);
@@ -193,6 +194,9 @@ SimResult runWith(const SimRunOptions& options,
     addMessage(summary, "controller FAULT: " + diagnostics.last_fault, options.progress);
   }
   summarizeLog(result.log, task_source.motionEndTime(), summary);
+  if (!result.log.cycle_cost_us.empty()) {
+    summary.cycle_cost = summarize(result.log.cycle_cost_us);
+  }
   return result;
 }
 

@@ -15,6 +15,7 @@
 #include "comply/sim/simulated_robot.hpp"
 #include "comply/task/command_source.hpp"
 #include "task_file.hpp"
+#include "timing_statistics.hpp"
 
 namespace comply::app {
 
@@ -48,6 +49,7 @@ struct SimLog {
   std::vector<Eigen::Vector3d> tcp_position, reference_position;
   std::vector<Eigen::Quaterniond> tcp_orientation, reference_orientation;
   std::vector<Vector6d> contact_wrench;  ///< on the tool, base frame [N, N m]
+  std::vector<double> cycle_cost_us;     ///< the controller's own time per cycle, plant excluded
 
   [[nodiscard]] std::size_t size() const noexcept { return time_s.size(); }
   /// |reference - measured| TCP position [m] and orientation angle [rad] at `row`.
@@ -78,6 +80,10 @@ struct SimSummary {
   std::uint64_t rate_limit_hits = 0;
   std::uint64_t effort_limit_hits = 0;
   std::uint64_t faults = 0;
+  /// The control cycle's cost inside the simulation (CycleRecord::controller_s): the plant's
+  /// step, logging and rendering excluded. Not a benchmark (unpinned, other work between cycles
+  /// evicts caches); `comply bench` is.
+  TimingSummary cycle_cost;
   std::vector<std::string> messages;  ///< rejection reasons, warnings (first few)
   std::vector<std::filesystem::path> files;
 };

@@ -13,6 +13,10 @@
 // axes, so damping tracks streamed stiffness on the real inertia rather than a unit mass. The
 // diagonalisation works on Lambda^-1 directly and is warm-started from the previous cycle.
 // The commanded acceleration is not used by this law. Fixed-capacity storage only.
+//
+// The law is one template over the DOF: configure() picks the instance compiled for 6 or 7 joints
+// (every product and factorisation then has sizes known to the compiler) or the dynamic one for
+// any other count up to the capacity.
 
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
@@ -24,12 +28,10 @@
 #include "comply/core/gains.hpp"
 #include "comply/core/rotation.hpp"
 #include "comply/plugin/controller.hpp"
+#include "small_kernels.hpp"
 
 namespace comply::controllers {
 namespace {
-
-using Matrix6d = Eigen::Matrix<double, 6, 6>;
-using Vector6d = Eigen::Matrix<double, 6, 1>;
 
 Eigen::Quaterniond quaternionFromXyzw(const double* xyzw) {
   return {xyzw[3], xyzw[0], xyzw[1], xyzw[2]};
@@ -41,6 +43,36 @@ Eigen::Matrix3d rowMajor3x3(const double* values) {
 
 void writeMessage(comply_output& output, const char* text) {
   std::snprintf(output.message, COMPLY_MESSAGE_CAPACITY, "%s", text);
+}
+
+/// Block-diagonal 6x6 from two 3x3 blocks given row-major in the command, turned into the base
+/// frame by `rotation` unless the task frame is the base frame.
+Matrix6d blockDiagonal(const double* top, const double* bottom, const Eigen::Matrix3d& rotation,
+                       bool rotated) {
+  Matrix6d result = Matrix6d::Zero();
+  if (rotated) {
+    result.topLeftCorner<3, 3>() = rotation * rowMajor3x3(top) * rotation.transpose();
+    result.bottomRightCorner<3, 3>() = rotation * rowMajor3x3(bottom) * rotation.transpose();
+  } else {
+    result.topLeftCorner<3, 3>() = rowMajor3x3(top);
+    result.bottomRightCorner<3, 3>() = rowMajor3x3(bottom);
+  }
+  return result;
+}
+
+/// D = S D_crit S with S = R diag(sqrt(zeta)) R^T on each block; equal ratios make S a scalar.
+Matrix6d applyRatios(const Matrix6d& critical, const double* ratio,
+                     const Eigen::Matrix3d& rotation) {
+  const Eigen::Map<const Vector6d> zeta(ratio);
+  const Vector6d root = zeta.cwiseMax(0.0).cwiseSqrt();
+  if ((root.array() == root[0]).all()) {
+    return (root[0] * root[0]) * critical;
+  }
+  Matrix6d ratio_root = Matrix6d::Zero();
+  ratio_root.topLeftCorner<3, 3>() = rotation * root.head<3>().asDiagonal() * rotation.transpose();
+  ratio_root.bottomRightCorner<3, 3>() =
+      rotation * root.tail<3>().asDiagonal() * rotation.transpose();
+  return ratio_root * critical * ratio_root;
 }
 
 class CartesianImpedance final : public CartesianController {
@@ -60,6 +92,9 @@ class CartesianImpedance final : public CartesianController {
                                    "'");
     }
     task_frame_in_tcp_ = reference == "tcp";
+    step_ = dof == 7   ? &CartesianImpedance::stepSized<7>
+            : dof == 6 ? &CartesianImpedance::stepSized<6>
+                       : &CartesianImpedance::stepSized<Eigen::Dynamic>;
   }
 
   [[nodiscard]] std::uint32_t requiredQuantities() const override {
@@ -69,11 +104,25 @@ class CartesianImpedance final : public CartesianController {
 
   comply_status step(const comply_input& input, const comply_cartesian_command& command,
                      comply_output& output) noexcept override {
+    return (this->*step_)(input, command, output);
+  }
+
+ private:
+  using Step = comply_status (CartesianImpedance::*)(const comply_input&,
+                                                     const comply_cartesian_command&,
+                                                     comply_output&) noexcept;
+
+  template <int N>
+  comply_status stepSized(const comply_input& input, const comply_cartesian_command& command,
+                          comply_output& output) noexcept {
+    using Joints = Sized<N>;
     const int n = dof_;
-    const Jacobian jacobian =
-        Eigen::Map<const Eigen::Matrix<double, 6, Eigen::Dynamic>>(input.jacobian, 6, n);
-    const JointVector q = Eigen::Map<const Eigen::VectorXd>(input.position, n);
-    const JointVector dq = Eigen::Map<const Eigen::VectorXd>(input.velocity, n);
+    const typename Joints::Jacobian jacobian =
+        Eigen::Map<const Eigen::Matrix<double, 6, N>>(input.jacobian, 6, n);
+    const typename Joints::Vector q =
+        Eigen::Map<const Eigen::Matrix<double, N, 1>>(input.position, n);
+    const typename Joints::Vector dq =
+        Eigen::Map<const Eigen::Matrix<double, N, 1>>(input.velocity, n);
 
     // Pose and twist errors in the base frame.
     Vector6d pose_error;
@@ -82,44 +131,62 @@ class CartesianImpedance final : public CartesianController {
     pose_error.tail<3>() = -orientationError(quaternionFromXyzw(input.tcp_orientation),
                                              quaternionFromXyzw(command.orientation));
     const Vector6d twist_error =
-        jacobian * dq - Vector6d(Eigen::Map<const Vector6d>(command.twist));
+        jacobian.lazyProduct(dq) - Vector6d(Eigen::Map<const Vector6d>(command.twist));
 
     // Gains from the task frame to the base frame, every cycle. Relative to the measured TCP,
     // the compliance turns with the tool itself, whatever the reference orientation.
-    Eigen::Matrix3d task_rotation =
-        quaternionFromXyzw(command.task_frame).normalized().toRotationMatrix();
+    const Eigen::Quaterniond task_frame = quaternionFromXyzw(command.task_frame);
+    const bool rotated = task_frame_in_tcp_ || task_frame.vec().squaredNorm() != 0.0;
+    Eigen::Matrix3d task_rotation = Eigen::Matrix3d::Identity();
+    if (rotated) {
+      task_rotation = task_frame.normalized().toRotationMatrix();
+    }
     if (task_frame_in_tcp_) {
       task_rotation =
           quaternionFromXyzw(input.tcp_orientation).normalized().toRotationMatrix() * task_rotation;
     }
-    const auto rotate = [&](const double* block) {
-      return Eigen::Matrix3d(task_rotation * rowMajor3x3(block) * task_rotation.transpose());
-    };
-    Matrix6d stiffness = Matrix6d::Zero();
-    stiffness.topLeftCorner<3, 3>() = rotate(command.stiffness_translational);
-    stiffness.bottomRightCorner<3, 3>() = rotate(command.stiffness_rotational);
-    Matrix6d damping = Matrix6d::Zero();
+    const Matrix6d stiffness = blockDiagonal(command.stiffness_translational,
+                                             command.stiffness_rotational, task_rotation, rotated);
+    Matrix6d damping;
     if (command.damping_mode == COMPLY_DAMPING_RATIO) {
       if (!use_mass_matrix_) {
         writeMessage(output, "damping ratios need inertia_aware_damping: 1");
         return COMPLY_ERROR;
       }
-      if (!ratioDamping(input, jacobian, stiffness, task_rotation, command.damping_ratio,
-                        damping)) {
+      Matrix6d inverse_inertia;
+      Matrix6d critical;
+      if (!inverseCartesianInertia<N>(input.mass_matrix, jacobian, inverse_inertia) ||
+          !critical_damping_.compute(
+              stiffness, inverse_inertia + inertia_regularisation_ * Matrix6d::Identity(),
+              critical)) {
         writeMessage(output, "Cartesian inertia not positive definite (singular mass matrix?)");
         return COMPLY_ERROR;
       }
+      damping = applyRatios(critical, command.damping_ratio, task_rotation);
     } else {
-      damping.topLeftCorner<3, 3>() = rotate(command.damping_translational);
-      damping.bottomRightCorner<3, 3>() = rotate(command.damping_rotational);
+      damping = blockDiagonal(command.damping_translational, command.damping_rotational,
+                              task_rotation, rotated);
     }
 
     const Vector6d wrench = -stiffness * pose_error - damping * twist_error +
                             Vector6d(Eigen::Map<const Vector6d>(command.wrench_feedforward));
-    JointVector torque = jacobian.transpose() * wrench;
+    typename Joints::Vector torque = jacobian.transpose().lazyProduct(wrench);
 
-    // Nullspace: tau_0 - J^T (J J^T + lambda^2 I)^-1 J tau_0, a 6x6 solve instead of an SVD.
-    JointVector nullspace_torque(n);
+    torque += nullspaceTorque<N>(jacobian, q, dq, command);
+
+    for (int i = 0; i < n; ++i) {
+      output.torque[i] = torque[i] + command.torque_feedforward[i];
+    }
+    return COMPLY_OK;
+  }
+
+  /// Nullspace: tau_0 - J^T (J J^T + lambda^2 I)^-1 J tau_0, a 6x6 solve instead of an SVD.
+  template <int N>
+  typename Sized<N>::Vector nullspaceTorque(
+      const typename Sized<N>::Jacobian& jacobian, const typename Sized<N>::Vector& q,
+      const typename Sized<N>::Vector& dq, const comply_cartesian_command& command) const noexcept {
+    const int n = dof_;
+    typename Sized<N>::Vector nullspace_torque(n);
     for (int i = 0; i < n; ++i) {
       nullspace_torque[i] =
           command.nullspace_stiffness[i] * (command.nullspace_position[i] - q[i]) -
@@ -129,55 +196,20 @@ class CartesianImpedance final : public CartesianController {
     // dynamic-width operand would select is several times slower at this size.
     const Matrix6d regularised = jacobian.lazyProduct(jacobian.transpose()) +
                                  nullspace_damping_ * nullspace_damping_ * Matrix6d::Identity();
-    const Eigen::LDLT<Matrix6d> projector(regularised);
-    const Vector6d task_part = projector.solve(jacobian * nullspace_torque);
-    torque += nullspace_torque - jacobian.transpose() * task_part;
-
-    for (int i = 0; i < n; ++i) {
-      output.torque[i] = torque[i] + command.torque_feedforward[i];
+    const Vector6d projected = jacobian.lazyProduct(nullspace_torque);
+    Vector6d task_part;
+    if (!solvePositiveDefinite(regularised, projected, task_part)) {
+      // Only without regularisation at a singular Jacobian: LDLT still gives a least-squares
+      // answer where a Cholesky factorisation stops.
+      task_part = Eigen::LDLT<Matrix6d>(regularised).solve(projected);
     }
-    return COMPLY_OK;
+    return nullspace_torque - jacobian.transpose().lazyProduct(task_part);
   }
 
- private:
-  /// D = S D_crit S; false when J M^-1 J^T is not positive definite (e.g. M not SPD).
-  bool ratioDamping(const comply_input& input, const Jacobian& jacobian, const Matrix6d& stiffness,
-                    const Eigen::Matrix3d& task_rotation, const double* ratio,
-                    Matrix6d& damping) noexcept {
-    const int n = dof_;
-    const JointMatrix mass = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>(
-        input.mass_matrix, n, n, Eigen::OuterStride<>(COMPLY_MAX_DOF));
-    const Eigen::LLT<JointMatrix> mass_factor(mass);
-    if (mass_factor.info() != Eigen::Success) {
-      return false;
-    }
-    // Column by column: solving all six at once selects the blocked triangular solver, which is
-    // slow for a 7x6 right-hand side.
-    Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::ColMajor, kMaxDof, 6> mass_inverse_jt(n, 6);
-    for (int column = 0; column < 6; ++column) {
-      mass_inverse_jt.col(column) = mass_factor.solve(jacobian.row(column).transpose());
-    }
-    const Matrix6d inverse_inertia =
-        jacobian.lazyProduct(mass_inverse_jt) + inertia_regularisation_ * Matrix6d::Identity();
-    Matrix6d critical;
-    if (!critical_damping_.compute(stiffness, inverse_inertia, critical)) {
-      return false;
-    }
-    Matrix6d ratio_root = Matrix6d::Zero();
-    const Eigen::Map<const Vector6d> zeta(ratio);
-    ratio_root.topLeftCorner<3, 3>() = task_rotation *
-                                       zeta.head<3>().cwiseMax(0.0).cwiseSqrt().asDiagonal() *
-                                       task_rotation.transpose();
-    ratio_root.bottomRightCorner<3, 3>() = task_rotation *
-                                           zeta.tail<3>().cwiseMax(0.0).cwiseSqrt().asDiagonal() *
-                                           task_rotation.transpose();
-    damping = ratio_root * critical * ratio_root;
-    return true;
-  }
-
-  // Keeps the eigenbasis of the last cycle: the double diagonalisation then costs 1-2 Jacobi
-  // sweeps instead of a full eigen solve.
+  // Keeps the eigenbasis of the last cycle: the double diagonalisation then costs about one
+  // Jacobi sweep instead of a full eigen solve.
   CriticalDampingTracker critical_damping_;
+  Step step_ = &CartesianImpedance::stepSized<Eigen::Dynamic>;
   int dof_ = 0;
   double nullspace_damping_ = 0.05;
   double inertia_regularisation_ = 1e-6;

@@ -11,6 +11,8 @@
 
 #include <cmath>
 
+#include "joint_trig.hpp"
+
 namespace comply::model {
 namespace {
 
@@ -49,6 +51,40 @@ double dot(const Motion& m, const Force& f) {
   return m.angular.dot(f.moment) + m.linear.dot(f.force);
 }
 
+/// A 3-vector in four lanes (the fourth zero): one AVX register.
+using Lanes4 = double __attribute__((vector_size(32)));
+
+/// r v for a rotation held as three column vectors.
+template <typename Vector>
+Lanes4 apply(const Lanes4 (&r)[3], const Vector& v) {
+  return r[0] * v[0] + r[1] * v[1] + r[2] * v[2];
+}
+
+template <typename Vector>
+Lanes4 load4(const Vector& v) {
+  return Lanes4{v[0], v[1], v[2], 0.0};
+}
+
+Lanes4 cross(const Lanes4& a, const Lanes4& b) {
+  using Index4 = long long __attribute__((vector_size(32)));
+  const Index4 yzx = {1, 2, 0, 3};
+  const Index4 zxy = {2, 0, 1, 3};
+  return __builtin_shuffle(a, yzx) * __builtin_shuffle(b, zxy) -
+         __builtin_shuffle(a, zxy) * __builtin_shuffle(b, yzx);
+}
+
+double dot3(const Lanes4& a, const Lanes4& b) {
+  const Lanes4 product = a * b;
+  return product[0] + product[1] + product[2];
+}
+
+template <typename Vector>
+void store(const Lanes4& lanes, Vector&& v) {
+  v[0] = lanes[0];
+  v[1] = lanes[1];
+  v[2] = lanes[2];
+}
+
 /// Motion subspace of a joint: unit twist of the child body, in base coordinates.
 Motion jointMotion(const ChainBody& body, const Data::BodyState& state) {
   if (body.type == JointType::kRevolute) {
@@ -67,41 +103,94 @@ void computeWorldInertias(const Model& model, Data& data) {
   for (int i = 0; i < model.dof(); ++i) {
     const ChainBody& body = model.body(i);
     Data::BodyState& state = data.bodies[i];
-    const Eigen::Matrix3d& r = state.rotation;
-    const Eigen::Vector3d& c = state.com;
-    state.inertia_about_base_origin =
-        r * body.inertia_com * r.transpose() +
-        body.mass_kg * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+    Lanes4 r[3];
+    Lanes4 r_inertia[3];  // R I_com
+    for (int k = 0; k < 3; ++k) {
+      r[k] = load4(state.rotation.col(k));
+    }
+    for (int k = 0; k < 3; ++k) {
+      r_inertia[k] = apply(r, body.inertia_com.col(k));
+    }
+    const Lanes4 c = load4(state.com);
+    const double c_squared = dot3(c, c);
+    for (int k = 0; k < 3; ++k) {
+      // Column k of R I_com R^T + m (|c|^2 I - c c^T).
+      Lanes4 column = r_inertia[0] * r[0][k] + r_inertia[1] * r[1][k] + r_inertia[2] * r[2][k] -
+                      body.mass_kg * c * c[k];
+      column[k] += body.mass_kg * c_squared;
+      store(column, state.inertia_about_base_origin.col(k));
+    }
   }
 }
 
 void forwardKinematics(const Model& model, Data& data, std::span<const double> q) {
-  Eigen::Matrix3d parent_rotation = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d parent_origin = Eigen::Vector3d::Zero();
-  for (int i = 0; i < model.dof(); ++i) {
-    const ChainBody& body = model.body(i);
-    Data::BodyState& state = data.bodies[i];
-    const double position = q[body.user_index];
-    if (body.type == JointType::kRevolute) {
-      const double s = std::sin(position);
-      const double one_minus_c = 1.0 - std::cos(position);
-      const Eigen::Matrix3d local =
-          body.rotation_const + s * body.rotation_sin + one_minus_c * body.rotation_cos;
-      state.origin = parent_origin + parent_rotation * body.translation;
-      state.rotation = parent_rotation * local;
-    } else {
-      state.origin =
-          parent_origin + parent_rotation * (body.translation + body.axis_in_parent * position);
-      state.rotation = parent_rotation * body.rotation_const;
+  const int n = model.dof();
+  double sine[kMaxDof];
+  double cosine[kMaxDof];
+  bool in_range = true;
+  for (int i = 0; i < n; ++i) {
+    in_range = in_range && std::abs(q[i]) <= kFastTrigLimit;
+  }
+  if (in_range) {
+    jointSinCos(q.data(), n, sine, cosine);
+  } else {
+    for (int i = 0; i < n; ++i) {
+      sine[i] = std::sin(q[i]);
+      cosine[i] = std::cos(q[i]);
     }
-    state.axis = parent_rotation * body.axis_in_parent;
-    state.com = state.origin + state.rotation * body.com;
-    parent_rotation = state.rotation;
-    parent_origin = state.origin;
+  }
+  // The chain runs in registers, one 4-lane vector per column (GCC's vector extension). With
+  // Eigen's 3-vectors GCC packed columns into pairs on the stack, stored as a pair and a single
+  // and read back as differently aligned pairs: store-to-load forwarding failed on every joint
+  // (measured: half of this function's time).
+  Lanes4 parent_rotation[3] = {{1.0, 0.0, 0.0, 0.0}, {0.0, 1.0, 0.0, 0.0}, {0.0, 0.0, 1.0, 0.0}};
+  Lanes4 parent_origin = {};
+  for (int i = 0; i < n; ++i) {
+    const ChainBody& body = model.body(i);
+    Lanes4 rotation[3];
+    Lanes4 origin;
+    if (body.type == JointType::kRevolute) {
+      const double s = sine[body.user_index];
+      const double c = cosine[body.user_index];
+      origin = parent_origin + apply(parent_rotation, body.translation);
+      if (body.axis == Eigen::Vector3d::UnitZ()) {
+        // The common URDF case (every joint of the arms shipped here): R_parent R_const Rz(q)
+        // mixes two columns, a third of the work of forming the Rodrigues terms and a product.
+        const Lanes4 x = apply(parent_rotation, body.rotation_const.col(0));
+        const Lanes4 y = apply(parent_rotation, body.rotation_const.col(1));
+        rotation[0] = c * x + s * y;
+        rotation[1] = c * y - s * x;
+        rotation[2] = apply(parent_rotation, body.rotation_const.col(2));
+      } else {
+        const Eigen::Matrix3d local =
+            body.rotation_const + s * body.rotation_sin + (1.0 - c) * body.rotation_cos;
+        for (int k = 0; k < 3; ++k) {
+          rotation[k] = apply(parent_rotation, local.col(k));
+        }
+      }
+    } else {
+      const double position = q[body.user_index];
+      origin =
+          parent_origin + apply(parent_rotation, body.translation + body.axis_in_parent * position);
+      for (int k = 0; k < 3; ++k) {
+        rotation[k] = apply(parent_rotation, body.rotation_const.col(k));
+      }
+    }
+    Data::BodyState& state = data.bodies[i];
+    store(apply(parent_rotation, body.axis_in_parent), state.axis);
+    store(origin + apply(rotation, body.com), state.com);
+    for (int k = 0; k < 3; ++k) {
+      store(rotation[k], state.rotation.col(k));
+      parent_rotation[k] = rotation[k];
+    }
+    store(origin, state.origin);
+    parent_origin = origin;
   }
   const Eigen::Isometry3d& tip = model.tipInLastBody();
-  data.tip_rotation = parent_rotation * tip.linear();
-  data.tip_position = parent_origin + parent_rotation * tip.translation();
+  for (int k = 0; k < 3; ++k) {
+    store(apply(parent_rotation, tip.linear().col(k)), data.tip_rotation.col(k));
+  }
+  store(parent_origin + apply(parent_rotation, tip.translation()), data.tip_position);
 }
 
 void computeJacobian(const Model& model, Data& data) {
@@ -131,9 +220,8 @@ void computeGravity(const Model& model, Data& data) {
     outboard_mass += body.mass_kg;
     outboard_first_moment += body.mass_kg * state.com;
     if (body.type == JointType::kRevolute) {
-      data.gravity[body.user_index] =
-          state.axis.dot((outboard_first_moment - outboard_mass * state.origin)
-                             .cross(weight_direction));
+      data.gravity[body.user_index] = state.axis.dot(
+          (outboard_first_moment - outboard_mass * state.origin).cross(weight_direction));
     } else {
       data.gravity[body.user_index] = outboard_mass * state.axis.dot(weight_direction);
     }
@@ -185,23 +273,39 @@ void computeCoriolis(const Model& model, Data& data, std::span<const double> dq)
   }
 }
 
-/// Composite-rigid-body algorithm: M_ji = S_j . (I^c_i S_i) for j <= i.
+/// Composite-rigid-body algorithm: M_ji = S_j . (I^c_i S_i) for j <= i. In 4-lane registers like
+/// the forward kinematics (the composite inertia is carried from body to body).
 void computeMassMatrix(const Model& model, Data& data) {
-  std::array<Motion, kMaxDof> subspace;
+  Lanes4 angular[kMaxDof];  // motion subspace S_i = (a_i, o_i x a_i), or (0, a_i) if prismatic
+  Lanes4 linear[kMaxDof];
   for (int i = 0; i < model.dof(); ++i) {
-    subspace[i] = jointMotion(model.body(i), data.bodies[i]);
+    const Data::BodyState& state = data.bodies[i];
+    const Lanes4 axis = load4(state.axis);
+    if (model.body(i).type == JointType::kRevolute) {
+      angular[i] = axis;
+      linear[i] = cross(load4(state.origin), axis);
+    } else {
+      angular[i] = Lanes4{};
+      linear[i] = axis;
+    }
   }
-  SpatialInertia composite{0.0, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero()};
+  double mass = 0.0;
+  Lanes4 first_moment = {};
+  Lanes4 rotational[3] = {};
   for (int i = model.dof() - 1; i >= 0; --i) {
     const ChainBody& body = model.body(i);
-    const SpatialInertia inertia = worldInertia(body, data.bodies[i]);
-    composite.mass += inertia.mass;
-    composite.first_moment += inertia.first_moment;
-    composite.rotational += inertia.rotational;
-    const Force force = composite.apply(subspace[i]);
+    const Data::BodyState& state = data.bodies[i];
+    mass += body.mass_kg;
+    first_moment += body.mass_kg * load4(state.com);
+    for (int k = 0; k < 3; ++k) {
+      rotational[k] += load4(state.inertia_about_base_origin.col(k));
+    }
+    // I S_i = (I_O a + h x v, m v - h x a) (Featherstone 2.13).
+    const Lanes4 moment = apply(rotational, angular[i]) + cross(first_moment, linear[i]);
+    const Lanes4 force = mass * linear[i] - cross(first_moment, angular[i]);
     const int row_i = body.user_index;
     for (int j = 0; j <= i; ++j) {
-      const double value = dot(subspace[j], force);
+      const double value = dot3(angular[j], moment) + dot3(linear[j], force);
       const int row_j = model.body(j).user_index;
       data.mass_matrix(row_j, row_i) = value;
       data.mass_matrix(row_i, row_j) = value;

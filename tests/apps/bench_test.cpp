@@ -1,0 +1,93 @@
+// `comply bench` pieces that decide what the figures mean: the merge over processes (medians and
+// the spread), the robot list, and the synthetic chain that shows the growth with DOF.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <sstream>
+
+#include "bench_command.hpp"
+#include "comply/model/robot_description.hpp"
+#include "synthetic_chain.hpp"
+
+namespace comply::app {
+namespace {
+
+BenchRow row(const std::string& stage, double p50, double mean) {
+  BenchRow result;
+  result.robot = "fr3";
+  result.dof = 7;
+  result.wrapper = "cartesian";
+  result.plugin = "cartesian_impedance";
+  result.stage = stage;
+  result.timing = {mean, 0.1, p50, 2.0 * p50, 10.0 * p50};
+  return result;
+}
+
+TEST(BenchMerge, ReportsTheMedianOfEachStatisticAndTheSpreadOfTheMedians) {
+  const std::vector<std::vector<BenchRow>> runs = {
+      {row("plugin_step", 1.0, 1.1), row("full_cycle", 2.0, 2.2)},
+      {row("plugin_step", 1.8, 1.2), row("full_cycle", 2.1, 9.0)},  // a preempted process
+      {row("plugin_step", 1.1, 1.3), row("full_cycle", 2.4, 2.5)}};
+  const std::vector<BenchRow> merged = mergeBenchRuns(runs);
+  ASSERT_EQ(merged.size(), 2U);
+  EXPECT_DOUBLE_EQ(merged[0].timing.p50_us, 1.1);
+  EXPECT_DOUBLE_EQ(merged[0].p50_min_us, 1.0);
+  EXPECT_DOUBLE_EQ(merged[0].p50_max_us, 1.8);
+  EXPECT_DOUBLE_EQ(merged[1].timing.mean_us, 2.5);  // the outlier's mean does not carry
+  EXPECT_DOUBLE_EQ(merged[1].timing.p99_us, 2.0 * 2.1);
+  EXPECT_EQ(merged[1].processes, 3);
+}
+
+TEST(BenchMerge, RefusesProcessesThatReportDifferentRows) {
+  EXPECT_THROW(mergeBenchRuns({{row("plugin_step", 1.0, 1.0)}, {row("full_cycle", 1.0, 1.0)}}),
+               std::runtime_error);
+}
+
+TEST(BenchMerge, RowsSurviveTheJsonBetweenProcesses) {
+  BenchOptions options;
+  const std::vector<BenchRow> rows = {row("full_cycle", 1.25, 1.5)};
+  const std::vector<BenchRow> back = benchRowsFromJson(benchRowsToJson(options, rows));
+  ASSERT_EQ(back.size(), 1U);
+  EXPECT_EQ(back[0].stage, "full_cycle");
+  EXPECT_EQ(back[0].dof, 7);
+  EXPECT_DOUBLE_EQ(back[0].timing.p50_us, 1.25);
+  EXPECT_DOUBLE_EQ(back[0].timing.mean_us, 1.5);
+}
+
+TEST(BenchRobots, AllIsTheFourRobotsAndTheTwelveJointChain) {
+  EXPECT_EQ(benchRobots("all"),
+            (std::vector<std::string>{"fr3", "iiwa14", "rizon4s", "ur5e", "chain12"}));
+  EXPECT_EQ(benchRobots("fr3,ur5e"), (std::vector<std::string>{"fr3", "ur5e"}));
+  EXPECT_THROW(benchRobots(","), std::runtime_error);
+}
+
+TEST(SyntheticChain, NamesParseOnlyWithinTheCapacity) {
+  EXPECT_EQ(syntheticChainDof("chain12"), 12);
+  EXPECT_EQ(syntheticChainDof("chain3"), 3);
+  EXPECT_EQ(syntheticChainDof("chain13"), 0);
+  EXPECT_EQ(syntheticChainDof("chain"), 0);
+  EXPECT_EQ(syntheticChainDof("fr3"), 0);
+}
+
+TEST(SyntheticChain, TwelveJointsLoadAndRunEveryWrapperWithoutAFault) {
+  const std::filesystem::path folder =
+      writeSyntheticChain(12, std::filesystem::temp_directory_path() / "comply-bench-test-chain");
+  const model::RobotDescription robot = model::loadRobotDescription(folder.string());
+  EXPECT_EQ(robot.loadModel().dof(), 12);
+  BenchOptions options;
+  options.robot = folder.string();
+  options.iterations = 200;
+  options.warmup = 10;
+  std::ostringstream log;
+  const std::vector<BenchRow> rows = runBench(options, log);  // throws on a fault
+  ASSERT_EQ(rows.size(), 6U);
+  for (const BenchRow& bench_row : rows) {
+    EXPECT_EQ(bench_row.dof, 12);
+    EXPECT_GT(bench_row.timing.p50_us, 0.0);
+  }
+  std::filesystem::remove_all(folder);
+}
+
+}  // namespace
+}  // namespace comply::app
