@@ -1,11 +1,29 @@
 #include "comply/core/install_paths.hpp"
 
+#include <dlfcn.h>
+
 #include <system_error>
 
 namespace comply {
+namespace {
+
+/// Installed code sits at most this many folders below the prefix (bin/ for the CLI,
+/// lib/python3.X/site-packages/comply/ for the Python module).
+constexpr int kMaxDepthBelowPrefix = 4;
+
+}  // namespace
 
 std::optional<std::filesystem::path> executableFolder() {
+  // The file holding this code: the executable, or the Python extension that linked comply in,
+  // so that both find the same installed plugins and robots.
+  Dl_info info{};
   std::error_code error;
+  if (dladdr(reinterpret_cast<void*>(&executableFolder), &info) != 0 && info.dli_fname != nullptr) {
+    const auto file = std::filesystem::canonical(info.dli_fname, error);
+    if (!error) {
+      return file.parent_path();
+    }
+  }
   const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
   if (error || exe.empty()) {
     return std::nullopt;
@@ -14,16 +32,19 @@ std::optional<std::filesystem::path> executableFolder() {
 }
 
 std::optional<std::filesystem::path> installedFolder(std::string_view relative) {
-  const auto folder = executableFolder();
-  if (!folder) {
-    return std::nullopt;
+  auto folder = executableFolder();
+  for (int depth = 0; folder && depth < kMaxDepthBelowPrefix; ++depth) {
+    std::error_code error;
+    const auto candidate = (*folder / relative).lexically_normal();
+    if (std::filesystem::is_directory(candidate, error)) {
+      return candidate;
+    }
+    if (!folder->has_parent_path() || folder->parent_path() == *folder) {
+      break;
+    }
+    folder = folder->parent_path();
   }
-  std::error_code error;
-  const auto candidate = (*folder / relative).lexically_normal();
-  if (!std::filesystem::is_directory(candidate, error)) {
-    return std::nullopt;
-  }
-  return candidate;
+  return std::nullopt;
 }
 
 }  // namespace comply

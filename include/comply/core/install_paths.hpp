@@ -8,10 +8,12 @@
 
 namespace comply {
 
-/// The folder of the running executable (from /proc/self/exe), if it can be read.
+/// The folder of the binary holding comply's code: the executable, or a library such as the
+/// Python extension that links comply in (falls back to /proc/self/exe).
 std::optional<std::filesystem::path> executableFolder();
 
-/// `relative` resolved against the executable's folder, if that folder exists.
+/// `relative` (written from the bin/ folder, e.g. "../lib/comply/plugins") resolved against that
+/// folder or one of its first parents, the first that exists.
 std::optional<std::filesystem::path> installedFolder(std::string_view relative);
 
 }  // namespace comply
