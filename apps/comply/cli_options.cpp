@@ -99,4 +99,20 @@ CLI::App* addCodegenCommand(CLI::App& app, CodegenOptions& options) {
   return simulink;
 }
 
+CLI::App* addPluginCommand(CLI::App& app, PluginNewOptions& options) {
+  CLI::App* command = app.add_subcommand("plugin", "work with control-law plugins");
+  command->require_subcommand(1);
+  CLI::App* create = command->add_subcommand(
+      "new", "write an out-of-tree plugin project (law, CMake, test, samples, sim YAML)");
+  create->add_option("NAME", options.name, "plugin name, a C identifier")->required();
+  create->add_option("--kind", options.kind, "command kind of the law")
+      ->required()
+      ->check(CLI::IsMember({"joint", "cartesian"}));
+  create->add_option("--lang", options.language, "cpp (the C++ SDK) or c (abi.h alone)")
+      ->required()
+      ->check(CLI::IsMember({"cpp", "c"}));
+  create->add_option("--out", options.out, "project folder, new or empty (default ./NAME)");
+  return create;
+}
+
 }  // namespace comply::app

@@ -4,6 +4,7 @@
 
 #include "bench_command.hpp"
 #include "codegen_command.hpp"
+#include "plugin_command.hpp"
 #include "schema_command.hpp"
 #include "sim_command.hpp"
 #include "validate_command.hpp"
@@ -20,5 +21,7 @@ CLI::App* addSimCommand(CLI::App& app, SimOptions& options);
 CLI::App* addSchemaCommand(CLI::App& app, SchemaOptions& options);
 /// `comply codegen simulink`; returns the `simulink` subcommand.
 CLI::App* addCodegenCommand(CLI::App& app, CodegenOptions& options);
+/// `comply plugin new`; returns the `new` subcommand.
+CLI::App* addPluginCommand(CLI::App& app, PluginNewOptions& options);
 
 }  // namespace comply::app

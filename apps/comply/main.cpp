@@ -9,6 +9,7 @@
 //   comply echo [state|diagnostics]
 //   comply schema [--format markdown|json|msg|idl] [--kind cartesian|joint]
 //   comply codegen simulink [--out DIR]
+//   comply plugin new NAME --kind joint|cartesian --lang cpp|c [--out DIR]
 //   comply config --defaults [--robot fr3] [--plugin cartesian_impedance]
 //
 // Exit codes: 0 success, 1 a check failed (validate above tolerance, a controller fault, a
@@ -32,6 +33,7 @@ int main(int argc, char** argv) {
   SchemaOptions schema;
   ConfigOptions config;
   CodegenOptions codegen;
+  PluginNewOptions plugin_new;
   CLI::App* bench_command = addBenchCommand(app, bench);
   CLI::App* validate_command = addValidateCommand(app, validate);
   CLI::App* sim_command = addSimCommand(app, sim);
@@ -40,6 +42,7 @@ int main(int argc, char** argv) {
   CLI::App* schema_command = addSchemaCommand(app, schema);
   CLI::App* config_command = addConfigCommand(app, config);
   CLI::App* codegen_simulink = addCodegenCommand(app, codegen);
+  CLI::App* plugin_new_command = addPluginCommand(app, plugin_new);
 
   CLI11_PARSE(app, argc, argv);
   try {
@@ -66,6 +69,9 @@ int main(int argc, char** argv) {
     }
     if (codegen_simulink->parsed()) {
       return codegenSimulinkCommand(codegen, std::cout, std::cerr);
+    }
+    if (plugin_new_command->parsed()) {
+      return pluginNewCommand(plugin_new, std::cout, std::cerr);
     }
     return 2;
   } catch (const std::exception& error) {
