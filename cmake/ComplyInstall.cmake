@@ -18,13 +18,20 @@ file(RELATIVE_PATH COMPLY_PLUGIN_RELDIR ${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_
 file(RELATIVE_PATH COMPLY_ROBOTS_RELDIR ${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_BINDIR}
      ${CMAKE_INSTALL_PREFIX}/${COMPLY_INSTALL_DATADIR}/robots)
 
-# comply_install_module(<target> [EXPORT]): installs a library; EXPORT also makes it an imported
-# target comply::<name> of the package. Only libraries a plugin links are exported: the host's
-# libraries pull in MuJoCo, CycloneDDS and others that a plugin build must not need to find.
+# comply_install_module(<target> [EXPORT | HOST]): installs a library; EXPORT also makes it an
+# imported target comply::<name> of the package, HOST one of its `host` component. A plugin build
+# finds only the first set; the host's libraries pull in MuJoCo, urdfdom and others that only a
+# program embedding the controller (the ROS 2 packages under ros2/) asks for with
+# find_package(comply REQUIRED COMPONENTS host).
 function(comply_install_module target)
-  cmake_parse_arguments(arg "EXPORT" "" "" ${ARGN})
-  if(arg_EXPORT)
-    install(TARGETS ${target} EXPORT complyTargets
+  cmake_parse_arguments(arg "EXPORT;HOST" "" "" ${ARGN})
+  if(arg_EXPORT OR arg_HOST)
+    if(arg_EXPORT)
+      set(export_set complyTargets)
+    else()
+      set(export_set complyHostTargets)
+    endif()
+    install(TARGETS ${target} EXPORT ${export_set}
             ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
             LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
             INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
@@ -42,10 +49,11 @@ function(comply_install_package)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/config/ DESTINATION ${COMPLY_INSTALL_DATADIR}/config)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/ DESTINATION ${COMPLY_INSTALL_DATADIR}/examples)
   install(EXPORT complyTargets NAMESPACE comply:: DESTINATION ${COMPLY_INSTALL_CMAKEDIR})
+  install(EXPORT complyHostTargets NAMESPACE comply:: DESTINATION ${COMPLY_INSTALL_CMAKEDIR})
   configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/complyConfig.cmake.in
     ${PROJECT_BINARY_DIR}/complyConfig.cmake
     INSTALL_DESTINATION ${COMPLY_INSTALL_CMAKEDIR}
-    PATH_VARS COMPLY_INSTALL_PLUGINDIR CMAKE_INSTALL_INCLUDEDIR)
+    PATH_VARS COMPLY_INSTALL_PLUGINDIR COMPLY_INSTALL_DATADIR CMAKE_INSTALL_INCLUDEDIR)
   write_basic_package_version_file(${PROJECT_BINARY_DIR}/complyConfigVersion.cmake
     COMPATIBILITY SameMinorVersion)
   install(FILES ${PROJECT_BINARY_DIR}/complyConfig.cmake

@@ -106,7 +106,12 @@ ModelOptions RobotDescription::modelOptions(const std::string& tip) const {
 }
 
 Model RobotDescription::loadModel(const std::string& tip) const {
-  return Model::fromUrdfFile(urdf_path, modelOptions(tip));
+  return loadModel(modelOptions(tip));
+}
+
+Model RobotDescription::loadModel(const ModelOptions& options) const {
+  return urdf_xml.empty() ? Model::fromUrdfFile(urdf_path, options)
+                          : Model::fromUrdfString(urdf_xml, options);
 }
 
 std::vector<std::filesystem::path> robotSearchPath() {

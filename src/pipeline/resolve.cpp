@@ -72,8 +72,7 @@ std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig&
   model::ModelOptions options = resolved->robot.modelOptions(config.tip_frame);
   options.joint_names = config.joints;
   options.base_frame = config.base_frame;
-  resolved->model = std::make_shared<const model::Model>(
-      model::Model::fromUrdfFile(resolved->robot.urdf_path, options));
+  resolved->model = std::make_shared<const model::Model>(resolved->robot.loadModel(options));
   const model::Model& model = *resolved->model;
   resolved->dof = model.dof();
   if (resolved->dof != config.dof) {

@@ -81,6 +81,27 @@ TEST(RobotDescriptionTest, FolderPathAndSearchPathBothWork) {
   EXPECT_EQ(by_name.urdf_path, by_path.urdf_path);
 }
 
+TEST(RobotDescriptionTest, UrdfTextReplacesTheFolderUrdf) {
+  // A ROS 2 robot_description arrives as text: the model follows it, not the folder's file.
+  TempRobotFolder folder;
+  folder.write("twolink.urdf", kTwoLinkUrdf);
+  folder.write("robot.yaml", kTwoLinkYaml);
+  RobotDescription robot = loadRobotDescription(folder.robot().string());
+  std::string longer(kTwoLinkUrdf);
+  const std::string flange_origin = R"(<child link="flange"/><origin xyz="0 0 0.5"/>)";
+  longer.replace(longer.find(flange_origin), flange_origin.size(),
+                 R"(<child link="flange"/><origin xyz="0 0 0.8"/>)");
+  robot.urdf_xml = longer;
+  robot.urdf_path = folder.robot() / "missing.urdf";
+  const Model model = robot.loadModel();
+  Data data(model);
+  const std::vector<double> zero{0.0, 0.0};
+  ASSERT_EQ(update(model, data, zero, zero, Quantity::kPose), UpdateStatus::kOk);
+  EXPECT_NEAR(data.tip_position.z(), 1.3, 1e-12);  // 0.5 + 0.8 from the text
+  robot.urdf_xml.clear();
+  EXPECT_THROW((void)robot.loadModel(), ModelError);  // back to the (missing) file
+}
+
 TEST(RobotDescriptionTest, UnknownRobotListsTheAvailableOnes) {
   try {
     loadRobotDescription("robot_that_does_not_exist");

@@ -32,6 +32,9 @@ struct RobotDescription {
   std::string description;
   std::filesystem::path folder;
   std::filesystem::path urdf_path;
+  /// The URDF text when it came from elsewhere than urdf_path (a ROS 2 `robot_description`);
+  /// the model is then built from this text, the robot.yaml still gives joints, frames, friction.
+  std::string urdf_xml;
   std::vector<std::string> joints;  ///< controlled joints, base to tip
   std::string base_frame;
   std::string flange_frame;
@@ -42,8 +45,11 @@ struct RobotDescription {
 
   /// Model options for a chain from base_frame to `tip` (default: tcp_frame).
   [[nodiscard]] ModelOptions modelOptions(const std::string& tip = {}) const;
-  /// Loads the URDF and builds the model for base_frame -> tip (default: tcp_frame).
+  /// Loads the URDF (urdf_xml if set, else urdf_path) and builds the model for base_frame -> tip
+  /// (default: tcp_frame).
   [[nodiscard]] Model loadModel(const std::string& tip = {}) const;
+  /// The same for explicit options (joints, base frame chosen by a controller configuration).
+  [[nodiscard]] Model loadModel(const ModelOptions& options) const;
 };
 
 /// Folders searched for robot names, in order: each entry of $COMPLY_ROBOT_PATH (':'-separated),
