@@ -1,0 +1,109 @@
+#pragma once
+// comply's wrapper as a ros2_control controller, for either command kind.
+//
+//   on_configure   the controller's parameters are comply's controller file (parameter_yaml.hpp):
+//                  robot, plugin, model, gains and limits are resolved once; errors name the
+//                  parameter and the controller stays unconfigured
+//   on_activate    the reference is seeded from the measured state (comply's activation)
+//   update         one comply cycle: state interfaces -> wrapper -> effort command interfaces;
+//                  no allocation, no lock, no exception (the state publisher is a try-lock)
+//   on_deactivate  the wrapper stops; the last torque stays on the interfaces until the
+//                  hardware or the next controller takes them
+//
+// Topics (relative to the controller's node, /<controller name>/...):
+//   ~/cartesian_command or ~/joint_command   comply_msgs command, validated as `comply run` does
+//   ~/state        comply_msgs/ControllerState every state_publish_rate_hz (default 100 Hz)
+//   ~/diagnostics  comply_msgs/Diagnostics every 1 / diagnostics_publish_rate_hz (default 10 Hz)
+//   ~/reset_fault  std_srvs/Trigger: leave FAULT
+// The command and state topics and types are those of `comply run`, so comply's Python client
+// and `comply send` / `comply echo` talk to either host.
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <controller_interface/controller_interface.hpp>
+#include <rclcpp/rclcpp.hpp>
+#include <realtime_tools/realtime_publisher.h>
+#include <std_srvs/srv/trigger.hpp>
+
+#include "comply/core/commands.hpp"
+#include "comply/core/state.hpp"
+#include "comply/pipeline/wrapper.hpp"
+#include "comply_msgs/msg/cartesian_command.hpp"
+#include "comply_msgs/msg/controller_state.hpp"
+#include "comply_msgs/msg/diagnostics.hpp"
+#include "comply_msgs/msg/joint_command.hpp"
+
+namespace comply_ros2_control {
+
+template <typename Command>
+struct CommandTopic;
+template <>
+struct CommandTopic<comply::CartesianCommand> {
+  using Message = comply_msgs::msg::CartesianCommand;
+  static constexpr const char* kName = "~/cartesian_command";
+};
+template <>
+struct CommandTopic<comply::JointCommand> {
+  using Message = comply_msgs::msg::JointCommand;
+  static constexpr const char* kName = "~/joint_command";
+};
+
+template <typename Command>
+class ComplyController : public controller_interface::ControllerInterface {
+ public:
+  using CallbackReturn = controller_interface::CallbackReturn;
+  using CommandMessage = typename CommandTopic<Command>::Message;
+
+  CallbackReturn on_init() override;
+  [[nodiscard]] controller_interface::InterfaceConfiguration command_interface_configuration()
+      const override;
+  [[nodiscard]] controller_interface::InterfaceConfiguration state_interface_configuration()
+      const override;
+  CallbackReturn on_configure(const rclcpp_lifecycle::State& previous) override;
+  CallbackReturn on_activate(const rclcpp_lifecycle::State& previous) override;
+  CallbackReturn on_deactivate(const rclcpp_lifecycle::State& previous) override;
+  CallbackReturn on_cleanup(const rclcpp_lifecycle::State& previous) override;
+  controller_interface::return_type update(const rclcpp::Time& time,
+                                           const rclcpp::Duration& period) override;
+
+ private:
+  void resolve();
+  void createEndpoints();
+  bool mapInterfaces();
+  void readState() noexcept;
+  void onCommand(const CommandMessage& message);
+  void onResetFault(std_srvs::srv::Trigger::Response& response);
+  void publishDiagnostics();
+
+  std::unique_ptr<comply::pipeline::Wrapper<Command>> wrapper_;
+  std::vector<std::string> joints_;
+  // Index of each joint's interface in state_interfaces_ / command_interfaces_, in joints_ order:
+  // ros2_control loans them in its own order.
+  std::vector<std::size_t> position_index_, velocity_index_, effort_index_, command_index_;
+  comply::JointState state_;
+  std::vector<double> torque_;
+  std::uint64_t cycle_ = 0;
+  std::uint64_t state_every_cycles_ = 10;
+  double nominal_period_s_ = 0.001;
+  std::atomic<std::uint64_t> commands_received_{0};
+
+  typename rclcpp::Subscription<CommandMessage>::SharedPtr command_subscription_;
+  rclcpp::Service<std_srvs::srv::Trigger>::SharedPtr reset_service_;
+  rclcpp::TimerBase::SharedPtr diagnostics_timer_;
+  std::unique_ptr<realtime_tools::RealtimePublisher<comply_msgs::msg::ControllerState>>
+      state_publisher_;
+  std::unique_ptr<realtime_tools::RealtimePublisher<comply_msgs::msg::Diagnostics>>
+      diagnostics_publisher_;
+};
+
+class JointController final : public ComplyController<comply::JointCommand> {};
+class CartesianController final : public ComplyController<comply::CartesianCommand> {};
+
+extern template class ComplyController<comply::JointCommand>;
+extern template class ComplyController<comply::CartesianCommand>;
+
+}  // namespace comply_ros2_control

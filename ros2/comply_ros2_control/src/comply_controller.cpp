@@ -1,0 +1,258 @@
+#include "comply_ros2_control/comply_controller.hpp"
+
+#include <exception>
+#include <stdexcept>
+
+#include "comply/model/robot_description.hpp"
+#include "comply/pipeline/config.hpp"
+#include "comply/pipeline/resolved_controller.hpp"
+#include "comply_ros2_control/message_conversion.hpp"
+#include "comply_ros2_control/parameter_yaml.hpp"
+#include "comply_ros2_control/prefix_search.hpp"
+
+namespace comply_ros2_control {
+namespace {
+
+using controller_interface::CallbackReturn;
+using controller_interface::InterfaceConfiguration;
+using controller_interface::interface_configuration_type;
+
+constexpr const char* kStateRate = "state_publish_rate_hz";
+constexpr const char* kDiagnosticsRate = "diagnostics_publish_rate_hz";
+constexpr const char* kRobotDescription = "robot_description";
+
+// The index in `interfaces` of "<joint>/<kind>"; throws naming the missing one.
+template <typename Loaned>
+std::size_t indexOf(const std::vector<Loaned>& interfaces, const std::string& joint,
+                    const std::string& kind) {
+  for (std::size_t i = 0; i < interfaces.size(); ++i) {
+    if (interfaces[i].get_prefix_name() == joint && interfaces[i].get_interface_name() == kind) {
+      return i;
+    }
+  }
+  throw std::runtime_error("no interface " + joint + "/" + kind + " was loaned");
+}
+
+}  // namespace
+
+template <typename Command>
+CallbackReturn ComplyController<Command>::on_init() {
+  // Declared here so that they exist with defaults; everything else arrives from the controller
+  // file (automatically declared from the parameter overrides).
+  auto_declare<double>(kStateRate, 100.0);
+  auto_declare<double>(kDiagnosticsRate, 10.0);
+  auto_declare<std::string>(kRobotDescription, "");
+  return CallbackReturn::SUCCESS;
+}
+
+template <typename Command>
+InterfaceConfiguration ComplyController<Command>::command_interface_configuration() const {
+  InterfaceConfiguration configuration{interface_configuration_type::INDIVIDUAL, {}};
+  for (const auto& joint : joints_) {
+    configuration.names.push_back(joint + "/effort");
+  }
+  return configuration;
+}
+
+template <typename Command>
+InterfaceConfiguration ComplyController<Command>::state_interface_configuration() const {
+  InterfaceConfiguration configuration{interface_configuration_type::INDIVIDUAL, {}};
+  for (const auto& joint : joints_) {
+    for (const char* kind : {"/position", "/velocity", "/effort"}) {
+      configuration.names.push_back(joint + kind);
+    }
+  }
+  return configuration;
+}
+
+template <typename Command>
+void ComplyController<Command>::resolve() {
+  const auto node = get_node();
+  const std::string name = node->get_name();
+  const auto parameters = node->get_parameters(node->list_parameters({}, 0).names);
+  const std::string source = "the parameters of controller '" + name + "'";
+  comply::pipeline::WrapperConfig config =
+      comply::pipeline::parseWrapperText(controllerFileText(name, parameters), source, name);
+  config.plugin = pluginInPrefix(config.plugin);
+  config.robot = robotInPrefix(config.robot);
+  auto robot = std::make_shared<comply::model::RobotDescription>(
+      comply::model::loadRobotDescription(config.robot));
+  robot->urdf_xml = node->get_parameter(kRobotDescription).as_string();
+  comply::pipeline::completeForRobot(config, robot);
+  wrapper_ = std::make_unique<comply::pipeline::Wrapper<Command>>(
+      comply::pipeline::resolveController(config));
+  joints_ = config.joints;
+}
+
+template <typename Command>
+void ComplyController<Command>::createEndpoints() {
+  const auto node = get_node();
+  const double state_rate_hz = node->get_parameter(kStateRate).as_double();
+  const double diagnostics_rate_hz = node->get_parameter(kDiagnosticsRate).as_double();
+  if (!(state_rate_hz > 0.0) || !(diagnostics_rate_hz > 0.0)) {
+    throw std::invalid_argument(std::string(kStateRate) + " and " + kDiagnosticsRate +
+                                " must be positive");
+  }
+  const unsigned update_rate_hz = get_update_rate() > 0 ? get_update_rate() : 1000;
+  nominal_period_s_ = 1.0 / update_rate_hz;
+  state_every_cycles_ = std::max<std::uint64_t>(
+      1, static_cast<std::uint64_t>(update_rate_hz / state_rate_hz + 0.5));
+  // The QoS of `comply run`'s topics: state as sensor data, diagnostics reliable and deep.
+  state_publisher_ = std::make_unique<realtime_tools::RealtimePublisher<comply_msgs::msg::ControllerState>>(
+      node->create_publisher<comply_msgs::msg::ControllerState>("~/state",
+                                                                rclcpp::SensorDataQoS()));
+  diagnostics_publisher_ = std::make_unique<realtime_tools::RealtimePublisher<comply_msgs::msg::Diagnostics>>(
+      node->create_publisher<comply_msgs::msg::Diagnostics>("~/diagnostics",
+                                                            rclcpp::QoS(100).reliable()));
+  prepareState(wrapper_->controller(), state_publisher_->msg_);
+  command_subscription_ = node->create_subscription<CommandMessage>(
+      CommandTopic<Command>::kName, rclcpp::QoS(10).reliable(),
+      [this](const std::shared_ptr<const CommandMessage> message) { onCommand(*message); });
+  reset_service_ = node->create_service<std_srvs::srv::Trigger>(
+      "~/reset_fault", [this](const std::shared_ptr<std_srvs::srv::Trigger::Request>,
+                              std::shared_ptr<std_srvs::srv::Trigger::Response> response) {
+        onResetFault(*response);
+      });
+  diagnostics_timer_ = node->create_wall_timer(
+      std::chrono::duration<double>(1.0 / diagnostics_rate_hz), [this] { publishDiagnostics(); });
+}
+
+template <typename Command>
+CallbackReturn ComplyController<Command>::on_configure(const rclcpp_lifecycle::State&) {
+  try {
+    resolve();
+    createEndpoints();
+  } catch (const std::exception& error) {
+    RCLCPP_ERROR(get_node()->get_logger(), "cannot configure: %s", error.what());
+    wrapper_.reset();
+    return CallbackReturn::ERROR;
+  }
+  const int dof = wrapper_->dof();
+  torque_.assign(static_cast<std::size_t>(dof), 0.0);
+  RCLCPP_INFO(get_node()->get_logger(), "configured: plugin %s on %d joints (%s)",
+              wrapper_->controller().resolved().plugin->path().c_str(), dof,
+              wrapper_->controller().resolved().robot.name.c_str());
+  return CallbackReturn::SUCCESS;
+}
+
+template <typename Command>
+bool ComplyController<Command>::mapInterfaces() {
+  const std::size_t dof = joints_.size();
+  position_index_.resize(dof);
+  velocity_index_.resize(dof);
+  effort_index_.resize(dof);
+  command_index_.resize(dof);
+  for (std::size_t i = 0; i < dof; ++i) {
+    position_index_[i] = indexOf(state_interfaces_, joints_[i], "position");
+    velocity_index_[i] = indexOf(state_interfaces_, joints_[i], "velocity");
+    effort_index_[i] = indexOf(state_interfaces_, joints_[i], "effort");
+    command_index_[i] = indexOf(command_interfaces_, joints_[i], "effort");
+  }
+  return true;
+}
+
+template <typename Command>
+void ComplyController<Command>::readState() noexcept {
+  for (std::size_t i = 0; i < joints_.size(); ++i) {
+    const auto joint = static_cast<Eigen::Index>(i);
+    state_.position[joint] = state_interfaces_[position_index_[i]].get_value();
+    state_.velocity[joint] = state_interfaces_[velocity_index_[i]].get_value();
+    state_.effort[joint] = state_interfaces_[effort_index_[i]].get_value();
+  }
+}
+
+template <typename Command>
+CallbackReturn ComplyController<Command>::on_activate(const rclcpp_lifecycle::State&) {
+  try {
+    mapInterfaces();
+    state_ = comply::JointState::zero(static_cast<int>(joints_.size()));
+    readState();
+    wrapper_->activate(state_);
+  } catch (const std::exception& error) {
+    RCLCPP_ERROR(get_node()->get_logger(), "cannot activate: %s", error.what());
+    return CallbackReturn::ERROR;
+  }
+  cycle_ = 0;
+  return CallbackReturn::SUCCESS;
+}
+
+template <typename Command>
+CallbackReturn ComplyController<Command>::on_deactivate(const rclcpp_lifecycle::State&) {
+  if (wrapper_) {
+    wrapper_->deactivate();
+  }
+  return CallbackReturn::SUCCESS;
+}
+
+template <typename Command>
+CallbackReturn ComplyController<Command>::on_cleanup(const rclcpp_lifecycle::State&) {
+  diagnostics_timer_.reset();
+  reset_service_.reset();
+  command_subscription_.reset();
+  diagnostics_publisher_.reset();
+  state_publisher_.reset();
+  wrapper_.reset();
+  joints_.clear();
+  return CallbackReturn::SUCCESS;
+}
+
+template <typename Command>
+controller_interface::return_type ComplyController<Command>::update(
+    const rclcpp::Time& time, const rclcpp::Duration& period) {
+  readState();
+  const double period_s = period.seconds() > 0.0 ? period.seconds() : nominal_period_s_;
+  const auto status = wrapper_->update(state_, period_s, torque_);
+  if (status != comply::pipeline::CycleStatus::kInactive) {
+    for (std::size_t i = 0; i < torque_.size(); ++i) {
+      command_interfaces_[command_index_[i]].set_value(torque_[i]);
+    }
+  }
+  if (++cycle_ % state_every_cycles_ == 0 && state_publisher_->trylock()) {
+    fillState(wrapper_->controller(), state_, torque_, cycle_ - 1, time, state_publisher_->msg_);
+    state_publisher_->unlockAndPublish();
+  }
+  return controller_interface::return_type::OK;
+}
+
+template <typename Command>
+void ComplyController<Command>::onCommand(const CommandMessage& message) {
+  commands_received_.fetch_add(1, std::memory_order_relaxed);
+  std::string malformed;
+  const Command command = fromMessage(message, malformed);
+  // A malformed joint vector reaches the wrapper empty and is refused there as a size mismatch,
+  // so that it is counted with every other rejection.
+  const auto verdict = wrapper_->submit(command);
+  if (!verdict.accepted) {
+    RCLCPP_WARN_THROTTLE(get_node()->get_logger(), *get_node()->get_clock(), 1000,
+                         "command rejected (%s): %s%s",
+                         std::string(comply::pipeline::toString(verdict.reason)).c_str(),
+                         verdict.message.c_str(), malformed.empty() ? "" : (" " + malformed).c_str());
+  }
+}
+
+template <typename Command>
+void ComplyController<Command>::onResetFault(std_srvs::srv::Trigger::Response& response) {
+  const bool in_fault =
+      wrapper_->diagnostics().state == comply::pipeline::WrapperState::kFault;
+  wrapper_->reset();
+  response.success = in_fault;
+  response.message = in_fault ? "reset requested: the law runs again from the next cycle"
+                              : "not in FAULT: nothing to reset";
+}
+
+template <typename Command>
+void ComplyController<Command>::publishDiagnostics() {
+  if (!wrapper_ || !diagnostics_publisher_->trylock()) {
+    return;
+  }
+  diagnostics_publisher_->msg_.header.stamp = get_node()->now();
+  diagnostics_publisher_->msg_.header.frame_id = get_node()->get_name();
+  fillDiagnostics(wrapper_->diagnostics(), nominal_period_s_,
+                  commands_received_.load(std::memory_order_relaxed), diagnostics_publisher_->msg_);
+  diagnostics_publisher_->unlockAndPublish();
+}
+
+template class ComplyController<comply::JointCommand>;
+template class ComplyController<comply::CartesianCommand>;
+
+}  // namespace comply_ros2_control
