@@ -7,7 +7,7 @@ CTEST_ARGS ?= -LE long
 # Benchmarks run pinned to the last CPU, away from most interrupt and housekeeping work.
 BENCH_CPU ?= $(shell echo $$(($$(nproc) - 1)))
 
-.PHONY: deps configure build install test test-all bench demo format tidy clean
+.PHONY: deps configure build install test test-all test-ros2 bench demo format tidy clean
 
 deps:
 	@scripts/install-deps.sh
@@ -33,6 +33,10 @@ test: build
 
 test-all: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+# The ROS 2 packages (ros2/) built with colcon and tested end to end; needs ROS 2 Humble sourced.
+test-ros2: build
+	@scripts/test-ros2.sh $(BUILD_DIR)
 
 bench: build
 	@scripts/run-bench.sh $(BUILD_DIR)

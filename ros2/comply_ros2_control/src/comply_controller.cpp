@@ -1,5 +1,6 @@
 #include "comply_ros2_control/comply_controller.hpp"
 
+#include <ctime>
 #include <exception>
 #include <stdexcept>
 
@@ -31,6 +32,12 @@ std::size_t indexOf(const std::vector<Loaned>& interfaces, const std::string& jo
     }
   }
   throw std::runtime_error("no interface " + joint + "/" + kind + " was loaned");
+}
+
+double monotonicSeconds() noexcept {
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
 
 }  // namespace
@@ -199,6 +206,7 @@ CallbackReturn ComplyController<Command>::on_cleanup(const rclcpp_lifecycle::Sta
 template <typename Command>
 controller_interface::return_type ComplyController<Command>::update(
     const rclcpp::Time& time, const rclcpp::Duration& period) {
+  const double start_s = monotonicSeconds();
   readState();
   const double period_s = period.seconds() > 0.0 ? period.seconds() : nominal_period_s_;
   const auto status = wrapper_->update(state_, period_s, torque_);
@@ -211,6 +219,12 @@ controller_interface::return_type ComplyController<Command>::update(
     fillState(wrapper_->controller(), state_, torque_, cycle_ - 1, time, state_publisher_->msg_);
     state_publisher_->unlockAndPublish();
   }
+  const double compute_s = monotonicSeconds() - start_s;
+  const auto bin = std::min(kTimingBins - 1, static_cast<std::size_t>(compute_s / kTimingBinSeconds));
+  compute_bins_[bin].fetch_add(1, std::memory_order_relaxed);
+  if (compute_s > nominal_period_s_) {
+    overruns_.fetch_add(1, std::memory_order_relaxed);
+  }
   return controller_interface::return_type::OK;
 }
 
@@ -222,6 +236,22 @@ void ComplyController<Command>::onCommand(const CommandMessage& message) {
   // A malformed joint vector reaches the wrapper empty and is refused there as a size mismatch,
   // so that it is counted with every other rejection.
   const auto verdict = wrapper_->submit(command);
+  {
+    comply_msgs::msg::CommandOutcome outcome;
+    outcome.stamp = message.header.stamp;
+    outcome.command_kind = wrapper_->controller().resolved().cartesian()
+                               ? comply_msgs::msg::ControllerState::COMMAND_KIND_CARTESIAN
+                               : comply_msgs::msg::ControllerState::COMMAND_KIND_JOINT;
+    outcome.received = get_node()->now();
+    // Accepted means queued for the next cycle, which takes every queued command.
+    outcome.outcome = verdict.accepted ? outcome.OUTCOME_APPLIED : outcome.OUTCOME_REJECTED;
+    outcome.reason = verdict.accepted ? outcome.REASON_NONE
+                                      : static_cast<std::uint8_t>(verdict.reason);
+    outcome.applied = outcome.received;
+    outcome.message = verdict.message;
+    const std::lock_guard<std::mutex> lock(outcomes_mutex_);
+    outcomes_.push_back(std::move(outcome));
+  }
   if (!verdict.accepted) {
     RCLCPP_WARN_THROTTLE(get_node()->get_logger(), *get_node()->get_clock(), 1000,
                          "command rejected (%s): %s%s",
@@ -247,8 +277,20 @@ void ComplyController<Command>::publishDiagnostics() {
   }
   diagnostics_publisher_->msg_.header.stamp = get_node()->now();
   diagnostics_publisher_->msg_.header.frame_id = get_node()->get_name();
+  auto& message = diagnostics_publisher_->msg_;
   fillDiagnostics(wrapper_->diagnostics(), nominal_period_s_,
-                  commands_received_.load(std::memory_order_relaxed), diagnostics_publisher_->msg_);
+                  commands_received_.load(std::memory_order_relaxed), message);
+  message.overruns = overruns_.load(std::memory_order_relaxed);
+  {
+    const std::lock_guard<std::mutex> lock(outcomes_mutex_);
+    message.outcomes.swap(outcomes_);
+    outcomes_.clear();
+  }
+  message.histogram_bin = kTimingBinSeconds;
+  message.compute_time_histogram.resize(kTimingBins);
+  for (std::size_t i = 0; i < kTimingBins; ++i) {
+    message.compute_time_histogram[i] = compute_bins_[i].load(std::memory_order_relaxed);
+  }
   diagnostics_publisher_->unlockAndPublish();
 }
 

@@ -13,14 +13,18 @@
 // Topics (relative to the controller's node, /<controller name>/...):
 //   ~/cartesian_command or ~/joint_command   comply_msgs command, validated as `comply run` does
 //   ~/state        comply_msgs/ControllerState every state_publish_rate_hz (default 100 Hz)
-//   ~/diagnostics  comply_msgs/Diagnostics every 1 / diagnostics_publish_rate_hz (default 10 Hz)
+//   ~/diagnostics  comply_msgs/Diagnostics at diagnostics_publish_rate_hz (default 10 Hz), with
+//                  the compute time of update() as a histogram (1 us bins), its overruns, and
+//                  the outcome of every command received since the previous message
 //   ~/reset_fault  std_srvs/Trigger: leave FAULT
 // The command and state topics and types are those of `comply run`, so comply's Python client
 // and `comply send` / `comply echo` talk to either host.
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -90,6 +94,16 @@ class ComplyController : public controller_interface::ControllerInterface {
   std::uint64_t state_every_cycles_ = 10;
   double nominal_period_s_ = 0.001;
   std::atomic<std::uint64_t> commands_received_{0};
+  // Outcomes of the commands received since the last diagnostics message: both sides run in the
+  // executor, never on the real-time thread.
+  std::mutex outcomes_mutex_;
+  std::vector<comply_msgs::msg::CommandOutcome> outcomes_;
+
+  // Compute time of update(), written by the real-time thread, read by the diagnostics timer.
+  static constexpr std::size_t kTimingBins = 500;
+  static constexpr double kTimingBinSeconds = 1e-6;
+  std::array<std::atomic<std::uint64_t>, kTimingBins> compute_bins_{};
+  std::atomic<std::uint64_t> overruns_{0};
 
   typename rclcpp::Subscription<CommandMessage>::SharedPtr command_subscription_;
   rclcpp::Service<std_srvs::srv::Trigger>::SharedPtr reset_service_;

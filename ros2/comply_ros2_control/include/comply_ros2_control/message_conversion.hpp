@@ -10,6 +10,7 @@
 #include "comply/pipeline/controller.hpp"
 #include "comply/pipeline/diagnostics.hpp"
 #include "comply_msgs/msg/cartesian_command.hpp"
+#include "comply_msgs/msg/command_outcome.hpp"
 #include "comply_msgs/msg/controller_state.hpp"
 #include "comply_msgs/msg/diagnostics.hpp"
 #include "comply_msgs/msg/joint_command.hpp"
