@@ -36,6 +36,11 @@ colcon --log-base "$work/log" build --base-paths ros2 --build-base "$work/build"
   --install-base "$work/install" --event-handlers console_direct- \
   --cmake-args -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$work/prefix" \
   -DCMAKE_CXX_COMPILER_LAUNCHER=ccache
+# The packages' own tests (the controller in a ros2_control harness: torque equal to comply's
+# wrapper, no allocation in update(), parameters round trip).
+colcon --log-base "$work/log" test --base-paths ros2 --build-base "$work/build" \
+  --install-base "$work/install" --event-handlers console_direct-
+colcon test-result --test-result-base "$work/build" --verbose
 # colcon's setup scripts read unset variables.
 set +u
 # shellcheck disable=SC1091

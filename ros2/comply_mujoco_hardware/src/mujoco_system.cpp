@@ -2,12 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <stdexcept>
-
 #include <hardware_interface/types/hardware_interface_type_values.hpp>
+#include <limits>
 #include <pluginlib/class_list_macros.hpp>
 #include <rclcpp/rclcpp.hpp>
+#include <stdexcept>
 
 #include "comply/model/robot_description.hpp"
 #include "comply_ros2_control/prefix_search.hpp"
@@ -86,11 +85,12 @@ MujocoSystem::CallbackReturn MujocoSystem::on_init(const hi::HardwareInfo& info)
   try {
     const std::string robot_name = parameter(info, "robot", "");
     if (robot_name.empty()) {
-      throw std::invalid_argument("hardware parameter robot (a comply robot name or folder) is "
-                                  "missing");
+      throw std::invalid_argument(
+          "hardware parameter robot (a comply robot name or folder) is "
+          "missing");
     }
-    const auto robot = comply::model::loadRobotDescription(
-        comply_ros2_control::robotInPrefix(robot_name));
+    const auto robot =
+        comply::model::loadRobotDescription(comply_ros2_control::robotInPrefix(robot_name));
     checkInterfaces();
     mapJoints(robot.joints);
     comply::sim::PlantOptions options;

@@ -15,8 +15,8 @@ namespace comply_ros2_control {
 namespace {
 
 using controller_interface::CallbackReturn;
-using controller_interface::InterfaceConfiguration;
 using controller_interface::interface_configuration_type;
+using controller_interface::InterfaceConfiguration;
 
 constexpr const char* kStateRate = "state_publish_rate_hz";
 constexpr const char* kDiagnosticsRate = "diagnostics_publish_rate_hz";
@@ -102,15 +102,17 @@ void ComplyController<Command>::createEndpoints() {
   }
   const unsigned update_rate_hz = get_update_rate() > 0 ? get_update_rate() : 1000;
   nominal_period_s_ = 1.0 / update_rate_hz;
-  state_every_cycles_ = std::max<std::uint64_t>(
-      1, static_cast<std::uint64_t>(update_rate_hz / state_rate_hz + 0.5));
+  state_every_cycles_ =
+      std::max<std::uint64_t>(1, static_cast<std::uint64_t>(update_rate_hz / state_rate_hz + 0.5));
   // The QoS of `comply run`'s topics: state as sensor data, diagnostics reliable and deep.
-  state_publisher_ = std::make_unique<realtime_tools::RealtimePublisher<comply_msgs::msg::ControllerState>>(
-      node->create_publisher<comply_msgs::msg::ControllerState>("~/state",
-                                                                rclcpp::SensorDataQoS()));
-  diagnostics_publisher_ = std::make_unique<realtime_tools::RealtimePublisher<comply_msgs::msg::Diagnostics>>(
-      node->create_publisher<comply_msgs::msg::Diagnostics>("~/diagnostics",
-                                                            rclcpp::QoS(100).reliable()));
+  state_publisher_ =
+      std::make_unique<realtime_tools::RealtimePublisher<comply_msgs::msg::ControllerState>>(
+          node->create_publisher<comply_msgs::msg::ControllerState>("~/state",
+                                                                    rclcpp::SensorDataQoS()));
+  diagnostics_publisher_ =
+      std::make_unique<realtime_tools::RealtimePublisher<comply_msgs::msg::Diagnostics>>(
+          node->create_publisher<comply_msgs::msg::Diagnostics>("~/diagnostics",
+                                                                rclcpp::QoS(100).reliable()));
   prepareState(wrapper_->controller(), state_publisher_->msg_);
   command_subscription_ = node->create_subscription<CommandMessage>(
       CommandTopic<Command>::kName, rclcpp::QoS(10).reliable(),
@@ -220,7 +222,8 @@ controller_interface::return_type ComplyController<Command>::update(
     state_publisher_->unlockAndPublish();
   }
   const double compute_s = monotonicSeconds() - start_s;
-  const auto bin = std::min(kTimingBins - 1, static_cast<std::size_t>(compute_s / kTimingBinSeconds));
+  const auto bin =
+      std::min(kTimingBins - 1, static_cast<std::size_t>(compute_s / kTimingBinSeconds));
   compute_bins_[bin].fetch_add(1, std::memory_order_relaxed);
   if (compute_s > nominal_period_s_) {
     overruns_.fetch_add(1, std::memory_order_relaxed);
@@ -245,25 +248,24 @@ void ComplyController<Command>::onCommand(const CommandMessage& message) {
     outcome.received = get_node()->now();
     // Accepted means queued for the next cycle, which takes every queued command.
     outcome.outcome = verdict.accepted ? outcome.OUTCOME_APPLIED : outcome.OUTCOME_REJECTED;
-    outcome.reason = verdict.accepted ? outcome.REASON_NONE
-                                      : static_cast<std::uint8_t>(verdict.reason);
+    outcome.reason =
+        verdict.accepted ? outcome.REASON_NONE : static_cast<std::uint8_t>(verdict.reason);
     outcome.applied = outcome.received;
     outcome.message = verdict.message;
     const std::lock_guard<std::mutex> lock(outcomes_mutex_);
     outcomes_.push_back(std::move(outcome));
   }
   if (!verdict.accepted) {
-    RCLCPP_WARN_THROTTLE(get_node()->get_logger(), *get_node()->get_clock(), 1000,
-                         "command rejected (%s): %s%s",
-                         std::string(comply::pipeline::toString(verdict.reason)).c_str(),
-                         verdict.message.c_str(), malformed.empty() ? "" : (" " + malformed).c_str());
+    RCLCPP_WARN_THROTTLE(
+        get_node()->get_logger(), *get_node()->get_clock(), 1000, "command rejected (%s): %s%s",
+        std::string(comply::pipeline::toString(verdict.reason)).c_str(), verdict.message.c_str(),
+        malformed.empty() ? "" : (" " + malformed).c_str());
   }
 }
 
 template <typename Command>
 void ComplyController<Command>::onResetFault(std_srvs::srv::Trigger::Response& response) {
-  const bool in_fault =
-      wrapper_->diagnostics().state == comply::pipeline::WrapperState::kFault;
+  const bool in_fault = wrapper_->diagnostics().state == comply::pipeline::WrapperState::kFault;
   wrapper_->reset();
   response.success = in_fault;
   response.message = in_fault ? "reset requested: the law runs again from the next cycle"

@@ -100,8 +100,8 @@ void fillState(const comply::pipeline::Controller& controller, const comply::Joi
                const builtin_interfaces::msg::Time& stamp,
                comply_msgs::msg::ControllerState& message) noexcept {
   message.header.stamp = stamp;
-  message.state = static_cast<std::uint8_t>(
-      controller.diagnostics().state.load(std::memory_order_relaxed));
+  message.state =
+      static_cast<std::uint8_t>(controller.diagnostics().state.load(std::memory_order_relaxed));
   message.cycle = cycle;
   copyInto(state.position, message.position);
   copyInto(state.velocity, message.velocity);

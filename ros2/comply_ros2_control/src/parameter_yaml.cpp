@@ -53,7 +53,8 @@ std::string yamlValue(const rclcpp::Parameter& parameter) {
     case ParameterType::PARAMETER_STRING:
       return quoted(parameter.as_string());
     case ParameterType::PARAMETER_BOOL_ARRAY:
-      return list(parameter.as_bool_array(), [](bool b) { return std::string(b ? "true" : "false"); });
+      return list(parameter.as_bool_array(),
+                  [](bool b) { return std::string(b ? "true" : "false"); });
     case ParameterType::PARAMETER_INTEGER_ARRAY:
       return list(parameter.as_integer_array(), [](std::int64_t i) { return std::to_string(i); });
     case ParameterType::PARAMETER_DOUBLE_ARRAY:

@@ -9,9 +9,8 @@
 #include <cstdio>
 #include <memory>
 #include <optional>
-#include <string>
-
 #include <rclcpp/rclcpp.hpp>
+#include <string>
 
 #include "comply_msgs/msg/cartesian_command.hpp"
 #include "comply_msgs/msg/controller_state.hpp"
@@ -52,7 +51,8 @@ int main(int argc, char** argv) {
     }
     return done();
   };
-  if (!spin_until([&] { return last.has_value() && last->state == ControllerState::STATE_ACTIVE; })) {
+  if (!spin_until(
+          [&] { return last.has_value() && last->state == ControllerState::STATE_ACTIVE; })) {
     std::fprintf(stderr, "probe: no active state on /%s/state within %.0f s\n", host.c_str(),
                  timeout_s);
     return 1;
@@ -79,10 +79,11 @@ int main(int argc, char** argv) {
     rclcpp::spin_some(node);
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
-  std::printf("probe: target %s, reference %s, TCP %.3f mm from the target\n",
-              reached ? "reached" : "missed",
-              distance(last->reference_position, command.position) < 1e-9 ? "in force" : "not taken",
-              1e3 * distance(last->tcp_position, command.position));
+  std::printf(
+      "probe: target %s, reference %s, TCP %.3f mm from the target\n",
+      reached ? "reached" : "missed",
+      distance(last->reference_position, command.position) < 1e-9 ? "in force" : "not taken",
+      1e3 * distance(last->tcp_position, command.position));
   rclcpp::shutdown();
   return reached ? 0 : 1;
 }

@@ -13,11 +13,10 @@
 // there (as by brakes) until a controller writes a finite effort; each write() then advances the
 // plant by period_s, so the simulation runs in real time at the controller manager's rate.
 
+#include <hardware_interface/system_interface.hpp>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <hardware_interface/system_interface.hpp>
 
 #include "comply/core/state.hpp"
 #include "comply/sim/simulated_robot.hpp"

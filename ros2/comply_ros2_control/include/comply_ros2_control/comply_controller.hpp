@@ -20,18 +20,18 @@
 // The command and state topics and types are those of `comply run`, so comply's Python client
 // and `comply send` / `comply echo` talk to either host.
 
+#include <realtime_tools/realtime_publisher.h>
+
 #include <array>
 #include <atomic>
+#include <controller_interface/controller_interface.hpp>
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <rclcpp/rclcpp.hpp>
+#include <std_srvs/srv/trigger.hpp>
 #include <string>
 #include <vector>
-
-#include <controller_interface/controller_interface.hpp>
-#include <rclcpp/rclcpp.hpp>
-#include <realtime_tools/realtime_publisher.h>
-#include <std_srvs/srv/trigger.hpp>
 
 #include "comply/core/commands.hpp"
 #include "comply/core/state.hpp"

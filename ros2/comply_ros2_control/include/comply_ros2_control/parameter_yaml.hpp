@@ -4,10 +4,9 @@
 // (`validation.max_position_jump_m`); rebuilding the file lets comply's own parser read it, with
 // the same checks and the same messages as `comply sim --config`, so one file works in both.
 
+#include <rclcpp/parameter.hpp>
 #include <string>
 #include <vector>
-
-#include <rclcpp/parameter.hpp>
 
 namespace comply_ros2_control {
 
