@@ -233,6 +233,7 @@ def main():
             scenario()
         except Exception as error:  # noqa: BLE001 - report and go on to the next scenario
             check(scenario.__name__, False, f'{type(error).__name__}: {error}')
+    ros2('daemon', 'stop')  # the ros2 CLI started one for this domain
     failed = [name for name, passed in results if not passed]
     print(f'{len(results) - len(failed)} of {len(results)} checks passed')
     sys.exit(1 if failed else 0)
