@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <lifecycle_msgs/msg/state.hpp>
@@ -151,6 +152,39 @@ TEST_F(ControllerHarness, UpdateAllocatesNothing) {
   counting = false;
   delete allocation_probe;
   EXPECT_EQ(allocations.load(), 1);
+}
+
+// ~/reset_fault through a real service call: refused outside FAULT, accepted in it (a NaN
+// position sends the controller there), and the controller leaves FAULT once the state is usable.
+TEST_F(ControllerHarness, ResetFaultServiceLeavesFault) {
+  auto client_node = std::make_shared<rclcpp::Node>("reset_client");
+  auto client =
+      client_node->create_client<std_srvs::srv::Trigger>("/cartesian_impedance/reset_fault");
+  rclcpp::executors::SingleThreadedExecutor executor;
+  executor.add_node(controller_.get_node()->get_node_base_interface());
+  executor.add_node(client_node);
+  ASSERT_TRUE(client->wait_for_service(std::chrono::seconds(5)));
+  auto reset = [&] {
+    auto future = client->async_send_request(std::make_shared<std_srvs::srv::Trigger::Request>());
+    EXPECT_EQ(executor.spin_until_future_complete(future, std::chrono::seconds(5)),
+              rclcpp::FutureReturnCode::SUCCESS);
+    return future.get()->success;
+  };
+  const rclcpp::Duration period(0, 1'000'000);
+  controller_.update(rclcpp::Time(0), period);
+  EXPECT_FALSE(reset());  // not in FAULT
+  const double home = values_[0];
+  values_[0] = std::nan("");
+  controller_.update(rclcpp::Time(0), period);
+  EXPECT_TRUE(reset());  // in FAULT: reset requested
+  values_[0] = home;
+  for (int cycle = 0; cycle < 10; ++cycle) {
+    controller_.update(rclcpp::Time(0), period);
+  }
+  EXPECT_FALSE(reset());  // left FAULT
+  for (std::size_t i = 0; i < dof_; ++i) {
+    EXPECT_TRUE(std::isfinite(torque(i)));
+  }
 }
 
 TEST(ParameterYaml, ParametersRoundTripIntoTheSameConfiguration) {
