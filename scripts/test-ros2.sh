@@ -40,7 +40,7 @@ colcon --log-base "$work/log" build --base-paths ros2 --build-base "$work/build"
 # wrapper, no allocation in update(), parameters round trip).
 colcon --log-base "$work/log" test --base-paths ros2 --build-base "$work/build" \
   --install-base "$work/install" --event-handlers console_direct-
-colcon test-result --test-result-base "$work/build" --verbose
+colcon --log-base "$work/log" test-result --test-result-base "$work/build" --verbose
 # colcon's setup scripts read unset variables.
 set +u
 # shellcheck disable=SC1091
