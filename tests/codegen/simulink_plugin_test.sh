@@ -3,8 +3,11 @@
 # adapter and CMakeLists.txt against an installed comply, gives the reference plugin's torques on
 # the validate samples, takes its tunable parameter from the controller YAML, and runs in comply sim.
 # Usage: simulink_plugin_test.sh PREFIX WORKDIR MODEL KIND REFERENCE_PLUGIN SAMPLES PARAMETERS TASK
+#          [CONFIG]
+# CONFIG: the reference's controller YAML (`plugin: REFERENCE_PLUGIN`; lines ending in
+# `# reference only` are dropped for the model); default: the reference's defaults for fr3.
 set -euo pipefail
-prefix=$1 work=$2 model=$3 kind=$4 reference=$5 samples=$6 parameters=$7 task=$8
+prefix=$1 work=$2 model=$3 kind=$4 reference=$5 samples=$6 parameters=$7 task=$8 config=${9:-}
 here=$(cd "$(dirname "$0")" && pwd)
 comply=$prefix/bin/comply
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
@@ -16,13 +19,19 @@ cmake --build build >build.log
 plugin=$work/build/libcomply_$model.so
 nm -D --defined-only "$plugin" | grep -q ' T comply_plugin_entry$'
 
-"$comply" validate --robot fr3 --plugin "$reference" --inputs "$samples" --out reference.json
-"$comply" validate --robot fr3 --plugin "$plugin" --inputs "$samples" --expected reference.json \
+if [ -n "$config" ]; then
+  cp "$config" reference.yaml
+else
+  "$comply" config --defaults --robot fr3 --plugin "$reference" >reference.yaml
+fi
+sed -e "s#plugin: $reference#plugin: $plugin#" -e '/# reference only$/d' reference.yaml >model.yaml
+"$comply" validate --config reference.yaml --inputs "$samples" --out reference.json
+grep -q '"torque"' reference.json  # the reference produced torques to compare
+"$comply" validate --config model.yaml --inputs "$samples" --expected reference.json \
   --tolerance 1e-12
 
-# The tunable parameter from plugin_parameters: zero feedforward gain must change the torque.
-"$comply" config --defaults --robot fr3 --plugin "$reference" >defaults.yaml
-sed -e "s#plugin: $reference#plugin: $plugin#" defaults.yaml >tuned.yaml
+# The tunable parameter from plugin_parameters: zero (a gain, a damping) must change the torque.
+cp model.yaml tuned.yaml
 printf '    plugin_parameters:\n      %s: 0.0\n' "${parameters%%;*}" >>tuned.yaml
 set +e
 "$comply" validate --config tuned.yaml --inputs "$samples" --expected reference.json \
@@ -35,7 +44,7 @@ if [ "$status" -ne 1 ]; then
   exit 1
 fi
 
-timeout 120 "$comply" sim --robot fr3 --plugin "$plugin" --task "$task" --out sim --no-plot \
+timeout 120 "$comply" sim --config model.yaml --task "$task" --out sim --no-plot \
   >sim.log 2>&1 || { cat sim.log; exit 1; }
 grep -q "faults *0" sim.log
 test -s sim/log.csv

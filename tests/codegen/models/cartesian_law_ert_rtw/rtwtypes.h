@@ -1,0 +1,13 @@
+/*
+ * Stand-in for Embedded Coder's rtwtypes.h (the subset the hand-written models use), so the
+ * model sources below compile exactly as generated code would, without MATLAB.
+ */
+#ifndef RTWTYPES_H
+#define RTWTYPES_H
+#include <stdint.h>
+typedef double real_T;
+typedef int32_t int32_T;
+typedef uint32_t uint32_T;
+typedef unsigned char boolean_T;
+typedef char char_T;
+#endif
