@@ -4,8 +4,23 @@
 #include "cli_options.hpp"
 
 #include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdlib>
 
 namespace comply::app {
+
+CLI::Validator finiteIn(double low, double high) {
+  const std::string range = "a finite number in [" + CLI::detail::to_string(low) + ", " +
+                            CLI::detail::to_string(high) + "]";
+  return {[low, high, range](const std::string& text) -> std::string {
+            char* end = nullptr;
+            const double value = std::strtod(text.c_str(), &end);
+            const bool ok = end != text.c_str() && *end == '\0' && std::isfinite(value) &&
+                            value >= low && value <= high;
+            return ok ? "" : "must be " + range;
+          },
+          "FINITE in [" + CLI::detail::to_string(low) + ", " + CLI::detail::to_string(high) + "]"};
+}
 
 CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
   CLI::App* command =
@@ -48,10 +63,11 @@ CLI::App* addValidateCommand(CLI::App& app, ValidateOptions& options) {
   command
       ->add_option("--tolerance", options.tolerance,
                    "max absolute error per output with --expected")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(finiteIn(0.0, 1e300));
   command->add_option("--period", options.period_s, "cycle period of --wrapper [s]")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(finiteIn(1e-6, 1.0));
   command->add_flag("--wrapper", options.wrapper,
                     "also run the samples as consecutive cycles of the full wrapper");
   return command;
@@ -66,13 +82,16 @@ CLI::App* addSimCommand(CLI::App& app, SimOptions& options) {
                       "without --config: plugin name (default cartesian_impedance)");
   command->add_option("--task", options.task_file, "task file: waypoints streamed over time")
       ->required();
-  command->add_option("--duration", options.duration_s, "simulated seconds (default: the task's)")
-      ->check(CLI::PositiveNumber);
+  // The log is kept in memory for the plot (about 0.65 MB per simulated second).
+  command
+      ->add_option("--duration", options.duration_s,
+                   "simulated seconds (default: the task's; at most 600)")
+      ->check(finiteIn(1e-3, kMaxSimDurationS));
   command->add_option("--out", options.out_dir, "output folder (default out/sim-<robot>)");
   command
       ->add_option("--snapshot-every", options.snapshot_every_ms,
                    "also a PNG every N ms of simulated time (default: the task's)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finiteIn(0.0, 1e6));
   command->add_flag("--realtime", options.realtime, "pace the simulation to the wall clock");
   command->add_flag("--view", options.view, "open an interactive window (needs a display)");
   command->add_flag("--no-plot{false}", options.plot, "skip the matplotlib plot");

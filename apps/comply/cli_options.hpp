@@ -11,9 +11,14 @@
 
 namespace CLI {
 class App;
-}
+class Validator;
+}  // namespace CLI
 
 namespace comply::app {
+
+/// A finite number in [low, high]: CLI11's own range checks let NaN through (every comparison
+/// with NaN is false) and the sim would then ignore the option silently.
+CLI::Validator finiteIn(double low, double high);
 
 CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options);
 CLI::App* addValidateCommand(CLI::App& app, ValidateOptions& options);

@@ -2,6 +2,7 @@
 
 #include "live_commands.hpp"
 
+#include "cli_options.hpp"
 #include "run_command.hpp"
 #include "send_command.hpp"
 
@@ -32,11 +33,14 @@ LiveCommands addLiveCommands(CLI::App& app) {
   run_command->add_option("--robot", run->robot, "robot name or folder (overrides the config's)");
   run_command->add_flag("--sim", run->sim, "a simulated arm (MuJoCo) as the hardware");
   run_command->add_flag("--view", run->view, "interactive window (not yet)");
-  run_command->add_option("--rate", run->rate_hz, "control rate [Hz]")->capture_default_str();
+  run_command->add_option("--rate", run->rate_hz, "control rate [Hz]")
+      ->capture_default_str()
+      ->check(finiteIn(1.0, 10000.0));
   run_command->add_option("--state-rate", run->state_rate_hz, "state topic rate [Hz]")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(finiteIn(0.1, 10000.0));
   run_command->add_option("--duration", run->duration_s, "stop after this many seconds (0: never)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finiteIn(0.0, 1e7));
   run_command->add_option("--domain", run->domain_id, "DDS domain id")
       ->capture_default_str()
       ->check(CLI::Range(0, 232));

@@ -17,6 +17,7 @@
 
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <new>
 
 #include "cli_options.hpp"
 #include "config_command.hpp"
@@ -44,7 +45,12 @@ int main(int argc, char** argv) {
   CLI::App* codegen_simulink = addCodegenCommand(app, codegen);
   CLI::App* plugin_new_command = addPluginCommand(app, plugin_new);
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    // --help prints and succeeds; every malformed argument is bad input, exit 2 as documented.
+    return app.exit(error) == 0 ? 0 : 2;
+  }
   try {
     if (bench_command->parsed()) {
       return benchCommand(bench);
@@ -73,6 +79,9 @@ int main(int argc, char** argv) {
     if (plugin_new_command->parsed()) {
       return pluginNewCommand(plugin_new, std::cout, std::cerr);
     }
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "comply: error: out of memory (is an input far larger than it should be?)\n";
     return 2;
   } catch (const std::exception& error) {
     std::cerr << "comply: error: " << error.what() << "\n";

@@ -8,6 +8,9 @@
 
 namespace comply::app {
 
+/// Longest simulated run [s]: the log is kept in memory for the plot, about 0.65 MB per second.
+inline constexpr double kMaxSimDurationS = 600.0;
+
 struct SimOptions {
   std::string robot;        ///< name or folder; overrides the config's robot
   std::string plugin;       ///< without --config: the plugin (default cartesian_impedance)

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "comply/schema/json.hpp"
+#include "sim_command.hpp"
 
 namespace comply::app {
 namespace {
@@ -63,8 +64,9 @@ double positiveNumber(const json& object, const std::string& key, double fallbac
   if (!object.contains(key)) {
     return fallback;
   }
-  if (!object[key].is_number() || !(object[key].get<double>() > 0.0)) {
-    error.fail(where + "." + key, "must be a number > 0");
+  if (!object[key].is_number() || !(object[key].get<double>() > 0.0) ||
+      !std::isfinite(object[key].get<double>())) {
+    error.fail(where + "." + key, "must be a finite number > 0");
   }
   return object[key].get<double>();
 }
@@ -348,6 +350,10 @@ TaskFile parseTaskFile(const std::string& yaml_text, const std::string& source,
     }
   }
   task.duration_s = positiveNumber(task_json, "duration_s", task.duration_s, "task", error);
+  if (task.duration_s > kMaxSimDurationS) {
+    error.fail("task.duration_s", "at most " + std::to_string(static_cast<int>(kMaxSimDurationS)) +
+                                      " s (the log is kept in memory); longer runs: comply run");
+  }
   task.command_rate_hz =
       positiveNumber(task_json, "command_rate_hz", task.command_rate_hz, "task", error);
   if (task_json.contains("snapshot_every_ms")) {

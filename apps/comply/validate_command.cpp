@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <set>
 #include <vector>
 
@@ -267,8 +268,11 @@ std::map<std::string, double> compareOutputs(const json& actual, const json& exp
       double error = 0.0;
       double error_flipped = 0.0;  // q and -q are the same orientation
       for (std::size_t k = 0; k < want.size(); ++k) {
-        error = std::max(error, std::abs(got[k] - want[k]));
-        error_flipped = std::max(error_flipped, std::abs(got[k] + want[k]));
+        // A non-finite number on either side is a mismatch: std::max would drop a NaN error.
+        const bool finite = std::isfinite(got[k]) && std::isfinite(want[k]);
+        constexpr double kMismatch = std::numeric_limits<double>::infinity();
+        error = std::max(error, finite ? std::abs(got[k] - want[k]) : kMismatch);
+        error_flipped = std::max(error_flipped, finite ? std::abs(got[k] + want[k]) : kMismatch);
       }
       if (key == "tcp_orientation") {
         error = std::min(error, error_flipped);
@@ -302,8 +306,13 @@ int validateCommand(const ValidateOptions& options, std::ostream& out, std::ostr
   for (const auto& [key, error] : errors) {
     const bool ok = error <= options.tolerance;
     within = within && ok;
-    out << std::left << std::setw(18) << key << std::right << std::setw(14) << std::scientific
-        << std::setprecision(3) << error << (ok ? "  ok" : "  ABOVE TOLERANCE") << "\n";
+    out << std::left << std::setw(18) << key << std::right << std::setw(14);
+    if (std::isfinite(error)) {
+      out << std::scientific << std::setprecision(3) << error;
+    } else {
+      out << "non-finite";
+    }
+    out << (ok ? "  ok" : "  ABOVE TOLERANCE") << "\n";
   }
   out << (within ? "validate: all outputs within tolerance\n"
                  : "validate: outputs above tolerance\n");

@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 
 #include "command_json.hpp"
@@ -138,6 +140,20 @@ TEST_F(ValidateTest, ExpectedOutputsAreComparedPerKey) {
   EXPECT_NE(out.str().find("gravity"), std::string::npos);
   with_expected.tolerance = 0.3;
   EXPECT_EQ(validateCommand(with_expected, out, err), 0);
+}
+
+TEST_F(ValidateTest, NonFiniteOutputsNeverMatch) {
+  // std::max drops a NaN error: a plugin returning NaN used to match any expected torque.
+  const std::string inputs = writeJson("nan.json", json::array({homeSample()}));
+  const json output = runValidation(options("cartesian_impedance", inputs));
+  json nan_output = output;
+  nan_output["samples"][0]["torque"][1] = std::nan("");
+  EXPECT_TRUE(std::isinf(compareOutputs(nan_output, output).at("torque")));
+  EXPECT_TRUE(std::isinf(compareOutputs(output, nan_output).at("torque")));
+  json infinite = output;
+  infinite["samples"][0]["gravity"][0] = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(std::isinf(compareOutputs(infinite, infinite).at("gravity")));
+  EXPECT_EQ(compareOutputs(output, output).at("torque"), 0.0);
 }
 
 TEST_F(ValidateTest, UnknownOutputInExpectedIsAnError) {
