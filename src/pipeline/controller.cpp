@@ -51,6 +51,7 @@ Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
   state_ = JointState::zero(dof_);
   torque_.setZero(dof_);
   scratch_.setZero(dof_);
+  hold_gravity_.setZero(dof_);
   input_.dof = dof_;
 }
 

@@ -22,6 +22,11 @@ bool Controller::measure(const JointState& state) noexcept {
     return false;
   }
   state_ = state;
+  // The safe state's base comes from here only: a failed update may leave data_ half-written.
+  hold_gravity_ = data_.gravity.head(dof_);
+  if (parameters_.payload_compensation) {
+    hold_gravity_ += data_.payload_gravity.head(dof_);
+  }
   fillPluginInput(state_, data_, quantities_, time_s_, period_s_, input_);
   measured_.publishFromSoleWriter(currentPose());
   return true;

@@ -1,6 +1,8 @@
 // Stages "compensate", "shape" and "write", and the safe state "hold": what is added to the law's
 // torque, how the sum is shaped for the motors, and what goes out in FAULT.
 
+#include <cmath>
+
 #include "comply/pipeline/compensation.hpp"
 #include "comply/pipeline/controller.hpp"
 
@@ -46,12 +48,17 @@ CycleStatus Controller::hold(std::span<double> torque) noexcept {
   // where it is, without a reference that may be the cause of the fault. The state is the last
   // usable one when this cycle's was not.
   for (int i = 0; i < dof_; ++i) {
-    torque_[i] = data_.gravity[i] - parameters_.fault_damping[i] * state_.velocity[i];
-  }
-  if (parameters_.payload_compensation) {
-    torque_ += data_.payload_gravity.head(dof_);
+    // A velocity so large that its damping overflows (a broken sensor) damps nothing.
+    const double damping = parameters_.fault_damping[i] * state_.velocity[i];
+    torque_[i] = hold_gravity_[i] - (std::isfinite(damping) ? damping : 0.0);
   }
   const ShapingResult shaped = shaper_.apply(torque_, period_s_, /*filter=*/false);
+  if (!shaped.finite) {
+    // Nothing finite to hold with (no usable state was ever measured): command no torque rather
+    // than repeat the last output, which may be the faulty law's.
+    torque_.setZero();
+    shaper_.reset(torque_);
+  }
   diagnostics_.rate_limit_hits.fetch_add(shaped.rate_limited, std::memory_order_relaxed);
   diagnostics_.effort_limit_hits.fetch_add(shaped.effort_limited, std::memory_order_relaxed);
   for (int i = 0; i < dof_ && i < static_cast<int>(torque.size()); ++i) {

@@ -54,8 +54,7 @@ Verdict Wrapper<Command>::submit(const Command& command) {
   if (verdict.accepted) {
     IntakeMessage message;
     message.command = toBus(checked, dof);
-    std::get<BusOf<Command>>(message.command).fields =
-        static_cast<std::uint32_t>(command.fields);
+    std::get<BusOf<Command>>(message.command).fields = static_cast<std::uint32_t>(command.fields);
     if (!controller_.enqueue(message)) {
       verdict = {false, RejectionReason::kQueueFull,
                  std::string(toString(RejectionReason::kQueueFull)) + ": " +

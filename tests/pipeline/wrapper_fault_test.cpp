@@ -78,6 +78,37 @@ TEST(WrapperFault, ActivationRefusesALawWhoseTrialStepFails) {
   expectActivationRefused(kStepNanPlugin, plugin::PluginErrc::kNonFiniteOutput, kStepNanPlugin);
 }
 
+TEST(WrapperFault, ExceptionFromAPluginStepIsAFaultNotACrash) {
+  JointWrapper wrapper(fr3Config(kThrowingPlugin));
+  const JointState rest = restingAt(wrapper.controller(), fr3Home());
+  wrapper.activate(rest);  // the trial step returns; every later step throws
+  TorqueBuffer torque;
+  EXPECT_EQ(wrapper.update(rest, kPeriod, torque.span()), CycleStatus::kFault);
+  COMPLY_EXPECT_JOINTS_NEAR(torque.values, holdingTorque(wrapper.controller(), rest), kTolerance);
+  const DiagnosticsSnapshot diagnostics = wrapper.diagnostics();
+  EXPECT_EQ(diagnostics.faults, 1U);
+  EXPECT_NE(diagnostics.last_fault.find("plugin: step threw an exception"), std::string::npos)
+      << diagnostics.last_fault;
+}
+
+TEST(WrapperFault, HoldingTorqueStaysFiniteWhenTheDampingOverflows) {
+  // A finite but absurd velocity passes the state check; the law's torque overflows (FAULT) and
+  // so does the holding damping: the hold is then gravity alone, never the last (law's) output.
+  JointWrapper wrapper(fr3Config(kJointImpedancePlugin, "torque_rate_limit_nm_per_s: 1.0e9"));
+  const JointState rest = restingAt(wrapper.controller(), fr3Home());
+  wrapper.activate(rest);
+  TorqueBuffer torque;
+  ASSERT_EQ(wrapper.update(moving(rest, 0.5), kPeriod, torque.span()), CycleStatus::kOk);
+  JointState broken = rest;
+  broken.velocity[0] = 1e308;
+  EXPECT_EQ(wrapper.update(broken, kPeriod, torque.span()), CycleStatus::kFault);
+  ASSERT_TRUE(torque.values.allFinite()) << torque.values.transpose();
+  JointState without_joint_0 = broken;
+  without_joint_0.velocity[0] = 0.0;
+  COMPLY_EXPECT_JOINTS_NEAR(torque.values, holdingTorque(wrapper.controller(), without_joint_0),
+                            kTolerance);
+}
+
 // ---- a law failing in the cycle ---------------------------------------------------------------
 
 class CartesianLawFault : public ::testing::Test {

@@ -23,6 +23,7 @@ inline const std::string kJointImpedancePlugin = COMPLY_TEST_JOINT_IMPEDANCE;
 inline const std::string kCartesianImpedancePlugin = COMPLY_TEST_CARTESIAN_IMPEDANCE;
 inline const std::string kStepNanPlugin = COMPLY_TEST_FIXTURE_STEP_NAN;
 inline const std::string kStepErrorPlugin = COMPLY_TEST_FIXTURE_STEP_ERROR;
+inline const std::string kThrowingPlugin = COMPLY_TEST_FIXTURE_THROWING;
 
 /// Configuration of a controller for the FR3 with `plugin`; `parameter_lines` are YAML lines at
 /// the level of `plugin:` (nested keys indented further, by two spaces per level).

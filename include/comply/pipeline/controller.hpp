@@ -142,6 +142,7 @@ class Controller {
   comply_output output_{};
   JointVector torque_;
   JointVector scratch_;
+  JointVector hold_gravity_;  // gravity (+ payload) at the last usable state: FAULT's holding base
   double period_s_ = 0.001;
   double time_s_ = 0.0;
   double last_command_time_s_ = 0.0;

@@ -2,6 +2,7 @@
 // Loads a control-law plugin (a shared library exporting comply_plugin_entry) and owns one
 // instance of it. Every refusal names the file and the cause.
 
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -15,14 +16,14 @@
 namespace comply::plugin {
 
 enum class PluginErrc {
-  kFileNotFound,       ///< no such file, or no plugin of that name on the plugin path
-  kLoadFailed,         ///< dlopen failed (not a shared library, missing dependency, ...)
-  kMissingEntry,       ///< the library does not export comply_plugin_entry
-  kAbiMismatch,        ///< built against another COMPLY_ABI_VERSION
-  kWrongCommandKind,   ///< a joint law in a Cartesian wrapper or vice versa
-  kCreateFailed,       ///< the plugin refused its parameters
-  kTrialStepFailed,    ///< the activation trial step returned an error
-  kNonFiniteOutput,    ///< the activation trial step returned a NaN or infinite torque
+  kFileNotFound,      ///< no such file, or no plugin of that name on the plugin path
+  kLoadFailed,        ///< dlopen failed (not a shared library, missing dependency, ...)
+  kMissingEntry,      ///< the library does not export comply_plugin_entry
+  kAbiMismatch,       ///< built against another COMPLY_ABI_VERSION
+  kWrongCommandKind,  ///< a joint law in a Cartesian wrapper or vice versa
+  kCreateFailed,      ///< the plugin refused its parameters
+  kTrialStepFailed,   ///< the activation trial step returned an error
+  kNonFiniteOutput,   ///< the activation trial step returned a NaN or infinite torque
 };
 
 class PluginError : public std::runtime_error {
@@ -82,9 +83,18 @@ class PluginInstance {
   comply_status activate(const comply_input& input) noexcept {
     return library_->api().activate(instance_, &input);
   }
+  /// The law's step. An exception thrown through the C ABI (a C++ law written without the SDK)
+  /// becomes a failed step with a message; catching costs nothing when nothing is thrown.
   comply_status step(const comply_input& input, const void* command,
                      comply_output& output) noexcept {
-    return library_->api().step(instance_, &input, command, &output);
+    try {
+      return library_->api().step(instance_, &input, command, &output);
+    } catch (...) {
+      static constexpr char kThrew[] = "step threw an exception";
+      static_assert(sizeof kThrew <= COMPLY_MESSAGE_CAPACITY);
+      std::memcpy(output.message, kThrew, sizeof kThrew);
+      return COMPLY_ERROR;
+    }
   }
 
   /// Runs one step outside the real-time loop and throws kTrialStepFailed / kNonFiniteOutput if
