@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 
+#include "comply/core/text_file.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/model/update.hpp"
 
@@ -41,11 +42,13 @@ pipeline::WrapperConfig simControllerConfig(const std::string& robot, const std:
   if (config_file.empty() || robot.empty()) {
     return controllerConfig(robot, plugin, config_file);
   }
+  const TextFile text = readTextFile(config_file);
+  if (!text.ok()) {
+    throw std::runtime_error("controller config: " + text.error);
+  }
   YAML::Node root;
   try {
-    root = YAML::LoadFile(config_file);
-  } catch (const YAML::BadFile&) {
-    throw std::runtime_error("cannot read controller config '" + config_file + "'");
+    root = YAML::Load(text.text);
   } catch (const YAML::Exception& error) {
     throw std::runtime_error(config_file + ": not valid YAML: " + error.what());
   }

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "comply/core/input_error.hpp"
+#include "comply/core/text_file.hpp"
 #include "comply/schema/json.hpp"
 #include "comply/transport/endpoints.hpp"
 #include "live_json.hpp"
@@ -47,14 +48,13 @@ transport::ControllerStateMessage hostState(Participant& participant, const Clie
 /// The commands of --json or --file: one object, a list, or JSON lines.
 std::vector<nlohmann::json> commandObjects(const SendOptions& options) {
   if (!options.json.empty()) {
-    return {nlohmann::json::parse(options.json)};
+    return {schema::parseJson(options.json, "--json")};
   }
-  std::ifstream in(options.file);
-  if (!in) {
-    throw InputError(InputErrc::kCannotRead, options.file, "", "cannot read the file");
+  const TextFile file = readTextFile(options.file);
+  if (!file.ok()) {
+    throw InputError(InputErrc::kCannotRead, options.file, "", file.error);
   }
-  std::stringstream text;
-  text << in.rdbuf();
+  std::stringstream text(file.text);
   nlohmann::json all;
   const std::string name = options.file;
   if (name.ends_with(".yaml") || name.ends_with(".yml")) {
@@ -63,12 +63,12 @@ std::vector<nlohmann::json> commandObjects(const SendOptions& options) {
     std::vector<nlohmann::json> lines;  // JSON lines
     for (std::string line; std::getline(text, line);) {
       if (line.find_first_not_of(" \t\r") != std::string::npos) {
-        lines.push_back(nlohmann::json::parse(line));
+        lines.push_back(schema::parseJson(line, name));
       }
     }
     return lines;
   } else {
-    all = nlohmann::json::parse(text.str());
+    all = schema::parseJson(text.str(), name);
   }
   return all.is_array() ? std::vector<nlohmann::json>(all.begin(), all.end())
                         : std::vector<nlohmann::json>{all};

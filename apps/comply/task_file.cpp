@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "comply/core/text_file.hpp"
 #include "comply/schema/json.hpp"
 #include "sim_command.hpp"
 
@@ -393,13 +394,11 @@ TaskFile parseTaskFile(const std::string& yaml_text, const std::string& source,
 
 TaskFile loadTaskFile(const std::filesystem::path& file, bool cartesian, int dof,
                       double quaternion_tolerance) {
-  std::ifstream in(file);
-  if (!in) {
-    throw std::runtime_error("cannot read task file '" + file.string() + "'");
+  const TextFile text = readTextFile(file);
+  if (!text.ok()) {
+    throw std::runtime_error("task file: " + text.error);
   }
-  std::stringstream text;
-  text << in.rdbuf();
-  return parseTaskFile(text.str(), file.string(), file.parent_path(), cartesian, dof,
+  return parseTaskFile(text.text, file.string(), file.parent_path(), cartesian, dof,
                        quaternion_tolerance);
 }
 

@@ -8,6 +8,7 @@
 #include <set>
 #include <vector>
 
+#include "comply/core/text_file.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/model/update.hpp"
 #include "comply/pipeline/command_bus.hpp"
@@ -32,12 +33,12 @@ const std::set<std::string> kOutputKeys{"tcp_position", "tcp_orientation", "jaco
                                         "torque",       "wrapper_torque"};
 
 json readJsonFile(const std::string& path) {
-  std::ifstream stream(path);
-  if (!stream) {
-    throw ValidateInputError("cannot read '" + path + "'");
+  const TextFile file = readTextFile(path);
+  if (!file.ok()) {
+    throw ValidateInputError(file.error);
   }
   try {
-    return json::parse(stream);
+    return schema::parseJson(file.text, path);
   } catch (const json::parse_error& error) {
     throw ValidateInputError("'" + path + "' is not valid JSON: " + error.what());
   }

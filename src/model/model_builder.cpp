@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 
+#include "comply/core/text_file.hpp"
 #include "comply/model/model.hpp"
 #include "comply/model/model_error.hpp"
 
@@ -373,14 +374,11 @@ Model Model::fromUrdfString(std::string_view urdf_xml, const ModelOptions& optio
 }
 
 Model Model::fromUrdfFile(const std::filesystem::path& urdf_path, const ModelOptions& options) {
-  std::ifstream file(urdf_path);
-  if (!std::filesystem::is_regular_file(urdf_path) || !file) {
-    throw ModelError(ModelErrc::kFileNotFound,
-                     "cannot read URDF file '" + urdf_path.string() + "'");
+  const TextFile file = readTextFile(urdf_path);
+  if (!file.ok()) {
+    throw ModelError(ModelErrc::kFileNotFound, "URDF: " + file.error);
   }
-  std::stringstream text;
-  text << file.rdbuf();
-  const auto urdf = urdf::parseURDF(text.str());
+  const auto urdf = urdf::parseURDF(file.text);
   if (!urdf) {
     throw ModelError(ModelErrc::kInvalidUrdf, "could not parse URDF file '" + urdf_path.string() +
                                                   "' (urdfdom printed the details above)");

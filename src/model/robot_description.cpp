@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "comply/core/install_paths.hpp"
+#include "comply/core/text_file.hpp"
 #include "comply/model/model_error.hpp"
 
 namespace comply::model {
@@ -58,9 +59,13 @@ RobotDescription parseFolder(const std::filesystem::path& folder) {
     throw ModelError(ModelErrc::kFileNotFound,
                      "no " + std::string(kRobotFile) + " in '" + folder.string() + "'");
   }
+  const TextFile text = readTextFile(file);
+  if (!text.ok()) {
+    fail(file, text.error);
+  }
   YAML::Node root;
   try {
-    root = YAML::LoadFile(file.string());
+    root = YAML::Load(text.text);
   } catch (const YAML::Exception& error) {
     fail(file, std::string("not valid YAML: ") + error.what());
   }

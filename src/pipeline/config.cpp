@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "comply/core/input_error.hpp"
+#include "comply/core/text_file.hpp"
 #include "comply/schema/json.hpp"
 #include "config_options.hpp"
 
@@ -287,14 +288,12 @@ WrapperConfig parseWrapperConfig(const std::string& yaml_text, const std::string
 
 WrapperConfig loadWrapperConfig(const std::filesystem::path& file,
                                 const std::string& controller_name) {
-  std::ifstream stream(file);
-  if (!stream) {
+  const TextFile text = readTextFile(file);
+  if (!text.ok()) {
     throw InputError(InputErrc::kCannotRead, file.string(), "",
-                     "cannot read the controller configuration");
+                     "cannot read the controller configuration: " + text.error);
   }
-  std::stringstream text;
-  text << stream.rdbuf();
-  return parseWrapperConfig(text.str(), file.string(), controller_name);
+  return parseWrapperConfig(text.text, file.string(), controller_name);
 }
 
 }  // namespace comply::pipeline

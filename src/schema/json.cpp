@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "comply/core/input_error.hpp"
 #include "comply/schema/generic_json.hpp"
 #include "schemas.hpp"
 
@@ -133,6 +134,19 @@ nlohmann::json yamlToJson(const YAML::Node& node, const std::string& source,
     default:
       throw InputError(InputErrc::kMissingKey, source, where, "has no value");
   }
+}
+
+nlohmann::json parseJson(const std::string& text, const std::string& source) {
+  const auto bounded = [&source](int depth, nlohmann::json::parse_event_t event, nlohmann::json&) {
+    if ((event == nlohmann::json::parse_event_t::object_start ||
+         event == nlohmann::json::parse_event_t::array_start) &&
+        depth >= kMaxJsonDepth) {
+      throw InputError(InputErrc::kSyntax, source, "",
+                       "nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+    }
+    return true;
+  };
+  return nlohmann::json::parse(text, bounded);
 }
 
 }  // namespace comply::schema

@@ -7,19 +7,18 @@
 #include <sstream>
 #include <string_view>
 
+#include "comply/core/text_file.hpp"
 #include "comply/sim/sim_error.hpp"
 
 namespace comply::sim {
 namespace {
 
 std::string readText(const std::filesystem::path& file, const std::string& what) {
-  std::ifstream in(file);
-  if (!in) {
-    throw SimError("cannot read " + what + " '" + file.string() + "'");
+  TextFile text = readTextFile(file);
+  if (!text.ok()) {
+    throw SimError(what + ": " + text.error);
   }
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return std::move(text.text);
 }
 
 /// A file with a unique name in the temporary directory, removed again on destruction: MuJoCo

@@ -167,5 +167,21 @@ TEST(SchemaInitial, RefusesUnknownSeededAndInvalidKeys) {
          "initial.stiffness_rotational");
 }
 
+TEST(ParseJson, NestingIsBoundedWhileParsing) {
+  const auto nested = [](int levels) {
+    return std::string(static_cast<std::size_t>(levels), '[') +
+           std::string(static_cast<std::size_t>(levels), ']');
+  };
+  EXPECT_NO_THROW(parseJson(nested(kMaxJsonDepth), "shallow.json"));
+  try {
+    parseJson(nested(100'000), "deep.json");  // overflowed the stack after parsing, before
+    FAIL() << "a 100,000-level document was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("deep.json"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("nested deeper than 64"), std::string::npos);
+  }
+  EXPECT_THROW(parseJson("{\"a\": ", "cut.json"), nlohmann::json::parse_error);
+}
+
 }  // namespace
 }  // namespace comply::schema

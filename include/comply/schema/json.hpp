@@ -46,6 +46,15 @@ extern template Parsed<JointCommand> fromJson(const nlohmann::json&, int,
                                               const ReadOptions<JointCommand>&);
 
 /// Every field, the stamp and the `fields` list; fromJson() reads it back bit for bit.
+/// Deepest nesting of objects and arrays accepted in JSON input: commands and samples are a few
+/// levels deep; a 100,000-level document used to overflow the stack of the recursive code after
+/// the (iterative) parser.
+inline constexpr int kMaxJsonDepth = 64;
+
+/// Parses `text`, refusing nesting deeper than kMaxJsonDepth while parsing (InputError kSyntax
+/// naming `source`); other syntax errors are nlohmann::json::parse_error as from json::parse.
+nlohmann::json parseJson(const std::string& text, const std::string& source);
+
 nlohmann::json toJson(const CartesianCommand& command);
 nlohmann::json toJson(const JointCommand& command);
 

@@ -1,0 +1,47 @@
+#!/bin/bash
+# Input files that are not what they claim end in exit 2 with a message naming them, never in a
+# crash or an exhausted memory: JSON nested 100,000 levels deep (a stack overflow before), a
+# device as an inputs file or as a scene's tool (read until bad_alloc before), a file larger than
+# an input may be. Usage: cli_bad_files_test.sh COMPLY SOURCE_DIR WORK_DIR
+set -u
+comply=$1 source=$2 work=$3
+rm -rf "$work" && mkdir -p "$work"
+failures=0
+expect_refused() {  # expect_refused NEEDLE COMMAND...
+  local needle=$1
+  shift
+  local output status
+  output=$(timeout 60 "$@" 2>&1 >/dev/null)
+  status=$?
+  if [ "$status" -ne 2 ] || ! grep -qF -- "$needle" <<<"$output"; then
+    echo "FAIL: $* -> exit $status: ${output:0:300}"
+    failures=$((failures + 1))
+  fi
+}
+python3 - "$work" <<'PY'
+import sys
+work = sys.argv[1]
+deep = '{"a":' * 100000 + '1' + '}' * 100000
+with open(f'{work}/deep_command.json', 'w') as f:
+    f.write('[{"q": [0, -0.78, 0, -2.36, 0, 1.57, 0.78], "dq": [0, 0, 0, 0, 0, 0, 0], '
+            f'"command": {deep}}}]')
+with open(f'{work}/deep.json', 'w') as f:
+    f.write('[' * 100000 + ']' * 100000)
+with open(f'{work}/huge.json', 'w') as f:
+    f.write('[' + ' ' * (17 << 20) + ']')
+with open(f'{work}/device_tool.yaml', 'w') as f:
+    f.write('task:\n  duration_s: 0.1\n  scene:\n    tool: /dev/zero\n'
+            '  waypoints:\n    - time_s: 0.05\n      position_offset: [0.0, 0.0, 0.0]\n')
+PY
+samples=$source/examples/validate/fr3_cartesian_samples.json
+validate=("$comply" validate --robot fr3 --plugin cartesian_impedance)
+expect_refused "nested deeper than 64 levels" "${validate[@]}" --inputs "$work/deep_command.json"
+expect_refused "nested deeper than 64 levels" "${validate[@]}" --inputs "$samples" --expected "$work/deep.json"
+expect_refused "'/dev/zero' is not a regular file" "${validate[@]}" --inputs /dev/zero
+expect_refused "more than an input file may be" "${validate[@]}" --inputs "$work/huge.json"
+expect_refused "'/dev/zero' is not a regular file" "$comply" sim --robot fr3 \
+  --task "$work/device_tool.yaml" --no-plot --out "$work/sim"
+if [ "$failures" -ne 0 ]; then
+  exit 1
+fi
+echo "ok: every malformed input file exits 2 naming it"
