@@ -3,6 +3,7 @@
 
 #include <urdf_parser/urdf_parser.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -65,6 +66,26 @@ std::string_view jointTypeName(int type) {
   }
 }
 
+// Heaviest link a URDF may give [kg]: an arm's links weigh kilograms; 1e12 is a typo.
+constexpr double kMaxLinkMassKg = 1000.0;
+
+// A rotational inertia is physical when its principal moments are non-negative and each is at
+// most the sum of the other two (the triangle inequality of a real mass distribution), both up to
+// rounding in the URDF's printed digits.
+void requirePhysicalInertia(const Eigen::Matrix3d& inertia, const std::string& link_name) {
+  const Eigen::Vector3d moments =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia, Eigen::EigenvaluesOnly)
+          .eigenvalues();  // ascending
+  const double tolerance = 1e-6 * std::max(moments.cwiseAbs().maxCoeff(), 1e-12);
+  if (moments[0] < -tolerance || moments[2] > moments[0] + moments[1] + tolerance) {
+    throw ModelError(ModelErrc::kInvalidInertia,
+                     "link '" + link_name + "' has a non-physical inertia (principal moments " +
+                         std::to_string(moments[0]) + ", " + std::to_string(moments[1]) + ", " +
+                         std::to_string(moments[2]) +
+                         " kg m^2: each must be >= 0 and at most the sum of the other two)");
+  }
+}
+
 /// Mass properties of a set of rigidly connected links, accumulated in one frame.
 struct MassAccumulator {
   double mass = 0.0;
@@ -80,10 +101,17 @@ struct MassAccumulator {
       throw ModelError(ModelErrc::kInvalidInertia,
                        "link '" + link_name + "' has a negative or non-finite mass or inertia");
     }
+    if (inertial.mass > kMaxLinkMassKg) {
+      throw ModelError(ModelErrc::kInvalidInertia,
+                       "link '" + link_name + "' has a mass of " + std::to_string(inertial.mass) +
+                           " kg, more than any arm's link (" +
+                           std::to_string(static_cast<int>(kMaxLinkMassKg)) + " kg)");
+    }
     const Eigen::Isometry3d inertial_in_frame = link_in_frame * toIsometry(inertial.origin);
     Eigen::Matrix3d inertia_local;
     inertia_local << inertial.ixx, inertial.ixy, inertial.ixz, inertial.ixy, inertial.iyy,
         inertial.iyz, inertial.ixz, inertial.iyz, inertial.izz;
+    requirePhysicalInertia(inertia_local, link_name);
     const Eigen::Matrix3d& rotation = inertial_in_frame.linear();
     const Eigen::Vector3d com = inertial_in_frame.translation();
     // Parallel-axis theorem: inertia about the frame origin.
@@ -127,6 +155,23 @@ ChainEnds findChainEnds(const urdf::ModelInterface& urdf, const ModelOptions& op
     throw ModelError(ModelErrc::kInvalidOption, "TCP offset and gravity must be finite");
   }
   return {base_name, tip_link};
+}
+
+// urdfdom accepts a joint that closes a loop (a link that is its own ancestor) when the root is
+// elsewhere; every walk up or down the tree would then run forever. A link is in a loop when
+// walking up from it takes more steps than there are links.
+void requireTree(const urdf::ModelInterface& urdf) {
+  const std::size_t links = urdf.links_.size();
+  for (const auto& [name, link] : urdf.links_) {
+    std::size_t steps = 0;
+    for (auto up = link->getParent(); up; up = up->getParent()) {
+      if (++steps > links) {
+        throw ModelError(
+            ModelErrc::kInvalidUrdf,
+            "the joints form a kinematic loop through link '" + name + "'; a URDF must be a tree");
+      }
+    }
+  }
 }
 
 // A URDF only links children to their parents, so the chain is found by walking up from the tip.
@@ -246,6 +291,12 @@ void readLimits(const urdf::Joint& joint, JointLimits& limits) {
     if (joint.type != urdf::Joint::CONTINUOUS) {
       limits.lower = joint.limits->lower;
       limits.upper = joint.limits->upper;
+      if (!(limits.lower <= limits.upper)) {
+        throw ModelError(ModelErrc::kInvalidUrdf, "joint '" + joint.name + "' has a lower limit (" +
+                                                      std::to_string(limits.lower) +
+                                                      ") above its upper limit (" +
+                                                      std::to_string(limits.upper) + ")");
+      }
     }
     limits.velocity = joint.limits->velocity;
     limits.effort = joint.limits->effort;
@@ -313,6 +364,12 @@ void ModelBuilder::foldInertias(const urdf::ModelInterface& urdf,
     MassAccumulator accumulator;
     const auto child = urdf.getLink(joint->child_link_name);
     foldSubtree(urdf, *child, Eigen::Isometry3d::Identity(), stop_joint, accumulator);
+    if (!(accumulator.mass > 0.0)) {
+      throw ModelError(ModelErrc::kInvalidInertia,
+                       "joint '" + joint->name + "' moves no mass: link '" +
+                           joint->child_link_name +
+                           "' and what is rigidly attached to it have no <inertial> with a mass");
+    }
     ChainBody& body = model.bodies_[i];
     body.mass_kg = accumulator.mass;
     if (accumulator.mass > 0.0) {
@@ -347,6 +404,7 @@ void ModelBuilder::foldSubtree(const urdf::ModelInterface& urdf, const urdf::Lin
 // The passes run in this order because callers rely on which error a faulty set-up reports first:
 // frames, then joint names, then the chain, and only then the geometry.
 Model ModelBuilder::build(const urdf::ModelInterface& urdf, const ModelOptions& options) {
+  requireTree(urdf);
   const ChainEnds ends = findChainEnds(urdf, options);
   const auto path = baseToTipJoints(ends, options.tip_frame);
   const auto user_index = indexRequestedJoints(urdf, options.joint_names);

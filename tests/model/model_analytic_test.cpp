@@ -69,8 +69,8 @@ TEST(PlanarTwoLinkTest, MatchesTextbookDynamics) {
     EXPECT_NEAR((data.tip_position - tip).norm(), 0.0, kTol);
 
     // Potential V = g (m1 z1 + m2 z2) with z1 = -r1 s1, z2 = -l1 s1 - r2 s12.
-    EXPECT_NEAR(data.gravity[0], -kG * (arm.m1 * arm.r1 * c1 + arm.m2 * (arm.l1 * c1 + arm.r2 * c12)),
-                kTol);
+    EXPECT_NEAR(data.gravity[0],
+                -kG * (arm.m1 * arm.r1 * c1 + arm.m2 * (arm.l1 * c1 + arm.r2 * c12)), kTol);
     EXPECT_NEAR(data.gravity[1], -kG * arm.m2 * arm.r2 * c12, kTol);
 
     const double m11 = arm.i1 + arm.i2 + arm.m1 * arm.r1 * arm.r1 +
@@ -93,9 +93,9 @@ TEST(PlanarTwoLinkTest, MatchesTextbookDynamics) {
     EXPECT_NEAR(data.jacobian(2, 1), -arm.l2 * c12, kTol);
     EXPECT_NEAR(data.jacobian(4, 0), 1.0, kTol);
     EXPECT_NEAR(data.jacobian(4, 1), 1.0, kTol);
-    EXPECT_NEAR(data.jacobian.row(1).norm() + data.jacobian.row(3).norm() +
-                    data.jacobian.row(5).norm(),
-                0.0, kTol);
+    EXPECT_NEAR(
+        data.jacobian.row(1).norm() + data.jacobian.row(3).norm() + data.jacobian.row(5).norm(),
+        0.0, kTol);
   }
 }
 

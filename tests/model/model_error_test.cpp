@@ -1,5 +1,7 @@
 // Every way a model can be asked for wrongly gives a named error, never a crash.
 
+#include "comply/model/model_error.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,7 +9,6 @@
 #include <fstream>
 #include <limits>
 
-#include "comply/model/model_error.hpp"
 #include "comply/model/update.hpp"
 #include "test_urdfs.hpp"
 
@@ -34,16 +35,15 @@ void expectModelError(Load load, ModelErrc code, const std::vector<std::string>&
     const std::string message = error.what();
     EXPECT_NE(message.find(std::string(toString(code))), std::string::npos) << message;
     for (const auto& fragment : fragments) {
-      EXPECT_NE(message.find(fragment), std::string::npos) << "'" << fragment << "' not in: "
-                                                           << message;
+      EXPECT_NE(message.find(fragment), std::string::npos)
+          << "'" << fragment << "' not in: " << message;
     }
   }
 }
 
 TEST(ModelErrorTest, MissingFile) {
-  expectModelError(
-      [] { Model::fromUrdfFile("/nonexistent/robot.urdf", options({"a"}, "tip")); },
-      ModelErrc::kFileNotFound, {"/nonexistent/robot.urdf"});
+  expectModelError([] { Model::fromUrdfFile("/nonexistent/robot.urdf", options({"a"}, "tip")); },
+                   ModelErrc::kFileNotFound, {"/nonexistent/robot.urdf"});
 }
 
 TEST(ModelErrorTest, InvalidXml) {
@@ -51,9 +51,56 @@ TEST(ModelErrorTest, InvalidXml) {
                    ModelErrc::kInvalidUrdf, {});
   const auto path = std::filesystem::temp_directory_path() / "comply_invalid.urdf";
   std::ofstream(path) << "not xml at all";
-  expectModelError([&] { Model::fromUrdfFile(path, options({"a"}, "t")); },
-                   ModelErrc::kInvalidUrdf, {path.string()});
+  expectModelError([&] { Model::fromUrdfFile(path, options({"a"}, "t")); }, ModelErrc::kInvalidUrdf,
+                   {path.string()});
   std::filesystem::remove(path);
+}
+
+TEST(ModelErrorTest, KinematicLoopIsRefusedNotWalkedForever) {
+  // urdfdom accepts this (the root is `base`); walking up from b used to never end.
+  const std::string loop = R"(<robot name="loop"><link name="base"/><link name="a"/>
+    <link name="b"/>
+    <joint name="j1" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>
+      <limit lower="-1" upper="1" velocity="1" effort="10"/></joint>
+    <joint name="j2" type="revolute"><parent link="b"/><child link="a"/><axis xyz="0 0 1"/>
+      <limit lower="-1" upper="1" velocity="1" effort="10"/></joint></robot>)";
+  expectModelError([&] { Model::fromUrdfString(loop, options({"j1"}, "b")); },
+                   ModelErrc::kInvalidUrdf, {"kinematic loop", "a URDF must be a tree"});
+}
+
+// One revolute joint moving link `arm`; `inertial` and `limit` are spliced in.
+std::string oneJoint(const std::string& inertial, const std::string& limit) {
+  return R"(<robot name="one"><link name="base"/><link name="arm">)" + inertial +
+         R"(</link><joint name="j" type="revolute"><parent link="base"/><child link="arm"/>
+         <axis xyz="0 0 1"/>)" +
+         limit + "</joint></robot>";
+}
+
+std::string inertial(double mass, double ixx, double iyy, double izz) {
+  return "<inertial><mass value=\"" + std::to_string(mass) + "\"/><inertia ixx=\"" +
+         std::to_string(ixx) + "\" ixy=\"0\" ixz=\"0\" iyy=\"" + std::to_string(iyy) +
+         "\" iyz=\"0\" izz=\"" + std::to_string(izz) + "\"/></inertial>";
+}
+
+TEST(ModelErrorTest, NonPhysicalRobotsAreRefused) {
+  const std::string limit = R"(<limit lower="-1" upper="1" velocity="1" effort="10"/>)";
+  const auto load = [](const std::string& urdf) {
+    return [urdf] { Model::fromUrdfString(urdf, options({"j"}, "arm")); };
+  };
+  EXPECT_NO_THROW(load(oneJoint(inertial(1.0, 0.01, 0.01, 0.01), limit))());
+  expectModelError(load(oneJoint("", limit)), ModelErrc::kInvalidInertia,
+                   {"joint 'j' moves no mass", "'arm'"});
+  expectModelError(load(oneJoint(inertial(0.0, 0.0, 0.0, 0.0), limit)), ModelErrc::kInvalidInertia,
+                   {"moves no mass"});
+  expectModelError(load(oneJoint(inertial(1e12, 1.0, 1.0, 1.0), limit)), ModelErrc::kInvalidInertia,
+                   {"link 'arm'", "more than any arm's link"});
+  expectModelError(load(oneJoint(inertial(1.0, 0.01, 0.01, 0.03), limit)),
+                   ModelErrc::kInvalidInertia, {"link 'arm'", "non-physical inertia"});
+  expectModelError(load(oneJoint(inertial(1.0, -0.01, 0.01, 0.01), limit)),
+                   ModelErrc::kInvalidInertia, {"non-physical inertia"});
+  expectModelError(load(oneJoint(inertial(1.0, 0.01, 0.01, 0.01),
+                                 R"(<limit lower="1" upper="-1" velocity="1" effort="10"/>)")),
+                   ModelErrc::kInvalidUrdf, {"joint 'j'", "lower limit", "above its upper limit"});
 }
 
 TEST(ModelErrorTest, UnknownJointsAreAllListed) {

@@ -90,12 +90,11 @@ TEST_P(FiniteDifferenceTest, DerivativesAgree) {
       const Eigen::AngleAxisd delta(plus.rotation * minus.rotation.transpose());
       column.tail<3>() = delta.axis() * delta.angle() / (2.0 * kStep);
       worst_jacobian = std::max(worst_jacobian, (column - jacobian.col(i)).cwiseAbs().maxCoeff());
-      worst_gravity = std::max(worst_gravity, std::abs((plus.potential_energy -
-                                                        minus.potential_energy) /
-                                                           (2.0 * kStep) -
-                                                       gravity[i]));
-      const double kinetic_gradient = 0.5 * dq.dot((plus.mass_matrix - minus.mass_matrix) * dq) /
-                                      (2.0 * kStep);
+      worst_gravity = std::max(
+          worst_gravity,
+          std::abs((plus.potential_energy - minus.potential_energy) / (2.0 * kStep) - gravity[i]));
+      const double kinetic_gradient =
+          0.5 * dq.dot((plus.mass_matrix - minus.mass_matrix) * dq) / (2.0 * kStep);
       expected_coriolis[i] -= kinetic_gradient;
     }
     worst_coriolis = std::max(worst_coriolis, (expected_coriolis - coriolis).cwiseAbs().maxCoeff());

@@ -29,8 +29,8 @@ struct WorstError {
   void add(const Data& data, const testing::ReferenceResult& reference, int dof) {
     const auto max_abs = [](const auto& difference) { return difference.cwiseAbs().maxCoeff(); };
     position = std::max(position, max_abs(data.tip_position - reference.position));
-    rotation = std::max(rotation, max_abs(data.tip_rotation -
-                                          reference.orientation.toRotationMatrix()));
+    rotation =
+        std::max(rotation, max_abs(data.tip_rotation - reference.orientation.toRotationMatrix()));
     jacobian = std::max(jacobian, max_abs(data.jacobian - reference.jacobian));
     gravity = std::max(gravity, max_abs(data.gravity - reference.gravity));
     coriolis = std::max(coriolis, max_abs(data.coriolis - reference.coriolis));
@@ -40,8 +40,8 @@ struct WorstError {
 
   void print(const std::string& label) const {
     std::cout << label << " max abs error over " << kSamples << " samples: position " << position
-              << " m, rotation " << rotation << ", Jacobian " << jacobian << ", gravity "
-              << gravity << " N m, Coriolis " << coriolis << " N m, mass matrix " << mass_matrix
+              << " m, rotation " << rotation << ", Jacobian " << jacobian << ", gravity " << gravity
+              << " N m, Coriolis " << coriolis << " N m, mass matrix " << mass_matrix
               << " kg m^2\n";
   }
 };

@@ -1,5 +1,7 @@
 // Robot folders resolve by name or path, and a malformed robot.yaml gives a named error.
 
+#include "comply/model/robot_description.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -7,7 +9,6 @@
 #include <fstream>
 
 #include "comply/model/model_error.hpp"
-#include "comply/model/robot_description.hpp"
 #include "comply/model/update.hpp"
 #include "robot_sampling.hpp"
 
@@ -18,7 +19,8 @@ namespace fs = std::filesystem;
 
 class TempRobotFolder {
  public:
-  TempRobotFolder() : folder_(fs::temp_directory_path() / ("comply_robot_" + std::to_string(::getpid()))) {
+  TempRobotFolder()
+      : folder_(fs::temp_directory_path() / ("comply_robot_" + std::to_string(::getpid()))) {
     fs::create_directories(folder_ / "twolink");
   }
   ~TempRobotFolder() { fs::remove_all(folder_); }
@@ -118,10 +120,11 @@ TEST(RobotDescriptionTest, MalformedFilesAreNamed) {
   folder.write("twolink.urdf", kTwoLinkUrdf);
   const std::vector<std::pair<std::string, std::string>> cases{
       {"joints: [j1, j2]\n", "'name'"},
-      {std::string(kTwoLinkYaml) + "friction: {model: sigmoid, phi1: [1], phi2: [1, 2], phi3: [0, 0]}\n",
+      {std::string(kTwoLinkYaml) +
+           "friction: {model: sigmoid, phi1: [1], phi2: [1, 2], phi3: [0, 0]}\n",
        "phi1"},
-      {std::string(kTwoLinkYaml).replace(std::string(kTwoLinkYaml).find("home: [0.1, 0.2]"), 16,
-                                         "home: [0.1]"),
+      {std::string(kTwoLinkYaml)
+           .replace(std::string(kTwoLinkYaml).find("home: [0.1, 0.2]"), 16, "home: [0.1]"),
        "home"},
       {"name: [unbalanced\n", "YAML"},
   };
