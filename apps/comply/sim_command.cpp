@@ -56,7 +56,7 @@ int simCommand(const SimOptions& options, std::ostream& out, std::ostream& err) 
     }
   }
   printSummary(result.summary, out);
-  return result.summary.faults > 0 ? 1 : 0;
+  return simExitCode(result.summary);
 }
 
 }  // namespace comply::app

@@ -135,6 +135,12 @@ void writeLogCsv(const SimLog& log, const std::filesystem::path& file) {
   }
 }
 
+int simExitCode(const SimSummary& summary) {
+  const bool failed = summary.faults > 0 || summary.last_command_rejected ||
+                      summary.longest_saturation_s > kMaxSaturationS;
+  return failed ? 1 : 0;
+}
+
 void printSummary(const SimSummary& summary, std::ostream& out) {
   out << std::fixed;
   out << "robot " << summary.robot << " (" << summary.dof << " DOF), plugin " << summary.plugin
@@ -167,6 +173,19 @@ void printSummary(const SimSummary& summary, std::ostream& out) {
       << "  cycle cost            p50 " << std::setprecision(2) << summary.cycle_cost.p50_us
       << " us, p99 " << summary.cycle_cost.p99_us << " us, mean " << summary.cycle_cost.mean_us
       << " us (controller only, plant excluded; unpinned)\n";
+  // The verdicts last, where they are read: each one alone fails the run (exit 1).
+  if (!summary.fault_reason.empty()) {
+    out << "  FAULT: " << summary.fault_reason << "\n";
+  }
+  if (summary.last_command_rejected) {
+    out << "  TARGET NOT REACHED: the task's last command was refused (" << summary.last_rejection
+        << "); the errors above are against the last accepted reference\n";
+  }
+  if (summary.longest_saturation_s > kMaxSaturationS) {
+    out << "  SATURATED: joint " << summary.saturated_joint << " at its effort limit for "
+        << std::setprecision(2) << summary.longest_saturation_s << " s without a break (more than "
+        << kMaxSaturationS << " s: the law lost control of it)\n";
+  }
   for (const std::string& message : summary.messages) {
     out << "  note: " << message << "\n";
   }

@@ -91,6 +91,7 @@ class SimRecorder final : public hardware::LoopObserver {
     } else {
       log.joint_reference.push_back(in_force.position);
     }
+    trackSaturation(torque, record.period_s, summary);
     for (Eigen::Index j = 0; j < torque.size(); ++j) {
       if (std::abs(torque[j]) > summary.max_torque_nm) {
         summary.max_torque_nm = std::abs(torque[j]);
@@ -108,9 +109,28 @@ class SimRecorder final : public hardware::LoopObserver {
   }
 
  private:
+  // A joint whose torque sits at its effort limit (within rounding) this cycle.
+  void trackSaturation(const Eigen::Map<const Eigen::VectorXd>& torque, double period_s,
+                       SimSummary& summary) {
+    const JointVector& limit = wrapper_.controller().effortLimit();
+    int saturated = -1;
+    for (Eigen::Index j = 0; j < torque.size() && j < limit.size(); ++j) {
+      if (std::abs(torque[j]) >= limit[j] * (1.0 - 1e-9)) {
+        saturated = static_cast<int>(j);
+      }
+    }
+    saturation_s_ = saturated >= 0 ? saturation_s_ + period_s : 0.0;
+    if (saturation_s_ > summary.longest_saturation_s) {
+      summary.longest_saturation_s = saturation_s_;
+      summary.saturated_joint = saturated;
+    }
+  }
+
   void submit(Command command, double t) {
     const pipeline::Verdict verdict = wrapper_.submit(command);
     ++result_.summary.commands_sent;
+    result_.summary.last_command_rejected = !verdict.accepted;
+    result_.summary.last_rejection = verdict.message;
     if (!verdict.accepted) {
       std::ostringstream message;
       message << "t = " << std::fixed << std::setprecision(3) << t
@@ -129,6 +149,7 @@ class SimRecorder final : public hardware::LoopObserver {
   hardware::ControlLoop* loop_ = nullptr;
   std::uint64_t cycles_ = 0;
   std::uint64_t snapshot_every_ = 0;
+  double saturation_s_ = 0.0;
   WallClock::time_point wall_start_ = WallClock::now();
 };
 
@@ -191,7 +212,7 @@ SimResult runWith(const SimRunOptions& options,
   summary.effort_limit_hits = diagnostics.effort_limit_hits;
   summary.faults = diagnostics.faults;
   if (diagnostics.faults > 0) {
-    addMessage(summary, "controller FAULT: " + diagnostics.last_fault, options.progress);
+    summary.fault_reason = diagnostics.last_fault;
   }
   summarizeLog(result.log, task_source.motionEndTime(), summary);
   if (!result.log.cycle_cost_us.empty()) {

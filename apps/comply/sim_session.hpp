@@ -84,9 +84,25 @@ struct SimSummary {
   /// step, logging and rendering excluded. Not a benchmark (unpinned, other work between cycles
   /// evicts caches); `comply bench` is.
   TimingSummary cycle_cost;
+  /// The task's last command was refused: its target never came into force (the final errors
+  /// above are against the last accepted reference). The run then failed.
+  bool last_command_rejected = false;
+  std::string last_rejection;
+  /// Longest stretch with some joint's torque at its effort limit [s], and the joint. A law that
+  /// pins a joint at its limit for long has lost control of it: the run then failed.
+  double longest_saturation_s = 0.0;
+  int saturated_joint = 0;
+  std::string fault_reason;           ///< why the controller entered FAULT ("" if it did not)
   std::vector<std::string> messages;  ///< rejection reasons, warnings (first few)
   std::vector<std::filesystem::path> files;
 };
+
+/// Sustained saturation that fails a run [s] (libfranka's reflexes and polymetis's torque checks
+/// stop a controller on the same sign of lost control).
+inline constexpr double kMaxSaturationS = 0.5;
+
+/// Exit code of a finished run: 1 on a fault, a refused final target or sustained saturation.
+int simExitCode(const SimSummary& summary);
 
 struct SimResult {
   SimSummary summary;

@@ -1,4 +1,3 @@
-#include "plot_script.hpp"
 #include "surface_following/surface_following_experiment.hpp"
 
 #include <fstream>
@@ -8,6 +7,7 @@
 
 #include "comply/task/path.hpp"
 #include "controller_setup.hpp"
+#include "plot_script.hpp"
 #include "sim_session.hpp"
 #include "source_dir.hpp"
 #include "surface_following/fixture.hpp"
@@ -59,7 +59,7 @@ SurfaceFollowingRow runCondition(const SurfaceCondition& condition,
   const app::SimResult result = app::runSimulation(run);
   if (result.summary.faults > 0) {
     throw std::runtime_error("surface-following " + condition.name +
-                             ": controller FAULT: " + result.summary.messages.back());
+                             ": controller FAULT: " + result.summary.fault_reason);
   }
   return surface_following::measureTracking(condition.name, result.log, stream, tip_path,
                                             folder / "trace.csv");
@@ -88,7 +88,7 @@ std::vector<SurfaceFollowingRow> runSurfaceFollowing(const SurfaceFollowingOptio
   writeResults(surfaceFollowingTable(rows), options.out_dir);
   if (options.pictures) {
     app::runPlotScript("plot_surface_following.py", {options.out_dir.string()},
-                  options.progress != nullptr ? *options.progress : std::cerr);
+                       options.progress != nullptr ? *options.progress : std::cerr);
   }
   return rows;
 }
