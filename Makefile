@@ -4,10 +4,13 @@ BUILD_DIR ?= build
 BUILD_TYPE ?= Release
 JOBS ?= $(shell nproc)
 CTEST_ARGS ?= -LE long
+# Tests test-asan leaves out, with the reason in the README's sanitizer paragraph.
+ASAN_EXCLUDE ?= ^$$
 # Benchmarks run pinned to the last CPU, away from most interrupt and housekeeping work.
 BENCH_CPU ?= $(shell echo $$(($$(nproc) - 1)))
 
-.PHONY: deps configure build install test test-all test-ros2 bench demo format tidy clean
+.PHONY: deps configure build install test test-all test-ros2 test-asan test-tsan bench demo format \
+	tidy clean
 
 deps:
 	@scripts/install-deps.sh
@@ -33,6 +36,25 @@ test: build
 
 test-all: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+# The test suite under AddressSanitizer + UndefinedBehaviorSanitizer (leak check on), and the
+# threaded parts (pipeline, transport, the live host) under ThreadSanitizer, each in its own folder.
+SANITIZER_CONFIGURE = -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCOMPLY_BUILD_BENCH=OFF \
+	-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache
+test-asan: deps
+	@cmake -S . -B build-asan $(SANITIZER_CONFIGURE) -DCOMPLY_SANITIZE="address;undefined" >/dev/null
+	@cmake --build build-asan -j $(JOBS)
+	@cd build-asan && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizers/lsan.supp \
+	  ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS) -E "$(ASAN_EXCLUDE)"
+
+TSAN_TESTS ?= pipeline|wrapper|Diagnostics|transport|Live|live|triple_buffer|spsc
+test-tsan: deps
+	@cmake -S . -B build-tsan $(SANITIZER_CONFIGURE) -DCOMPLY_SANITIZE=thread >/dev/null
+	@cmake --build build-tsan -j $(JOBS)
+	@cd build-tsan && TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
+	  ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS) -R "$(TSAN_TESTS)"
 
 # The ROS 2 packages (ros2/) built with colcon and tested end to end; needs ROS 2 Humble sourced.
 test-ros2: build

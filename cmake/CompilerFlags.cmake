@@ -18,3 +18,14 @@ endif()
 if(COMPLY_NATIVE)
   add_compile_options(-march=native)
 endif()
+
+# COMPLY_SANITIZE: sanitizers for the whole build (make test-asan: "address;undefined", make
+# test-tsan: "thread"), each in its own build folder. Debug information for the reports, no
+# optimisation that would hide a finding behind inlining.
+set(COMPLY_SANITIZE "" CACHE STRING "sanitizers: address;undefined, or thread (empty: none)")
+if(COMPLY_SANITIZE)
+  list(JOIN COMPLY_SANITIZE "," sanitizers)
+  add_compile_options(-fsanitize=${sanitizers} -fno-omit-frame-pointer -g
+                      -fno-sanitize-recover=undefined)
+  add_link_options(-fsanitize=${sanitizers})
+endif()

@@ -78,11 +78,7 @@ std::vector<Eigen::Vector3d> averagedContactForce(const SimLog& log, std::size_t
   return averaged;
 }
 
-void writeLogCsv(const SimLog& log, const std::filesystem::path& file) {
-  std::ofstream out(file);
-  if (!out) {
-    throw std::runtime_error("cannot write '" + file.string() + "'");
-  }
+void writeLogHeader(const SimLog& log, std::ostream& out) {
   out << "time_s";
   for (const char* prefix : {"q", "dq", "tau"}) {
     for (int j = 0; j < log.dof; ++j) {
@@ -100,39 +96,37 @@ void writeLogCsv(const SimLog& log, const std::filesystem::path& file) {
     out << ",joint_error_rad";
   }
   out << ",contact_fx,contact_fy,contact_fz,contact_tx,contact_ty,contact_tz\n";
+}
+
+void writeLogRow(const SimLog& log, std::size_t row, std::ostream& out) {
   out << std::setprecision(9);
   const auto quaternion = [&](const Eigen::Quaterniond& q) {
     out << ',' << q.x() << ',' << q.y() << ',' << q.z() << ',' << q.w();
   };
-  for (std::size_t row = 0; row < log.size(); ++row) {
-    out << log.time_s[row];
-    for (const auto* column : {&log.position, &log.velocity, &log.torque}) {
-      for (int j = 0; j < log.dof; ++j) {
-        out << ',' << (*column)[row][j];
-      }
+  out << log.time_s[row];
+  for (const auto* column : {&log.position, &log.velocity, &log.torque}) {
+    for (int j = 0; j < log.dof; ++j) {
+      out << ',' << (*column)[row][j];
     }
-    const Eigen::Vector3d& p = log.tcp_position[row];
-    out << ',' << p.x() << ',' << p.y() << ',' << p.z();
-    quaternion(log.tcp_orientation[row]);
-    if (log.cartesian) {
-      const Eigen::Vector3d& r = log.reference_position[row];
-      out << ',' << r.x() << ',' << r.y() << ',' << r.z();
-      quaternion(log.reference_orientation[row]);
-      out << ',' << 1e3 * log.positionError(row) << ',' << log.orientationError(row) * 180.0 / M_PI;
-    } else {
-      for (int j = 0; j < log.dof; ++j) {
-        out << ',' << log.joint_reference[row][j];
-      }
-      out << ',' << log.jointError(row);
-    }
-    for (int k = 0; k < 6; ++k) {
-      out << ',' << log.contact_wrench[row][k];
-    }
-    out << '\n';
   }
-  if (!out) {
-    throw std::runtime_error("error while writing '" + file.string() + "'");
+  const Eigen::Vector3d& p = log.tcp_position[row];
+  out << ',' << p.x() << ',' << p.y() << ',' << p.z();
+  quaternion(log.tcp_orientation[row]);
+  if (log.cartesian) {
+    const Eigen::Vector3d& r = log.reference_position[row];
+    out << ',' << r.x() << ',' << r.y() << ',' << r.z();
+    quaternion(log.reference_orientation[row]);
+    out << ',' << 1e3 * log.positionError(row) << ',' << log.orientationError(row) * 180.0 / M_PI;
+  } else {
+    for (int j = 0; j < log.dof; ++j) {
+      out << ',' << log.joint_reference[row][j];
+    }
+    out << ',' << log.jointError(row);
   }
+  for (int k = 0; k < 6; ++k) {
+    out << ',' << log.contact_wrench[row][k];
+  }
+  out << '\n';
 }
 
 int simExitCode(const SimSummary& summary) {
@@ -170,6 +164,8 @@ void printSummary(const SimSummary& summary, std::ostream& out) {
       << "  commands              " << summary.commands_sent << " sent, " << summary.rejections
       << " rejected\n"
       << "  faults                " << summary.faults << "\n"
+      << "  overruns              " << summary.overruns
+      << " cycles (controller time above the period)\n"
       << "  cycle cost            p50 " << std::setprecision(2) << summary.cycle_cost.p50_us
       << " us, p99 " << summary.cycle_cost.p99_us << " us, mean " << summary.cycle_cost.mean_us
       << " us (controller only, plant excluded; unpinned)\n";

@@ -12,6 +12,7 @@
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/sim/simulated_clock.hpp"
 #include "progress_bar.hpp"
+#include "sim_crash_guard.hpp"
 #include "sim_pictures.hpp"
 #include "task_source.hpp"
 
@@ -54,8 +55,12 @@ class SimRecorder final : public hardware::LoopObserver {
     cycles_ = cycles;
     snapshot_every_ = snapshot_every;
   }
+  void setGuard(CrashGuard* guard) { guard_ = guard; }
 
   void beforeCycle(std::uint64_t index, double t) override {
+    if (guard_ != nullptr) {
+      guard_->cycle(index);
+    }
     if (snapshot_every_ != 0 && index > 0 && index % snapshot_every_ == 0 && index < cycles_) {
       std::ostringstream name;
       name << "snapshot_" << std::setw(6) << std::setfill('0') << std::llround(t * 1000.0) << "ms";
@@ -92,6 +97,15 @@ class SimRecorder final : public hardware::LoopObserver {
       log.joint_reference.push_back(in_force.position);
     }
     trackSaturation(torque, record.period_s, summary);
+    summary.overruns += record.controller_s > record.period_s ? 1 : 0;
+    if (guard_ != nullptr) {
+      std::ostringstream row;
+      writeLogRow(log, log.size() - 1, row);
+      guard_->append(row.str());
+      if (record.index % 1000 == 999) {  // every simulated second at 1 kHz
+        guard_->flush();
+      }
+    }
     for (Eigen::Index j = 0; j < torque.size(); ++j) {
       if (std::abs(torque[j]) > summary.max_torque_nm) {
         summary.max_torque_nm = std::abs(torque[j]);
@@ -150,8 +164,13 @@ class SimRecorder final : public hardware::LoopObserver {
   std::uint64_t cycles_ = 0;
   std::uint64_t snapshot_every_ = 0;
   double saturation_s_ = 0.0;
+  CrashGuard* guard_ = nullptr;
   WallClock::time_point wall_start_ = WallClock::now();
 };
+
+// Wall time a single cycle may take before the run is declared hung (a plugin in an endless
+// loop): far above any real cycle, rendering included.
+constexpr double kStepTimeoutS = 10.0;
 
 std::uint64_t cyclesIn(double seconds, double period_s) {
   return static_cast<std::uint64_t>(std::llround(seconds / period_s));
@@ -199,7 +218,19 @@ SimResult runWith(const SimRunOptions& options,
           ? std::max<std::uint64_t>(1, cyclesIn(options.task.snapshot_every_ms * 1e-3, period_s))
           : 0);
   loop.setObserver(&recorder);
-  loop.run();
+  {
+    // log.csv is streamed while the loop runs; a crashing or hanging plugin is named.
+    CrashGuard guard(
+        resolved->plugin->path().string(),
+        options.out_dir.empty() ? std::filesystem::path() : options.out_dir / "log.csv",
+        kStepTimeoutS);
+    std::ostringstream header;
+    writeLogHeader(result.log, header);
+    guard.append(header.str());
+    recorder.setGuard(&guard);
+    loop.run();
+    recorder.setGuard(nullptr);
+  }
   clock.waitUntil(loop.nextCycleTime());  // the plant carries out the last torque written
   progress.finish();
   summary.wall_s = recorder.wallSeconds();
@@ -237,9 +268,7 @@ SimResult runSimulation(const SimRunOptions& options) {
   SimResult result = resolved->cartesian() ? runWith<CartesianCommand>(options, resolved)
                                            : runWith<JointCommand>(options, resolved);
   if (!options.out_dir.empty()) {
-    const std::filesystem::path csv = options.out_dir / "log.csv";
-    writeLogCsv(result.log, csv);
-    result.summary.files.push_back(csv);
+    result.summary.files.push_back(options.out_dir / "log.csv");  // streamed by the run
   }
   return result;
 }

@@ -80,6 +80,9 @@ struct SimSummary {
   std::uint64_t rate_limit_hits = 0;
   std::uint64_t effort_limit_hits = 0;
   std::uint64_t faults = 0;
+  /// Cycles whose controller time exceeded the control period: on a real arm each is a missed
+  /// deadline (the simulation just waits).
+  std::uint64_t overruns = 0;
   /// The control cycle's cost inside the simulation (CycleRecord::controller_s): the plant's
   /// step, logging and rendering excluded. Not a benchmark (unpinned, other work between cycles
   /// evicts caches); `comply bench` is.
@@ -119,7 +122,9 @@ SimResult runSimulation(const SimRunOptions& options);
 std::vector<Eigen::Vector3d> averagedContactForce(const SimLog& log, std::size_t window);
 
 /// Writes the log as CSV (one row per cycle; columns named in the header).
-void writeLogCsv(const SimLog& log, const std::filesystem::path& file);
+/// log.csv's header line and one row of it (sim_log_stream.hpp writes the file as the run goes).
+void writeLogHeader(const SimLog& log, std::ostream& out);
+void writeLogRow(const SimLog& log, std::size_t row, std::ostream& out);
 
 /// Final errors and settle time (counted from `end_of_motion_s`) from the log.
 void summarizeLog(const SimLog& log, double end_of_motion_s, SimSummary& summary);

@@ -5,6 +5,12 @@
 
 #include "allocation_counter.hpp"
 
+// Under AddressSanitizer or ThreadSanitizer the sanitizer owns malloc: replacing it as below
+// would bypass its checks (and crash), so the count comes from the sanitizer's allocation hook.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define COMPLY_COUNT_WITH_SANITIZER_HOOKS 1
+#endif
+
 #include <errno.h>
 #include <malloc.h>
 #include <stdlib.h>
@@ -12,6 +18,9 @@
 #include <cstddef>
 #include <new>
 
+#ifdef COMPLY_COUNT_WITH_SANITIZER_HOOKS
+#include <sanitizer/allocator_interface.h>
+#else
 // glibc's real allocator, exported for exactly this purpose (malloc hooks replacement).
 extern "C" {
 void* __libc_malloc(std::size_t size);                     // NOLINT(bugprone-reserved-identifier)
@@ -22,6 +31,7 @@ void* __libc_memalign(std::size_t alignment, std::size_t size);  // NOLINT
 void* __libc_valloc(std::size_t size);   // NOLINT(bugprone-reserved-identifier)
 void* __libc_pvalloc(std::size_t size);  // NOLINT(bugprone-reserved-identifier)
 }
+#endif
 
 namespace {
 
@@ -46,9 +56,21 @@ constexpr bool isPowerOfTwo(std::size_t value) {
 
 }  // namespace
 
+#ifdef COMPLY_COUNT_WITH_SANITIZER_HOOKS
+static void onSanitizerMalloc(const volatile void* /*pointer*/, std::size_t /*size*/) {
+  noteAllocation();
+}
+static void onSanitizerFree(const volatile void* /*pointer*/) {}
+#endif
+
 namespace comply::testing {
 
 void AllocationCounter::start() {
+#ifdef COMPLY_COUNT_WITH_SANITIZER_HOOKS
+  static const int installed =
+      __sanitizer_install_malloc_and_free_hooks(onSanitizerMalloc, onSanitizerFree);
+  (void)installed;
+#endif
   state.count = 0;
   state.counting = true;
 }
@@ -60,6 +82,7 @@ std::size_t AllocationCounter::stop() {
 
 }  // namespace comply::testing
 
+#ifndef COMPLY_COUNT_WITH_SANITIZER_HOOKS
 // ---------------------------------------------------------------------------------------------
 // C allocation functions. Their declarations in <stdlib.h>/<malloc.h> are noexcept in C++.
 
@@ -231,3 +254,5 @@ void operator delete(void* pointer, std::align_val_t, const std::nothrow_t&) noe
 void operator delete[](void* pointer, std::align_val_t, const std::nothrow_t&) noexcept {
   free(pointer);
 }
+
+#endif  // !COMPLY_COUNT_WITH_SANITIZER_HOOKS
