@@ -9,8 +9,8 @@ ASAN_EXCLUDE ?= ^$$
 # Benchmarks run pinned to the last CPU, away from most interrupt and housekeeping work.
 BENCH_CPU ?= $(shell echo $$(($$(nproc) - 1)))
 
-.PHONY: deps configure build install test test-all test-ros2 test-asan test-tsan bench demo format \
-	tidy clean
+.PHONY: deps configure build install test test-all test-ros2 test-asan test-tsan fuzz bench demo \
+	format tidy clean
 
 deps:
 	@scripts/install-deps.sh
@@ -55,6 +55,16 @@ test-tsan: deps
 	@cmake --build build-tsan -j $(JOBS)
 	@cd build-tsan && TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
 	  ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS) -R "$(TSAN_TESTS)"
+
+# libFuzzer on every text input reader (tests/fuzz), FUZZ_SECONDS each; needs clang.
+FUZZ_SECONDS ?= 600
+FUZZ_TARGETS ?= command_json controller_yaml task_file urdf
+fuzz: deps
+	@command -v clang++ >/dev/null || { echo "make fuzz needs clang: apt-get install clang" >&2; exit 1; }
+	@CC=clang CXX=clang++ cmake -S . -B build-fuzz $(SANITIZER_CONFIGURE) -DCOMPLY_FUZZ=ON \
+	  -DCOMPLY_BUILD_TESTS=OFF -DCOMPLY_SANITIZE="address;undefined;fuzzer-no-link" >/dev/null
+	@cmake --build build-fuzz -j $(JOBS) --target $(addprefix fuzz_,$(FUZZ_TARGETS))
+	@scripts/run-fuzz.sh build-fuzz $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
 # The ROS 2 packages (ros2/) built with colcon and tested end to end; needs ROS 2 Humble sourced.
 test-ros2: build
