@@ -60,6 +60,10 @@ void checkUnitQuaternion(const std::vector<double>& quaternion, double tolerance
   }
 }
 
+// Most waypoints a task may list: waypoints are interpolated at the command rate, so even the
+// longest run (600 s) needs far fewer; a generated file with more is a mistake.
+constexpr std::size_t kMaxWaypoints = 100'000;
+
 double positiveNumber(const json& object, const std::string& key, double fallback,
                       const std::string& where, const TaskError& error) {
   if (!object.contains(key)) {
@@ -380,6 +384,10 @@ TaskFile parseTaskFile(const std::string& yaml_text, const std::string& source,
   if (!task_json.contains("waypoints") || !task_json["waypoints"].is_array() ||
       task_json["waypoints"].empty()) {
     error.fail("task", "needs a non-empty list 'waypoints'");
+  }
+  if (task_json["waypoints"].size() > kMaxWaypoints) {
+    error.fail("task.waypoints", "has " + std::to_string(task_json["waypoints"].size()) +
+                                     " entries, more than " + std::to_string(kMaxWaypoints));
   }
   const json& waypoints = task_json["waypoints"];
   for (std::size_t i = 0; i < waypoints.size(); ++i) {

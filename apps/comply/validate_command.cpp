@@ -51,6 +51,11 @@ const json& samplesOf(const json& document, const std::string& path) {
   if (!samples.is_array()) {
     throw ValidateInputError("'" + path + "' must hold a list of samples or {\"samples\": [...]}");
   }
+  if (samples.size() > kMaxValidateSamples) {
+    throw ValidateInputError("'" + path + "' holds " + std::to_string(samples.size()) +
+                             " samples, more than " + std::to_string(kMaxValidateSamples) +
+                             " (split it)");
+  }
   return samples;
 }
 

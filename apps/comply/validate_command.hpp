@@ -5,11 +5,15 @@
 // quantities, the law's torque and, with --wrapper, the wrapper's torque for the samples fed as
 // a sequence of cycles.
 
+#include <cstddef>
 #include <iosfwd>
 #include <nlohmann/json.hpp>
 #include <string>
 
 namespace comply::app {
+
+/// Most samples one validate run takes: each becomes a few kilobytes of output in memory.
+inline constexpr std::size_t kMaxValidateSamples = 100'000;
 
 struct ValidateOptions {
   std::string robot;

@@ -173,6 +173,15 @@ void expectInputError(const ValidateOptions& validate, const std::string& needle
   }
 }
 
+TEST_F(ValidateTest, MoreSamplesThanTheLimitAreRefused) {
+  json many = json::array();
+  for (std::size_t i = 0; i <= kMaxValidateSamples; ++i) {
+    many.push_back(json::object());
+  }
+  expectInputError(options("joint_impedance", writeJson("many.json", many)),
+                   "more than 100000 (split it)");
+}
+
 TEST_F(ValidateTest, MalformedInputsNameTheField) {
   json unknown_sample_field = homeSample();
   unknown_sample_field["qd"] = {0.0};

@@ -3,9 +3,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <exception>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "comply/schema/json.hpp"
 

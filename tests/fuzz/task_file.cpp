@@ -1,10 +1,10 @@
 // Fuzz target: a task file as YAML text, for a Cartesian and a 6-joint controller.
+#include "task_file.hpp"
+
 #include <cstddef>
 #include <cstdint>
 #include <exception>
 #include <string>
-
-#include "task_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

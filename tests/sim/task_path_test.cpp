@@ -71,5 +71,23 @@ TEST(TaskPath, BadPathBlocksAreNamed) {
                std::runtime_error);  // joint controller
 }
 
+TEST(TaskFile, SizesAndDurationsAreBounded) {
+  const auto fails_with = [](const std::string& yaml, const std::string& expected) {
+    try {
+      (void)app::parseTaskFile(yaml, "test", kSourceDir, true, 7);
+      ADD_FAILURE() << "accepted: " << yaml.substr(0, 80);
+    } catch (const std::runtime_error& error) {
+      EXPECT_NE(std::string(error.what()).find(expected), std::string::npos) << error.what();
+    }
+  };
+  fails_with("task:\n  duration_s: 1.0e6\n  waypoints: [{time_s: 0.0}]\n", "at most 600 s");
+  fails_with("task:\n  duration_s: .inf\n  waypoints: [{time_s: 0.0}]\n", "not a finite number");
+  std::string many = "task:\n  waypoints:\n";
+  for (int i = 0; i <= 100'000; ++i) {
+    many += "    - {time_s: 0.0}\n";
+  }
+  fails_with(many, "more than 100000");
+}
+
 }  // namespace
 }  // namespace comply::testing
