@@ -9,8 +9,8 @@ ASAN_EXCLUDE ?= ^$$
 # Benchmarks run pinned to the last CPU, away from most interrupt and housekeeping work.
 BENCH_CPU ?= $(shell echo $$(($$(nproc) - 1)))
 
-.PHONY: deps configure build install test test-all test-ros2 test-asan test-tsan fuzz bench demo \
-	format tidy clean
+.PHONY: deps configure build install test test-all test-ros2 test-asan test-tsan fuzz soak bench \
+	demo format tidy clean
 
 deps:
 	@scripts/install-deps.sh
@@ -65,6 +65,13 @@ fuzz: deps
 	  -DCOMPLY_BUILD_TESTS=OFF -DCOMPLY_SANITIZE="address;undefined;fuzzer-no-link" >/dev/null
 	@cmake --build build-fuzz -j $(JOBS) --target $(addprefix fuzz_,$(FUZZ_TARGETS))
 	@scripts/run-fuzz.sh build-fuzz $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+
+# comply run --sim for SOAK_MINUTES under two senders of valid and invalid commands: every
+# command accounted, no FAULT, flat memory (report.md, rss.csv, rss.png in out/soak).
+SOAK_MINUTES ?= 30
+soak: build
+	@/usr/bin/python3 scripts/soak.py $(BUILD_DIR)/apps/comply/comply $(BUILD_DIR)/python \
+	  config/sim/cartesian_impedance.yaml out/soak $(SOAK_MINUTES)
 
 # The ROS 2 packages (ros2/) built with colcon and tested end to end; needs ROS 2 Humble sourced.
 test-ros2: build
