@@ -19,7 +19,10 @@
 #include <new>
 
 #ifdef COMPLY_COUNT_WITH_SANITIZER_HOOKS
-#include <sanitizer/allocator_interface.h>
+// The sanitizers' runtime exports this (sanitizer/allocator_interface.h, which GCC does not ship).
+extern "C" int __sanitizer_install_malloc_and_free_hooks(  // NOLINT(bugprone-reserved-identifier)
+    void (*malloc_hook)(const volatile void* pointer, std::size_t size),
+    void (*free_hook)(const volatile void* pointer));
 #else
 // glibc's real allocator, exported for exactly this purpose (malloc hooks replacement).
 extern "C" {
