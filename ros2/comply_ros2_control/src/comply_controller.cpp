@@ -233,6 +233,9 @@ controller_interface::return_type ComplyController<Command>::update(
 
 template <typename Command>
 void ComplyController<Command>::onCommand(const CommandMessage& message) {
+  if (!wrapper_) {
+    return;  // a configure that failed after the subscription existed
+  }
   commands_received_.fetch_add(1, std::memory_order_relaxed);
   std::string malformed;
   const Command command = fromMessage(message, malformed);
@@ -265,6 +268,11 @@ void ComplyController<Command>::onCommand(const CommandMessage& message) {
 
 template <typename Command>
 void ComplyController<Command>::onResetFault(std_srvs::srv::Trigger::Response& response) {
+  if (!wrapper_) {
+    response.success = false;
+    response.message = "not configured";
+    return;
+  }
   const bool in_fault = wrapper_->diagnostics().state == comply::pipeline::WrapperState::kFault;
   wrapper_->reset();
   response.success = in_fault;
