@@ -12,69 +12,20 @@
 #include "comply/core/text_file.hpp"
 #include "comply/schema/json.hpp"
 #include "sim_command.hpp"
+#include "task_file_reading.hpp"
 
 namespace comply::app {
 namespace {
 
 using nlohmann::json;
-
-class TaskError {
- public:
-  explicit TaskError(std::string source) : source_(std::move(source)) {}
-  [[nodiscard]] const std::string& source() const { return source_; }
-  [[noreturn]] void fail(const std::string& where, const std::string& message) const {
-    throw std::runtime_error(source_ + ": " + (where.empty() ? "" : where + ": ") + message);
-  }
-
- private:
-  std::string source_;
-};
-
-std::vector<double> numbers(const json& value, std::size_t count, const std::string& where,
-                            const TaskError& error) {
-  std::vector<double> out;
-  if (!value.is_array()) {
-    error.fail(where, "must be a list of " + std::to_string(count) + " numbers");
-  }
-  for (const json& entry : value) {
-    if (!entry.is_number()) {
-      error.fail(where, "must be a list of " + std::to_string(count) + " numbers");
-    }
-    out.push_back(entry.get<double>());
-  }
-  if (out.size() != count) {
-    error.fail(where,
-               "has " + std::to_string(out.size()) + " numbers, expected " + std::to_string(count));
-  }
-  return out;
-}
-
-void checkUnitQuaternion(const std::vector<double>& quaternion, double tolerance,
-                         const std::string& where, const TaskError& error) {
-  const double norm = std::sqrt(quaternion[0] * quaternion[0] + quaternion[1] * quaternion[1] +
-                                quaternion[2] * quaternion[2] + quaternion[3] * quaternion[3]);
-  if (std::abs(norm - 1.0) > tolerance) {
-    std::ostringstream message;
-    message << "is not a unit quaternion (x y z w): its norm is " << norm;
-    error.fail(where, message.str());
-  }
-}
+using task_reading::checkUnitQuaternion;
+using task_reading::numbers;
+using task_reading::positiveNumber;
+using task_reading::TaskError;
 
 // Most waypoints a task may list: waypoints are interpolated at the command rate, so even the
 // longest run (600 s) needs far fewer; a generated file with more is a mistake.
 constexpr std::size_t kMaxWaypoints = 100'000;
-
-double positiveNumber(const json& object, const std::string& key, double fallback,
-                      const std::string& where, const TaskError& error) {
-  if (!object.contains(key)) {
-    return fallback;
-  }
-  if (!object[key].is_number() || !(object[key].get<double>() > 0.0) ||
-      !std::isfinite(object[key].get<double>())) {
-    error.fail(where + "." + key, "must be a finite number > 0");
-  }
-  return object[key].get<double>();
-}
 
 std::filesystem::path scenePath(const json& value, const std::filesystem::path& folder,
                                 const std::string& where, const TaskError& error) {

@@ -14,6 +14,7 @@
 #include "comply/core/text_file.hpp"
 #include "comply/model/model.hpp"
 #include "comply/model/model_error.hpp"
+#include "urdf_checks.hpp"
 
 namespace comply::model {
 namespace {
@@ -63,26 +64,6 @@ std::string_view jointTypeName(int type) {
       return "fixed";
     default:
       return "unknown";
-  }
-}
-
-// Heaviest link a URDF may give [kg]: an arm's links weigh kilograms; 1e12 is a typo.
-constexpr double kMaxLinkMassKg = 1000.0;
-
-// A rotational inertia is physical when its principal moments are non-negative and each is at
-// most the sum of the other two (the triangle inequality of a real mass distribution), both up to
-// rounding in the URDF's printed digits.
-void requirePhysicalInertia(const Eigen::Matrix3d& inertia, const std::string& link_name) {
-  const Eigen::Vector3d moments =
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia, Eigen::EigenvaluesOnly)
-          .eigenvalues();  // ascending
-  const double tolerance = 1e-6 * std::max(moments.cwiseAbs().maxCoeff(), 1e-12);
-  if (moments[0] < -tolerance || moments[2] > moments[0] + moments[1] + tolerance) {
-    throw ModelError(ModelErrc::kInvalidInertia,
-                     "link '" + link_name + "' has a non-physical inertia (principal moments " +
-                         std::to_string(moments[0]) + ", " + std::to_string(moments[1]) + ", " +
-                         std::to_string(moments[2]) +
-                         " kg m^2: each must be >= 0 and at most the sum of the other two)");
   }
 }
 
@@ -155,23 +136,6 @@ ChainEnds findChainEnds(const urdf::ModelInterface& urdf, const ModelOptions& op
     throw ModelError(ModelErrc::kInvalidOption, "TCP offset and gravity must be finite");
   }
   return {base_name, tip_link};
-}
-
-// urdfdom accepts a joint that closes a loop (a link that is its own ancestor) when the root is
-// elsewhere; every walk up or down the tree would then run forever. A link is in a loop when
-// walking up from it takes more steps than there are links.
-void requireTree(const urdf::ModelInterface& urdf) {
-  const std::size_t links = urdf.links_.size();
-  for (const auto& [name, link] : urdf.links_) {
-    std::size_t steps = 0;
-    for (auto up = link->getParent(); up; up = up->getParent()) {
-      if (++steps > links) {
-        throw ModelError(
-            ModelErrc::kInvalidUrdf,
-            "the joints form a kinematic loop through link '" + name + "'; a URDF must be a tree");
-      }
-    }
-  }
 }
 
 // A URDF only links children to their parents, so the chain is found by walking up from the tip.
@@ -279,28 +243,6 @@ void placeBody(const urdf::Joint& joint, const Eigen::Isometry3d& joint_in_paren
   }
   body.translation = joint_in_parent.translation();
   body.axis_in_parent = joint_in_parent.linear() * axis;
-}
-
-// A continuous joint has no position bounds even when its URDF <limit> carries some.
-void readLimits(const urdf::Joint& joint, JointLimits& limits) {
-  if (joint.type == urdf::Joint::CONTINUOUS) {
-    limits.lower = -std::numeric_limits<double>::infinity();
-    limits.upper = std::numeric_limits<double>::infinity();
-  }
-  if (joint.limits) {
-    if (joint.type != urdf::Joint::CONTINUOUS) {
-      limits.lower = joint.limits->lower;
-      limits.upper = joint.limits->upper;
-      if (!(limits.lower <= limits.upper)) {
-        throw ModelError(ModelErrc::kInvalidUrdf, "joint '" + joint.name + "' has a lower limit (" +
-                                                      std::to_string(limits.lower) +
-                                                      ") above its upper limit (" +
-                                                      std::to_string(limits.upper) + ")");
-      }
-    }
-    limits.velocity = joint.limits->velocity;
-    limits.effort = joint.limits->effort;
-  }
 }
 
 }  // namespace

@@ -1,0 +1,28 @@
+#pragma once
+// Checks that a URDF describes a physical robot before the model is built from it: a tree (no
+// kinematic loop), links whose mass and inertia a real body can have. Each failure is a
+// ModelError naming the link.
+
+#include <urdf_model/model.h>
+
+#include <Eigen/Core>
+#include <string>
+
+#include "comply/model/model.hpp"
+
+namespace comply::model {
+
+/// Heaviest link a URDF may give [kg]: an arm's links weigh kilograms; 1e12 is a typo.
+inline constexpr double kMaxLinkMassKg = 1000.0;
+
+/// Principal moments non-negative and each at most the sum of the other two (within rounding).
+void requirePhysicalInertia(const Eigen::Matrix3d& inertia, const std::string& link_name);
+
+/// Every link reaches the root by walking up (no joint closes a loop).
+void requireTree(const urdf::ModelInterface& urdf);
+
+/// A joint's limits from its <limit> (a continuous joint has no position bounds even when its
+/// <limit> carries some); refuses a lower limit above the upper one.
+void readLimits(const urdf::Joint& joint, JointLimits& limits);
+
+}  // namespace comply::model
