@@ -365,7 +365,7 @@ Model ModelBuilder::build(const urdf::ModelInterface& urdf, const ModelOptions& 
 }
 
 Model Model::fromUrdfString(std::string_view urdf_xml, const ModelOptions& options) {
-  const auto urdf = urdf::parseURDF(std::string(urdf_xml));
+  const ParsedUrdf urdf(urdf::parseURDF(std::string(urdf_xml)));
   if (!urdf) {
     throw ModelError(ModelErrc::kInvalidUrdf,
                      "could not parse the URDF (urdfdom printed the details above)");
@@ -378,7 +378,7 @@ Model Model::fromUrdfFile(const std::filesystem::path& urdf_path, const ModelOpt
   if (!file.ok()) {
     throw ModelError(ModelErrc::kFileNotFound, "URDF: " + file.error);
   }
-  const auto urdf = urdf::parseURDF(file.text);
+  const ParsedUrdf urdf(urdf::parseURDF(file.text));
   if (!urdf) {
     throw ModelError(ModelErrc::kInvalidUrdf, "could not parse URDF file '" + urdf_path.string() +
                                                   "' (urdfdom printed the details above)");
