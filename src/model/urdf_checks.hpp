@@ -6,6 +6,7 @@
 #include <urdf_model/model.h>
 
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 
 #include "comply/model/model.hpp"
@@ -17,7 +18,7 @@ namespace comply::model {
 // frees any tree, loop or not.
 class ParsedUrdf {
  public:
-  explicit ParsedUrdf(urdf::ModelInterfaceSharedPtr model) : model_(std::move(model)) {}
+  explicit ParsedUrdf(std::shared_ptr<urdf::ModelInterface> model) : model_(std::move(model)) {}
   ~ParsedUrdf() {
     if (model_) {
       for (auto& [name, link] : model_->links_) {
@@ -31,7 +32,7 @@ class ParsedUrdf {
   const urdf::ModelInterface& operator*() const { return *model_; }
 
  private:
-  urdf::ModelInterfaceSharedPtr model_;
+  std::shared_ptr<urdf::ModelInterface> model_;
 };
 
 /// Heaviest link a URDF may give [kg]: an arm's links weigh kilograms; 1e12 is a typo.
