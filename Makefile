@@ -4,8 +4,9 @@ BUILD_DIR ?= build
 BUILD_TYPE ?= Release
 JOBS ?= $(shell nproc)
 CTEST_ARGS ?= -LE long
-# Tests test-asan leaves out, with the reason in the README's sanitizer paragraph.
-ASAN_EXCLUDE ?= ^$$
+# Tests test-asan leaves out: out-of-tree projects built against the installed prefix, whose
+# sanitized static libraries they link without the sanitizer's runtime.
+ASAN_EXCLUDE ?= ^(simulink_plugin_|plugin_new_)
 # Benchmarks run pinned to the last CPU, away from most interrupt and housekeeping work.
 BENCH_CPU ?= $(shell echo $$(($$(nproc) - 1)))
 
@@ -37,7 +38,9 @@ test: build
 test-all: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
-# The test suite under AddressSanitizer + UndefinedBehaviorSanitizer (leak check on), and the
+# The test suite under AddressSanitizer + UndefinedBehaviorSanitizer, leak check on except for the
+# simulation tests (label sim): they render with Mesa's software driver, which keeps memory per
+# renderer in code it unloads, so no suppression can name it. And the
 # threaded parts (pipeline, transport, the live host) under ThreadSanitizer, each in its own folder.
 SANITIZER_CONFIGURE = -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCOMPLY_BUILD_BENCH=OFF \
 	-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache
@@ -47,7 +50,10 @@ test-asan: deps
 	@cd build-asan && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizers/lsan.supp \
-	  ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS) -E "$(ASAN_EXCLUDE)"
+	  ctest --output-on-failure -j $(JOBS) -LE "long|sim" -E "$(ASAN_EXCLUDE)"
+	@cd build-asan && ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 \
+	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  ctest --output-on-failure -j $(JOBS) -L sim -LE long -E "$(ASAN_EXCLUDE)"
 
 TSAN_TESTS ?= pipeline|wrapper|Diagnostics|transport|Live|live|triple_buffer|spsc
 test-tsan: deps
