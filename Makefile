@@ -59,7 +59,8 @@ TSAN_TESTS ?= pipeline|wrapper|Diagnostics|transport|Live|live|triple_buffer|sps
 test-tsan: deps
 	@cmake -S . -B build-tsan $(SANITIZER_CONFIGURE) -DCOMPLY_SANITIZE=thread >/dev/null
 	@cmake --build build-tsan -j $(JOBS)
-	@cd build-tsan && TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
+	@cd build-tsan && \
+	  TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1:suppressions=$(CURDIR)/tests/sanitizers/tsan.supp \
 	  ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS) -R "$(TSAN_TESTS)"
 
 # libFuzzer on every text input reader (tests/fuzz), FUZZ_SECONDS each; needs clang.
