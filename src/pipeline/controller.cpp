@@ -71,6 +71,7 @@ void Controller::activate(const JointState& state) {
                              ": the model could not be evaluated at this state");
   }
   state_ = state;
+  keepHoldingGravity();  // a FAULT in the first cycle holds at this state
   time_s_ = 0.0;
   fillPluginInput(state_, data_, quantities_, time_s_, period_s_, input_);
 
@@ -86,8 +87,9 @@ void Controller::activate(const JointState& state) {
   CommandBus seeded = active_;
   seedFromMeasured(seeded, currentPose());
   if (plugin_->activate(input_) != COMPLY_OK) {
-    throw plugin::PluginError(plugin::PluginErrc::kTrialStepFailed,
-                              plugin_->library().path().string() + ": activate() failed");
+    throw plugin::PluginError(
+        plugin::PluginErrc::kTrialStepFailed,
+        plugin_->library().path().string() + ": activate() failed (returned an error or threw)");
   }
   plugin_->trialStep(input_, busPointer(seeded));  // throws before anything changes
   active_ = seeded;

@@ -22,14 +22,17 @@ bool Controller::measure(const JointState& state) noexcept {
     return false;
   }
   state_ = state;
-  // The safe state's base comes from here only: a failed update may leave data_ half-written.
+  keepHoldingGravity();
+  fillPluginInput(state_, data_, quantities_, time_s_, period_s_, input_);
+  measured_.publishFromSoleWriter(currentPose());
+  return true;
+}
+
+void Controller::keepHoldingGravity() noexcept {
   hold_gravity_ = data_.gravity.head(dof_);
   if (parameters_.payload_compensation) {
     hold_gravity_ += data_.payload_gravity.head(dof_);
   }
-  fillPluginInput(state_, data_, quantities_, time_s_, period_s_, input_);
-  measured_.publishFromSoleWriter(currentPose());
-  return true;
 }
 
 }  // namespace comply::pipeline

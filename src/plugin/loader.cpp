@@ -138,19 +138,44 @@ PluginInstance::PluginInstance(std::shared_ptr<const PluginLibrary> library, int
   }
   const comply_parameters table{items.data(), static_cast<int32_t>(items.size())};
   std::array<char, 512> error{};
-  instance_ = library_->api().create(dof, &table, error.data(), error.size());
+  // An exception from the plugin is the plugin's own type, perhaps none the host knows: it is
+  // turned into a refusal naming the file here, where the call is made.
+  const auto threw = [&](const char* function) {
+    return PluginError(PluginErrc::kCreateFailed, "plugin '" + library_->path().string() +
+                                                      "': " + function + " threw an exception");
+  };
+  try {
+    instance_ = library_->api().create(dof, &table, error.data(), error.size());
+  } catch (...) {
+    throw threw("create()");
+  }
   if (instance_ == nullptr) {
     throw PluginError(PluginErrc::kCreateFailed,
                       "plugin '" + library_->path().string() + "' refused its configuration: " +
                           (error[0] != '\0' ? error.data() : "no reason given"));
   }
-  required_ = library_->api().required_quantities(instance_);
+  try {
+    required_ = library_->api().required_quantities(instance_);
+  } catch (...) {
+    destroyInstance();
+    throw threw("required_quantities()");
+  }
 }
 
 PluginInstance::~PluginInstance() {
-  if (instance_ != nullptr) {
-    library_->api().destroy(instance_);
+  destroyInstance();
+}
+
+void PluginInstance::destroyInstance() noexcept {
+  if (instance_ == nullptr) {
+    return;
   }
+  try {
+    library_->api().destroy(instance_);
+  } catch (...) {
+    // Nothing is left to do with an instance whose destruction failed; the host carries on.
+  }
+  instance_ = nullptr;
 }
 
 void PluginInstance::trialStep(const comply_input& input, const void* command) {

@@ -78,6 +78,11 @@ TEST(WrapperFault, ActivationRefusesALawWhoseTrialStepFails) {
   expectActivationRefused(kStepNanPlugin, plugin::PluginErrc::kNonFiniteOutput, kStepNanPlugin);
 }
 
+TEST(WrapperFault, ActivationRefusesALawWhoseActivateThrows) {
+  expectActivationRefused(kThrowingActivatePlugin, plugin::PluginErrc::kTrialStepFailed,
+                          "activate() failed");
+}
+
 TEST(WrapperFault, ExceptionFromAPluginStepIsAFaultNotACrash) {
   JointWrapper wrapper(fr3Config(kThrowingPlugin));
   const JointState rest = restingAt(wrapper.controller(), fr3Home());
@@ -246,6 +251,27 @@ TEST_F(JointStateFault, NanStateHoldsTheArmAtTheLastGoodStateUntilReset) {
   wrapper.reset();
   EXPECT_EQ(cycle(good), CycleStatus::kOk);
   EXPECT_EQ(wrapper.diagnostics().state, WrapperState::kActive);
+}
+
+TEST(WrapperFault, NanStateInTheFirstCycleHoldsAtTheActivationState) {
+  // The activation state is the last usable one until a cycle measures another: the hold must be
+  // built from it, not from no state (zero gravity, the arm drops) or an earlier activation's.
+  JointWrapper wrapper(fr3Config(kJointImpedancePlugin,
+                                 "fault_damping: [1, 2, 3, 4, 5, 6, 7]\n"
+                                 "torque_rate_limit_nm_per_s: " +
+                                     std::to_string(kNoRateLimit)));
+  TorqueBuffer torque;
+  const JointState earlier = restingAt(wrapper.controller(), offset(fr3Home(), 1, 0.4));
+  wrapper.activate(earlier);
+  ASSERT_EQ(wrapper.update(earlier, kPeriod, torque.span()), CycleStatus::kOk);
+  wrapper.deactivate();
+
+  const JointState good = moving(restingAt(wrapper.controller(), fr3Home()), 0.1);
+  JointState broken = good;
+  broken.position[3] = kNaN;
+  wrapper.activate(good);
+  EXPECT_EQ(wrapper.update(broken, kPeriod, torque.span()), CycleStatus::kFault);
+  COMPLY_EXPECT_JOINTS_NEAR(torque.values, holdingTorque(wrapper.controller(), good), kTolerance);
 }
 
 TEST_F(JointStateFault, ResetIsRefusedWhileTheStateIsStillUnusable) {

@@ -24,6 +24,7 @@ inline const std::string kCartesianImpedancePlugin = COMPLY_TEST_CARTESIAN_IMPED
 inline const std::string kStepNanPlugin = COMPLY_TEST_FIXTURE_STEP_NAN;
 inline const std::string kStepErrorPlugin = COMPLY_TEST_FIXTURE_STEP_ERROR;
 inline const std::string kThrowingPlugin = COMPLY_TEST_FIXTURE_THROWING;
+inline const std::string kThrowingActivatePlugin = COMPLY_TEST_FIXTURE_THROWING_ACTIVATE;
 
 /// Configuration of a controller for the FR3 with `plugin`; `parameter_lines` are YAML lines at
 /// the level of `plugin:` (nested keys indented further, by two spaces per level).

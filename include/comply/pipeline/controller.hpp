@@ -114,6 +114,9 @@ class Controller {
   bool shape() noexcept;
   CycleStatus write(std::span<double> torque) noexcept;
   CycleStatus hold(std::span<double> torque) noexcept;
+  /// Keeps the gravity (+ payload) of the state just evaluated as FAULT's holding base; called
+  /// only after a successful model update, which a failed one may leave half-written.
+  void keepHoldingGravity() noexcept;
 
   void advanceClock(double period_s) noexcept;
   void enterFault(const char* prefix, const char* detail) noexcept;

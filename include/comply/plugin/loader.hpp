@@ -80,11 +80,17 @@ class PluginInstance {
   [[nodiscard]] const PluginLibrary& library() const noexcept { return *library_; }
   [[nodiscard]] int dof() const noexcept { return dof_; }
 
+  /// The law's activation. An exception thrown through the C ABI (a C++ law written without the
+  /// SDK) is a failed activation, never the end of the process.
   comply_status activate(const comply_input& input) noexcept {
-    return library_->api().activate(instance_, &input);
+    try {
+      return library_->api().activate(instance_, &input);
+    } catch (...) {
+      return COMPLY_ERROR;
+    }
   }
-  /// The law's step. An exception thrown through the C ABI (a C++ law written without the SDK)
-  /// becomes a failed step with a message; catching costs nothing when nothing is thrown.
+  /// The law's step. An exception thrown through the C ABI becomes a failed step with a message;
+  /// catching by `...` neither allocates nor costs anything when nothing is thrown.
   comply_status step(const comply_input& input, const void* command,
                      comply_output& output) noexcept {
     try {
@@ -102,6 +108,9 @@ class PluginInstance {
   void trialStep(const comply_input& input, const void* command);
 
  private:
+  /// The plugin's destroy(), once; an exception from it is swallowed (destructors must not throw).
+  void destroyInstance() noexcept;
+
   std::shared_ptr<const PluginLibrary> library_;
   void* instance_ = nullptr;
   std::uint32_t required_ = 0;
