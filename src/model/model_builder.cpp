@@ -295,22 +295,26 @@ std::vector<std::size_t> ModelBuilder::placeBodies(
 }
 
 // The dynamics see one rigid body per controlled joint: everything below its joint up to the next
-// controlled joint is folded into one inertia in the body frame.
+// controlled joint is folded into one inertia in the body frame. A massless body between two
+// controlled joints is a virtual link (a wrist built from two revolutes); a joint below which
+// nothing at all has mass moves nothing. Walked from the tip, so the mass below is summed once.
 void ModelBuilder::foldInertias(const urdf::ModelInterface& urdf,
                                 const std::vector<urdf::JointConstSharedPtr>& path,
                                 const std::vector<std::size_t>& body_path_position, Model& model) {
-  for (int i = 0; i < model.dof_; ++i) {
+  double mass_below_kg = 0.0;
+  for (int i = model.dof_ - 1; i >= 0; --i) {
     const auto& joint = path[body_path_position[i]];
     const std::string* stop_joint =
         i + 1 < model.dof_ ? &path[body_path_position[i + 1]]->name : nullptr;
     MassAccumulator accumulator;
     const auto child = urdf.getLink(joint->child_link_name);
     foldSubtree(urdf, *child, Eigen::Isometry3d::Identity(), stop_joint, accumulator);
-    if (!(accumulator.mass > 0.0)) {
+    mass_below_kg += accumulator.mass;
+    if (!(mass_below_kg > 0.0)) {
       throw ModelError(ModelErrc::kInvalidInertia,
                        "joint '" + joint->name + "' moves no mass: link '" +
                            joint->child_link_name +
-                           "' and what is rigidly attached to it have no <inertial> with a mass");
+                           "' and everything below it have no <inertial> with a mass");
     }
     ChainBody& body = model.bodies_[i];
     body.mass_kg = accumulator.mass;

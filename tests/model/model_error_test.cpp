@@ -103,6 +103,35 @@ TEST(ModelErrorTest, NonPhysicalRobotsAreRefused) {
                    ModelErrc::kInvalidUrdf, {"joint 'j'", "lower limit", "above its upper limit"});
 }
 
+// Two revolute joints: j1 moves link `middle` (`middle_inertial` spliced in), j2 moves `arm`
+// (`arm_inertial` spliced in).
+std::string twoJoints(const std::string& middle_inertial, const std::string& arm_inertial) {
+  const std::string limit = R"(<axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" velocity="1" effort="10"/>)";
+  return R"(<robot name="two"><link name="base"/><link name="middle">)" + middle_inertial +
+         R"(</link><link name="arm">)" + arm_inertial +
+         R"(</link><joint name="j1" type="revolute"><parent link="base"/><child link="middle"/>
+         <origin xyz="0 0 0.1"/>)" +
+         limit + R"(</joint><joint name="j2" type="revolute"><parent link="middle"/>
+         <child link="arm"/><origin xyz="0.3 0 0"/>)" +
+         limit + "</joint></robot>";
+}
+
+TEST(ModelErrorTest, AMasslessLinkBetweenMovableJointsIsAccepted) {
+  // A virtual link between two joints (a wrist built from two revolutes) carries no mass of its
+  // own; the first joint still moves everything below it.
+  const auto massive = inertial(1.0, 0.01, 0.01, 0.01);
+  EXPECT_NO_THROW(Model::fromUrdfString(twoJoints("", massive), options({"j1", "j2"}, "arm")));
+  EXPECT_NO_THROW(Model::fromUrdfString(twoJoints(inertial(0.0, 0.0, 0.0, 0.0), massive),
+                                        options({"j1", "j2"}, "arm")));
+  // The last joint of the chain moving nothing is still refused.
+  expectModelError(
+      [&] {
+        Model::fromUrdfString(twoJoints(massive, ""), options({"j1", "j2"}, "arm"));
+      },
+      ModelErrc::kInvalidInertia, {"joint 'j2' moves no mass", "'arm'"});
+}
+
 TEST(ModelErrorTest, UnknownJointsAreAllListed) {
   expectModelError(
       [] {
