@@ -20,6 +20,21 @@ struct Matrix {
   Lanes col[6];
 };
 
+/// Lane i of the result is lane index[i] of v. GCC's shuffle takes the index as a vector;
+/// clang's takes only literal lanes, so there the lanes are gathered one by one (the fuzz and
+/// analysis builds, where speed does not matter).
+[[gnu::always_inline]] inline Lanes permute(Lanes v, LaneIndex index) noexcept {
+#if defined(__clang__)
+  Lanes result = {};
+  for (int i = 0; i < 8; ++i) {
+    result[i] = v[index[i]];
+  }
+  return result;
+#else
+  return __builtin_shuffle(v, index);
+#endif
+}
+
 inline Matrix load(const Eigen::Matrix<double, 6, 6>& m) noexcept {
   Matrix result;
   for (int c = 0; c < 6; ++c) {

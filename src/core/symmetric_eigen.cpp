@@ -42,20 +42,23 @@ constexpr lanes::LaneIndex kPartners[5] = {{1, 0, 5, 4, 3, 2, 6, 7},
                                            {4, 2, 1, 5, 0, 3, 6, 7},
                                            {5, 4, 3, 2, 1, 0, 6, 7}};
 
+/// `first` on the first lane of pair k of round r, `second` on the second, 0 elsewhere. Built
+/// from one initialiser: clang does not allow writing a lane in a constant expression.
+constexpr lanes::Lanes pairMask(int r, int k, double first, double second) {
+  const int p = kRounds[r][k][0];
+  const int q = kRounds[r][k][1];
+  const auto lane = [&](int i) { return i == p ? first : (i == q ? second : 0.0); };
+  return lanes::Lanes{lane(0), lane(1), lane(2), lane(3), lane(4), lane(5), lane(6), lane(7)};
+}
+
 /// 1 on the lanes of pair k of round r.
 constexpr lanes::Lanes pairLanes(int r, int k) {
-  lanes::Lanes mask = {0, 0, 0, 0, 0, 0, 0, 0};
-  mask[kRounds[r][k][0]] = 1.0;
-  mask[kRounds[r][k][1]] = 1.0;
-  return mask;
+  return pairMask(r, k, 1.0, 1.0);
 }
 
 /// -1 on the first lane of pair k of round r, +1 on the second.
 constexpr lanes::Lanes signLanes(int r, int k) {
-  lanes::Lanes mask = {0, 0, 0, 0, 0, 0, 0, 0};
-  mask[kRounds[r][k][0]] = -1.0;
-  mask[kRounds[r][k][1]] = 1.0;
-  return mask;
+  return pairMask(r, k, -1.0, 1.0);
 }
 
 struct Rotation {
@@ -129,19 +132,20 @@ bool round(Pair m, double tolerance_squared, double floor_squared) noexcept {
   const lanes::Lanes s_lanes =
       signLanes(R, 0) * g[0].s + signLanes(R, 1) * g[1].s + signLanes(R, 2) * g[2].s;
   for (lanes::Lanes& column : m.a.col) {
-    column = c_lanes * column + s_lanes * __builtin_shuffle(column, kPartners[R]);
+    column = c_lanes * column + s_lanes * lanes::permute(column, kPartners[R]);
   }
   return true;
 }
 
 /// One round-robin sweep over the pairs that miss the relative criterion; false when none did.
 bool sweep(Pair m, double tolerance_squared, double floor_squared) noexcept {
-  // Non-short-circuit |: every round runs.
-  return round<0>(m, tolerance_squared, floor_squared) |
-         round<1>(m, tolerance_squared, floor_squared) |
-         round<2>(m, tolerance_squared, floor_squared) |
-         round<3>(m, tolerance_squared, floor_squared) |
-         round<4>(m, tolerance_squared, floor_squared);
+  // Every round runs, whatever the earlier ones did.
+  const bool rotated_0 = round<0>(m, tolerance_squared, floor_squared);
+  const bool rotated_1 = round<1>(m, tolerance_squared, floor_squared);
+  const bool rotated_2 = round<2>(m, tolerance_squared, floor_squared);
+  const bool rotated_3 = round<3>(m, tolerance_squared, floor_squared);
+  const bool rotated_4 = round<4>(m, tolerance_squared, floor_squared);
+  return rotated_0 || rotated_1 || rotated_2 || rotated_3 || rotated_4;
 }
 
 /// Whether every off-diagonal entry meets the relative criterion: a column at a time, so the

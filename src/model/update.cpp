@@ -65,12 +65,27 @@ Lanes4 load4(const Vector& v) {
   return Lanes4{v[0], v[1], v[2], 0.0};
 }
 
-Lanes4 cross(const Lanes4& a, const Lanes4& b) {
+/// (y, z, x) and (z, x, y) of a 3-vector: GCC's and clang's spellings of the same shuffle.
+#if defined(__clang__)
+Lanes4 yzx(const Lanes4& v) {
+  return __builtin_shufflevector(v, v, 1, 2, 0, 3);
+}
+Lanes4 zxy(const Lanes4& v) {
+  return __builtin_shufflevector(v, v, 2, 0, 1, 3);
+}
+#else
+Lanes4 yzx(const Lanes4& v) {
   using Index4 = long long __attribute__((vector_size(32)));
-  const Index4 yzx = {1, 2, 0, 3};
-  const Index4 zxy = {2, 0, 1, 3};
-  return __builtin_shuffle(a, yzx) * __builtin_shuffle(b, zxy) -
-         __builtin_shuffle(a, zxy) * __builtin_shuffle(b, yzx);
+  return __builtin_shuffle(v, Index4{1, 2, 0, 3});
+}
+Lanes4 zxy(const Lanes4& v) {
+  using Index4 = long long __attribute__((vector_size(32)));
+  return __builtin_shuffle(v, Index4{2, 0, 1, 3});
+}
+#endif
+
+Lanes4 cross(const Lanes4& a, const Lanes4& b) {
+  return yzx(a) * zxy(b) - zxy(a) * yzx(b);
 }
 
 double dot3(const Lanes4& a, const Lanes4& b) {

@@ -140,7 +140,10 @@ Parsed<typename Schema::Command> fromJson(const nlohmann::json& object, int dof,
   }
   Parsed<Command> parsed{options.base ? *options.base : Command::zero(dof), 0};
   CommandField present = CommandField::kNone;
-  for (const auto& [key, value] : object.items()) {
+  for (const auto& item : object.items()) {
+    // Named references, not a structured binding: clang 14 cannot capture one in the lambda.
+    const std::string& key = item.key();
+    const nlohmann::json& value = item.value();
     if (key == "stamp" || key == "fields") {
       continue;
     }
