@@ -65,7 +65,7 @@ test-tsan: deps
 
 # libFuzzer on every text input reader (tests/fuzz), FUZZ_SECONDS each; needs clang.
 FUZZ_SECONDS ?= 600
-FUZZ_TARGETS ?= command_json controller_yaml task_file urdf
+FUZZ_TARGETS ?= command_json controller_yaml dds_sample task_file urdf
 fuzz: deps
 	@command -v clang++ >/dev/null || { echo "make fuzz needs clang: apt-get install clang" >&2; exit 1; }
 	@CC=clang CXX=clang++ cmake -S . -B build-fuzz $(SANITIZER_CONFIGURE) -DCOMPLY_FUZZ=ON \
