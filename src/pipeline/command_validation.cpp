@@ -20,6 +20,7 @@ RejectionReason reasonFor(schema::Violation violation) {
       return RejectionReason::kInvalidQuaternion;
     case schema::Violation::kNegative:
     case schema::Violation::kNotSymmetricPsd:
+    case schema::Violation::kGainTooLarge:
       return RejectionReason::kInvalidGains;
     case schema::Violation::kNone:
     case schema::Violation::kNonFinite:

@@ -94,7 +94,10 @@ void Controller::activate(const JointState& state) {
   plugin_->trialStep(input_, busPointer(seeded));  // throws before anything changes
   active_ = seeded;
   // Start the rate limit from what the joints carry now, so the first torque does not jump.
-  shaper_.reset(state_.effort.allFinite() ? state_.effort : data_.gravity.head(dof_));
+  torque_ = state_.effort.allFinite() ? state_.effort : data_.gravity.head(dof_);
+  shaper_.reset(torque_);
+  repeated_cycles_ = 0;
+  state_frozen_ = false;
   last_command_time_s_ = 0.0;
   watchdog_expired_ = false;
   reset_pending_ = false;

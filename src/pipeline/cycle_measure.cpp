@@ -1,4 +1,4 @@
-// Stage "measure": the joint state is checked, the model computes what the plugin asked for (and
+// Stage "measure": the joint state is checked (finite, and not a stale repeat), the model computes what the plugin asked for (and
 // the pose and gravity, which validation and the safe state need), the plugin input is filled and
 // the measured pose is published for the intake's validation.
 
@@ -15,6 +15,12 @@ bool Controller::measure(const JointState& state) noexcept {
     enterFault("state: ", "joint state of the wrong size or with NaN/inf position or velocity");
     return false;
   }
+  if (stateFrozen(state)) {
+    enterFault("state: ",
+               "joint state unchanged bit for bit for frozen_state_timeout_s while the torque "
+               "changed: a stale sensor stream");
+    return false;
+  }
   const std::span<const double> q(state.position.data(), static_cast<std::size_t>(dof_));
   const std::span<const double> dq(state.velocity.data(), static_cast<std::size_t>(dof_));
   if (model::update(*resolved_->model, data_, q, dq, quantities_) != model::UpdateStatus::kOk) {
@@ -26,6 +32,30 @@ bool Controller::measure(const JointState& state) noexcept {
   fillPluginInput(state_, data_, quantities_, time_s_, period_s_, input_);
   measured_.publishFromSoleWriter(currentPose());
   return true;
+}
+
+bool Controller::stateFrozen(const JointState& state) noexcept {
+  const bool repeated = state.position == state_.position && state.velocity == state_.velocity &&
+                        state.effort == state_.effort;
+  if (!repeated || parameters_.frozen_state_timeout_s <= 0.0) {
+    repeated_cycles_ = 0;
+    state_frozen_ = false;
+    return false;
+  }
+  if (repeated_cycles_++ == 0) {
+    // torque_ is the last cycle's output, computed from this same state.
+    repeated_since_s_ = time_s_;
+    torque_when_repeated_ = torque_;
+  }
+  if (state_frozen_) {
+    return true;
+  }
+  if (time_s_ - repeated_since_s_ < parameters_.frozen_state_timeout_s) {
+    return false;
+  }
+  state_frozen_ = (torque_ - torque_when_repeated_).cwiseAbs().maxCoeff() >
+                  kFrozenStateTorqueChangeNm;
+  return state_frozen_;
 }
 
 void Controller::keepHoldingGravity() noexcept {

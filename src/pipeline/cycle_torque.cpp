@@ -48,8 +48,10 @@ CycleStatus Controller::hold(std::span<double> torque) noexcept {
   // where it is, without a reference that may be the cause of the fault. The state is the last
   // usable one when this cycle's was not.
   for (int i = 0; i < dof_; ++i) {
-    // A velocity so large that its damping overflows (a broken sensor) damps nothing.
-    const double damping = parameters_.fault_damping[i] * state_.velocity[i];
+    // A velocity so large that its damping overflows (a broken sensor) damps nothing, nor does
+    // one from a frozen stream (a constant push in a direction the arm may no longer move).
+    const double velocity = state_frozen_ ? 0.0 : state_.velocity[i];
+    const double damping = parameters_.fault_damping[i] * velocity;
     torque_[i] = hold_gravity_[i] - (std::isfinite(damping) ? damping : 0.0);
   }
   const ShapingResult shaped = shaper_.apply(torque_, period_s_, /*filter=*/false);

@@ -87,6 +87,9 @@ struct WrapperConfig {
   std::vector<double> torque_rate_limit;  ///< N m/s per joint
   std::vector<double> effort_limit;       ///< N m; empty: URDF <limit effort>
   std::vector<double> fault_damping;      ///< N m s/rad of the safe holding torque
+  /// A joint state unchanged bit for bit this long while the torque changes is a stale sensor
+  /// stream (FAULT); 0: never.
+  double frozen_state_timeout_s = 0.1;
 
   /// Initial command (gains, task frame); the pose/joint reference is seeded on activation.
   /// Sized by completeForRobot().

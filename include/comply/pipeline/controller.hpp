@@ -2,7 +2,8 @@
 // The control cycle. One function, update(), is the whole cycle as a table of contents over
 // stages that live in their own files (cycle_*.cpp):
 //
-//   measure      state check, model update, plugin input, publish the measured pose
+//   measure      state check (finite; not frozen), model update, plugin input, publish the
+//                measured pose                                  -> FAULT on a bad state
 //   commands     take every command the intake queued, merged by field mask
 //   watchdog     no command for command_timeout_s: hold (stop the motion) or re-anchor
 //   law          plugin step, finite check                      -> FAULT on failure
@@ -35,6 +36,12 @@
 #include "comply/plugin/loader.hpp"
 
 namespace comply::pipeline {
+
+/// How far the output torque must move [N m, any joint] while the joint state stays bit-identical
+/// for frozen_state_timeout_s before the state counts as frozen. A simulator or an arm at rest
+/// repeats its state only while the torque repeats too; a driver that resends its last sample
+/// does not.
+inline constexpr double kFrozenStateTorqueChangeNm = 1.0;
 
 enum class CycleStatus {
   kOk,
@@ -117,6 +124,9 @@ class Controller {
   /// Keeps the gravity (+ payload) of the state just evaluated as FAULT's holding base; called
   /// only after a successful model update, which a failed one may leave half-written.
   void keepHoldingGravity() noexcept;
+  /// Whether `state` repeats the last one bit for bit for frozen_state_timeout_s while the torque
+  /// moved kFrozenStateTorqueChangeNm: a stale sensor stream.
+  bool stateFrozen(const JointState& state) noexcept;
 
   void advanceClock(double period_s) noexcept;
   void enterFault(const char* prefix, const char* detail) noexcept;
@@ -146,6 +156,11 @@ class Controller {
   JointVector torque_;
   JointVector scratch_;
   JointVector hold_gravity_;  // gravity (+ payload) at the last usable state: FAULT's holding base
+  // Frozen-state detection: cycles the state has repeated, since when, the torque then.
+  int repeated_cycles_ = 0;
+  double repeated_since_s_ = 0.0;
+  JointVector torque_when_repeated_;
+  bool state_frozen_ = false;  // the hold then damps nothing: its velocity is stale
   double period_s_ = 0.001;
   double time_s_ = 0.0;
   double last_command_time_s_ = 0.0;

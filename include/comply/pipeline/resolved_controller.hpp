@@ -51,6 +51,7 @@ struct CycleParameters {
   JointVector torque_rate_limit;  ///< [N m/s]
   JointVector effort_limit;       ///< [N m]
   JointVector fault_damping;      ///< [N m s/rad]
+  double frozen_state_timeout_s = 0.1;
 };
 
 struct ResolvedController {

@@ -1,0 +1,116 @@
+// A frozen sensor stream (docs/design.md, "Safety semantics"): a joint state repeated bit for bit
+// for frozen_state_timeout_s while the torque sent moves by more than kFrozenStateTorqueChangeNm
+// is stale, and the controller holds in FAULT without damping its stale velocity. A state that
+// repeats while the torque repeats too (a simulator at rest) is not.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "comply/pipeline/wrapper.hpp"
+#include "wrapper_support.hpp"
+
+namespace comply::pipeline::test {
+namespace {
+
+constexpr double kTolerance = 1e-9;
+
+class FrozenState : public ::testing::Test {
+ protected:
+  explicit FrozenState(const std::string& timeout = "0.1")
+      : wrapper(fr3Config(kJointImpedancePlugin,
+                          "fault_damping: [1, 2, 3, 4, 5, 6, 7]\n"
+                          "frozen_state_timeout_s: " +
+                              timeout + "\ntorque_rate_limit_nm_per_s: " +
+                              std::to_string(kNoRateLimit))) {}
+
+  void SetUp() override {
+    // Moving, so that a hold that damped the stale velocity would show.
+    state = restingAt(wrapper.controller(), fr3Home());
+    state.velocity.setConstant(0.1);
+    wrapper.activate(state);
+  }
+
+  /// A 0.2 rad step on joint 1: the torque moves by tens of N m at once.
+  void sendStep() {
+    JointCommand step = JointCommand::zero(kFr3Dof);
+    step.stamp_s = 1.0;
+    step.fields = CommandField::kPosition;
+    step.position = offset(fr3Home(), 0, 0.2);
+    ASSERT_TRUE(wrapper.submit(step).accepted);
+  }
+
+  CycleStatus cycle(const JointState& measured) {
+    return wrapper.update(measured, kPeriod, torque.span());
+  }
+
+  /// Cycles at the same state until the first FAULT; the number of cycles run (or `limit`).
+  int cyclesUntilFault(int limit) {
+    for (int i = 1; i <= limit; ++i) {
+      if (cycle(state) == CycleStatus::kFault) {
+        return i;
+      }
+    }
+    return limit;
+  }
+
+  JointWrapper wrapper;
+  JointState state;
+  TorqueBuffer torque;
+};
+
+TEST_F(FrozenState, RepeatedStateWhileTheTorqueMovesFaultsAfterTheTimeout) {
+  sendStep();
+  const int faulted_at = cyclesUntilFault(1000);
+  // 0.1 s at 1 kHz, counted from the first repeat (time steps are summed in floating point).
+  EXPECT_GE(faulted_at, 99);
+  EXPECT_LE(faulted_at, 102);
+  const DiagnosticsSnapshot diagnostics = wrapper.diagnostics();
+  EXPECT_EQ(diagnostics.faults, 1U);
+  EXPECT_NE(diagnostics.last_error.find("stale sensor stream"), std::string::npos)
+      << diagnostics.last_error;
+  // Gravity at the state, no damping: the velocity the stream repeats is not the arm's.
+  COMPLY_EXPECT_JOINTS_NEAR(torque.values, gravityAt(wrapper.controller(), state.position),
+                            kTolerance);
+}
+
+TEST_F(FrozenState, ResetNeedsAStateThatMovesAgain) {
+  sendStep();
+  ASSERT_LT(cyclesUntilFault(1000), 1000);
+  wrapper.reset();
+  EXPECT_EQ(cycle(state), CycleStatus::kFault) << "a reset on a still-frozen stream";
+  JointState fresh = state;
+  fresh.position[2] += 1e-6;
+  EXPECT_EQ(cycle(fresh), CycleStatus::kFault) << "a fresh state alone does not leave FAULT";
+  wrapper.reset();
+  EXPECT_EQ(cycle(fresh), CycleStatus::kOk);
+}
+
+TEST_F(FrozenState, RepeatedStateWithASteadyTorqueIsNotAFault) {
+  // An arm (or a simulator) at rest repeats its state, and the law its torque: 2 s of it.
+  const int cycles = cyclesUntilFault(2000);
+  EXPECT_EQ(cycles, 2000);
+  EXPECT_EQ(wrapper.diagnostics().faults, 0U);
+}
+
+TEST_F(FrozenState, ChangingStateIsNeverFrozenWhateverTheTorque) {
+  sendStep();
+  for (int i = 0; i < 500; ++i) {
+    state.position[6] += (i % 2 == 0 ? 1.0 : -1.0) * 1e-9;  // a least-significant flicker
+    ASSERT_EQ(cycle(state), CycleStatus::kOk) << "cycle " << i;
+  }
+}
+
+class FrozenStateCheckOff : public FrozenState {
+ protected:
+  FrozenStateCheckOff() : FrozenState("0") {}
+};
+
+TEST_F(FrozenStateCheckOff, ZeroTimeoutNeverFaults) {
+  sendStep();
+  EXPECT_EQ(cyclesUntilFault(1000), 1000);
+  EXPECT_EQ(wrapper.diagnostics().faults, 0U);
+}
+
+}  // namespace
+}  // namespace comply::pipeline::test
