@@ -3,6 +3,7 @@
 #include "comply/schema/describe.hpp"
 
 #include <cctype>
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -54,14 +55,26 @@ std::string cell(std::string_view text) {
   return out;
 }
 
-std::string constraintText(Constraint constraint) {
+/// 100, 1e4, 1e6: a power of ten from 1e4 up as the exponent alone.
+std::string limitText(double limit) {
+  const int exponent = static_cast<int>(std::lround(std::log10(limit)));
+  if (exponent >= 4 && limit == std::pow(10.0, exponent)) {
+    return "1e" + std::to_string(exponent);
+  }
+  std::ostringstream text;
+  text << limit;
+  return text.str();
+}
+
+std::string constraintText(Constraint constraint, std::string_view unit) {
+  const std::string limit = ", entries <= " + limitText(gainLimit(unit));
   switch (constraint) {
     case Constraint::kNone:
       return "";
     case Constraint::kNonNegative:
-      return ">= 0";
+      return ">= 0" + limit;
     case Constraint::kSymmetricPsd:
-      return "symmetric PSD";
+      return "symmetric PSD" + limit;
     case Constraint::kUnitQuaternion:
       return "unit norm";
   }
@@ -142,6 +155,10 @@ nlohmann::json rowsOf(CommandKind kind) {
                        {"constraint", toString(field.constraint)},
                        {"role", toString(field.role)},
                        {"description", field.description}};
+    if (field.constraint == Constraint::kNonNegative ||
+        field.constraint == Constraint::kSymmetricPsd) {
+      row["gain_limit"] = gainLimit(field.unit);
+    }
     if (!field.values.empty()) {
       row["values"] = nlohmann::json::array();
       for (const EnumValue& value : field.values) {
@@ -161,7 +178,7 @@ std::string markdownTable(CommandKind kind) {
       << "|---|---|---|---|---|---|\n";
   for (const FieldInfo& field : fields(kind)) {
     out << "| `" << field.name << "` | " << groupName(field.group) << " | " << cell(typeText(field))
-        << " | " << cell(field.unit) << " | " << constraintText(field.constraint) << " | "
+        << " | " << cell(field.unit) << " | " << constraintText(field.constraint, field.unit) << " | "
         << cell(field.description) << " |\n";
   }
   return out.str();

@@ -1,5 +1,6 @@
 // The tables of schema/table.hpp as data, for documentation and messages.
 
+#include <limits>
 #include <type_traits>
 
 #include "comply/schema/generic_json.hpp"
@@ -80,6 +81,26 @@ std::string_view toString(Constraint constraint) {
       return "unit_quaternion";
   }
   return "unknown";
+}
+
+double gainLimit(std::string_view unit) noexcept {
+  // The vendors' Cartesian impedance controllers stop near 5e3 N/m and 3e2 N m/rad, joint
+  // impedance near 5e3 N m/rad; damping ratios beyond a few are already sluggish.
+  struct Limit {
+    std::string_view unit;
+    double limit;
+  };
+  constexpr Limit kLimits[] = {
+      {"N/m", 1e6},       {"N m/rad", 1e5},      {"N m/rad | N/m", 1e6},
+      {"N s/m", 1e5},     {"N m s/rad", 1e4},    {"N m s/rad | N s/m", 1e5},
+      {"1", 100.0},
+  };
+  for (const Limit& entry : kLimits) {
+    if (entry.unit == unit) {
+      return entry.limit;
+    }
+  }
+  return std::numeric_limits<double>::infinity();
 }
 
 std::string_view toString(Role role) {

@@ -1,7 +1,8 @@
 #!/bin/bash
 # `comply sim` fails (exit 1) on what used to pass as success: a task whose final target was
 # refused (a target 10 m away: the error was measured against the last accepted reference) and a
-# law that pins a joint at its effort limit (stiffness 1e9); a normal step still exits 0.
+# law that pins a joint at its effort limit (stiffness 9e5 N/m on a 2 cm step); a normal step still
+# exits 0. A stiffness beyond any arm (1e9 N/m) does not run at all (exit 2, field and limit named).
 # Usage: cli_sim_verdicts_test.sh COMPLY SOURCE_DIR WORK_DIR
 set -u
 comply=$1 source=$2 work=$3
@@ -11,14 +12,16 @@ step() {  # step FILE OFFSET_X DURATION
 }
 step "$work/far.yaml" 10.0 0.5
 step "$work/step.yaml" 0.02 1.5
-sed 's/stiffness_translational: 3000.0/stiffness_translational: 1.0e9/' \
+sed 's/stiffness_translational: 3000.0/stiffness_translational: 9.0e5/' \
   "$source/config/sim/cartesian_impedance.yaml" >"$work/stiff.yaml"
+sed 's/stiffness_translational: 3000.0/stiffness_translational: 1.0e9/' \
+  "$source/config/sim/cartesian_impedance.yaml" >"$work/absurd.yaml"
 failures=0
 run() {  # run EXPECTED_EXIT NEEDLE ARGS...
   local expected=$1 needle=$2
   shift 2
   local output status
-  output=$(timeout 120 "$comply" sim --no-plot "$@" 2>/dev/null)
+  output=$(timeout 120 "$comply" sim --no-plot "$@" 2>&1)
   status=$?
   if [ "$status" -ne "$expected" ] || ! grep -qF -- "$needle" <<<"$output"; then
     echo "FAIL: sim $* -> exit $status (expected $expected, '$needle'):"
@@ -29,8 +32,10 @@ run() {  # run EXPECTED_EXIT NEEDLE ARGS...
 run 1 "TARGET NOT REACHED: the task's last command was refused (pose_jump" \
   --robot fr3 --task "$work/far.yaml" --out "$work/far"
 run 1 "SATURATED: joint" --config "$work/stiff.yaml" --task "$work/step.yaml" --out "$work/stiff"
+run 2 "stiffness_translational has an entry of 1e+09 N/m, above the limit of 1e+06" \
+  --config "$work/absurd.yaml" --task "$work/step.yaml" --out "$work/absurd"
 run 0 "faults                0" --robot fr3 --task "$work/step.yaml" --out "$work/normal"
 if [ "$failures" -ne 0 ]; then
   exit 1
 fi
-echo "ok: refused targets and sustained saturation fail the run"
+echo "ok: refused targets and sustained saturation fail the run; absurd gains do not run"

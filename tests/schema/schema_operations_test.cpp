@@ -165,6 +165,31 @@ TEST(SchemaCheck, EachCartesianViolationNamesItsField) {
   expectViolation(
       ok, [](auto& c) { c.nullspace_position = ramp(0.0, 2); }, Violation::kWrongSize,
       "nullspace_position");
+  expectViolation(
+      ok, [](auto& c) { c.stiffness_translational(2, 2) = 2e6; }, Violation::kGainTooLarge,
+      "stiffness_translational");
+  expectViolation(
+      ok, [](auto& c) { c.damping_ratio[5] = 101.0; }, Violation::kGainTooLarge, "damping_ratio");
+  expectViolation(
+      ok, [](auto& c) { c.nullspace_damping[0] = 1.5e4; }, Violation::kGainTooLarge,
+      "nullspace_damping");
+}
+
+TEST(SchemaCheck, GainLimitsFollowTheUnitAndAdmitTheLimitItself) {
+  EXPECT_EQ(gainLimit("N/m"), 1e6);
+  EXPECT_EQ(gainLimit("N m s/rad"), 1e4);
+  EXPECT_EQ(gainLimit("m"), std::numeric_limits<double>::infinity()) << "not a gain unit";
+  CartesianCommand at_limit = distinctCartesian();
+  at_limit.stiffness_translational = 1e6 * Eigen::Matrix3d::Identity();
+  at_limit.stiffness_rotational = 1e5 * Eigen::Matrix3d::Identity();
+  EXPECT_TRUE(checkFields(at_limit, kDof).ok());
+  CheckResult over = [&] {
+    CartesianCommand copy = at_limit;
+    copy.stiffness_rotational(1, 1) = 1.0001e5;
+    return checkFields(copy, kDof);
+  }();
+  EXPECT_EQ(over.violation, Violation::kGainTooLarge);
+  EXPECT_NE(over.message.find("above the limit of 100000"), std::string::npos) << over.message;
 }
 
 TEST(SchemaCheck, EachJointViolationNamesItsField) {
@@ -173,6 +198,8 @@ TEST(SchemaCheck, EachJointViolationNamesItsField) {
       ok, [](auto& c) { c.velocity[0] = kNaN; }, Violation::kNonFinite, "velocity");
   expectViolation(
       ok, [](auto& c) { c.stiffness[1] = -1.0; }, Violation::kNegative, "stiffness");
+  expectViolation(
+      ok, [](auto& c) { c.stiffness[1] = 1.1e6; }, Violation::kGainTooLarge, "stiffness");
   expectViolation(
       ok, [](auto& c) { c.torque_feedforward = ramp(0.0, 4); }, Violation::kWrongSize,
       "torque_feedforward");

@@ -28,6 +28,7 @@ struct Field {
   using CommandType = Command;
   using ValueType = Value;
   std::string_view name;
+  std::string_view unit;
   CommandField group;
   Value Command::*member;
   BusValue Bus::*bus_member;
@@ -35,10 +36,10 @@ struct Field {
 
 template <FieldKind K, Constraint C, Role R, typename Command, typename Value, typename Bus,
           typename BusValue>
-constexpr auto field(std::string_view name, CommandField group, Value Command::*member,
-                     BusValue Bus::*bus_member) {
+constexpr auto field(std::string_view name, std::string_view unit, CommandField group,
+                     Value Command::*member, BusValue Bus::*bus_member) {
   return std::make_tuple(
-      Field<K, C, R, Command, Value, Bus, BusValue>{name, group, member, bus_member});
+      Field<K, C, R, Command, Value, Bus, BusValue>{name, unit, group, member, bus_member});
 }
 
 // Each row becomes a one-element tuple followed by a comma; the table ends in std::tuple<>{}.
@@ -46,7 +47,7 @@ constexpr auto field(std::string_view name, CommandField group, Value Command::*
   ::comply::schema::generic::field<::comply::schema::FieldKind::kind,                           \
                                    ::comply::schema::Constraint::constraint,                    \
                                    ::comply::schema::Role::role>(                               \
-      #name, ::comply::CommandField::group, &SchemaCommand::name, &SchemaBus::name),
+      #name, unit, ::comply::CommandField::group, &SchemaCommand::name, &SchemaBus::name),
 
 /// Defines the schema type `Name` of `CommandType` / `BusType` from the X-macro `TABLE`.
 #define COMPLY_SCHEMA_DEFINE(Name, CommandType, BusType, TABLE)                 \

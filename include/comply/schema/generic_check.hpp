@@ -31,10 +31,24 @@ inline bool normaliseQuaternion(Eigen::Quaterniond& q, double tolerance) {
   return true;
 }
 
+/// A gain field's largest entry against gainLimit() of its unit.
+template <typename Value>
+CheckResult checkGainLimit(const Value& value, const std::string& field, std::string_view unit) {
+  const double limit = gainLimit(unit);
+  const double largest = value.cwiseAbs().maxCoeff();
+  if (!(largest <= limit)) {
+    std::ostringstream text;
+    text << field << " has an entry of " << largest << " " << unit << ", above the limit of "
+         << limit << " for any arm";
+    return {Violation::kGainTooLarge, field, text.str()};
+  }
+  return {};
+}
+
 /// The constraint of one field; a message naming it, or empty when it holds.
 template <typename F>
 CheckResult checkConstraint(typename F::ValueType& value, std::string_view name,
-                            const CheckOptions& options) {
+                            std::string_view unit, const CheckOptions& options) {
   const std::string field(name);
   if constexpr (F::kConstraint == Constraint::kUnitQuaternion) {
     static_assert(F::kKind == FieldKind::kQuaternion, "only quaternions have unit norm");
@@ -50,10 +64,12 @@ CheckResult checkConstraint(typename F::ValueType& value, std::string_view name,
       return {Violation::kNotSymmetricPsd, field,
               field + " must be symmetric positive semi-definite"};
     }
+    return checkGainLimit(value, field, unit);
   } else if constexpr (F::kConstraint == Constraint::kNonNegative) {
     if (!(value.array() >= 0.0).all()) {
       return {Violation::kNegative, field, field + " must be >= 0"};
     }
+    return checkGainLimit(value, field, unit);
   }
   return {};
 }
@@ -92,7 +108,7 @@ CheckResult checkFields(typename Schema::Command& command, int dof, const CheckO
   visitFields<Schema>([&](const auto& f, std::size_t) {
     using F = FieldOf<decltype(f)>;
     if (has(set, f.group)) {
-      result = checkConstraint<F>(command.*f.member, f.name, options);
+      result = checkConstraint<F>(command.*f.member, f.name, f.unit, options);
     }
     return result.ok();
   });

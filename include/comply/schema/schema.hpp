@@ -69,6 +69,12 @@ std::span<const GroupInfo> groups();
 std::string_view toString(CommandKind kind);
 std::string_view toString(FieldKind kind);
 std::string_view toString(Constraint constraint);
+
+/// The largest gain entry the schema accepts in `unit` (a gain field's unit in the tables), or
+/// infinity for a unit that has none. Two orders of magnitude above the stiffest and most damped
+/// settings arm vendors' own impedance controllers accept: a value beyond it is a typo or a unit
+/// mistake, never a tuning, and the torque it asks for only saturates the joints.
+double gainLimit(std::string_view unit) noexcept;
 std::string_view toString(Role role);
 
 /// Bit i set: field i of a kind's table (table order). Which keys a JSON object gave, say.
@@ -132,7 +138,8 @@ enum class Violation : std::uint8_t {
   kNonFinite,       ///< NaN or infinity
   kNotUnit,         ///< a quaternion too far from unit norm
   kNegative,        ///< a non-negative field with a negative entry
-  kNotSymmetricPsd  ///< a gain block that is not symmetric positive semi-definite
+  kNotSymmetricPsd,  ///< a gain block that is not symmetric positive semi-definite
+  kGainTooLarge      ///< a gain entry above gainLimit() of its unit
 };
 
 struct CheckResult {
