@@ -1,6 +1,8 @@
-// Stage "measure": the joint state is checked (finite, and not a stale repeat), the model computes what the plugin asked for (and
-// the pose and gravity, which validation and the safe state need), the plugin input is filled and
-// the measured pose is published for the intake's validation.
+// Stage "measure": the joint state is checked (finite, and not a stale repeat), the model computes
+// what the plugin asked for (and the pose and gravity, which validation and the safe state need),
+// the plugin input is filled and the measured pose is published for the intake's validation.
+
+#include <cstring>
 
 #include "comply/pipeline/command_validation.hpp"
 #include "comply/pipeline/controller.hpp"
@@ -34,9 +36,20 @@ bool Controller::measure(const JointState& state) noexcept {
   return true;
 }
 
+namespace {
+
+/// Bit for bit: a NaN effort (a robot without torque sensing) repeats as well as a number.
+bool sameBits(const JointVector& a, const JointVector& b) noexcept {
+  return a.size() == b.size() &&
+         std::memcmp(a.data(), b.data(), static_cast<std::size_t>(a.size()) * sizeof(double)) == 0;
+}
+
+}  // namespace
+
 bool Controller::stateFrozen(const JointState& state) noexcept {
-  const bool repeated = state.position == state_.position && state.velocity == state_.velocity &&
-                        state.effort == state_.effort;
+  const bool repeated = sameBits(state.position, state_.position) &&
+                        sameBits(state.velocity, state_.velocity) &&
+                        sameBits(state.effort, state_.effort);
   if (!repeated || parameters_.frozen_state_timeout_s <= 0.0) {
     repeated_cycles_ = 0;
     state_frozen_ = false;

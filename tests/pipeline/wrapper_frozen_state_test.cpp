@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <string>
 
 #include "comply/pipeline/wrapper.hpp"
@@ -72,6 +73,16 @@ TEST_F(FrozenState, RepeatedStateWhileTheTorqueMovesFaultsAfterTheTimeout) {
   // Gravity at the state, no damping: the velocity the stream repeats is not the arm's.
   COMPLY_EXPECT_JOINTS_NEAR(torque.values, gravityAt(wrapper.controller(), state.position),
                             kTolerance);
+}
+
+TEST_F(FrozenState, ARepeatedNanEffortRepeatsToo) {
+  // A robot without torque sensing may send NaN efforts; NaN != NaN must not hide the repeat.
+  state.effort.setConstant(std::numeric_limits<double>::quiet_NaN());
+  ASSERT_EQ(cycle(state), CycleStatus::kOk);  // the repeat starts from here
+  sendStep();
+  const int faulted_at = cyclesUntilFault(1000);
+  EXPECT_GE(faulted_at, 99);
+  EXPECT_LE(faulted_at, 103);
 }
 
 TEST_F(FrozenState, ResetNeedsAStateThatMovesAgain) {
