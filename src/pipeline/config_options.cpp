@@ -141,10 +141,10 @@ void addLimitAndShapingOptions(std::vector<Option>& table) {
   table.push_back(perJoint("fault_damping", "5.0",
                            "N m s/rad of the FAULT holding torque (gravity + damping)", 0.0, false,
                            &WrapperConfig::fault_damping));
-  table.push_back(number(
-      "frozen_state_timeout_s", "0.1",
-      "stale sensor -> FAULT: state bit-identical this long, torque moved > 1 N m; 0: never",
-      0.0, 10.0, false, [](WrapperConfig& c, double v) { c.frozen_state_timeout_s = v; }));
+  table.push_back(
+      number("frozen_state_timeout_s", "0.1",
+             "stale sensor -> FAULT: state bit-identical this long, torque moved > 1 N m; 0: never",
+             0.0, 10.0, false, [](WrapperConfig& c, double v) { c.frozen_state_timeout_s = v; }));
 }
 
 // The sections are added in the order the YAML file prints them; the order is part of the file.

@@ -66,8 +66,8 @@ bool Controller::stateFrozen(const JointState& state) noexcept {
   if (time_s_ - repeated_since_s_ < parameters_.frozen_state_timeout_s) {
     return false;
   }
-  state_frozen_ = (torque_ - torque_when_repeated_).cwiseAbs().maxCoeff() >
-                  kFrozenStateTorqueChangeNm;
+  state_frozen_ =
+      (torque_ - torque_when_repeated_).cwiseAbs().maxCoeff() > kFrozenStateTorqueChangeNm;
   return state_frozen_;
 }
 

@@ -178,8 +178,8 @@ std::string markdownTable(CommandKind kind) {
       << "|---|---|---|---|---|---|\n";
   for (const FieldInfo& field : fields(kind)) {
     out << "| `" << field.name << "` | " << groupName(field.group) << " | " << cell(typeText(field))
-        << " | " << cell(field.unit) << " | " << constraintText(field.constraint, field.unit) << " | "
-        << cell(field.description) << " |\n";
+        << " | " << cell(field.unit) << " | " << constraintText(field.constraint, field.unit)
+        << " | " << cell(field.description) << " |\n";
   }
   return out.str();
 }

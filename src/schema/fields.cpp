@@ -91,9 +91,8 @@ double gainLimit(std::string_view unit) noexcept {
     double limit;
   };
   constexpr Limit kLimits[] = {
-      {"N/m", 1e6},       {"N m/rad", 1e5},      {"N m/rad | N/m", 1e6},
-      {"N s/m", 1e5},     {"N m s/rad", 1e4},    {"N m s/rad | N s/m", 1e5},
-      {"1", 100.0},
+      {"N/m", 1e6},       {"N m/rad", 1e5},           {"N m/rad | N/m", 1e6}, {"N s/m", 1e5},
+      {"N m s/rad", 1e4}, {"N m s/rad | N s/m", 1e5}, {"1", 100.0},
   };
   for (const Limit& entry : kLimits) {
     if (entry.unit == unit) {

@@ -22,8 +22,8 @@ class FrozenState : public ::testing::Test {
       : wrapper(fr3Config(kJointImpedancePlugin,
                           "fault_damping: [1, 2, 3, 4, 5, 6, 7]\n"
                           "frozen_state_timeout_s: " +
-                              timeout + "\ntorque_rate_limit_nm_per_s: " +
-                              std::to_string(kNoRateLimit))) {}
+                              timeout +
+                              "\ntorque_rate_limit_nm_per_s: " + std::to_string(kNoRateLimit))) {}
 
   void SetUp() override {
     // Moving, so that a hold that damped the stale velocity would show.

@@ -134,10 +134,10 @@ struct CheckOptions {
 
 enum class Violation : std::uint8_t {
   kNone,
-  kWrongSize,       ///< a joint vector without `dof` entries
-  kNonFinite,       ///< NaN or infinity
-  kNotUnit,         ///< a quaternion too far from unit norm
-  kNegative,        ///< a non-negative field with a negative entry
+  kWrongSize,        ///< a joint vector without `dof` entries
+  kNonFinite,        ///< NaN or infinity
+  kNotUnit,          ///< a quaternion too far from unit norm
+  kNegative,         ///< a non-negative field with a negative entry
   kNotSymmetricPsd,  ///< a gain block that is not symmetric positive semi-definite
   kGainTooLarge      ///< a gain entry above gainLimit() of its unit
 };
