@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace comply::task {
@@ -22,7 +23,17 @@ Path::Path(const std::vector<Eigen::Vector3d>& points, double spacing_m, double 
   if (!(length_ > 0.0) || !std::isfinite(length_)) {
     throw std::invalid_argument("Path has zero or non-finite length");
   }
-  const auto count = static_cast<std::size_t>(std::ceil(length_ / spacing_m_)) + 1;
+  const double intervals = std::ceil(length_ / spacing_m_);
+  if (intervals >= static_cast<double>(kMaxPathSamples)) {
+    char message[256];
+    std::snprintf(message, sizeof message,
+                  "Path of %.6g m would need %.6g samples at %.6g mm spacing, above the limit of "
+                  "%zu (%.6g m)",
+                  length_, intervals + 1.0, spacing_m_ * 1e3, kMaxPathSamples,
+                  spacing_m_ * static_cast<double>(kMaxPathSamples - 1));
+    throw std::invalid_argument(message);
+  }
+  const auto count = static_cast<std::size_t>(intervals) + 1;
   spacing_m_ = length_ / static_cast<double>(count - 1);
   samples_.reserve(count);
   std::size_t segment = 1;

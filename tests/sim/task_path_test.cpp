@@ -64,6 +64,8 @@ TEST(TaskPath, BadPathBlocksAreNamed) {
   fails_with("    start_time_s: 1.0\n    points: [[0, 0, 0], [0, 0, 0]]\n", "zero");
   fails_with("    start_time_s: 1.0\n    points: [[0, 0, 0], [0.1, 0, 0]]\n    frame: helix\n",
              "frenet, darboux or fixed");
+  fails_with("    start_time_s: 1.0\n    points: [[0.4, 0, 0.4], [0.4, 30485, 0.4]]\n",
+             "task.path.points: Path of 30485 m would need");
   EXPECT_THROW((void)app::parseTaskFile(
                    "task:\n  waypoints: [{time_s: 0.0}]\n  path: {start_time_s: 0, points: "
                    "[[0, 0, 0], [0.1, 0, 0]]}\n",

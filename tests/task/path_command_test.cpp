@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "comply/task/path.hpp"
 
@@ -39,6 +40,19 @@ TEST(Path, CircleHasItsRadiusAndTangent) {
   }
   EXPECT_THROW(Path({Eigen::Vector3d::Zero()}), std::invalid_argument);
   EXPECT_THROW(Path({Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()}), std::invalid_argument);
+}
+
+TEST(Path, APointKilometresAwayIsRefusedBeforeAnySampleIsKept) {
+  // 30 km at 0.5 mm would be 6e7 samples (1.4 GB); the limit is 500 m.
+  try {
+    (void)Path({Eigen::Vector3d(0.4, 0.0, 0.4), Eigen::Vector3d(0.4, 30485.0, 0.4)});
+    FAIL() << "a 30 km path was accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("above the limit of 1000000"), std::string::npos)
+        << error.what();
+  }
+  const Path longest({Eigen::Vector3d::Zero(), Eigen::Vector3d(499.0, 0.0, 0.0)});
+  EXPECT_NEAR(longest.length(), 499.0, 1e-9);
 }
 
 TEST(PathCommand, MovesAtTheGivenSpeedWithTheOffsetInTheTaskFrame) {

@@ -3,16 +3,22 @@
 // compliance frames need.
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <vector>
 
 namespace comply::task {
+
+/// Most samples a path may hold (24 MB): 500 m at the default spacing, far beyond any arm's reach,
+/// so a typo such as a point 30 km away is refused instead of exhausting memory.
+inline constexpr std::size_t kMaxPathSamples = 1'000'000;
 
 class Path {
  public:
   /// The polyline through `points` [m] (at least two, consecutive points distinct), resampled
   /// every `spacing_m` of arc length. Give points dense enough to describe the curve; derivatives
   /// are central differences over `derivative_step_m` (several spacings), which smooths the
-  /// polyline's corners. Throws std::invalid_argument on fewer than two points or a zero length.
+  /// polyline's corners. Throws std::invalid_argument on fewer than two points, a zero length or
+  /// more than kMaxPathSamples samples.
   explicit Path(const std::vector<Eigen::Vector3d>& points, double spacing_m = 5e-4,
                 double derivative_step_m = 5e-3);
 
