@@ -38,10 +38,9 @@ test: build
 test-all: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
 
-# The test suite under AddressSanitizer + UndefinedBehaviorSanitizer, leak check on except for the
-# simulation tests (label sim): they render with Mesa's software driver, which keeps memory per
-# renderer in code it unloads, so no suppression can name it. And the
-# threaded parts (pipeline, transport, the live host) under ThreadSanitizer, each in its own folder.
+# The test suite under AddressSanitizer + UndefinedBehaviorSanitizer with the leak check on, and
+# the threaded parts (pipeline, transport, the live host) under ThreadSanitizer, each in its own
+# folder. tests/sanitizers/*.supp hold the suppressions, each naming one library that is not ours.
 SANITIZER_CONFIGURE = -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCOMPLY_BUILD_BENCH=OFF \
 	-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache
 test-asan: deps
@@ -49,11 +48,8 @@ test-asan: deps
 	@cmake --build build-asan -j $(JOBS)
 	@cd build-asan && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizers/lsan.supp \
-	  ctest --output-on-failure -j $(JOBS) -LE "long|sim" -E "$(ASAN_EXCLUDE)"
-	@cd build-asan && ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 \
-	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	  ctest --output-on-failure -j $(JOBS) -L sim -LE long -E "$(ASAN_EXCLUDE)"
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/sanitizers/lsan.supp:print_suppressions=0 \
+	  ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS) -E "$(ASAN_EXCLUDE)"
 
 TSAN_TESTS ?= pipeline|wrapper|Diagnostics|transport|Live|live|triple_buffer|spsc
 test-tsan: deps

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "comply/sim/sim_error.hpp"
+#include "gl_driver.hpp"
 
 namespace comply::sim {
 namespace {
@@ -121,6 +122,7 @@ class SharedDisplay {
     const std::lock_guard lock(mutex_);
     if (users_ == 0) {
       display_ = openDisplay();
+      keepGlDriverLoaded();
     }
     ++users_;
     return display_;
