@@ -10,8 +10,8 @@ ASAN_EXCLUDE ?= ^(simulink_plugin_|plugin_new_)
 # Benchmarks run pinned to the last CPU, away from most interrupt and housekeeping work.
 BENCH_CPU ?= $(shell echo $$(($$(nproc) - 1)))
 
-.PHONY: deps configure build install test test-all test-ros2 test-asan test-asan-ci test-tsan fuzz soak bench \
-	demo format tidy clean
+.PHONY: deps configure build install test test-all test-ros2 test-asan test-asan-ci test-tsan \
+	fuzz soak bench demo format tidy clean
 
 deps:
 	@scripts/install-deps.sh
