@@ -8,6 +8,7 @@
 #include <string>
 
 #include "comply/pipeline/wrapper.hpp"
+#include "comply/plugin/abi.h"
 #include "wrapper_support.hpp"
 
 namespace comply::pipeline::test {
@@ -94,6 +95,32 @@ TEST(WrapperFault, ExceptionFromAPluginStepIsAFaultNotACrash) {
   EXPECT_EQ(diagnostics.faults, 1U);
   EXPECT_NE(diagnostics.last_fault.find("plugin: step threw an exception"), std::string::npos)
       << diagnostics.last_fault;
+}
+
+// What the host reads of a message with no NUL: the buffer's 127 characters, never past it.
+const std::string kUnterminatedReason(COMPLY_MESSAGE_CAPACITY - 1, 'x');
+
+TEST(WrapperFault, AnUnterminatedMessageIsReadOnlyToTheEndOfItsBuffer) {
+  JointWrapper wrapper(fr3Config(kUnterminatedErrorPlugin));
+  const JointState rest = restingAt(wrapper.controller(), fr3Home());
+  wrapper.activate(rest);  // at rest the fixture's step succeeds
+  TorqueBuffer torque;
+  EXPECT_EQ(wrapper.update(moving(rest, 0.1), kPeriod, torque.span()), CycleStatus::kFault);
+  EXPECT_EQ(wrapper.diagnostics().last_fault, "plugin: " + kUnterminatedReason);
+}
+
+TEST(WrapperFault, AnUnterminatedMessageFromTheTrialStepIsReadOnlyToTheEndOfItsBuffer) {
+  JointWrapper wrapper(fr3Config(kUnterminatedErrorPlugin));
+  try {
+    wrapper.activate(moving(restingAt(wrapper.controller(), fr3Home()), 0.1));
+    ADD_FAILURE() << "activation accepted a failing law";
+  } catch (const plugin::PluginError& error) {
+    const std::string message = error.what();
+    EXPECT_EQ(error.code(), plugin::PluginErrc::kTrialStepFailed) << message;
+    const std::string suffix = ": " + kUnterminatedReason;
+    ASSERT_GE(message.size(), suffix.size()) << message;
+    EXPECT_EQ(message.substr(message.size() - suffix.size()), suffix) << message;
+  }
 }
 
 TEST(WrapperFault, HoldingTorqueStaysFiniteWhenTheDampingOverflows) {

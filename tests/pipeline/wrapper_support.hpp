@@ -23,6 +23,8 @@ inline const std::string kJointImpedancePlugin = COMPLY_TEST_JOINT_IMPEDANCE;
 inline const std::string kCartesianImpedancePlugin = COMPLY_TEST_CARTESIAN_IMPEDANCE;
 inline const std::string kStepNanPlugin = COMPLY_TEST_FIXTURE_STEP_NAN;
 inline const std::string kStepErrorPlugin = COMPLY_TEST_FIXTURE_STEP_ERROR;
+/// Fails on a moving arm with a message that fills its buffer and has no NUL.
+inline const std::string kUnterminatedErrorPlugin = COMPLY_TEST_FIXTURE_STEP_ERROR_UNTERMINATED;
 inline const std::string kThrowingPlugin = COMPLY_TEST_FIXTURE_THROWING;
 inline const std::string kThrowingActivatePlugin = COMPLY_TEST_FIXTURE_THROWING_ACTIVATE;
 
