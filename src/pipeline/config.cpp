@@ -59,6 +59,9 @@ std::vector<double> numberList(const YAML::Node& node) {
 
 std::string rangeText(const options::Option& option) {
   std::ostringstream text;
+  if (option.min < -1e300 && option.max >= 1e300) {
+    return "must be a finite number";  // any sign: only NaN and infinities are out of range
+  }
   if (option.max < 1e300) {
     text << "must be in " << (option.min_exclusive ? "(" : "[") << option.min << ", " << option.max
          << "]";

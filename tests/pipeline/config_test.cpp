@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "comply/core/input_error.hpp"
@@ -486,6 +487,33 @@ TEST(WrapperConfig, NonFiniteOrNegativeValidationLimitsAreRefused) {
         "effort_limit_nm: .nan", "compensation:\n  payload:\n    mass_kg: .nan"}) {
     SCOPED_TRACE(line);
     EXPECT_THROW(parse(line), InputError);
+  }
+}
+
+TEST(WrapperConfig, EachRefusedLimitIsNamedWithItsKey) {
+  // The message must name the key a user wrote (an effort limit used to be reported as missing
+  // from the URDF), so each bad value is checked against its own key.
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"validation:\n  quaternion_tolerance: .nan", "validation.quaternion_tolerance"},
+      {"validation:\n  quaternion_tolerance: -1.0e-3", "validation.quaternion_tolerance"},
+      {"validation:\n  max_position_jump_m: .nan", "validation.max_position_jump_m"},
+      {"effort_limit_nm: -5.0", "effort_limit_nm"},
+      {"effort_limit_nm: [87, 87, 87, 87, 12, .nan, 12]", "effort_limit_nm"},
+      {"compensation:\n  payload:\n    mass_kg: .nan", "compensation.payload.mass_kg"},
+      {"compensation:\n  friction:\n    model: viscous_coulomb\n    viscous: .nan\n"
+       "    coulomb: 0.1",
+       "compensation.friction.viscous"},
+      {"compensation:\n  friction:\n    model: sigmoid\n    phi1: [.nan, 0, 0, 0, 0, 0, 0]",
+       "compensation.friction.phi1: must be a finite number"},
+  };
+  for (const auto& [line, key] : cases) {
+    SCOPED_TRACE(line);
+    expectError(controllerYaml(line), {kPrefix + key});
+    try {
+      parse(line);
+    } catch (const std::runtime_error& error) {
+      EXPECT_EQ(std::string(error.what()).find("URDF"), std::string::npos) << error.what();
+    }
   }
 }
 
