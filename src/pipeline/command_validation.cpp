@@ -100,7 +100,8 @@ Verdict validateCommand(CartesianCommand& incoming, const ValidationConfig& limi
   if (!verdict.accepted || !has(incoming.fields, CommandField::kPosition) || !measured.valid) {
     return verdict;
   }
-  const double distance = (incoming.position - measured.tcp_position).norm();
+  // stableNorm: a target 1e300 m away is reported as that, not as an overflowed infinity.
+  const double distance = (incoming.position - measured.tcp_position).stableNorm();
   const double angle = incoming.orientation.angularDistance(measured.tcp_orientation);
   if (distance > limits.max_position_jump_m || angle > limits.max_orientation_jump_rad) {
     std::ostringstream text;

@@ -1,8 +1,9 @@
 #!/bin/bash
 # `comply sim` fails (exit 1) on what used to pass as success: a task whose final target was
-# refused (a target 10 m away: the error was measured against the last accepted reference) and a
-# law that pins a joint at its effort limit (stiffness 9e5 N/m on a 2 cm step); a normal step still
-# exits 0. A stiffness beyond any arm (1e9 N/m) does not run at all (exit 2, field and limit named).
+# refused (a target 10 m or 1e300 m away: the error was measured against the last accepted
+# reference) and a law that pins a joint at its effort limit (stiffness 9e5 N/m on a 2 cm step); a
+# normal step still exits 0. A stiffness beyond any arm (1e9 N/m) does not run at all (exit 2,
+# field and limit named).
 # Usage: cli_sim_verdicts_test.sh COMPLY SOURCE_DIR WORK_DIR
 set -u
 comply=$1 source=$2 work=$3
@@ -11,6 +12,7 @@ step() {  # step FILE OFFSET_X DURATION
   printf 'task:\n  duration_s: %s\n  command_rate_hz: 100\n  snapshot_every_ms: 0\n  waypoints:\n    - time_s: 0.1\n      position_offset: [%s, 0.0, 0.0]\n' "$3" "$2" >"$1"
 }
 step "$work/far.yaml" 10.0 0.5
+step "$work/huge.yaml" 1.0e300 0.5
 step "$work/step.yaml" 0.02 1.5
 sed 's/stiffness_translational: 3000.0/stiffness_translational: 9.0e5/' \
   "$source/config/sim/cartesian_impedance.yaml" >"$work/stiff.yaml"
@@ -31,6 +33,8 @@ run() {  # run EXPECTED_EXIT NEEDLE ARGS...
 }
 run 1 "TARGET NOT REACHED: the task's last command was refused (pose_jump" \
   --robot fr3 --task "$work/far.yaml" --out "$work/far"
+run 1 "TARGET NOT REACHED: the task's last command was refused (pose_jump: target is 1e+300 m" \
+  --robot fr3 --task "$work/huge.yaml" --out "$work/huge"
 run 1 "SATURATED: joint" --config "$work/stiff.yaml" --task "$work/step.yaml" --out "$work/stiff"
 run 2 "stiffness_translational has an entry of 1e+09 N/m, above the limit of 1e+06" \
   --config "$work/absurd.yaml" --task "$work/step.yaml" --out "$work/absurd"

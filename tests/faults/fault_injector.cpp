@@ -1,7 +1,7 @@
 // Joint impedance that misbehaves on purpose, from cycle `at_step` on (plugin_parameters):
 //   fault: 0 none, 1 NaN torque, 2 saturate (1e6 N m on every joint), 3 overrun (sleep
 //   overrun_ms per step), 4 crash (a write through a null pointer), 5 hang (never returns),
-//   6 abort().
+//   6 abort(), 7 huge (1e300 N m on every joint: finite, so only the effort limit stops it).
 // Each fault has one defined end, which tests/faults/fault_injection_test.sh checks and the
 // README's safety section states.
 
@@ -16,7 +16,7 @@
 namespace comply::tests {
 namespace {
 
-enum class Fault { kNone, kNan, kSaturate, kOverrun, kCrash, kHang, kAbort };
+enum class Fault { kNone, kNan, kSaturate, kOverrun, kCrash, kHang, kAbort, kHuge };
 
 class FaultInjector final : public JointController {
  public:
@@ -41,8 +41,9 @@ class FaultInjector final : public JointController {
         output.torque[0] = std::numeric_limits<double>::quiet_NaN();
         break;
       case Fault::kSaturate:
+      case Fault::kHuge:
         for (int i = 0; i < dof_; ++i) {
-          output.torque[i] = 1e6;
+          output.torque[i] = fault_ == Fault::kHuge ? 1e300 : 1e6;
         }
         break;
       case Fault::kOverrun:
