@@ -23,6 +23,15 @@
 
 namespace comply::app {
 
+// The wire numbers the wrapper's reasons as the pipeline does: a verdict's reason is cast, here and
+// in the ROS 2 controller.
+static_assert(static_cast<int>(transport::Reason::kQueueFull) ==
+                  static_cast<int>(pipeline::RejectionReason::kQueueFull) &&
+              static_cast<int>(transport::Reason::kOutOfRange) ==
+                  static_cast<int>(pipeline::RejectionReason::kOutOfRange) &&
+              static_cast<int>(transport::Reason::kOtherPublisher) ==
+                  static_cast<int>(pipeline::RejectionReason::kCount));
+
 /// The writer that holds the command topics: the first to send, until it is silent for the
 /// timeout (the controller's command_timeout_s, the watchdog's).
 class PublisherLock {

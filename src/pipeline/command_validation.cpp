@@ -22,6 +22,8 @@ RejectionReason reasonFor(schema::Violation violation) {
     case schema::Violation::kNotSymmetricPsd:
     case schema::Violation::kGainTooLarge:
       return RejectionReason::kInvalidGains;
+    case schema::Violation::kValueTooLarge:
+      return RejectionReason::kOutOfRange;
     case schema::Violation::kNone:
     case schema::Violation::kNonFinite:
       break;
@@ -88,6 +90,8 @@ std::string_view toString(RejectionReason reason) {
       return "pose_jump";
     case RejectionReason::kQueueFull:
       return "queue_full";
+    case RejectionReason::kOutOfRange:
+      return "out_of_range";
     case RejectionReason::kCount:
       break;
   }

@@ -70,7 +70,7 @@ std::string constraintText(Constraint constraint, std::string_view unit) {
   const std::string limit = ", entries <= " + limitText(gainLimit(unit));
   switch (constraint) {
     case Constraint::kNone:
-      return "";
+      return std::isinf(valueLimit(unit)) ? "" : "entries <= " + limitText(valueLimit(unit));
     case Constraint::kNonNegative:
       return ">= 0" + limit;
     case Constraint::kSymmetricPsd:
@@ -158,6 +158,9 @@ nlohmann::json rowsOf(CommandKind kind) {
     if (field.constraint == Constraint::kNonNegative ||
         field.constraint == Constraint::kSymmetricPsd) {
       row["gain_limit"] = gainLimit(field.unit);
+    }
+    if (field.constraint == Constraint::kNone && !std::isinf(valueLimit(field.unit))) {
+      row["value_limit"] = valueLimit(field.unit);
     }
     if (!field.values.empty()) {
       row["values"] = nlohmann::json::array();

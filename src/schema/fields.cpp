@@ -102,6 +102,26 @@ double gainLimit(std::string_view unit) noexcept {
   return std::numeric_limits<double>::infinity();
 }
 
+double valueLimit(std::string_view unit) noexcept {
+  // Arms' own limits: TCP 1-3 m/s and 2.5 rad/s, joints up to 5.3 rad/s and 20 rad/s^2, Cartesian
+  // accelerations near 10 m/s^2, joint torques up to 330 N m, payloads near 300 N.
+  struct Limit {
+    std::string_view unit;
+    double limit;
+  };
+  constexpr Limit kLimits[] = {
+      {"m/s, rad/s", 100.0},    {"rad/s | m/s", 100.0}, {"m/s^2, rad/s^2", 1e3},
+      {"rad/s^2 | m/s^2", 1e3}, {"N, N m", 1e4},        {"N m", 1e4},
+      {"N m | N", 1e4},
+  };
+  for (const Limit& entry : kLimits) {
+    if (entry.unit == unit) {
+      return entry.limit;
+    }
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
 std::string_view toString(Role role) {
   switch (role) {
     case Role::kNone:

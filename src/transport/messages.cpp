@@ -63,6 +63,8 @@ std::string_view toString(Reason reason) {
       return "pose_jump";
     case Reason::kQueueFull:
       return "queue_full";
+    case Reason::kOutOfRange:
+      return "out_of_range";
     case Reason::kOtherPublisher:
       return "other_publisher";
     case Reason::kWrongKind:

@@ -301,6 +301,18 @@ TEST_F(CartesianValidation, RejectsNegativeNullspaceGains) {
                  {"nullspace_damping", ">= 0"});
 }
 
+TEST_F(CartesianValidation, RejectsRatesAndFeedforwardBeyondAnyArm) {
+  // Finite, so no NaN check catches them; held in force they would pin every joint at its limit.
+  expectRejected([](auto& c) { c.twist[0] = 1e301; }, RejectionReason::kOutOfRange,
+                 {"twist has an entry of 1e+301 m/s, rad/s", "limit of 100"});
+  expectRejected([](auto& c) { c.acceleration[5] = -2e3; }, RejectionReason::kOutOfRange,
+                 {"acceleration", "limit of 1000"});
+  expectRejected([](auto& c) { c.wrench_feedforward[3] = 1e9; }, RejectionReason::kOutOfRange,
+                 {"wrench_feedforward", "limit of 10000"});
+  expectRejected([](auto& c) { c.torque_feedforward[1] = 1e9; }, RejectionReason::kOutOfRange,
+                 {"torque_feedforward", "limit of 10000"});
+}
+
 TEST_F(CartesianValidation, RejectsJointSpaceFieldsOfTheWrongSize) {
   expectRejected(
       [](auto& c) {

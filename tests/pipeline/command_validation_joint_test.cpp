@@ -186,6 +186,16 @@ TEST_F(JointValidation, RejectsNegativeDamping) {
   expectRejected(incoming, RejectionReason::kInvalidGains, {"damping", ">= 0"});
 }
 
+TEST_F(JointValidation, RejectsRatesAndFeedforwardBeyondAnyArm) {
+  JointCommand incoming = nextCommand();
+  incoming.velocity[1] = -150.0;
+  expectRejected(incoming, RejectionReason::kOutOfRange, {"velocity", "limit of 100"});
+  incoming = nextCommand();
+  incoming.fields = CommandField::kTorqueFeedforward;
+  incoming.torque_feedforward[0] = 1e9;
+  expectRejected(incoming, RejectionReason::kOutOfRange, {"torque_feedforward", "limit of 10000"});
+}
+
 TEST_F(JointValidation, RejectsStaleStampButAcceptsAnEqualOne) {
   JointCommand incoming = nextCommand();
   incoming.stamp_s = 0.999;

@@ -241,6 +241,9 @@ TEST(WrapperConfig, InitialGainsAreCheckedLikeACommand) {
               {kPrefix + "initial.stiffness_translational: "});
   expectError(controllerYaml("initial:\n  nullspace_damping: -1"),
               {kPrefix + "initial.nullspace_damping: "});
+  // A feedforward beyond any arm would pin every joint at its effort limit from the first cycle.
+  expectError(controllerYaml("initial:\n  wrench_feedforward: [1.0e9, 0, 0, 0, 0, 0]"),
+              {kPrefix + "initial.wrench_feedforward: ", "above the limit of 10000"});
 }
 
 TEST(WrapperConfig, GainBlockOfTheWrongLengthNamesTheKey) {

@@ -1,5 +1,5 @@
 """comply run --sim and a Python client streaming 10,000 commands at 1 kHz, a tenth of them
-invalid in six ways: every command has exactly one outcome, applied or rejected with the right
+invalid in seven ways: every command has exactly one outcome, applied or rejected with the right
 reason. Then SIGTERM: the host exits 0. Usage: live_client_test.py COMPLY_CLI SOURCE_DIR."""
 
 import math
@@ -19,7 +19,7 @@ COMMANDS = 10000
 def invalid(i, pose):
     """The i-th invalid command: (keywords, is_joint, expected reason)."""
     position, orientation = pose
-    kind = (i // 10) % 6
+    kind = (i // 10) % 7
     if kind == 0:
         return dict(position=[math.nan, 0.0, 0.0], orientation=orientation), False, "non_finite"
     if kind == 1:
@@ -32,6 +32,8 @@ def invalid(i, pose):
             "invalid_gains"
     if kind == 4:
         return dict(position=position + [0.5, 0, 0], orientation=orientation), False, "pose_jump"
+    if kind == 5:  # finite, but faster than any arm
+        return dict(twist=[1e12, 0, 0, 0, 0, 0]), False, "out_of_range"
     return dict(stiffness=np.full(7, 10.0)), True, "wrong_kind"
 
 
@@ -77,7 +79,8 @@ def main():
         assert not wrong, f"wrong outcomes, first: {wrong[:3]}"
         assert applied == COMMANDS * 9 // 10
         diagnostics = client.diagnostics()
-        assert diagnostics["rejections"]["pose_jump"] >= COMMANDS // 60, diagnostics
+        for name in ("pose_jump", "out_of_range"):  # one tenth of the commands, in seven ways
+            assert diagnostics["rejections"][name] >= COMMANDS // 70 - 1, diagnostics
         assert client.wait_until(lambda s: s["state"] == "active", timeout=2.0)
     finally:
         host.send_signal(signal.SIGTERM)

@@ -173,6 +173,16 @@ TEST(SchemaCheck, EachCartesianViolationNamesItsField) {
   expectViolation(
       ok, [](auto& c) { c.nullspace_damping[0] = 1.5e4; }, Violation::kGainTooLarge,
       "nullspace_damping");
+  expectViolation(
+      ok, [](auto& c) { c.twist[4] = -1e301; }, Violation::kValueTooLarge, "twist");
+  expectViolation(
+      ok, [](auto& c) { c.acceleration[0] = 1.5e3; }, Violation::kValueTooLarge, "acceleration");
+  expectViolation(
+      ok, [](auto& c) { c.wrench_feedforward[2] = 1e9; }, Violation::kValueTooLarge,
+      "wrench_feedforward");
+  expectViolation(
+      ok, [](auto& c) { c.torque_feedforward[2] = -2e4; }, Violation::kValueTooLarge,
+      "torque_feedforward");
 }
 
 TEST(SchemaCheck, GainLimitsFollowTheUnitAndAdmitTheLimitItself) {
@@ -192,6 +202,29 @@ TEST(SchemaCheck, GainLimitsFollowTheUnitAndAdmitTheLimitItself) {
   EXPECT_NE(over.message.find("above the limit of 100000"), std::string::npos) << over.message;
 }
 
+TEST(SchemaCheck, ValueLimitsFollowTheUnitAndAdmitTheLimitItself) {
+  EXPECT_EQ(valueLimit("m/s, rad/s"), 100.0);
+  EXPECT_EQ(valueLimit("N m | N"), 1e4);
+  EXPECT_EQ(valueLimit("m"), std::numeric_limits<double>::infinity()) << "a reach, not a rate";
+  EXPECT_EQ(valueLimit("N/m"), std::numeric_limits<double>::infinity()) << "a gain unit";
+  CartesianCommand at_limit = distinctCartesian();
+  at_limit.twist << 100.0, -100.0, 0.0, 100.0, 0.0, -100.0;
+  at_limit.acceleration.setConstant(-1e3);
+  at_limit.wrench_feedforward.setConstant(1e4);
+  EXPECT_TRUE(checkFields(at_limit, kDof).ok()) << checkFields(at_limit, kDof).message;
+  CartesianCommand over = at_limit;
+  over.twist[3] = 100.5;
+  const CheckResult result = checkFields(over, kDof);
+  EXPECT_EQ(result.violation, Violation::kValueTooLarge);
+  EXPECT_EQ(result.message,
+            "twist has an entry of 100.5 m/s, rad/s, above the limit of 100 for any arm");
+  // Positions have no value limit: their reach is checked against the measured pose.
+  CartesianCommand far = distinctCartesian();
+  far.position.setConstant(1e300);
+  far.nullspace_position.setConstant(1e3);
+  EXPECT_TRUE(checkFields(far, kDof).ok());
+}
+
 TEST(SchemaCheck, EachJointViolationNamesItsField) {
   const JointCommand ok = distinctJoint();
   expectViolation(
@@ -200,6 +233,13 @@ TEST(SchemaCheck, EachJointViolationNamesItsField) {
       ok, [](auto& c) { c.stiffness[1] = -1.0; }, Violation::kNegative, "stiffness");
   expectViolation(
       ok, [](auto& c) { c.stiffness[1] = 1.1e6; }, Violation::kGainTooLarge, "stiffness");
+  expectViolation(
+      ok, [](auto& c) { c.velocity[1] = 101.0; }, Violation::kValueTooLarge, "velocity");
+  expectViolation(
+      ok, [](auto& c) { c.acceleration[0] = -1e4; }, Violation::kValueTooLarge, "acceleration");
+  expectViolation(
+      ok, [](auto& c) { c.torque_feedforward[2] = 1e9; }, Violation::kValueTooLarge,
+      "torque_feedforward");
   expectViolation(
       ok, [](auto& c) { c.torque_feedforward = ramp(0.0, 4); }, Violation::kWrongSize,
       "torque_feedforward");

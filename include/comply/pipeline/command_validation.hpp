@@ -22,6 +22,7 @@ enum class RejectionReason : std::uint8_t {
   kStaleStamp,         ///< stamp older than the last accepted command
   kPoseJump,           ///< target too far from the measured pose / joint position
   kQueueFull,          ///< the cycle has not taken the commands queued before (sender too fast)
+  kOutOfRange,         ///< a rate or feedforward entry above the limit of its unit for any arm
   kCount,
 };
 inline constexpr std::size_t kRejectionReasonCount =

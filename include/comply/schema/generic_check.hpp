@@ -2,6 +2,7 @@
 // Field validation, generic over a schema (see generic.hpp): sizes, finiteness and the table's
 // constraints, for the groups a command sets. Include only from .cpp files and tests.
 
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -31,18 +32,26 @@ inline bool normaliseQuaternion(Eigen::Quaterniond& q, double tolerance) {
   return true;
 }
 
-/// A gain field's largest entry against gainLimit() of its unit.
+/// A field's largest entry against `limit`, the gain or value limit of its unit.
 template <typename Value>
-CheckResult checkGainLimit(const Value& value, const std::string& field, std::string_view unit) {
-  const double limit = gainLimit(unit);
+CheckResult checkEntryLimit(const Value& value, const std::string& field, std::string_view unit,
+                            double limit, Violation violation) {
+  if (value.size() == 0) {
+    return {};
+  }
   const double largest = value.cwiseAbs().maxCoeff();
   if (!(largest <= limit)) {
     std::ostringstream text;
     text << field << " has an entry of " << largest << " " << unit << ", above the limit of "
          << limit << " for any arm";
-    return {Violation::kGainTooLarge, field, text.str()};
+    return {violation, field, text.str()};
   }
   return {};
+}
+
+template <typename Value>
+CheckResult checkGainLimit(const Value& value, const std::string& field, std::string_view unit) {
+  return checkEntryLimit(value, field, unit, gainLimit(unit), Violation::kGainTooLarge);
 }
 
 /// The constraint of one field; a message naming it, or empty when it holds.
@@ -70,6 +79,12 @@ CheckResult checkConstraint(typename F::ValueType& value, std::string_view name,
       return {Violation::kNegative, field, field + " must be >= 0"};
     }
     return checkGainLimit(value, field, unit);
+  } else if constexpr (F::kConstraint == Constraint::kNone && F::kKind != FieldKind::kEnum &&
+                       F::kKind != FieldKind::kQuaternion) {
+    const double limit = valueLimit(unit);
+    if (limit < std::numeric_limits<double>::infinity()) {
+      return checkEntryLimit(value, field, unit, limit, Violation::kValueTooLarge);
+    }
   }
   return {};
 }

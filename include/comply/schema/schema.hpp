@@ -75,6 +75,12 @@ std::string_view toString(Constraint constraint);
 /// settings arm vendors' own impedance controllers accept: a value beyond it is a typo or a unit
 /// mistake, never a tuning, and the torque it asks for only saturates the joints.
 double gainLimit(std::string_view unit) noexcept;
+/// The largest entry the schema accepts in a rate or feedforward field of `unit` (twist,
+/// velocity, acceleration, wrench, torque), or infinity for a unit that has none (positions,
+/// whose reach is checked against the measured pose instead). Twenty to a hundred times what the
+/// fastest and strongest torque-controlled arms reach: a value beyond it is a unit mistake or a
+/// corrupted number, and would only pin every joint at its effort limit.
+double valueLimit(std::string_view unit) noexcept;
 std::string_view toString(Role role);
 
 /// Bit i set: field i of a kind's table (table order). Which keys a JSON object gave, say.
@@ -139,7 +145,8 @@ enum class Violation : std::uint8_t {
   kNotUnit,          ///< a quaternion too far from unit norm
   kNegative,         ///< a non-negative field with a negative entry
   kNotSymmetricPsd,  ///< a gain block that is not symmetric positive semi-definite
-  kGainTooLarge      ///< a gain entry above gainLimit() of its unit
+  kGainTooLarge,     ///< a gain entry above gainLimit() of its unit
+  kValueTooLarge     ///< a rate or feedforward entry above valueLimit() of its unit
 };
 
 struct CheckResult {

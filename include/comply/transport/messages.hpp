@@ -87,12 +87,13 @@ enum class Reason : std::uint8_t {
   kStaleStamp = 4,
   kPoseJump = 5,
   kQueueFull = 6,
-  kOtherPublisher = 7,  ///< another writer holds the command topics
-  kWrongKind = 8,       ///< a joint command to a Cartesian controller, or the reverse
-  kInactive = 9,        ///< the controller is not active
+  kOutOfRange = 7,
+  kOtherPublisher = 8,  ///< another writer holds the command topics
+  kWrongKind = 9,       ///< a joint command to a Cartesian controller, or the reverse
+  kInactive = 10,       ///< the controller is not active
   kNone = 255,
 };
-inline constexpr std::size_t kReasonCount = 10;
+inline constexpr std::size_t kReasonCount = 11;
 std::string_view toString(Reason reason);
 
 /// comply_msgs/CommandOutcome.
