@@ -31,9 +31,10 @@ double monotonicSeconds() {
 
 /// The DDS side of the host: the endpoints on one participant.
 struct HostEndpoints {
-  // Deeper than ROS 2's 10 on the host's side only: a burst that arrives while the reader thread
-  // is descheduled waits here instead of being dropped unaccounted.
-  static constexpr int kCommandDepth = 1000;
+  // Every command kept until the reader thread takes it: a burst that arrives while the thread is
+  // descheduled, or faster than it validates, waits here (and holds a reliable writer back)
+  // instead of being dropped unaccounted.
+  static constexpr int kCommandDepth = transport::kKeepAll;
   explicit HostEndpoints(const RunOptions& options)
       : participant(
             {options.domain_id,

@@ -11,6 +11,12 @@ namespace {
 
 using SteadyClock = std::chrono::steady_clock;
 constexpr std::size_t kOutcomesKept = 100000;
+// The writers keep every unacknowledged command: a write waits while the commands before it fill
+// the writer's history and fails when the host acknowledges none of them within the reliability's
+// 0.1 s blocking time.
+constexpr const char* kRefused =
+    "DDS refused the command: the host acknowledged none of the commands sent before it within "
+    "0.1 s (is comply run stopped or stalled?)";
 
 SteadyClock::time_point deadlineAfter(double seconds) {
   return SteadyClock::now() +
@@ -23,8 +29,9 @@ Client::Client(const std::string& name, int domain, const std::string& network, 
     : name_(name),
       participant_(
           {domain, network == "all" ? transport::Network::kAll : transport::Network::kLoopback}),
-      cartesian_writer_(participant_, name),
-      joint_writer_(participant_, name),
+      // A sender faster than the host waits for room instead of losing its oldest command.
+      cartesian_writer_(participant_, name, transport::kKeepAll),
+      joint_writer_(participant_, name, transport::kKeepAll),
       request_writer_(participant_, name),
       state_reader_(participant_, name),
       diagnostics_reader_(participant_, name, 10000) {
@@ -118,7 +125,7 @@ std::int64_t Client::sendCartesian(const py::kwargs& kwargs) {
   transport::CartesianCommandMessage message{{{}, ""}, cartesianFromKwargs(kwargs, dof_, base)};
   message.header.stamp = nextStamp();
   if (!cartesian_writer_.write(message)) {
-    throw std::runtime_error("DDS refused the command");
+    throw std::runtime_error(kRefused);
   }
   return message.header.stamp.nanoseconds();
 }
@@ -132,7 +139,7 @@ std::int64_t Client::sendJoint(const py::kwargs& kwargs) {
   transport::JointCommandMessage message{{{}, ""}, jointFromKwargs(kwargs, dof_, base)};
   message.header.stamp = nextStamp();
   if (!joint_writer_.write(message)) {
-    throw std::runtime_error("DDS refused the command");
+    throw std::runtime_error(kRefused);
   }
   return message.header.stamp.nanoseconds();
 }

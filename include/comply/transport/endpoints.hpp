@@ -40,6 +40,14 @@ struct QosProfile {
   bool reliable = true;
   int depth = 10;  ///< keep last
 };
+
+/// An endpoint depth that keeps every sample until it is taken or acknowledged (KEEP_ALL, at most
+/// kKeepAllSamples held): a reliable writer then waits for room instead of dropping its oldest
+/// unacknowledged sample, and a reliable reader that is full holds the writer back through the
+/// protocol instead of discarding a burst. History is not matched between endpoints, so either
+/// side stays compatible with ROS 2's keep-last peers (which may still drop on their own side).
+inline constexpr int kKeepAll = -1;
+inline constexpr int kKeepAllSamples = 1000;
 QosProfile qosOf(Topic topic);
 
 /// The topic each message travels on.
@@ -91,8 +99,9 @@ class Endpoint {
 template <typename Message>
 class Writer final : public Endpoint {
  public:
-  Writer(Participant& participant, std::string_view host_name)
-      : Endpoint(participant, host_name, TopicOf<Message>::kTopic, true) {}
+  /// `depth` > 0 replaces the topic's keep-last depth for this writer; kKeepAll keeps all.
+  Writer(Participant& participant, std::string_view host_name, int depth = 0)
+      : Endpoint(participant, host_name, TopicOf<Message>::kTopic, true, depth) {}
   /// False when DDS refused the sample (it is then not sent).
   bool write(const Message& message);
   /// Waits until every matched reliable reader acknowledged what was written; false on timeout.
@@ -112,8 +121,8 @@ struct Sample {
 template <typename Message>
 class Reader final : public Endpoint {
  public:
-  /// `depth` > 0 replaces the topic's keep-last depth for this reader alone (history depth is not
-  /// matched against the writers', so any depth stays compatible with ROS 2 peers).
+  /// `depth` > 0 replaces the topic's keep-last depth for this reader alone, kKeepAll keeps all
+  /// (history is not matched against the writers', so either stays compatible with ROS 2 peers).
   Reader(Participant& participant, std::string_view host_name, int depth = 0);
   ~Reader();
   /// Appends up to `max` waiting samples to `out` in arrival order; how many.
