@@ -31,8 +31,10 @@ PYBIND11_MODULE(_comply, m) {
            py::arg("name") = "comply", py::arg("domain") = 0, py::arg("network") = "loopback",
            py::arg("timeout") = 10.0)
       .def("send_cartesian", &Client::sendCartesian,
-           "Send a Cartesian command by schema keywords; returns its stamp [ns]")
-      .def("send_joint", &Client::sendJoint, "Send a joint command; returns its stamp [ns]")
+           "Send a Cartesian command by schema keywords; returns its stamp [ns]. Waits while "
+           "the host is behind; RuntimeError when it acknowledged nothing for 0.1 s")
+      .def("send_joint", &Client::sendJoint,
+           "Send a joint command; returns its stamp [ns]. Waits and raises as send_cartesian")
       .def("state", &Client::state, py::arg("timeout") = 1.0)
       .def("diagnostics", &Client::diagnostics, py::arg("timeout") = 1.0)
       .def("outcome", &Client::outcome, py::arg("stamp"), py::arg("timeout") = 1.0)
