@@ -1,5 +1,6 @@
 #include "comply_ros2_control/comply_controller.hpp"
 
+#include <cstddef>
 #include <ctime>
 #include <exception>
 #include <stdexcept>
@@ -21,6 +22,7 @@ using controller_interface::InterfaceConfiguration;
 constexpr const char* kStateRate = "state_publish_rate_hz";
 constexpr const char* kDiagnosticsRate = "diagnostics_publish_rate_hz";
 constexpr const char* kRobotDescription = "robot_description";
+constexpr std::size_t kCommandDepth = 1000;  ///< commands waiting for the executor, at most
 
 // The index in `interfaces` of "<joint>/<kind>"; throws naming the missing one.
 template <typename Loaned>
@@ -115,7 +117,9 @@ void ComplyController<Command>::createEndpoints() {
                                                                 rclcpp::QoS(100).reliable()));
   prepareState(wrapper_->controller(), state_publisher_->msg_);
   command_subscription_ = node->create_subscription<CommandMessage>(
-      CommandTopic<Command>::kName, rclcpp::QoS(10).reliable(),
+      // Deeper than ROS's 10: a burst that arrives while the executor is busy waits here instead
+      // of being dropped unaccounted (comply run keeps all; rclcpp cannot bound a keep-all).
+      CommandTopic<Command>::kName, rclcpp::QoS(kCommandDepth).reliable(),
       [this](const std::shared_ptr<const CommandMessage> message) { onCommand(*message); });
   reset_service_ = node->create_service<std_srvs::srv::Trigger>(
       "~/reset_fault", [this](const std::shared_ptr<std_srvs::srv::Trigger::Request>,
