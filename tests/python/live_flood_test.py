@@ -7,13 +7,12 @@ for unacknowledged data comes first), then refuses with a clear error rather tha
 sender, and the host accounts for every command held once it runs again.
 Usage: live_flood_test.py COMPLY SOURCE_DIR."""
 
-import random
 import signal
-import subprocess
 import sys
 import time
 
 import comply
+from live_host import running_host
 
 COMMANDS = 5000
 WRITER_KEEPS = 1000  # unacknowledged commands the client's writer holds at most
@@ -21,11 +20,7 @@ WRITER_KEEPS = 1000  # unacknowledged commands the client's writer holds at most
 
 def main():
     cli, source = sys.argv[1], sys.argv[2]
-    domain = random.randint(1, 230)
-    config = f"{source}/config/sim/cartesian_impedance.yaml"
-    host = subprocess.Popen([cli, "run", "--config", config, "--robot", "fr3", "--sim",
-                             "--domain", str(domain), "--name", "flood"])
-    try:
+    with running_host(cli, source, "flood") as (host, domain):
         client = comply.Client(name="flood", domain=domain, timeout=30.0)
         state = client.state()
         position, orientation = state["tcp_position"].copy(), state["tcp_orientation"]
@@ -74,10 +69,6 @@ def main():
         held_outcomes = [client.outcome(stamp, timeout=10.0) for stamp in held]
         assert all(outcome is not None for outcome in held_outcomes), "a held command was lost"
         assert client.wait_until(lambda s: s["state"] == "active", timeout=2.0)
-    finally:
-        host.send_signal(signal.SIGTERM)
-        code = host.wait(timeout=10)
-    assert code == 0, f"comply run exited {code} on SIGTERM"
     print("ok")
 
 
