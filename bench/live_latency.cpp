@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "comply/transport/endpoints.hpp"
-#include "timing_statistics.hpp"
+#include "comply/host/timing_statistics.hpp"
 
 namespace {
 
@@ -72,7 +72,7 @@ void printRow(const char* name, std::vector<double> samples_us) {
     std::printf("%-10s no samples\n", name);
     return;
   }
-  const app::TimingSummary s = app::summarize(std::move(samples_us));
+  const host::TimingSummary s = host::summarize(std::move(samples_us));
   std::printf("%-10s %9.1f %9.1f %9.1f %9.1f %9.1f\n", name, s.mean_us, s.sd_us, s.p50_us, s.p99_us,
               s.max_us);
 }

@@ -15,7 +15,7 @@
 #include "comply/hardware/control_loop.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/wrapper.hpp"
-#include "controller_setup.hpp"
+#include "comply/host/controller_setup.hpp"
 
 namespace comply::app {
 namespace {
@@ -96,7 +96,7 @@ std::array<BenchRow, 2> benchWrapper(const BenchOptions& options, const std::str
                                      const std::string& plugin_name,
                                      const std::vector<double>& home, std::ostream& log,
                                      DampingMode damping_mode = DampingMode::kRatio) {
-  pipeline::WrapperConfig config = controllerConfig(options.robot, plugin_name);
+  pipeline::WrapperConfig config = host::controllerConfig(options.robot, plugin_name);
   config.initial_cartesian.damping_mode = damping_mode;
   pipeline::Wrapper<Command> wrapper(config);
   const int total = options.warmup + options.iterations;
@@ -144,7 +144,7 @@ std::array<BenchRow, 2> benchWrapper(const BenchOptions& options, const std::str
     result.wrapper = wrapper_name;
     result.plugin = plugin_name;
     result.stage = stage;
-    result.timing = summarize(samples);
+    result.timing = host::summarize(samples);
     result.p50_min_us = result.p50_max_us = result.timing.p50_us;
     return result;
   };

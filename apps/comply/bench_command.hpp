@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "timing_statistics.hpp"
+#include "comply/host/timing_statistics.hpp"
 
 namespace comply::app {
 
@@ -35,7 +35,7 @@ struct BenchRow {
   std::string wrapper;  ///< joint | cartesian (ratio damping) | cartesian_abs (absolute damping)
   std::string plugin;
   std::string stage;        ///< plugin_step | full_cycle
-  TimingSummary timing;     ///< per field, the median over the processes
+  host::TimingSummary timing;     ///< per field, the median over the processes
   double p50_min_us = 0.0;  ///< smallest and largest p50 of one process: the spread
   double p50_max_us = 0.0;
   int processes = 1;

@@ -14,7 +14,7 @@
 #include <stdexcept>
 
 #include "bench_command.hpp"
-#include "synthetic_chain.hpp"
+#include "comply/host/synthetic_chain.hpp"
 
 extern char** environ;
 
@@ -87,7 +87,7 @@ double median(std::vector<double> values) {
 
 std::vector<std::string> benchRobots(const std::string& robot_option) {
   if (robot_option == "all") {
-    return {"fr3", "iiwa14", "rizon4s", "ur5e", syntheticChainName(12)};
+    return {"fr3", "iiwa14", "rizon4s", "ur5e", host::syntheticChainName(12)};
   }
   std::vector<std::string> robots;
   std::stringstream list(robot_option);
@@ -137,9 +137,9 @@ std::vector<BenchRow> runBenchProcesses(const BenchOptions& options, std::ostrea
   std::vector<BenchRow> rows;
   try {
     for (const std::string& robot : benchRobots(options.robot)) {
-      const int chain_dof = syntheticChainDof(robot);
+      const int chain_dof = host::syntheticChainDof(robot);
       const std::string target =
-          chain_dof > 0 ? writeSyntheticChain(chain_dof, scratch / robot).string() : robot;
+          chain_dof > 0 ? host::writeSyntheticChain(chain_dof, scratch / robot).string() : robot;
       std::vector<std::vector<BenchRow>> runs;
       for (int process = 0; process < options.processes; ++process) {
         log << "comply bench: " << robot << ", process " << process + 1 << "/" << options.processes

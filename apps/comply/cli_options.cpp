@@ -86,7 +86,7 @@ CLI::App* addSimCommand(CLI::App& app, SimOptions& options) {
   command
       ->add_option("--duration", options.duration_s,
                    "simulated seconds (default: the task's; at most 600)")
-      ->check(finiteIn(1e-3, kMaxSimDurationS));
+      ->check(finiteIn(1e-3, host::kMaxSimDurationS));
   command->add_option("--out", options.out_dir, "output folder (default out/sim-<robot>)");
   command
       ->add_option("--snapshot-every", options.snapshot_every_ms,

@@ -11,8 +11,8 @@
 
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/sim/viewer.hpp"
-#include "controller_setup.hpp"
-#include "live_host.hpp"
+#include "comply/host/controller_setup.hpp"
+#include "comply/host/live_host.hpp"
 
 namespace comply::app {
 namespace {
@@ -60,7 +60,7 @@ int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) 
     return 2;
   }
   const auto resolved =
-      pipeline::resolveController(simControllerConfig(options.robot, "", options.config_file));
+      pipeline::resolveController(host::simControllerConfig(options.robot, "", options.config_file));
   // Page faults in the control loop are latency: keep everything resident when allowed.
   if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
     err << "comply run: warning: mlockall failed (" << std::strerror(errno)
@@ -68,7 +68,7 @@ int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) 
   }
   stop_requested = false;
   installSignalHandlers();
-  return runLiveHost(options, resolved, stop_requested, out, err);
+  return host::runLiveHost(options, resolved, stop_requested, out, err);
 }
 
 }  // namespace comply::app

@@ -5,15 +5,15 @@
 
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/sim/viewer.hpp"
-#include "controller_setup.hpp"
-#include "plot_script.hpp"
-#include "sim_session.hpp"
+#include "comply/host/controller_setup.hpp"
+#include "comply/host/plot_script.hpp"
+#include "comply/host/sim_session.hpp"
 
 namespace comply::app {
 
 bool plotLog(const std::filesystem::path& csv, const std::filesystem::path& png,
              std::ostream& err) {
-  return runPlotScript("plot_sim_log.py", {csv.string(), png.string()}, err);
+  return host::runPlotScript("plot_sim_log.py", {csv.string(), png.string()}, err);
 }
 
 int simCommand(const SimOptions& options, std::ostream& out, std::ostream& err) {
@@ -27,15 +27,15 @@ int simCommand(const SimOptions& options, std::ostream& out, std::ostream& err) 
            "to --out.\n";
     return 2;
   }
-  SimRunOptions run;
-  run.config = simControllerConfig(options.robot,
+  host::SimRunOptions run;
+  run.config = host::simControllerConfig(options.robot,
                                    options.plugin.empty() && options.config_file.empty()
                                        ? "cartesian_impedance"
                                        : options.plugin,
                                    options.config_file);
   // Resolved once: the robot, the model and the plugin (whose kind decides the task's commands).
   run.resolved = pipeline::resolveController(run.config);
-  run.task = loadTaskFile(options.task_file, run.resolved->cartesian(), run.config.dof,
+  run.task = host::loadTaskFile(options.task_file, run.resolved->cartesian(), run.config.dof,
                           run.config.validation.quaternion_tolerance);
   if (options.snapshot_every_ms >= 0.0) {
     run.task.snapshot_every_ms = options.snapshot_every_ms;
@@ -48,15 +48,15 @@ int simCommand(const SimOptions& options, std::ostream& out, std::ostream& err) 
                     : std::filesystem::path(options.out_dir);
   run.progress = &err;
 
-  SimResult result = runSimulation(run);
+  host::SimResult result = host::runSimulation(run);
   if (options.plot) {
     const std::filesystem::path png = run.out_dir / "plot.png";
     if (plotLog(run.out_dir / "log.csv", png, err)) {
       result.summary.files.push_back(png);
     }
   }
-  printSummary(result.summary, out);
-  return simExitCode(result.summary);
+  host::printSummary(result.summary, out);
+  return host::simExitCode(result.summary);
 }
 
 }  // namespace comply::app

@@ -6,10 +6,9 @@
 #include <iosfwd>
 #include <string>
 
-namespace comply::app {
+#include "comply/host/task_file.hpp"
 
-/// Longest simulated run [s]: the log is kept in memory for the plot, about 0.65 MB per second.
-inline constexpr double kMaxSimDurationS = 600.0;
+namespace comply::app {
 
 struct SimOptions {
   std::string robot;        ///< name or folder; overrides the config's robot

@@ -16,7 +16,7 @@
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/schema/json.hpp"
 #include "comply/schema/schema.hpp"
-#include "controller_setup.hpp"
+#include "comply/host/controller_setup.hpp"
 #include "validate_wrapper.hpp"
 
 namespace comply::app {
@@ -213,7 +213,7 @@ std::vector<double> flatten(const json& value, const std::string& where) {
 
 json runValidation(const ValidateOptions& options) {
   const pipeline::WrapperConfig config =
-      controllerConfig(options.robot, options.plugin, options.config_file);
+      host::controllerConfig(options.robot, options.plugin, options.config_file);
   const auto resolved = pipeline::resolveController(config);  // the plugin decides the kind
   const bool cartesian = resolved->cartesian();
   const std::vector<ValidateSample> samples = readSamples(options.inputs, config.dof);

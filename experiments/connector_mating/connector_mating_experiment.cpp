@@ -9,11 +9,11 @@
 #include "connector_mating/mating_stream.hpp"
 #include "connector_mating/peg_and_socket.hpp"
 #include "connector_mating/trial_evaluation.hpp"
-#include "controller_setup.hpp"
-#include "plot_script.hpp"
-#include "sim_session.hpp"
+#include "comply/host/controller_setup.hpp"
+#include "comply/host/plot_script.hpp"
+#include "comply/host/sim_session.hpp"
 #include "source_dir.hpp"
-#include "task_file.hpp"
+#include "comply/host/task_file.hpp"
 
 namespace comply::experiments {
 namespace {
@@ -23,8 +23,8 @@ using connector_mating::MatingStream;
 using connector_mating::Trial;
 
 /// The task around the stream: scene, camera, and the waypoint the settle time counts from.
-app::TaskFile matingTask(double motion_end_s, const std::filesystem::path& out_dir, int dof) {
-  return app::parseTaskFile(
+host::TaskFile matingTask(double motion_end_s, const std::filesystem::path& out_dir, int dof) {
+  return host::parseTaskFile(
       "task:\n  command_rate_hz: 100\n  scene: {substeps: 4}\n  camera: {lookat: [0.45, 0.0, "
       "0.22], distance_m: 0.5, azimuth_deg: 90, elevation_deg: -15}\n  waypoints: "
       "[{time_s: " +
@@ -33,7 +33,7 @@ app::TaskFile matingTask(double motion_end_s, const std::filesystem::path& out_d
 }
 
 pipeline::WrapperConfig trialConfig(const Trial& trial) {
-  pipeline::WrapperConfig config = app::simControllerConfig(
+  pipeline::WrapperConfig config = host::simControllerConfig(
       "fr3", "", sourcePath("config/sim/cartesian_impedance.yaml").string());
   if (trial.frame == ComplianceFrame::kMeasuredTcp) {
     plugin::ParameterValue reference;
@@ -46,7 +46,7 @@ pipeline::WrapperConfig trialConfig(const Trial& trial) {
 
 /// One trial's run into <out>/<condition>_<offset>deg/.
 ConnectorMatingRow runTrial(const Trial& trial, double offset_deg,
-                            const ConnectorMatingOptions& options, const app::TcpPose& home,
+                            const ConnectorMatingOptions& options, const host::TcpPose& home,
                             const std::filesystem::path& peg_file) {
   std::ostringstream name;
   name << trial.condition << "_" << offset_deg << "deg";
@@ -54,7 +54,7 @@ ConnectorMatingRow runTrial(const Trial& trial, double offset_deg,
   std::filesystem::create_directories(folder);
   std::ofstream(folder / "socket.xml") << connector_mating::socketFragment(trial.offset_rad);
 
-  app::SimRunOptions run;
+  host::SimRunOptions run;
   run.config = trialConfig(trial);
   MatingStream stream(trial, home.position, home.orientation,
                       options.rotational_stiffness_nm_per_rad, run.config.dof);
@@ -70,7 +70,7 @@ ConnectorMatingRow runTrial(const Trial& trial, double offset_deg,
   run.progress = options.progress;
   run.plant_friction_scale = options.plant_friction_scale;
   run.cartesian_source = &stream;
-  const app::SimResult result = app::runSimulation(run);
+  const host::SimResult result = host::runSimulation(run);
   return connector_mating::evaluateTrial(trial, result.log, stream, options.axial_force_limit_n,
                                          folder / "trace.csv");
 }
@@ -79,7 +79,7 @@ ConnectorMatingRow runTrial(const Trial& trial, double offset_deg,
 
 std::vector<ConnectorMatingRow> runConnectorMating(const ConnectorMatingOptions& options) {
   std::filesystem::create_directories(options.out_dir);
-  const app::TcpPose home = app::homeTcpPose("fr3");
+  const host::TcpPose home = host::homeTcpPose("fr3");
   const std::filesystem::path peg_file = options.out_dir / "peg.xml";
   std::ofstream(peg_file) << connector_mating::pegFragment();
 
@@ -96,7 +96,7 @@ std::vector<ConnectorMatingRow> runConnectorMating(const ConnectorMatingOptions&
   }
   writeResults(connectorMatingTable(rows), options.out_dir);
   if (options.pictures) {
-    app::runPlotScript("plot_connector_mating.py", {options.out_dir.string()},
+    host::runPlotScript("plot_connector_mating.py", {options.out_dir.string()},
                        options.progress != nullptr ? *options.progress : std::cerr);
   }
   return rows;

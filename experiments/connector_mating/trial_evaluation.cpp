@@ -29,7 +29,7 @@ struct Geometry {
   double task_axis_to_socket_deg;
 };
 
-Geometry geometryAt(const app::SimLog& log, std::size_t i, const MatingStream& stream) {
+Geometry geometryAt(const host::SimLog& log, std::size_t i, const MatingStream& stream) {
   Geometry g{};
   const Eigen::Vector3d peg = log.tcp_orientation[i] * Eigen::Vector3d::UnitZ();
   g.tip = log.tcp_position[i] + kPegTip * peg;
@@ -48,7 +48,7 @@ Geometry geometryAt(const app::SimLog& log, std::size_t i, const MatingStream& s
 
 }  // namespace
 
-ConnectorMatingRow evaluateTrial(const Trial& trial, const app::SimLog& log,
+ConnectorMatingRow evaluateTrial(const Trial& trial, const host::SimLog& log,
                                  const MatingStream& stream, double force_limit,
                                  const std::filesystem::path& trace_file) {
   ConnectorMatingRow row;
@@ -56,7 +56,7 @@ ConnectorMatingRow evaluateTrial(const Trial& trial, const app::SimLog& log,
   row.offset_deg = trial.offset_rad * 180.0 / M_PI;
   row.seat_time_s = std::numeric_limits<double>::quiet_NaN();
   row.depth_mm = -std::numeric_limits<double>::infinity();  // negative: never reached the entrance
-  const std::vector<Eigen::Vector3d> force = app::averagedContactForce(log, 20);
+  const std::vector<Eigen::Vector3d> force = host::averagedContactForce(log, 20);
   const Eigen::Vector3d entrance = socketEntrance();
   std::ofstream trace(trace_file);
   trace << "time_s,depth_mm,axial_force_n,lateral_force_n,peg_to_socket_deg,tip_off_axis_mm,"

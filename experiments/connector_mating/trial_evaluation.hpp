@@ -8,13 +8,13 @@
 
 #include "connector_mating/connector_mating_experiment.hpp"
 #include "connector_mating/mating_stream.hpp"
-#include "sim_session.hpp"
+#include "comply/host/sim_session.hpp"
 
 namespace comply::experiments::connector_mating {
 
 /// The row of `trial` from its `log`: seated when the tip gets within 1 mm of the seat before the
 /// axial force passes `force_limit` [N]. Writes every cycle to `trace_file` (CSV).
-ConnectorMatingRow evaluateTrial(const Trial& trial, const app::SimLog& log,
+ConnectorMatingRow evaluateTrial(const Trial& trial, const host::SimLog& log,
                                  const MatingStream& stream, double force_limit,
                                  const std::filesystem::path& trace_file);
 

@@ -1,14 +1,14 @@
-#include "plot_script.hpp"
+#include "comply/host/plot_script.hpp"
 #include "cross_platform/cross_platform_experiment.hpp"
 
 #include <iostream>
 #include <ostream>
 
 #include "comply/sim/image.hpp"
-#include "controller_setup.hpp"
-#include "sim_session.hpp"
+#include "comply/host/controller_setup.hpp"
+#include "comply/host/sim_session.hpp"
 #include "source_dir.hpp"
-#include "task_file.hpp"
+#include "comply/host/task_file.hpp"
 
 namespace comply::experiments {
 namespace {
@@ -22,27 +22,27 @@ bool reached(const CrossPlatformRow& row) {
 }
 
 /// One robot's run into <out>/<robot>/, with its plot when pictures are on.
-app::SimResult runRobot(const std::string& robot, const CrossPlatformOptions& options,
+host::SimResult runRobot(const std::string& robot, const CrossPlatformOptions& options,
                         const std::filesystem::path& config_file,
                         const std::filesystem::path& task_file) {
-  app::SimRunOptions run;
-  run.config = app::simControllerConfig(robot, "", config_file.string());
-  run.task = app::loadTaskFile(task_file, true, run.config.dof,
+  host::SimRunOptions run;
+  run.config = host::simControllerConfig(robot, "", config_file.string());
+  run.task = host::loadTaskFile(task_file, true, run.config.dof,
                                run.config.validation.quaternion_tolerance);
   run.duration_s = options.duration_s;
   run.out_dir = options.out_dir / robot;
   run.snapshots = options.pictures;
   run.progress = options.progress;
-  app::SimResult result = app::runSimulation(run);
+  host::SimResult result = host::runSimulation(run);
   if (options.pictures) {
-    app::runPlotScript("plot_sim_log.py",
+    host::runPlotScript("plot_sim_log.py",
                   {(run.out_dir / "log.csv").string(), (run.out_dir / "plot.png").string()},
                   options.progress != nullptr ? *options.progress : std::cerr);
   }
   return result;
 }
 
-CrossPlatformRow rowOf(const app::SimSummary& summary) {
+CrossPlatformRow rowOf(const host::SimSummary& summary) {
   return CrossPlatformRow{summary.robot,
                           summary.dof,
                           summary.final_position_error_mm,
@@ -65,7 +65,7 @@ std::vector<CrossPlatformRow> runCrossPlatform(const CrossPlatformOptions& optio
   std::vector<CrossPlatformRow> rows;
   std::vector<sim::Image> pictures;
   for (const std::string& robot : options.robots) {
-    const app::SimResult result = runRobot(robot, options, config_file, task_file);
+    const host::SimResult result = runRobot(robot, options, config_file, task_file);
     const std::filesystem::path end_picture = options.out_dir / robot / "end.png";
     if (options.pictures && std::filesystem::exists(end_picture)) {
       pictures.push_back(sim::readPng(end_picture));

@@ -6,14 +6,14 @@
 #include <stdexcept>
 
 #include "comply/task/path.hpp"
-#include "controller_setup.hpp"
-#include "plot_script.hpp"
-#include "sim_session.hpp"
+#include "comply/host/controller_setup.hpp"
+#include "comply/host/plot_script.hpp"
+#include "comply/host/sim_session.hpp"
 #include "source_dir.hpp"
 #include "surface_following/fixture.hpp"
 #include "surface_following/surface_stream.hpp"
 #include "surface_following/tracking_metrics.hpp"
-#include "task_file.hpp"
+#include "comply/host/task_file.hpp"
 
 namespace comply::experiments {
 namespace {
@@ -22,8 +22,8 @@ using surface_following::SurfaceCondition;
 using surface_following::SurfaceStream;
 
 /// The task around the stream: scene, camera, and the waypoint the settle time counts from.
-app::TaskFile surfaceTask(double motion_end_s, int dof) {
-  return app::parseTaskFile(
+host::TaskFile surfaceTask(double motion_end_s, int dof) {
+  return host::parseTaskFile(
       "task:\n  command_rate_hz: 100\n  scene: {tool: probe_tool.xml, substeps: 2}\n"
       "  camera: {lookat: [0.42, 0.0, 0.3], distance_m: 1.4, azimuth_deg: 110, "
       "elevation_deg: -35}\n  waypoints: [{time_s: " +
@@ -33,7 +33,7 @@ app::TaskFile surfaceTask(double motion_end_s, int dof) {
 
 /// One condition's run into <out>/<condition>/, measured against `tip_path`.
 SurfaceFollowingRow runCondition(const SurfaceCondition& condition,
-                                 const SurfaceFollowingOptions& options, const app::TcpPose& home,
+                                 const SurfaceFollowingOptions& options, const host::TcpPose& home,
                                  const task::Path& tip_path) {
   const std::filesystem::path folder = options.out_dir / condition.name;
   std::filesystem::create_directories(folder);
@@ -42,8 +42,8 @@ SurfaceFollowingRow runCondition(const SurfaceCondition& condition,
       condition.displaced ? surface_following::kDisplacementY : 0.0,
       condition.displaced ? surface_following::kDisplacementYawRad : 0.0);
 
-  app::SimRunOptions run;
-  run.config = app::simControllerConfig("fr3", "",
+  host::SimRunOptions run;
+  run.config = host::simControllerConfig("fr3", "",
                                         sourcePath("config/sim/cartesian_impedance.yaml").string());
   // Within reach of the pressing reference, which lies 100 mm inside the fixture.
   run.config.validation.max_position_jump_m = 0.15;
@@ -56,7 +56,7 @@ SurfaceFollowingRow runCondition(const SurfaceCondition& condition,
   run.snapshots = options.pictures;
   run.progress = options.progress;
   run.cartesian_source = &stream;
-  const app::SimResult result = app::runSimulation(run);
+  const host::SimResult result = host::runSimulation(run);
   if (result.summary.faults > 0) {
     throw std::runtime_error("surface-following " + condition.name +
                              ": controller FAULT: " + result.summary.fault_reason);
@@ -74,7 +74,7 @@ std::vector<SurfaceFollowingRow> runSurfaceFollowing(const SurfaceFollowingOptio
         "surface-following: speed must be > 0 and the path fraction in (0, 1]");
   }
   std::filesystem::create_directories(options.out_dir);
-  const app::TcpPose home = app::homeTcpPose("fr3");
+  const host::TcpPose home = host::homeTcpPose("fr3");
   const task::Path tip_path(surface_following::nominalTipPoints(options.path_fraction));
   surface_following::writeFixtureCsv(options.out_dir / "fixture.csv");
 
@@ -87,7 +87,7 @@ std::vector<SurfaceFollowingRow> runSurfaceFollowing(const SurfaceFollowingOptio
   }
   writeResults(surfaceFollowingTable(rows), options.out_dir);
   if (options.pictures) {
-    app::runPlotScript("plot_surface_following.py", {options.out_dir.string()},
+    host::runPlotScript("plot_surface_following.py", {options.out_dir.string()},
                        options.progress != nullptr ? *options.progress : std::cerr);
   }
   return rows;

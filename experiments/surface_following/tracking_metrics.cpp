@@ -24,7 +24,7 @@ struct Sample {
   bool traversing = false;
 };
 
-Sample sampleAt(const app::SimLog& log, std::size_t row, const Eigen::Vector3d& averaged_force,
+Sample sampleAt(const host::SimLog& log, std::size_t row, const Eigen::Vector3d& averaged_force,
                 const SurfaceStream& stream, const task::Path& tip_path) {
   Sample sample;
   sample.t = log.time_s[row];
@@ -79,15 +79,15 @@ std::pair<double, double> meanAndSd(const std::vector<double>& values) {
 
 }  // namespace
 
-SurfaceFollowingRow measureTracking(const std::string& condition, const app::SimLog& log,
+SurfaceFollowingRow measureTracking(const std::string& condition, const host::SimLog& log,
                                     const SurfaceStream& stream, const task::Path& tip_path,
                                     const std::filesystem::path& trace_file) {
   SurfaceFollowingRow metrics;
   metrics.condition = condition;
   std::vector<double> lateral, tangential, total, force;
   std::size_t in_contact = 0;
-  // A force sensor's view: a 20 ms moving average (see app::averagedContactForce()).
-  const std::vector<Eigen::Vector3d> averaged_force = app::averagedContactForce(log, 20);
+  // A force sensor's view: a 20 ms moving average (see host::averagedContactForce()).
+  const std::vector<Eigen::Vector3d> averaged_force = host::averagedContactForce(log, 20);
   std::ofstream trace(trace_file);
   trace << "time_s,tip_x,tip_y,tip_z,nominal_x,nominal_y,lateral_mm,tangential_mm,force_n\n";
   for (std::size_t row = 0; row < log.size(); ++row) {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "comply/task/path.hpp"
-#include "sim_session.hpp"
+#include "comply/host/sim_session.hpp"
 #include "surface_following/surface_following_experiment.hpp"
 #include "surface_following/surface_stream.hpp"
 
@@ -15,7 +15,7 @@ namespace comply::experiments::surface_following {
 
 /// The row of `condition` from `log`, a run commanded by `stream` along `tip_path` (where the
 /// ball's centre should be); writes every cycle to `trace_file` (CSV).
-SurfaceFollowingRow measureTracking(const std::string& condition, const app::SimLog& log,
+SurfaceFollowingRow measureTracking(const std::string& condition, const host::SimLog& log,
                                     const SurfaceStream& stream, const task::Path& tip_path,
                                     const std::filesystem::path& trace_file);
 

@@ -6,7 +6,7 @@
 
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/sim/simulated_robot.hpp"
-#include "controller_setup.hpp"
+#include "comply/host/controller_setup.hpp"
 #include "py_convert.hpp"
 
 namespace comply::python {
@@ -70,7 +70,7 @@ struct Sim::Session {
 
 Sim::Sim(const std::string& config, const std::string& robot, int steps_per_action,
          double max_time_s)
-    : resolved_(pipeline::resolveController(app::simControllerConfig(robot, "", config))),
+    : resolved_(pipeline::resolveController(host::simControllerConfig(robot, "", config))),
       steps_per_action_(steps_per_action),
       max_time_s_(max_time_s) {
   if (steps_per_action < 1) {

@@ -8,7 +8,7 @@
 
 #include "bench_command.hpp"
 #include "comply/model/robot_description.hpp"
-#include "synthetic_chain.hpp"
+#include "comply/host/synthetic_chain.hpp"
 
 namespace comply::app {
 namespace {
@@ -63,16 +63,16 @@ TEST(BenchRobots, AllIsTheFourRobotsAndTheTwelveJointChain) {
 }
 
 TEST(SyntheticChain, NamesParseOnlyWithinTheCapacity) {
-  EXPECT_EQ(syntheticChainDof("chain12"), 12);
-  EXPECT_EQ(syntheticChainDof("chain3"), 3);
-  EXPECT_EQ(syntheticChainDof("chain13"), 0);
-  EXPECT_EQ(syntheticChainDof("chain"), 0);
-  EXPECT_EQ(syntheticChainDof("fr3"), 0);
+  EXPECT_EQ(host::syntheticChainDof("chain12"), 12);
+  EXPECT_EQ(host::syntheticChainDof("chain3"), 3);
+  EXPECT_EQ(host::syntheticChainDof("chain13"), 0);
+  EXPECT_EQ(host::syntheticChainDof("chain"), 0);
+  EXPECT_EQ(host::syntheticChainDof("fr3"), 0);
 }
 
 TEST(SyntheticChain, TwelveJointsLoadAndRunEveryWrapperWithoutAFault) {
   const std::filesystem::path folder =
-      writeSyntheticChain(12, std::filesystem::temp_directory_path() / "comply-bench-test-chain");
+      host::writeSyntheticChain(12, std::filesystem::temp_directory_path() / "comply-bench-test-chain");
   const model::RobotDescription robot = model::loadRobotDescription(folder.string());
   EXPECT_EQ(robot.loadModel().dof(), 12);
   BenchOptions options;

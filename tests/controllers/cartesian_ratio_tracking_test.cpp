@@ -10,7 +10,7 @@
 #include <filesystem>
 
 #include "law_test_support.hpp"
-#include "synthetic_chain.hpp"
+#include "comply/host/synthetic_chain.hpp"
 
 namespace comply::law_test {
 namespace {
@@ -106,7 +106,7 @@ TEST(CartesianRatioTracking, Ur5eFixedSixJointLaw) {
 }
 
 TEST(CartesianRatioTracking, TwelveJointChainDynamicLaw) {
-  const std::filesystem::path folder = app::writeSyntheticChain(
+  const std::filesystem::path folder = host::writeSyntheticChain(
       12, std::filesystem::temp_directory_path() / "comply-ratio-tracking-chain");
   const double worst = worstErrorAlongTrajectory(model::loadRobotDescription(folder.string()));
   std::filesystem::remove_all(folder);

@@ -2,7 +2,7 @@
 // missing value reads "-" (or the column's text) in the table and null in the JSON, units land in
 // the headers, and a failing plot script is reported instead of failing the run.
 
-#include "plot_script.hpp"
+#include "comply/host/plot_script.hpp"
 #include "results_writer.hpp"
 
 #include <gtest/gtest.h>
@@ -89,7 +89,7 @@ TEST(ResultsWriter, WritesBothFiles) {
 
 TEST(ResultsWriter, AFailingPlotScriptIsReportedNotThrown) {
   std::ostringstream err;
-  EXPECT_FALSE(app::runPlotScript("no_such_plot_script.py", {"a b"}, err));
+  EXPECT_FALSE(host::runPlotScript("no_such_plot_script.py", {"a b"}, err));
   EXPECT_NE(err.str().find("warning: no plot"), std::string::npos) << err.str();
   EXPECT_NE(err.str().find("no_such_plot_script.py"), std::string::npos) << err.str();
 }

@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "controller_setup.hpp"
-#include "sim_session.hpp"
+#include "comply/host/controller_setup.hpp"
+#include "comply/host/sim_session.hpp"
 #include "sim_support.hpp"
 
 namespace comply::testing {
@@ -16,15 +16,15 @@ constexpr double kHoldSeconds = 5.0;
 
 /// Largest TCP distance from its start position over the run [m].
 double maxDrift(const std::string& robot, bool gravity_compensation, bool plant_friction = true) {
-  app::SimRunOptions run;
-  run.config = app::controllerConfig(robot, "joint_impedance");
+  host::SimRunOptions run;
+  run.config = host::controllerConfig(robot, "joint_impedance");
   run.config.gravity_compensation = gravity_compensation;
   run.config.initial_joint.stiffness.setZero();
   run.config.initial_joint.damping.setZero();
   run.task = taskFromYaml("task: {waypoints: [{time_s: 0.0}]}", false, run.config.dof);
   run.duration_s = kHoldSeconds;
   run.plant_joint_dynamics = plant_friction;
-  const app::SimResult result = app::runSimulation(run);
+  const host::SimResult result = host::runSimulation(run);
   EXPECT_EQ(result.summary.faults, 0U);
   EXPECT_EQ(result.log.size(), static_cast<std::size_t>(kHoldSeconds * 1000.0));
   double drift = 0.0;

@@ -6,30 +6,30 @@
 #include <string>
 
 #include "comply/pipeline/config.hpp"
-#include "controller_setup.hpp"
-#include "sim_session.hpp"
-#include "task_file.hpp"
+#include "comply/host/controller_setup.hpp"
+#include "comply/host/sim_session.hpp"
+#include "comply/host/task_file.hpp"
 
 namespace comply::testing {
 
 inline const std::filesystem::path kSourceDir = COMPLY_TEST_SOURCE_DIR;
 
 /// A task from YAML text, for a Cartesian or joint controller of `dof` joints.
-inline app::TaskFile taskFromYaml(const std::string& yaml, bool cartesian, int dof) {
-  return app::parseTaskFile(yaml, "test task", kSourceDir / "examples" / "sim", cartesian, dof);
+inline host::TaskFile taskFromYaml(const std::string& yaml, bool cartesian, int dof) {
+  return host::parseTaskFile(yaml, "test task", kSourceDir / "examples" / "sim", cartesian, dof);
 }
 
 /// config/sim/cartesian_impedance.yaml on `robot`.
 inline pipeline::WrapperConfig simCartesianConfig(const std::string& robot) {
-  return app::simControllerConfig(
+  return host::simControllerConfig(
       robot, "", (kSourceDir / "config" / "sim" / "cartesian_impedance.yaml").string());
 }
 
 /// A run of config/sim/cartesian_impedance.yaml on the FR3 with the task examples/sim/<task>.
-inline app::SimRunOptions fr3ExampleRun(const std::string& task) {
-  app::SimRunOptions run;
+inline host::SimRunOptions fr3ExampleRun(const std::string& task) {
+  host::SimRunOptions run;
   run.config = simCartesianConfig("fr3");
-  run.task = app::loadTaskFile(kSourceDir / "examples" / "sim" / task, true, run.config.dof);
+  run.task = host::loadTaskFile(kSourceDir / "examples" / "sim" / task, true, run.config.dof);
   return run;
 }
 

@@ -12,7 +12,7 @@
 #include "comply/model/robot_description.hpp"
 #include "comply/model/update.hpp"
 #include "comply/sim/sim_error.hpp"
-#include "sim_session.hpp"
+#include "comply/host/sim_session.hpp"
 #include "sim_support.hpp"
 
 namespace comply::testing {
@@ -129,8 +129,8 @@ TEST(SimulatedRobot, HomePoseMatchesTheControllerModel) {
 }
 
 TEST(SimulatedRobot, ProbeForceEqualsStiffnessTimesPenetration) {
-  app::SimRunOptions run = fr3ExampleRun("press_on_table.yaml");
-  const app::SimResult result = app::runSimulation(run);
+  host::SimRunOptions run = fr3ExampleRun("press_on_table.yaml");
+  const host::SimResult result = host::runSimulation(run);
   ASSERT_EQ(result.summary.faults, 0U);
   // The task's z stiffness is 500 N/m and the reference lies 30 mm past the point of contact.
   // The task frame is the base frame, so base z is the stiffness axis.

@@ -7,16 +7,16 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sim_session.hpp"
+#include "comply/host/sim_session.hpp"
 #include "sim_support.hpp"
 
 namespace comply::testing {
 namespace {
 
 TEST(StepResponse, SettlesWithoutSustainedOscillationWithinTheTorqueRateLimit) {
-  app::SimRunOptions run = fr3ExampleRun("step_response.yaml");
-  const app::SimResult result = app::runSimulation(run);
-  const app::SimLog& log = result.log;
+  host::SimRunOptions run = fr3ExampleRun("step_response.yaml");
+  const host::SimResult result = host::runSimulation(run);
+  const host::SimLog& log = result.log;
   ASSERT_EQ(result.summary.faults, 0U);
   ASSERT_EQ(result.summary.rejections, 0U);
   ASSERT_GT(log.size(), 2500U);

@@ -5,19 +5,19 @@
 #include <gtest/gtest.h>
 
 #include "comply/task/path.hpp"
-#include "sim_session.hpp"
+#include "comply/host/sim_session.hpp"
 #include "sim_support.hpp"
 
 namespace comply::testing {
 namespace {
 
 TEST(TaskPath, ProbeFollowsTheSOnTheTableAndPressesWithStiffnessTimesOffset) {
-  app::SimRunOptions run = fr3ExampleRun("path_on_table.yaml");
+  host::SimRunOptions run = fr3ExampleRun("path_on_table.yaml");
   ASSERT_TRUE(run.task.path_points);
   const task::Path path(*run.task.path_points);
   const double start = run.task.path_options.start_time_s;
   const double end = start + path.length() / run.task.path_options.speed_m_per_s;
-  const app::SimResult result = app::runSimulation(run);
+  const host::SimResult result = host::runSimulation(run);
   ASSERT_EQ(result.summary.faults, 0U);
   ASSERT_EQ(result.summary.rejections, 0U);
 
@@ -51,7 +51,7 @@ TEST(TaskPath, ProbeFollowsTheSOnTheTableAndPressesWithStiffnessTimesOffset) {
 TEST(TaskPath, BadPathBlocksAreNamed) {
   const auto fails_with = [](const std::string& path_block, const std::string& expected) {
     try {
-      (void)app::parseTaskFile("task:\n  waypoints: [{time_s: 0.0}]\n  path:\n" + path_block,
+      (void)host::parseTaskFile("task:\n  waypoints: [{time_s: 0.0}]\n  path:\n" + path_block,
                                "test", kSourceDir, true, 7);
       ADD_FAILURE() << "accepted: " << path_block;
     } catch (const std::runtime_error& error) {
@@ -66,7 +66,7 @@ TEST(TaskPath, BadPathBlocksAreNamed) {
              "frenet, darboux or fixed");
   fails_with("    start_time_s: 1.0\n    points: [[0.4, 0, 0.4], [0.4, 30485, 0.4]]\n",
              "task.path.points: Path of 30485 m would need");
-  EXPECT_THROW((void)app::parseTaskFile(
+  EXPECT_THROW((void)host::parseTaskFile(
                    "task:\n  waypoints: [{time_s: 0.0}]\n  path: {start_time_s: 0, points: "
                    "[[0, 0, 0], [0.1, 0, 0]]}\n",
                    "test", kSourceDir, false, 7),
@@ -76,7 +76,7 @@ TEST(TaskPath, BadPathBlocksAreNamed) {
 TEST(TaskFile, SizesAndDurationsAreBounded) {
   const auto fails_with = [](const std::string& yaml, const std::string& expected) {
     try {
-      (void)app::parseTaskFile(yaml, "test", kSourceDir, true, 7);
+      (void)host::parseTaskFile(yaml, "test", kSourceDir, true, 7);
       ADD_FAILURE() << "accepted: " << yaml.substr(0, 80);
     } catch (const std::runtime_error& error) {
       EXPECT_NE(std::string(error.what()).find(expected), std::string::npos) << error.what();

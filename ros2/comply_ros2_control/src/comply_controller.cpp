@@ -5,6 +5,7 @@
 #include <exception>
 #include <stdexcept>
 
+#include "comply/hardware/loop_clock.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/config.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
@@ -34,12 +35,6 @@ std::size_t indexOf(const std::vector<Loaned>& interfaces, const std::string& jo
     }
   }
   throw std::runtime_error("no interface " + joint + "/" + kind + " was loaned");
-}
-
-double monotonicSeconds() noexcept {
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
 }
 
 }  // namespace
@@ -212,7 +207,7 @@ CallbackReturn ComplyController<Command>::on_cleanup(const rclcpp_lifecycle::Sta
 template <typename Command>
 controller_interface::return_type ComplyController<Command>::update(
     const rclcpp::Time& time, const rclcpp::Duration& period) {
-  const double start_s = monotonicSeconds();
+  const double start_s = comply::hardware::monotonicSeconds();
   readState();
   const double period_s = period.seconds() > 0.0 ? period.seconds() : nominal_period_s_;
   const auto status = wrapper_->update(state_, period_s, torque_);
@@ -225,7 +220,7 @@ controller_interface::return_type ComplyController<Command>::update(
     fillState(wrapper_->controller(), state_, torque_, cycle_ - 1, time, state_publisher_->msg_);
     state_publisher_->unlockAndPublish();
   }
-  const double compute_s = monotonicSeconds() - start_s;
+  const double compute_s = comply::hardware::monotonicSeconds() - start_s;
   const auto bin =
       std::min(kTimingBins - 1, static_cast<std::size_t>(compute_s / kTimingBinSeconds));
   compute_bins_[bin].fetch_add(1, std::memory_order_relaxed);

@@ -1,0 +1,37 @@
+#pragma once
+// The threads of `comply run` around one wrapper and one plant (run_command.cpp sets them up).
+
+#include <atomic>
+#include <iosfwd>
+#include <memory>
+#include <string>
+
+#include "comply/pipeline/resolved_controller.hpp"
+
+namespace comply::host {
+
+/// How `comply run` (or any live host) is set up.
+struct LiveHostOptions {
+  std::string config_file;
+  std::string robot;           ///< overrides the controller file's robot
+  bool sim = false;            ///< MuJoCo plant as the hardware
+  bool view = false;           ///< interactive window
+  double rate_hz = 1000.0;     ///< control rate
+  double state_rate_hz = 100;  ///< state topic rate
+  double duration_s = 0.0;     ///< > 0: stop after this long (benchmarks); 0: until a signal
+  int domain_id = 0;
+  std::string network = "loopback";
+  std::string name = "comply";
+  int priority = 80;  ///< SCHED_FIFO priority of the control thread; 0: normal scheduling
+};
+
+/// Runs the host until `stop` is set or options.duration_s has passed; prints a summary on `out`.
+/// Returns the process exit code.
+int runLiveHost(const LiveHostOptions& options,
+                const std::shared_ptr<const pipeline::ResolvedController>& resolved,
+                const std::atomic<bool>& stop, std::ostream& out, std::ostream& err);
+
+/// Makes the calling thread SCHED_FIFO at `priority`; "" on success, else why not.
+std::string makeRealtime(int priority);
+
+}  // namespace comply::host

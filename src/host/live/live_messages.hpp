@@ -1,0 +1,26 @@
+#pragma once
+// The state and diagnostics messages of `comply run`, built on its publisher thread from what the
+// control thread and the intake report.
+
+#include <string>
+#include <vector>
+
+#include "comply/pipeline/resolved_controller.hpp"
+#include "comply/transport/messages.hpp"
+#include "live_intake.hpp"
+#include "live_observer.hpp"
+
+namespace comply::host {
+
+transport::HostState hostState(pipeline::WrapperState state);
+
+transport::ControllerStateMessage stateMessage(const StateSample& sample,
+                                               const pipeline::ResolvedController& resolved);
+
+/// The counters of the wrapper, the loop and the intake, with `outcomes` attached.
+transport::DiagnosticsMessage diagnosticsMessage(
+    const pipeline::DiagnosticsSnapshot& wrapper, const LoopCounters& loop, double period_s,
+    const AccountingCounts& counts, std::uint64_t publisher, const std::string& host_name,
+    std::vector<transport::CommandOutcomeMessage> outcomes);
+
+}  // namespace comply::host
