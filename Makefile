@@ -10,7 +10,7 @@ ASAN_EXCLUDE ?= ^(simulink_plugin_|plugin_new_)
 # Benchmarks run pinned to the last CPU, away from most interrupt and housekeeping work.
 BENCH_CPU ?= $(shell echo $$(($$(nproc) - 1)))
 
-.PHONY: deps configure build install test test-all test-ros2 test-asan test-asan-ci test-tsan \
+.PHONY: deps configure build generated install test test-all test-ros2 test-asan test-asan-ci test-tsan \
 	fuzz soak bench demo format tidy clean
 
 deps:
@@ -24,6 +24,18 @@ configure: deps
 
 build: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
+
+# The files generated from the tables (docs, ROS 2 messages, DDS IDL), committed and compared by
+# tests/schema and tests/transport: run after a change to a table.
+COMPLY_CLI = $(BUILD_DIR)/apps/comply/comply
+IDL_DIR = src/transport/idl/comply_msgs/msg
+generated: build
+	@$(COMPLY_CLI) schema --format markdown > docs/command-schema.md
+	@$(COMPLY_CLI) schema --format msg --kind cartesian > msg/CartesianCommand.msg
+	@$(COMPLY_CLI) schema --format msg --kind joint > msg/JointCommand.msg
+	@$(COMPLY_CLI) schema --format idl --kind cartesian > $(IDL_DIR)/CartesianCommand.idl
+	@$(COMPLY_CLI) schema --format idl --kind joint > $(IDL_DIR)/JointCommand.idl
+	@echo "generated: docs/command-schema.md msg/*Command.msg $(IDL_DIR)/*Command.idl"
 
 # Libraries, headers, the CLI, the reference plugins, robots and the CMake package `comply` under
 # PREFIX; the installed comply finds its plugins and robots relative to its own location.

@@ -22,8 +22,8 @@
 #include <thread>
 #include <vector>
 
-#include "comply/transport/endpoints.hpp"
 #include "comply/host/timing_statistics.hpp"
+#include "comply/transport/endpoints.hpp"
 
 namespace {
 

@@ -13,9 +13,9 @@
 #include <stdexcept>
 
 #include "comply/hardware/control_loop.hpp"
+#include "comply/host/controller_setup.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/wrapper.hpp"
-#include "comply/host/controller_setup.hpp"
 
 namespace comply::app {
 namespace {

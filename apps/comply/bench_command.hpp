@@ -34,9 +34,9 @@ struct BenchRow {
   int dof = 0;
   std::string wrapper;  ///< joint | cartesian (ratio damping) | cartesian_abs (absolute damping)
   std::string plugin;
-  std::string stage;        ///< plugin_step | full_cycle
-  host::TimingSummary timing;     ///< per field, the median over the processes
-  double p50_min_us = 0.0;  ///< smallest and largest p50 of one process: the spread
+  std::string stage;           ///< plugin_step | full_cycle
+  host::TimingSummary timing;  ///< per field, the median over the processes
+  double p50_min_us = 0.0;     ///< smallest and largest p50 of one process: the spread
   double p50_max_us = 0.0;
   int processes = 1;
 };

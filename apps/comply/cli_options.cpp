@@ -124,11 +124,11 @@ CLI::App* addPluginCommand(CLI::App& app, PluginNewOptions& options) {
   CLI::App* create = command->add_subcommand(
       "new", "write an out-of-tree plugin project (law, CMake, test, samples, sim YAML)");
   create->add_option("NAME", options.name, "plugin name, a C identifier")->required();
-  create->add_option("--kind", options.kind, "command kind of the law")
+  create->add_option("--kind", options.kind, "command kind of the law, or hardware (a backend)")
       ->required()
-      ->check(CLI::IsMember({"joint", "cartesian"}));
+      ->check(CLI::IsMember({"joint", "cartesian", "hardware"}));
+  // Required for a law; pluginNewCommand says so, since a hardware backend takes none.
   create->add_option("--lang", options.language, "cpp (the C++ SDK) or c (abi.h alone)")
-      ->required()
       ->check(CLI::IsMember({"cpp", "c"}));
   create->add_option("--out", options.out, "project folder, new or empty (default ./NAME)");
   return create;

@@ -31,7 +31,16 @@ LiveCommands addLiveCommands(CLI::App& app) {
       "run", "the controller host: live commands over DDS (ROS 2 topics), state and diagnostics");
   run_command->add_option("--config", run->config_file, "controller YAML")->required();
   run_command->add_option("--robot", run->robot, "robot name or folder (overrides the config's)");
-  run_command->add_flag("--sim", run->sim, "a simulated arm (MuJoCo) as the hardware");
+  run_command->add_flag("--sim", run->sim, "a simulated arm (MuJoCo): --hardware sim");
+  run_command
+      ->add_option("--hardware", run->hardware,
+                   "the robot: a built-in backend (sim), a backend library (.so), or NAME for "
+                   "libcomply_hardware_NAME.so on the plugin path")
+      ->capture_default_str();
+  run_command->add_option("--hardware-option", run->hardware_options,
+                          "key=value for the hardware backend (repeatable)");
+  run_command->add_option("--transport", run->transport, "dds (ROS 2 wire) or in_process")
+      ->capture_default_str();
   run_command->add_flag("--view", run->view, "interactive window (not yet)");
   run_command->add_option("--rate", run->rate_hz, "control rate [Hz]")
       ->capture_default_str()

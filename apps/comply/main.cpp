@@ -10,6 +10,7 @@
 //   comply schema [--format markdown|json|msg|idl] [--kind cartesian|joint]
 //   comply codegen simulink [--out DIR]
 //   comply plugin new NAME --kind joint|cartesian --lang cpp|c [--out DIR]
+//   comply plugin new NAME --kind hardware [--out DIR]
 //   comply config --defaults [--robot fr3] [--plugin cartesian_impedance]
 //
 // Exit codes: 0 success, 1 a check failed (validate above tolerance, a controller fault, a

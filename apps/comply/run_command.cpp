@@ -9,10 +9,10 @@
 #include <cstring>
 #include <ostream>
 
-#include "comply/pipeline/resolved_controller.hpp"
-#include "comply/sim/viewer.hpp"
 #include "comply/host/controller_setup.hpp"
 #include "comply/host/live_host.hpp"
+#include "comply/pipeline/resolved_controller.hpp"
+#include "comply/sim/viewer.hpp"
 
 namespace comply::app {
 namespace {
@@ -35,9 +35,8 @@ std::string checkOptions(const RunOptions& options) {
   if (options.config_file.empty()) {
     return "--config is required";
   }
-  if (!options.sim) {
-    return "only --sim is built in so far: a real robot needs its driver as a "
-           "hardware::HardwareInterface (include/comply/hardware/hardware_interface.hpp)";
+  if (options.sim && options.hardware != "sim") {
+    return "--sim and --hardware " + options.hardware + " name two different robots";
   }
   if (options.view) {
     return "--view is not supported by comply run yet; watch /" + options.name +
@@ -59,8 +58,8 @@ int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) 
     err << "comply run: " << problem << "\n";
     return 2;
   }
-  const auto resolved =
-      pipeline::resolveController(host::simControllerConfig(options.robot, "", options.config_file));
+  const auto resolved = pipeline::resolveController(
+      host::simControllerConfig(options.robot, "", options.config_file));
   // Page faults in the control loop are latency: keep everything resident when allowed.
   if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
     err << "comply run: warning: mlockall failed (" << std::strerror(errno)

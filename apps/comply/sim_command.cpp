@@ -3,11 +3,11 @@
 #include <cstdlib>
 #include <iostream>
 
-#include "comply/pipeline/resolved_controller.hpp"
-#include "comply/sim/viewer.hpp"
 #include "comply/host/controller_setup.hpp"
 #include "comply/host/plot_script.hpp"
 #include "comply/host/sim_session.hpp"
+#include "comply/pipeline/resolved_controller.hpp"
+#include "comply/sim/viewer.hpp"
 
 namespace comply::app {
 
@@ -29,14 +29,14 @@ int simCommand(const SimOptions& options, std::ostream& out, std::ostream& err) 
   }
   host::SimRunOptions run;
   run.config = host::simControllerConfig(options.robot,
-                                   options.plugin.empty() && options.config_file.empty()
-                                       ? "cartesian_impedance"
-                                       : options.plugin,
-                                   options.config_file);
+                                         options.plugin.empty() && options.config_file.empty()
+                                             ? "cartesian_impedance"
+                                             : options.plugin,
+                                         options.config_file);
   // Resolved once: the robot, the model and the plugin (whose kind decides the task's commands).
   run.resolved = pipeline::resolveController(run.config);
   run.task = host::loadTaskFile(options.task_file, run.resolved->cartesian(), run.config.dof,
-                          run.config.validation.quaternion_tolerance);
+                                run.config.validation.quaternion_tolerance);
   if (options.snapshot_every_ms >= 0.0) {
     run.task.snapshot_every_ms = options.snapshot_every_ms;
   }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "comply/core/text_file.hpp"
+#include "comply/host/controller_setup.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/model/update.hpp"
 #include "comply/pipeline/command_bus.hpp"
@@ -16,7 +17,6 @@
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/schema/json.hpp"
 #include "comply/schema/schema.hpp"
-#include "comply/host/controller_setup.hpp"
 #include "validate_wrapper.hpp"
 
 namespace comply::app {

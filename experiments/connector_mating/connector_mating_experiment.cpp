@@ -6,14 +6,14 @@
 #include <ostream>
 #include <sstream>
 
-#include "connector_mating/mating_stream.hpp"
-#include "connector_mating/peg_and_socket.hpp"
-#include "connector_mating/trial_evaluation.hpp"
 #include "comply/host/controller_setup.hpp"
 #include "comply/host/plot_script.hpp"
 #include "comply/host/sim_session.hpp"
-#include "source_dir.hpp"
 #include "comply/host/task_file.hpp"
+#include "connector_mating/mating_stream.hpp"
+#include "connector_mating/peg_and_socket.hpp"
+#include "connector_mating/trial_evaluation.hpp"
+#include "source_dir.hpp"
 
 namespace comply::experiments {
 namespace {
@@ -97,7 +97,7 @@ std::vector<ConnectorMatingRow> runConnectorMating(const ConnectorMatingOptions&
   writeResults(connectorMatingTable(rows), options.out_dir);
   if (options.pictures) {
     host::runPlotScript("plot_connector_mating.py", {options.out_dir.string()},
-                       options.progress != nullptr ? *options.progress : std::cerr);
+                        options.progress != nullptr ? *options.progress : std::cerr);
   }
   return rows;
 }

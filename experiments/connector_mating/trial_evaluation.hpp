@@ -6,9 +6,9 @@
 
 #include <filesystem>
 
+#include "comply/host/sim_session.hpp"
 #include "connector_mating/connector_mating_experiment.hpp"
 #include "connector_mating/mating_stream.hpp"
-#include "comply/host/sim_session.hpp"
 
 namespace comply::experiments::connector_mating {
 

@@ -1,14 +1,14 @@
-#include "comply/host/plot_script.hpp"
 #include "cross_platform/cross_platform_experiment.hpp"
 
 #include <iostream>
 #include <ostream>
 
-#include "comply/sim/image.hpp"
 #include "comply/host/controller_setup.hpp"
+#include "comply/host/plot_script.hpp"
 #include "comply/host/sim_session.hpp"
-#include "source_dir.hpp"
 #include "comply/host/task_file.hpp"
+#include "comply/sim/image.hpp"
+#include "source_dir.hpp"
 
 namespace comply::experiments {
 namespace {
@@ -23,12 +23,12 @@ bool reached(const CrossPlatformRow& row) {
 
 /// One robot's run into <out>/<robot>/, with its plot when pictures are on.
 host::SimResult runRobot(const std::string& robot, const CrossPlatformOptions& options,
-                        const std::filesystem::path& config_file,
-                        const std::filesystem::path& task_file) {
+                         const std::filesystem::path& config_file,
+                         const std::filesystem::path& task_file) {
   host::SimRunOptions run;
   run.config = host::simControllerConfig(robot, "", config_file.string());
   run.task = host::loadTaskFile(task_file, true, run.config.dof,
-                               run.config.validation.quaternion_tolerance);
+                                run.config.validation.quaternion_tolerance);
   run.duration_s = options.duration_s;
   run.out_dir = options.out_dir / robot;
   run.snapshots = options.pictures;
@@ -36,8 +36,8 @@ host::SimResult runRobot(const std::string& robot, const CrossPlatformOptions& o
   host::SimResult result = host::runSimulation(run);
   if (options.pictures) {
     host::runPlotScript("plot_sim_log.py",
-                  {(run.out_dir / "log.csv").string(), (run.out_dir / "plot.png").string()},
-                  options.progress != nullptr ? *options.progress : std::cerr);
+                        {(run.out_dir / "log.csv").string(), (run.out_dir / "plot.png").string()},
+                        options.progress != nullptr ? *options.progress : std::cerr);
   }
   return result;
 }

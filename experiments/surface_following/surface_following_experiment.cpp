@@ -5,15 +5,15 @@
 #include <ostream>
 #include <stdexcept>
 
-#include "comply/task/path.hpp"
 #include "comply/host/controller_setup.hpp"
 #include "comply/host/plot_script.hpp"
 #include "comply/host/sim_session.hpp"
+#include "comply/host/task_file.hpp"
+#include "comply/task/path.hpp"
 #include "source_dir.hpp"
 #include "surface_following/fixture.hpp"
 #include "surface_following/surface_stream.hpp"
 #include "surface_following/tracking_metrics.hpp"
-#include "comply/host/task_file.hpp"
 
 namespace comply::experiments {
 namespace {
@@ -43,8 +43,8 @@ SurfaceFollowingRow runCondition(const SurfaceCondition& condition,
       condition.displaced ? surface_following::kDisplacementYawRad : 0.0);
 
   host::SimRunOptions run;
-  run.config = host::simControllerConfig("fr3", "",
-                                        sourcePath("config/sim/cartesian_impedance.yaml").string());
+  run.config = host::simControllerConfig(
+      "fr3", "", sourcePath("config/sim/cartesian_impedance.yaml").string());
   // Within reach of the pressing reference, which lies 100 mm inside the fixture.
   run.config.validation.max_position_jump_m = 0.15;
   SurfaceStream stream(condition, home.position, home.orientation, options.speed_m_per_s,
@@ -88,7 +88,7 @@ std::vector<SurfaceFollowingRow> runSurfaceFollowing(const SurfaceFollowingOptio
   writeResults(surfaceFollowingTable(rows), options.out_dir);
   if (options.pictures) {
     host::runPlotScript("plot_surface_following.py", {options.out_dir.string()},
-                       options.progress != nullptr ? *options.progress : std::cerr);
+                        options.progress != nullptr ? *options.progress : std::cerr);
   }
   return rows;
 }

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <string>
 
-#include "comply/task/path.hpp"
 #include "comply/host/sim_session.hpp"
+#include "comply/task/path.hpp"
 #include "surface_following/surface_following_experiment.hpp"
 #include "surface_following/surface_stream.hpp"
 

@@ -2,35 +2,66 @@
 
 #include "py_sim.hpp"
 
+#include <cmath>
+#include <optional>
 #include <variant>
 
-#include "comply/pipeline/wrapper.hpp"
-#include "comply/sim/simulated_robot.hpp"
+#include "comply/hardware/control_loop.hpp"
 #include "comply/host/controller_setup.hpp"
+#include "comply/pipeline/command_bus_variant.hpp"
+#include "comply/pipeline/command_gate.hpp"
+#include "comply/pipeline/wrapper.hpp"
+#include "comply/sim/simulated_clock.hpp"
+#include "comply/sim/simulated_robot.hpp"
 #include "py_convert.hpp"
 
 namespace comply::python {
 
-/// One episode: the plant and the wrapper of the controller's kind.
+/// The episode's controller of either kind, as the loop and the gate see it.
+template <typename Command>
+struct Episode final : hardware::LoopObserver {
+  explicit Episode(const std::shared_ptr<const pipeline::ResolvedController>& resolved)
+      : wrapper(resolved) {}
+  void afterCycle(const hardware::CycleRecord& record) override {
+    const auto& bus = std::get<pipeline::BusOf<Command>>(wrapper.controller().activeCommand());
+    gate->noteCycle(record.index, bus.stamp_s, pipeline::wallClockNs());
+  }
+  pipeline::Wrapper<Command> wrapper;
+  pipeline::CommandGate* gate = nullptr;
+};
+
+/// One episode: the plant on its simulated clock, the controller, the control loop and the gate
+/// every command goes through (as in every other host).
 struct Sim::Session {
   sim::SimulatedRobot plant;
-  std::variant<std::unique_ptr<pipeline::CartesianWrapper>, std::unique_ptr<pipeline::JointWrapper>>
-      wrapper;
-  JointState state;
-  JointVector torque;
-  bool wrote = false;
+  sim::SimulatedClock clock;
+  std::variant<std::unique_ptr<Episode<CartesianCommand>>, std::unique_ptr<Episode<JointCommand>>>
+      episode;
+  pipeline::CommandGate gate;
+  std::unique_ptr<hardware::ControlLoop> loop;
 
-  Session(const std::shared_ptr<const pipeline::ResolvedController>& resolved)
-      : plant(resolved->robot, plantOptions(*resolved)) {
+  explicit Session(const std::shared_ptr<const pipeline::ResolvedController>& resolved)
+      : plant(resolved->robot, plantOptions(*resolved)),
+        clock(plant),
+        gate({.kind = resolved->cartesian() ? pipeline::CommandKind::kCartesian
+                                            : pipeline::CommandKind::kJoint,
+              .publisher_timeout_s = resolved->config.command_timeout_s}) {
     if (resolved->cartesian()) {
-      wrapper = std::make_unique<pipeline::CartesianWrapper>(resolved);
+      episode = std::make_unique<Episode<CartesianCommand>>(resolved);
     } else {
-      wrapper = std::make_unique<pipeline::JointWrapper>(resolved);
+      episode = std::make_unique<Episode<JointCommand>>(resolved);
     }
-    state = JointState::zero(plant.dof());
-    torque.setZero(plant.dof());
+    JointState state = JointState::zero(plant.dof());
     plant.read(state);
-    std::visit([&](auto& w) { w->activate(state); }, wrapper);
+    std::visit(
+        [&](auto& e) {
+          e->gate = &gate;
+          e->wrapper.activate(state);
+          loop = std::make_unique<hardware::ControlLoop>(
+              plant, e->wrapper, clock, hardware::LoopOptions{.period_s = plant.controlPeriod()});
+          loop->setObserver(e.get());
+        },
+        episode);
   }
 
   static sim::PlantOptions plantOptions(const pipeline::ResolvedController& resolved) {
@@ -39,25 +70,26 @@ struct Sim::Session {
     return options;
   }
 
-  void cycle() {
-    plant.read(state);
-    const std::span<double> out(torque.data(), static_cast<std::size_t>(torque.size()));
-    wrote =
-        std::visit([&](auto& w) { return w->cycle(state, plant.controlPeriod(), out); }, wrapper);
-    if (wrote) {
-      plant.write(out);
+  /// `cycles` control cycles, then the plant advanced to the next cycle's start, so that the
+  /// observation shows the effect of the last torque.
+  void run(int cycles) {
+    for (int i = 0; i < cycles; ++i) {
+      loop->runOnce();
     }
-    plant.step();
+    clock.waitUntil(loop->nextCycleTime());
   }
 
   py::dict observation() {
+    JointState state = JointState::zero(plant.dof());
     plant.read(state);
     py::dict obs;
     obs["time"] = plant.simTime();
     obs["position"] = array(state.position);
     obs["velocity"] = array(state.velocity);
     obs["effort"] = array(state.effort);
-    obs["torque_command"] = array(torque);
+    const std::span<const double> torque = loop->lastTorque();
+    obs["torque_command"] = array(
+        Eigen::Map<const Eigen::VectorXd>(torque.data(), static_cast<Eigen::Index>(torque.size())));
     const Eigen::Isometry3d tcp = plant.tcpPose();
     const Eigen::Vector3d p = tcp.translation();
     const Eigen::Quaterniond q(tcp.linear());
@@ -103,35 +135,49 @@ py::tuple Sim::step(const py::object& command) {
   }
   py::dict info;
   info["accepted"] = true;
+  std::optional<std::int64_t> stamp_ns;
   if (!command.is_none()) {
     const py::dict kwargs = command.cast<py::dict>();
-    const double stamp_s = session_->plant.simTime();
-    const pipeline::Verdict verdict = std::visit(
-        [&](auto& w) {
-          using Wrapper = std::remove_reference_t<decltype(*w)>;
-          if constexpr (std::is_same_v<Wrapper, pipeline::CartesianWrapper>) {
-            CartesianCommand c = cartesianFromKwargs(kwargs, dof(), w->lastAccepted());
-            c.stamp_s = stamp_s;
-            return w->submit(c);
+    // Simulated time is the stamp: it grows with every step, so the gate's strict rule holds.
+    stamp_ns = std::llround(session_->plant.simTime() * 1e9);
+    pipeline::Offer offer;
+    offer.stamp_ns = *stamp_ns;
+    offer.kind = cartesian() ? pipeline::CommandKind::kCartesian : pipeline::CommandKind::kJoint;
+    offer.publisher = 1;  // this process is the only writer
+    offer.now_ns = pipeline::steadyClockNs();
+    std::visit(
+        [&](auto& e) {
+          using Command = std::remove_cvref_t<decltype(e->wrapper.lastAccepted())>;
+          Command c;
+          if constexpr (std::is_same_v<Command, CartesianCommand>) {
+            c = cartesianFromKwargs(kwargs, dof(), e->wrapper.lastAccepted());
           } else {
-            JointCommand c = jointFromKwargs(kwargs, dof(), w->lastAccepted());
-            c.stamp_s = stamp_s;
-            return w->submit(c);
+            c = jointFromKwargs(kwargs, dof(), e->wrapper.lastAccepted());
           }
+          c.stamp_s = stampSeconds(*stamp_ns);
+          const bool active = e->wrapper.diagnostics().state != pipeline::WrapperState::kInactive;
+          session_->gate.offer(offer, active, [&] { return e->wrapper.submit(c); });
         },
-        session_->wrapper);
-    info["accepted"] = verdict.accepted;
-    info["reason"] = verdict.accepted ? "" : std::string(pipeline::toString(verdict.reason));
-    info["message"] = verdict.message;
+        session_->episode);
   }
   {
     const py::gil_scoped_release release;
-    for (int i = 0; i < steps_per_action_; ++i) {
-      session_->cycle();
+    session_->run(steps_per_action_);
+  }
+  session_->gate.settle();
+  for (const pipeline::CommandOutcome& outcome : session_->gate.takeOutcomes()) {
+    if (!stamp_ns || outcome.stamp_ns != *stamp_ns) {
+      continue;
+    }
+    info["accepted"] = outcome.applied;
+    info["reason"] = outcome.applied ? "" : std::string(pipeline::toString(outcome.reason));
+    info["message"] = outcome.message;
+    if (outcome.applied) {
+      info["applied_cycle"] = outcome.cycle;
     }
   }
   const pipeline::DiagnosticsSnapshot d =
-      std::visit([](auto& w) { return w->diagnostics(); }, session_->wrapper);
+      std::visit([](auto& e) { return e->wrapper.diagnostics(); }, session_->episode);
   const bool terminated = d.state == pipeline::WrapperState::kFault;
   const bool truncated = max_time_s_ > 0.0 && session_->plant.simTime() >= max_time_s_;
   info["state"] = std::string(pipeline::toString(d.state));

@@ -10,8 +10,12 @@ namespace {
 // the plugin's name, and its CamelCase form for the C++ class.
 constexpr std::string_view kTemplateName = "my_law";
 constexpr std::string_view kTemplateClass = "MyLaw";
+// The same for the hardware backend's templates.
+constexpr std::string_view kHardwareTemplateName = "my_arm";
+constexpr std::string_view kHardwareTemplateClass = "MyArm";
 
-std::string camelCase(std::string_view name) {
+/// `name` in CamelCase; `prefix` goes in front when that would not start with a letter.
+std::string camelCase(std::string_view name, std::string_view prefix) {
   std::string result;
   bool upper = true;
   for (const char c : name) {
@@ -24,7 +28,7 @@ std::string camelCase(std::string_view name) {
   }
   // A name of underscores only, or one that starts with a digit after them, needs a prefix.
   if (result.empty() || std::isdigit(static_cast<unsigned char>(result.front())) != 0) {
-    result = "Law" + result;
+    result = std::string(prefix) + result;
   }
   return result;
 }
@@ -41,8 +45,20 @@ std::string instantiate(std::string_view path, const PluginSpec& spec) {
                     joint ? "COMPLY_COMMAND_JOINT" : "COMPLY_COMMAND_CARTESIAN");
   text = replaceAll(std::move(text), "COMPLY_TEMPLATE_LANGUAGE_NAME",
                     cpp ? "C++ (through the SDK)" : "C (against abi.h alone)");
-  text = replaceAll(std::move(text), kTemplateClass, camelCase(spec.name));
+  text = replaceAll(std::move(text), kTemplateClass, camelCase(spec.name, "Law"));
   return replaceAll(std::move(text), kTemplateName, spec.name);
+}
+
+/// A hardware backend's project: one C++ class, so neither kind nor language varies its files.
+std::vector<GeneratedFile> hardwareFiles(const PluginSpec& spec) {
+  const auto instantiateHardware = [&](std::string_view from) {
+    std::string text(embeddedTemplate("hardware/" + std::string(from)));
+    text = replaceAll(std::move(text), kHardwareTemplateClass, camelCase(spec.name, "Arm"));
+    return replaceAll(std::move(text), kHardwareTemplateName, spec.name);
+  };
+  return {{"CMakeLists.txt", instantiateHardware("CMakeLists.txt")},
+          {spec.name + ".cpp", instantiateHardware("my_arm.cpp")},
+          {"README.md", instantiateHardware("README.md")}};
 }
 
 }  // namespace
@@ -70,8 +86,16 @@ std::vector<GeneratedFile> pluginFiles(const PluginSpec& spec) {
   if (const auto problem = pluginNameProblem(spec.name); !problem.empty()) {
     throw std::invalid_argument(problem);
   }
+  if (spec.kind == "hardware") {
+    if (spec.language != "cpp") {
+      // HardwareInterface is a C++ class; there is no C form of a backend.
+      throw std::invalid_argument("a hardware backend is written in cpp, not " + spec.language);
+    }
+    return hardwareFiles(spec);
+  }
   if (spec.kind != "joint" && spec.kind != "cartesian") {
-    throw std::invalid_argument("plugin kind must be joint or cartesian, not '" + spec.kind + "'");
+    throw std::invalid_argument("plugin kind must be joint, cartesian or hardware, not '" +
+                                spec.kind + "'");
   }
   if (spec.language != "cpp" && spec.language != "c") {
     throw std::invalid_argument("plugin language must be cpp or c, not '" + spec.language + "'");

@@ -195,8 +195,9 @@ std::string markdownDocument() {
       << "The same field names are used in C++ (`include/comply/core/commands.hpp`), in the "
          "plugin's C\nstructs (`include/comply/plugin/abi.h`), in JSON and YAML, and in the ROS 2 "
          "messages\n(`msg/CartesianCommand.msg`, `msg/JointCommand.msg`). Every command also "
-         "carries `stamp` [s]\n(must not go backwards) and a field mask `fields`: a sender sets "
-         "only the groups it updates,\nthe rest stays in force.\n\n"
+         "carries `stamp` [s]\n(newer than the last accepted command's: stamps increase strictly) "
+         "and a field mask\n`fields`: a sender sets only the groups it updates, the rest stays "
+         "in force.\n\n"
       << "## Field groups\n\n| group | bit | meaning |\n|---|---|---|\n";
   for (const GroupInfo& group : groups()) {
     out << "| `" << group.name << "` | " << static_cast<std::uint32_t>(group.field) << " | "

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "comply/core/temporary_file.hpp"
 #include "comply/core/text_file.hpp"
 #include "comply/sim/sim_error.hpp"
 
@@ -21,41 +22,17 @@ std::string readText(const std::filesystem::path& file, const std::string& what)
   return std::move(text.text);
 }
 
-/// A file with a unique name in the temporary directory, removed again on destruction: MuJoCo
-/// 2.2 loads models from files only.
-class TemporaryFile {
+/// MuJoCo 2.2 loads models from files only; a file it cannot have is a simulation error.
+class ModelFile {
  public:
-  TemporaryFile(const std::string& text, const char* suffix) {
-    std::string name =
-        (std::filesystem::temp_directory_path() / ("comply_scene_XXXXXX" + std::string(suffix)))
-            .string();
-    const int fd = mkstemps(name.data(), static_cast<int>(std::string_view(suffix).size()));
-    if (fd < 0) {
-      throw SimError("cannot create a temporary file in " +
-                     std::filesystem::temp_directory_path().string());
-    }
-    path_ = name;
-    std::size_t written = 0;
-    while (written < text.size()) {
-      const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
-      if (n <= 0) {
-        ::close(fd);
-        throw SimError("cannot write the temporary file " + path_.string());
-      }
-      written += static_cast<std::size_t>(n);
-    }
-    ::close(fd);
+  ModelFile(const std::string& text, const char* suffix) try : file_(text, "scene", suffix) {
+  } catch (const std::runtime_error& error) {
+    throw SimError(error.what());
   }
-  ~TemporaryFile() {
-    std::error_code ignored;
-    std::filesystem::remove(path_, ignored);
-  }
-  TemporaryFile(const TemporaryFile&) = delete;
-  TemporaryFile& operator=(const TemporaryFile&) = delete;
-  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+  [[nodiscard]] const std::filesystem::path& path() const { return file_.path(); }
 
  private:
-  std::filesystem::path path_;
+  TemporaryFile file_;
 };
 
 /// `xml` without <!-- --> comments, so that tags mentioned in comments are never matched.
@@ -136,7 +113,7 @@ std::string urdfForMujoco(const model::RobotDescription& robot) {
 
 /// The MJCF MuJoCo writes for the robot's URDF.
 std::string robotMjcf(const model::RobotDescription& robot) {
-  const TemporaryFile urdf_file(urdfForMujoco(robot), ".urdf");
+  const ModelFile urdf_file(urdfForMujoco(robot), ".urdf");
   std::array<char, 1024> error{};
   mjModel* model =
       mj_loadXML(urdf_file.path().c_str(), nullptr, error.data(), static_cast<int>(error.size()));
@@ -144,7 +121,7 @@ std::string robotMjcf(const model::RobotDescription& robot) {
     throw SimError("MuJoCo cannot load the URDF of " + robot.name + " ('" +
                    robot.urdf_path.string() + "'): " + error.data());
   }
-  const TemporaryFile mjcf_file("", ".xml");
+  const ModelFile mjcf_file("", ".xml");
   const int saved =
       mj_saveLastXML(mjcf_file.path().c_str(), model, error.data(), static_cast<int>(error.size()));
   mj_deleteModel(model);
@@ -258,7 +235,7 @@ std::string buildSceneXml(const model::RobotDescription& robot, const SceneOptio
 }
 
 mjModel* loadModelFromXml(const std::string& xml, const std::string& what) {
-  const TemporaryFile file(xml, ".xml");
+  const ModelFile file(xml, ".xml");
   std::array<char, 1024> error{};
   mjModel* model =
       mj_loadXML(file.path().c_str(), nullptr, error.data(), static_cast<int>(error.size()));

@@ -28,7 +28,7 @@ std::int64_t Stamp::nanoseconds() const noexcept {
 }
 
 double Stamp::seconds() const noexcept {
-  return static_cast<double>(sec) + 1e-9 * static_cast<double>(nanosec);
+  return stampSeconds(nanoseconds());
 }
 
 std::string_view toString(HostState state) {

@@ -7,8 +7,8 @@
 #include <sstream>
 
 #include "bench_command.hpp"
-#include "comply/model/robot_description.hpp"
 #include "comply/host/synthetic_chain.hpp"
+#include "comply/model/robot_description.hpp"
 
 namespace comply::app {
 namespace {
@@ -71,8 +71,8 @@ TEST(SyntheticChain, NamesParseOnlyWithinTheCapacity) {
 }
 
 TEST(SyntheticChain, TwelveJointsLoadAndRunEveryWrapperWithoutAFault) {
-  const std::filesystem::path folder =
-      host::writeSyntheticChain(12, std::filesystem::temp_directory_path() / "comply-bench-test-chain");
+  const std::filesystem::path folder = host::writeSyntheticChain(
+      12, std::filesystem::temp_directory_path() / "comply-bench-test-chain");
   const model::RobotDescription robot = model::loadRobotDescription(folder.string());
   EXPECT_EQ(robot.loadModel().dof(), 12);
   BenchOptions options;

@@ -1,13 +1,16 @@
-// comply run against senders that die, compete or outlive the host: the watchdog holds within the
-// command timeout of a killed sender, a second publisher is refused until the first goes silent,
-// and a client carries on across a host restart (SIGTERM: exit 0).
+// A live host against senders that die, compete or outlive it: the watchdog holds within the
+// command timeout of a killed sender (`comply send`), a second publisher is refused until the first
+// goes silent (on DDS and in process, live_harness.hpp), and a client carries on across a restart
+// of `comply run` (SIGTERM: exit 0).
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
+#include "live_harness.hpp"
 #include "live_support.hpp"
 
 namespace comply::live_test {
@@ -60,42 +63,59 @@ TEST(LiveHost, WatchdogHoldsWithinTheTimeoutOfAKilledSender) {
   EXPECT_EQ(second->state, transport::HostState::kActive);
 }
 
-TEST(LiveHost, SecondPublisherIsRefusedUntilTheFirstGoesSilent) {
-  const int domain = randomDomain();
-  Process host(hostArgs(domain, "lockout"));
-  Client client(domain, "lockout");
-  const auto state = client.state(20s);
+TEST_P(LiveHostOn, SecondPublisherIsRefusedUntilTheFirstGoesSilent) {
+  HostHarness& host = *host_;
+  host.start("lockout");
+  const auto state = host.state(20s);
   ASSERT_TRUE(state);
-  Process first(senderArgs(domain, "lockout", writeStream(*state, 20000, "lockout")));
-  ASSERT_TRUE(client.poll(20s, [](const auto& d) { return d.commands_applied >= 200; }));
+  const int dof = static_cast<int>(state->position.size());
+  // Both before either streams: the first's probe takes the command topics, the second's is
+  // refused (an outcome all the same).
+  ASSERT_TRUE(host.connect(1, dof));
+  ASSERT_TRUE(host.connect(2, dof));
 
-  transport::Writer<transport::CartesianCommandMessage> second(client.participant(), "lockout");
-  ASSERT_TRUE(second.waitForMatch(1, 10.0));
-  std::this_thread::sleep_for(200ms);                // the host's reader discovers this writer too
-  std::map<std::int64_t, double> sent_after_kill_s;  // by stamp; negative: before the kill
-  std::optional<Clock::time_point> killed;
+  // The first publisher: poses wobbling 2 cm along y at 1 kHz until it goes silent, as a sender
+  // that dies would (the watchdog test kills a real one). A jthread: silenced and joined however
+  // the test ends.
+  std::atomic<int> first_refused_writes{0};
+  std::jthread first([&](const std::stop_token& silent) {
+    const auto begin = Clock::now();
+    for (int i = 0; !silent.stop_requested(); ++i) {
+      std::this_thread::sleep_until(begin + std::chrono::microseconds(1000 * i));
+      const double y_m = 0.02 * std::sin(2.0 * M_PI * i / 1000.0);
+      if (!host.send(poseCommand(*state, {0.0, y_m, 0.0}, transport::Stamp::now()), 1)) {
+        ++first_refused_writes;
+      }
+    }
+  });
+  ASSERT_TRUE(host.poll(20s, [](const auto& d) { return d.commands_applied >= 200; }));
+
+  std::map<std::int64_t, double> sent_after_silence_s;  // by stamp; negative: before the silence
+  std::optional<Clock::time_point> silenced;
   const auto start = Clock::now();
-  for (int i = 0; i < 100; ++i) {  // 2 s at 50 Hz; the first sender dies after 0.6 s
+  for (int i = 0; i < 100; ++i) {  // 2 s at 50 Hz; the first goes silent after 0.6 s
     std::this_thread::sleep_until(start + i * 20ms);
     if (i == 30) {
-      first.signal(SIGKILL);
-      killed = Clock::now();
+      first.request_stop();
+      first.join();  // nothing from the first after this
+      silenced = Clock::now();
     }
     const auto message = poseCommand(*state, Eigen::Vector3d::Zero(), transport::Stamp::now());
-    ASSERT_TRUE(second.write(message));
-    sent_after_kill_s[message.header.stamp.nanoseconds()] =
-        killed ? std::chrono::duration<double>(Clock::now() - *killed).count() : -1.0;
+    ASSERT_TRUE(host.send(message, 2));
+    sent_after_silence_s[message.header.stamp.nanoseconds()] =
+        silenced ? std::chrono::duration<double>(Clock::now() - *silenced).count() : -1.0;
   }
-  client.poll(5s, [&](const auto&) {
-    return std::all_of(sent_after_kill_s.begin(), sent_after_kill_s.end(),
-                       [&](const auto& sent) { return client.outcomes().count(sent.first) > 0; });
+  EXPECT_EQ(first_refused_writes.load(), 0);
+  host.poll(5s, [&](const auto&) {
+    return std::all_of(sent_after_silence_s.begin(), sent_after_silence_s.end(),
+                       [&](const auto& sent) { return host.outcomes().count(sent.first) > 0; });
   });
   int refused = 0;
   int applied = 0;
-  for (const auto& [stamp, after_s] : sent_after_kill_s) {
-    ASSERT_EQ(client.outcomes()[stamp].size(), 1U) << "no (or two) outcomes for " << stamp;
-    const auto& outcome = client.outcomes()[stamp].front();
-    if (after_s < kCommandTimeoutS - 0.1) {  // the first sender is alive or not yet silent
+  for (const auto& [stamp, after_s] : sent_after_silence_s) {
+    ASSERT_EQ(host.outcomes()[stamp].size(), 1U) << "no (or two) outcomes for " << stamp;
+    const auto& outcome = host.outcomes()[stamp].front();
+    if (after_s < kCommandTimeoutS - 0.1) {  // the first publisher is alive or not yet silent
       EXPECT_EQ(outcome.reason, transport::Reason::kOtherPublisher) << after_s << " s";
       refused += outcome.reason == transport::Reason::kOtherPublisher ? 1 : 0;
     } else if (after_s > kCommandTimeoutS + 0.2) {  // silent long enough: the second takes over
@@ -106,6 +126,7 @@ TEST(LiveHost, SecondPublisherIsRefusedUntilTheFirstGoesSilent) {
   }
   EXPECT_GE(refused, 30);
   EXPECT_GE(applied, 30);
+  EXPECT_EQ(host.stop(), 0);
 }
 
 TEST(LiveHost, ClientCarriesOnAcrossAHostRestart) {

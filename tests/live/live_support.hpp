@@ -23,6 +23,8 @@ using Clock = std::chrono::steady_clock;
 
 inline const std::string kComply = COMPLY_CLI;
 inline const std::string kSourceDir = COMPLY_SOURCE_DIR;
+/// The controller every live test's host runs (command_timeout_s 0.5).
+inline const std::string kHostConfig = kSourceDir + "/config/sim/cartesian_impedance.yaml";
 
 /// A domain of its own per test run, so parallel tests do not meet.
 inline int randomDomain() {
@@ -78,16 +80,9 @@ class Process {
 };
 
 inline std::vector<std::string> hostArgs(int domain, const std::string& name) {
-  return {"run",
-          "--config",
-          kSourceDir + "/config/sim/cartesian_impedance.yaml",
-          "--robot",
-          "fr3",
-          "--sim",
-          "--domain",
-          std::to_string(domain),
-          "--name",
-          name};
+  return {"run",    "--config", kHostConfig, "--robot",
+          "fr3",    "--sim",    "--domain",  std::to_string(domain),
+          "--name", name};
 }
 
 /// The client side: state and diagnostics readers and the outcome of every command by stamp.

@@ -16,6 +16,7 @@
 
 #include "allocation_counter.hpp"
 #include "comply/core/triple_buffer.hpp"
+#include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "mutex_lock_counter.hpp"
 #include "wrapper_support.hpp"
@@ -173,6 +174,33 @@ void expectRealtimeCycles(WrapperType& wrapper, CommandAt commandAt) {
   EXPECT_EQ(diagnostics.commands_accepted, static_cast<std::uint64_t>(kCycles / kCyclesPerCommand));
   EXPECT_GE(diagnostics.watchdog_timeouts, static_cast<std::uint64_t>(kCycles / kCyclesPerCommand))
       << "the timeout path did not run";
+}
+
+// The gate's control-thread side: noting the stamp in force after every cycle, with the intake
+// offering and settling commands between cycles, as a live host does.
+TEST(WrapperRealtime, TheGatesCycleSideNeitherAllocatesNorLocks) {
+  CommandGate gate({.kind = CommandKind::kJoint, .publisher_timeout_s = 0.5});
+  RealtimeProbe probe;
+  for (int cycle = 0; cycle < kCycles; ++cycle) {
+    if (cycle % 10 == 0) {
+      Offer offer;
+      offer.stamp_ns = static_cast<std::int64_t>(cycle + 1) * 1'000'000;
+      offer.kind = CommandKind::kJoint;
+      offer.publisher = 1;
+      gate.offer(offer, true, [] { return Verdict{}; });
+    }
+    const double stamp_in_force_s =
+        stampSeconds(static_cast<std::int64_t>(cycle / 10 * 10 + 1) * 1'000'000);
+    EXPECT_TRUE(probe.measure([&] { return gate.noteCycle(cycle, stamp_in_force_s, cycle); }));
+    if (cycle % 100 == 0) {
+      gate.settle();
+      gate.takeOutcomes();
+    }
+  }
+  gate.settle();
+  EXPECT_EQ(gate.counts().applied, static_cast<std::uint64_t>(kCycles / 10));
+  EXPECT_EQ(probe.allocations, 0U);
+  EXPECT_EQ(probe.locks, 0U);
 }
 
 TEST(WrapperRealtime, JointUpdateNeitherAllocatesNorLocks) {

@@ -5,10 +5,10 @@
 #include <ostream>
 #include <string>
 
-#include "comply/pipeline/config.hpp"
 #include "comply/host/controller_setup.hpp"
 #include "comply/host/sim_session.hpp"
 #include "comply/host/task_file.hpp"
+#include "comply/pipeline/config.hpp"
 
 namespace comply::testing {
 

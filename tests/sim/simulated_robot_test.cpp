@@ -9,10 +9,10 @@
 #include <fstream>
 #include <limits>
 
+#include "comply/host/sim_session.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/model/update.hpp"
 #include "comply/sim/sim_error.hpp"
-#include "comply/host/sim_session.hpp"
 #include "sim_support.hpp"
 
 namespace comply::testing {

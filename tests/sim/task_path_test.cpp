@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "comply/task/path.hpp"
 #include "comply/host/sim_session.hpp"
+#include "comply/task/path.hpp"
 #include "sim_support.hpp"
 
 namespace comply::testing {
@@ -52,7 +52,7 @@ TEST(TaskPath, BadPathBlocksAreNamed) {
   const auto fails_with = [](const std::string& path_block, const std::string& expected) {
     try {
       (void)host::parseTaskFile("task:\n  waypoints: [{time_s: 0.0}]\n  path:\n" + path_block,
-                               "test", kSourceDir, true, 7);
+                                "test", kSourceDir, true, 7);
       ADD_FAILURE() << "accepted: " << path_block;
     } catch (const std::runtime_error& error) {
       EXPECT_NE(std::string(error.what()).find(expected), std::string::npos) << error.what();

@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "comply/core/temporary_file.hpp"
+
 namespace comply::testing {
 namespace {
 
@@ -89,43 +91,6 @@ std::string withMujocoCompilerOptions(std::string xml, const std::string& path) 
   return xml;
 }
 
-/// Writes `text` to a new file with a unique name in the temporary directory and removes it
-/// again on destruction. The location does not matter: the robots use no mesh files.
-class TemporaryFile {
- public:
-  explicit TemporaryFile(const std::string& text) {
-    std::string name =
-        (std::filesystem::temp_directory_path() / "comply_mujoco_XXXXXX.urdf").string();
-    const int fd = mkstemps(name.data(), 5);
-    if (fd < 0) {
-      fail("could not create a temporary file in " +
-           std::filesystem::temp_directory_path().string());
-    }
-    path_ = name;
-    std::size_t written = 0;
-    while (written < text.size()) {
-      const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
-      if (n <= 0) {
-        ::close(fd);
-        fail("could not write the temporary file " + path_.string());
-      }
-      written += static_cast<std::size_t>(n);
-    }
-    ::close(fd);
-  }
-  ~TemporaryFile() {
-    std::error_code ignored;
-    std::filesystem::remove(path_, ignored);
-  }
-  TemporaryFile(const TemporaryFile&) = delete;
-  TemporaryFile& operator=(const TemporaryFile&) = delete;
-
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
-
 }  // namespace
 
 MujocoReference::MujocoReference(const std::string& urdf_path, const std::string& tip_link,
@@ -138,7 +103,7 @@ MujocoReference::MujocoReference(const std::string& urdf_path, const std::string
   text << in.rdbuf();
 
   {
-    const TemporaryFile file(withMujocoCompilerOptions(text.str(), urdf_path));
+    const TemporaryFile file(withMujocoCompilerOptions(text.str(), urdf_path), "mujoco", ".urdf");
     std::array<char, 1024> error{};
     model_.reset(
         mj_loadXML(file.path().c_str(), nullptr, error.data(), static_cast<int>(error.size())));

@@ -1,8 +1,8 @@
 #pragma once
-// The command schemas a user sends (docs/design.md, "Command schema"). The members come from the field
-// tables of schema/table.hpp, so names are the same in the C buses (plugin/abi.h), JSON files and
-// messages. Poses, twists and wrenches are in the base
-// frame; gain blocks in the task frame, whose orientation travels with the command.
+// The command schemas a user sends (docs/design.md, "Command schema"). The members come from the
+// field tables of schema/table.hpp, so names are the same in the C buses (plugin/abi.h), JSON files
+// and messages. Poses, twists and wrenches are in the base frame; gain blocks in the task frame,
+// whose orientation travels with the command.
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -13,6 +13,14 @@
 namespace comply {
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
+
+/// A wire stamp [ns since the epoch] as a command's stamp_s [s]: whole seconds plus the fraction,
+/// one formula for every host, so that one stamp is always the same double (the command gate
+/// matches the stamp in force against the commands it accepted).
+constexpr double stampSeconds(std::int64_t stamp_ns) noexcept {
+  const std::int64_t whole = stamp_ns / 1'000'000'000 - (stamp_ns % 1'000'000'000 < 0 ? 1 : 0);
+  return static_cast<double>(whole) + 1e-9 * static_cast<double>(stamp_ns - whole * 1'000'000'000);
+}
 
 /// Field groups of a command; a sender sets only those it updates, the rest stays in force.
 /// Bit values equal COMPLY_FIELD_* of the plugin ABI.

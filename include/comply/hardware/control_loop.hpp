@@ -86,6 +86,10 @@ class ControlLoop {
 
   [[nodiscard]] const LoopStats& stats() const noexcept { return stats_; }
   [[nodiscard]] double period() const noexcept { return options_.period_s; }
+  /// The torque of the last cycle that wrote one [N m | N], dof() long (zeros before the first).
+  [[nodiscard]] std::span<const double> lastTorque() const noexcept {
+    return {torque_.data(), static_cast<std::size_t>(torque_.size())};
+  }
   /// Scheduled time of the next cycle on the loop's clock [s].
   [[nodiscard]] double nextCycleTime() const noexcept;
 

@@ -5,6 +5,7 @@
 
 #include <span>
 
+#include "comply/core/commands.hpp"
 #include "comply/core/state.hpp"
 
 namespace comply::hardware {
@@ -20,6 +21,17 @@ class HardwareInterface {
   virtual bool read(JointState& state) noexcept = 0;
   /// Joint effort command [N m | N], dof() long. Returns false when the hardware refused it.
   virtual bool write(std::span<const double> torque) noexcept = 0;
+
+  /// True when the robot adds its own gravity compensation to the torque it is sent (Franka, KUKA
+  /// and UR controllers do): the host then turns the wrapper's off, so it is not added twice.
+  [[nodiscard]] virtual bool compensatesGravity() const noexcept { return false; }
+  /// A wrist force/torque measurement [N, N m], base frame, force first: the wrench the
+  /// environment exerts on the tool. False when the robot has no such sensor or no valid reading
+  /// this cycle. Called after read(), in the cycle.
+  virtual bool readWrench(Vector6d& wrench) noexcept {
+    (void)wrench;
+    return false;
+  }
 };
 
 }  // namespace comply::hardware

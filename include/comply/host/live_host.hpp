@@ -5,6 +5,7 @@
 #include <iosfwd>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "comply/pipeline/resolved_controller.hpp"
 
@@ -13,12 +14,15 @@ namespace comply::host {
 /// How `comply run` (or any live host) is set up.
 struct LiveHostOptions {
   std::string config_file;
-  std::string robot;           ///< overrides the controller file's robot
-  bool sim = false;            ///< MuJoCo plant as the hardware
-  bool view = false;           ///< interactive window
-  double rate_hz = 1000.0;     ///< control rate
-  double state_rate_hz = 100;  ///< state topic rate
-  double duration_s = 0.0;     ///< > 0: stop after this long (benchmarks); 0: until a signal
+  std::string robot;             ///< overrides the controller file's robot
+  bool sim = false;              ///< --sim: the same as --hardware sim
+  std::string hardware = "sim";  ///< a backend name or library (host/hardware_backends.hpp)
+  std::vector<std::string> hardware_options;  ///< key=value, handed to the backend
+  bool view = false;                          ///< interactive window
+  double rate_hz = 1000.0;                    ///< control rate
+  double state_rate_hz = 100;                 ///< state topic rate
+  double duration_s = 0.0;        ///< > 0: stop after this long (benchmarks); 0: until a signal
+  std::string transport = "dds";  ///< a registered transport (transport/host_transport.hpp)
   int domain_id = 0;
   std::string network = "loopback";
   std::string name = "comply";
@@ -28,8 +32,11 @@ struct LiveHostOptions {
 /// Runs the host until `stop` is set or options.duration_s has passed; prints a summary on `out`.
 /// Returns the process exit code.
 int runLiveHost(const LiveHostOptions& options,
-                const std::shared_ptr<const pipeline::ResolvedController>& resolved,
+                std::shared_ptr<const pipeline::ResolvedController> resolved,
                 const std::atomic<bool>& stop, std::ostream& out, std::ostream& err);
+
+/// Registers the transports built into comply ("dds", "in_process"); runLiveHost() does it once.
+void registerBuiltinTransports();
 
 /// Makes the calling thread SCHED_FIFO at `priority`; "" on success, else why not.
 std::string makeRealtime(int priority);

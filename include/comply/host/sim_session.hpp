@@ -10,12 +10,12 @@
 #include <vector>
 
 #include "comply/core/commands.hpp"
+#include "comply/host/task_file.hpp"
+#include "comply/host/timing_statistics.hpp"
 #include "comply/pipeline/config.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/sim/simulated_robot.hpp"
 #include "comply/task/command_source.hpp"
-#include "comply/host/task_file.hpp"
-#include "comply/host/timing_statistics.hpp"
 
 namespace comply::host {
 

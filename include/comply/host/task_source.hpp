@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "comply/core/commands.hpp"
+#include "comply/host/task_file.hpp"
 #include "comply/task/command_source.hpp"
 #include "comply/task/path_command.hpp"
-#include "comply/host/task_file.hpp"
 
 namespace comply::host {
 

@@ -23,8 +23,8 @@
 #include <vector>
 
 #include "comply/core/commands.hpp"
-#include "comply/model/robot_description.hpp"
 #include "comply/hardware/hardware_interface.hpp"
+#include "comply/model/robot_description.hpp"
 #include "comply/sim/scene_xml.hpp"
 
 namespace comply::sim {
@@ -74,6 +74,11 @@ class SimulatedRobot final : public hardware::HardwareInterface {
   /// Sum of the contact wrenches the environment exerts on the tool (the TCP body and everything
   /// attached below it): force [N] and torque about the TCP origin [N m], base frame.
   [[nodiscard]] Vector6d toolContactWrench() const noexcept;
+  /// The tool's contact wrench, as a wrist force/torque sensor on the plant measures it.
+  bool readWrench(Vector6d& wrench) noexcept override {
+    wrench = toolContactWrench();
+    return true;
+  }
   /// Effort the plant applied in the last period [N m | N], after clamping.
   [[nodiscard]] std::span<const double> appliedEffort() const noexcept { return applied_; }
   [[nodiscard]] std::span<const double> effortLimit() const noexcept { return effort_limit_; }

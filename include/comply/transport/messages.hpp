@@ -142,4 +142,14 @@ struct RequestMessage {
   RequestType request = RequestType::kReset;
 };
 
+/// A received message and who wrote it.
+template <typename Message>
+struct Sample {
+  Message message;
+  std::uint64_t publisher = 0;  ///< the writer's instance handle
+  /// Non-empty when the wire held something the C++ type cannot (a joint vector longer than
+  /// kMaxDof): names the field. The message is then not to be used.
+  std::string malformed;
+};
+
 }  // namespace comply::transport

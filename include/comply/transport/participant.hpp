@@ -11,12 +11,9 @@
 #include <stdexcept>
 #include <string>
 
-namespace comply::transport {
+#include "comply/transport/host_transport.hpp"
 
-class TransportError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace comply::transport {
 
 enum class Network : std::uint8_t {
   kLoopback,  ///< 127.0.0.1 only, no multicast (the default)

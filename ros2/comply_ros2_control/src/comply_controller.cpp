@@ -4,9 +4,12 @@
 #include <ctime>
 #include <exception>
 #include <stdexcept>
+#include <type_traits>
+#include <variant>
 
 #include "comply/hardware/loop_clock.hpp"
 #include "comply/model/robot_description.hpp"
+#include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/config.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply_ros2_control/message_conversion.hpp"
@@ -35,6 +38,16 @@ std::size_t indexOf(const std::vector<Loaned>& interfaces, const std::string& jo
     }
   }
   throw std::runtime_error("no interface " + joint + "/" + kind + " was loaned");
+}
+
+/// A publisher's GID folded into the gate's 64-bit writer identity (FNV-1a).
+template <typename Gid>
+std::uint64_t publisherId(const Gid& gid) {
+  std::uint64_t hash = 14695981039346656037ULL;
+  for (const auto byte : gid.data) {
+    hash = (hash ^ static_cast<std::uint8_t>(byte)) * 1099511628211ULL;
+  }
+  return hash == 0 ? 1 : hash;
 }
 
 }  // namespace
@@ -85,6 +98,11 @@ void ComplyController<Command>::resolve() {
   comply::pipeline::completeForRobot(config, robot);
   wrapper_ = std::make_unique<comply::pipeline::Wrapper<Command>>(
       comply::pipeline::resolveController(config));
+  gate_ = std::make_unique<comply::pipeline::CommandGate>(
+      comply::pipeline::GateOptions{.kind = std::is_same_v<Command, comply::CartesianCommand>
+                                                ? comply::pipeline::CommandKind::kCartesian
+                                                : comply::pipeline::CommandKind::kJoint,
+                                    .publisher_timeout_s = config.command_timeout_s});
   joints_ = config.joints;
 }
 
@@ -115,7 +133,9 @@ void ComplyController<Command>::createEndpoints() {
       // Deeper than ROS's 10: a burst that arrives while the executor is busy waits here instead
       // of being dropped unaccounted (comply run keeps all; rclcpp cannot bound a keep-all).
       CommandTopic<Command>::kName, rclcpp::QoS(kCommandDepth).reliable(),
-      [this](const std::shared_ptr<const CommandMessage> message) { onCommand(*message); });
+      [this](const std::shared_ptr<const CommandMessage> message, const rclcpp::MessageInfo& info) {
+        onCommand(*message, info);
+      });
   reset_service_ = node->create_service<std_srvs::srv::Trigger>(
       "~/reset_fault", [this](const std::shared_ptr<std_srvs::srv::Trigger::Request>,
                               std::shared_ptr<std_srvs::srv::Trigger::Response> response) {
@@ -133,6 +153,7 @@ CallbackReturn ComplyController<Command>::on_configure(const rclcpp_lifecycle::S
   } catch (const std::exception& error) {
     RCLCPP_ERROR(get_node()->get_logger(), "cannot configure: %s", error.what());
     wrapper_.reset();
+    gate_.reset();
     return CallbackReturn::ERROR;
   }
   const int dof = wrapper_->dof();
@@ -200,6 +221,7 @@ CallbackReturn ComplyController<Command>::on_cleanup(const rclcpp_lifecycle::Sta
   diagnostics_publisher_.reset();
   state_publisher_.reset();
   wrapper_.reset();
+  gate_.reset();
   joints_.clear();
   return CallbackReturn::SUCCESS;
 }
@@ -216,6 +238,9 @@ controller_interface::return_type ComplyController<Command>::update(
       command_interfaces_[command_index_[i]].set_value(torque_[i]);
     }
   }
+  const auto& bus =
+      std::get<comply::pipeline::BusOf<Command>>(wrapper_->controller().activeCommand());
+  gate_->noteCycle(cycle_, bus.stamp_s, time.nanoseconds());
   if (++cycle_ % state_every_cycles_ == 0 && state_publisher_->trylock()) {
     fillState(wrapper_->controller(), state_, torque_, cycle_ - 1, time, state_publisher_->msg_);
     state_publisher_->unlockAndPublish();
@@ -231,37 +256,32 @@ controller_interface::return_type ComplyController<Command>::update(
 }
 
 template <typename Command>
-void ComplyController<Command>::onCommand(const CommandMessage& message) {
+void ComplyController<Command>::onCommand(const CommandMessage& message,
+                                          const rclcpp::MessageInfo& info) {
   if (!wrapper_) {
     return;  // a configure that failed after the subscription existed
   }
-  commands_received_.fetch_add(1, std::memory_order_relaxed);
   std::string malformed;
   const Command command = fromMessage(message, malformed);
-  // A malformed joint vector reaches the wrapper empty and is refused there as a size mismatch,
-  // so that it is counted with every other rejection.
-  const auto verdict = wrapper_->submit(command);
-  {
-    comply_msgs::msg::CommandOutcome outcome;
-    outcome.stamp = message.header.stamp;
-    outcome.command_kind = wrapper_->controller().resolved().cartesian()
-                               ? comply_msgs::msg::ControllerState::COMMAND_KIND_CARTESIAN
-                               : comply_msgs::msg::ControllerState::COMMAND_KIND_JOINT;
-    outcome.received = get_node()->now();
-    // Accepted means queued for the next cycle, which takes every queued command.
-    outcome.outcome = verdict.accepted ? outcome.OUTCOME_APPLIED : outcome.OUTCOME_REJECTED;
-    outcome.reason =
-        verdict.accepted ? outcome.REASON_NONE : static_cast<std::uint8_t>(verdict.reason);
-    outcome.applied = outcome.received;
-    outcome.message = verdict.message;
-    const std::lock_guard<std::mutex> lock(outcomes_mutex_);
-    outcomes_.push_back(std::move(outcome));
-  }
+  comply::pipeline::Offer offer;
+  offer.stamp_ns = static_cast<std::int64_t>(message.header.stamp.sec) * 1'000'000'000 +
+                   message.header.stamp.nanosec;
+  offer.kind = std::is_same_v<Command, comply::CartesianCommand>
+                   ? comply::pipeline::CommandKind::kCartesian
+                   : comply::pipeline::CommandKind::kJoint;
+  offer.publisher = publisherId(info.get_rmw_message_info().publisher_gid);
+  offer.malformed = malformed;
+  offer.now_ns = comply::pipeline::steadyClockNs();
+  const bool active = wrapper_->diagnostics().state != comply::pipeline::WrapperState::kInactive;
+  comply::pipeline::Verdict verdict;
+  gate_->offer(offer, active, [&] {
+    verdict = wrapper_->submit(command);
+    return verdict;
+  });
   if (!verdict.accepted) {
     RCLCPP_WARN_THROTTLE(
-        get_node()->get_logger(), *get_node()->get_clock(), 1000, "command rejected (%s): %s%s",
-        std::string(comply::pipeline::toString(verdict.reason)).c_str(), verdict.message.c_str(),
-        malformed.empty() ? "" : (" " + malformed).c_str());
+        get_node()->get_logger(), *get_node()->get_clock(), 1000, "command rejected (%s): %s",
+        std::string(comply::pipeline::toString(verdict.reason)).c_str(), verdict.message.c_str());
   }
 }
 
@@ -287,13 +307,13 @@ void ComplyController<Command>::publishDiagnostics() {
   diagnostics_publisher_->msg_.header.stamp = get_node()->now();
   diagnostics_publisher_->msg_.header.frame_id = get_node()->get_name();
   auto& message = diagnostics_publisher_->msg_;
-  fillDiagnostics(wrapper_->diagnostics(), nominal_period_s_,
-                  commands_received_.load(std::memory_order_relaxed), message);
+  gate_->settle();
+  fillDiagnostics(wrapper_->diagnostics(), nominal_period_s_, gate_->counts(), gate_->publisher(),
+                  message);
   message.overruns = overruns_.load(std::memory_order_relaxed);
-  {
-    const std::lock_guard<std::mutex> lock(outcomes_mutex_);
-    message.outcomes.swap(outcomes_);
-    outcomes_.clear();
+  message.outcomes.clear();
+  for (const comply::pipeline::CommandOutcome& outcome : gate_->takeOutcomes()) {
+    message.outcomes.push_back(toMessage(outcome));
   }
   message.histogram_bin = kTimingBinSeconds;
   message.compute_time_histogram.resize(kTimingBins);

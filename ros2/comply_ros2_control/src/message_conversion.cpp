@@ -1,5 +1,6 @@
 #include "comply_ros2_control/message_conversion.hpp"
 
+#include <sstream>
 #include <type_traits>
 #include <variant>
 
@@ -38,7 +39,7 @@ void fromField(const MessageValue& in, Value& value, const char* name, std::stri
 }
 
 double seconds(const builtin_interfaces::msg::Time& stamp) {
-  return static_cast<double>(stamp.sec) + 1e-9 * static_cast<double>(stamp.nanosec);
+  return comply::stampSeconds(static_cast<std::int64_t>(stamp.sec) * 1'000'000'000 + stamp.nanosec);
 }
 
 builtin_interfaces::msg::Time stampOf(double seconds_since_epoch) {
@@ -141,20 +142,48 @@ void fillState(const comply::pipeline::Controller& controller, const comply::Joi
 }
 
 void fillDiagnostics(const comply::pipeline::DiagnosticsSnapshot& snapshot, double period_s,
-                     std::uint64_t commands_received, comply_msgs::msg::Diagnostics& message) {
+                     const comply::pipeline::GateCounts& counts, std::uint64_t publisher,
+                     comply_msgs::msg::Diagnostics& message) {
   message.state = static_cast<std::uint8_t>(snapshot.state);
   message.cycles = snapshot.cycles;
   message.period = period_s;
-  message.commands_received = commands_received;
-  message.commands_applied = snapshot.commands_accepted;
-  message.commands_rejected = snapshot.rejectionsTotal();
-  message.rejections.assign(snapshot.rejections.begin(), snapshot.rejections.end());
+  message.commands_received = counts.received;
+  message.commands_applied = counts.applied;
+  message.commands_rejected = counts.rejected;
+  message.rejections.assign(counts.per_reason.begin(), counts.per_reason.end());
   message.watchdog_timeouts = snapshot.watchdog_timeouts;
   message.faults = snapshot.faults;
   message.rate_limit_hits = snapshot.rate_limit_hits;
   message.effort_limit_hits = snapshot.effort_limit_hits;
   message.last_fault = snapshot.last_fault;
   message.last_rejection = snapshot.last_rejection;
+  std::ostringstream holder;
+  if (publisher != 0) {
+    holder << std::hex << publisher;
+  }
+  message.publisher = holder.str();
+}
+
+namespace {
+builtin_interfaces::msg::Time timeOf(std::int64_t nanoseconds) {
+  builtin_interfaces::msg::Time time;
+  time.sec = static_cast<std::int32_t>(nanoseconds / 1'000'000'000);
+  time.nanosec = static_cast<std::uint32_t>(nanoseconds % 1'000'000'000);
+  return time;
+}
+}  // namespace
+
+comply_msgs::msg::CommandOutcome toMessage(const comply::pipeline::CommandOutcome& outcome) {
+  comply_msgs::msg::CommandOutcome message;
+  message.stamp = timeOf(outcome.stamp_ns);
+  message.command_kind = static_cast<std::uint8_t>(outcome.kind);
+  message.outcome = outcome.applied ? message.OUTCOME_APPLIED : message.OUTCOME_REJECTED;
+  message.reason = static_cast<std::uint8_t>(outcome.reason);
+  message.cycle = outcome.cycle;
+  message.received = timeOf(outcome.received_ns);
+  message.applied = timeOf(outcome.applied_ns);
+  message.message = outcome.message;
+  return message;
 }
 
 }  // namespace comply_ros2_control

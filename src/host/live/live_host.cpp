@@ -8,12 +8,14 @@
 #include <cmath>
 #include <cstring>
 #include <iomanip>
+#include <mutex>
 #include <ostream>
 #include <thread>
 
 #include "comply/hardware/control_loop.hpp"
-#include "comply/sim/simulated_clock.hpp"
-#include "comply/transport/endpoints.hpp"
+#include "comply/host/hardware_backends.hpp"
+#include "comply/pipeline/resolved_controller.hpp"
+#include "comply/transport/host_transport.hpp"
 #include "live_intake.hpp"
 #include "live_messages.hpp"
 #include "live_observer.hpp"
@@ -23,56 +25,20 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// The DDS side of the host: the endpoints on one participant.
-struct HostEndpoints {
-  // Every command kept until the reader thread takes it: a burst that arrives while the thread is
-  // descheduled, or faster than it validates, waits here (and holds a reliable writer back)
-  // instead of being dropped unaccounted.
-  static constexpr int kCommandDepth = transport::kKeepAll;
-  explicit HostEndpoints(const LiveHostOptions& options)
-      : participant(
-            {options.domain_id,
-             options.network == "all" ? transport::Network::kAll : transport::Network::kLoopback,
-             options.priority > 1 ? options.priority - 1 : 0}),
-        cartesian(participant, options.name, kCommandDepth),
-        joint(participant, options.name, kCommandDepth),
-        request(participant, options.name),
-        state(participant, options.name),
-        diagnostics(participant, options.name),
-        waitset(participant) {
-    waitset.attach(cartesian);
-    waitset.attach(joint);
-    waitset.attach(request);
-  }
-  transport::Participant participant;
-  transport::Reader<transport::CartesianCommandMessage> cartesian;
-  transport::Reader<transport::JointCommandMessage> joint;
-  transport::Reader<transport::RequestMessage> request;
-  transport::Writer<transport::ControllerStateMessage> state;
-  transport::Writer<transport::DiagnosticsMessage> diagnostics;
-  transport::WaitSet waitset;
-};
-
 template <typename Command>
-void readerThread(HostEndpoints& dds, Intake<Command>& intake, const std::atomic<bool>& running) {
-  std::vector<transport::Sample<transport::CartesianCommandMessage>> cartesian;
-  std::vector<transport::Sample<transport::JointCommandMessage>> joint;
-  std::vector<transport::Sample<transport::RequestMessage>> requests;
+void readerThread(transport::HostTransport& transport, Intake<Command>& intake,
+                  const std::atomic<bool>& running) {
+  transport::Inbox inbox;
   while (running.load()) {
-    dds.waitset.wait(0.1);
-    cartesian.clear();
-    joint.clear();
-    requests.clear();
-    dds.cartesian.take(cartesian);
-    dds.joint.take(joint);
-    dds.request.take(requests);
-    for (const auto& sample : cartesian) {
+    inbox.clear();
+    transport.receive(inbox, 0.1);
+    for (const auto& sample : inbox.cartesian) {
       intake.handle(sample);
     }
-    for (const auto& sample : joint) {
+    for (const auto& sample : inbox.joint) {
       intake.handle(sample);
     }
-    for (const auto& sample : requests) {
+    for (const auto& sample : inbox.requests) {
       intake.handle(sample);
     }
   }
@@ -85,25 +51,24 @@ struct PublisherContext {
   const pipeline::ResolvedController& resolved;
   pipeline::Wrapper<Command>& wrapper;
   LiveObserver<Command>& observer;
-  Accounting& accounting;
-  PublisherLock& lock;
-  HostEndpoints& dds;
+  pipeline::CommandGate& gate;
+  transport::HostTransport& transport;
   double period_s;
 };
 
 template <typename Command>
 void publishDiagnostics(PublisherContext<Command>& c,
                         std::vector<transport::CommandOutcomeMessage> outcomes) {
-  transport::DiagnosticsMessage message = diagnosticsMessage(
-      c.wrapper.diagnostics(), c.observer.counters(), c.period_s, c.accounting.counts(),
-      c.lock.holder(), c.options.name, std::move(outcomes));
+  transport::DiagnosticsMessage message =
+      diagnosticsMessage(c.wrapper.diagnostics(), c.observer.counters(), c.period_s,
+                         c.gate.counts(), c.gate.publisher(), c.options.name, std::move(outcomes));
   for (auto it = message.outcomes.rbegin(); it != message.outcomes.rend(); ++it) {
     if (it->outcome == transport::Outcome::kRejected) {
       message.last_rejection = it->message;  // the host's reasons too, not only the wrapper's
       break;
     }
   }
-  c.dds.diagnostics.write(message);
+  c.transport.publish(message);
 }
 
 template <typename Command>
@@ -114,15 +79,12 @@ void publisherThread(PublisherContext<Command> c, const std::atomic<bool>& runni
   auto last_diagnostics = Clock::now() - std::chrono::seconds(1);
   std::uint64_t events_seen = 0;
   while (running.load()) {
-    AppliedEvent event;
-    while (c.observer.takeApplied(event)) {
-      c.accounting.settle(event);
-    }
+    c.gate.settle();
     const auto now = Clock::now();
     if (now >= next_state) {
       StateSample sample;
       if (c.observer.takeState(sample)) {
-        c.dds.state.write(stateMessage(sample, c.resolved));
+        c.transport.publish(stateMessage(sample, c.resolved));
       }
       next_state = std::max(next_state + state_period, now);
     }
@@ -131,7 +93,7 @@ void publisherThread(PublisherContext<Command> c, const std::atomic<bool>& runni
       const pipeline::Diagnostics& d = c.wrapper.controller().diagnostics();
       const std::uint64_t events = d.watchdog_timeouts.load() + d.faults.load() +
                                    (static_cast<std::uint64_t>(d.state.load()) << 32);
-      auto outcomes = c.accounting.takeOutcomes();
+      auto outcomes = outcomeMessages(c.gate.takeOutcomes());
       if (!outcomes.empty() || events != events_seen ||
           now - last_diagnostics >= std::chrono::seconds(1)) {
         events_seen = events;
@@ -143,11 +105,14 @@ void publisherThread(PublisherContext<Command> c, const std::atomic<bool>& runni
   }
 }
 
-void printSummary(const LoopCounters& counters, const AccountingCounts& counts, std::ostream& out) {
+void printSummary(const LoopCounters& counters, const pipeline::GateCounts& counts,
+                  const hardware::LoopStats& stats, std::ostream& out) {
   const auto us = [](double seconds) { return std::lround(seconds * 1e6); };
   out << "comply run: " << counters.cycles.load() << " cycles, " << counters.overruns.load()
-      << " overruns; cycle start lateness p50 " << us(histogramQuantile(counters.lateness, 0.5))
-      << " us, p99 " << us(histogramQuantile(counters.lateness, 0.99)) << " us; compute p50 "
+      << " overruns, " << stats.read_failures << " read failures, " << stats.write_failures
+      << " write failures; cycle start lateness p50 "
+      << us(histogramQuantile(counters.lateness, 0.5)) << " us, p99 "
+      << us(histogramQuantile(counters.lateness, 0.99)) << " us; compute p50 "
       << us(histogramQuantile(counters.compute, 0.5)) << " us, p99 "
       << us(histogramQuantile(counters.compute, 0.99)) << " us (10 us bins)\n"
       << "comply run: commands received " << counts.received << ", applied " << counts.applied
@@ -157,26 +122,32 @@ void printSummary(const LoopCounters& counters, const AccountingCounts& counts, 
 template <typename Command>
 int runWith(const LiveHostOptions& options,
             const std::shared_ptr<const pipeline::ResolvedController>& resolved,
-            const std::atomic<bool>& stop, std::ostream& out, std::ostream& err) {
-  sim::PlantOptions plant_options;
-  plant_options.control_period_s = 1.0 / options.rate_hz;
-  plant_options.tip_frame = resolved->config.tip_frame;
-  sim::SimulatedRobot plant(resolved->robot, plant_options);
+            HardwareBackend& backend, const std::atomic<bool>& stop, std::ostream& out,
+            std::ostream& err) {
+  hardware::HardwareInterface& robot = *backend.hardware;
   pipeline::Wrapper<Command> wrapper(resolved);
   JointState state = JointState::zero(wrapper.dof());
-  plant.read(state);
+  if (!robot.read(state)) {
+    err << "comply run: the hardware gave no valid joint state to start from\n";
+    return 1;
+  }
   wrapper.activate(state);
-  HostEndpoints dds(options);
+  const std::unique_ptr<transport::HostTransport> transport = transport::makeHostTransport(
+      options.transport, {.name = options.name,
+                          .domain_id = options.domain_id,
+                          .network = options.network,
+                          .receive_priority = options.priority > 1 ? options.priority - 1 : 0});
 
-  const double period_s = plant.controlPeriod();
-  sim::SimulatedClock clock(plant, true);
-  LiveObserver<Command> observer(wrapper, &plant, hardware::monotonicSeconds());
+  const double period_s = 1.0 / options.rate_hz;
+  pipeline::CommandGate gate({.kind = resolved->cartesian() ? pipeline::CommandKind::kCartesian
+                                                            : pipeline::CommandKind::kJoint,
+                              .publisher_timeout_s = resolved->config.command_timeout_s});
+  LiveObserver<Command> observer(wrapper, gate, robot, hardware::monotonicSeconds());
   const auto cycles = static_cast<std::uint64_t>(std::llround(options.duration_s / period_s));
-  hardware::ControlLoop loop(plant, wrapper, clock, {.period_s = period_s, .cycles = cycles});
+  hardware::ControlLoop loop(robot, wrapper, *backend.clock,
+                             {.period_s = period_s, .cycles = cycles});
   loop.setObserver(&observer);
-  Accounting accounting;
-  PublisherLock lock(resolved->config.command_timeout_s);
-  Intake<Command> intake(wrapper, observer, accounting, lock);
+  Intake<Command> intake(wrapper, observer, gate);
 
   std::atomic<bool> loop_running{true};
   std::atomic<bool> io_running{true};
@@ -190,14 +161,14 @@ int runWith(const LiveHostOptions& options,
   std::thread reader([&] {
     // Just below the control thread: a command waits for the reader, not for the scheduler.
     makeRealtime(options.priority > 1 ? options.priority - 1 : 0);
-    readerThread(dds, intake, io_running);
+    readerThread(*transport, intake, io_running);
   });
-  PublisherContext<Command> context{options,    *resolved, wrapper, observer,
-                                    accounting, lock,      dds,     period_s};
+  PublisherContext<Command> context{options, *resolved,  wrapper, observer,
+                                    gate,    *transport, period_s};
   std::thread publisher([&] { publisherThread(context, io_running); });
   out << "comply run: " << resolved->robot.name << " with " << resolved->config.plugin << " at "
-      << options.rate_hz << " Hz; topics rt/" << options.name << "/* on domain "
-      << options.domain_id << " (" << options.network << "); Ctrl-C to stop" << std::endl;
+      << options.rate_hz << " Hz on " << backend.description << "; " << transport->describe()
+      << "; Ctrl-C to stop" << std::endl;
 
   while (!stop.load() && loop_running.load()) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -205,20 +176,16 @@ int runWith(const LiveHostOptions& options,
   // Shutdown: no new commands, then the loop stops and the controller lets go; every command
   // taken is accounted before the last diagnostics go out.
   io_running = false;
-  dds.waitset.trigger();
+  transport->wake();
   reader.join();
   loop.stop();
   control.join();
   wrapper.deactivate();
   publisher.join();
-  AppliedEvent event;
-  while (observer.takeApplied(event)) {
-    accounting.settle(event);
-  }
-  accounting.abandonPending("the host shut down before a cycle took it");
-  publishDiagnostics(context, accounting.takeOutcomes());
-  dds.diagnostics.flush(1.0);
-  printSummary(observer.counters(), accounting.counts(), out);
+  gate.abandonPending("the host shut down before a cycle took it");
+  publishDiagnostics(context, outcomeMessages(gate.takeOutcomes()));
+  transport->flush(1.0);
+  printSummary(observer.counters(), gate.counts(), loop.stats(), out);
   return 0;
 }
 
@@ -240,10 +207,30 @@ std::string makeRealtime(int priority) {
 }
 
 int runLiveHost(const LiveHostOptions& options,
-                const std::shared_ptr<const pipeline::ResolvedController>& resolved,
+                std::shared_ptr<const pipeline::ResolvedController> resolved,
                 const std::atomic<bool>& stop, std::ostream& out, std::ostream& err) {
-  return resolved->cartesian() ? runWith<CartesianCommand>(options, resolved, stop, out, err)
-                               : runWith<JointCommand>(options, resolved, stop, out, err);
+  static std::once_flag registered;
+  std::call_once(registered, registerBuiltinTransports);
+  HardwareBackend backend =
+      makeHardware(options.hardware, *resolved,
+                   backendContext(*resolved, 1.0 / options.rate_hz, options.hardware_options));
+  if (backend.hardware->dof() != resolved->dof) {
+    err << "comply run: the hardware has " << backend.hardware->dof() << " joints, the controller "
+        << resolved->dof << "\n";
+    return 2;
+  }
+  if (backend.hardware->compensatesGravity() && resolved->config.gravity_compensation) {
+    // The robot adds gravity itself: adding it here too would push the arm up with its own weight.
+    pipeline::WrapperConfig config = resolved->config;
+    config.gravity_compensation = false;
+    resolved = pipeline::resolveController(config);
+    out << "comply run: the hardware compensates gravity itself; comply's gravity compensation "
+           "is off"
+        << std::endl;
+  }
+  return resolved->cartesian()
+             ? runWith<CartesianCommand>(options, resolved, backend, stop, out, err)
+             : runWith<JointCommand>(options, resolved, backend, stop, out, err);
 }
 
 }  // namespace comply::host

@@ -75,7 +75,7 @@ transport::ControllerStateMessage stateMessage(const StateSample& sample,
 
 transport::DiagnosticsMessage diagnosticsMessage(
     const pipeline::DiagnosticsSnapshot& wrapper, const LoopCounters& loop, double period_s,
-    const AccountingCounts& counts, std::uint64_t publisher, const std::string& host_name,
+    const pipeline::GateCounts& counts, std::uint64_t publisher, const std::string& host_name,
     std::vector<transport::CommandOutcomeMessage> outcomes) {
   transport::DiagnosticsMessage message;
   message.header = {transport::Stamp::now(), host_name};
@@ -86,7 +86,7 @@ transport::DiagnosticsMessage diagnosticsMessage(
   message.commands_received = counts.received;
   message.commands_applied = counts.applied;
   message.commands_rejected = counts.rejected;
-  message.rejections = counts.per_reason;
+  message.rejections.assign(counts.per_reason.begin(), counts.per_reason.end());
   message.watchdog_timeouts = wrapper.watchdog_timeouts;
   message.faults = wrapper.faults;
   message.rate_limit_hits = wrapper.rate_limit_hits;

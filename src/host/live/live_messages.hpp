@@ -20,7 +20,7 @@ transport::ControllerStateMessage stateMessage(const StateSample& sample,
 /// The counters of the wrapper, the loop and the intake, with `outcomes` attached.
 transport::DiagnosticsMessage diagnosticsMessage(
     const pipeline::DiagnosticsSnapshot& wrapper, const LoopCounters& loop, double period_s,
-    const AccountingCounts& counts, std::uint64_t publisher, const std::string& host_name,
+    const pipeline::GateCounts& counts, std::uint64_t publisher, const std::string& host_name,
     std::vector<transport::CommandOutcomeMessage> outcomes);
 
 }  // namespace comply::host

@@ -48,8 +48,9 @@ double histogramQuantile(const std::array<std::atomic<std::uint64_t>, LoopCounte
 
 template <typename Command>
 LiveObserver<Command>::LiveObserver(pipeline::Wrapper<Command>& wrapper,
-                                    const sim::SimulatedRobot* plant, double wall_origin_s)
-    : wrapper_(wrapper), plant_(plant), wall_origin_s_(wall_origin_s) {
+                                    pipeline::CommandGate& gate, hardware::HardwareInterface& robot,
+                                    double wall_origin_s)
+    : wrapper_(wrapper), robot_(robot), wall_origin_s_(wall_origin_s), gate_(gate) {
   const int dof = wrapper.dof();
   sample_.joints = JointState::zero(dof);
   sample_.torque.setZero(dof);
@@ -86,11 +87,8 @@ void LiveObserver<Command>::afterCycle(const hardware::CycleRecord& record) {
     last_state_ = *record.state;
   }
   const auto& bus = std::get<BusOfCommand<Command>>(wrapper_.controller().activeCommand());
-  if (bus.stamp_s != last_stamp_s_) {
-    last_stamp_s_ = bus.stamp_s;
-    if (!applied_.push({record.index, bus.stamp_s, transport::Stamp::now()})) {
-      counters_.applied_dropped.fetch_add(1, std::memory_order_relaxed);
-    }
+  if (!gate_.noteCycle(record.index, bus.stamp_s, transport::Stamp::now().nanoseconds())) {
+    counters_.applied_deferred.fetch_add(1, std::memory_order_relaxed);
   }
   fillSample(record);
 }
@@ -111,7 +109,10 @@ void LiveObserver<Command>::fillSample(const hardware::CycleRecord& record) noex
   const int dof = wrapper_.dof();
   s.tcp_twist =
       data.jacobian.cols() == dof ? Vector6d(data.jacobian * s.joints.velocity) : Vector6d::Zero();
-  s.contact_wrench = plant_ != nullptr ? plant_->toolContactWrench() : Vector6d::Zero();
+  // The control thread is the one that reads the hardware: the wrench is read here, in the cycle.
+  if (!robot_.readWrench(s.contact_wrench)) {
+    s.contact_wrench.setZero();
+  }
   const auto& bus = std::get<BusOfCommand<Command>>(wrapper_.controller().activeCommand());
   s.reference_stamp_s = bus.stamp_s;
   s.reference_fields = bus.fields;
@@ -134,17 +135,6 @@ void LiveObserver<Command>::requestLifecycle(transport::RequestType request) noe
 template <typename Command>
 std::string LiveObserver<Command>::activationError() const {
   return activation_error_.read().first;
-}
-
-template <typename Command>
-bool LiveObserver<Command>::takeApplied(AppliedEvent& event) noexcept {
-  const AppliedEvent* front = applied_.front();
-  if (front == nullptr) {
-    return false;
-  }
-  event = *front;
-  applied_.pop();
-  return true;
 }
 
 template <typename Command>

@@ -14,18 +14,11 @@
 #include "comply/core/spsc_queue.hpp"
 #include "comply/core/triple_buffer.hpp"
 #include "comply/hardware/control_loop.hpp"
+#include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
-#include "comply/sim/simulated_robot.hpp"
 #include "comply/transport/messages.hpp"
 
 namespace comply::host {
-
-/// The cycle that took the commands up to `stamp_s` (the newest stamp in force).
-struct AppliedEvent {
-  std::uint64_t cycle = 0;
-  double stamp_s = 0.0;
-  transport::Stamp wall;  ///< wall clock at the end of that cycle
-};
 
 /// One cycle as the state topic shows it; fixed size, so copying it never allocates.
 struct StateSample {
@@ -51,7 +44,7 @@ struct LoopCounters {
   static constexpr double kBinSeconds = 10e-6;  ///< 10 us bins: 0..2 ms, the last one open
   std::atomic<std::uint64_t> cycles{0};
   std::atomic<std::uint64_t> overruns{0};
-  std::atomic<std::uint64_t> applied_dropped{0};  ///< applied events the publisher did not take
+  std::atomic<std::uint64_t> applied_deferred{0};  ///< applied events the gate had no room for yet
   std::array<std::atomic<std::uint64_t>, kBins> compute{};
   std::array<std::atomic<std::uint64_t>, kBins> lateness{};
 };
@@ -63,10 +56,10 @@ double histogramQuantile(const std::array<std::atomic<std::uint64_t>, LoopCounte
 template <typename Command>
 class LiveObserver final : public hardware::LoopObserver {
  public:
-  /// `plant`: the simulated robot for the contact wrench, or nullptr. `wall_origin_s`: the
+  /// `robot`: the hardware, for its measured wrench (if it has a sensor). `wall_origin_s`: the
   /// CLOCK_MONOTONIC time [s] at which the loop's clock reads 0.
-  LiveObserver(pipeline::Wrapper<Command>& wrapper, const sim::SimulatedRobot* plant,
-               double wall_origin_s);
+  LiveObserver(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gate,
+               hardware::HardwareInterface& robot, double wall_origin_s);
 
   void beforeCycle(std::uint64_t index, double time_s) override;
   void afterCycle(const hardware::CycleRecord& record) override;
@@ -75,8 +68,6 @@ class LiveObserver final : public hardware::LoopObserver {
   void requestLifecycle(transport::RequestType request) noexcept;
   /// Why the last activation failed ("" if it did not); any thread.
   [[nodiscard]] std::string activationError() const;
-  /// The publisher thread (the only consumer): the next applied event, false when none waits.
-  bool takeApplied(AppliedEvent& event) noexcept;
   /// The publisher thread: the newest state sample; false when none is new.
   bool takeState(StateSample& sample);
   [[nodiscard]] const LoopCounters& counters() const noexcept { return counters_; }
@@ -85,14 +76,13 @@ class LiveObserver final : public hardware::LoopObserver {
   void fillSample(const hardware::CycleRecord& record) noexcept;
 
   pipeline::Wrapper<Command>& wrapper_;
-  const sim::SimulatedRobot* plant_;
+  hardware::HardwareInterface& robot_;
   double wall_origin_s_;
   LoopCounters counters_;
-  SpscQueue<AppliedEvent> applied_{4096};
+  pipeline::CommandGate& gate_;
   TripleBuffer<StateSample> state_;
   StateSample sample_;  // the control thread's scratch
   JointState last_state_;
-  double last_stamp_s_ = -1.0;
   std::atomic<std::uint8_t> lifecycle_request_{0};
   pipeline::MessageSlot activation_error_;
 };

@@ -6,10 +6,10 @@
 #include <memory>
 #include <string>
 
+#include "comply/host/sim_session.hpp"
 #include "comply/sim/renderer.hpp"
 #include "comply/sim/simulated_robot.hpp"
 #include "comply/sim/viewer.hpp"
-#include "comply/host/sim_session.hpp"
 
 namespace comply::host {
 

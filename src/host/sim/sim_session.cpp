@@ -9,12 +9,12 @@
 #include <sstream>
 
 #include "comply/hardware/control_loop.hpp"
+#include "comply/host/task_source.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/sim/simulated_clock.hpp"
 #include "progress_bar.hpp"
 #include "sim_crash_guard.hpp"
 #include "sim_pictures.hpp"
-#include "comply/host/task_source.hpp"
 
 namespace comply::host {
 namespace {

@@ -289,7 +289,8 @@ TaskFile parseTaskFile(const std::string& yaml_text, const std::string& source,
     error.fail("", std::string("not valid YAML: ") + yaml_error.what());
   }
   if (!root.IsMap() || !root["task"] || !root["task"].IsMap()) {
-    error.fail("", "needs a top-level 'task' map (see include/comply/host/task_file.hpp or examples/sim)");
+    error.fail(
+        "", "needs a top-level 'task' map (see include/comply/host/task_file.hpp or examples/sim)");
   }
   const json task_json = schema::yamlToJson(root["task"], source, "task");
 

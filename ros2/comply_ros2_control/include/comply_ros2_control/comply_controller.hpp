@@ -11,7 +11,9 @@
 //                  hardware or the next controller takes them
 //
 // Topics (relative to the controller's node, /<controller name>/...):
-//   ~/cartesian_command or ~/joint_command   comply_msgs command, validated as `comply run` does
+//   ~/cartesian_command or ~/joint_command   comply_msgs command, through comply's command gate as
+//                  in `comply run`: strictly newer stamps, one publisher at a time, every command
+//                  applied (with the cycle that took it) or rejected with a reason
 //   ~/state        comply_msgs/ControllerState every state_publish_rate_hz (default 100 Hz)
 //   ~/diagnostics  comply_msgs/Diagnostics at diagnostics_publish_rate_hz (default 10 Hz), with
 //                  the compute time of update() as a histogram (1 us bins), its overruns, and
@@ -27,7 +29,6 @@
 #include <controller_interface/controller_interface.hpp>
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <rclcpp/rclcpp.hpp>
 #include <std_srvs/srv/trigger.hpp>
 #include <string>
@@ -35,6 +36,7 @@
 
 #include "comply/core/commands.hpp"
 #include "comply/core/state.hpp"
+#include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply_msgs/msg/cartesian_command.hpp"
 #include "comply_msgs/msg/controller_state.hpp"
@@ -79,7 +81,7 @@ class ComplyController : public controller_interface::ControllerInterface {
   void createEndpoints();
   bool mapInterfaces();
   void readState() noexcept;
-  void onCommand(const CommandMessage& message);
+  void onCommand(const CommandMessage& message, const rclcpp::MessageInfo& info);
   void onResetFault(std_srvs::srv::Trigger::Response& response);
   void publishDiagnostics();
 
@@ -93,11 +95,9 @@ class ComplyController : public controller_interface::ControllerInterface {
   std::uint64_t cycle_ = 0;
   std::uint64_t state_every_cycles_ = 10;
   double nominal_period_s_ = 0.001;
-  std::atomic<std::uint64_t> commands_received_{0};
-  // Outcomes of the commands received since the last diagnostics message: both sides run in the
-  // executor, never on the real-time thread.
-  std::mutex outcomes_mutex_;
-  std::vector<comply_msgs::msg::CommandOutcome> outcomes_;
+  // Every command passes it; update() tells it which cycle took them (wait-free), the
+  // diagnostics timer settles and publishes their outcomes.
+  std::unique_ptr<comply::pipeline::CommandGate> gate_;
 
   // Compute time of update(), written by the real-time thread, read by the diagnostics timer.
   static constexpr std::size_t kTimingBins = 500;

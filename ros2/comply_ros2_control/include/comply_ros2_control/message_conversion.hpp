@@ -7,6 +7,7 @@
 
 #include "comply/core/commands.hpp"
 #include "comply/core/state.hpp"
+#include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/controller.hpp"
 #include "comply/pipeline/diagnostics.hpp"
 #include "comply_msgs/msg/cartesian_command.hpp"
@@ -34,9 +35,13 @@ void fillState(const comply::pipeline::Controller& controller, const comply::Joi
                const builtin_interfaces::msg::Time& stamp,
                comply_msgs::msg::ControllerState& message) noexcept;
 
-/// The wrapper's counters and texts as a Diagnostics message (not real-time: copies strings); the
-/// caller sets the header.
+/// The wrapper's counters and texts and the command gate's accounting as a Diagnostics message
+/// (not real-time: copies strings); the caller sets the header, the timing and the outcomes.
 void fillDiagnostics(const comply::pipeline::DiagnosticsSnapshot& snapshot, double period_s,
-                     std::uint64_t commands_received, comply_msgs::msg::Diagnostics& message);
+                     const comply::pipeline::GateCounts& counts, std::uint64_t publisher,
+                     comply_msgs::msg::Diagnostics& message);
+
+/// A command gate's outcome as the wire's CommandOutcome (the numbers are the same).
+comply_msgs::msg::CommandOutcome toMessage(const comply::pipeline::CommandOutcome& outcome);
 
 }  // namespace comply_ros2_control

@@ -1,0 +1,166 @@
+#pragma once
+// The command gate: the one way a command reaches a controller, in every host (`comply run`, the
+// ROS 2 controllers, Python's Sim). It accounts for every command exactly once: applied, with the
+// index and wall-clock time of the cycle that took it, or rejected with a reason.
+//
+// A command passes, in order:
+//   1. well-formed: nothing the C++ type could not hold (a joint vector longer than kMaxDof)
+//   2. the controller's kind (Cartesian or joint)
+//   3. the publisher rule: the first writer holds the command topics until it is silent for
+//      `publisher_timeout_s` (the controller's command_timeout_s, when the watchdog holds)
+//   4. an active controller
+//   5. the stamp rule: strictly newer than the last accepted command, compared on the exact wire
+//      stamp (integer nanoseconds), so that the stamp in force always names one command
+//   6. the wrapper's own checks (Wrapper::submit: finite, unit quaternions, gains, jumps, queue)
+//
+// Threads: offer() on the intake thread (any non-real-time thread), noteCycle() on the control
+// thread after each cycle (wait-free, no allocation), settle()/takeOutcomes() on any non-real-time
+// thread. The intake and the settling share one mutex, which the control thread never takes.
+
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "comply/core/spsc_queue.hpp"
+#include "comply/pipeline/command_validation.hpp"
+
+namespace comply::pipeline {
+
+/// Why a command was refused: the wrapper's reasons (RejectionReason, same numbers) followed by the
+/// gate's own. The wire's CommandOutcome.REASON_* carry these numbers.
+enum class CommandReason : std::uint8_t {
+  kOtherPublisher = static_cast<std::uint8_t>(RejectionReason::kCount),  ///< another writer holds
+  kWrongKind,  ///< a joint command to a Cartesian controller, or the reverse
+  kInactive,   ///< the controller is not active (or the host stopped before a cycle took it)
+  kNone = 255,
+};
+inline constexpr std::size_t kCommandReasonCount = kRejectionReasonCount + 3;
+/// The wrapper's reason as a gate reason (same number).
+constexpr CommandReason commandReason(RejectionReason reason) noexcept {
+  return static_cast<CommandReason>(reason);
+}
+std::string_view toString(CommandReason reason);
+
+enum class CommandKind : std::uint8_t { kCartesian = 0, kJoint = 1 };
+
+/// What became of one command.
+struct CommandOutcome {
+  std::int64_t stamp_ns = 0;  ///< the command's stamp (header.stamp), exact
+  CommandKind kind = CommandKind::kCartesian;
+  bool applied = false;
+  CommandReason reason = CommandReason::kNone;  ///< kNone when applied
+  std::uint64_t cycle = 0;                      ///< applied: the index of the cycle that took it
+  std::int64_t received_ns = 0;  ///< wall clock (CLOCK_REALTIME) when the gate was offered it
+  std::int64_t applied_ns = 0;   ///< applied: wall clock at the end of that cycle
+  std::string message;           ///< rejected: why, naming the field or the rule
+};
+
+struct GateCounts {
+  std::uint64_t received = 0;
+  std::uint64_t applied = 0;
+  std::uint64_t rejected = 0;
+  std::array<std::uint64_t, kCommandReasonCount> per_reason{};
+};
+
+struct GateOptions {
+  CommandKind kind = CommandKind::kCartesian;  ///< the kind the controller takes
+  double publisher_timeout_s = 0.5;            ///< silence after which another writer may take over
+};
+
+/// One command as offered to the gate.
+struct Offer {
+  std::int64_t stamp_ns = 0;
+  CommandKind kind = CommandKind::kCartesian;
+  std::uint64_t publisher = 0;  ///< the writer's identity (a DDS instance handle, a ROS GID hash)
+  std::string_view malformed;   ///< non-empty: what the wire held that the type cannot
+  std::int64_t now_ns = 0;      ///< the intake's steady clock [ns], for the publisher rule
+};
+
+class CommandGate {
+ public:
+  explicit CommandGate(GateOptions options);
+
+  /// Passes `offer` through rules 1-5 and then `submit()` (rule 6, returning the wrapper's
+  /// Verdict), under the gate's lock; `active` says whether the controller is active. A command
+  /// that passes waits until a cycle takes it (noteCycle + settle); one that fails is settled at
+  /// once as rejected.
+  template <typename Submit>
+  void offer(const Offer& offer, bool active, Submit&& submit);
+
+  /// The control thread, after every cycle: `stamp_in_force_s` is the stamp of the command in
+  /// force (the bus's stamp_s). When it moved, the commands up to it were applied by `cycle`.
+  /// Wait-free and allocation-free; false when the event queue was full (counted, not lost:
+  /// the next event settles them too).
+  bool noteCycle(std::uint64_t cycle, double stamp_in_force_s, std::int64_t wall_ns) noexcept;
+
+  /// Any non-real-time thread: settles the commands the noted cycles took.
+  void settle();
+  /// Outcomes settled since the last call, in the order they were settled.
+  std::vector<CommandOutcome> takeOutcomes();
+  /// At shutdown (after the last cycle): the accepted commands no cycle took, rejected as
+  /// kInactive.
+  void abandonPending(const std::string& why);
+
+  [[nodiscard]] GateCounts counts() const;
+  [[nodiscard]] std::size_t pending() const;
+  /// The writer that holds the command topics (0: none yet).
+  [[nodiscard]] std::uint64_t publisher() const;
+  /// The exact stamp of the newest command a cycle applied (0: none yet).
+  [[nodiscard]] std::int64_t appliedStampNs() const;
+  [[nodiscard]] const GateOptions& options() const noexcept { return options_; }
+
+ private:
+  struct Applied {
+    std::uint64_t cycle = 0;
+    double stamp_s = 0.0;
+    std::int64_t wall_ns = 0;
+  };
+  struct Pending {
+    double stamp_s;
+    CommandOutcome outcome;
+  };
+  /// Rules 1-5; false (and the outcome rejected) when one fails.
+  bool admitLocked(const Offer& offer, bool active, CommandOutcome& outcome);
+  void rejectLocked(CommandOutcome& outcome, CommandReason reason, std::string message);
+  void acceptLocked(const Offer& offer, CommandOutcome& outcome);
+
+  GateOptions options_;
+  mutable std::mutex mutex_;
+  GateCounts counts_;
+  std::int64_t last_accepted_ns_ = 0;
+  bool accepted_any_ = false;
+  std::uint64_t holder_ = 0;
+  std::int64_t holder_heard_ns_ = 0;
+  std::int64_t applied_stamp_ns_ = 0;
+  std::deque<Pending> pending_;
+  std::vector<CommandOutcome> settled_;
+  // The control thread's side.
+  SpscQueue<Applied> applied_{4096};
+  double last_noted_stamp_s_ = -1.0;
+};
+
+template <typename Submit>
+void CommandGate::offer(const Offer& offer, bool active, Submit&& submit) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  CommandOutcome outcome;
+  if (!admitLocked(offer, active, outcome)) {
+    return;
+  }
+  const Verdict verdict = submit();
+  if (!verdict.accepted) {
+    rejectLocked(outcome, commandReason(verdict.reason), verdict.message);
+    return;
+  }
+  acceptLocked(offer, outcome);
+}
+
+/// The wall clock (CLOCK_REALTIME) [ns], as ROS time is.
+std::int64_t wallClockNs() noexcept;
+/// The steady clock (CLOCK_MONOTONIC) [ns]: the publisher rule's clock.
+std::int64_t steadyClockNs() noexcept;
+
+}  // namespace comply::pipeline

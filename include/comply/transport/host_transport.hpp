@@ -1,0 +1,75 @@
+#pragma once
+// The seam between a live host and its middleware: commands and requests in, state and
+// diagnostics out, as the transport-neutral messages of messages.hpp. DDS (the ROS 2 wire) is one
+// implementation ("dds"), an in-process bus another ("in_process", for tests and for embedding a
+// host in a program). A new middleware is one folder implementing HostTransport plus one line in
+// the host's list of transports (src/host/live/transports.cpp).
+
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "comply/transport/messages.hpp"
+
+namespace comply::transport {
+
+class TransportError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// What a host took from its transport in one receive().
+struct Inbox {
+  std::vector<Sample<CartesianCommandMessage>> cartesian;
+  std::vector<Sample<JointCommandMessage>> joint;
+  std::vector<Sample<RequestMessage>> requests;
+
+  void clear() {
+    cartesian.clear();
+    joint.clear();
+    requests.clear();
+  }
+  [[nodiscard]] bool empty() const {
+    return cartesian.empty() && joint.empty() && requests.empty();
+  }
+};
+
+struct HostTransportOptions {
+  std::string name = "comply";       ///< the host's name: topics /<name>/...
+  int domain_id = 0;                 ///< DDS domain (ROS_DOMAIN_ID); others may ignore it
+  std::string network = "loopback";  ///< loopback | all
+  int receive_priority = 0;          ///< > 0: SCHED_FIFO priority of the receiving threads
+};
+
+class HostTransport {
+ public:
+  virtual ~HostTransport() = default;
+  /// Waits up to `timeout_s` until input waits (or wake() is called), then appends everything
+  /// waiting to `inbox`, in arrival order per topic. Every command kept until taken: none is
+  /// dropped on the host's side.
+  virtual void receive(Inbox& inbox, double timeout_s) = 0;
+  /// Any thread: makes a receive() in progress return.
+  virtual void wake() = 0;
+  virtual void publish(const ControllerStateMessage& state) = 0;
+  virtual void publish(const DiagnosticsMessage& diagnostics) = 0;
+  /// Waits until the diagnostics written so far were delivered to every reader; false on timeout.
+  virtual bool flush(double timeout_s) = 0;
+  /// Where clients find the host, for its start-up line.
+  [[nodiscard]] virtual std::string describe() const = 0;
+};
+
+using HostTransportFactory =
+    std::function<std::unique_ptr<HostTransport>(const HostTransportOptions& options)>;
+
+/// Adds a transport under `name` (replacing one of that name).
+void registerHostTransport(const std::string& name, HostTransportFactory factory);
+/// The transport registered as `name`. Throws TransportError naming the registered ones when
+/// there is none, or the transport's own error when it cannot start.
+std::unique_ptr<HostTransport> makeHostTransport(const std::string& name,
+                                                 const HostTransportOptions& options);
+/// The registered names, sorted.
+std::vector<std::string> hostTransportNames();
+
+}  // namespace comply::transport

@@ -1,0 +1,176 @@
+// The command gate (see command_gate.hpp).
+
+#include "comply/pipeline/command_gate.hpp"
+
+#include <ctime>
+#include <sstream>
+
+namespace comply::pipeline {
+namespace {
+
+std::int64_t clockNs(clockid_t clock) noexcept {
+  timespec now{};
+  clock_gettime(clock, &now);
+  return static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
+}
+
+std::string stampText(std::int64_t stamp_ns) {
+  const std::string fraction = std::to_string(stamp_ns % 1'000'000'000);
+  const std::string whole = std::to_string(stamp_ns / 1'000'000'000);
+  return whole + "." + std::string(9 - fraction.size(), '0') + fraction + " s";
+}
+
+}  // namespace
+
+std::int64_t wallClockNs() noexcept {
+  return clockNs(CLOCK_REALTIME);
+}
+
+std::int64_t steadyClockNs() noexcept {
+  return clockNs(CLOCK_MONOTONIC);
+}
+
+std::string_view toString(CommandReason reason) {
+  switch (reason) {
+    case CommandReason::kOtherPublisher:
+      return "other_publisher";
+    case CommandReason::kWrongKind:
+      return "wrong_kind";
+    case CommandReason::kInactive:
+      return "inactive";
+    case CommandReason::kNone:
+      return "none";
+  }
+  const auto number = static_cast<std::uint8_t>(reason);
+  return number < kRejectionReasonCount ? toString(static_cast<RejectionReason>(number))
+                                        : std::string_view("unknown");
+}
+
+CommandGate::CommandGate(GateOptions options) : options_(options) {}
+
+bool CommandGate::admitLocked(const Offer& offer, bool active, CommandOutcome& outcome) {
+  ++counts_.received;
+  outcome.stamp_ns = offer.stamp_ns;
+  outcome.kind = offer.kind;
+  outcome.received_ns = wallClockNs();
+  if (!offer.malformed.empty()) {
+    rejectLocked(outcome, commandReason(RejectionReason::kDofMismatch),
+                 std::string(offer.malformed));
+    return false;
+  }
+  if (offer.kind != options_.kind) {
+    rejectLocked(outcome, CommandReason::kWrongKind,
+                 std::string("this controller takes ") +
+                     (options_.kind == CommandKind::kCartesian ? "Cartesian" : "joint") +
+                     " commands");
+    return false;
+  }
+  const double silent_s = 1e-9 * static_cast<double>(offer.now_ns - holder_heard_ns_);
+  if (holder_ != 0 && holder_ != offer.publisher && silent_s <= options_.publisher_timeout_s) {
+    std::ostringstream text;
+    text << "publisher " << std::hex << holder_ << std::dec
+         << " holds the command topics (last heard " << static_cast<int>(silent_s * 1000.0)
+         << " ms ago); refused until it is silent for " << options_.publisher_timeout_s << " s";
+    rejectLocked(outcome, CommandReason::kOtherPublisher, text.str());
+    return false;
+  }
+  holder_ = offer.publisher;
+  holder_heard_ns_ = offer.now_ns;
+  if (!active) {
+    rejectLocked(outcome, CommandReason::kInactive,
+                 "the controller is inactive (send an activate request)");
+    return false;
+  }
+  if (accepted_any_ && offer.stamp_ns <= last_accepted_ns_) {
+    rejectLocked(outcome, commandReason(RejectionReason::kStaleStamp),
+                 "stamp " + stampText(offer.stamp_ns) + " is not newer than the last accepted " +
+                     stampText(last_accepted_ns_));
+    return false;
+  }
+  return true;
+}
+
+void CommandGate::acceptLocked(const Offer& offer, CommandOutcome& outcome) {
+  accepted_any_ = true;
+  last_accepted_ns_ = offer.stamp_ns;
+  // The wrapper sees stamp_s, the stamp in seconds: noteCycle() reports it back in that unit.
+  pending_.push_back({stampSeconds(offer.stamp_ns), std::move(outcome)});
+}
+
+void CommandGate::rejectLocked(CommandOutcome& outcome, CommandReason reason, std::string message) {
+  outcome.applied = false;
+  outcome.reason = reason;
+  outcome.message = std::move(message);
+  ++counts_.rejected;
+  ++counts_.per_reason.at(static_cast<std::size_t>(reason));
+  settled_.push_back(std::move(outcome));
+}
+
+bool CommandGate::noteCycle(std::uint64_t cycle, double stamp_in_force_s,
+                            std::int64_t wall_ns) noexcept {
+  if (stamp_in_force_s == last_noted_stamp_s_) {
+    return true;
+  }
+  if (!applied_.push({cycle, stamp_in_force_s, wall_ns})) {
+    return false;  // retried on the next cycle: the stamp is still unnoted
+  }
+  last_noted_stamp_s_ = stamp_in_force_s;
+  return true;
+}
+
+void CommandGate::settle() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  while (const Applied* next = applied_.front()) {
+    const Applied event = *next;
+    applied_.pop();
+    while (!pending_.empty() && pending_.front().stamp_s <= event.stamp_s) {
+      CommandOutcome& outcome = pending_.front().outcome;
+      outcome.applied = true;
+      outcome.reason = CommandReason::kNone;
+      outcome.cycle = event.cycle;
+      outcome.applied_ns = event.wall_ns;
+      applied_stamp_ns_ = outcome.stamp_ns;
+      ++counts_.applied;
+      settled_.push_back(std::move(outcome));
+      pending_.pop_front();
+    }
+  }
+}
+
+void CommandGate::abandonPending(const std::string& why) {
+  settle();
+  const std::lock_guard<std::mutex> lock(mutex_);
+  for (Pending& pending : pending_) {
+    rejectLocked(pending.outcome, CommandReason::kInactive, why);
+  }
+  pending_.clear();
+}
+
+std::vector<CommandOutcome> CommandGate::takeOutcomes() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<CommandOutcome> taken;
+  taken.swap(settled_);
+  return taken;
+}
+
+GateCounts CommandGate::counts() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return counts_;
+}
+
+std::size_t CommandGate::pending() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return pending_.size();
+}
+
+std::uint64_t CommandGate::publisher() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return holder_;
+}
+
+std::int64_t CommandGate::appliedStampNs() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return applied_stamp_ns_;
+}
+
+}  // namespace comply::pipeline

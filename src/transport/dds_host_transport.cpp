@@ -1,0 +1,69 @@
+// The live host's DDS transport (see dds_host_transport.hpp).
+
+#include "comply/transport/dds_host_transport.hpp"
+
+#include "comply/transport/endpoints.hpp"
+#include "comply/transport/participant.hpp"
+
+namespace comply::transport {
+namespace {
+
+class DdsHostTransport final : public HostTransport {
+ public:
+  // Every command kept until the host takes it: a burst that arrives while the reader thread is
+  // descheduled, or faster than it validates, waits here (and holds a reliable writer back)
+  // instead of being dropped unaccounted.
+  static constexpr int kCommandDepth = kKeepAll;
+
+  explicit DdsHostTransport(const HostTransportOptions& options)
+      : options_(options),
+        participant_({options.domain_id,
+                      options.network == "all" ? Network::kAll : Network::kLoopback,
+                      options.receive_priority}),
+        cartesian_(participant_, options.name, kCommandDepth),
+        joint_(participant_, options.name, kCommandDepth),
+        request_(participant_, options.name),
+        state_(participant_, options.name),
+        diagnostics_(participant_, options.name),
+        waitset_(participant_) {
+    waitset_.attach(cartesian_);
+    waitset_.attach(joint_);
+    waitset_.attach(request_);
+  }
+
+  void receive(Inbox& inbox, double timeout_s) override {
+    waitset_.wait(timeout_s);
+    cartesian_.take(inbox.cartesian);
+    joint_.take(inbox.joint);
+    request_.take(inbox.requests);
+  }
+  void wake() override { waitset_.trigger(); }
+  void publish(const ControllerStateMessage& state) override { state_.write(state); }
+  void publish(const DiagnosticsMessage& diagnostics) override { diagnostics_.write(diagnostics); }
+  bool flush(double timeout_s) override { return diagnostics_.flush(timeout_s); }
+  [[nodiscard]] std::string describe() const override {
+    return "topics rt/" + options_.name + "/* on domain " + std::to_string(options_.domain_id) +
+           " (" + options_.network + ")";
+  }
+
+ private:
+  HostTransportOptions options_;
+  Participant participant_;
+  Reader<CartesianCommandMessage> cartesian_;
+  Reader<JointCommandMessage> joint_;
+  Reader<RequestMessage> request_;
+  Writer<ControllerStateMessage> state_;
+  Writer<DiagnosticsMessage> diagnostics_;
+  WaitSet waitset_;
+};
+
+}  // namespace
+
+std::unique_ptr<HostTransport> makeDdsHostTransport(const HostTransportOptions& options) {
+  if (options.network != "loopback" && options.network != "all") {
+    throw TransportError("network must be loopback or all, not '" + options.network + "'");
+  }
+  return std::make_unique<DdsHostTransport>(options);
+}
+
+}  // namespace comply::transport

@@ -1,0 +1,142 @@
+// The in-process host transport (see in_process.hpp).
+
+#include "comply/transport/in_process.hpp"
+
+#include <chrono>
+#include <map>
+
+namespace comply::transport {
+namespace {
+
+std::chrono::duration<double> seconds(double value) {
+  return std::chrono::duration<double>(value > 0.0 ? value : 0.0);
+}
+
+class InProcessHostTransport final : public HostTransport {
+ public:
+  explicit InProcessHostTransport(const HostTransportOptions& options)
+      : name_(options.name), bus_(InProcessBus::named(options.name)) {}
+
+  void receive(Inbox& inbox, double timeout_s) override { bus_->receive(inbox, timeout_s); }
+  void wake() override { bus_->wake(); }
+  void publish(const ControllerStateMessage& state) override { bus_->publish(state); }
+  void publish(const DiagnosticsMessage& diagnostics) override { bus_->publish(diagnostics); }
+  bool flush(double /*timeout_s*/) override { return true; }  // delivered when published
+  [[nodiscard]] std::string describe() const override {
+    return "the in-process bus '" + name_ + "'";
+  }
+
+ private:
+  std::string name_;
+  std::shared_ptr<InProcessBus> bus_;
+};
+
+}  // namespace
+
+std::shared_ptr<InProcessBus> InProcessBus::named(const std::string& name) {
+  static std::mutex buses_mutex;
+  static std::map<std::string, std::weak_ptr<InProcessBus>> buses;
+  const std::lock_guard<std::mutex> lock(buses_mutex);
+  std::shared_ptr<InProcessBus> bus = buses[name].lock();
+  if (!bus) {
+    bus = std::make_shared<InProcessBus>();
+    buses[name] = bus;
+  }
+  return bus;
+}
+
+void InProcessBus::send(const CartesianCommandMessage& message, std::uint64_t publisher) {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    inbox_.cartesian.push_back({message, publisher, {}});
+  }
+  host_wakeup_.notify_all();
+}
+
+void InProcessBus::send(const JointCommandMessage& message, std::uint64_t publisher) {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    inbox_.joint.push_back({message, publisher, {}});
+  }
+  host_wakeup_.notify_all();
+}
+
+void InProcessBus::send(const RequestMessage& message, std::uint64_t publisher) {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    inbox_.requests.push_back({message, publisher, {}});
+  }
+  host_wakeup_.notify_all();
+}
+
+std::optional<ControllerStateMessage> InProcessBus::state() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return state_;
+}
+
+bool InProcessBus::waitForDiagnostics(double timeout_s,
+                                      const std::function<bool(const DiagnosticsMessage&)>& done) {
+  const auto deadline =
+      std::chrono::steady_clock::now() +
+      std::chrono::duration_cast<std::chrono::steady_clock::duration>(seconds(timeout_s));
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (true) {
+    while (!diagnostics_.empty()) {
+      const DiagnosticsMessage message = std::move(diagnostics_.front());
+      diagnostics_.pop_front();
+      lock.unlock();
+      const bool held = done(message);
+      lock.lock();
+      if (held) {
+        return true;
+      }
+    }
+    if (client_wakeup_.wait_until(lock, deadline) == std::cv_status::timeout &&
+        diagnostics_.empty()) {
+      return false;
+    }
+  }
+}
+
+void InProcessBus::receive(Inbox& inbox, double timeout_s) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  host_wakeup_.wait_for(lock, seconds(timeout_s), [&] { return !inbox_.empty() || woken_; });
+  woken_ = false;
+  for (auto& sample : inbox_.cartesian) {
+    inbox.cartesian.push_back(std::move(sample));
+  }
+  for (auto& sample : inbox_.joint) {
+    inbox.joint.push_back(std::move(sample));
+  }
+  for (auto& sample : inbox_.requests) {
+    inbox.requests.push_back(std::move(sample));
+  }
+  inbox_.clear();
+}
+
+void InProcessBus::wake() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    woken_ = true;
+  }
+  host_wakeup_.notify_all();
+}
+
+void InProcessBus::publish(const ControllerStateMessage& state) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  state_ = state;
+}
+
+void InProcessBus::publish(const DiagnosticsMessage& diagnostics) {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    diagnostics_.push_back(diagnostics);
+  }
+  client_wakeup_.notify_all();
+}
+
+std::unique_ptr<HostTransport> makeInProcessHostTransport(const HostTransportOptions& options) {
+  return std::make_unique<InProcessHostTransport>(options);
+}
+
+}  // namespace comply::transport

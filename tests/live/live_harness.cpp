@@ -1,0 +1,212 @@
+// The two HostHarness implementations (live_harness.hpp) and the instances of the
+// transport-neutral tests.
+
+#include "live_harness.hpp"
+
+#include <atomic>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include "comply/host/controller_setup.hpp"
+#include "comply/host/live_host.hpp"
+#include "comply/pipeline/resolved_controller.hpp"
+#include "comply/transport/in_process.hpp"
+#include "live_support.hpp"
+
+namespace comply::live_test {
+namespace {
+
+/// `comply run` as a child process on a random loopback domain, this process its DDS client. A
+/// publisher is a pair of writers (Cartesian, joint) of its own: the host tells writers apart by
+/// their DDS publication handles.
+class DdsHarness final : public HostHarness {
+ public:
+  void start(const std::string& name) override {
+    const int domain = randomDomain();
+    name_ = name;
+    process_ = std::make_unique<Process>(hostArgs(domain, name));
+    client_ = std::make_unique<Client>(domain, name);
+  }
+  bool send(const transport::CartesianCommandMessage& message, int publisher) override {
+    return writers_.at(publisher)->cartesian.write(message);
+  }
+  bool send(const transport::JointCommandMessage& message, int publisher) override {
+    return writers_.at(publisher)->joint.write(message);
+  }
+  std::optional<transport::ControllerStateMessage> state(
+      std::chrono::milliseconds timeout) override {
+    return client_->state(timeout);
+  }
+  bool poll(std::chrono::milliseconds timeout, const Done& done) override {
+    return client_->poll(timeout, done);
+  }
+  Outcomes& outcomes() override { return client_->outcomes(); }
+  [[nodiscard]] const transport::DiagnosticsMessage& last() const override {
+    return client_->last();
+  }
+  int stop() override {
+    if (!process_) {
+      return -1;
+    }
+    if (!exit_code_) {
+      process_->signal(SIGTERM);
+      exit_code_ = process_->wait(10s);
+    }
+    return *exit_code_;
+  }
+
+ protected:
+  bool open(int publisher) override {
+    const auto& writers = writers_[publisher] =
+        std::make_unique<Writers>(client_->participant(), name_);
+    return writers->cartesian.waitForMatch(1, 10.0) && writers->joint.waitForMatch(1, 10.0);
+  }
+
+ private:
+  struct Writers {
+    Writers(transport::Participant& participant, const std::string& name)
+        : cartesian(participant, name), joint(participant, name) {}
+    transport::Writer<transport::CartesianCommandMessage> cartesian;
+    transport::Writer<transport::JointCommandMessage> joint;
+  };
+
+  std::string name_;
+  // In this order: the writers go before the client's participant, the host last.
+  std::unique_ptr<Process> process_;
+  std::unique_ptr<Client> client_;
+  std::map<int, std::unique_ptr<Writers>> writers_;
+  std::optional<int> exit_code_;
+};
+
+/// host::runLiveHost on a thread of this process with transport "in_process", stopped through
+/// its stop flag; the clients' end of its bus is this harness. Publishers are the bus's
+/// publisher ids. Normal scheduling: a test process gets no SCHED_FIFO.
+class InProcessHarness final : public HostHarness {
+ public:
+  ~InProcessHarness() override { stop(); }
+
+  void start(const std::string& name) override {
+    // Before the host starts: the bus lives while either end holds it.
+    bus_ = transport::InProcessBus::named(name);
+    host::LiveHostOptions options;
+    options.config_file = kHostConfig;
+    options.robot = "fr3";
+    options.sim = true;
+    options.hardware = "sim";
+    options.transport = "in_process";
+    options.name = name;
+    options.priority = 0;
+    const auto resolved = pipeline::resolveController(
+        host::simControllerConfig(options.robot, "", options.config_file));
+    host_ = std::thread([this, options, resolved] {
+      try {
+        exit_code_ = host::runLiveHost(options, resolved, stop_, out_, err_);
+      } catch (const std::exception& error) {
+        err_ << "runLiveHost threw: " << error.what() << "\n";
+        exit_code_ = 1;
+      }
+    });
+  }
+  bool send(const transport::CartesianCommandMessage& message, int publisher) override {
+    auto m = message; m.command.stamp_s = m.header.stamp.seconds();  // TEMPWORKAROUND
+    bus_->send(m, static_cast<std::uint64_t>(publisher));
+    return true;
+  }
+  bool send(const transport::JointCommandMessage& message, int publisher) override {
+    auto m = message; m.command.stamp_s = m.header.stamp.seconds();  // TEMPWORKAROUND
+    bus_->send(m, static_cast<std::uint64_t>(publisher));
+    return true;
+  }
+  std::optional<transport::ControllerStateMessage> state(
+      std::chrono::milliseconds timeout) override {
+    const auto deadline = Clock::now() + timeout;
+    while (true) {
+      if (auto state = bus_->state()) {
+        return state;
+      }
+      if (Clock::now() >= deadline) {
+        return std::nullopt;
+      }
+      std::this_thread::sleep_for(10ms);
+    }
+  }
+  bool poll(std::chrono::milliseconds timeout, const Done& done) override {
+    const double timeout_s = std::chrono::duration<double>(timeout).count();
+    return bus_->waitForDiagnostics(timeout_s, [&](const transport::DiagnosticsMessage& message) {
+      last_ = message;
+      for (const auto& outcome : message.outcomes) {
+        outcomes_[outcome.stamp.nanoseconds()].push_back(outcome);
+      }
+      return done(last_);
+    });
+  }
+  Outcomes& outcomes() override { return outcomes_; }
+  [[nodiscard]] const transport::DiagnosticsMessage& last() const override { return last_; }
+  int stop() override {
+    if (host_.joinable()) {
+      stop_ = true;
+      host_.join();
+      // What `comply run` would have printed: its start-up line and summary.
+      std::cerr << out_.str() << err_.str();
+    }
+    return exit_code_;
+  }
+
+ protected:
+  bool open(int /*publisher*/) override { return true; }  // no discovery in a process
+
+ private:
+  std::shared_ptr<transport::InProcessBus> bus_;
+  std::atomic<bool> stop_{false};
+  std::ostringstream out_;
+  std::ostringstream err_;
+  int exit_code_ = -1;
+  std::thread host_;  // joined by stop(), at the latest in the destructor
+  transport::DiagnosticsMessage last_;
+  Outcomes outcomes_;
+};
+
+}  // namespace
+
+bool HostHarness::connect(int publisher, int dof) {
+  return open(publisher) && handshake<transport::CartesianCommandMessage>(publisher, dof) &&
+         handshake<transport::JointCommandMessage>(publisher, dof);
+}
+
+/// Sends no-op commands (no field group: the host still accounts them; a joint one to the
+/// Cartesian controller is rejected as wrong_kind, which is an outcome too) until the host reports
+/// one. Over DDS a reader that has not yet discovered a writer drops its first samples: after an
+/// outcome it has.
+template <typename Message>
+bool HostHarness::handshake(int publisher, int dof) {
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    Message message;
+    message.header.stamp = transport::Stamp::now();
+    message.command = decltype(message.command)::zero(dof);
+    message.command.fields = CommandField::kNone;
+    send(message, publisher);
+    const std::int64_t stamp = message.header.stamp.nanoseconds();
+    if (poll(100ms, [&](const auto&) { return outcomes().count(stamp) > 0; })) {
+      outcomes().clear();
+      return true;
+    }
+  }
+  return false;
+}
+
+std::unique_ptr<HostHarness> makeHarness(const std::string& transport) {
+  if (transport == "dds") {
+    return std::make_unique<DdsHarness>();
+  }
+  if (transport == "in_process") {
+    return std::make_unique<InProcessHarness>();
+  }
+  throw std::invalid_argument("no host harness for transport " + transport);
+}
+
+INSTANTIATE_TEST_SUITE_P(Transports, LiveHostOn, ::testing::Values("dds", "in_process"),
+                         [](const auto& instance) { return instance.param; });
+
+}  // namespace comply::live_test

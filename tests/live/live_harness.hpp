@@ -1,0 +1,76 @@
+#pragma once
+// What a live host test needs from a host, whatever carries its messages: start it, read its
+// state, send commands from distinct publishers, collect the outcome of every command by stamp,
+// stop it. Two implementations (live_harness.cpp): "dds", `comply run` as a child process with
+// this process as a DDS client (live_support.hpp), and "in_process", host::runLiveHost on a
+// thread of this process over transport::InProcessBus. A test written against HostHarness runs
+// on both, which is what shows that the host's behaviour does not depend on its transport.
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "comply/transport/messages.hpp"
+
+namespace comply::live_test {
+
+class HostHarness {
+ public:
+  using Done = std::function<bool(const transport::DiagnosticsMessage&)>;
+  using Outcomes = std::map<std::int64_t, std::vector<transport::CommandOutcomeMessage>>;
+
+  virtual ~HostHarness() = default;
+
+  /// Starts host `name` (config/sim/cartesian_impedance.yaml on a simulated fr3).
+  virtual void start(const std::string& name) = 0;
+  /// Readies publisher `publisher` (1, 2, ...: each a writer of its own) and waits until the host
+  /// has accounted a no-op command of each kind from it: nothing it sends later is lost to
+  /// discovery. It may take the command topics (the publisher rule). False if the host never
+  /// answered.
+  bool connect(int publisher, int dof);
+  /// Sends from `publisher` (connected first); false when the transport refused the message.
+  /// Safe from one thread per publisher while another thread polls.
+  virtual bool send(const transport::CartesianCommandMessage& message, int publisher) = 0;
+  virtual bool send(const transport::JointCommandMessage& message, int publisher) = 0;
+
+  /// The newest state, waiting up to `timeout` for one.
+  virtual std::optional<transport::ControllerStateMessage> state(
+      std::chrono::milliseconds timeout) = 0;
+  /// Reads diagnostics, recording their outcomes, until `done(last())` holds or `timeout`; true
+  /// when it held.
+  virtual bool poll(std::chrono::milliseconds timeout, const Done& done) = 0;
+  /// Every outcome seen, by the command's stamp [ns].
+  virtual Outcomes& outcomes() = 0;
+  /// The newest diagnostics seen.
+  [[nodiscard]] virtual const transport::DiagnosticsMessage& last() const = 0;
+
+  /// Stops the host the way its owner would (SIGTERM; the stop flag) and waits for it; its exit
+  /// code, or -1 when it did not stop within 10 s.
+  virtual int stop() = 0;
+
+ protected:
+  /// Makes `publisher`'s writers and waits until they matched the host; false on timeout.
+  virtual bool open(int publisher) = 0;
+
+ private:
+  template <typename Message>
+  bool handshake(int publisher, int dof);
+};
+
+/// "dds" or "in_process".
+std::unique_ptr<HostHarness> makeHarness(const std::string& transport);
+
+/// The transport-neutral tests: one instance per transport (live_harness.cpp instantiates them).
+class LiveHostOn : public ::testing::TestWithParam<std::string> {
+ protected:
+  std::unique_ptr<HostHarness> host_ = makeHarness(GetParam());
+};
+
+}  // namespace comply::live_test

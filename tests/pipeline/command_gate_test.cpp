@@ -1,0 +1,222 @@
+// The command gate's rules, one at a time, with a real joint wrapper behind it where the wrapper's
+// own verdict matters (queue full) and a scripted verdict elsewhere. Every host (comply run, the
+// ROS 2 controllers, Python's Sim) takes its commands through this class.
+
+#include "comply/pipeline/command_gate.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "comply/pipeline/command_bus_variant.hpp"
+#include "comply/pipeline/wrapper.hpp"
+#include "wrapper_support.hpp"
+
+namespace comply::pipeline {
+namespace {
+
+using namespace test;  // the FR3 wrapper fixtures
+
+constexpr std::int64_t kSecond = 1'000'000'000;
+constexpr std::uint64_t kWriterA = 0xA;
+constexpr std::uint64_t kWriterB = 0xB;
+
+Verdict accepted() {
+  return {};
+}
+
+/// A Cartesian command from `publisher` stamped `stamp_ns`, offered at steady time `now_ns`.
+Offer offerAt(std::int64_t stamp_ns, std::uint64_t publisher = kWriterA, std::int64_t now_ns = 0) {
+  Offer offer;
+  offer.stamp_ns = stamp_ns;
+  offer.kind = CommandKind::kCartesian;
+  offer.publisher = publisher;
+  offer.now_ns = now_ns;
+  return offer;
+}
+
+class CommandGateTest : public ::testing::Test {
+ protected:
+  /// Offers a command the wrapper would accept; the outcome settled by it, if any.
+  std::vector<CommandOutcome> offer(const Offer& offer, bool active = true) {
+    gate_.offer(offer, active, [] { return accepted(); });
+    return gate_.takeOutcomes();
+  }
+
+  CommandGate gate_{{.kind = CommandKind::kCartesian, .publisher_timeout_s = 0.5}};
+};
+
+TEST_F(CommandGateTest, AcceptedCommandsWaitForTheCycleThatTakesThem) {
+  EXPECT_TRUE(offer(offerAt(10 * kSecond)).empty());
+  EXPECT_TRUE(offer(offerAt(11 * kSecond)).empty());
+  EXPECT_EQ(gate_.pending(), 2U);
+
+  // The cycle 41 took the first one only (the stamp in force is the first one's).
+  ASSERT_TRUE(gate_.noteCycle(41, 10.0, 123));
+  gate_.settle();
+  std::vector<CommandOutcome> outcomes = gate_.takeOutcomes();
+  ASSERT_EQ(outcomes.size(), 1U);
+  EXPECT_TRUE(outcomes[0].applied);
+  EXPECT_EQ(outcomes[0].stamp_ns, 10 * kSecond);
+  EXPECT_EQ(outcomes[0].cycle, 41U);
+  EXPECT_EQ(outcomes[0].applied_ns, 123);
+  EXPECT_EQ(outcomes[0].reason, CommandReason::kNone);
+  EXPECT_GT(outcomes[0].received_ns, 0);
+  EXPECT_EQ(gate_.appliedStampNs(), 10 * kSecond);
+
+  // The same stamp in force again settles nothing; the next one settles the second command.
+  ASSERT_TRUE(gate_.noteCycle(42, 10.0, 124));
+  gate_.settle();
+  EXPECT_TRUE(gate_.takeOutcomes().empty());
+  ASSERT_TRUE(gate_.noteCycle(43, 11.0, 125));
+  gate_.settle();
+  outcomes = gate_.takeOutcomes();
+  ASSERT_EQ(outcomes.size(), 1U);
+  EXPECT_EQ(outcomes[0].cycle, 43U);
+  EXPECT_EQ(gate_.counts().applied, 2U);
+  EXPECT_EQ(gate_.pending(), 0U);
+}
+
+TEST_F(CommandGateTest, StampsMustIncreaseStrictlyToTheNanosecond) {
+  const std::int64_t stamp = 1'764'000'000 * kSecond + 123'456'789;
+  EXPECT_TRUE(offer(offerAt(stamp)).empty());
+  // Equal: refused. One nanosecond newer: accepted, though both are the same double in seconds.
+  std::vector<CommandOutcome> equal = offer(offerAt(stamp));
+  ASSERT_EQ(equal.size(), 1U);
+  EXPECT_FALSE(equal[0].applied);
+  EXPECT_EQ(equal[0].reason, commandReason(RejectionReason::kStaleStamp));
+  EXPECT_NE(equal[0].message.find("1764000000.123456789 s"), std::string::npos) << equal[0].message;
+  EXPECT_TRUE(offer(offerAt(stamp + 1)).empty());
+  std::vector<CommandOutcome> older = offer(offerAt(stamp - kSecond));
+  ASSERT_EQ(older.size(), 1U);
+  EXPECT_EQ(older[0].reason, commandReason(RejectionReason::kStaleStamp));
+  EXPECT_EQ(older[0].stamp_ns, stamp - kSecond);
+}
+
+TEST_F(CommandGateTest, ARefusedCommandDoesNotMoveTheStampRule) {
+  EXPECT_TRUE(offer(offerAt(5 * kSecond)).empty());
+  gate_.offer(offerAt(7 * kSecond), true, [] {
+    return Verdict{false, RejectionReason::kPoseJump, "target 2 m away"};
+  });
+  std::vector<CommandOutcome> jump = gate_.takeOutcomes();
+  ASSERT_EQ(jump.size(), 1U);
+  EXPECT_EQ(jump[0].reason, commandReason(RejectionReason::kPoseJump));
+  EXPECT_EQ(jump[0].message, "target 2 m away");
+  // 6 s is newer than the last *accepted* command (5 s), so it passes.
+  EXPECT_TRUE(offer(offerAt(6 * kSecond)).empty());
+}
+
+TEST_F(CommandGateTest, ASecondPublisherIsRefusedUntilTheFirstIsSilent) {
+  EXPECT_TRUE(offer(offerAt(1 * kSecond, kWriterA, 0)).empty());
+  EXPECT_EQ(gate_.publisher(), kWriterA);
+  std::vector<CommandOutcome> refused = offer(offerAt(2 * kSecond, kWriterB, kSecond / 10));
+  ASSERT_EQ(refused.size(), 1U);
+  EXPECT_EQ(refused[0].reason, CommandReason::kOtherPublisher);
+  EXPECT_NE(refused[0].message.find("holds the command topics"), std::string::npos);
+  // The holder keeps the topics while it speaks...
+  EXPECT_TRUE(offer(offerAt(3 * kSecond, kWriterA, kSecond / 5)).empty());
+  EXPECT_EQ(offer(offerAt(4 * kSecond, kWriterB, kSecond / 2)).size(), 1U);
+  // ...and loses them after 0.5 s of silence.
+  EXPECT_TRUE(offer(offerAt(5 * kSecond, kWriterB, kSecond)).empty());
+  EXPECT_EQ(gate_.publisher(), kWriterB);
+  EXPECT_EQ(offer(offerAt(6 * kSecond, kWriterA, kSecond + 1)).size(), 1U);
+}
+
+TEST_F(CommandGateTest, WrongKindMalformedAndInactiveAreRefusedBeforeTheWrapperIsAsked) {
+  int asked = 0;
+  const auto submit = [&] {
+    ++asked;
+    return accepted();
+  };
+  Offer joint = offerAt(1 * kSecond);
+  joint.kind = CommandKind::kJoint;
+  gate_.offer(joint, true, submit);
+  Offer malformed = offerAt(2 * kSecond);
+  malformed.malformed = "position has 40 entries (at most 16)";
+  gate_.offer(malformed, true, submit);
+  gate_.offer(offerAt(3 * kSecond), false, submit);
+  EXPECT_EQ(asked, 0);
+  const std::vector<CommandOutcome> outcomes = gate_.takeOutcomes();
+  ASSERT_EQ(outcomes.size(), 3U);
+  EXPECT_EQ(outcomes[0].reason, CommandReason::kWrongKind);
+  EXPECT_EQ(outcomes[0].kind, CommandKind::kJoint);
+  EXPECT_EQ(outcomes[1].reason, commandReason(RejectionReason::kDofMismatch));
+  EXPECT_EQ(outcomes[1].message, "position has 40 entries (at most 16)");
+  EXPECT_EQ(outcomes[2].reason, CommandReason::kInactive);
+  EXPECT_EQ(toString(outcomes[2].reason), "inactive");
+}
+
+TEST_F(CommandGateTest, EveryCommandIsAccountedExactlyOnce) {
+  for (int i = 1; i <= 50; ++i) {
+    // Every third one stale, the rest accepted.
+    const std::int64_t stamp = (i % 3 == 0 ? 1 : i + 10) * kSecond;
+    gate_.offer(offerAt(stamp), true, [] { return accepted(); });
+  }
+  ASSERT_TRUE(gate_.noteCycle(7, 30.0, 1));
+  gate_.settle();
+  gate_.abandonPending("the host shut down before a cycle took it");
+  const GateCounts counts = gate_.counts();
+  const std::vector<CommandOutcome> outcomes = gate_.takeOutcomes();
+  EXPECT_EQ(counts.received, 50U);
+  EXPECT_EQ(outcomes.size(), 50U);
+  EXPECT_EQ(counts.applied + counts.rejected, 50U);
+  std::uint64_t applied = 0;
+  for (const CommandOutcome& outcome : outcomes) {
+    applied += outcome.applied ? 1 : 0;
+    if (outcome.applied) {
+      EXPECT_LE(outcome.stamp_ns, 30 * kSecond);
+      EXPECT_EQ(outcome.cycle, 7U);
+    }
+  }
+  EXPECT_EQ(applied, counts.applied);
+  EXPECT_EQ(
+      counts.per_reason[static_cast<std::size_t>(CommandReason::kInactive)],
+      counts.rejected -
+          counts.per_reason[static_cast<std::size_t>(commandReason(RejectionReason::kStaleStamp))]);
+}
+
+TEST(CommandGateWithWrapper, AFullQueueIsRefusedAsQueueFullAndTheRestApplyInOrder) {
+  JointWrapper wrapper(fr3Config(kJointImpedancePlugin));
+  JointState state = restingAt(wrapper.controller(), fr3Home());
+  wrapper.activate(state);
+  CommandGate gate({.kind = CommandKind::kJoint, .publisher_timeout_s = 0.5});
+  // More commands than the wrapper queues between two cycles: the surplus is queue_full.
+  int offered = 0;
+  for (int i = 1; i <= 100; ++i) {
+    JointCommand command = JointCommand::zero(kFr3Dof);
+    command.stamp_s = stampSeconds(static_cast<std::int64_t>(i) * 1'000'000);
+    command.fields = CommandField::kPosition;
+    command.position = fr3Home();
+    Offer offer;
+    offer.stamp_ns = static_cast<std::int64_t>(i) * 1'000'000;
+    offer.kind = CommandKind::kJoint;
+    offer.publisher = kWriterA;
+    gate.offer(offer, true, [&] { return wrapper.submit(command); });
+    ++offered;
+  }
+  std::vector<double> torque(kFr3Dof, 0.0);
+  ASSERT_NE(wrapper.update(state, kPeriod, torque), CycleStatus::kInactive);
+  const auto& bus = std::get<BusOf<JointCommand>>(wrapper.controller().activeCommand());
+  ASSERT_TRUE(gate.noteCycle(0, bus.stamp_s, 99));
+  gate.settle();
+  const GateCounts counts = gate.counts();
+  const std::size_t queue_full =
+      counts.per_reason[static_cast<std::size_t>(commandReason(RejectionReason::kQueueFull))];
+  EXPECT_GT(queue_full, 0U);
+  EXPECT_GT(counts.applied, 0U);
+  EXPECT_EQ(counts.applied + queue_full, static_cast<std::uint64_t>(offered));
+  EXPECT_EQ(gate.pending(), 0U);
+  std::int64_t previous = 0;
+  for (const CommandOutcome& outcome : gate.takeOutcomes()) {
+    if (outcome.applied) {
+      EXPECT_GT(outcome.stamp_ns, previous);
+      EXPECT_EQ(outcome.cycle, 0U);
+      previous = outcome.stamp_ns;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace comply::pipeline
