@@ -110,13 +110,11 @@ class InProcessHarness final : public HostHarness {
     });
   }
   bool send(const transport::CartesianCommandMessage& message, int publisher) override {
-    auto m = message; m.command.stamp_s = m.header.stamp.seconds();  // TEMPWORKAROUND
-    bus_->send(m, static_cast<std::uint64_t>(publisher));
+    bus_->send(message, static_cast<std::uint64_t>(publisher));
     return true;
   }
   bool send(const transport::JointCommandMessage& message, int publisher) override {
-    auto m = message; m.command.stamp_s = m.header.stamp.seconds();  // TEMPWORKAROUND
-    bus_->send(m, static_cast<std::uint64_t>(publisher));
+    bus_->send(message, static_cast<std::uint64_t>(publisher));
     return true;
   }
   std::optional<transport::ControllerStateMessage> state(

@@ -51,8 +51,8 @@ class HostHarness {
   /// The newest diagnostics seen.
   [[nodiscard]] virtual const transport::DiagnosticsMessage& last() const = 0;
 
-  /// Stops the host the way its owner would (SIGTERM; the stop flag) and waits for it; its exit
-  /// code, or -1 when it did not stop within 10 s.
+  /// Stops the host the way its owner would (SIGTERM to `comply run`; the stop flag, then a join)
+  /// and waits for it; its exit code, or -1 when the child did not exit within 10 s.
   virtual int stop() = 0;
 
  protected:

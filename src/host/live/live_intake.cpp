@@ -23,7 +23,11 @@ void offerSample(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gat
   const bool active = wrapper.diagnostics().state != pipeline::WrapperState::kInactive;
   gate.offer(offer, active, [&]() -> pipeline::Verdict {
     if constexpr (std::is_same_v<decltype(sample.message.command), Command>) {
-      return wrapper.submit(sample.message.command);
+      // header.stamp is the stamp on every wire; what a transport left in stamp_s is not used,
+      // so that the stamp the cycle reports in force is the one the gate accepted.
+      Command command = sample.message.command;
+      command.stamp_s = stampSeconds(offer.stamp_ns);
+      return wrapper.submit(command);
     } else {
       return {};  // unreachable: the gate refused the other kind before asking
     }
