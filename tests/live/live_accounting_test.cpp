@@ -160,6 +160,15 @@ TEST(LiveHostInProcess, WrongKindAndEqualStampAreRejected) {
   ASSERT_TRUE(host->poll(5s, [&](const auto&) { return !outcomesOf(stamp).empty(); }));
   ASSERT_EQ(outcomesOf(stamp).front().outcome, transport::Outcome::kApplied)
       << outcomesOf(stamp).front().message;
+  // The state names the command in force by its exact stamp, nanoseconds included (a double in
+  // seconds holds only about a quarter of a microsecond at today's epoch).
+  std::optional<transport::ControllerStateMessage> in_force;
+  for (int attempt = 0; attempt < 100 && !(in_force && in_force->reference_stamp == stamp);
+       ++attempt) {
+    in_force = host->state(100ms);
+  }
+  ASSERT_TRUE(in_force);
+  EXPECT_EQ(in_force->reference_stamp.nanoseconds(), stamp.nanoseconds());
 
   transport::JointCommandMessage joint;
   joint.header.stamp = transport::Stamp::fromNanoseconds(stamp.nanoseconds() + 1000000);  // +1 ms
