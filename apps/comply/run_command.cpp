@@ -11,7 +11,7 @@
 
 #include "comply/host/controller_setup.hpp"
 #include "comply/host/live_host.hpp"
-#include "comply/pipeline/resolved_controller.hpp"
+#include "comply/pipeline/config.hpp"
 #include "comply/sim/viewer.hpp"
 
 namespace comply::app {
@@ -58,8 +58,8 @@ int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) 
     err << "comply run: " << problem << "\n";
     return 2;
   }
-  const auto resolved = pipeline::resolveController(
-      host::simControllerConfig(options.robot, "", options.config_file));
+  const pipeline::WrapperConfig config =
+      host::simControllerConfig(options.robot, "", options.config_file);
   // Page faults in the control loop are latency: keep everything resident when allowed.
   if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
     err << "comply run: warning: mlockall failed (" << std::strerror(errno)
@@ -67,7 +67,7 @@ int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) 
   }
   stop_requested = false;
   installSignalHandlers();
-  return host::runLiveHost(options, resolved, stop_requested, out, err);
+  return host::runLiveHost(options, config, stop_requested, out, err);
 }
 
 }  // namespace comply::app

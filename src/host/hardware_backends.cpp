@@ -2,6 +2,8 @@
 
 #include "comply/host/hardware_backends.hpp"
 
+#include <algorithm>
+
 #include "comply/core/named_registry.hpp"
 #include "comply/plugin/loader.hpp"
 #include "comply/sim/simulated_clock.hpp"
@@ -11,15 +13,15 @@ namespace comply::host {
 namespace {
 
 /// The MuJoCo plant, paced to the wall clock: what `comply run --sim` drives.
-HardwareBackend simulatedArm(const pipeline::ResolvedController& resolved,
+HardwareBackend simulatedArm(const pipeline::WrapperConfig& config,
                              const hardware::BackendContext& context) {
   sim::PlantOptions options;
   options.control_period_s = context.period_s;
-  options.tip_frame = resolved.config.tip_frame;
-  auto plant = std::make_shared<sim::SimulatedRobot>(resolved.robot, options);
+  options.tip_frame = config.tip_frame;
+  auto plant = std::make_shared<sim::SimulatedRobot>(*config.robot_description, options);
   HardwareBackend backend;
   backend.clock = std::make_unique<sim::SimulatedClock>(*plant, true);
-  backend.description = "a simulated " + resolved.robot.name + " (MuJoCo)";
+  backend.description = "a simulated " + config.robot_description->name + " (MuJoCo)";
   backend.hardware = std::move(plant);
   return backend;
 }
@@ -51,25 +53,21 @@ std::vector<std::string> hardwareNames() {
   return registry().names();
 }
 
-hardware::BackendContext backendContext(const pipeline::ResolvedController& resolved,
-                                        double period_s, const std::vector<std::string>& options) {
+hardware::BackendContext backendContext(const pipeline::WrapperConfig& config, double period_s,
+                                        const std::vector<std::string>& options) {
+  const model::RobotDescription& robot = *config.robot_description;
   hardware::BackendContext context;
-  context.robot_name = resolved.robot.name;
-  context.robot_folder = resolved.robot.folder;
-  context.urdf_path = resolved.robot.urdf_path;
-  context.joints = resolved.config.joints;
-  context.tip_frame = resolved.config.tip_frame;
+  context.robot_name = robot.name;
+  context.robot_folder = robot.folder;
+  context.urdf_path = robot.urdf_path;
+  context.joints = config.joints;
+  context.tip_frame = config.tip_frame;
   context.period_s = period_s;
   // robot.yaml's home is in its own joint order; the backend gets the controller's.
   for (const std::string& joint : context.joints) {
-    double home = 0.0;
-    for (std::size_t i = 0; i < resolved.robot.joints.size() && i < resolved.robot.home.size();
-         ++i) {
-      if (resolved.robot.joints[i] == joint) {
-        home = resolved.robot.home[i];
-      }
-    }
-    context.home_position.push_back(home);
+    const auto found = std::find(robot.joints.begin(), robot.joints.end(), joint);
+    const auto index = static_cast<std::size_t>(found - robot.joints.begin());
+    context.home_position.push_back(index < robot.home.size() ? robot.home[index] : 0.0);
   }
   for (const std::string& option : options) {
     const std::size_t equals = option.find('=');
@@ -81,26 +79,22 @@ hardware::BackendContext backendContext(const pipeline::ResolvedController& reso
   return context;
 }
 
-HardwareBackend makeHardware(const std::string& name, const pipeline::ResolvedController& resolved,
+HardwareBackend makeHardware(const std::string& name, const pipeline::WrapperConfig& config,
                              const hardware::BackendContext& context) {
-  const HardwareFactory factory = registry().find(name);
-  if (factory) {
-    return factory(resolved, context);
+  if (const HardwareFactory factory = registry().find(name)) {
+    return factory(config, context);
   }
-  if (name.find('/') != std::string::npos || std::filesystem::path(name).extension() == ".so") {
-    return fromLibrary(name, context);
+  // A library is found as control-law plugins are: a path, or libcomply_<name>.so on the plugin
+  // search path, here with the name hardware_<name>.
+  const bool path = name.find('/') != std::string::npos || name.ends_with(".so");
+  std::filesystem::path library;
+  try {
+    library = plugin::resolvePlugin(path ? name : "hardware_" + name);
+  } catch (const plugin::PluginError& error) {
+    throw hardware::BackendError("no hardware backend '" + name + "': not built in (" +
+                                 registry().list() + "), and " + error.what());
   }
-  const std::string file = "libcomply_hardware_" + name + ".so";
-  std::string searched;
-  for (const std::filesystem::path& folder : plugin::pluginSearchPath()) {
-    if (std::filesystem::exists(folder / file)) {
-      return fromLibrary(folder / file, context);
-    }
-    searched += (searched.empty() ? "" : ", ") + folder.string();
-  }
-  throw hardware::BackendError("no hardware backend '" + name + "': not built in (" +
-                               registry().list() + "), not a path to a library, and no " + file +
-                               " in " + (searched.empty() ? "the plugin search path" : searched));
+  return fromLibrary(library, context);
 }
 
 }  // namespace comply::host

@@ -93,8 +93,12 @@ void Controller::activate(const JointState& state) {
   }
   plugin_->trialStep(input_, busPointer(seeded));  // throws before anything changes
   active_ = seeded;
-  // Start the rate limit from what the joints carry now, so the first torque does not jump.
+  // Start the rate limit from what the joints carry now, so the first torque does not jump. Of
+  // that, a robot that compensates gravity itself supplies the gravity: comply's share is the rest.
   torque_ = state_.effort.allFinite() ? state_.effort : data_.gravity.head(dof_);
+  if (parameters_.hardware_compensates_gravity) {
+    torque_ -= data_.gravity.head(dof_);
+  }
   shaper_.reset(torque_);
   repeated_cycles_ = 0;
   state_frozen_ = false;

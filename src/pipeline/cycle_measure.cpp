@@ -72,7 +72,12 @@ bool Controller::stateFrozen(const JointState& state) noexcept {
 }
 
 void Controller::keepHoldingGravity() noexcept {
-  hold_gravity_ = data_.gravity.head(dof_);
+  // A robot that compensates gravity itself holds its own weight; adding it here would lift it.
+  if (parameters_.hardware_compensates_gravity) {
+    hold_gravity_.setZero();
+  } else {
+    hold_gravity_ = data_.gravity.head(dof_);
+  }
   if (parameters_.payload_compensation) {
     hold_gravity_ += data_.payload_gravity.head(dof_);
   }

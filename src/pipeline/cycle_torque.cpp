@@ -9,7 +9,7 @@
 namespace comply::pipeline {
 
 void Controller::compensate() noexcept {
-  if (parameters_.gravity_compensation) {
+  if (parameters_.gravity_compensation && !parameters_.hardware_compensates_gravity) {
     torque_ += data_.gravity.head(dof_);
   }
   if (parameters_.payload_compensation) {

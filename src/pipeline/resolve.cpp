@@ -93,6 +93,7 @@ std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig&
   parameters.command_timeout_s = config.command_timeout_s;
   parameters.timeout_behavior = config.timeout_behavior;
   parameters.gravity_compensation = config.gravity_compensation;
+  parameters.hardware_compensates_gravity = config.hardware_compensates_gravity;
   parameters.payload_compensation = config.payload_compensation;
   parameters.payload = config.payload;
   parameters.friction = compileFriction(config.friction, dof);

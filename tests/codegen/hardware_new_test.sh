@@ -34,4 +34,9 @@ fi
 if ! grep -Eq '(^|[^0-9])0 read failures|read failures:? 0([^0-9]|$)' ../run.log; then
   echo "FAIL: the summary does not report 0 read failures:"; cat ../run.log; exit 1
 fi
+# The skeleton's arm compensates gravity itself: the host must say it adds none.
+if ! grep -q 'the hardware compensates gravity itself; comply adds none' ../run.log; then
+  echo "FAIL: the host did not take the backend's own gravity compensation into account:"
+  cat ../run.log; exit 1
+fi
 echo "plugin new --kind hardware: built, comply run drove it for $cycles cycles"

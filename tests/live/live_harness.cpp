@@ -11,7 +11,7 @@
 
 #include "comply/host/controller_setup.hpp"
 #include "comply/host/live_host.hpp"
-#include "comply/pipeline/resolved_controller.hpp"
+#include "comply/pipeline/config.hpp"
 #include "comply/transport/in_process.hpp"
 #include "live_support.hpp"
 
@@ -98,11 +98,11 @@ class InProcessHarness final : public HostHarness {
     options.transport = "in_process";
     options.name = name;
     options.priority = 0;
-    const auto resolved = pipeline::resolveController(
-        host::simControllerConfig(options.robot, "", options.config_file));
-    host_ = std::thread([this, options, resolved] {
+    const pipeline::WrapperConfig config =
+        host::simControllerConfig(options.robot, "", options.config_file);
+    host_ = std::thread([this, options, config] {
       try {
-        exit_code_ = host::runLiveHost(options, resolved, stop_, out_, err_);
+        exit_code_ = host::runLiveHost(options, config, stop_, out_, err_);
       } catch (const std::exception& error) {
         err_ << "runLiveHost threw: " << error.what() << "\n";
         exit_code_ = 1;

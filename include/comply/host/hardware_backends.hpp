@@ -11,7 +11,7 @@
 
 #include "comply/hardware/backend.hpp"
 #include "comply/hardware/loop_clock.hpp"
-#include "comply/pipeline/resolved_controller.hpp"
+#include "comply/pipeline/config.hpp"
 
 namespace comply::host {
 
@@ -22,7 +22,8 @@ struct HardwareBackend {
   std::string description;  ///< for the host's start-up line
 };
 
-using HardwareFactory = std::function<HardwareBackend(const pipeline::ResolvedController& resolved,
+/// `config` is completed for its robot (pipeline::completeForRobot: robot_description is set).
+using HardwareFactory = std::function<HardwareBackend(const pipeline::WrapperConfig& config,
                                                       const hardware::BackendContext& context)>;
 
 /// Adds a built-in backend under `name` (replacing one of that name).
@@ -30,14 +31,15 @@ void registerHardware(const std::string& name, HardwareFactory factory);
 /// The registered names, sorted.
 std::vector<std::string> hardwareNames();
 
-/// What a backend is told about `resolved` running at `period_s`, with `options` (key=value).
-hardware::BackendContext backendContext(const pipeline::ResolvedController& resolved,
-                                        double period_s, const std::vector<std::string>& options);
+/// What a backend is told about the controller `config` (completed for its robot) running at
+/// `period_s`, with `options` (key=value).
+hardware::BackendContext backendContext(const pipeline::WrapperConfig& config, double period_s,
+                                        const std::vector<std::string>& options);
 
 /// The backend `name`: a registered one, a path to a backend library, or a library
 /// libcomply_hardware_<name>.so on the plugin search path. Throws hardware::BackendError naming
 /// what was looked for and where.
-HardwareBackend makeHardware(const std::string& name, const pipeline::ResolvedController& resolved,
+HardwareBackend makeHardware(const std::string& name, const pipeline::WrapperConfig& config,
                              const hardware::BackendContext& context);
 
 }  // namespace comply::host

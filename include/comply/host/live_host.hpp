@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "comply/pipeline/resolved_controller.hpp"
+#include "comply/pipeline/config.hpp"
 
 namespace comply::host {
 
@@ -29,10 +29,11 @@ struct LiveHostOptions {
   int priority = 80;  ///< SCHED_FIFO priority of the control thread; 0: normal scheduling
 };
 
-/// Runs the host until `stop` is set or options.duration_s has passed; prints a summary on `out`.
-/// Returns the process exit code.
-int runLiveHost(const LiveHostOptions& options,
-                std::shared_ptr<const pipeline::ResolvedController> resolved,
+/// Runs the controller `config` (from controllerConfig() or simControllerConfig()) on the
+/// hardware and transport `options` name until `stop` is set or options.duration_s has passed;
+/// prints a summary on `out`. Resolves the controller once, after the hardware says whether it
+/// compensates gravity itself. Returns the process exit code; throws on bad set-up.
+int runLiveHost(const LiveHostOptions& options, pipeline::WrapperConfig config,
                 const std::atomic<bool>& stop, std::ostream& out, std::ostream& err);
 
 /// Registers the transports built into comply ("dds", "in_process"); runLiveHost() does it once.

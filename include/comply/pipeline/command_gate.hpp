@@ -158,9 +158,4 @@ void CommandGate::offer(const Offer& offer, bool active, Submit&& submit) {
   acceptLocked(offer, outcome);
 }
 
-/// The wall clock (CLOCK_REALTIME) [ns], as ROS time is.
-std::int64_t wallClockNs() noexcept;
-/// The steady clock (CLOCK_MONOTONIC) [ns]: the publisher rule's clock.
-std::int64_t steadyClockNs() noexcept;
-
 }  // namespace comply::pipeline

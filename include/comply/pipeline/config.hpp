@@ -76,6 +76,10 @@ struct WrapperConfig {
   ValidationConfig validation;
 
   bool gravity_compensation = true;
+  /// The robot adds gravity compensation itself (hardware::HardwareInterface::compensatesGravity;
+  /// Franka, KUKA and UR do). Not read from a file: the host sets it from the hardware. Then the
+  /// cycle adds no arm gravity, to the law's torque or to the FAULT hold; a payload still is.
+  bool hardware_compensates_gravity = false;
   bool payload_compensation = false;
   model::Payload payload;
   FrictionConfig friction;

@@ -43,6 +43,7 @@ struct CycleParameters {
   double command_timeout_s = 0.5;
   TimeoutBehavior timeout_behavior = TimeoutBehavior::kHold;
   bool gravity_compensation = true;
+  bool hardware_compensates_gravity = false;  ///< see WrapperConfig
   bool payload_compensation = false;
   model::Payload payload;
   FrictionParameters friction;

@@ -14,6 +14,7 @@
 
 #include "comply/hardware/control_loop.hpp"
 #include "comply/host/hardware_backends.hpp"
+#include "comply/model/robot_description.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/transport/host_transport.hpp"
 #include "live_intake.hpp"
@@ -212,28 +213,31 @@ std::string makeRealtime(int priority) {
   return {};
 }
 
-int runLiveHost(const LiveHostOptions& options,
-                std::shared_ptr<const pipeline::ResolvedController> resolved,
+int runLiveHost(const LiveHostOptions& options, pipeline::WrapperConfig config,
                 const std::atomic<bool>& stop, std::ostream& out, std::ostream& err) {
   static std::once_flag registered;
   std::call_once(registered, registerBuiltinTransports);
+  if (!config.robot_description) {
+    pipeline::completeForRobot(config, std::make_shared<const model::RobotDescription>(
+                                           model::loadRobotDescription(config.robot)));
+  }
   HardwareBackend backend =
-      makeHardware(options.hardware, *resolved,
-                   backendContext(*resolved, 1.0 / options.rate_hz, options.hardware_options));
-  if (backend.hardware->dof() != resolved->dof) {
+      makeHardware(options.hardware, config,
+                   backendContext(config, 1.0 / options.rate_hz, options.hardware_options));
+  if (backend.hardware->dof() != config.dof) {
     err << "comply run: the hardware has " << backend.hardware->dof() << " joints, the controller "
-        << resolved->dof << "\n";
+        << config.dof << "\n";
     return 2;
   }
-  if (backend.hardware->compensatesGravity() && resolved->config.gravity_compensation) {
-    // The robot adds gravity itself: adding it here too would push the arm up with its own weight.
-    pipeline::WrapperConfig config = resolved->config;
-    config.gravity_compensation = false;
-    resolved = pipeline::resolveController(config);
-    out << "comply run: the hardware compensates gravity itself; comply's gravity compensation "
-           "is off"
+  // What the robot does is a fact of the hardware, decided before the controller is resolved.
+  config.hardware_compensates_gravity = backend.hardware->compensatesGravity();
+  if (config.hardware_compensates_gravity) {
+    out << "comply run: the hardware compensates gravity itself; comply adds none (nor in the "
+           "FAULT hold)"
         << std::endl;
   }
+  const std::shared_ptr<const pipeline::ResolvedController> resolved =
+      pipeline::resolveController(config);
   return resolved->cartesian()
              ? runWith<CartesianCommand>(options, resolved, backend, stop, out, err)
              : runWith<JointCommand>(options, resolved, backend, stop, out, err);

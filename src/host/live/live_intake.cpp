@@ -4,6 +4,8 @@
 
 #include <type_traits>
 
+#include "comply/core/clock.hpp"
+
 namespace comply::host {
 namespace {
 
@@ -19,7 +21,7 @@ void offerSample(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gat
   offer.kind = kind;
   offer.publisher = sample.publisher;
   offer.malformed = sample.malformed;
-  offer.now_ns = pipeline::steadyClockNs();
+  offer.now_ns = monotonicNanoseconds();
   const bool active = wrapper.diagnostics().state != pipeline::WrapperState::kInactive;
   gate.offer(offer, active, [&]() -> pipeline::Verdict {
     if constexpr (std::is_same_v<decltype(sample.message.command), Command>) {

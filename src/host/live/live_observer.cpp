@@ -4,6 +4,7 @@
 
 #include <ctime>
 
+#include "comply/core/clock.hpp"
 #include "comply/hardware/loop_clock.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/schema/schema.hpp"
@@ -87,7 +88,7 @@ void LiveObserver<Command>::afterCycle(const hardware::CycleRecord& record) {
     last_state_ = *record.state;
   }
   const auto& bus = std::get<BusOfCommand<Command>>(wrapper_.controller().activeCommand());
-  if (!gate_.noteCycle(record.index, bus.stamp_s, transport::Stamp::now().nanoseconds())) {
+  if (!gate_.noteCycle(record.index, bus.stamp_s, wallClockNanoseconds())) {
     counters_.applied_deferred.fetch_add(1, std::memory_order_relaxed);
   }
   fillSample(record);
