@@ -6,6 +6,7 @@
 #include <optional>
 #include <variant>
 
+#include "comply/core/clock.hpp"
 #include "comply/hardware/control_loop.hpp"
 #include "comply/host/controller_setup.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
@@ -24,7 +25,7 @@ struct Episode final : hardware::LoopObserver {
       : wrapper(resolved) {}
   void afterCycle(const hardware::CycleRecord& record) override {
     const auto& bus = std::get<pipeline::BusOf<Command>>(wrapper.controller().activeCommand());
-    gate->noteCycle(record.index, bus.stamp_s, pipeline::wallClockNs());
+    gate->noteCycle(record.index, bus.stamp_s, wallClockNanoseconds());
   }
   pipeline::Wrapper<Command> wrapper;
   pipeline::CommandGate* gate = nullptr;
@@ -144,7 +145,7 @@ py::tuple Sim::step(const py::object& command) {
     offer.stamp_ns = *stamp_ns;
     offer.kind = cartesian() ? pipeline::CommandKind::kCartesian : pipeline::CommandKind::kJoint;
     offer.publisher = 1;  // this process is the only writer
-    offer.now_ns = pipeline::steadyClockNs();
+    offer.now_ns = monotonicNanoseconds();
     std::visit(
         [&](auto& e) {
           using Command = std::remove_cvref_t<decltype(e->wrapper.lastAccepted())>;

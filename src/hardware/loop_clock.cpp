@@ -4,11 +4,11 @@
 #include <cmath>
 #include <ctime>
 
+#include "comply/core/clock.hpp"
+
 namespace comply::hardware {
 double monotonicSeconds() noexcept {
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+  return 1e-9 * static_cast<double>(monotonicNanoseconds());
 }
 
 WallClock::WallClock() : origin_s_(monotonicSeconds()) {}

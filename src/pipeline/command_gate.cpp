@@ -2,33 +2,21 @@
 
 #include "comply/pipeline/command_gate.hpp"
 
-#include <ctime>
 #include <sstream>
+
+#include "comply/core/clock.hpp"
 
 namespace comply::pipeline {
 namespace {
 
-std::int64_t clockNs(clockid_t clock) noexcept {
-  timespec now{};
-  clock_gettime(clock, &now);
-  return static_cast<std::int64_t>(now.tv_sec) * 1'000'000'000 + now.tv_nsec;
-}
-
+/// "sec.nanosec s", exact; nanosec in [0, 1e9) as on the wire, also before the epoch.
 std::string stampText(std::int64_t stamp_ns) {
-  const std::string fraction = std::to_string(stamp_ns % 1'000'000'000);
-  const std::string whole = std::to_string(stamp_ns / 1'000'000'000);
-  return whole + "." + std::string(9 - fraction.size(), '0') + fraction + " s";
+  const StampParts parts = splitStamp(stamp_ns);
+  const std::string fraction = std::to_string(parts.nanosec);
+  return std::to_string(parts.sec) + "." + std::string(9 - fraction.size(), '0') + fraction + " s";
 }
 
 }  // namespace
-
-std::int64_t wallClockNs() noexcept {
-  return clockNs(CLOCK_REALTIME);
-}
-
-std::int64_t steadyClockNs() noexcept {
-  return clockNs(CLOCK_MONOTONIC);
-}
 
 std::string_view toString(CommandReason reason) {
   switch (reason) {
@@ -52,7 +40,7 @@ bool CommandGate::admitLocked(const Offer& offer, bool active, CommandOutcome& o
   ++counts_.received;
   outcome.stamp_ns = offer.stamp_ns;
   outcome.kind = offer.kind;
-  outcome.received_ns = wallClockNs();
+  outcome.received_ns = wallClockNanoseconds();
   if (!offer.malformed.empty()) {
     rejectLocked(outcome, commandReason(RejectionReason::kDofMismatch),
                  std::string(offer.malformed));

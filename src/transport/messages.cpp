@@ -2,25 +2,17 @@
 
 #include "comply/transport/messages.hpp"
 
-#include <ctime>
+#include "comply/core/clock.hpp"
 
 namespace comply::transport {
 
 Stamp Stamp::now() noexcept {
-  timespec now{};
-  clock_gettime(CLOCK_REALTIME, &now);
-  return {static_cast<std::int32_t>(now.tv_sec), static_cast<std::uint32_t>(now.tv_nsec)};
+  return fromNanoseconds(wallClockNanoseconds());
 }
 
 Stamp Stamp::fromNanoseconds(std::int64_t nanoseconds) noexcept {
-  const std::int64_t kPerSecond = 1'000'000'000;
-  std::int64_t sec = nanoseconds / kPerSecond;
-  std::int64_t rest = nanoseconds % kPerSecond;
-  if (rest < 0) {
-    rest += kPerSecond;
-    --sec;
-  }
-  return {static_cast<std::int32_t>(sec), static_cast<std::uint32_t>(rest)};
+  const StampParts parts = splitStamp(nanoseconds);
+  return {static_cast<std::int32_t>(parts.sec), static_cast<std::uint32_t>(parts.nanosec)};
 }
 
 std::int64_t Stamp::nanoseconds() const noexcept {

@@ -95,6 +95,22 @@ TEST_F(CommandGateTest, StampsMustIncreaseStrictlyToTheNanosecond) {
   EXPECT_EQ(older[0].stamp_ns, stamp - kSecond);
 }
 
+TEST_F(CommandGateTest, AStampBeforeTheEpochIsNamedExactly) {
+  // The wire's seconds are signed: a stamp before the epoch (a sender's clock gone wrong) must be
+  // refused with a readable reason, nanoseconds in [0, 1e9) as builtin_interfaces/Time has them.
+  EXPECT_TRUE(offer(offerAt(5 * kSecond)).empty());
+  const std::vector<CommandOutcome> before = offer(offerAt(-1));
+  ASSERT_EQ(before.size(), 1U);
+  EXPECT_EQ(before[0].reason, commandReason(RejectionReason::kStaleStamp));
+  EXPECT_NE(before[0].message.find("stamp -1.999999999 s is not newer"), std::string::npos)
+      << before[0].message;
+  const std::int64_t earliest_on_the_wire = -2'147'483'648LL * kSecond;  // int32 seconds
+  const std::vector<CommandOutcome> earliest = offer(offerAt(earliest_on_the_wire));
+  ASSERT_EQ(earliest.size(), 1U);
+  EXPECT_NE(earliest[0].message.find("stamp -2147483648.000000000 s"), std::string::npos)
+      << earliest[0].message;
+}
+
 TEST_F(CommandGateTest, ARefusedCommandDoesNotMoveTheStampRule) {
   EXPECT_TRUE(offer(offerAt(5 * kSecond)).empty());
   gate_.offer(offerAt(7 * kSecond), true, [] {

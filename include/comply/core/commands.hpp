@@ -14,12 +14,23 @@ namespace comply {
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 
+/// A wire stamp [ns since the epoch] as whole seconds and nanoseconds in [0, 1e9), as
+/// builtin_interfaces/Time holds it (a stamp before the epoch has negative seconds).
+struct StampParts {
+  std::int64_t sec = 0;
+  std::int64_t nanosec = 0;
+};
+constexpr StampParts splitStamp(std::int64_t stamp_ns) noexcept {
+  const std::int64_t sec = stamp_ns / 1'000'000'000 - (stamp_ns % 1'000'000'000 < 0 ? 1 : 0);
+  return {sec, stamp_ns - sec * 1'000'000'000};
+}
+
 /// A wire stamp [ns since the epoch] as a command's stamp_s [s]: whole seconds plus the fraction,
 /// one formula for every host, so that one stamp is always the same double (the command gate
 /// matches the stamp in force against the commands it accepted).
 constexpr double stampSeconds(std::int64_t stamp_ns) noexcept {
-  const std::int64_t whole = stamp_ns / 1'000'000'000 - (stamp_ns % 1'000'000'000 < 0 ? 1 : 0);
-  return static_cast<double>(whole) + 1e-9 * static_cast<double>(stamp_ns - whole * 1'000'000'000);
+  const StampParts parts = splitStamp(stamp_ns);
+  return static_cast<double>(parts.sec) + 1e-9 * static_cast<double>(parts.nanosec);
 }
 
 /// Field groups of a command; a sender sets only those it updates, the rest stays in force.

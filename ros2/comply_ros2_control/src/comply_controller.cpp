@@ -7,6 +7,7 @@
 #include <type_traits>
 #include <variant>
 
+#include "comply/core/clock.hpp"
 #include "comply/hardware/loop_clock.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
@@ -271,7 +272,7 @@ void ComplyController<Command>::onCommand(const CommandMessage& message,
                    : comply::pipeline::CommandKind::kJoint;
   offer.publisher = publisherId(info.get_rmw_message_info().publisher_gid);
   offer.malformed = malformed;
-  offer.now_ns = comply::pipeline::steadyClockNs();
+  offer.now_ns = comply::monotonicNanoseconds();
   const bool active = wrapper_->diagnostics().state != comply::pipeline::WrapperState::kInactive;
   comply::pipeline::Verdict verdict;
   gate_->offer(offer, active, [&] {
