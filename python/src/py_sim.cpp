@@ -25,7 +25,7 @@ struct Episode final : hardware::LoopObserver {
       : wrapper(resolved) {}
   void afterCycle(const hardware::CycleRecord& record) override {
     const auto& bus = std::get<pipeline::BusOf<Command>>(wrapper.controller().activeCommand());
-    gate->noteCycle(record.index, bus.stamp_s, wallClockNanoseconds());
+    gate->noteCycle(record.index, bus.stamp_s, wallClockNanoseconds);
   }
   pipeline::Wrapper<Command> wrapper;
   pipeline::CommandGate* gate = nullptr;

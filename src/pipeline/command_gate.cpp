@@ -94,18 +94,6 @@ void CommandGate::rejectLocked(CommandOutcome& outcome, CommandReason reason, st
   settled_.push_back(std::move(outcome));
 }
 
-bool CommandGate::noteCycle(std::uint64_t cycle, double stamp_in_force_s,
-                            std::int64_t wall_ns) noexcept {
-  if (stamp_in_force_s == last_noted_stamp_s_) {
-    return true;
-  }
-  if (!applied_.push({cycle, stamp_in_force_s, wall_ns})) {
-    return false;  // retried on the next cycle: the stamp is still unnoted
-  }
-  last_noted_stamp_s_ = stamp_in_force_s;
-  return true;
-}
-
 void CommandGate::settle() {
   const std::lock_guard<std::mutex> lock(mutex_);
   while (const Applied* next = applied_.front()) {

@@ -54,7 +54,7 @@ TEST_F(CommandGateTest, AcceptedCommandsWaitForTheCycleThatTakesThem) {
   EXPECT_EQ(gate_.pending(), 2U);
 
   // The cycle 41 took the first one only (the stamp in force is the first one's).
-  ASSERT_TRUE(gate_.noteCycle(41, 10.0, 123));
+  ASSERT_TRUE(gate_.noteCycle(41, 10.0, [] { return std::int64_t{123}; }));
   gate_.settle();
   std::vector<CommandOutcome> outcomes = gate_.takeOutcomes();
   ASSERT_EQ(outcomes.size(), 1U);
@@ -66,11 +66,17 @@ TEST_F(CommandGateTest, AcceptedCommandsWaitForTheCycleThatTakesThem) {
   EXPECT_GT(outcomes[0].received_ns, 0);
   EXPECT_EQ(gate_.appliedStampNs(), 10 * kSecond);
 
-  // The same stamp in force again settles nothing; the next one settles the second command.
-  ASSERT_TRUE(gate_.noteCycle(42, 10.0, 124));
+  // The same stamp in force again settles nothing and reads no clock (most cycles take no
+  // command); the next stamp settles the second command.
+  int clock_reads = 0;
+  ASSERT_TRUE(gate_.noteCycle(42, 10.0, [&] {
+    ++clock_reads;
+    return std::int64_t{124};
+  }));
+  EXPECT_EQ(clock_reads, 0);
   gate_.settle();
   EXPECT_TRUE(gate_.takeOutcomes().empty());
-  ASSERT_TRUE(gate_.noteCycle(43, 11.0, 125));
+  ASSERT_TRUE(gate_.noteCycle(43, 11.0, [] { return std::int64_t{125}; }));
   gate_.settle();
   outcomes = gate_.takeOutcomes();
   ASSERT_EQ(outcomes.size(), 1U);
@@ -170,7 +176,7 @@ TEST_F(CommandGateTest, EveryCommandIsAccountedExactlyOnce) {
     const std::int64_t stamp = (i % 3 == 0 ? 1 : i + 10) * kSecond;
     gate_.offer(offerAt(stamp), true, [] { return accepted(); });
   }
-  ASSERT_TRUE(gate_.noteCycle(7, 30.0, 1));
+  ASSERT_TRUE(gate_.noteCycle(7, 30.0, [] { return std::int64_t{1}; }));
   gate_.settle();
   gate_.abandonPending("the host shut down before a cycle took it");
   const GateCounts counts = gate_.counts();
@@ -215,7 +221,7 @@ TEST(CommandGateWithWrapper, AFullQueueIsRefusedAsQueueFullAndTheRestApplyInOrde
   std::vector<double> torque(kFr3Dof, 0.0);
   ASSERT_NE(wrapper.update(state, kPeriod, torque), CycleStatus::kInactive);
   const auto& bus = std::get<BusOf<JointCommand>>(wrapper.controller().activeCommand());
-  ASSERT_TRUE(gate.noteCycle(0, bus.stamp_s, 99));
+  ASSERT_TRUE(gate.noteCycle(0, bus.stamp_s, [] { return std::int64_t{99}; }));
   gate.settle();
   const GateCounts counts = gate.counts();
   const std::size_t queue_full =

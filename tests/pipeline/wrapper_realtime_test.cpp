@@ -191,7 +191,9 @@ TEST(WrapperRealtime, TheGatesCycleSideNeitherAllocatesNorLocks) {
     }
     const double stamp_in_force_s =
         stampSeconds(static_cast<std::int64_t>(cycle / 10 * 10 + 1) * 1'000'000);
-    EXPECT_TRUE(probe.measure([&] { return gate.noteCycle(cycle, stamp_in_force_s, cycle); }));
+    EXPECT_TRUE(probe.measure([&] {
+      return gate.noteCycle(cycle, stamp_in_force_s, [cycle] { return std::int64_t{cycle}; });
+    }));
     if (cycle % 100 == 0) {
       gate.settle();
       gate.takeOutcomes();

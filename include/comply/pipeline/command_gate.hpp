@@ -92,10 +92,21 @@ class CommandGate {
   void offer(const Offer& offer, bool active, Submit&& submit);
 
   /// The control thread, after every cycle: `stamp_in_force_s` is the stamp of the command in
-  /// force (the bus's stamp_s). When it moved, the commands up to it were applied by `cycle`.
-  /// Wait-free and allocation-free; false when the event queue was full (counted, not lost:
-  /// the next event settles them too).
-  bool noteCycle(std::uint64_t cycle, double stamp_in_force_s, std::int64_t wall_ns) noexcept;
+  /// force (the bus's stamp_s). When it moved, the commands up to it were applied by `cycle` at
+  /// `time_ns()` (the host's clock [ns], asked only then: most cycles take no command).
+  /// Wait-free and allocation-free; false when the event queue was full, and the same stamp is
+  /// noted again on the next cycle.
+  template <typename TimeNs>
+  bool noteCycle(std::uint64_t cycle, double stamp_in_force_s, TimeNs&& time_ns) noexcept {
+    if (stamp_in_force_s == last_noted_stamp_s_) {
+      return true;
+    }
+    if (!applied_.push({cycle, stamp_in_force_s, time_ns()})) {
+      return false;
+    }
+    last_noted_stamp_s_ = stamp_in_force_s;
+    return true;
+  }
 
   /// Any non-real-time thread: settles the commands the noted cycles took.
   void settle();

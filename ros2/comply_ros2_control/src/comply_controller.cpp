@@ -241,7 +241,7 @@ controller_interface::return_type ComplyController<Command>::update(
   }
   const auto& bus =
       std::get<comply::pipeline::BusOf<Command>>(wrapper_->controller().activeCommand());
-  gate_->noteCycle(cycle_, bus.stamp_s, time.nanoseconds());
+  gate_->noteCycle(cycle_, bus.stamp_s, [&time] { return time.nanoseconds(); });
   if (++cycle_ % state_every_cycles_ == 0 && state_publisher_->trylock()) {
     fillState(wrapper_->controller(), state_, torque_, cycle_ - 1, time, state_publisher_->msg_);
     state_publisher_->unlockAndPublish();
