@@ -9,7 +9,6 @@
 #include "comply/core/clock.hpp"
 #include "comply/hardware/control_loop.hpp"
 #include "comply/host/controller_setup.hpp"
-#include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/sim/simulated_clock.hpp"
@@ -24,8 +23,7 @@ struct Episode final : hardware::LoopObserver {
   explicit Episode(const std::shared_ptr<const pipeline::ResolvedController>& resolved)
       : wrapper(resolved) {}
   void afterCycle(const hardware::CycleRecord& record) override {
-    const auto& bus = std::get<pipeline::BusOf<Command>>(wrapper.controller().activeCommand());
-    gate->noteCycle(record.index, bus.stamp_s, wallClockNanoseconds);
+    gate->noteCycle(record.index, wrapper.controller().stampInForce(), wallClockNanoseconds);
   }
   pipeline::Wrapper<Command> wrapper;
   pipeline::CommandGate* gate = nullptr;

@@ -10,7 +10,6 @@
 #include <string>
 #include <vector>
 
-#include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "wrapper_support.hpp"
 
@@ -220,8 +219,8 @@ TEST(CommandGateWithWrapper, AFullQueueIsRefusedAsQueueFullAndTheRestApplyInOrde
   }
   std::vector<double> torque(kFr3Dof, 0.0);
   ASSERT_NE(wrapper.update(state, kPeriod, torque), CycleStatus::kInactive);
-  const auto& bus = std::get<BusOf<JointCommand>>(wrapper.controller().activeCommand());
-  ASSERT_TRUE(gate.noteCycle(0, bus.stamp_s, [] { return std::int64_t{99}; }));
+  ASSERT_TRUE(
+      gate.noteCycle(0, wrapper.controller().stampInForce(), [] { return std::int64_t{99}; }));
   gate.settle();
   const GateCounts counts = gate.counts();
   const std::size_t queue_full =

@@ -105,6 +105,10 @@ class Controller {
   /// The plugin input of the last cycle and the bus in force (real-time thread; benchmarks).
   [[nodiscard]] const comply_input& input() const noexcept { return input_; }
   [[nodiscard]] const CommandBus& activeCommand() const noexcept { return active_; }
+  /// The stamp [s] of the command in force (what CommandGate::noteCycle() is told after a cycle).
+  [[nodiscard]] double stampInForce() const noexcept {
+    return std::visit([](const auto& bus) noexcept { return bus.stamp_s; }, active_);
+  }
   /// Benchmark protocol, the law's cost alone: measureOnly() runs the measure stage at `state`
   /// (false on a bad state), stepPluginOnly() the plugin step on its input and the command in
   /// force, without shaping or any other state change.

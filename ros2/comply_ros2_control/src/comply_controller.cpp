@@ -5,12 +5,10 @@
 #include <exception>
 #include <stdexcept>
 #include <type_traits>
-#include <variant>
 
 #include "comply/core/clock.hpp"
 #include "comply/hardware/loop_clock.hpp"
 #include "comply/model/robot_description.hpp"
-#include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/config.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply_ros2_control/message_conversion.hpp"
@@ -239,9 +237,8 @@ controller_interface::return_type ComplyController<Command>::update(
       command_interfaces_[command_index_[i]].set_value(torque_[i]);
     }
   }
-  const auto& bus =
-      std::get<comply::pipeline::BusOf<Command>>(wrapper_->controller().activeCommand());
-  gate_->noteCycle(cycle_, bus.stamp_s, [&time] { return time.nanoseconds(); });
+  gate_->noteCycle(cycle_, wrapper_->controller().stampInForce(),
+                   [&time] { return time.nanoseconds(); });
   if (++cycle_ % state_every_cycles_ == 0 && state_publisher_->trylock()) {
     fillState(wrapper_->controller(), state_, torque_, cycle_ - 1, time, state_publisher_->msg_);
     state_publisher_->unlockAndPublish();

@@ -87,8 +87,7 @@ void LiveObserver<Command>::afterCycle(const hardware::CycleRecord& record) {
   if (record.state != nullptr) {
     last_state_ = *record.state;
   }
-  const auto& bus = std::get<BusOfCommand<Command>>(wrapper_.controller().activeCommand());
-  if (!gate_.noteCycle(record.index, bus.stamp_s, wallClockNanoseconds)) {
+  if (!gate_.noteCycle(record.index, wrapper_.controller().stampInForce(), wallClockNanoseconds)) {
     counters_.applied_deferred.fetch_add(1, std::memory_order_relaxed);
   }
   fillSample(record);
