@@ -5,6 +5,9 @@ set_target_properties(comply_flags PROPERTIES EXPORT_NAME flags)
 install(TARGETS comply_flags EXPORT complyTargets)
 target_compile_options(comply_flags INTERFACE
   -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion
+  # Flowing off the end of a function that returns a value is undefined behaviour the optimiser
+  # exploits (a crash far from the cause): never a warning to live with.
+  -Werror=return-type
   $<$<COMPILE_LANGUAGE:CXX>:-Wnon-virtual-dtor>)
 # GCC 12 reports false -Wrestrict positives inside std::string concatenation (GCC bug 105329).
 if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")

@@ -36,22 +36,20 @@ std::string_view toString(CommandReason reason) {
 
 CommandGate::CommandGate(GateOptions options) : options_(options) {}
 
-bool CommandGate::admitLocked(const Offer& offer, bool active, CommandOutcome& outcome) {
+CommandReason CommandGate::admitLocked(const Offer& offer, bool active, CommandOutcome& outcome) {
   ++counts_.received;
   outcome.stamp_ns = offer.stamp_ns;
   outcome.kind = offer.kind;
   outcome.received_ns = wallClockNanoseconds();
   if (!offer.malformed.empty()) {
-    rejectLocked(outcome, commandReason(RejectionReason::kDofMismatch),
-                 std::string(offer.malformed));
-    return false;
+    return rejectLocked(outcome, commandReason(RejectionReason::kDofMismatch),
+                        std::string(offer.malformed));
   }
   if (offer.kind != options_.kind) {
-    rejectLocked(outcome, CommandReason::kWrongKind,
-                 std::string("this controller takes ") +
-                     (options_.kind == CommandKind::kCartesian ? "Cartesian" : "joint") +
-                     " commands");
-    return false;
+    return rejectLocked(outcome, CommandReason::kWrongKind,
+                        std::string("this controller takes ") +
+                            (options_.kind == CommandKind::kCartesian ? "Cartesian" : "joint") +
+                            " commands");
   }
   const double silent_s = 1e-9 * static_cast<double>(offer.now_ns - holder_heard_ns_);
   if (holder_ != 0 && holder_ != offer.publisher && silent_s <= options_.publisher_timeout_s) {
@@ -59,23 +57,20 @@ bool CommandGate::admitLocked(const Offer& offer, bool active, CommandOutcome& o
     text << "publisher " << std::hex << holder_ << std::dec
          << " holds the command topics (last heard " << static_cast<int>(silent_s * 1000.0)
          << " ms ago); refused until it is silent for " << options_.publisher_timeout_s << " s";
-    rejectLocked(outcome, CommandReason::kOtherPublisher, text.str());
-    return false;
+    return rejectLocked(outcome, CommandReason::kOtherPublisher, text.str());
   }
   holder_ = offer.publisher;
   holder_heard_ns_ = offer.now_ns;
   if (!active) {
-    rejectLocked(outcome, CommandReason::kInactive,
-                 "the controller is inactive (send an activate request)");
-    return false;
+    return rejectLocked(outcome, CommandReason::kInactive,
+                        "the controller is inactive (send an activate request)");
   }
   if (accepted_any_ && offer.stamp_ns <= last_accepted_ns_) {
-    rejectLocked(outcome, commandReason(RejectionReason::kStaleStamp),
-                 "stamp " + stampText(offer.stamp_ns) + " is not newer than the last accepted " +
-                     stampText(last_accepted_ns_));
-    return false;
+    return rejectLocked(outcome, commandReason(RejectionReason::kStaleStamp),
+                        "stamp " + stampText(offer.stamp_ns) +
+                            " is not newer than the last accepted " + stampText(last_accepted_ns_));
   }
-  return true;
+  return CommandReason::kNone;
 }
 
 void CommandGate::acceptLocked(const Offer& offer, CommandOutcome& outcome) {
@@ -85,13 +80,15 @@ void CommandGate::acceptLocked(const Offer& offer, CommandOutcome& outcome) {
   pending_.push_back({stampSeconds(offer.stamp_ns), std::move(outcome)});
 }
 
-void CommandGate::rejectLocked(CommandOutcome& outcome, CommandReason reason, std::string message) {
+CommandReason CommandGate::rejectLocked(CommandOutcome& outcome, CommandReason reason,
+                                        std::string message) {
   outcome.applied = false;
   outcome.reason = reason;
   outcome.message = std::move(message);
   ++counts_.rejected;
   ++counts_.per_reason.at(static_cast<std::size_t>(reason));
   settled_.push_back(std::move(outcome));
+  return reason;
 }
 
 void CommandGate::settle() {

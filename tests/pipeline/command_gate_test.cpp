@@ -48,6 +48,12 @@ class CommandGateTest : public ::testing::Test {
 };
 
 TEST_F(CommandGateTest, AcceptedCommandsWaitForTheCycleThatTakesThem) {
+  EXPECT_EQ(gate_.offer(offerAt(9 * kSecond), true, [] { return accepted(); }),
+            CommandReason::kNone);
+  EXPECT_TRUE(gate_.takeOutcomes().empty()) << "an accepted command is not settled yet";
+  ASSERT_TRUE(gate_.noteCycle(40, 9.0, [] { return std::int64_t{122}; }));
+  gate_.settle();
+  ASSERT_EQ(gate_.takeOutcomes().size(), 1U);
   EXPECT_TRUE(offer(offerAt(10 * kSecond)).empty());
   EXPECT_TRUE(offer(offerAt(11 * kSecond)).empty());
   EXPECT_EQ(gate_.pending(), 2U);
@@ -80,7 +86,7 @@ TEST_F(CommandGateTest, AcceptedCommandsWaitForTheCycleThatTakesThem) {
   outcomes = gate_.takeOutcomes();
   ASSERT_EQ(outcomes.size(), 1U);
   EXPECT_EQ(outcomes[0].cycle, 43U);
-  EXPECT_EQ(gate_.counts().applied, 2U);
+  EXPECT_EQ(gate_.counts().applied, 3U);
   EXPECT_EQ(gate_.pending(), 0U);
 }
 
@@ -118,9 +124,11 @@ TEST_F(CommandGateTest, AStampBeforeTheEpochIsNamedExactly) {
 
 TEST_F(CommandGateTest, ARefusedCommandDoesNotMoveTheStampRule) {
   EXPECT_TRUE(offer(offerAt(5 * kSecond)).empty());
-  gate_.offer(offerAt(7 * kSecond), true, [] {
-    return Verdict{false, RejectionReason::kPoseJump, "target 2 m away"};
-  });
+  EXPECT_EQ(gate_.offer(offerAt(7 * kSecond), true,
+                        [] {
+                          return Verdict{false, RejectionReason::kPoseJump, "target 2 m away"};
+                        }),
+            commandReason(RejectionReason::kPoseJump));
   std::vector<CommandOutcome> jump = gate_.takeOutcomes();
   ASSERT_EQ(jump.size(), 1U);
   EXPECT_EQ(jump[0].reason, commandReason(RejectionReason::kPoseJump));
@@ -153,7 +161,7 @@ TEST_F(CommandGateTest, WrongKindMalformedAndInactiveAreRefusedBeforeTheWrapperI
   };
   Offer joint = offerAt(1 * kSecond);
   joint.kind = CommandKind::kJoint;
-  gate_.offer(joint, true, submit);
+  EXPECT_EQ(gate_.offer(joint, true, submit), CommandReason::kWrongKind);
   Offer malformed = offerAt(2 * kSecond);
   malformed.malformed = "position has 40 entries (at most 16)";
   gate_.offer(malformed, true, submit);

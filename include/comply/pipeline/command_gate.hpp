@@ -87,9 +87,10 @@ class CommandGate {
   /// Passes `offer` through rules 1-5 and then `submit()` (rule 6, returning the wrapper's
   /// Verdict), under the gate's lock; `active` says whether the controller is active. A command
   /// that passes waits until a cycle takes it (noteCycle + settle); one that fails is settled at
-  /// once as rejected.
+  /// once as rejected. Returns why it was refused, kNone when it waits for a cycle (for a host's
+  /// log; the outcome, with its message, comes from takeOutcomes()).
   template <typename Submit>
-  void offer(const Offer& offer, bool active, Submit&& submit);
+  CommandReason offer(const Offer& offer, bool active, Submit&& submit);
 
   /// The control thread, after every cycle: `stamp_in_force_s` is the stamp of the command in
   /// force (the bus's stamp_s). When it moved, the commands up to it were applied by `cycle` at
@@ -134,9 +135,10 @@ class CommandGate {
     double stamp_s;
     CommandOutcome outcome;
   };
-  /// Rules 1-5; false (and the outcome rejected) when one fails.
-  bool admitLocked(const Offer& offer, bool active, CommandOutcome& outcome);
-  void rejectLocked(CommandOutcome& outcome, CommandReason reason, std::string message);
+  /// Rules 1-5: kNone when they pass, else the reason (and the outcome settled as rejected).
+  CommandReason admitLocked(const Offer& offer, bool active, CommandOutcome& outcome);
+  /// Settles `outcome` as rejected for `reason`; returns `reason`.
+  CommandReason rejectLocked(CommandOutcome& outcome, CommandReason reason, std::string message);
   void acceptLocked(const Offer& offer, CommandOutcome& outcome);
 
   GateOptions options_;
@@ -155,18 +157,19 @@ class CommandGate {
 };
 
 template <typename Submit>
-void CommandGate::offer(const Offer& offer, bool active, Submit&& submit) {
+CommandReason CommandGate::offer(const Offer& offer, bool active, Submit&& submit) {
   const std::lock_guard<std::mutex> lock(mutex_);
   CommandOutcome outcome;
-  if (!admitLocked(offer, active, outcome)) {
-    return;
+  if (const CommandReason refused = admitLocked(offer, active, outcome);
+      refused != CommandReason::kNone) {
+    return refused;
   }
   const Verdict verdict = submit();
   if (!verdict.accepted) {
-    rejectLocked(outcome, commandReason(verdict.reason), verdict.message);
-    return;
+    return rejectLocked(outcome, commandReason(verdict.reason), verdict.message);
   }
   acceptLocked(offer, outcome);
+  return CommandReason::kNone;
 }
 
 }  // namespace comply::pipeline

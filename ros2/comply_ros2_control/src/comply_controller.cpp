@@ -271,15 +271,13 @@ void ComplyController<Command>::onCommand(const CommandMessage& message,
   offer.malformed = malformed;
   offer.now_ns = comply::monotonicNanoseconds();
   const bool active = wrapper_->diagnostics().state != comply::pipeline::WrapperState::kInactive;
-  comply::pipeline::Verdict verdict;
-  gate_->offer(offer, active, [&] {
-    verdict = wrapper_->submit(command);
-    return verdict;
-  });
-  if (!verdict.accepted) {
+  const comply::pipeline::CommandReason refused =
+      gate_->offer(offer, active, [&] { return wrapper_->submit(command); });
+  if (refused != comply::pipeline::CommandReason::kNone) {
     RCLCPP_WARN_THROTTLE(
-        get_node()->get_logger(), *get_node()->get_clock(), 1000, "command rejected (%s): %s",
-        std::string(comply::pipeline::toString(verdict.reason)).c_str(), verdict.message.c_str());
+        get_node()->get_logger(), *get_node()->get_clock(), 1000,
+        "command rejected (%s); every outcome, with its reason, is on ~/diagnostics",
+        std::string(comply::pipeline::toString(refused)).c_str());
   }
 }
 
