@@ -3,6 +3,7 @@
 // random loopback domain, this test process as a client with its own participant.
 
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -38,6 +39,9 @@ class Process {
   explicit Process(const std::vector<std::string>& args) {
     pid_ = fork();
     if (pid_ == 0) {
+      // A host outlives a test that ctest killed on its timeout: as an orphan at SCHED_FIFO with
+      // no duration it would hold a core until the machine stops. It dies with this process.
+      prctl(PR_SET_PDEATHSIG, SIGKILL);
       std::vector<char*> argv;
       static std::string program = kComply;
       argv.push_back(program.data());
