@@ -10,6 +10,7 @@
 #include <ostream>
 #include <sstream>
 #include <thread>
+#include <type_traits>
 
 #include "comply/core/input_error.hpp"
 #include "comply/core/text_file.hpp"
@@ -148,8 +149,18 @@ bool handshake(transport::Writer<Message>& writer,
 
 template <typename Message>
 int sendAll(Participant& participant, const SendOptions& options,
-            const std::vector<nlohmann::json>& objects, int dof, std::ostream& out) {
+            const std::vector<nlohmann::json>& objects,
+            const transport::ControllerStateMessage& state, std::ostream& out) {
   using Command = decltype(Message{}.command);
+  const int dof = static_cast<int>(state.position.size());
+  // A group given in part keeps the rest in force: the host's reference for the first command,
+  // then what the command before it left (a stream of positions keeps the orientation).
+  Command in_force;
+  if constexpr (std::is_same_v<Command, CartesianCommand>) {
+    in_force = transport::cartesianReferenceInForce(state, dof);
+  } else {
+    in_force = transport::jointReferenceInForce(state, dof);
+  }
   transport::Writer<Message> writer(participant, options.client.name);
   transport::Reader<transport::DiagnosticsMessage> diagnostics(participant, options.client.name);
   if (!writer.waitForMatch(1, options.client.timeout_s)) {
@@ -170,7 +181,9 @@ int sendAll(Participant& participant, const SendOptions& options,
     read.source = options.file.empty() ? "--json" : options.file;
     read.allow_shorthand = true;  // typed by hand: a block as 1 or 3 numbers, a vector as 1
     read.key_prefix = objects.size() > 1 ? "[" + std::to_string(i) + "]." : "";
+    read.base = in_force;
     Message message{{{}, ""}, schema::fromJson<Command>(objects[i], dof, read).command};
+    in_force = message.command;
     std::this_thread::sleep_until(next);
     next += period;
     message.header.stamp = nextStamp(last);
@@ -218,10 +231,9 @@ int sendCommand(const SendOptions& options, std::ostream& out, std::ostream& err
   const std::vector<nlohmann::json> objects = commandObjects(options);
   const bool joint = options.kind.empty() ? state.command_kind == transport::WireCommandKind::kJoint
                                           : options.kind == "joint";
-  const int dof = static_cast<int>(state.position.size());
-  return joint
-             ? sendAll<transport::JointCommandMessage>(participant, options, objects, dof, out)
-             : sendAll<transport::CartesianCommandMessage>(participant, options, objects, dof, out);
+  return joint ? sendAll<transport::JointCommandMessage>(participant, options, objects, state, out)
+               : sendAll<transport::CartesianCommandMessage>(participant, options, objects, state,
+                                                             out);
 }
 
 }  // namespace comply::app

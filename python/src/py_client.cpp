@@ -115,13 +115,8 @@ bool Client::poll(double wait_s) {
 
 std::int64_t Client::sendCartesian(const py::kwargs& kwargs) {
   // Keywords a group leaves out keep the reference in force (position alone keeps orientation).
-  CartesianCommand base = CartesianCommand::zero(dof_);
-  if (state_) {
-    const auto& p = state_->reference_position;
-    const auto& q = state_->reference_orientation;
-    base.position = Eigen::Vector3d(p[0], p[1], p[2]);
-    base.orientation = Eigen::Quaterniond(q[3], q[0], q[1], q[2]);
-  }
+  const CartesianCommand base =
+      state_ ? transport::cartesianReferenceInForce(*state_, dof_) : CartesianCommand::zero(dof_);
   transport::CartesianCommandMessage message{{{}, ""}, cartesianFromKwargs(kwargs, dof_, base)};
   message.header.stamp = nextStamp();
   if (!cartesian_writer_.write(message)) {
@@ -131,11 +126,8 @@ std::int64_t Client::sendCartesian(const py::kwargs& kwargs) {
 }
 
 std::int64_t Client::sendJoint(const py::kwargs& kwargs) {
-  JointCommand base = JointCommand::zero(dof_);
-  if (state_ && state_->reference_joint_position.size() == static_cast<std::size_t>(dof_)) {
-    base.position =
-        Eigen::Map<const Eigen::VectorXd>(state_->reference_joint_position.data(), dof_);
-  }
+  const JointCommand base =
+      state_ ? transport::jointReferenceInForce(*state_, dof_) : JointCommand::zero(dof_);
   transport::JointCommandMessage message{{{}, ""}, jointFromKwargs(kwargs, dof_, base)};
   message.header.stamp = nextStamp();
   if (!joint_writer_.write(message)) {

@@ -81,4 +81,22 @@ std::string_view toString(RequestType request) {
   return "unknown";
 }
 
+CartesianCommand cartesianReferenceInForce(const ControllerStateMessage& state, int dof) {
+  CartesianCommand command = CartesianCommand::zero(dof);
+  const auto& p = state.reference_position;
+  const auto& q = state.reference_orientation;  // x y z w
+  command.position = Eigen::Vector3d(p[0], p[1], p[2]);
+  command.orientation = Eigen::Quaterniond(q[3], q[0], q[1], q[2]);
+  return command;
+}
+
+JointCommand jointReferenceInForce(const ControllerStateMessage& state, int dof) {
+  JointCommand command = JointCommand::zero(dof);
+  if (state.reference_joint_position.size() == static_cast<std::size_t>(dof)) {
+    command.position =
+        Eigen::Map<const Eigen::VectorXd>(state.reference_joint_position.data(), dof);
+  }
+  return command;
+}
+
 }  // namespace comply::transport

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "live_harness.hpp"
@@ -168,6 +169,35 @@ TEST(LiveHost, ClientCarriesOnAcrossAHostRestart) {
   ASSERT_TRUE(writer.waitForMatch(1, 10.0));
   ASSERT_TRUE(handshake(writer, client, 7)) << "the same writer does not reach the new host";
   EXPECT_TRUE(allApplied(sendTen(*state)));
+}
+
+TEST(LiveHost, APositionAloneFromCommandSendKeepsTheOrientationInForce) {
+  // The wire carries the pose as one group: `comply send` completes a position given alone with
+  // the orientation in force (from the host's state), as the Python client does, instead of
+  // sending the group's identity orientation (a 180 degree pose_jump on the FR3).
+  const int domain = randomDomain();
+  Process host(hostArgs(domain, "partial"));
+  Client client(domain, "partial");
+  const auto before = client.state(20s);
+  ASSERT_TRUE(before);
+  std::ostringstream json;
+  json << "{\"position\": [" << before->reference_position[0] << ", "
+       << before->reference_position[1] + 0.01 << ", " << before->reference_position[2] << "]}";
+  Process sender(
+      {"send", "--domain", std::to_string(domain), "--name", "partial", "--json", json.str()});
+  EXPECT_EQ(sender.wait(20s), 0) << "the command was not applied";
+  std::optional<transport::ControllerStateMessage> after;
+  for (int attempt = 0; attempt < 50; ++attempt) {
+    after = client.state(1s);
+    if (after && after->reference_position[1] > before->reference_position[1] + 0.005) {
+      break;
+    }
+  }
+  ASSERT_TRUE(after);
+  EXPECT_NEAR(after->reference_position[1], before->reference_position[1] + 0.01, 1e-9);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_NEAR(after->reference_orientation[i], before->reference_orientation[i], 1e-9) << i;
+  }
 }
 
 }  // namespace

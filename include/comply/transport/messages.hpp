@@ -142,6 +142,14 @@ struct RequestMessage {
   RequestType request = RequestType::kReset;
 };
 
+/// The command in force as a host's `state` reports it: what a client completes a command given
+/// in part from. The wire carries whole field groups, so a sender that gives a position alone must
+/// send the orientation in force with it (or the group's default would be a jump); every client
+/// (Python's Client, `comply send`) starts from this. Only the pose (joint position) reference is
+/// in the state: other groups start from Command::zero(dof).
+CartesianCommand cartesianReferenceInForce(const ControllerStateMessage& state, int dof);
+JointCommand jointReferenceInForce(const ControllerStateMessage& state, int dof);
+
 /// A received message and who wrote it.
 template <typename Message>
 struct Sample {
