@@ -141,7 +141,7 @@ const QuantitySet kQuantitySets[] = {
 };
 
 const int kRegistered = [] {
-  for (const char* robot : {"fr3", "iiwa14", "rizon4s", "ur5e"}) {
+  for (const std::string& robot : comply::model::availableRobots()) {
     for (const QuantitySet& set : kQuantitySets) {
       const std::string robot_name = robot;
       const Quantity quantities = set.quantities;

@@ -15,6 +15,7 @@
 
 #include "bench_command.hpp"
 #include "comply/host/synthetic_chain.hpp"
+#include "comply/model/robot_description.hpp"
 
 extern char** environ;
 
@@ -87,7 +88,9 @@ double median(std::vector<double> values) {
 
 std::vector<std::string> benchRobots(const std::string& robot_option) {
   if (robot_option == "all") {
-    return {"fr3", "iiwa14", "rizon4s", "ur5e", host::syntheticChainName(12)};
+    std::vector<std::string> robots = model::availableRobots();
+    robots.push_back(host::syntheticChainName(12));
+    return robots;
   }
   std::vector<std::string> robots;
   std::stringstream list(robot_option);

@@ -10,12 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "comply/model/robot_description.hpp"
 #include "results_writer.hpp"
 
 namespace comply::experiments {
 
 struct CrossPlatformOptions {
-  std::vector<std::string> robots{"fr3", "iiwa14", "rizon4s", "ur5e"};
+  std::vector<std::string> robots = model::availableRobots();  ///< default: every robot
   std::filesystem::path config_file;  ///< default config/sim/cartesian_impedance.yaml
   std::filesystem::path task_file;    ///< default examples/sim/cross_platform.yaml
   std::filesystem::path out_dir = "out/cross-platform";

@@ -24,7 +24,19 @@ namespace fs = std::filesystem;
 
 const fs::path kRobotsDir = COMPLY_TEST_ROBOTS_DIR;
 const fs::path kReferenceDir = COMPLY_TEST_REFERENCE_ROBOTS_DIR;
-const std::vector<std::string> kRobots{"fr3", "iiwa14", "rizon4s", "ur5e"};
+/// Every robot folder under robots/ (one with a robot.yaml): a robot added there is checked here
+/// with no line to add.
+std::vector<std::string> shippedRobots() {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(kRobotsDir)) {
+    if (fs::is_regular_file(entry.path() / "robot.yaml")) {
+      names.push_back(entry.path().filename().string());
+    }
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+const std::vector<std::string> kRobots = shippedRobots();
 
 using Matrix3 = std::array<std::array<double, 3>, 3>;
 

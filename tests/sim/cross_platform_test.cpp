@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "comply/model/robot_description.hpp"
 #include "comply/sim/image.hpp"
 #include "cross_platform/cross_platform_experiment.hpp"
 #include "sim_support.hpp"
@@ -21,10 +22,15 @@ TEST(CrossPlatform, EveryRobotReachesTheCommonTargetAndThePicturesShowThem) {
       freshExperiment<experiments::CrossPlatformOptions>("comply_cross_platform_test", progress);
   const std::vector<experiments::CrossPlatformRow> rows = experiments::runCrossPlatform(options);
 
-  ASSERT_EQ(rows.size(), 4U);
-  for (const experiments::CrossPlatformRow& row : rows) {
+  // Every robot on the search path (the four of the paper, and any added as a folder), in order.
+  const std::vector<std::string> robots = model::availableRobots();
+  ASSERT_GE(robots.size(), 4U);
+  ASSERT_EQ(rows.size(), robots.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const experiments::CrossPlatformRow& row = rows[i];
     SCOPED_TRACE(row.robot);
-    EXPECT_EQ(row.dof, row.robot == "ur5e" ? 6 : 7);
+    EXPECT_EQ(row.robot, robots[i]);
+    EXPECT_EQ(row.dof, static_cast<int>(model::loadRobotDescription(row.robot).joints.size()));
     EXPECT_LT(row.position_error_mm, 2.0);
     EXPECT_LT(row.orientation_error_deg, 1.0);
     EXPECT_FALSE(std::isnan(row.settle_time_s));
@@ -37,13 +43,16 @@ TEST(CrossPlatform, EveryRobotReachesTheCommonTargetAndThePicturesShowThem) {
   ASSERT_TRUE(results_file);
   const nlohmann::json results = nlohmann::json::parse(results_file);
   ASSERT_TRUE(results.is_array());
-  ASSERT_EQ(results.size(), 4U);
-  EXPECT_EQ(results[1]["robot"], "iiwa14");
-  EXPECT_DOUBLE_EQ(results[3]["position_error_mm"].get<double>(), rows[3].position_error_mm);
+  ASSERT_EQ(results.size(), rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(results[i]["robot"], robots[i]);
+    EXPECT_DOUBLE_EQ(results[i]["position_error_mm"].get<double>(), rows[i].position_error_mm);
+  }
 
-  // Side by side: four 640 x 480 frames with 8 px gaps.
+  // Side by side: one 640 x 480 frame per robot with 8 px gaps.
   const sim::Image combined = sim::readPng(options.out_dir / "cross_platform.png");
-  EXPECT_EQ(combined.width, 4 * 640 + 3 * 8);
+  const auto frames = static_cast<int>(rows.size());
+  EXPECT_EQ(combined.width, frames * 640 + (frames - 1) * 8);
   EXPECT_EQ(combined.height, 480);
   // Each robot's frame is mostly not sky, and the robot moved between start and end.
   for (const std::string robot : {"fr3", "ur5e"}) {
