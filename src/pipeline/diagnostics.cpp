@@ -64,6 +64,18 @@ void Diagnostics::setRejection(const char* prefix, const char* detail) noexcept 
   rejection_.write(prefix, detail, events_.fetch_add(1, std::memory_order_relaxed) + 1);
 }
 
+PassivitySnapshot Diagnostics::passivity() const noexcept {
+  PassivitySnapshot result;
+  result.enabled = passivity_enabled.load(std::memory_order_relaxed);
+  result.tank_energy_j = tank_energy_j.load(std::memory_order_relaxed);
+  result.nullspace_tank_energy_j = nullspace_tank_energy_j.load(std::memory_order_relaxed);
+  result.injected_j = injected_j.load(std::memory_order_relaxed);
+  result.dissipated_j = dissipated_j.load(std::memory_order_relaxed);
+  result.refused_j = refused_j.load(std::memory_order_relaxed);
+  result.gain_fraction = gain_fraction.load(std::memory_order_relaxed);
+  return result;
+}
+
 DiagnosticsSnapshot Diagnostics::snapshot() const {
   DiagnosticsSnapshot result;
   result.state = state.load();
@@ -76,6 +88,7 @@ DiagnosticsSnapshot Diagnostics::snapshot() const {
   result.effort_limit_hits = effort_limit_hits.load();
   result.faults = faults.load();
   result.watchdog_timeouts = watchdog_timeouts.load();
+  result.passivity = passivity();
   auto [fault, fault_order] = fault_.read();
   auto [rejection, rejection_order] = rejection_.read();
   result.last_error = fault_order >= rejection_order ? fault : rejection;

@@ -18,6 +18,18 @@ namespace comply::pipeline {
 enum class WrapperState : std::uint8_t { kInactive, kActive, kFault };
 std::string_view toString(WrapperState state);
 
+/// The gain guard's account (passivity.* options: the energy tank), as of the last cycle. Totals
+/// count from activation. Every field is 0 (and gain_fraction 1) while the tank is off.
+struct PassivitySnapshot {
+  bool enabled = false;                  ///< passivity.enabled
+  double tank_energy_j = 0.0;            ///< [J] task account (Cartesian or joint stiffness)
+  double nullspace_tank_energy_j = 0.0;  ///< [J] nullspace account (Cartesian control)
+  double injected_j = 0.0;     ///< [J] total paid for stiffness and task-frame changes
+  double dissipated_j = 0.0;   ///< [J] total credited from the damping (a lower bound)
+  double refused_j = 0.0;      ///< [J] total the tank declined to pay (changes scaled back)
+  double gain_fraction = 1.0;  ///< [-] fraction of the commanded stiffness change in force
+};
+
 struct DiagnosticsSnapshot {
   WrapperState state = WrapperState::kInactive;
   std::uint64_t cycles = 0;
@@ -27,6 +39,7 @@ struct DiagnosticsSnapshot {
   std::uint64_t effort_limit_hits = 0;  ///< joint-cycles clipped by the effort limit
   std::uint64_t faults = 0;
   std::uint64_t watchdog_timeouts = 0;
+  PassivitySnapshot passivity;
   std::string last_fault;      ///< why the controller last entered FAULT ("" if never)
   std::string last_rejection;  ///< why the last rejected command was rejected ("" if none)
   std::string last_error;      ///< the newer of the two
@@ -59,12 +72,22 @@ class Diagnostics {
   std::atomic<std::uint64_t> effort_limit_hits{0};
   std::atomic<std::uint64_t> faults{0};
   std::atomic<std::uint64_t> watchdog_timeouts{0};
+  /// The gain guard's account, written by the cycle (see PassivitySnapshot).
+  std::atomic<bool> passivity_enabled{false};
+  std::atomic<double> tank_energy_j{0.0};
+  std::atomic<double> nullspace_tank_energy_j{0.0};
+  std::atomic<double> injected_j{0.0};
+  std::atomic<double> dissipated_j{0.0};
+  std::atomic<double> refused_j{0.0};
+  std::atomic<double> gain_fraction{1.0};
 
   /// The cycle's side (or the lifecycle's, between cycles): why FAULT was entered.
   void setFault(const char* prefix, const char* detail) noexcept;
   /// The intake's side (one sender at a time): why a command was rejected.
   void setRejection(const char* prefix, const char* detail) noexcept;
   [[nodiscard]] DiagnosticsSnapshot snapshot() const;
+  /// The gain guard's account alone: no allocation, so the real-time thread may read it too.
+  [[nodiscard]] PassivitySnapshot passivity() const noexcept;
 
  private:
   std::atomic<std::uint64_t> events_{0};
