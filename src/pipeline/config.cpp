@@ -258,6 +258,23 @@ YAML::Node controllerParameters(const std::string& yaml_text, const std::string&
   return parameters;
 }
 
+/// The tank's energies must be ordered floor <= initial <= ceiling, or it would start empty or
+/// overfull: refused here, naming the option, rather than clamped without a word.
+void checkTankBounds(const PassivityConfig& tank, const Reporter& report) {
+  if (!(tank.tank_min_j < tank.tank_max_j)) {
+    report.fail(InputErrc::kInconsistent, "passivity.tank_min_j",
+                "must be below passivity.tank_max_j");
+  }
+  if (tank.tank_initial_j < tank.tank_min_j || tank.tank_initial_j > tank.tank_max_j) {
+    report.fail(InputErrc::kInconsistent, "passivity.tank_initial_j",
+                "must lie between passivity.tank_min_j and passivity.tank_max_j");
+  }
+  if (tank.nullspace_tank_initial_j > tank.nullspace_tank_max_j) {
+    report.fail(InputErrc::kInconsistent, "passivity.nullspace_tank_initial_j",
+                "must not exceed passivity.nullspace_tank_max_j");
+  }
+}
+
 }  // namespace
 
 WrapperConfig parseWrapperText(const std::string& yaml_text, const std::string& source,
@@ -270,6 +287,7 @@ WrapperConfig parseWrapperText(const std::string& yaml_text, const std::string& 
   readNames(parameters, report, config);
   rejectUnknownKeys(parameters, "", report);
   readOptions(parameters, report, config);
+  checkTankBounds(config.passivity, report);
   config.plugin_parameters = readPluginParameters(parameters, report);
   const YAML::Node initial = parameters["initial"];
   if (initial && !initial.IsMap()) {

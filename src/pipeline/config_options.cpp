@@ -147,12 +147,66 @@ void addLimitAndShapingOptions(std::vector<Option>& table) {
              0.0, 10.0, false, [](WrapperConfig& c, double v) { c.frozen_state_timeout_s = v; }));
 }
 
+Option rate(const char* key, const char* default_text, const char* comment,
+            double GainRampConfig::*member) {
+  return number(key, default_text, comment, 0.0, kInfinity, true,
+                [member](WrapperConfig& c, double v) { c.gain_ramps.*member = v; });
+}
+
+Option energy(const char* key, const char* default_text, const char* comment,
+              double PassivityConfig::*member) {
+  return number(key, default_text, comment, 0.0, 1e6, false,
+                [member](WrapperConfig& c, double v) { c.passivity.*member = v; });
+}
+
+// What stands between the gains a command asks for and the gains the law sees: rate limits, and
+// the energy tank that keeps a streamed stiffness or task-frame schedule from injecting energy.
+void addGainOptions(std::vector<Option>& table) {
+  table.push_back(spaced(flag("gain_ramps.enabled", "false",
+                              "a step in stiffness, damping or task frame becomes a ramp",
+                              [](WrapperConfig& c, bool v) { c.gain_ramps.enabled = v; })));
+  table.push_back(rate("gain_ramps.translational_stiffness_per_s", "10000.0", "N/m per s",
+                       &GainRampConfig::translational_stiffness_per_s));
+  table.push_back(rate("gain_ramps.rotational_stiffness_per_s", "1000.0", "N m/rad per s",
+                       &GainRampConfig::rotational_stiffness_per_s));
+  table.push_back(rate("gain_ramps.joint_stiffness_per_s", "2000.0",
+                       "N m/rad per s: joint control and the nullspace",
+                       &GainRampConfig::joint_stiffness_per_s));
+  table.push_back(rate("gain_ramps.translational_damping_per_s", "1000.0", "N s/m per s",
+                       &GainRampConfig::translational_damping_per_s));
+  table.push_back(rate("gain_ramps.rotational_damping_per_s", "100.0", "N m s/rad per s",
+                       &GainRampConfig::rotational_damping_per_s));
+  table.push_back(rate("gain_ramps.joint_damping_per_s", "200.0",
+                       "N m s/rad per s: joint control and the nullspace",
+                       &GainRampConfig::joint_damping_per_s));
+  table.push_back(
+      rate("gain_ramps.damping_ratio_per_s", "5.0", "1/s", &GainRampConfig::damping_ratio_per_s));
+  table.push_back(rate("gain_ramps.task_frame_rad_per_s", "1.0", "rad/s of the task frame",
+                       &GainRampConfig::task_frame_rad_per_s));
+
+  table.push_back(spaced(flag("passivity.enabled", "false",
+                              "energy tank: stiffness and task-frame changes only as paid for",
+                              [](WrapperConfig& c, bool v) { c.passivity.enabled = v; })));
+  table.push_back(energy("passivity.tank_initial_j", "1.0", "J in the tank on activation",
+                         &PassivityConfig::tank_initial_j));
+  table.push_back(energy("passivity.tank_max_j", "2.0", "J: the damping refills it up to here",
+                         &PassivityConfig::tank_max_j));
+  table.push_back(
+      energy("passivity.tank_min_j", "0.01", "J: never spent below", &PassivityConfig::tank_min_j));
+  table.push_back(energy("passivity.nullspace_tank_initial_j", "0.5",
+                         "J: the nullspace's own account (Cartesian control)",
+                         &PassivityConfig::nullspace_tank_initial_j));
+  table.push_back(
+      energy("passivity.nullspace_tank_max_j", "1.0", "J", &PassivityConfig::nullspace_tank_max_j));
+}
+
 // The sections are added in the order the YAML file prints them; the order is part of the file.
 std::vector<Option> makeTable() {
   std::vector<Option> table;
   addCommandOptions(table);
   addCompensationOptions(table);
   addLimitAndShapingOptions(table);
+  addGainOptions(table);
   return table;
 }
 

@@ -38,13 +38,15 @@ Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
                             parameters_.effort_limit}),
       measured_(MeasuredPose{}),
       in_force_(emptyBus(resolved_->command_kind)),
-      active_(initialBus(*resolved_)) {
+      active_(initialBus(*resolved_)),
+      gains_(parameters_.gain_ramps, parameters_.passivity) {
   data_.payload = parameters_.payload;
   plugin_ = std::make_unique<plugin::PluginInstance>(resolved_->plugin, dof_,
                                                      resolved_->config.plugin_parameters);
   // The pose is always computed (validation and re-anchoring need it) and gravity too (the FAULT
   // state holds the arm against it even when gravity compensation is off).
   quantities_ = quantitiesFor(plugin_->requiredQuantities()) | Quantity::kPose | Quantity::kGravity;
+  quantities_ = quantities_ | gains_.quantities(resolved_->cartesian());
   if (parameters_.payload_compensation) {
     quantities_ = quantities_ | Quantity::kPayloadGravity;
   }
@@ -93,6 +95,8 @@ void Controller::activate(const JointState& state) {
   }
   plugin_->trialStep(input_, busPointer(seeded));  // throws before anything changes
   active_ = seeded;
+  gains_.reset(active_, data_, state_, diagnostics_);
+  in_force_changed_ = false;
   // Start the rate limit from what the joints carry now, so the first torque does not jump. Of
   // that, a robot that compensates gravity itself supplies the gravity: comply's share is the rest.
   torque_ = state_.effort.allFinite() ? state_.effort : data_.gravity.head(dof_);
@@ -126,7 +130,7 @@ const CommandBus& Controller::commandInForce() {
 }
 
 comply_status Controller::stepPluginOnly(comply_output& output) noexcept {
-  return plugin_->step(input_, busPointer(active_), output);
+  return plugin_->step(input_, busPointer(lawBus()), output);
 }
 
 void Controller::advanceClock(double period_s) noexcept {
@@ -151,6 +155,7 @@ MeasuredPose Controller::currentPose() const noexcept {
 
 void Controller::publishInForce() noexcept {
   in_force_.publishFromSoleWriter(active_);
+  in_force_changed_ = true;
 }
 
 }  // namespace comply::pipeline

@@ -28,6 +28,7 @@ CycleStatus Controller::update(const JointState& state, double period_s,
     diagnostics_.state.store(WrapperState::kActive, std::memory_order_relaxed);
   }
   reset_pending_ = false;
+  guardGains();    // cycle_gains.cpp
   if (!runLaw()) {  // cycle_law.cpp
     return hold(torque);
   }

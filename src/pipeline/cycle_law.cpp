@@ -8,7 +8,7 @@ namespace comply::pipeline {
 
 bool Controller::runLaw() noexcept {
   output_.message[0] = '\0';
-  if (plugin_->step(input_, busPointer(active_), output_) != COMPLY_OK) {
+  if (plugin_->step(input_, busPointer(lawBus()), output_) != COMPLY_OK) {
     // A plugin may leave its message unterminated; never read past the buffer.
     output_.message[COMPLY_MESSAGE_CAPACITY - 1] = '\0';
     enterFault("plugin: ", output_.message[0] != '\0' ? output_.message : "step failed");

@@ -101,6 +101,8 @@ std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig&
   parameters.filter_alpha = config.filter_alpha;
   parameters.torque_rate_limit = toJointVector(config.torque_rate_limit, dof);
   parameters.effort_limit = effortLimits(config, model);
+  parameters.gain_ramps = config.gain_ramps;
+  parameters.passivity = config.passivity;
   parameters.fault_damping = toJointVector(config.fault_damping, dof);
   parameters.frozen_state_timeout_s = config.frozen_state_timeout_s;
   return resolved;

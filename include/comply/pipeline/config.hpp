@@ -55,6 +55,32 @@ struct ValidationConfig {
   double gain_tolerance = 1e-9;            ///< symmetry / PSD tolerance, relative
 };
 
+/// Rate limits on the gains the law sees (gain_ramps.*): a step in a command becomes a ramp. Each
+/// rate bounds every entry of its matrix or vector per second; matrices move along the straight
+/// line to the command, so they stay symmetric positive semi-definite.
+struct GainRampConfig {
+  bool enabled = false;
+  double translational_stiffness_per_s = 10000.0;  ///< N/m per s
+  double rotational_stiffness_per_s = 1000.0;      ///< N m/rad per s
+  double joint_stiffness_per_s = 2000.0;           ///< N m/rad per s: joint law and nullspace
+  double translational_damping_per_s = 1000.0;     ///< N s/m per s
+  double rotational_damping_per_s = 100.0;         ///< N m s/rad per s
+  double joint_damping_per_s = 200.0;              ///< N m s/rad per s: joint law and nullspace
+  double damping_ratio_per_s = 5.0;                ///< 1/s
+  double task_frame_rad_per_s = 1.0;               ///< angular rate of the task frame
+};
+
+/// The energy tank (passivity.*): it pays for the energy a stiffness or task-frame change injects
+/// into the springs and refuses, smoothly, what it cannot pay (gain_guard.hpp).
+struct PassivityConfig {
+  bool enabled = false;
+  double tank_initial_j = 1.0;            ///< T0 of the task account
+  double tank_max_j = 2.0;                ///< ceiling: the damping refills it up to here
+  double tank_min_j = 0.01;               ///< floor: never spent below
+  double nullspace_tank_initial_j = 0.5;  ///< the nullspace's own account
+  double nullspace_tank_max_j = 1.0;
+};
+
 struct WrapperConfig {
   std::string name;    ///< controller name (top-level YAML key)
   std::string source;  ///< where it was read from (file name), for messages
@@ -94,6 +120,9 @@ struct WrapperConfig {
   /// A joint state unchanged bit for bit this long while the torque changes is a stale sensor
   /// stream (FAULT); 0: never.
   double frozen_state_timeout_s = 0.1;
+
+  GainRampConfig gain_ramps;
+  PassivityConfig passivity;
 
   /// Initial command (gains, task frame); the pose/joint reference is seeded on activation.
   /// Sized by completeForRobot().

@@ -6,6 +6,7 @@
 //                measured pose                                  -> FAULT on a bad state
 //   commands     take every command the intake queued, merged by field mask
 //   watchdog     no command for command_timeout_s: hold (stop the motion) or re-anchor
+//   gains        ramps and the energy tank between the commanded gains and the law's (optional)
 //   law          plugin step, finite check                      -> FAULT on failure
 //   compensate   gravity, payload, friction, soft joint limits
 //   shape        low-pass, finite check, torque-rate limit, effort limit
@@ -31,6 +32,7 @@
 #include "comply/model/update.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/diagnostics.hpp"
+#include "comply/pipeline/gain_guard.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/pipeline/torque_shaper.hpp"
 #include "comply/plugin/loader.hpp"
@@ -105,6 +107,11 @@ class Controller {
   /// The plugin input of the last cycle and the bus in force (real-time thread; benchmarks).
   [[nodiscard]] const comply_input& input() const noexcept { return input_; }
   [[nodiscard]] const CommandBus& activeCommand() const noexcept { return active_; }
+  /// What the law reads: the command in force with the gains the gain stage let through (the
+  /// command in force itself when the stage is off). Real-time thread, or between cycles.
+  [[nodiscard]] const CommandBus& lawBus() const noexcept {
+    return gains_.enabled() ? gains_.lawBus() : active_;
+  }
   /// The stamp [s] of the command in force (what CommandGate::noteCycle() is told after a cycle).
   [[nodiscard]] double stampInForce() const noexcept {
     return std::visit([](const auto& bus) noexcept { return bus.stamp_s; }, active_);
@@ -120,6 +127,7 @@ class Controller {
   bool measure(const JointState& state) noexcept;
   void takeCommands() noexcept;
   void watchdog() noexcept;
+  void guardGains() noexcept;
   bool runLaw() noexcept;
   void compensate() noexcept;
   bool shape() noexcept;
@@ -152,6 +160,8 @@ class Controller {
 
   // Cycle state: real-time thread only (or the lifecycle, between cycles).
   CommandBus active_;
+  GainGuard gains_;
+  bool in_force_changed_ = false;  // active_ changed since the gain stage last saw it
   bool reset_pending_ = false;
   JointState state_;
   bool state_usable_ = false;  // this cycle's state passed measure(), so input_ is current

@@ -53,6 +53,8 @@ struct CycleParameters {
   JointVector effort_limit;       ///< [N m]
   JointVector fault_damping;      ///< [N m s/rad]
   double frozen_state_timeout_s = 0.1;
+  GainRampConfig gain_ramps;
+  PassivityConfig passivity;
 };
 
 struct ResolvedController {
