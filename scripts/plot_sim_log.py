@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Plots a `comply sim` log: tracking error, joint torques and tool contact force over time.
+"""Plots a `comply sim` log: tracking error, joint torques, tool contact force and, when the
+energy tank was on (its columns are in the log), the tank's energies and gain fraction over time.
 
 usage: plot_sim_log.py log.csv plot.png
 """
@@ -35,8 +36,9 @@ def main():
         for fx, fy, fz in zip(data["contact_fx"], data["contact_fy"], data["contact_fz"])
     ]
     in_contact = max(force, default=0.0) > 1e-6
+    tank = "tank_energy_j" in data  # log.csv has the tank's columns only when it was on
 
-    rows = 3 if in_contact else 2
+    rows = 2 + int(in_contact) + int(tank)
     figure, axes = plt.subplots(rows, 1, sharex=True, figsize=(9, 2.6 * rows + 0.6))
     if cartesian:
         axes[0].plot(time, data["position_error_mm"], label="position [mm]", color="tab:blue")
@@ -61,6 +63,20 @@ def main():
         axes[2].plot(time, force, color="tab:red")
         axes[2].set_ylabel("tool contact force [N]")
         axes[2].grid(alpha=0.3)
+
+    if tank:
+        axes[-1].plot(time, data["tank_energy_j"], label="task tank", color="tab:green")
+        if cartesian:
+            axes[-1].plot(time, data["nullspace_tank_energy_j"], label="nullspace tank",
+                          color="tab:olive")
+        axes[-1].set_ylabel("tank energy [J]")
+        axes[-1].legend(fontsize="small", loc="upper left")
+        twin = axes[-1].twinx()
+        twin.plot(time, data["gain_fraction"], color="tab:purple")
+        twin.set_ylabel("gain fraction [-]", color="tab:purple")
+        twin.set_ylim(-0.05, 1.05)
+        axes[-1].set_title("energy tank (gain fraction: commanded stiffness change in force)")
+        axes[-1].grid(alpha=0.3)
     axes[-1].set_xlabel("time [s]")
     figure.tight_layout()
     figure.savefig(sys.argv[2], dpi=110)

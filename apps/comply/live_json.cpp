@@ -28,7 +28,14 @@ nlohmann::json toJson(const transport::ControllerStateMessage& s) {
           {"reference_position", s.reference_position},
           {"reference_orientation", s.reference_orientation},
           {"reference_joint_position", s.reference_joint_position},
-          {"contact_wrench", s.contact_wrench}};
+          {"contact_wrench", s.contact_wrench},
+          {"passivity", s.passivity},
+          {"tank_energy", s.tank_energy_j},
+          {"nullspace_tank_energy", s.nullspace_tank_energy_j},
+          {"energy_injected", s.energy_injected_j},
+          {"energy_dissipated", s.energy_dissipated_j},
+          {"energy_refused", s.energy_refused_j},
+          {"gain_fraction", s.gain_fraction}};
 }
 
 nlohmann::json toJson(const transport::CommandOutcomeMessage& o) {

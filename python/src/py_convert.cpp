@@ -75,6 +75,16 @@ py::array_t<double> array(const double* values, std::size_t size) {
   return out;
 }
 
+void addPassivity(const pipeline::PassivitySnapshot& passivity, py::dict& d) {
+  d["passivity"] = passivity.enabled;
+  d["tank_energy"] = passivity.tank_energy_j;
+  d["nullspace_tank_energy"] = passivity.nullspace_tank_energy_j;
+  d["energy_injected"] = passivity.injected_j;
+  d["energy_dissipated"] = passivity.dissipated_j;
+  d["energy_refused"] = passivity.refused_j;
+  d["gain_fraction"] = passivity.gain_fraction;
+}
+
 py::dict toDict(const transport::ControllerStateMessage& s) {
   py::dict d;
   d["stamp"] = s.header.stamp.seconds();
@@ -93,6 +103,14 @@ py::dict toDict(const transport::ControllerStateMessage& s) {
   d["reference_orientation"] = array(s.reference_orientation);
   d["reference_joint_position"] = array(s.reference_joint_position);
   d["contact_wrench"] = array(s.contact_wrench);
+  addPassivity({.enabled = s.passivity,
+                .tank_energy_j = s.tank_energy_j,
+                .nullspace_tank_energy_j = s.nullspace_tank_energy_j,
+                .injected_j = s.energy_injected_j,
+                .dissipated_j = s.energy_dissipated_j,
+                .refused_j = s.energy_refused_j,
+                .gain_fraction = s.gain_fraction},
+               d);
   return d;
 }
 

@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "comply/core/commands.hpp"
+#include "comply/pipeline/diagnostics.hpp"
 #include "comply/transport/messages.hpp"
 
 namespace comply::python {
@@ -33,6 +34,10 @@ template <typename Container>
 py::array_t<double> array(const Container& values) {
   return array(values.data(), static_cast<std::size_t>(values.size()));
 }
+
+/// The energy tank's account under ControllerState's names (tank_energy [J], ..., gain_fraction):
+/// the Client's state and the Sim's observation carry the same keys.
+void addPassivity(const pipeline::PassivitySnapshot& passivity, py::dict& d);
 
 py::dict toDict(const transport::ControllerStateMessage& state);
 py::dict toDict(const transport::CommandOutcomeMessage& outcome);

@@ -95,6 +95,10 @@ struct Sim::Session {
     obs["tcp_position"] = array(p);
     obs["tcp_orientation"] = array(q.coeffs());  // Eigen stores x y z w
     obs["contact_wrench"] = array(plant.toolContactWrench());
+    addPassivity(
+        std::visit([](const auto& e) { return e->wrapper.controller().diagnostics().passivity(); },
+                   episode),
+        obs);
     return obs;
   }
 };

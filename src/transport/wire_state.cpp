@@ -85,6 +85,13 @@ dds_return_t Wire<ControllerStateMessage>::write(dds_entity_t writer,
   copyArray(message.reference_orientation, out.reference_orientation);
   out.reference_joint_position = borrow<dds_sequence_double>(message.reference_joint_position);
   copyArray(message.contact_wrench, out.contact_wrench);
+  out.passivity = message.passivity;
+  out.tank_energy = message.tank_energy_j;
+  out.nullspace_tank_energy = message.nullspace_tank_energy_j;
+  out.energy_injected = message.energy_injected_j;
+  out.energy_dissipated = message.energy_dissipated_j;
+  out.energy_refused = message.energy_refused_j;
+  out.gain_fraction = message.gain_fraction;
   return dds_write(writer, &out);
 }
 
@@ -113,6 +120,13 @@ void Wire<ControllerStateMessage>::read(const void* sample, ControllerStateMessa
   copyArray(in.reference_orientation, message.reference_orientation);
   message.reference_joint_position = copyOf<double>(in.reference_joint_position);
   copyArray(in.contact_wrench, message.contact_wrench);
+  message.passivity = in.passivity;
+  message.tank_energy_j = in.tank_energy;
+  message.nullspace_tank_energy_j = in.nullspace_tank_energy;
+  message.energy_injected_j = in.energy_injected;
+  message.energy_dissipated_j = in.energy_dissipated;
+  message.energy_refused_j = in.energy_refused;
+  message.gain_fraction = in.gain_fraction;
 }
 
 template <>

@@ -1,7 +1,8 @@
 // A live host against senders that die, compete or outlive it: the watchdog holds within the
 // command timeout of a killed sender (`comply send`), a second publisher is refused until the first
 // goes silent (on DDS and in process, live_harness.hpp), and a client carries on across a restart
-// of `comply run` (SIGTERM: exit 0).
+// of `comply run` (SIGTERM: exit 0). And the state message the host builds from a cycle's sample
+// carries the energy tank's account.
 
 #include <gtest/gtest.h>
 
@@ -11,6 +12,8 @@
 #include <sstream>
 #include <thread>
 
+#include "../../src/host/live/live_messages.hpp"
+#include "comply/host/controller_setup.hpp"
 #include "live_harness.hpp"
 #include "live_support.hpp"
 
@@ -198,6 +201,32 @@ TEST(LiveHost, APositionAloneFromCommandSendKeepsTheOrientationInForce) {
   for (std::size_t i = 0; i < 4; ++i) {
     EXPECT_NEAR(after->reference_orientation[i], before->reference_orientation[i], 1e-9) << i;
   }
+}
+
+TEST(LiveState, CarriesTheTanksAccount) {
+  const auto resolved = pipeline::resolveController(host::simControllerConfig(
+      "fr3", "",
+      (std::filesystem::path(COMPLY_SOURCE_DIR) / "config" / "sim" / "cartesian_impedance.yaml")
+          .string()));
+  host::StateSample sample;
+  sample.joints = JointState::zero(resolved->dof);
+  sample.torque.setZero(resolved->dof);
+  // Every field away from its default, each value distinct, so a swap shows.
+  sample.passivity = {.enabled = true,
+                      .tank_energy_j = 0.75,
+                      .nullspace_tank_energy_j = 0.25,
+                      .injected_j = 1.5,
+                      .dissipated_j = 2.125,
+                      .refused_j = 0.0625,
+                      .gain_fraction = 0.4};
+  const transport::ControllerStateMessage message = host::stateMessage(sample, *resolved);
+  EXPECT_TRUE(message.passivity);
+  EXPECT_EQ(message.tank_energy_j, 0.75);
+  EXPECT_EQ(message.nullspace_tank_energy_j, 0.25);
+  EXPECT_EQ(message.energy_injected_j, 1.5);
+  EXPECT_EQ(message.energy_dissipated_j, 2.125);
+  EXPECT_EQ(message.energy_refused_j, 0.0625);
+  EXPECT_EQ(message.gain_fraction, 0.4);
 }
 
 }  // namespace

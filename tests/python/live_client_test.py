@@ -40,6 +40,9 @@ def main():
     with running_host(cli, source, "py") as (_, domain):
         client = comply.Client(name="py", domain=domain, timeout=30.0)
         state = client.state()
+        tank = ("passivity", "tank_energy", "nullspace_tank_energy", "energy_injected",
+                "energy_dissipated", "energy_refused", "gain_fraction")
+        assert all(key in state for key in tank), sorted(state)
         start_position = state["tcp_position"].copy()
         orientation = state["tcp_orientation"]
         expected = {}

@@ -7,12 +7,26 @@ import numpy as np
 import comply
 
 
+TANK_KEYS = ("passivity", "tank_energy", "nullspace_tank_energy", "energy_injected",
+             "energy_dissipated", "energy_refused", "gain_fraction")
+
+
+def check_tank(obs):
+    """The energy tank's account under ControllerState's names: 0 (gain_fraction 1) when off."""
+    missing = [key for key in TANK_KEYS if key not in obs]
+    assert not missing, f"missing {missing} in {sorted(obs)}"
+    if not obs["passivity"]:
+        assert obs["gain_fraction"] == 1.0, obs
+        assert all(obs[key] == 0.0 for key in TANK_KEYS[1:-1]), obs
+
+
 def main():
     source = sys.argv[1]
     sim = comply.Sim(f"{source}/config/sim/cartesian_impedance.yaml", robot="fr3",
                      steps_per_action=50)
     obs = sim.reset()
     assert obs["position"].shape == (sim.dof,) and sim.cartesian
+    check_tank(obs)
     target = obs["tcp_position"] + np.array([0.0, 0.03, -0.05])
     for _ in range(60):  # 3 s at 20 Hz
         result = sim.step({"position": target, "stiffness_translational": [2000, 2000, 2000]})
@@ -20,6 +34,7 @@ def main():
         obs, reward, terminated, truncated, info = result
         assert info["accepted"], info
         assert not terminated and not truncated
+    check_tank(obs)
     error = np.linalg.norm(obs["tcp_position"] - target)
     assert error < 0.002, f"TCP {obs['tcp_position']} is {error * 1000:.1f} mm from {target}"
     assert abs(sim.time - 3.0) < 1e-6, sim.time

@@ -133,6 +133,8 @@ TEST_F(SimCli, GoodRunWritesLogSnapshotsAndSummary) {
   std::string header;
   std::getline(csv, header);
   EXPECT_EQ(header.rfind("time_s,q0,", 0), 0U) << header;
+  // The tank is off: no tank columns, the contact wrench last (log.csv as it always was).
+  EXPECT_EQ(header.substr(header.rfind(',') + 1), "contact_tz") << header;
   std::size_t rows = 0;
   for (std::string line; std::getline(csv, line);) {
     ++rows;

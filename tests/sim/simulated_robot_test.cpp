@@ -1,5 +1,6 @@
 // The simulated hardware on its own: determinism, effort clamping, refusal of bad torques, the
-// tool contact wrench against stiffness x penetration, and scene-file errors.
+// tool contact wrench against stiffness x penetration, and scene-file errors. Then the run's log:
+// the energy tank's columns in log.csv only when the tank is on.
 
 #include "comply/sim/simulated_robot.hpp"
 
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <sstream>
 
 #include "comply/host/sim_session.hpp"
 #include "comply/model/robot_description.hpp"
@@ -140,6 +142,9 @@ TEST(SimulatedRobot, ProbeForceEqualsStiffnessTimesPenetration) {
   EXPECT_LT(std::hypot(wrench[0], wrench[1]), 0.1 * expected_n);
   // Before the approach there is no contact at all.
   EXPECT_EQ(result.log.contact_wrench.front().norm(), 0.0);
+  // The tank's account is logged every cycle; this controller does not turn the tank on.
+  EXPECT_EQ(result.log.passivity.size(), result.log.size());
+  EXPECT_FALSE(result.log.passivityEnabled());
 }
 
 TEST(SimulatedRobot, ToolFragmentWithoutMujocoincludeRootIsRefused) {
@@ -173,6 +178,45 @@ TEST(SimulatedRobot, MujocoErrorsInAFragmentAreReported) {
         << error.what();
   }
   std::filesystem::remove(file);
+}
+
+/// A one-row Cartesian log of a 2-joint arm, with the tank's account `tank`.
+host::SimLog oneRowLog(const pipeline::PassivitySnapshot& tank) {
+  host::SimLog log;
+  log.dof = 2;
+  log.time_s = {0.001};
+  log.position = log.velocity = log.torque = {JointVector::Zero(2)};
+  log.tcp_position = log.reference_position = {Eigen::Vector3d::Zero()};
+  log.tcp_orientation = log.reference_orientation = {Eigen::Quaterniond::Identity()};
+  log.contact_wrench = {Vector6d::Zero()};
+  log.passivity = {tank};
+  return log;
+}
+
+std::string csvOf(const host::SimLog& log) {
+  std::ostringstream out;
+  host::writeLogHeader(log, out);
+  host::writeLogRow(log, 0, out);
+  return out.str();
+}
+
+TEST(SimLog, TankColumnsOnlyWhenTheTankIsOn) {
+  const std::string off = csvOf(oneRowLog({}));
+  EXPECT_NE(off.find(",contact_tz\n"), std::string::npos) << off;  // log.csv as it always was
+  EXPECT_EQ(off.find("tank"), std::string::npos) << off;
+
+  const std::string on = csvOf(oneRowLog({.enabled = true,
+                                          .tank_energy_j = 0.75,
+                                          .nullspace_tank_energy_j = 0.25,
+                                          .injected_j = 1.5,
+                                          .dissipated_j = 2.125,
+                                          .refused_j = 0.0625,
+                                          .gain_fraction = 0.4}));
+  EXPECT_NE(on.find(",contact_tz,tank_energy_j,nullspace_tank_energy_j,energy_injected_j,"
+                    "energy_dissipated_j,energy_refused_j,gain_fraction\n"),
+            std::string::npos)
+      << on;
+  EXPECT_NE(on.find(",0.75,0.25,1.5,2.125,0.0625,0.4\n"), std::string::npos) << on;
 }
 
 }  // namespace

@@ -35,6 +35,7 @@ std::string trim(const std::string& text) {
 /// rosidl's DDS spelling of a .msg type (IDL keyword or module path).
 std::string idlType(const std::string& msg_type) {
   static const std::map<std::string, std::string> kTypes = {
+      {"bool", "boolean"},
       {"float64", "double"},
       {"uint8", "octet"},
       {"uint32", "unsigned long"},
@@ -188,11 +189,33 @@ TEST(TransportMessages, StateRoundTrip) {
   message.position = {0.1, 0.2};
   message.tcp_orientation = {0.0, 0.0, 1.0, 0.0};
   message.contact_wrench[2] = -15.5;
+  // The tank's account: every field away from its default, each value distinct, so a swap shows.
+  message.passivity = true;
+  message.tank_energy_j = 0.75;
+  message.nullspace_tank_energy_j = 0.25;
+  message.energy_injected_j = 1.5;
+  message.energy_dissipated_j = 2.125;
+  message.energy_refused_j = 0.0625;
+  message.gain_fraction = 0.4;
   const ControllerStateMessage got = roundTrip(message).message;
   EXPECT_EQ(got.joint_names, message.joint_names);
   EXPECT_EQ(got.position, message.position);
   EXPECT_EQ(got.tcp_orientation, message.tcp_orientation);
   EXPECT_EQ(got.contact_wrench[2], -15.5);
+  EXPECT_TRUE(got.passivity);
+  EXPECT_EQ(got.tank_energy_j, 0.75);
+  EXPECT_EQ(got.nullspace_tank_energy_j, 0.25);
+  EXPECT_EQ(got.energy_injected_j, 1.5);
+  EXPECT_EQ(got.energy_dissipated_j, 2.125);
+  EXPECT_EQ(got.energy_refused_j, 0.0625);
+  EXPECT_EQ(got.gain_fraction, 0.4);
+}
+
+TEST(TransportMessages, StateWithTheTankOffRoundTripsAsOff) {
+  const ControllerStateMessage got = roundTrip(ControllerStateMessage{}).message;
+  EXPECT_FALSE(got.passivity);
+  EXPECT_EQ(got.tank_energy_j, 0.0);
+  EXPECT_EQ(got.gain_fraction, 1.0);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "comply/host/task_file.hpp"
 #include "comply/host/timing_statistics.hpp"
 #include "comply/pipeline/config.hpp"
+#include "comply/pipeline/diagnostics.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/sim/simulated_robot.hpp"
 #include "comply/task/command_source.hpp"
@@ -50,6 +51,8 @@ struct SimLog {
   std::vector<Eigen::Quaterniond> tcp_orientation, reference_orientation;
   std::vector<Vector6d> contact_wrench;  ///< on the tool, base frame [N, N m]
   std::vector<double> cycle_cost_us;     ///< the controller's own time per cycle, plant excluded
+  /// The energy tank's account after each cycle (passivity.* options).
+  std::vector<pipeline::PassivitySnapshot> passivity;
 
   [[nodiscard]] std::size_t size() const noexcept { return time_s.size(); }
   /// |reference - measured| TCP position [m] and orientation angle [rad] at `row`.
@@ -57,6 +60,11 @@ struct SimLog {
   [[nodiscard]] double orientationError(std::size_t row) const;
   /// Largest |q_ref - q| over joints [rad | m] at `row` (joint control).
   [[nodiscard]] double jointError(std::size_t row) const;
+  /// The tank was on (passivity.enabled, fixed for a run): log.csv then has its columns. Known
+  /// from the first row on.
+  [[nodiscard]] bool passivityEnabled() const noexcept {
+    return !passivity.empty() && passivity.front().enabled;
+  }
 };
 
 struct SimSummary {
@@ -121,8 +129,9 @@ SimResult runSimulation(const SimRunOptions& options);
 /// physics step, micrometres in amplitude, so a single cycle's force is on or off.
 std::vector<Eigen::Vector3d> averagedContactForce(const SimLog& log, std::size_t window);
 
-/// Writes the log as CSV (one row per cycle; columns named in the header).
-/// log.csv's header line and one row of it (sim_log_stream.hpp writes the file as the run goes).
+/// log.csv's header line and one row of it (one row per cycle; the run streams the file as it
+/// goes, through sim_crash_guard.hpp). The tank's columns (tank_energy_j ... gain_fraction) come
+/// last, and only when it was on, so the header needs the first row (SimLog::passivityEnabled).
 void writeLogHeader(const SimLog& log, std::ostream& out);
 void writeLogRow(const SimLog& log, std::size_t row, std::ostream& out);
 

@@ -72,6 +72,14 @@ struct ControllerStateMessage {
   std::array<double, 4> reference_orientation{0.0, 0.0, 0.0, 1.0};  ///< x y z w
   std::vector<double> reference_joint_position;
   std::array<double, 6> contact_wrench{};
+  /// The energy tank's account (pipeline::PassivitySnapshot): all 0, gain_fraction 1, when off.
+  bool passivity = false;
+  double tank_energy_j = 0.0;
+  double nullspace_tank_energy_j = 0.0;
+  double energy_injected_j = 0.0;
+  double energy_dissipated_j = 0.0;
+  double energy_refused_j = 0.0;
+  double gain_fraction = 1.0;
 };
 
 /// CommandOutcome.OUTCOME_*.

@@ -53,6 +53,17 @@ builtin_interfaces::msg::Time stampOf(double seconds_since_epoch) {
 #define COMPLY_ROS_FROM(name, group, kind, type, unit, constraint, role, init, doc) \
   fromField<FieldKind::kind>(message.name, command.name, #name, malformed);
 
+void setPassivity(const comply::pipeline::PassivitySnapshot& passivity,
+                  comply_msgs::msg::ControllerState& message) noexcept {
+  message.passivity = passivity.enabled;
+  message.tank_energy = passivity.tank_energy_j;
+  message.nullspace_tank_energy = passivity.nullspace_tank_energy_j;
+  message.energy_injected = passivity.injected_j;
+  message.energy_dissipated = passivity.dissipated_j;
+  message.energy_refused = passivity.refused_j;
+  message.gain_fraction = passivity.gain_fraction;
+}
+
 template <typename Values>
 void copyInto(const Values& values, std::vector<double>& out) noexcept {
   for (std::size_t i = 0; i < out.size() && i < static_cast<std::size_t>(values.size()); ++i) {
@@ -101,8 +112,8 @@ void fillState(const comply::pipeline::Controller& controller, const comply::Joi
                const builtin_interfaces::msg::Time& stamp,
                comply_msgs::msg::ControllerState& message) noexcept {
   message.header.stamp = stamp;
-  message.state =
-      static_cast<std::uint8_t>(controller.diagnostics().state.load(std::memory_order_relaxed));
+  const comply::pipeline::Diagnostics& diagnostics = controller.diagnostics();
+  message.state = static_cast<std::uint8_t>(diagnostics.state.load(std::memory_order_relaxed));
   message.cycle = cycle;
   copyInto(state.position, message.position);
   copyInto(state.velocity, message.velocity);
@@ -139,6 +150,7 @@ void fillState(const comply::pipeline::Controller& controller, const comply::Joi
         }
       },
       controller.activeCommand());
+  setPassivity(diagnostics.passivity(), message);  // atomics only: no allocation
 }
 
 void fillDiagnostics(const comply::pipeline::DiagnosticsSnapshot& snapshot, double period_s,

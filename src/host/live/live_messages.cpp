@@ -28,6 +28,17 @@ std::vector<std::uint64_t> binsOf(
   return values;
 }
 
+void setPassivity(const pipeline::PassivitySnapshot& passivity,
+                  transport::ControllerStateMessage& message) noexcept {
+  message.passivity = passivity.enabled;
+  message.tank_energy_j = passivity.tank_energy_j;
+  message.nullspace_tank_energy_j = passivity.nullspace_tank_energy_j;
+  message.energy_injected_j = passivity.injected_j;
+  message.energy_dissipated_j = passivity.dissipated_j;
+  message.energy_refused_j = passivity.refused_j;
+  message.gain_fraction = passivity.gain_fraction;
+}
+
 }  // namespace
 
 transport::HostState hostState(pipeline::WrapperState state) {
@@ -70,6 +81,7 @@ transport::ControllerStateMessage stateMessage(const StateSample& sample,
   if (!resolved.cartesian()) {
     message.reference_joint_position = vectorOf(sample.reference_joint_position);
   }
+  setPassivity(sample.passivity, message);
   return message;
 }
 

@@ -98,7 +98,9 @@ void LiveObserver<Command>::fillSample(const hardware::CycleRecord& record) noex
   StateSample& s = sample_;
   s.cycle = record.index;
   s.wall = transport::Stamp::now();
-  s.state = wrapper_.controller().diagnostics().state.load(std::memory_order_relaxed);
+  const pipeline::Diagnostics& diagnostics = wrapper_.controller().diagnostics();
+  s.state = diagnostics.state.load(std::memory_order_relaxed);
+  s.passivity = diagnostics.passivity();  // atomics only: no allocation on this thread
   s.joints = last_state_;
   for (std::size_t i = 0; i < record.torque.size(); ++i) {
     s.torque[static_cast<Eigen::Index>(i)] = record.wrote ? record.torque[i] : 0.0;

@@ -31,6 +31,7 @@ struct StateSample {
   Eigen::Quaterniond tcp_orientation = Eigen::Quaterniond::Identity();
   Vector6d tcp_twist = Vector6d::Zero();
   Vector6d contact_wrench = Vector6d::Zero();
+  pipeline::PassivitySnapshot passivity;  ///< the energy tank's account after the cycle
   double reference_stamp_s = 0.0;
   std::uint32_t reference_fields = 0;
   Eigen::Vector3d reference_position = Eigen::Vector3d::Zero();

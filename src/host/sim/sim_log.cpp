@@ -95,7 +95,13 @@ void writeLogHeader(const SimLog& log, std::ostream& out) {
     }
     out << ",joint_error_rad";
   }
-  out << ",contact_fx,contact_fy,contact_fz,contact_tx,contact_ty,contact_tz\n";
+  out << ",contact_fx,contact_fy,contact_fz,contact_tx,contact_ty,contact_tz";
+  // Only a run with the tank on gets its columns: without it log.csv is what it always was.
+  if (log.passivityEnabled()) {
+    out << ",tank_energy_j,nullspace_tank_energy_j,energy_injected_j,energy_dissipated_j,"
+           "energy_refused_j,gain_fraction";
+  }
+  out << '\n';
 }
 
 void writeLogRow(const SimLog& log, std::size_t row, std::ostream& out) {
@@ -125,6 +131,12 @@ void writeLogRow(const SimLog& log, std::size_t row, std::ostream& out) {
   }
   for (int k = 0; k < 6; ++k) {
     out << ',' << log.contact_wrench[row][k];
+  }
+  if (log.passivityEnabled()) {
+    const pipeline::PassivitySnapshot& tank = log.passivity[row];
+    out << ',' << tank.tank_energy_j << ',' << tank.nullspace_tank_energy_j << ','
+        << tank.injected_j << ',' << tank.dissipated_j << ',' << tank.refused_j << ','
+        << tank.gain_fraction;
   }
   out << '\n';
 }

@@ -88,6 +88,7 @@ class SimRecorder final : public hardware::LoopObserver {
     log.tcp_position.push_back(tcp.translation());
     log.tcp_orientation.push_back(Eigen::Quaterniond(tcp.linear()));
     log.contact_wrench.push_back(plant_.toolContactWrench());
+    log.passivity.push_back(wrapper_.controller().diagnostics().passivity());
     log.cycle_cost_us.push_back(record.controller_s * 1e6);
     const Command in_force = wrapper_.lastAccepted();
     if constexpr (std::is_same_v<Command, CartesianCommand>) {
@@ -100,6 +101,9 @@ class SimRecorder final : public hardware::LoopObserver {
     summary.overruns += record.controller_s > record.period_s ? 1 : 0;
     if (guard_ != nullptr) {
       std::ostringstream row;
+      if (log.size() == 1) {
+        writeLogHeader(log, row);  // the first row says whether the tank's columns are there
+      }
       writeLogRow(log, log.size() - 1, row);
       guard_->append(row.str());
       if (record.index % 1000 == 999) {  // every simulated second at 1 kHz
@@ -224,12 +228,14 @@ SimResult runWith(const SimRunOptions& options,
         resolved->plugin->path().string(),
         options.out_dir.empty() ? std::filesystem::path() : options.out_dir / "log.csv",
         kStepTimeoutS);
-    std::ostringstream header;
-    writeLogHeader(result.log, header);
-    guard.append(header.str());
-    recorder.setGuard(&guard);
+    recorder.setGuard(&guard);  // it writes the header with the first row
     loop.run();
     recorder.setGuard(nullptr);
+    if (result.log.size() == 0) {  // no cycle ran: the header alone
+      std::ostringstream header;
+      writeLogHeader(result.log, header);
+      guard.append(header.str());
+    }
   }
   clock.waitUntil(loop.nextCycleTime());  // the plant carries out the last torque written
   progress.finish();
