@@ -29,12 +29,21 @@ void approach(double* current, const double* target, int count, double max_step)
 /// Diagonal gains: each entry on its own, at most `max_step` (they stay non-negative).
 void approachEach(double* current, const double* target, int count, double max_step) noexcept {
   for (int i = 0; i < count; ++i) {
-    current[i] += std::clamp(target[i] - current[i], -max_step, max_step);
+    const double change = target[i] - current[i];
+    current[i] =
+        std::abs(change) <= max_step ? target[i] : current[i] + std::copysign(max_step, change);
   }
 }
 
 void copy(double* to, const double* from, int count) noexcept {
   std::copy_n(from, count, to);
+}
+
+/// `current` moved the fraction `beta` of the way to `target`; all of it lands on `target` exactly.
+void blend(double* current, const double* target, int count, double beta) noexcept {
+  for (int i = 0; i < count; ++i) {
+    current[i] = beta == 1.0 ? target[i] : current[i] + beta * (target[i] - current[i]);
+  }
 }
 
 /// An upper bound of the largest eigenvalue of a symmetric 3x3 (row-major; Gershgorin).
@@ -343,13 +352,14 @@ void GainGuard::updateCartesian(const Cartesian& target, const model::Data& data
       beta == 1.0 ? candidate : TaskStiffness::between(in_force, candidate, beta);
   copy(law.stiffness_translational, applied.translational, 9);
   copy(law.stiffness_rotational, applied.rotational, 9);
-  if (applied.frame.coeffs() != in_force.frame.coeffs()) {
+  // The command's own numbers once the frame has arrived, so a guard with nothing to hold back
+  // hands the law the command bit for bit.
+  if (beta == 1.0 && candidate.frame.coeffs() == frameOf(target.task_frame).coeffs()) {
+    copy(law.task_frame, target.task_frame, 4);
+  } else if (applied.frame.coeffs() != in_force.frame.coeffs()) {
     writeFrame(applied.frame, law.task_frame);
   }
-  for (int i = 0; i < dof; ++i) {
-    law.nullspace_stiffness[i] +=
-        nullspace_beta * (nullspace_candidate[i] - law.nullspace_stiffness[i]);
-  }
+  blend(law.nullspace_stiffness, nullspace_candidate.data(), dof, nullspace_beta);
 }
 
 void GainGuard::updateJoint(const Joint& target, const JointState& state,
@@ -375,9 +385,7 @@ void GainGuard::updateJoint(const Joint& target, const JointState& state,
     beta = payableFraction(full, task_.available_j(), [full](double f) { return f * full; });
     settle(task_, full, beta * full);
   }
-  for (int i = 0; i < dof; ++i) {
-    law.stiffness[i] += beta * (candidate[i] - law.stiffness[i]);
-  }
+  blend(law.stiffness, candidate.data(), dof, beta);
 }
 
 void GainGuard::settle(EnergyAccount& account, double full_j, double injected_j) noexcept {

@@ -148,6 +148,17 @@ std::string realtimeLines(const std::string& behavior) {
          "\ncompensation:\n  friction:\n    model: sigmoid\n";
 }
 
+/// The gain stage on, its tank started low so that it both refuses and refills (the ratio-mode
+/// damping bound factorises the mass matrix) in the counted cycles.
+const std::string kGuardedLines =
+    "gain_ramps:\n  enabled: true\npassivity:\n  enabled: true\n  tank_initial_j: 0.02\n";
+
+void expectTheGuardWorked(const DiagnosticsSnapshot& diagnostics) {
+  EXPECT_TRUE(diagnostics.passivity.enabled);
+  EXPECT_GT(diagnostics.passivity.injected_j, 0.0) << "the tank paid for nothing";
+  EXPECT_GT(diagnostics.passivity.dissipated_j, 0.0) << "the tank was never refilled";
+}
+
 /// Runs kCycles counted update() calls of an active `wrapper`, submitting `commandAt(cycle)`
 /// (uncounted) every kCyclesPerCommand cycles.
 template <typename WrapperType, typename CommandAt>
@@ -206,9 +217,12 @@ TEST(WrapperRealtime, TheGatesCycleSideNeitherAllocatesNorLocks) {
 }
 
 TEST(WrapperRealtime, JointUpdateNeitherAllocatesNorLocks) {
-  for (const std::string behavior : {"hold", "reanchor"}) {
+  for (const std::string behavior : {"hold", "reanchor", "hold+gains"}) {
     SCOPED_TRACE(behavior);
-    JointWrapper wrapper(fr3Config(kJointImpedancePlugin, realtimeLines(behavior)));
+    const bool guarded = behavior == "hold+gains";
+    JointWrapper wrapper(fr3Config(
+        kJointImpedancePlugin,
+        realtimeLines(guarded ? "hold" : behavior) + (guarded ? kGuardedLines : std::string())));
     const JointVector home = fr3Home();
     expectRealtimeCycles(wrapper, [&](int cycle) {
       // Position, velocity and gains together, near where the arm is.
@@ -218,17 +232,23 @@ TEST(WrapperRealtime, JointUpdateNeitherAllocatesNorLocks) {
                        CommandField::kStiffness | CommandField::kDamping;
       command.position = movingState(home, cycle).position;
       command.velocity.setConstant(0.01);
-      command.stiffness.setConstant(100.0 + cycle * 0.01);
+      command.stiffness.setConstant(cycle % 2000 < 1000 ? 100.0 : 300.0);
       command.damping.setConstant(10.0);
       return command;
     });
+    if (guarded) {
+      expectTheGuardWorked(wrapper.diagnostics());
+    }
   }
 }
 
 TEST(WrapperRealtime, CartesianUpdateNeitherAllocatesNorLocks) {
-  for (const std::string behavior : {"hold", "reanchor"}) {
+  for (const std::string behavior : {"hold", "reanchor", "hold+gains"}) {
     SCOPED_TRACE(behavior);
-    CartesianWrapper wrapper(fr3Config(kCartesianImpedancePlugin, realtimeLines(behavior)));
+    const bool guarded = behavior == "hold+gains";
+    CartesianWrapper wrapper(fr3Config(
+        kCartesianImpedancePlugin,
+        realtimeLines(guarded ? "hold" : behavior) + (guarded ? kGuardedLines : std::string())));
     bool ratio = true;
     expectRealtimeCycles(wrapper, [&](int cycle) {
       // Pose and twist near the measured TCP; damping alternates between the ratio mode (mass
@@ -241,7 +261,12 @@ TEST(WrapperRealtime, CartesianUpdateNeitherAllocatesNorLocks) {
       command.position = measured.tip_position + Eigen::Vector3d(0.01, 0.0, -0.01);
       command.orientation = measured.tip_orientation;
       command.twist[1] = 0.02;
-      command.stiffness_translational = (400.0 + cycle * 0.01) * Eigen::Matrix3d::Identity();
+      command.stiffness_translational =
+          (cycle % 2000 < 1000 ? 400.0 : 1200.0) * Eigen::Matrix3d::Identity();
+      command.task_frame =
+          Eigen::AngleAxisd(cycle % 3000 < 1500 ? 0.0 : 0.5, Eigen::Vector3d::UnitZ()) *
+          Eigen::Quaterniond::Identity();
+      command.fields = command.fields | CommandField::kTaskFrame;
       command.stiffness_rotational = 30.0 * Eigen::Matrix3d::Identity();
       command.damping_mode = ratio ? DampingMode::kRatio : DampingMode::kAbsolute;
       command.damping_translational = 45.0 * Eigen::Matrix3d::Identity();
@@ -249,6 +274,9 @@ TEST(WrapperRealtime, CartesianUpdateNeitherAllocatesNorLocks) {
       ratio = !ratio;
       return command;
     });
+    if (guarded) {
+      expectTheGuardWorked(wrapper.diagnostics());
+    }
   }
 }
 
