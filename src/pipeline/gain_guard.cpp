@@ -263,6 +263,7 @@ void GainGuard::takeCommand(const CommandBus& command) noexcept {
 
 void GainGuard::update(const CommandBus& command, const model::Data& data, const JointState& state,
                        double period_s, Diagnostics& diagnostics) noexcept {
+  refused_j_ = 0.0;
   if (const auto* cartesian = std::get_if<Cartesian>(&command)) {
     updateCartesian(*cartesian, data, state, period_s);
     if (passivity_.enabled) {
@@ -394,7 +395,7 @@ void GainGuard::settle(EnergyAccount& account, double full_j, double injected_j)
   } else if (injected_j < 0.0) {
     account.takeBack(-injected_j);
   }
-  refused_j_ += std::max(full_j - std::max(injected_j, 0.0), 0.0);
+  refused_j_ += std::max(full_j - std::max(injected_j, 0.0), 0.0);  // both accounts, this cycle
 }
 
 void GainGuard::openWindow(bool ratio) noexcept {

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <string>
 
 #include "comply/pipeline/wrapper.hpp"
@@ -194,6 +195,42 @@ TEST(GainGuard, WithATankThatNeverRunsDryTheLawSeesTheCommandBitForBit) {
   EXPECT_GT(tank.injected_j, 0.0) << "the commands stiffened at an error: the tank paid";
   EXPECT_EQ(tank.refused_j, 0.0);
   EXPECT_NEAR(tank.gain_fraction, 1.0, 1e-9);
+}
+
+// ---- refill ----------------------------------------------------------------------------------
+
+// The refill is computed from position increments: an arm that stands still while its velocity
+// reads pure noise has dissipated nothing, and the tank must not be credited anything. (A refill
+// computed from the measured velocity, dq^T D dq, would have credited D sigma^2 per second and
+// joint: here 10 N m s/rad x (0.05 rad/s)^2 x 7 joints = 0.18 W.)
+template <typename WrapperType>
+void expectNoCreditFromVelocityNoise(WrapperType& wrapper) {
+  JointState state = restingAt(wrapper.controller(), fr3Home());
+  wrapper.activate(state);
+  std::mt19937_64 random(7);
+  std::normal_distribution<double> noise(0.0, 0.05);  // rad/s
+  TorqueBuffer torque;
+  for (int cycle = 0; cycle < 5000; ++cycle) {
+    for (int joint = 0; joint < kFr3Dof; ++joint) {
+      state.velocity[joint] = noise(random);
+    }
+    ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
+  }
+  const PassivitySnapshot tank = wrapper.diagnostics().passivity;
+  // Zero up to the rounding of a rotation vector between two equal orientations (1e-17 rad).
+  EXPECT_LT(tank.dissipated_j, 1e-12);
+  EXPECT_NEAR(tank.tank_energy_j, 0.1, 1e-12);
+}
+
+TEST(GainGuard, VelocityNoiseOnAnArmAtRestCreditsTheTankNothing) {
+  const std::string lines =
+      "passivity:\n  enabled: true\n  tank_initial_j: 0.1\ninitial:\n  damping: 10.0\n";
+  JointWrapper joint(fr3Config(kJointImpedancePlugin, lines));
+  expectNoCreditFromVelocityNoise(joint);
+  CartesianWrapper cartesian(fr3Config(
+      kCartesianImpedancePlugin,
+      "passivity:\n  enabled: true\n  tank_initial_j: 0.1\ninitial:\n  damping_ratio: 1.0\n"));
+  expectNoCreditFromVelocityNoise(cartesian);
 }
 
 }  // namespace

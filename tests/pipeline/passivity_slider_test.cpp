@@ -121,7 +121,8 @@ struct PumpResult {
   double peak_energy_j = 0.0;     ///< the largest over the run
   double final_mechanical_j = 0.0;
   PassivitySnapshot tank;
-  int half_periods = 0;  ///< stiffenings at a turning point
+  double largest_refusal_j = 0.0;  ///< the most the tank held back in one cycle
+  int half_periods = 0;            ///< stiffenings at a turning point
 };
 
 enum class Pump { kStiffness, kTaskFrame };
@@ -192,6 +193,8 @@ PumpResult runPump(Wrapper<Command>& wrapper, Pump pump, double seconds) {
     }
     slider.step(torque.values[0], kPeriod);
     result.peak_energy_j = std::max(result.peak_energy_j, storage());
+    result.largest_refusal_j = std::max(result.largest_refusal_j,
+                                        wrapper.controller().diagnostics().passivity().refused_j);
   }
   result.final_mechanical_j =
       0.5 * stiffnessInForce(wrapper.controller()) * slider.position * slider.position +
@@ -225,8 +228,7 @@ void expectBounded(const PumpResult& result) {
   EXPECT_LE(result.peak_energy_j, result.initial_energy_j * 1.001)
       << "started with " << result.initial_energy_j << " J";
   EXPECT_GT(result.tank.injected_j, 0.3) << "the tank paid for part of the schedule";
-  EXPECT_GT(result.tank.refused_j, 0.0) << "and refused the rest";
-  EXPECT_LT(result.tank.gain_fraction, 1.0);
+  EXPECT_GT(result.largest_refusal_j, 0.1) << "and refused the rest";
 }
 
 TEST_F(PassivitySlider, TheTankBoundsTheEnergyUnderTheStiffnessPumpJointWrapper) {

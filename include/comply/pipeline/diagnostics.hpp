@@ -26,7 +26,7 @@ struct PassivitySnapshot {
   double nullspace_tank_energy_j = 0.0;  ///< [J] nullspace account (Cartesian control)
   double injected_j = 0.0;     ///< [J] total paid for stiffness and task-frame changes
   double dissipated_j = 0.0;   ///< [J] total credited from the damping (a lower bound)
-  double refused_j = 0.0;      ///< [J] total the tank declined to pay (changes scaled back)
+  double refused_j = 0.0;      ///< [J] what the change held back this cycle would have injected
   double gain_fraction = 1.0;  ///< [-] fraction of the commanded stiffness change in force
 };
 

@@ -112,7 +112,7 @@ class GainGuard {
   EnergyAccount nullspace_;
   double injected_j_ = 0.0;
   double dissipated_j_ = 0.0;
-  double refused_j_ = 0.0;
+  double refused_j_ = 0.0;  ///< this cycle's, not a total: a held-back change is offered again
 
   // The commanded stiffness and task frame, and how far the gains in force were from them when
   // they were commanded.
