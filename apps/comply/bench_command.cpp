@@ -95,9 +95,18 @@ template <typename Command>
 std::array<BenchRow, 2> benchWrapper(const BenchOptions& options, const std::string& wrapper_name,
                                      const std::string& plugin_name,
                                      const std::vector<double>& home, std::ostream& log,
-                                     DampingMode damping_mode = DampingMode::kRatio) {
+                                     DampingMode damping_mode = DampingMode::kRatio,
+                                     bool gain_stage = false) {
   pipeline::WrapperConfig config = host::controllerConfig(options.robot, plugin_name);
   config.initial_cartesian.damping_mode = damping_mode;
+  if (gain_stage) {
+    // Ramps and tank on, the tank far from full so that it refills (and, with ratios, bounds the
+    // damping from the mass matrix) every window: the stage's dearest steady state.
+    config.gain_ramps.enabled = true;
+    config.passivity.enabled = true;
+    config.passivity.tank_initial_j = 0.1;
+    config.passivity.tank_max_j = 1e6;
+  }
   pipeline::Wrapper<Command> wrapper(config);
   const int total = options.warmup + options.iterations;
   ReplayHardware replay(home, total);
@@ -189,6 +198,9 @@ std::vector<BenchRow> runBench(const BenchOptions& options, std::ostream& log) {
   add(benchWrapper<CartesianCommand>(options, "cartesian", "cartesian_impedance", robot.home, log));
   add(benchWrapper<CartesianCommand>(options, "cartesian_abs", "cartesian_impedance", robot.home,
                                      log, DampingMode::kAbsolute));
+  // The same ratio cycle with the gain stage (ramps and energy tank) on.
+  add(benchWrapper<CartesianCommand>(options, "cartesian_tank", "cartesian_impedance", robot.home,
+                                     log, DampingMode::kRatio, true));
   return rows;
 }
 

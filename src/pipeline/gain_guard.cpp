@@ -15,7 +15,8 @@ using Joint = comply_joint_command;
 
 /// Moves `count` entries of `current` toward `target` along the straight line, so that no entry
 /// moves more than `max_step`: a matrix stays a convex combination of two PSD matrices.
-void approach(double* current, const double* target, int count, double max_step) noexcept {
+/// Returns whether `current` has arrived.
+bool approach(double* current, const double* target, int count, double max_step) noexcept {
   double largest = 0.0;
   for (int i = 0; i < count; ++i) {
     largest = std::max(largest, std::abs(target[i] - current[i]));
@@ -24,15 +25,19 @@ void approach(double* current, const double* target, int count, double max_step)
   for (int i = 0; i < count; ++i) {
     current[i] = fraction == 1.0 ? target[i] : current[i] + fraction * (target[i] - current[i]);
   }
+  return fraction == 1.0;
 }
 
 /// Diagonal gains: each entry on its own, at most `max_step` (they stay non-negative).
-void approachEach(double* current, const double* target, int count, double max_step) noexcept {
+bool approachEach(double* current, const double* target, int count, double max_step) noexcept {
+  bool arrived = true;
   for (int i = 0; i < count; ++i) {
     const double change = target[i] - current[i];
-    current[i] =
-        std::abs(change) <= max_step ? target[i] : current[i] + std::copysign(max_step, change);
+    const bool within = std::abs(change) <= max_step;
+    current[i] = within ? target[i] : current[i] + std::copysign(max_step, change);
+    arrived = arrived && within;
   }
+  return arrived;
 }
 
 void copy(double* to, const double* from, int count) noexcept {
@@ -190,6 +195,9 @@ void GainGuard::reset(const CommandBus& command, const model::Data& data, const 
   nullspace_.energy_j = passivity_.nullspace_tank_initial_j;
   nullspace_.outstanding_j = 0.0;
   injected_j_ = dissipated_j_ = refused_j_ = 0.0;
+  pending_ = false;
+  cacheBounds();
+  fraction_ = 1.0;
   target_stiffness_ = stiffnessOf(command);
   from_distance_ = 0.0;
   if (const auto* cartesian = std::get_if<Cartesian>(&command)) {
@@ -224,6 +232,7 @@ GainGuard::StiffnessStack GainGuard::stiffnessOf(const CommandBus& bus) noexcept
 
 void GainGuard::takeCommand(const CommandBus& command) noexcept {
   // Motion, feedforward and stamp pass at once; the gains in force stay until update() moves them.
+  pending_ = true;
   std::visit(
       [this](const auto& incoming) noexcept {
         using Bus = std::decay_t<decltype(incoming)>;
@@ -264,25 +273,47 @@ void GainGuard::takeCommand(const CommandBus& command) noexcept {
 void GainGuard::update(const CommandBus& command, const model::Data& data, const JointState& state,
                        double period_s, Diagnostics& diagnostics) noexcept {
   refused_j_ = 0.0;
-  if (const auto* cartesian = std::get_if<Cartesian>(&command)) {
-    updateCartesian(*cartesian, data, state, period_s);
-    if (passivity_.enabled) {
+  // Once the gains in force are the command's, nothing moves them until the next command: the
+  // common cycle then only keeps the refill window.
+  const auto* cartesian = std::get_if<Cartesian>(&command);
+  if (pending_) {
+    pending_ = cartesian != nullptr ? !updateCartesian(*cartesian, data, state, period_s)
+                                    : !updateJoint(std::get<Joint>(command), state, period_s);
+    cacheBounds();
+    fraction_ = gainFraction();
+  }
+  if (passivity_.enabled) {
+    if (cartesian != nullptr) {
       refillCartesian(std::get<Cartesian>(law_), data, period_s);
-    }
-  } else {
-    updateJoint(std::get<Joint>(command), state, period_s);
-    if (passivity_.enabled) {
+    } else {
       refillJoint(std::get<Joint>(law_), state, period_s);
     }
   }
   publish(diagnostics);
 }
 
-void GainGuard::updateCartesian(const Cartesian& target, const model::Data& data,
+void GainGuard::cacheBounds() noexcept {
+  const auto* law = std::get_if<Cartesian>(&law_);
+  if (law == nullptr) {
+    return;
+  }
+  const bool ratio = law->damping_mode == COMPLY_DAMPING_RATIO;
+  // Ratio mode bounds the damping from the smallest stiffness; else the damping blocks bound it.
+  bounds_.translational =
+      smallestEigenvalueBound(ratio ? law->stiffness_translational : law->damping_translational);
+  bounds_.rotational =
+      smallestEigenvalueBound(ratio ? law->stiffness_rotational : law->damping_rotational);
+  bounds_.ratio = *std::min_element(law->damping_ratio, law->damping_ratio + 6);
+  bounds_.stiffest_translational = largestEigenvalueBound(law->stiffness_translational);
+  bounds_.stiffest_rotational = largestEigenvalueBound(law->stiffness_rotational);
+}
+
+bool GainGuard::updateCartesian(const Cartesian& target, const model::Data& data,
                                 const JointState& state, double period_s) noexcept {
   auto& law = std::get<Cartesian>(law_);
   const bool ramp = ramps_.enabled;
   const int dof = target.dof;
+  bool arrived = true;
 
   // Damping injects nothing: ramped, never charged. A change of mode has nothing to ramp between.
   if (law.damping_mode != target.damping_mode || !ramp) {
@@ -292,13 +323,14 @@ void GainGuard::updateCartesian(const Cartesian& target, const model::Data& data
     copy(law.damping_ratio, target.damping_ratio, 6);
     copy(law.nullspace_damping, target.nullspace_damping, dof);
   } else {
-    approach(law.damping_translational, target.damping_translational, 9,
-             ramps_.translational_damping_per_s * period_s);
-    approach(law.damping_rotational, target.damping_rotational, 9,
-             ramps_.rotational_damping_per_s * period_s);
-    approach(law.damping_ratio, target.damping_ratio, 6, ramps_.damping_ratio_per_s * period_s);
-    approachEach(law.nullspace_damping, target.nullspace_damping, dof,
-                 ramps_.joint_damping_per_s * period_s);
+    arrived &= approach(law.damping_translational, target.damping_translational, 9,
+                        ramps_.translational_damping_per_s * period_s);
+    arrived &= approach(law.damping_rotational, target.damping_rotational, 9,
+                        ramps_.rotational_damping_per_s * period_s);
+    arrived &=
+        approach(law.damping_ratio, target.damping_ratio, 6, ramps_.damping_ratio_per_s * period_s);
+    arrived &= approachEach(law.nullspace_damping, target.nullspace_damping, dof,
+                            ramps_.joint_damping_per_s * period_s);
   }
 
   // The stiffness and frame this cycle would move to.
@@ -308,17 +340,18 @@ void GainGuard::updateCartesian(const Cartesian& target, const model::Data& data
   copy(nullspace_candidate.data(), target.nullspace_stiffness, dof);
   if (ramp) {
     candidate = in_force;
-    approach(candidate.translational, target.stiffness_translational, 9,
-             ramps_.translational_stiffness_per_s * period_s);
-    approach(candidate.rotational, target.stiffness_rotational, 9,
-             ramps_.rotational_stiffness_per_s * period_s);
+    arrived &= approach(candidate.translational, target.stiffness_translational, 9,
+                        ramps_.translational_stiffness_per_s * period_s);
+    arrived &= approach(candidate.rotational, target.stiffness_rotational, 9,
+                        ramps_.rotational_stiffness_per_s * period_s);
     const Eigen::Quaterniond goal = frameOf(target.task_frame);
     const double angle = in_force.frame.angularDistance(goal);
     const double step = ramps_.task_frame_rad_per_s * period_s;
     candidate.frame = angle <= step ? goal : in_force.frame.slerp(step / angle, goal);
+    arrived &= angle <= step;
     copy(nullspace_candidate.data(), law.nullspace_stiffness, dof);
-    approachEach(nullspace_candidate.data(), target.nullspace_stiffness, dof,
-                 ramps_.joint_stiffness_per_s * period_s);
+    arrived &= approachEach(nullspace_candidate.data(), target.nullspace_stiffness, dof,
+                            ramps_.joint_stiffness_per_s * period_s);
   }
 
   double beta = 1.0;
@@ -361,17 +394,21 @@ void GainGuard::updateCartesian(const Cartesian& target, const model::Data& data
     writeFrame(applied.frame, law.task_frame);
   }
   blend(law.nullspace_stiffness, nullspace_candidate.data(), dof, nullspace_beta);
+  return arrived && beta == 1.0 && nullspace_beta == 1.0;
 }
 
-void GainGuard::updateJoint(const Joint& target, const JointState& state,
+bool GainGuard::updateJoint(const Joint& target, const JointState& state,
                             double period_s) noexcept {
   auto& law = std::get<Joint>(law_);
   const int dof = target.dof;
   JointVector candidate(dof);
+  bool arrived = true;
   if (ramps_.enabled) {
-    approachEach(law.damping, target.damping, dof, ramps_.joint_damping_per_s * period_s);
+    arrived &=
+        approachEach(law.damping, target.damping, dof, ramps_.joint_damping_per_s * period_s);
     copy(candidate.data(), law.stiffness, dof);
-    approachEach(candidate.data(), target.stiffness, dof, ramps_.joint_stiffness_per_s * period_s);
+    arrived &= approachEach(candidate.data(), target.stiffness, dof,
+                            ramps_.joint_stiffness_per_s * period_s);
   } else {
     copy(law.damping, target.damping, dof);
     copy(candidate.data(), target.stiffness, dof);
@@ -387,6 +424,7 @@ void GainGuard::updateJoint(const Joint& target, const JointState& state,
     settle(task_, full, beta * full);
   }
   blend(law.stiffness, candidate.data(), dof, beta);
+  return arrived && beta == 1.0;
 }
 
 void GainGuard::settle(EnergyAccount& account, double full_j, double injected_j) noexcept {
@@ -413,14 +451,24 @@ void GainGuard::openWindow(bool ratio) noexcept {
 
 void GainGuard::refillCartesian(const Cartesian& gains, const model::Data& data,
                                 double period_s) noexcept {
-  // This cycle's error increment: how far the tool moved relative to the commanded twist.
+  // This cycle's error increment: how far the tool moved relative to the commanded twist. The
+  // turn since the last cycle as 2 vec(q q_prev^-1) (w >= 0): 2 sin(angle / 2) <= angle, so the
+  // bound stays a lower one, without a logarithm every cycle.
+  Eigen::Quaterniond turn = data.tip_orientation * previous_orientation_.conjugate();
+  if (turn.w() < 0.0) {
+    turn.coeffs() = -turn.coeffs();
+  }
   Vector6d increment;
   increment.head<3>() = data.tip_position - previous_position_ -
                         period_s * Eigen::Vector3d(gains.twist[0], gains.twist[1], gains.twist[2]);
-  increment.tail<3>() = orientationError(previous_orientation_, data.tip_orientation) -
-                        period_s * Eigen::Vector3d(gains.twist[3], gains.twist[4], gains.twist[5]);
+  increment.tail<3>() =
+      2.0 * turn.vec() - period_s * Eigen::Vector3d(gains.twist[3], gains.twist[4], gains.twist[5]);
   previous_position_ = data.tip_position;
   previous_orientation_ = data.tip_orientation;
+  if (task_.energy_j >= task_.max_j) {
+    window_open_ = false;  // full: nothing to credit; a window opens when it is not
+    return;
+  }
 
   const bool ratio = gains.damping_mode == COMPLY_DAMPING_RATIO;
   if (!window_open_ || ratio != window_ratio_) {
@@ -428,26 +476,17 @@ void GainGuard::refillCartesian(const Cartesian& gains, const model::Data& data,
   }
   window_increment_ += increment;
   window_elapsed_s_ += period_s;
-  // Ratio mode: the window keeps the smallest stiffness and ratio; else the smallest damping.
-  const double* translational = ratio ? gains.stiffness_translational : gains.damping_translational;
-  const double* rotational = ratio ? gains.stiffness_rotational : gains.damping_rotational;
-  window_translational_ = std::min(window_translational_, smallestEigenvalueBound(translational));
-  window_rotational_ = std::min(window_rotational_, smallestEigenvalueBound(rotational));
-  if (ratio) {
-    window_ratio_min_ = std::min(window_ratio_min_,
-                                 *std::min_element(gains.damping_ratio, gains.damping_ratio + 6));
-  }
-  window_stiffest_translational_ = std::max(window_stiffest_translational_,
-                                            largestEigenvalueBound(gains.stiffness_translational));
-  window_stiffest_rotational_ =
-      std::max(window_stiffest_rotational_, largestEigenvalueBound(gains.stiffness_rotational));
+  // The smallest damping (ratio mode: stiffness and ratio) and the largest stiffness of the window.
+  window_translational_ = std::min(window_translational_, bounds_.translational);
+  window_rotational_ = std::min(window_rotational_, bounds_.rotational);
+  window_ratio_min_ = std::min(window_ratio_min_, bounds_.ratio);
+  window_stiffest_translational_ =
+      std::max(window_stiffest_translational_, bounds_.stiffest_translational);
+  window_stiffest_rotational_ = std::max(window_stiffest_rotational_, bounds_.stiffest_rotational);
   if (window_elapsed_s_ < kWindowS) {
     return;
   }
   window_open_ = false;
-  if (task_.energy_j >= task_.max_j) {
-    return;  // full: nothing to credit, and the ratio bound's factorisation is skipped
-  }
   double damping_translational = window_translational_;
   double damping_rotational = window_rotational_;
   if (ratio && !ratioDampingBound(data, damping_translational, damping_rotational)) {
@@ -507,6 +546,11 @@ bool GainGuard::ratioDampingBound(const model::Data& data, double& translational
 
 void GainGuard::refillJoint(const Joint& gains, const JointState& state, double period_s) noexcept {
   const int dof = gains.dof;
+  if (task_.energy_j >= task_.max_j) {
+    window_open_ = false;  // as in refillCartesian()
+    previous_joints_ = state.position;
+    return;
+  }
   if (!window_open_) {
     openWindow(false);
   }
@@ -522,9 +566,6 @@ void GainGuard::refillJoint(const Joint& gains, const JointState& state, double 
     return;
   }
   window_open_ = false;
-  if (task_.energy_j >= task_.max_j) {
-    return;
-  }
   double credit = 0.0;
   for (int i = 0; i < dof; ++i) {
     // Net of the sampled spring's own activity, as in refillCartesian().
@@ -557,7 +598,7 @@ void GainGuard::publish(Diagnostics& diagnostics) const noexcept {
   diagnostics.injected_j.store(injected_j_, kRelaxed);
   diagnostics.dissipated_j.store(dissipated_j_, kRelaxed);
   diagnostics.refused_j.store(refused_j_, kRelaxed);
-  diagnostics.gain_fraction.store(gainFraction(), kRelaxed);
+  diagnostics.gain_fraction.store(fraction_, kRelaxed);
 }
 
 }  // namespace comply::pipeline

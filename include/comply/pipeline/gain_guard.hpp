@@ -85,10 +85,13 @@ class GainGuard {
   using StiffnessStack = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 18 + kMaxDof, 1>;
   using JacobianTranspose = Eigen::Matrix<double, Eigen::Dynamic, 6, 0, kMaxDof, 6>;
 
-  void updateCartesian(const comply_cartesian_command& target, const model::Data& data,
+  /// Move the gains in force toward `target`; true once they are the target's.
+  bool updateCartesian(const comply_cartesian_command& target, const model::Data& data,
                        const JointState& state, double period_s) noexcept;
-  void updateJoint(const comply_joint_command& target, const JointState& state,
+  bool updateJoint(const comply_joint_command& target, const JointState& state,
                    double period_s) noexcept;
+  /// The eigenvalue bounds the refill reads, from the gains in force (after they moved).
+  void cacheBounds() noexcept;
   /// Pays what `account` can of a change that injects `injected_j` (of `full_j` the whole
   /// change would have), or takes back what a decrease released.
   void settle(EnergyAccount& account, double full_j, double injected_j) noexcept;
@@ -108,6 +111,17 @@ class GainGuard {
   GainRampConfig ramps_;
   PassivityConfig passivity_;
   CommandBus law_;
+  bool pending_ = false;   ///< the gains in force are not yet the command's
+  double fraction_ = 1.0;  ///< gainFraction() as of the last change
+  /// Gershgorin bounds of the gains in force (Cartesian): the smallest damping (ratio mode: the
+  /// smallest stiffness) and the largest stiffness per block, and the smallest damping ratio.
+  struct Bounds {
+    double translational = 0.0;
+    double rotational = 0.0;
+    double ratio = 0.0;
+    double stiffest_translational = 0.0;
+    double stiffest_rotational = 0.0;
+  } bounds_;
   EnergyAccount task_;
   EnergyAccount nullspace_;
   double injected_j_ = 0.0;
