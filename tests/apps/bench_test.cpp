@@ -83,7 +83,7 @@ TEST(SyntheticChain, TwelveJointsLoadAndRunEveryWrapperWithoutAFault) {
   options.warmup = 10;
   std::ostringstream log;
   const std::vector<BenchRow> rows = runBench(options, log);  // throws on a fault
-  ASSERT_EQ(rows.size(), 6U);
+  ASSERT_EQ(rows.size(), 8U);  // joint, cartesian, cartesian_abs, cartesian_tank: step and cycle
   for (const BenchRow& bench_row : rows) {
     EXPECT_EQ(bench_row.dof, 12);
     EXPECT_GT(bench_row.timing.p50_us, 0.0);
