@@ -44,6 +44,9 @@ void copy(double* to, const double* from, int count) noexcept {
   std::copy_n(from, count, to);
 }
 
+// The variant's alternative is fixed for the controller's life, so std::get_if is never null
+// here; it is used instead of std::get, which could throw, in functions that must not.
+
 /// `current` moved the fraction `beta` of the way to `target`; all of it lands on `target` exactly.
 void blend(double* current, const double* target, int count, double beta) noexcept {
   for (int i = 0; i < count; ++i) {
@@ -157,7 +160,7 @@ double payableFraction(double injection_j, double available_j, EnergyAt energy_a
 }  // namespace
 
 double EnergyAccount::pay(double injection_j) noexcept {
-  const double paid = std::clamp(injection_j, 0.0, std::max(available_j(), 0.0));
+  const double paid = std::clamp(injection_j, 0.0, std::max(spendable(), 0.0));
   energy_j -= paid;
   outstanding_j += paid;
   return paid;
@@ -223,7 +226,7 @@ GainGuard::StiffnessStack GainGuard::stiffnessOf(const CommandBus& bus) noexcept
     copy(stack.data() + 9, cartesian->stiffness_rotational, 9);
     copy(stack.data() + 18, cartesian->nullspace_stiffness, dof);
   } else {
-    const auto& joint = std::get<Joint>(bus);
+    const auto& joint = *std::get_if<Joint>(&bus);
     stack.resize(joint.dof);
     copy(stack.data(), joint.stiffness, joint.dof);
   }
@@ -236,7 +239,7 @@ void GainGuard::takeCommand(const CommandBus& command) noexcept {
   std::visit(
       [this](const auto& incoming) noexcept {
         using Bus = std::decay_t<decltype(incoming)>;
-        auto& law = std::get<Bus>(law_);
+        auto& law = *std::get_if<Bus>(&law_);
         const Bus in_force = law;
         law = incoming;
         if constexpr (std::is_same_v<Bus, Cartesian>) {
@@ -265,7 +268,7 @@ void GainGuard::takeCommand(const CommandBus& command) noexcept {
     const Eigen::Quaterniond frame = frameOf(cartesian->task_frame);
     if (frame.coeffs() != target_frame_.coeffs()) {
       target_frame_ = frame;
-      from_angle_ = frameOf(std::get<Cartesian>(law_).task_frame).angularDistance(frame);
+      from_angle_ = frameOf(std::get_if<Cartesian>(&law_)->task_frame).angularDistance(frame);
     }
   }
 }
@@ -278,15 +281,15 @@ void GainGuard::update(const CommandBus& command, const model::Data& data, const
   const auto* cartesian = std::get_if<Cartesian>(&command);
   if (pending_) {
     pending_ = cartesian != nullptr ? !updateCartesian(*cartesian, data, state, period_s)
-                                    : !updateJoint(std::get<Joint>(command), state, period_s);
+                                    : !updateJoint(*std::get_if<Joint>(&command), state, period_s);
     cacheBounds();
     fraction_ = gainFraction();
   }
   if (passivity_.enabled) {
     if (cartesian != nullptr) {
-      refillCartesian(std::get<Cartesian>(law_), data, period_s);
+      refillCartesian(*std::get_if<Cartesian>(&law_), data, period_s);
     } else {
-      refillJoint(std::get<Joint>(law_), state, period_s);
+      refillJoint(*std::get_if<Joint>(&law_), state, period_s);
     }
   }
   publish(diagnostics);
@@ -310,7 +313,7 @@ void GainGuard::cacheBounds() noexcept {
 
 bool GainGuard::updateCartesian(const Cartesian& target, const model::Data& data,
                                 const JointState& state, double period_s) noexcept {
-  auto& law = std::get<Cartesian>(law_);
+  auto& law = *std::get_if<Cartesian>(&law_);
   const bool ramp = ramps_.enabled;
   const int dof = target.dof;
   bool arrived = true;
@@ -368,7 +371,7 @@ bool GainGuard::updateCartesian(const Cartesian& target, const model::Data& data
              before;
     };
     const double full = injection(1.0);
-    beta = payableFraction(full, task_.available_j(), injection);
+    beta = payableFraction(full, task_.spendable(), injection);
     const double injected = beta == 1.0 ? full : injection(beta);
     settle(task_, full, injected);
 
@@ -377,7 +380,7 @@ bool GainGuard::updateCartesian(const Cartesian& target, const model::Data& data
       const double error = law.nullspace_position[i] - state.position[i];
       nullspace_full += 0.5 * (nullspace_candidate[i] - law.nullspace_stiffness[i]) * error * error;
     }
-    nullspace_beta = payableFraction(nullspace_full, nullspace_.available_j(),
+    nullspace_beta = payableFraction(nullspace_full, nullspace_.spendable(),
                                      [nullspace_full](double f) { return f * nullspace_full; });
     settle(nullspace_, nullspace_full, nullspace_beta * nullspace_full);
   }
@@ -399,7 +402,7 @@ bool GainGuard::updateCartesian(const Cartesian& target, const model::Data& data
 
 bool GainGuard::updateJoint(const Joint& target, const JointState& state,
                             double period_s) noexcept {
-  auto& law = std::get<Joint>(law_);
+  auto& law = *std::get_if<Joint>(&law_);
   const int dof = target.dof;
   JointVector candidate(dof);
   bool arrived = true;
@@ -420,7 +423,7 @@ bool GainGuard::updateJoint(const Joint& target, const JointState& state,
       const double error = law.position[i] - state.position[i];
       full += 0.5 * (candidate[i] - law.stiffness[i]) * error * error;
     }
-    beta = payableFraction(full, task_.available_j(), [full](double f) { return f * full; });
+    beta = payableFraction(full, task_.spendable(), [full](double f) { return f * full; });
     settle(task_, full, beta * full);
   }
   blend(law.stiffness, candidate.data(), dof, beta);

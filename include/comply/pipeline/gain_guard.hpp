@@ -54,7 +54,8 @@ struct EnergyAccount {
   void takeBack(double released_j) noexcept;
   /// Credits `credit_j` up to the ceiling; returns what was taken.
   double refill(double credit_j) noexcept;
-  [[nodiscard]] double available_j() const noexcept { return energy_j - min_j; }
+  /// [J] what it can spend before the floor.
+  [[nodiscard]] double spendable() const noexcept { return energy_j - min_j; }
 };
 
 class GainGuard {
