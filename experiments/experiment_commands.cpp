@@ -6,6 +6,7 @@
 
 #include "connector_mating/connector_mating_experiment.hpp"
 #include "cross_platform/cross_platform_experiment.hpp"
+#include "passivity/passivity_experiment.hpp"
 #include "surface_following/surface_following_experiment.hpp"
 
 namespace comply::experiments {
@@ -14,9 +15,11 @@ struct Commands::State {
   CrossPlatformOptions cross_platform;
   SurfaceFollowingOptions surface;
   ConnectorMatingOptions mating;
+  PassivityOptions passivity;
   CLI::App* cross_platform_command = nullptr;
   CLI::App* surface_command = nullptr;
   CLI::App* mating_command = nullptr;
+  CLI::App* passivity_command = nullptr;
 };
 
 namespace {
@@ -85,6 +88,29 @@ CLI::App* addConnectorMating(CLI::App& experiment, ConnectorMatingOptions& optio
   return command;
 }
 
+CLI::App* addPassivity(CLI::App& experiment, PassivityOptions& options) {
+  CLI::App* command = experiment.add_subcommand(
+      "passivity", "adversarially streamed gains: no gain stage vs ramps vs energy tank");
+  command->add_option("--out", options.out_dir, "output folder")->capture_default_str();
+  command
+      ->add_option("--duration", options.duration_s,
+                   "simulated seconds of each adversarial scenario (the normal task takes 3 s)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  command
+      ->add_option("--conditions", options.conditions,
+                   "none (no gain stage), ramps (gain_ramps), tank (gain_ramps and passivity), "
+                   "tank_only (passivity without gain_ramps)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"none", "ramps", "tank", "tank_only"}));
+  command
+      ->add_option("--torque-rate-limit", options.torque_rate_limit_nm_per_s,
+                   "ablation: the torque-rate limit per joint [N m/s] (default: the controller "
+                   "file's)")
+      ->check(CLI::PositiveNumber);
+  return command;
+}
+
 }  // namespace
 
 Commands::Commands(std::unique_ptr<State> state) : state_(std::move(state)) {}
@@ -94,12 +120,15 @@ Commands::~Commands() = default;
 
 bool Commands::parsed() const {
   return state_->cross_platform_command->parsed() || state_->surface_command->parsed() ||
-         state_->mating_command->parsed();
+         state_->mating_command->parsed() || state_->passivity_command->parsed();
 }
 
 int Commands::run(std::ostream& out, std::ostream& err) const {
   if (state_->mating_command->parsed()) {
     return connectorMatingCommand(state_->mating, out, err);
+  }
+  if (state_->passivity_command->parsed()) {
+    return passivityCommand(state_->passivity, out, err);
   }
   if (state_->surface_command->parsed()) {
     return surfaceFollowingCommand(state_->surface, out, err);
@@ -115,6 +144,7 @@ Commands addCommands(CLI::App& app) {
   state->cross_platform_command = addCrossPlatform(*experiment, state->cross_platform);
   state->surface_command = addSurfaceFollowing(*experiment, state->surface);
   state->mating_command = addConnectorMating(*experiment, state->mating);
+  state->passivity_command = addPassivity(*experiment, state->passivity);
   return Commands(std::move(state));
 }
 

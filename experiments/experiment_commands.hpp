@@ -35,8 +35,9 @@ class Commands {
   std::unique_ptr<State> state_;
 };
 
-/// Adds `experiment cross-platform|surface-following|connector-mating` with their options to
-/// `app`; the options are bound to storage the returned handle owns, so keep it until run().
+/// Adds `experiment cross-platform|surface-following|connector-mating|passivity` with their
+/// options to `app`; the options are bound to storage the returned handle owns, so keep it until
+/// run().
 Commands addCommands(CLI::App& app);
 
 }  // namespace comply::experiments

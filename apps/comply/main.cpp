@@ -3,7 +3,7 @@
 //   comply bench    --robot fr3|all|fr3,ur5e,chain12 --iterations 10000 [--processes 5] [--json]
 //   comply validate --robot fr3 --plugin cartesian_impedance --inputs samples.json [...]
 //   comply sim --robot fr3 --config controller.yaml --task task.yaml [--out DIR] [...]
-//   comply experiment cross-platform|surface-following|connector-mating [--out DIR]
+//   comply experiment cross-platform|surface-following|connector-mating|passivity [--out DIR]
 //   comply run --config controller.yaml --sim [--robot R] [--rate HZ] [--domain N] [--name NAME]
 //   comply send --json '{"position": [...]}' | --file F [--rate HZ]
 //   comply echo [state|diagnostics]
