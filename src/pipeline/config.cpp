@@ -259,8 +259,16 @@ YAML::Node controllerParameters(const std::string& yaml_text, const std::string&
 }
 
 /// The tank's energies must be ordered floor <= initial <= ceiling, or it would start empty or
-/// overfull: refused here, naming the option, rather than clamped without a word.
-void checkTankBounds(const PassivityConfig& tank, const Reporter& report) {
+/// overfull: refused here, naming the option, rather than clamped without a word. And the tank
+/// needs the ramps: a stiffness or frame step is clipped by the torque-rate limit, and the lag of a
+/// clipped torque does work the tank cannot account for (docs/safety.md, "Streamed gains").
+void checkTankBounds(const WrapperConfig& config, const Reporter& report) {
+  const PassivityConfig& tank = config.passivity;
+  if (tank.enabled && !config.gain_ramps.enabled) {
+    report.fail(InputErrc::kInconsistent, "passivity.enabled",
+                "needs gain_ramps.enabled: true (an unramped stiffness or task-frame step is "
+                "clipped by the torque-rate limit, and the tank cannot account for the lag)");
+  }
   if (!(tank.tank_min_j < tank.tank_max_j)) {
     report.fail(InputErrc::kInconsistent, "passivity.tank_min_j",
                 "must be below passivity.tank_max_j");
@@ -287,7 +295,7 @@ WrapperConfig parseWrapperText(const std::string& yaml_text, const std::string& 
   readNames(parameters, report, config);
   rejectUnknownKeys(parameters, "", report);
   readOptions(parameters, report, config);
-  checkTankBounds(config.passivity, report);
+  checkTankBounds(config, report);
   config.plugin_parameters = readPluginParameters(parameters, report);
   const YAML::Node initial = parameters["initial"];
   if (initial && !initial.IsMap()) {

@@ -14,7 +14,7 @@ void Controller::guardGains() noexcept {
     gains_.takeCommand(active_);
     in_force_changed_ = false;
   }
-  gains_.update(active_, data_, state_, period_s_, diagnostics_);
+  gains_.update(active_, data_, state_, period_s_, torque_clipped_, diagnostics_);
 }
 
 }  // namespace comply::pipeline

@@ -33,6 +33,7 @@ bool Controller::shape() noexcept {
   }
   diagnostics_.rate_limit_hits.fetch_add(shaped.rate_limited, std::memory_order_relaxed);
   diagnostics_.effort_limit_hits.fetch_add(shaped.effort_limited, std::memory_order_relaxed);
+  torque_clipped_ = shaped.rate_limited + shaped.effort_limited > 0;
   return true;
 }
 

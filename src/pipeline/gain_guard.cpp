@@ -274,8 +274,9 @@ void GainGuard::takeCommand(const CommandBus& command) noexcept {
 }
 
 void GainGuard::update(const CommandBus& command, const model::Data& data, const JointState& state,
-                       double period_s, Diagnostics& diagnostics) noexcept {
+                       double period_s, bool torque_clipped, Diagnostics& diagnostics) noexcept {
   refused_j_ = 0.0;
+  torque_clipped_ = torque_clipped;
   // Once the gains in force are the command's, nothing moves them until the next command: the
   // common cycle then only keeps the refill window.
   const auto* cartesian = std::get_if<Cartesian>(&command);
@@ -442,6 +443,7 @@ void GainGuard::settle(EnergyAccount& account, double full_j, double injected_j)
 void GainGuard::openWindow(bool ratio) noexcept {
   window_open_ = true;
   window_ratio_ = ratio;
+  window_clipped_ = false;
   window_elapsed_s_ = 0.0;
   window_increment_.setZero();
   joint_window_increment_.setZero();
@@ -479,6 +481,7 @@ void GainGuard::refillCartesian(const Cartesian& gains, const model::Data& data,
   }
   window_increment_ += increment;
   window_elapsed_s_ += period_s;
+  window_clipped_ = window_clipped_ || torque_clipped_;
   // The smallest damping (ratio mode: stiffness and ratio) and the largest stiffness of the window.
   window_translational_ = std::min(window_translational_, bounds_.translational);
   window_rotational_ = std::min(window_rotational_, bounds_.rotational);
@@ -490,6 +493,11 @@ void GainGuard::refillCartesian(const Cartesian& gains, const model::Data& data,
     return;
   }
   window_open_ = false;
+  // A torque the shaping clipped is not the law's: its damping did not all act on the arm, and a
+  // rate limit's lag is itself active. Such a window credits nothing.
+  if (window_clipped_) {
+    return;
+  }
   double damping_translational = window_translational_;
   double damping_rotational = window_rotational_;
   if (ratio && !ratioDampingBound(data, damping_translational, damping_rotational)) {
@@ -565,10 +573,14 @@ void GainGuard::refillJoint(const Joint& gains, const JointState& state, double 
   }
   previous_joints_ = state.position;
   window_elapsed_s_ += period_s;
+  window_clipped_ = window_clipped_ || torque_clipped_;
   if (window_elapsed_s_ < kWindowS) {
     return;
   }
   window_open_ = false;
+  if (window_clipped_) {
+    return;  // as in refillCartesian()
+  }
   double credit = 0.0;
   for (int i = 0; i < dof; ++i) {
     // Net of the sampled spring's own activity, as in refillCartesian().

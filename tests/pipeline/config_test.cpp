@@ -395,6 +395,29 @@ TEST(WrapperConfig, ViscousCoulombFriction) {
               {kPrefix + "compensation.friction.model: must be none, sigmoid or viscous_coulomb"});
 }
 
+TEST(WrapperConfig, ReadsTheGainStageAndRefusesATankWithoutRampsOrOutOfOrder) {
+  const WrapperConfig config = parse(
+      "gain_ramps:\n  enabled: true\n  translational_stiffness_per_s: 500.0\n"
+      "passivity:\n  enabled: true\n  tank_initial_j: 0.5\n  tank_max_j: 3.0\n");
+  EXPECT_TRUE(config.gain_ramps.enabled);
+  EXPECT_EQ(config.gain_ramps.translational_stiffness_per_s, 500.0);
+  EXPECT_EQ(config.gain_ramps.task_frame_rad_per_s, 1.0);
+  EXPECT_TRUE(config.passivity.enabled);
+  EXPECT_EQ(config.passivity.tank_initial_j, 0.5);
+  EXPECT_EQ(config.passivity.tank_max_j, 3.0);
+  EXPECT_FALSE(parse("").passivity.enabled);
+  EXPECT_FALSE(parse("").gain_ramps.enabled);
+  expectError(controllerYaml("passivity:\n  enabled: true"),
+              {kPrefix + "passivity.enabled: needs gain_ramps.enabled: true"});
+  expectError(controllerYaml("passivity:\n  tank_initial_j: 3.0"),
+              {kPrefix + "passivity.tank_initial_j: must lie between passivity.tank_min_j and "
+                         "passivity.tank_max_j"});
+  expectError(controllerYaml("passivity:\n  tank_min_j: 2.0"),
+              {kPrefix + "passivity.tank_min_j: must be below passivity.tank_max_j"});
+  expectError(controllerYaml("gain_ramps:\n  joint_stiffness_per_s: 0"),
+              {kPrefix + "gain_ramps.joint_stiffness_per_s: must be"});
+}
+
 TEST(WrapperConfig, ReadsPayload) {
   const WrapperConfig config = parse(
       "compensation:\n"

@@ -180,14 +180,21 @@ TEST(GainGuard, OffTheLawReadsTheCommandInForceItself) {
   CartesianWrapper wrapper(fr3Config(kCartesianImpedancePlugin));
   EXPECT_EQ(&wrapper.controller().lawBus(), &wrapper.controller().activeCommand());
   EXPECT_FALSE(wrapper.diagnostics().passivity.enabled);
-  CartesianWrapper guarded(fr3Config(kCartesianImpedancePlugin, "passivity:\n  enabled: true\n"));
+  CartesianWrapper guarded(fr3Config(
+      kCartesianImpedancePlugin, "gain_ramps:\n  enabled: true\npassivity:\n  enabled: true\n"));
   EXPECT_NE(&guarded.controller().lawBus(), &guarded.controller().activeCommand());
 }
 
-TEST(GainGuard, WithATankThatNeverRunsDryTheLawSeesTheCommandBitForBit) {
+TEST(GainGuard, WithNothingToHoldBackTheLawSeesTheCommandBitForBit) {
   CartesianWrapper reference(fr3Config(kCartesianImpedancePlugin));
   CartesianWrapper guarded(
       fr3Config(kCartesianImpedancePlugin,
+                // Ramps so fast that every change arrives in one cycle.
+                "gain_ramps:\n  enabled: true\n  translational_stiffness_per_s: 1.0e12\n"
+                "  rotational_stiffness_per_s: 1.0e12\n  joint_stiffness_per_s: 1.0e12\n"
+                "  translational_damping_per_s: 1.0e12\n  rotational_damping_per_s: 1.0e12\n"
+                "  joint_damping_per_s: 1.0e12\n  damping_ratio_per_s: 1.0e12\n"
+                "  task_frame_rad_per_s: 1.0e12\n"
                 "passivity:\n  enabled: true\n  tank_initial_j: 1.0e5\n  tank_max_j: 1.0e6\n"
                 "  nullspace_tank_initial_j: 1.0e5\n  nullspace_tank_max_j: 1.0e6\n"));
   expectSameTorques(reference, guarded, 2000);
@@ -224,12 +231,14 @@ void expectNoCreditFromVelocityNoise(WrapperType& wrapper) {
 
 TEST(GainGuard, VelocityNoiseOnAnArmAtRestCreditsTheTankNothing) {
   const std::string lines =
-      "passivity:\n  enabled: true\n  tank_initial_j: 0.1\ninitial:\n  damping: 10.0\n";
+      "gain_ramps:\n  enabled: true\npassivity:\n  enabled: true\n  tank_initial_j: 0.1\n"
+      "initial:\n  damping: 10.0\n";
   JointWrapper joint(fr3Config(kJointImpedancePlugin, lines));
   expectNoCreditFromVelocityNoise(joint);
-  CartesianWrapper cartesian(fr3Config(
-      kCartesianImpedancePlugin,
-      "passivity:\n  enabled: true\n  tank_initial_j: 0.1\ninitial:\n  damping_ratio: 1.0\n"));
+  CartesianWrapper cartesian(
+      fr3Config(kCartesianImpedancePlugin,
+                "gain_ramps:\n  enabled: true\npassivity:\n  enabled: true\n  tank_initial_j: 0.1\n"
+                "initial:\n  damping_ratio: 1.0\n"));
   expectNoCreditFromVelocityNoise(cartesian);
 }
 

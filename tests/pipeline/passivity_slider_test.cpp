@@ -71,7 +71,12 @@ class SliderRobot {
 std::string tankLines(bool tank, double damping, bool cartesian) {
   const std::string k = std::to_string(kHighStiffness);
   const std::string d = std::to_string(damping);
-  std::string lines = std::string("passivity:\n  enabled: ") + (tank ? "true" : "false") +
+  // Ramps on with the tank (it needs them), so fast that a switch still lands in one cycle.
+  std::string lines = std::string("gain_ramps:\n  enabled: ") + (tank ? "true" : "false") +
+                      "\n  translational_stiffness_per_s: 1.0e9\n  joint_stiffness_per_s: 1.0e9\n"
+                      "  task_frame_rad_per_s: 1.0e9\n"
+                      "passivity:\n  enabled: " +
+                      (tank ? "true" : "false") +
                       "\n  tank_initial_j: 1.0\n  tank_max_j: 2.0\ninitial:\n";
   if (!cartesian) {
     return lines + "  stiffness: " + k + "\n  damping: " + d + "\n";

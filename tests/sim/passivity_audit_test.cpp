@@ -109,6 +109,7 @@ AuditResult audit(bool tank, double position_noise_rad, double velocity_noise_ra
   pipeline::WrapperConfig config = simCartesianConfig("fr3");
   config.gravity_compensation = false;
   config.passivity.enabled = tank;
+  config.gain_ramps.enabled = tank;  // the tank needs the ramps (docs/safety.md)
   // A small tank, so that the streams ask for more than it holds and it has to refuse.
   config.passivity.tank_initial_j = 0.1;
   config.passivity.tank_max_j = 0.2;

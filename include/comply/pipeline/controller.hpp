@@ -162,6 +162,7 @@ class Controller {
   CommandBus active_;
   GainGuard gains_;
   bool in_force_changed_ = false;  // active_ changed since the gain stage last saw it
+  bool torque_clipped_ = false;    // the last cycle's torque was rate or effort limited
   bool reset_pending_ = false;
   JointState state_;
   bool state_usable_ = false;  // this cycle's state passed measure(), so input_ is current

@@ -74,8 +74,10 @@ class GainGuard {
   /// gains become the target the ramps and the tank move toward.
   void takeCommand(const CommandBus& command) noexcept;
   /// One cycle at the measured state (`data` holds the pose and, with ratios, M and J).
+  /// `torque_clipped`: the last cycle's torque, which moved the arm to `state`, was rate or effort
+  /// limited, so the law's damping did not all reach the arm.
   void update(const CommandBus& command, const model::Data& data, const JointState& state,
-              double period_s, Diagnostics& diagnostics) noexcept;
+              double period_s, bool torque_clipped, Diagnostics& diagnostics) noexcept;
 
   /// The bus the law reads.
   [[nodiscard]] const CommandBus& lawBus() const noexcept { return law_; }
@@ -112,8 +114,9 @@ class GainGuard {
   GainRampConfig ramps_;
   PassivityConfig passivity_;
   CommandBus law_;
-  bool pending_ = false;   ///< the gains in force are not yet the command's
-  double fraction_ = 1.0;  ///< gainFraction() as of the last change
+  bool pending_ = false;         ///< the gains in force are not yet the command's
+  bool torque_clipped_ = false;  ///< this cycle's update() was told the last torque was clipped
+  double fraction_ = 1.0;        ///< gainFraction() as of the last change
   /// Gershgorin bounds of the gains in force (Cartesian): the smallest damping (ratio mode: the
   /// smallest stiffness) and the largest stiffness per block, and the smallest damping ratio.
   struct Bounds {
@@ -141,6 +144,7 @@ class GainGuard {
   static constexpr double kWindowS = 0.01;
   bool window_open_ = false;
   bool window_ratio_ = false;
+  bool window_clipped_ = false;  ///< shaping clipped a torque in the window: it credits nothing
   double window_elapsed_s_ = 0.0;
   Vector6d window_increment_ = Vector6d::Zero();
   double window_translational_ = 0.0;
