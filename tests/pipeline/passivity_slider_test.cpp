@@ -215,9 +215,7 @@ class PassivitySlider : public ::testing::Test {
 
 // Without damping and without the tank, the energy multiplies by K_high / K_low = 3 every half
 // period: the closed form the pump is known by. The wrapper passes the schedule unchanged.
-TEST_F(PassivitySlider, WithoutTheTankTheScheduleGrowsTheEnergyAsTheClosedFormSays) {
-  JointWrapper wrapper(robot.config(kJointImpedancePlugin, tankLines(false, 0.0, false)));
-  const PumpResult result = runPump(wrapper, Pump::kStiffness, 1.2);
+void expectClosedFormGrowth(const PumpResult& result) {
   ASSERT_GE(result.half_periods, 3);
   const double start_j = 0.5 * kHighStiffness * kStart * kStart;
   const double closed_form_j = start_j * std::pow(kHighStiffness / kLowStiffness, 3);
@@ -225,6 +223,13 @@ TEST_F(PassivitySlider, WithoutTheTankTheScheduleGrowsTheEnergyAsTheClosedFormSa
   EXPECT_GT(result.final_mechanical_j, 0.9 * closed_form_j);
   EXPECT_LT(result.final_mechanical_j, 1.1 * closed_form_j * kHighStiffness / kLowStiffness);
   EXPECT_FALSE(result.tank.enabled);
+}
+
+TEST_F(PassivitySlider, WithoutTheTankTheScheduleGrowsTheEnergyAsTheClosedFormSays) {
+  JointWrapper joint(robot.config(kJointImpedancePlugin, tankLines(false, 0.0, false)));
+  expectClosedFormGrowth(runPump(joint, Pump::kStiffness, 1.2));
+  CartesianWrapper cartesian(robot.config(kCartesianImpedancePlugin, tankLines(false, 0.0, true)));
+  expectClosedFormGrowth(runPump(cartesian, Pump::kStiffness, 1.2));
 }
 
 void expectBounded(const PumpResult& result) {
