@@ -42,9 +42,7 @@ struct Sim::Session {
   explicit Session(const std::shared_ptr<const pipeline::ResolvedController>& resolved)
       : plant(resolved->robot, plantOptions(*resolved)),
         clock(plant),
-        gate({.kind = resolved->cartesian() ? pipeline::CommandKind::kCartesian
-                                            : pipeline::CommandKind::kJoint,
-              .publisher_timeout_s = resolved->config.command_timeout_s}) {
+        gate(pipeline::gateOptions(resolved->config, resolved->cartesian())) {
     if (resolved->cartesian()) {
       episode = std::make_unique<Episode<CartesianCommand>>(resolved);
     } else {
@@ -148,6 +146,7 @@ py::tuple Sim::step(const py::object& command) {
     offer.kind = cartesian() ? pipeline::CommandKind::kCartesian : pipeline::CommandKind::kJoint;
     offer.publisher = 1;  // this process is the only writer
     offer.now_ns = monotonicNanoseconds();
+    offer.clock_ns = *stamp_ns;  // the stamps are the simulated clock itself
     std::visit(
         [&](auto& e) {
           using Command = std::remove_cvref_t<decltype(e->wrapper.lastAccepted())>;

@@ -26,12 +26,22 @@ std::string_view toString(CommandReason reason) {
       return "wrong_kind";
     case CommandReason::kInactive:
       return "inactive";
+    case CommandReason::kFutureStamp:
+      return "future_stamp";
+    case CommandReason::kInvalidStamp:
+      return "invalid_stamp";
     case CommandReason::kNone:
       return "none";
   }
   const auto number = static_cast<std::uint8_t>(reason);
   return number < kRejectionReasonCount ? toString(static_cast<RejectionReason>(number))
                                         : std::string_view("unknown");
+}
+
+GateOptions gateOptions(const WrapperConfig& config, bool cartesian) {
+  return {.kind = cartesian ? CommandKind::kCartesian : CommandKind::kJoint,
+          .publisher_timeout_s = config.command_timeout_s,
+          .max_stamp_lead_s = config.validation.max_stamp_lead_s};
 }
 
 CommandGate::CommandGate(GateOptions options) : options_(options) {}
@@ -64,6 +74,19 @@ CommandReason CommandGate::admitLocked(const Offer& offer, bool active, CommandO
   if (!active) {
     return rejectLocked(outcome, CommandReason::kInactive,
                         "the controller is inactive (send an activate request)");
+  }
+  if (offer.nanosec >= 1'000'000'000U) {
+    return rejectLocked(
+        outcome, CommandReason::kInvalidStamp,
+        "header.stamp.nanosec is " + std::to_string(offer.nanosec) + ", not below 1000000000");
+  }
+  const double lead_s = 1e-9 * static_cast<double>(offer.stamp_ns - offer.clock_ns);
+  if (offer.clock_ns != 0 && lead_s > options_.max_stamp_lead_s) {
+    std::ostringstream text;
+    text << "stamp " << stampText(offer.stamp_ns) << " is " << lead_s
+         << " s ahead of the host's clock " << stampText(offer.clock_ns) << " (at most "
+         << options_.max_stamp_lead_s << " s: validation.max_stamp_lead_s)";
+    return rejectLocked(outcome, CommandReason::kFutureStamp, text.str());
   }
   if (accepted_any_ && offer.stamp_ns <= last_accepted_ns_) {
     return rejectLocked(outcome, commandReason(RejectionReason::kStaleStamp),
@@ -117,6 +140,11 @@ void CommandGate::abandonPending(const std::string& why) {
     rejectLocked(pending.outcome, CommandReason::kInactive, why);
   }
   pending_.clear();
+}
+
+void CommandGate::clearStampFloor() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  accepted_any_ = false;
 }
 
 std::vector<CommandOutcome> CommandGate::takeOutcomes() {

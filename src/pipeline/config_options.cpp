@@ -72,6 +72,10 @@ void addCommandOptions(std::vector<Option>& table) {
   table.push_back(number("validation.max_joint_jump_rad", "0.50",
                          "joint target vs measured position (joint commands)", 0.0, kInfinity, true,
                          [](WrapperConfig& c, double v) { c.validation.max_joint_jump_rad = v; }));
+  table.push_back(number("validation.max_stamp_lead_s", "1.0",
+                         "s a command's stamp may be ahead of the host's clock (clock skew)", 0.0,
+                         kInfinity, true,
+                         [](WrapperConfig& c, double v) { c.validation.max_stamp_lead_s = v; }));
 }
 
 // Model-based torques added to the control law: gravity, a held payload, joint friction.

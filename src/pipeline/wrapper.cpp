@@ -35,6 +35,7 @@ Wrapper<Command>::Wrapper(const WrapperConfig& config) : Wrapper(resolveControll
 template <typename Command>
 void Wrapper<Command>::reset() {
   const std::lock_guard<std::mutex> lock(intake_mutex_);
+  last_stamp_s_ = 0.0;  // as the command gate's floor: a stamp that ran ahead locks no one out
   IntakeMessage message;
   message.type = IntakeMessage::Type::kReset;
   message.command = emptyBus(kKind<Command>);

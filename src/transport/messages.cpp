@@ -63,6 +63,10 @@ std::string_view toString(Reason reason) {
       return "wrong_kind";
     case Reason::kInactive:
       return "inactive";
+    case Reason::kFutureStamp:
+      return "future_stamp";
+    case Reason::kInvalidStamp:
+      return "invalid_stamp";
     case Reason::kNone:
       return "none";
   }

@@ -194,5 +194,39 @@ TEST(LiveHostInProcess, WrongKindAndEqualStampAreRejected) {
   EXPECT_EQ(host->stop(), 0);
 }
 
+/// A sender whose clock is an hour ahead, and a stamp whose nanoseconds are out of range: both
+/// were applied before, and the first then locked every later sender out as stale until the host
+/// restarted. Now both are refused by the host's clock policy and the next command applies.
+TEST(LiveHostInProcess, AStampFromTheFutureOrOutOfRangeIsRefusedAndLocksNoOneOut) {
+  const std::unique_ptr<HostHarness> host = makeHarness("in_process");
+  host->start("clock");
+  const auto state = host->state(20s);
+  ASSERT_TRUE(state) << "no state from the host";
+  ASSERT_TRUE(host->connect(1, static_cast<int>(state->position.size())));
+  const auto outcomesOf = [&](transport::Stamp stamp) -> auto& {
+    return host->outcomes()[stamp.nanoseconds()];
+  };
+
+  const transport::Stamp now = transport::Stamp::now();
+  const transport::Stamp hour_ahead{now.sec + 3600, now.nanosec};
+  transport::Stamp out_of_range{now.sec - 4, 4'000'000'000U};  // reads as "now", if summed
+  const transport::Stamp next = transport::Stamp::fromNanoseconds(now.nanoseconds() + 1000000);
+  ASSERT_TRUE(host->send(poseCommand(*state, Eigen::Vector3d::Zero(), hour_ahead), 1));
+  ASSERT_TRUE(host->send(poseCommand(*state, Eigen::Vector3d::Zero(), out_of_range), 1));
+  ASSERT_TRUE(host->send(poseCommand(*state, Eigen::Vector3d::Zero(), next), 1));
+  ASSERT_TRUE(host->poll(5s, [&](const auto&) {
+    return !outcomesOf(hour_ahead).empty() && !outcomesOf(out_of_range).empty() &&
+           !outcomesOf(next).empty();
+  }));
+  const transport::CommandOutcomeMessage& future = outcomesOf(hour_ahead).front();
+  EXPECT_EQ(future.outcome, transport::Outcome::kRejected);
+  EXPECT_EQ(toString(future.reason), "future_stamp") << future.message;
+  const transport::CommandOutcomeMessage& invalid = outcomesOf(out_of_range).front();
+  EXPECT_EQ(toString(invalid.reason), "invalid_stamp") << invalid.message;
+  const transport::CommandOutcomeMessage& applied = outcomesOf(next).front();
+  EXPECT_EQ(applied.outcome, transport::Outcome::kApplied) << applied.message;
+  EXPECT_EQ(host->stop(), 0);
+}
+
 }  // namespace
 }  // namespace comply::live_test

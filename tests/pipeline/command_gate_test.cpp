@@ -206,6 +206,75 @@ TEST_F(CommandGateTest, EveryCommandIsAccountedExactlyOnce) {
           counts.per_reason[static_cast<std::size_t>(commandReason(RejectionReason::kStaleStamp))]);
 }
 
+// A sender whose clock runs an hour ahead used to be applied, after which every other sender's
+// stamps were stale until the host restarted.
+TEST_F(CommandGateTest, AStampTooFarAheadOfTheHostClockIsRefusedAndLocksNoOneOut) {
+  const std::int64_t host_now = 1000 * kSecond;
+  Offer ahead = offerAt(host_now + 3600 * kSecond);
+  ahead.clock_ns = host_now;
+  std::vector<CommandOutcome> outcomes = offer(ahead);
+  ASSERT_EQ(outcomes.size(), 1U);
+  EXPECT_EQ(outcomes[0].reason, CommandReason::kFutureStamp);
+  EXPECT_EQ(toString(outcomes[0].reason), "future_stamp");
+  EXPECT_NE(outcomes[0].message.find("3600 s ahead of the host's clock"), std::string::npos)
+      << outcomes[0].message;
+  // Within the lead (1 s by default) a clock that runs a little ahead is fine.
+  Offer slightly_ahead = offerAt(host_now + kSecond / 2);
+  slightly_ahead.clock_ns = host_now;
+  EXPECT_TRUE(offer(slightly_ahead).empty());
+  // An in-time stamp from another clock is judged by the strict rule only.
+  Offer behind = offerAt(host_now - 5 * kSecond);
+  behind.clock_ns = host_now;
+  outcomes = offer(behind);
+  ASSERT_EQ(outcomes.size(), 1U);
+  EXPECT_EQ(outcomes[0].reason, commandReason(RejectionReason::kStaleStamp));
+}
+
+TEST_F(CommandGateTest, NanosecondsOutOfRangeAreAnInvalidStamp) {
+  Offer invalid = offerAt(5 * kSecond);
+  invalid.nanosec = 4'000'000'000U;  // sec 1 + 4e9 ns would read as 5 s
+  std::vector<CommandOutcome> outcomes = offer(invalid);
+  ASSERT_EQ(outcomes.size(), 1U);
+  EXPECT_EQ(outcomes[0].reason, CommandReason::kInvalidStamp);
+  EXPECT_NE(outcomes[0].message.find("nanosec is 4000000000"), std::string::npos);
+  Offer valid = offerAt(5 * kSecond);
+  valid.nanosec = 999'999'999U;
+  EXPECT_TRUE(offer(valid).empty());
+}
+
+TEST_F(CommandGateTest, AResetClearsTheStampFloor) {
+  EXPECT_TRUE(offer(offerAt(50 * kSecond)).empty());
+  std::vector<CommandOutcome> outcomes = offer(offerAt(10 * kSecond));
+  ASSERT_EQ(outcomes.size(), 1U);
+  EXPECT_EQ(outcomes[0].reason, commandReason(RejectionReason::kStaleStamp));
+  gate_.clearStampFloor();
+  EXPECT_TRUE(offer(offerAt(10 * kSecond)).empty()) << "after a reset any stamp is new again";
+}
+
+TEST(CommandGateWithWrapper, AResetClearsTheWrappersStampFloorToo) {
+  JointWrapper wrapper(fr3Config(kJointImpedancePlugin));
+  wrapper.activate(restingAt(wrapper.controller(), fr3Home()));
+  JointCommand command = JointCommand::zero(kFr3Dof);
+  command.fields = CommandField::kStiffness;
+  command.stiffness.setConstant(100.0);
+  command.stamp_s = 3600.0;
+  ASSERT_TRUE(wrapper.submit(command).accepted);
+  command.stamp_s = 10.0;
+  EXPECT_EQ(wrapper.submit(command).reason, RejectionReason::kStaleStamp);
+  wrapper.reset();
+  EXPECT_TRUE(wrapper.submit(command).accepted);
+}
+
+TEST(CommandGateOptions, TheStampLeadComesFromTheControllerFile) {
+  WrapperConfig config =
+      fr3Config(kCartesianImpedancePlugin, "validation:\n  max_stamp_lead_s: 0.25\n");
+  const GateOptions options = gateOptions(config, true);
+  EXPECT_EQ(options.max_stamp_lead_s, 0.25);
+  EXPECT_EQ(options.kind, CommandKind::kCartesian);
+  EXPECT_EQ(options.publisher_timeout_s, config.command_timeout_s);
+  EXPECT_EQ(gateOptions(fr3Config(kJointImpedancePlugin), false).max_stamp_lead_s, 1.0);
+}
+
 TEST(CommandGateWithWrapper, AFullQueueIsRefusedAsQueueFullAndTheRestApplyInOrder) {
   JointWrapper wrapper(fr3Config(kJointImpedancePlugin));
   JointState state = restingAt(wrapper.controller(), fr3Home());

@@ -9,8 +9,12 @@
 //   3. the publisher rule: the first writer holds the command topics until it is silent for
 //      `publisher_timeout_s` (the controller's command_timeout_s, when the watchdog holds)
 //   4. an active controller
-//   5. the stamp rule: strictly newer than the last accepted command, compared on the exact wire
-//      stamp (integer nanoseconds), so that the stamp in force always names one command
+//   5. the stamp rules: a well-formed stamp (nanoseconds below 1e9), not more than
+//      `max_stamp_lead_s` ahead of the host's clock (a sender whose clock runs ahead, or one
+//      stamp from the future, would otherwise lock every later command out as stale), and
+//      strictly newer than the last accepted command, compared on the exact wire stamp (integer
+//      nanoseconds), so that the stamp in force always names one command. A reset request clears
+//      the last accepted stamp (clearStampFloor()).
 //   6. the wrapper's own checks (Wrapper::submit: finite, unit quaternions, gains, jumps, queue)
 //
 // Threads: offer() on the intake thread (any non-real-time thread), noteCycle() on the control
@@ -27,6 +31,7 @@
 
 #include "comply/core/spsc_queue.hpp"
 #include "comply/pipeline/command_validation.hpp"
+#include "comply/pipeline/config.hpp"
 
 namespace comply::pipeline {
 
@@ -34,11 +39,13 @@ namespace comply::pipeline {
 /// gate's own. The wire's CommandOutcome.REASON_* carry these numbers.
 enum class CommandReason : std::uint8_t {
   kOtherPublisher = static_cast<std::uint8_t>(RejectionReason::kCount),  ///< another writer holds
-  kWrongKind,  ///< a joint command to a Cartesian controller, or the reverse
-  kInactive,   ///< the controller is not active (or the host stopped before a cycle took it)
+  kWrongKind,     ///< a joint command to a Cartesian controller, or the reverse
+  kInactive,      ///< the controller is not active (or the host stopped before a cycle took it)
+  kFutureStamp,   ///< stamped more than max_stamp_lead_s ahead of the host's clock
+  kInvalidStamp,  ///< header.stamp.nanosec not below 1e9
   kNone = 255,
 };
-inline constexpr std::size_t kCommandReasonCount = kRejectionReasonCount + 3;
+inline constexpr std::size_t kCommandReasonCount = kRejectionReasonCount + 5;
 /// The wrapper's reason as a gate reason (same number).
 constexpr CommandReason commandReason(RejectionReason reason) noexcept {
   return static_cast<CommandReason>(reason);
@@ -69,7 +76,12 @@ struct GateCounts {
 struct GateOptions {
   CommandKind kind = CommandKind::kCartesian;  ///< the kind the controller takes
   double publisher_timeout_s = 0.5;            ///< silence after which another writer may take over
+  double max_stamp_lead_s = 1.0;               ///< how far a stamp may be ahead of the host's clock
 };
+
+/// The gate options of a controller: its kind, the publisher timeout (command_timeout_s) and the
+/// stamp lead (validation.max_stamp_lead_s) from its configuration.
+GateOptions gateOptions(const WrapperConfig& config, bool cartesian);
 
 /// One command as offered to the gate.
 struct Offer {
@@ -78,6 +90,10 @@ struct Offer {
   std::uint64_t publisher = 0;  ///< the writer's identity (a DDS instance handle, a ROS GID hash)
   std::string_view malformed;   ///< non-empty: what the wire held that the type cannot
   std::int64_t now_ns = 0;      ///< the intake's steady clock [ns], for the publisher rule
+  /// The host's clock in the stamps' timebase [ns] (wall clock for `comply run`, simulated time
+  /// for Python's Sim, the node's clock under ROS 2); 0: none, no lead rule.
+  std::int64_t clock_ns = 0;
+  std::uint32_t nanosec = 0;  ///< header.stamp.nanosec as it came (must be below 1e9)
 };
 
 class CommandGate {
@@ -116,6 +132,9 @@ class CommandGate {
   /// At shutdown (after the last cycle): the accepted commands no cycle took, rejected as
   /// kInactive.
   void abandonPending(const std::string& why);
+  /// A reset request: the next command may carry any stamp again (within the lead), so that a
+  /// stamp from a clock that ran ahead does not lock senders out until the host restarts.
+  void clearStampFloor();
 
   [[nodiscard]] GateCounts counts() const;
   [[nodiscard]] std::size_t pending() const;

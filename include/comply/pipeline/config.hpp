@@ -53,6 +53,7 @@ struct ValidationConfig {
   double max_orientation_jump_rad = 0.60;  ///< target vs measured TCP orientation
   double max_joint_jump_rad = 0.50;        ///< joint target vs measured position
   double gain_tolerance = 1e-9;            ///< symmetry / PSD tolerance, relative
+  double max_stamp_lead_s = 1.0;           ///< a command stamp ahead of the host's clock [s]
 };
 
 /// Rate limits on the gains the law sees (gain_ramps.*): a step in a command becomes a ramp. Each

@@ -44,7 +44,8 @@ class Wrapper final : public hardware::CycleController {
   /// Non-RT. update() outputs nothing until the next activate().
   void deactivate() noexcept { controller_.deactivate(); }
   /// Any thread. Asks the cycle to leave FAULT; the law runs again from the next cycle with a
-  /// usable state. Ignored outside FAULT.
+  /// usable state (ignored outside FAULT). Clears the stamp floor either way: the next command
+  /// may carry any stamp.
   void reset();
 
   /// Any non-RT thread. Validates `command` (the field groups it sets) against the measured pose

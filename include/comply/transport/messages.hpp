@@ -99,9 +99,11 @@ enum class Reason : std::uint8_t {
   kOtherPublisher = 8,  ///< another writer holds the command topics
   kWrongKind = 9,       ///< a joint command to a Cartesian controller, or the reverse
   kInactive = 10,       ///< the controller is not active
+  kFutureStamp = 11,    ///< stamped too far ahead of the host's clock
+  kInvalidStamp = 12,   ///< header.stamp.nanosec not below 1e9
   kNone = 255,
 };
-inline constexpr std::size_t kReasonCount = 11;
+inline constexpr std::size_t kReasonCount = 13;
 std::string_view toString(Reason reason);
 
 /// comply_msgs/CommandOutcome.

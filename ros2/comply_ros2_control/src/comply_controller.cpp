@@ -98,10 +98,7 @@ void ComplyController<Command>::resolve() {
   wrapper_ = std::make_unique<comply::pipeline::Wrapper<Command>>(
       comply::pipeline::resolveController(config));
   gate_ = std::make_unique<comply::pipeline::CommandGate>(
-      comply::pipeline::GateOptions{.kind = std::is_same_v<Command, comply::CartesianCommand>
-                                                ? comply::pipeline::CommandKind::kCartesian
-                                                : comply::pipeline::CommandKind::kJoint,
-                                    .publisher_timeout_s = config.command_timeout_s});
+      comply::pipeline::gateOptions(config, std::is_same_v<Command, comply::CartesianCommand>));
   joints_ = config.joints;
 }
 
@@ -270,6 +267,8 @@ void ComplyController<Command>::onCommand(const CommandMessage& message,
   offer.publisher = publisherId(info.get_rmw_message_info().publisher_gid);
   offer.malformed = malformed;
   offer.now_ns = comply::monotonicNanoseconds();
+  offer.clock_ns = get_node()->now().nanoseconds();  // the node's clock: ROS time, or /clock
+  offer.nanosec = message.header.stamp.nanosec;
   const bool active = wrapper_->diagnostics().state != comply::pipeline::WrapperState::kInactive;
   const comply::pipeline::CommandReason refused =
       gate_->offer(offer, active, [&] { return wrapper_->submit(command); });
@@ -290,9 +289,10 @@ void ComplyController<Command>::onResetFault(std_srvs::srv::Trigger::Response& r
   }
   const bool in_fault = wrapper_->diagnostics().state == comply::pipeline::WrapperState::kFault;
   wrapper_->reset();
+  gate_->clearStampFloor();  // either way: a stamp that ran ahead locks no sender out
   response.success = in_fault;
   response.message = in_fault ? "reset requested: the law runs again from the next cycle"
-                              : "not in FAULT: nothing to reset";
+                              : "not in FAULT: nothing to reset (stamp floor cleared)";
 }
 
 template <typename Command>

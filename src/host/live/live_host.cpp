@@ -146,9 +146,7 @@ int runWith(const LiveHostOptions& options,
                           .receive_priority = options.priority > 1 ? options.priority - 1 : 0});
 
   const double period_s = 1.0 / options.rate_hz;
-  pipeline::CommandGate gate({.kind = resolved->cartesian() ? pipeline::CommandKind::kCartesian
-                                                            : pipeline::CommandKind::kJoint,
-                              .publisher_timeout_s = resolved->config.command_timeout_s});
+  pipeline::CommandGate gate(pipeline::gateOptions(resolved->config, resolved->cartesian()));
   LiveObserver<Command> observer(wrapper, gate, robot, hardware::monotonicSeconds());
   const auto cycles = static_cast<std::uint64_t>(std::llround(options.duration_s / period_s));
   hardware::ControlLoop loop(robot, wrapper, *backend.clock,

@@ -22,6 +22,8 @@ void offerSample(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gat
   offer.publisher = sample.publisher;
   offer.malformed = sample.malformed;
   offer.now_ns = monotonicNanoseconds();
+  offer.clock_ns = wallClockNanoseconds();  // senders stamp with their wall clock (ROS 2 time)
+  offer.nanosec = sample.message.header.stamp.nanosec;
   const bool active = wrapper.diagnostics().state != pipeline::WrapperState::kInactive;
   gate.offer(offer, active, [&]() -> pipeline::Verdict {
     if constexpr (std::is_same_v<decltype(sample.message.command), Command>) {
@@ -82,6 +84,7 @@ void Intake<Command>::handle(const transport::Sample<transport::RequestMessage>&
       break;
     case transport::RequestType::kReset:
       wrapper_.reset();
+      gate_.clearStampFloor();
       break;
   }
 }
