@@ -15,6 +15,7 @@
 #include "comply/model/model.hpp"
 #include "comply/model/model_error.hpp"
 #include "urdf_checks.hpp"
+#include "written_inertials.hpp"
 
 namespace comply::model {
 namespace {
@@ -249,18 +250,19 @@ void placeBody(const urdf::Joint& joint, const Eigen::Isometry3d& joint_in_paren
 
 class ModelBuilder {
  public:
-  static Model build(const urdf::ModelInterface& urdf, const ModelOptions& options);
+  static Model build(const urdf::ModelInterface& urdf, const WrittenInertials& written,
+                     const ModelOptions& options);
 
  private:
   static std::vector<std::size_t> placeBodies(const std::vector<urdf::JointConstSharedPtr>& path,
                                               const std::map<std::string, int>& user_index,
                                               const Eigen::Isometry3d& tcp_offset, Model& model);
-  static void foldInertias(const urdf::ModelInterface& urdf,
+  static void foldInertias(const urdf::ModelInterface& urdf, const WrittenInertials& written,
                            const std::vector<urdf::JointConstSharedPtr>& path,
                            const std::vector<std::size_t>& body_path_position, Model& model);
-  static void foldSubtree(const urdf::ModelInterface& urdf, const urdf::Link& link,
-                          const Eigen::Isometry3d& link_in_body, const std::string* stop_joint,
-                          MassAccumulator& accumulator);
+  static void foldSubtree(const urdf::ModelInterface& urdf, const WrittenInertials& written,
+                          const urdf::Link& link, const Eigen::Isometry3d& link_in_body,
+                          const std::string* stop_joint, MassAccumulator& accumulator);
 };
 
 // Fixed joints vanish here: they accumulate into the placement of the next movable joint, so the
@@ -295,41 +297,43 @@ std::vector<std::size_t> ModelBuilder::placeBodies(
 }
 
 // The dynamics see one rigid body per controlled joint: everything below its joint up to the next
-// controlled joint is folded into one inertia in the body frame. A massless body between two
-// controlled joints is a virtual link (a wrist built from two revolutes); a joint below which
-// nothing at all has mass moves nothing. Walked from the tip, so the mass below is summed once.
-void ModelBuilder::foldInertias(const urdf::ModelInterface& urdf,
+// controlled joint is folded into one inertia in the body frame. Each body must have a mass: a
+// massless one between two controlled joints is what urdfdom leaves of an <inertial> it could not
+// read, and MuJoCo refuses to simulate a massless moving body, so `comply validate` would pass a
+// robot `comply sim` refuses. The body is checked, not the link: a massless link carrying a
+// massive one through a fixed joint is one massive body (and MuJoCo accepts it too).
+void ModelBuilder::foldInertias(const urdf::ModelInterface& urdf, const WrittenInertials& written,
                                 const std::vector<urdf::JointConstSharedPtr>& path,
                                 const std::vector<std::size_t>& body_path_position, Model& model) {
-  double mass_below_kg = 0.0;
-  for (int i = model.dof_ - 1; i >= 0; --i) {
+  for (int i = 0; i < model.dof_; ++i) {
     const auto& joint = path[body_path_position[i]];
     const std::string* stop_joint =
         i + 1 < model.dof_ ? &path[body_path_position[i + 1]]->name : nullptr;
     MassAccumulator accumulator;
     const auto child = urdf.getLink(joint->child_link_name);
-    foldSubtree(urdf, *child, Eigen::Isometry3d::Identity(), stop_joint, accumulator);
-    mass_below_kg += accumulator.mass;
-    if (!(mass_below_kg > 0.0)) {
+    foldSubtree(urdf, written, *child, Eigen::Isometry3d::Identity(), stop_joint, accumulator);
+    if (!(accumulator.mass > 0.0)) {
       throw ModelError(ModelErrc::kInvalidInertia,
                        "joint '" + joint->name + "' moves no mass: link '" +
                            joint->child_link_name +
-                           "' and everything below it have no <inertial> with a mass");
+                           "' and the links it carries up to the next controlled joint have no "
+                           "<inertial> with a mass");
     }
     ChainBody& body = model.bodies_[i];
     body.mass_kg = accumulator.mass;
-    if (accumulator.mass > 0.0) {
-      body.com = accumulator.first_moment / accumulator.mass;
-      body.inertia_com = accumulator.inertia_origin -
-                         accumulator.mass * (body.com.squaredNorm() * Eigen::Matrix3d::Identity() -
-                                             body.com * body.com.transpose());
-    }
+    body.com = accumulator.first_moment / accumulator.mass;
+    body.inertia_com = accumulator.inertia_origin -
+                       accumulator.mass * (body.com.squaredNorm() * Eigen::Matrix3d::Identity() -
+                                           body.com * body.com.transpose());
   }
 }
 
-void ModelBuilder::foldSubtree(const urdf::ModelInterface& urdf, const urdf::Link& link,
-                               const Eigen::Isometry3d& link_in_body, const std::string* stop_joint,
-                               MassAccumulator& accumulator) {
+// Every link folded here moves with a controlled joint, so its <inertial> is held to the text
+// before urdfdom's reading of it is trusted.
+void ModelBuilder::foldSubtree(const urdf::ModelInterface& urdf, const WrittenInertials& written,
+                               const urdf::Link& link, const Eigen::Isometry3d& link_in_body,
+                               const std::string* stop_joint, MassAccumulator& accumulator) {
+  written.require(link.name);
   if (link.inertial) {
     accumulator.add(*link.inertial, link_in_body, link.name);
   }
@@ -340,7 +344,7 @@ void ModelBuilder::foldSubtree(const urdf::ModelInterface& urdf, const urdf::Lin
     // Off-chain branches (a gripper finger, a tool) ride along rigidly, locked at zero.
     const auto child = urdf.getLink(child_joint->child_link_name);
     if (child) {
-      foldSubtree(urdf, *child,
+      foldSubtree(urdf, written, *child,
                   link_in_body * toIsometry(child_joint->parent_to_joint_origin_transform),
                   stop_joint, accumulator);
     }
@@ -349,7 +353,8 @@ void ModelBuilder::foldSubtree(const urdf::ModelInterface& urdf, const urdf::Lin
 
 // The passes run in this order because callers rely on which error a faulty set-up reports first:
 // frames, then joint names, then the chain, and only then the geometry.
-Model ModelBuilder::build(const urdf::ModelInterface& urdf, const ModelOptions& options) {
+Model ModelBuilder::build(const urdf::ModelInterface& urdf, const WrittenInertials& written,
+                          const ModelOptions& options) {
   requireTree(urdf);
   const ChainEnds ends = findChainEnds(urdf, options);
   const auto path = baseToTipJoints(ends, options.tip_frame);
@@ -364,17 +369,18 @@ Model ModelBuilder::build(const urdf::ModelInterface& urdf, const ModelOptions& 
   model.tip_frame_ = options.tip_frame;
   model.gravity_ = options.gravity_m_per_s2;
   const auto body_path_position = placeBodies(path, user_index, options.tcp_offset, model);
-  foldInertias(urdf, path, body_path_position, model);
+  foldInertias(urdf, written, path, body_path_position, model);
   return model;
 }
 
 Model Model::fromUrdfString(std::string_view urdf_xml, const ModelOptions& options) {
-  const ParsedUrdf urdf(urdf::parseURDF(std::string(urdf_xml)));
+  const std::string xml(urdf_xml);
+  const ParsedUrdf urdf(urdf::parseURDF(xml));
   if (!urdf) {
     throw ModelError(ModelErrc::kInvalidUrdf,
                      "could not parse the URDF (urdfdom printed the details above)");
   }
-  return ModelBuilder::build(*urdf, options);
+  return ModelBuilder::build(*urdf, WrittenInertials(xml), options);
 }
 
 Model Model::fromUrdfFile(const std::filesystem::path& urdf_path, const ModelOptions& options) {
@@ -388,7 +394,7 @@ Model Model::fromUrdfFile(const std::filesystem::path& urdf_path, const ModelOpt
                                                   "' (urdfdom printed the details above)");
   }
   try {
-    return ModelBuilder::build(*urdf, options);
+    return ModelBuilder::build(*urdf, WrittenInertials(file.text), options);
   } catch (const ModelError& error) {
     throw ModelError(error.code(), error.detail() + " (in '" + urdf_path.string() + "')");
   }

@@ -117,19 +117,90 @@ std::string twoJoints(const std::string& middle_inertial, const std::string& arm
          limit + "</joint></robot>";
 }
 
-TEST(ModelErrorTest, AMasslessLinkBetweenMovableJointsIsAccepted) {
-  // A virtual link between two joints (a wrist built from two revolutes) carries no mass of its
-  // own; the first joint still moves everything below it.
+TEST(ModelErrorTest, EveryMovingBodyHasAMass) {
+  // A massless link between two controlled joints is what urdfdom leaves of an <inertial> it
+  // could not read, and MuJoCo refuses to simulate it: `validate` must refuse it as `sim` does.
   const auto massive = inertial(1.0, 0.01, 0.01, 0.01);
-  EXPECT_NO_THROW(Model::fromUrdfString(twoJoints("", massive), options({"j1", "j2"}, "arm")));
-  EXPECT_NO_THROW(Model::fromUrdfString(twoJoints(inertial(0.0, 0.0, 0.0, 0.0), massive),
+  const auto load = [](const std::string& urdf) {
+    return [urdf] { Model::fromUrdfString(urdf, options({"j1", "j2"}, "arm")); };
+  };
+  EXPECT_NO_THROW(load(twoJoints(massive, massive))());
+  expectModelError(load(twoJoints("", massive)), ModelErrc::kInvalidInertia,
+                   {"joint 'j1' moves no mass", "link 'middle'"});
+  expectModelError(load(twoJoints(inertial(0.0, 0.0, 0.0, 0.0), massive)),
+                   ModelErrc::kInvalidInertia, {"joint 'j1' moves no mass", "link 'middle'"});
+  expectModelError(load(twoJoints(massive, "")), ModelErrc::kInvalidInertia,
+                   {"joint 'j2' moves no mass", "link 'arm'"});
+}
+
+TEST(ModelErrorTest, AMasslessLinkCarryingAMassiveOneIsOneBody) {
+  // Mass is lumped across fixed joints: the body of j1 is `middle` and the link fixed to it, so a
+  // massless `middle` carrying 1 kg 0.15 m along x is a 1 kg body (MuJoCo accepts it too).
+  std::string urdf = twoJoints("", inertial(1.0, 0.01, 0.01, 0.01));
+  urdf.replace(urdf.find("</robot>"), 8,
+               "<link name=\"payload\">" + inertial(1.0, 0.01, 0.01, 0.01) + R"(</link>
+    <joint name="middle_to_payload" type="fixed"><parent link="middle"/><child link="payload"/>
+      <origin xyz="0.15 0 0"/></joint></robot>)");
+  const Model model = Model::fromUrdfString(urdf, options({"j1", "j2"}, "arm"));
+  EXPECT_EQ(model.body(0).mass_kg, 1.0);
+  EXPECT_NEAR((model.body(0).com - Eigen::Vector3d(0.15, 0.0, 0.0)).norm(), 0.0, 1e-12);
+}
+
+// twoJoints with the <inertial> of `middle` written out, `from` replaced by `to` in its text.
+std::string middleWritten(const std::string& from, const std::string& to) {
+  std::string written = R"(<inertial><origin xyz="0.1 0 0" rpy="0 0 0"/><mass value="1"/>
+    <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>)";
+  written.replace(written.find(from), from.size(), to);
+  return twoJoints(written, inertial(1.0, 0.01, 0.01, 0.01));
+}
+
+TEST(ModelErrorTest, AnInertialValueUrdfdomCannotReadIsRefused) {
+  // urdfdom logs such a value and reads the mass, the inertia or both as zero: the model used to
+  // be built from numbers nobody wrote (gravity off by 1.45 N m on the FR3's joint 2).
+  struct Case {
+    std::string from, to, complaint;
+  };
+  const std::vector<Case> cases{
+      {R"(value="1")", R"(value="nan")", R"(<mass value="nan">: not a finite number)"},
+      {R"(value="1")", R"(value="inf")", R"(<mass value="inf">: not a finite number)"},
+      {R"(value="1")", R"(value="abc")", R"(<mass value="abc">: not a number)"},
+      {R"(ixx="0.01")", R"(ixx="nan")", R"(<inertia ixx="nan">: not a finite number)"},
+      {R"(iyy="0.01")", R"(iyy="-inf")", R"(<inertia iyy="-inf">: not a finite number)"},
+      {R"(xyz="0.1 0 0")", R"(xyz="0.1 nan 0")",
+       R"(<origin xyz="0.1 nan 0">: not three finite numbers)"},
+      // Read by a lenient parser, zero to urdfdom:
+      {R"(value="1")", R"(value="1 ")", R"(<mass value="1 ">: not a number)"},
+      {R"(value="1")", R"(value="+-1")", R"(<mass value="+-1">: not a number)"},
+      {R"(value="1")", R"(value="1e400")", R"(<mass value="1e400">: out of a double's range)"},
+      {R"(rpy="0 0 0")", R"(rpy="0 0")", R"(<origin rpy="0 0">: not three finite numbers)"},
+      {R"( ixz="0")", "", "<inertial> has no <inertia ixz>"},
+      {R"(<mass value="1"/>)", "", "<inertial> has no <mass value>"},
+  };
+  for (const auto& [from, to, complaint] : cases) {
+    SCOPED_TRACE(to);
+    expectModelError(
+        [&] {
+          Model::fromUrdfString(middleWritten(from, to), options({"j1", "j2"}, "arm"));
+        },
+        ModelErrc::kInvalidInertia, {"link 'middle': " + complaint});
+  }
+  // What urdfdom reads alike is accepted: a leading '+' or blank, blanks between components.
+  EXPECT_NO_THROW(Model::fromUrdfString(middleWritten(R"(value="1")", R"(value=" +1")"),
                                         options({"j1", "j2"}, "arm")));
-  // The last joint of the chain moving nothing is still refused.
+  EXPECT_NO_THROW(Model::fromUrdfString(middleWritten(R"(xyz="0.1 0 0")", R"(xyz=" 0.1  0 0 ")"),
+                                        options({"j1", "j2"}, "arm")));
+}
+
+TEST(ModelErrorTest, AnUnreadableInertialNamesTheFile) {
+  const auto path = std::filesystem::temp_directory_path() / "comply_nan_mass.urdf";
+  std::ofstream(path) << middleWritten(R"(value="1")", R"(value="nan")");
   expectModelError(
       [&] {
-        Model::fromUrdfString(twoJoints(massive, ""), options({"j1", "j2"}, "arm"));
+        Model::fromUrdfFile(path, options({"j1", "j2"}, "arm"));
       },
-      ModelErrc::kInvalidInertia, {"joint 'j2' moves no mass", "'arm'"});
+      ModelErrc::kInvalidInertia,
+      {path.string(), R"(link 'middle': <mass value="nan">: not a finite number)"});
+  std::filesystem::remove(path);
 }
 
 TEST(ModelErrorTest, UnknownJointsAreAllListed) {
