@@ -75,6 +75,7 @@ SimulatedRobot::SimulatedRobot(const model::RobotDescription& robot, const Plant
     effort_limit_.push_back(chain.limits(static_cast<int>(i)).effort);
   }
   applied_.assign(dof, 0.0);
+  held_position_.assign(dof, 0.0);
 
   if (options.joint_dynamics && robot.joint_dynamics) {
     const model::JointDynamics& dynamics = *robot.joint_dynamics;
@@ -166,6 +167,7 @@ bool SimulatedRobot::write(std::span<const double> torque) noexcept {
       !std::all_of(torque.begin(), torque.end(), [](double t) { return std::isfinite(t); })) {
     return false;
   }
+  braked_ = false;
   for (std::size_t i = 0; i < torque.size(); ++i) {
     applied_[i] = std::clamp(torque[i], -effort_limit_[i], effort_limit_[i]);
     data_->qfrc_applied[dof_address_[i]] = applied_[i];
@@ -173,9 +175,39 @@ bool SimulatedRobot::write(std::span<const double> torque) noexcept {
   return true;
 }
 
+bool SimulatedRobot::hold() noexcept {
+  if (!braked_) {
+    braked_ = true;
+    for (std::size_t i = 0; i < qpos_address_.size(); ++i) {
+      held_position_[i] = data_->qpos[qpos_address_[i]];
+    }
+  }
+  return true;
+}
+
+void SimulatedRobot::pinHeldJoints() noexcept {
+  for (std::size_t i = 0; i < qpos_address_.size(); ++i) {
+    data_->qpos[qpos_address_[i]] = held_position_[i];
+    data_->qvel[dof_address_[i]] = 0.0;
+  }
+}
+
 void SimulatedRobot::step() noexcept {
   for (int i = 0; i < substeps_; ++i) {
+    if (braked_) {
+      // The brake: the joints pinned at rest, the drives carrying exactly what holds them there.
+      pinHeldJoints();
+      mj_forward(model_.get(), data_.get());
+      for (std::size_t j = 0; j < dof_address_.size(); ++j) {
+        applied_[j] = data_->qfrc_bias[dof_address_[j]];
+        data_->qfrc_applied[dof_address_[j]] = applied_[j];
+      }
+    }
     mj_step(model_.get(), data_.get());
+  }
+  if (braked_) {
+    pinHeldJoints();
+    mj_forward(model_.get(), data_.get());
   }
 }
 

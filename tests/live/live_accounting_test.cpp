@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <thread>
 
 #include "live_harness.hpp"
 #include "live_support.hpp"
@@ -225,6 +226,36 @@ TEST(LiveHostInProcess, AStampFromTheFutureOrOutOfRangeIsRefusedAndLocksNoOneOut
   EXPECT_EQ(toString(invalid.reason), "invalid_stamp") << invalid.message;
   const transport::CommandOutcomeMessage& applied = outcomesOf(next).front();
   EXPECT_EQ(applied.outcome, transport::Outcome::kApplied) << applied.message;
+  EXPECT_EQ(host->stop(), 0);
+}
+
+/// Deactivating used to leave the last torque on the simulated motors (the arm fell from a
+/// 0.59 m TCP height to 0.03 m) while the state still showed the pose of the last active cycle.
+/// Now the plant holds like a driver's brake, and the state shows the inactive arm where it is.
+TEST(LiveHostInProcess, DeactivateHoldsTheArmAndTheStateSaysInactive) {
+  const std::unique_ptr<HostHarness> host = makeHarness("in_process");
+  host->start("deactivate");
+  const auto before = host->state(20s);
+  ASSERT_TRUE(before) << "no state from the host";
+  ASSERT_EQ(before->state, transport::HostState::kActive);
+  ASSERT_TRUE(host->request(transport::RequestType::kDeactivate, 1));
+  std::optional<transport::ControllerStateMessage> after;
+  const auto deadline = std::chrono::steady_clock::now() + 20s;
+  while (std::chrono::steady_clock::now() < deadline) {
+    after = host->state(100ms);
+    if (after && after->state == transport::HostState::kInactive &&
+        after->cycle > before->cycle + 1000) {
+      break;  // inactive for a second of control
+    }
+    std::this_thread::sleep_for(50ms);
+  }
+  ASSERT_TRUE(after);
+  EXPECT_EQ(after->state, transport::HostState::kInactive);
+  EXPECT_GT(after->cycle, before->cycle + 1000);
+  EXPECT_NEAR(after->tcp_position[2], before->tcp_position[2], 1e-3) << "the arm fell";
+  for (std::size_t i = 0; i < after->velocity.size(); ++i) {
+    EXPECT_EQ(after->velocity[i], 0.0) << "joint " << i << " moves while braked";
+  }
   EXPECT_EQ(host->stop(), 0);
 }
 

@@ -35,6 +35,9 @@ class DdsHarness final : public HostHarness {
   bool send(const transport::JointCommandMessage& message, int publisher) override {
     return writers_.at(publisher)->joint.write(message);
   }
+  bool request(transport::RequestType /*request*/, int /*publisher*/) override {
+    return false;  // `comply send --request` is the DDS side's requester (tests/apps)
+  }
   std::optional<transport::ControllerStateMessage> state(
       std::chrono::milliseconds timeout) override {
     return client_->state(timeout);
@@ -114,6 +117,13 @@ class InProcessHarness final : public HostHarness {
     return true;
   }
   bool send(const transport::JointCommandMessage& message, int publisher) override {
+    bus_->send(message, static_cast<std::uint64_t>(publisher));
+    return true;
+  }
+  bool request(transport::RequestType request, int publisher) override {
+    transport::RequestMessage message;
+    message.header.stamp = transport::Stamp::now();
+    message.request = request;
     bus_->send(message, static_cast<std::uint64_t>(publisher));
     return true;
   }

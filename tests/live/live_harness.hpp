@@ -39,6 +39,9 @@ class HostHarness {
   /// Safe from one thread per publisher while another thread polls.
   virtual bool send(const transport::CartesianCommandMessage& message, int publisher) = 0;
   virtual bool send(const transport::JointCommandMessage& message, int publisher) = 0;
+  /// An operator request (activate, deactivate, reset) from `publisher`; false where the harness
+  /// cannot send one.
+  virtual bool request(transport::RequestType request, int publisher) = 0;
 
   /// The newest state, waiting up to `timeout` for one.
   virtual std::optional<transport::ControllerStateMessage> state(

@@ -41,6 +41,7 @@ struct CycleRecord {
   double compute_s = 0.0;       ///< wall time from read() to the end of write() [s]
   double controller_s = 0.0;    ///< wall time of the controller's cycle alone [s]
   bool wrote = false;           ///< a torque was written
+  bool held = false;            ///< no torque: the hardware held the arm (HardwareInterface::hold)
   bool overrun = false;         ///< compute_s exceeded the period
   const JointState* state = nullptr;
   std::span<const double> torque;
@@ -65,6 +66,7 @@ struct LoopStats {
   std::uint64_t overruns = 0;        ///< cycles whose compute time exceeded the period
   std::uint64_t read_failures = 0;   ///< cycles skipped: the hardware had no valid measurement
   std::uint64_t write_failures = 0;  ///< torques the hardware refused
+  std::uint64_t held_cycles = 0;     ///< cycles without controller output, the arm held
   double max_compute_s = 0.0;
 };
 

@@ -22,6 +22,12 @@ class HardwareInterface {
   /// Joint effort command [N m | N], dof() long. Returns false when the hardware refused it.
   virtual bool write(std::span<const double> torque) noexcept = 0;
 
+  /// No controller output this cycle (inactive, not yet activated, deactivated): hold the arm
+  /// as the robot's own brake or position hold does, instead of leaving the last torque on the
+  /// motors. Called each such cycle in place of write(); the next write() releases it. False
+  /// when the robot has no such mode (its driver's own behaviour applies then).
+  virtual bool hold() noexcept { return false; }
+
   /// True when the robot adds its own gravity compensation to the torque it is sent (Franka, KUKA
   /// and UR controllers do): the host then turns the wrapper's off, so it is not added twice.
   [[nodiscard]] virtual bool compensatesGravity() const noexcept { return false; }

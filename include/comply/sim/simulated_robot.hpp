@@ -60,6 +60,9 @@ class SimulatedRobot final : public hardware::HardwareInterface {
   /// Refuses (returns false, keeps the previous torque) a wrong size or a non-finite entry.
   bool write(std::span<const double> torque) noexcept override;
 
+  /// A brake: the controlled joints stay where they are when hold() is first called, at rest,
+  /// their drives carrying gravity (the applied effort reads so), until the next write().
+  bool hold() noexcept override;
   /// Advances one control period (`substeps` physics steps). No heap allocation.
   void step() noexcept;
   /// Puts the robot at `position` (rad | m, `joints` order) at rest, held by its drives (the
@@ -90,6 +93,8 @@ class SimulatedRobot final : public hardware::HardwareInterface {
   void forward() noexcept;
 
  private:
+  void pinHeldJoints() noexcept;
+
   struct MujocoDeleter {
     void operator()(mjModel* model) const noexcept { mj_deleteModel(model); }
     void operator()(mjData* data) const noexcept { mj_deleteData(data); }
@@ -103,7 +108,9 @@ class SimulatedRobot final : public hardware::HardwareInterface {
   std::vector<int> dof_address_;
   std::vector<double> effort_limit_;
   std::vector<double> applied_;
-  std::vector<bool> tool_body_;  ///< per MuJoCo body: part of the tool (TCP subtree)
+  bool braked_ = false;
+  std::vector<double> held_position_;  ///< per controlled joint, while braked
+  std::vector<bool> tool_body_;        ///< per MuJoCo body: part of the tool (TCP subtree)
   int base_body_ = 0;
   int tip_body_ = 0;
   std::mt19937_64 noise_generator_;

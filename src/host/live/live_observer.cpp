@@ -6,6 +6,7 @@
 
 #include "comply/core/clock.hpp"
 #include "comply/hardware/loop_clock.hpp"
+#include "comply/model/update.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/schema/schema.hpp"
 
@@ -51,7 +52,11 @@ template <typename Command>
 LiveObserver<Command>::LiveObserver(pipeline::Wrapper<Command>& wrapper,
                                     pipeline::CommandGate& gate, hardware::HardwareInterface& robot,
                                     double wall_origin_s)
-    : wrapper_(wrapper), robot_(robot), wall_origin_s_(wall_origin_s), gate_(gate) {
+    : wrapper_(wrapper),
+      robot_(robot),
+      wall_origin_s_(wall_origin_s),
+      gate_(gate),
+      inactive_pose_(wrapper.controller().model()) {
   const int dof = wrapper.dof();
   sample_.joints = JointState::zero(dof);
   sample_.torque.setZero(dof);
@@ -105,7 +110,17 @@ void LiveObserver<Command>::fillSample(const hardware::CycleRecord& record) noex
   for (std::size_t i = 0; i < record.torque.size(); ++i) {
     s.torque[static_cast<Eigen::Index>(i)] = record.wrote ? record.torque[i] : 0.0;
   }
-  const model::Data& data = wrapper_.controller().modelData();
+  const model::Data* pose = &wrapper_.controller().modelData();
+  if (s.state == pipeline::WrapperState::kInactive) {
+    // No cycle measures while inactive: the state must still show where the arm is.
+    const std::span<const double> q(last_state_.position.data(),
+                                    static_cast<std::size_t>(last_state_.position.size()));
+    if (model::update(wrapper_.controller().model(), inactive_pose_, q, q,
+                      model::Quantity::kJacobian) == model::UpdateStatus::kOk) {
+      pose = &inactive_pose_;
+    }
+  }
+  const model::Data& data = *pose;
   s.tcp_position = data.tip_position;
   s.tcp_orientation = data.tip_orientation;
   const int dof = wrapper_.dof();

@@ -14,6 +14,7 @@
 #include "comply/core/spsc_queue.hpp"
 #include "comply/core/triple_buffer.hpp"
 #include "comply/hardware/control_loop.hpp"
+#include "comply/model/data.hpp"
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/transport/messages.hpp"
@@ -84,6 +85,9 @@ class LiveObserver final : public hardware::LoopObserver {
   TripleBuffer<StateSample> state_;
   StateSample sample_;  // the control thread's scratch
   JointState last_state_;
+  /// The pose of the measured joints while the controller is inactive (its own model data then
+  /// stays where the last active cycle left it): the control thread's scratch.
+  model::Data inactive_pose_;
   std::atomic<std::uint8_t> lifecycle_request_{0};
   pipeline::MessageSlot activation_error_;
 };

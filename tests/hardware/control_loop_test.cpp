@@ -1,0 +1,80 @@
+// The loop's contract with the hardware: a cycle whose controller writes a torque reaches
+// write(); a cycle without output (an inactive controller) asks the hardware to hold the arm
+// instead of leaving the last torque on the motors.
+
+#include "comply/hardware/control_loop.hpp"
+
+#include <gtest/gtest.h>
+
+#include "comply/hardware/loop_clock.hpp"
+
+namespace comply::hardware {
+namespace {
+
+/// Counts what the loop asked of it.
+class RecordingHardware final : public HardwareInterface {
+ public:
+  explicit RecordingHardware(bool can_hold) : can_hold_(can_hold) {}
+  [[nodiscard]] int dof() const noexcept override { return 2; }
+  bool read(JointState& state) noexcept override {
+    state = JointState::zero(2);
+    return true;
+  }
+  bool write(std::span<const double> /*torque*/) noexcept override {
+    ++writes;
+    return true;
+  }
+  bool hold() noexcept override {
+    ++holds;
+    return can_hold_;
+  }
+  int writes = 0;
+  int holds = 0;
+
+ private:
+  bool can_hold_;
+};
+
+/// Writes a torque in the cycles it is told to, nothing in the others (as an inactive wrapper).
+class SwitchedController final : public CycleController {
+ public:
+  [[nodiscard]] int dof() const noexcept override { return 2; }
+  bool cycle(const JointState& /*state*/, double /*period_s*/,
+             std::span<double> torque) noexcept override {
+    torque[0] = torque[1] = 1.0;
+    return active;
+  }
+  bool active = false;
+};
+
+TEST(ControlLoop, ACycleWithoutOutputHoldsTheArmInsteadOfLeavingTheLastTorque) {
+  RecordingHardware hardware(true);
+  SwitchedController controller;
+  FreeRunningClock clock;
+  ControlLoop loop(hardware, controller, clock, {.period_s = 0.001});
+  for (int cycle = 0; cycle < 5; ++cycle) {
+    ASSERT_TRUE(loop.runOnce());
+  }
+  EXPECT_EQ(hardware.holds, 5);
+  EXPECT_EQ(hardware.writes, 0);
+  controller.active = true;
+  for (int cycle = 0; cycle < 3; ++cycle) {
+    ASSERT_TRUE(loop.runOnce());
+  }
+  EXPECT_EQ(hardware.writes, 3);
+  EXPECT_EQ(hardware.holds, 5) << "an active cycle writes; it does not hold";
+  EXPECT_EQ(loop.stats().held_cycles, 5U);
+}
+
+TEST(ControlLoop, HardwareWithoutAHoldModeIsNotCountedAsHeld) {
+  RecordingHardware hardware(false);
+  SwitchedController controller;
+  FreeRunningClock clock;
+  ControlLoop loop(hardware, controller, clock, {.period_s = 0.001});
+  ASSERT_TRUE(loop.runOnce());
+  EXPECT_EQ(hardware.holds, 1) << "asked";
+  EXPECT_EQ(loop.stats().held_cycles, 0U) << "but it could not hold";
+}
+
+}  // namespace
+}  // namespace comply::hardware
