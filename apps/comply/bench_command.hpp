@@ -59,7 +59,8 @@ std::vector<BenchRow> mergeBenchRuns(const std::vector<std::vector<BenchRow>>& r
 std::string benchRowsToJson(const BenchOptions& options, const std::vector<BenchRow>& rows);
 std::vector<BenchRow> benchRowsFromJson(const std::string& text);
 
-/// Prints the table (or one JSON object with `rows`) and the published reference figures.
+/// Prints the table (or one JSON object with `rows`) and the reference figures of other
+/// implementations, with the machine and date they were measured on (not this machine).
 void printBench(const BenchOptions& options, const std::vector<BenchRow>& rows, std::ostream& out);
 
 int benchCommand(const BenchOptions& options);

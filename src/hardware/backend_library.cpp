@@ -8,6 +8,7 @@
 #include <system_error>
 #include <utility>
 
+#include "comply/core/text_file.hpp"
 #include "comply/hardware/backend.hpp"
 
 namespace comply::hardware {
@@ -69,8 +70,12 @@ BackendHandle loadBackendLibrary(const std::filesystem::path& library,
   // Absolute: dlopen() would search the library path for a bare file name instead of opening it.
   const std::filesystem::path path = std::filesystem::absolute(library);
   std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) {
-    throw failure(path, "no such file");
+  const auto status = std::filesystem::status(path, error);
+  if (error || !std::filesystem::exists(status)) {
+    throw failure(path, fileErrorText(error));  // a symlink loop named as one, not as missing
+  }
+  if (!std::filesystem::is_regular_file(status)) {
+    throw failure(path, "not a regular file");
   }
   // RTLD_LOCAL: two backends, or a backend and a plugin, may define the same names.
   LibraryGuard handle(::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL));

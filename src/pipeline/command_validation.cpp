@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "comply/core/number_text.hpp"
 #include "comply/schema/schema.hpp"
 
 namespace comply::pipeline {
@@ -108,9 +109,12 @@ Verdict validateCommand(CartesianCommand& incoming, const ValidationConfig& limi
   const double distance = (incoming.position - measured.tcp_position).stableNorm();
   const double angle = incoming.orientation.angularDistance(measured.tcp_orientation);
   if (distance > limits.max_position_jump_m || angle > limits.max_orientation_jump_rad) {
+    const NumberTexts position = numbersApart(distance, limits.max_position_jump_m);
+    const NumberTexts orientation = numbersApart(angle, limits.max_orientation_jump_rad);
     std::ostringstream text;
-    text << "target is " << distance << " m / " << angle << " rad from the measured pose (limits "
-         << limits.max_position_jump_m << " m / " << limits.max_orientation_jump_rad << " rad)";
+    text << "target is " << position.value << " m / " << orientation.value
+         << " rad from the measured pose (limits " << position.limit << " m / " << orientation.limit
+         << " rad)";
     return reject(RejectionReason::kPoseJump, text.str());
   }
   return verdict;
@@ -124,9 +128,10 @@ Verdict validateCommand(JointCommand& incoming, const ValidationConfig& limits, 
   }
   const double jump = (incoming.position - measured.position).cwiseAbs().maxCoeff();
   if (jump > limits.max_joint_jump_rad) {
+    const NumberTexts texts = numbersApart(jump, limits.max_joint_jump_rad);
     std::ostringstream text;
-    text << "target is " << jump << " rad from the measured position (limit "
-         << limits.max_joint_jump_rad << " rad)";
+    text << "target is " << texts.value << " rad from the measured position (limit " << texts.limit
+         << " rad)";
     return reject(RejectionReason::kPoseJump, text.str());
   }
   return verdict;

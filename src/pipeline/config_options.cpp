@@ -138,7 +138,8 @@ void addLimitAndShapingOptions(std::vector<Option>& table) {
   table.push_back(
       spaced(number("filter_alpha", "1.0", "first-order low-pass on the torque; 1 = off", 0.0, 1.0,
                     true, [](WrapperConfig& c, double v) { c.filter_alpha = v; })));
-  table.push_back(perJoint("torque_rate_limit_nm_per_s", "1000.0", "N m/s per joint", 0.0, false,
+  // 0 would hold every joint's torque where it starts: the controller could not act at all.
+  table.push_back(perJoint("torque_rate_limit_nm_per_s", "1000.0", "N m/s per joint", 0.0, true,
                            &WrapperConfig::torque_rate_limit));
   table.push_back(perJoint("effort_limit_nm", nullptr, "default from the URDF <limit effort>", 0.0,
                            true, &WrapperConfig::effort_limit));

@@ -6,8 +6,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
+#include <system_error>
 
 #include "comply/core/install_paths.hpp"
+#include "comply/core/text_file.hpp"
 
 namespace comply::plugin {
 namespace {
@@ -53,7 +55,14 @@ std::vector<std::filesystem::path> pluginSearchPath() {
 std::filesystem::path resolvePlugin(std::string_view name_or_path) {
   if (looksLikePath(name_or_path)) {
     const std::filesystem::path path(name_or_path);
-    if (!std::filesystem::is_regular_file(path)) {
+    std::error_code error;
+    const auto status = std::filesystem::status(path, error);
+    if (error && error != std::errc::no_such_file_or_directory) {
+      // A symlink loop, a folder that cannot be searched: named, not reported as missing.
+      throw PluginError(PluginErrc::kFileNotFound,
+                        "plugin file '" + path.string() + "': " + fileErrorText(error));
+    }
+    if (!std::filesystem::is_regular_file(status)) {
       throw PluginError(PluginErrc::kFileNotFound,
                         "plugin file '" + path.string() + "' does not exist");
     }
@@ -62,7 +71,8 @@ std::filesystem::path resolvePlugin(std::string_view name_or_path) {
   std::string tried;
   for (const auto& folder : pluginSearchPath()) {
     const auto candidate = folder / ("libcomply_" + std::string(name_or_path) + ".so");
-    if (std::filesystem::is_regular_file(candidate)) {
+    std::error_code error;  // a candidate that cannot be looked up is one more path tried
+    if (std::filesystem::is_regular_file(candidate, error)) {
       return candidate;
     }
     tried += (tried.empty() ? "" : ", ") + candidate.string();

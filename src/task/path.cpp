@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <string>
+
+#include "comply/core/number_text.hpp"
 
 namespace comply::task {
 
@@ -25,13 +28,14 @@ Path::Path(const std::vector<Eigen::Vector3d>& points, double spacing_m, double 
   }
   const double intervals = std::ceil(length_ / spacing_m_);
   if (intervals >= static_cast<double>(kMaxPathSamples)) {
-    char message[256];
-    std::snprintf(message, sizeof message,
-                  "Path of %.6g m would need %.6g samples at %.6g mm spacing, above the limit of "
-                  "%zu (%.6g m)",
-                  length_, intervals + 1.0, spacing_m_ * 1e3, kMaxPathSamples,
-                  spacing_m_ * static_cast<double>(kMaxPathSamples - 1));
-    throw std::invalid_argument(message);
+    const NumberTexts samples = numbersApart(intervals + 1.0, static_cast<double>(kMaxPathSamples));
+    const NumberTexts length =
+        numbersApart(length_, spacing_m_ * static_cast<double>(kMaxPathSamples - 1));
+    char spacing_mm[32];
+    std::snprintf(spacing_mm, sizeof spacing_mm, "%.6g", spacing_m_ * 1e3);
+    throw std::invalid_argument("Path of " + length.value + " m would need " + samples.value +
+                                " samples at " + spacing_mm + " mm spacing, above the limit of " +
+                                samples.limit + " (" + length.limit + " m)");
   }
   const auto count = static_cast<std::size_t>(intervals) + 1;
   spacing_m_ = length_ / static_cast<double>(count - 1);

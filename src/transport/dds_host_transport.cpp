@@ -4,6 +4,7 @@
 
 #include "comply/transport/endpoints.hpp"
 #include "comply/transport/participant.hpp"
+#include "malformed_log.hpp"
 
 namespace comply::transport {
 namespace {
@@ -32,6 +33,8 @@ class DdsHostTransport final : public HostTransport {
   }
 
   void receive(Inbox& inbox, double timeout_s) override {
+    // Malformed samples never wake the wait set: a count owed is printed from here.
+    malformed_log_.tick();
     waitset_.wait(timeout_s);
     cartesian_.take(inbox.cartesian);
     joint_.take(inbox.joint);
@@ -45,8 +48,11 @@ class DdsHostTransport final : public HostTransport {
     return "topics rt/" + options_.name + "/* on domain " + std::to_string(options_.domain_id) +
            " (" + options_.network + ")";
   }
+  [[nodiscard]] std::uint64_t malformedSamples() const override { return malformed_log_.total(); }
 
  private:
+  // First: in place before the participant sees a packet, and gone after it.
+  MalformedSampleLog malformed_log_;
   HostTransportOptions options_;
   Participant participant_;
   Reader<CartesianCommandMessage> cartesian_;

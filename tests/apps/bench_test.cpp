@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "bench_command.hpp"
@@ -53,6 +54,32 @@ TEST(BenchMerge, RowsSurviveTheJsonBetweenProcesses) {
   EXPECT_EQ(back[0].dof, 7);
   EXPECT_DOUBLE_EQ(back[0].timing.p50_us, 1.25);
   EXPECT_DOUBLE_EQ(back[0].timing.mean_us, 1.5);
+}
+
+// The reference figures of other implementations were measured on the development machine, not on
+// the one that runs the bench: both outputs say where and when, and the page that holds them.
+TEST(BenchReference, FiguresNameTheMachineAndDateTheyWereMeasuredOn) {
+  BenchOptions options;
+  const std::vector<BenchRow> rows = {row("full_cycle", 1.25, 1.5)};
+  std::ostringstream table;
+  printBench(options, rows, table);
+  EXPECT_EQ(table.str().find("on this machine"), std::string::npos) << table.str();
+  EXPECT_NE(table.str().find("\nfor reference (fr3, measured on the development machine, a 2 vCPU "
+                             "VM with an AMD EPYC (AVX-512) and GCC 12, on 2026-11-22; "
+                             "docs/timing.md): published implementation 7.2 us (step) / 8.3 us "
+                             "(step + wrapper); an equivalent Pinocchio bundle 1.8-2.5 us\n"),
+            std::string::npos)
+      << table.str();
+
+  options.json = true;
+  std::ostringstream json;
+  printBench(options, rows, json);
+  const nlohmann::json reference = nlohmann::json::parse(json.str()).at("reference");
+  EXPECT_EQ(reference.at("measured_on"),
+            "the development machine, a 2 vCPU VM with an AMD EPYC (AVX-512) and GCC 12");
+  EXPECT_EQ(reference.at("date"), "2026-11-22");
+  EXPECT_EQ(reference.at("source"), "docs/timing.md");
+  EXPECT_EQ(reference.at("published_step_us"), 7.2);
 }
 
 TEST(BenchRobots, AllIsEveryRobotAndTheTwelveJointChain) {

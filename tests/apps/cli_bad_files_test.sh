@@ -2,7 +2,8 @@
 # Input files that are not what they claim end in exit 2 with a message naming them, never in a
 # crash or an exhausted memory: JSON nested 100,000 levels deep (a stack overflow before), a
 # device as an inputs file or as a scene's tool (read until bad_alloc before), a file larger than
-# an input may be. Usage: cli_bad_files_test.sh COMPLY SOURCE_DIR WORK_DIR
+# an input may be, a symlink loop (reported as a missing file before).
+# Usage: cli_bad_files_test.sh COMPLY SOURCE_DIR WORK_DIR
 set -u
 comply=$1 source=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
@@ -41,6 +42,15 @@ expect_refused "'/dev/zero' is not a regular file" "${validate[@]}" --inputs /de
 expect_refused "more than an input file may be" "${validate[@]}" --inputs "$work/huge.json"
 expect_refused "'/dev/zero' is not a regular file" "$comply" sim --robot fr3 \
   --task "$work/device_tool.yaml" --no-plot --out "$work/sim"
+# Symlink loops, as each kind of input file: named as a loop, with the path.
+ln -s loop.yaml "$work/loop.yaml"
+loop="'$work/loop.yaml': too many levels of symbolic links (a symlink loop)"
+task=$source/examples/sim/step_response.yaml
+expect_refused "$loop" "$comply" sim --robot fr3 --config "$work/loop.yaml" --task "$task" \
+  --no-plot --out "$work/sim"
+expect_refused "$loop" "$comply" sim --robot fr3 --task "$work/loop.yaml" --no-plot \
+  --out "$work/sim"
+expect_refused "$loop" "${validate[@]}" --inputs "$work/loop.yaml"
 if [ "$failures" -ne 0 ]; then
   exit 1
 fi

@@ -47,5 +47,20 @@ TEST_F(TextFileTest, RefusesWhatIsNotARegularFileOfBoundedSize) {
   EXPECT_TRUE(readTextFile(folder / "big.json").ok());  // within the default 16 MB
 }
 
+// A symlink loop once read "no such file": the refusal names the cause the system gave.
+TEST_F(TextFileTest, ASymlinkLoopIsNamedAsOne) {
+  fs::create_symlink("loop.yaml", folder / "loop.yaml");
+  const TextFile loop = readTextFile(folder / "loop.yaml");
+  EXPECT_EQ(loop.error, "cannot read '" + (folder / "loop.yaml").string() +
+                            "': too many levels of symbolic links (a symlink loop)");
+  fs::create_symlink("b.yaml", folder / "a.yaml");
+  fs::create_symlink("a.yaml", folder / "b.yaml");
+  EXPECT_NE(readTextFile(folder / "a.yaml").error.find("symlink loop"), std::string::npos);
+  // A link to nothing is still a missing file.
+  fs::create_symlink("nothing.yaml", folder / "dangling.yaml");
+  EXPECT_EQ(readTextFile(folder / "dangling.yaml").error,
+            "cannot read '" + (folder / "dangling.yaml").string() + "': no such file");
+}
+
 }  // namespace
 }  // namespace comply

@@ -4,9 +4,11 @@
 
 #include <dlfcn.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <utility>
 
@@ -106,6 +108,17 @@ TEST(BackendLibrary, RefusalsNameTheLibraryAndTheCause) {
   const std::string missing = refusal("/nonexistent/libcomply_hardware_none.so", context);
   EXPECT_NE(missing.find("/nonexistent/libcomply_hardware_none.so"), std::string::npos) << missing;
   EXPECT_NE(missing.find("no such file"), std::string::npos) << missing;
+
+  // A symlink loop once read "no such file".
+  const std::filesystem::path loop = std::filesystem::temp_directory_path() /
+                                     ("comply_backend_loop_" + std::to_string(::getpid()));
+  std::filesystem::remove(loop);
+  std::filesystem::create_symlink(loop.filename(), loop);
+  const std::string looped = refusal(loop.string(), context);
+  std::filesystem::remove(loop);
+  EXPECT_NE(looped.find(loop.string()), std::string::npos) << looped;
+  EXPECT_NE(looped.find("too many levels of symbolic links (a symlink loop)"), std::string::npos)
+      << looped;
 
   // A file that is not a shared library: dlopen's own reason is passed on.
   const std::string not_elf = refusal(COMPLY_TEST_SOURCE_FILE, context);

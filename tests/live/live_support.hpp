@@ -2,6 +2,7 @@
 // Two-process tests of `comply run`: the host (and `comply send` senders) as child processes on a
 // random loopback domain, this test process as a client with its own participant.
 
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -34,14 +35,22 @@ inline int randomDomain() {
 }
 
 /// A child process running `comply` with `args`; killed (SIGKILL) if still running at the end.
+/// With `output`, its stdout and stderr go to that file (else to this process's).
 class Process {
  public:
-  explicit Process(const std::vector<std::string>& args) {
+  explicit Process(const std::vector<std::string>& args, const std::string& output = {}) {
     pid_ = fork();
     if (pid_ == 0) {
       // A host outlives a test that ctest killed on its timeout: as an orphan at SCHED_FIFO with
       // no duration it would hold a core until the machine stops. It dies with this process.
       prctl(PR_SET_PDEATHSIG, SIGKILL);
+      if (!output.empty()) {
+        const int file = open(output.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (file < 0 || dup2(file, STDOUT_FILENO) < 0 || dup2(file, STDERR_FILENO) < 0) {
+          _exit(126);
+        }
+        close(file);
+      }
       std::vector<char*> argv;
       static std::string program = kComply;
       argv.push_back(program.data());

@@ -347,6 +347,21 @@ TEST_F(CartesianValidation, RejectsPositionJump) {
       RejectionReason::kPoseJump, {"target is 0.12 m", "limits 0.1 m / 0.6 rad"});
 }
 
+TEST_F(CartesianValidation, AJumpJustBeyondTheLimitIsPrintedApartFromIt) {
+  // 1 nm beyond the 0.1 m limit along x from the measured TCP: once "target is 0.1 m ... (limits
+  // 0.1 m ...)".
+  CartesianCommand incoming = nextCommand();
+  incoming.position = lastAccepted().position + Eigen::Vector3d(0.1 + 1e-9, 0.0, 0.0);
+  incoming.orientation = lastAccepted().orientation;
+  const double distance = (incoming.position - lastAccepted().position).norm();
+  ASSERT_GT(distance, 0.1) << "the sum must land beyond the limit";
+  const Verdict verdict = validate(incoming);
+  EXPECT_EQ(verdict.reason, RejectionReason::kPoseJump) << verdict.message;
+  EXPECT_NE(verdict.message.find("target is 0.100000001 m / 0 rad"), std::string::npos)
+      << verdict.message;
+  EXPECT_NE(verdict.message.find("limits 0.1 m / 0.6 rad"), std::string::npos) << verdict.message;
+}
+
 TEST_F(CartesianValidation, RejectsOrientationJump) {
   // 0.7 rad about an oblique axis from the measured TCP, limit 0.6 rad; position unchanged.
   expectRejected(

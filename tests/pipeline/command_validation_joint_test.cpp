@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <set>
 #include <string>
@@ -209,6 +210,16 @@ TEST_F(JointValidation, RejectsAJumpOfOneJointBeyondTheLimit) {
   JointCommand incoming = nextCommand();
   incoming.position = measured_.position + joints({0.0, 0.6, 0.0});
   expectRejected(incoming, RejectionReason::kPoseJump, {"0.6 rad", "limit 0.5 rad"});
+}
+
+TEST_F(JointValidation, AJumpJustBeyondTheLimitIsPrintedApartFromIt) {
+  // The second joint measured at 0: its target is the jump itself.
+  measured_.position[1] = 0.0;
+  JointCommand incoming = nextCommand();
+  incoming.position = measured_.position;
+  incoming.position[1] = std::nextafter(0.5, 1.0);
+  expectRejected(incoming, RejectionReason::kPoseJump,
+                 {"target is 0.5000000000000001 rad from the measured position (limit 0.5 rad)"});
 }
 
 TEST_F(JointValidation, JumpIsTheLargestJointNotTheNorm) {

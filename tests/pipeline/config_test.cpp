@@ -205,7 +205,19 @@ TEST(WrapperConfig, NegativePerJointLimitNamesTheKey) {
   expectError(controllerYaml("soft_limits:\n  stiffness: -1"),
               {kPrefix + "soft_limits.stiffness: must be >= 0"});
   expectError(controllerYaml("torque_rate_limit_nm_per_s: [1, 1, 1, -1, 1, 1, 1]"),
-              {kPrefix + "torque_rate_limit_nm_per_s: must be >= 0"});
+              {kPrefix + "torque_rate_limit_nm_per_s: must be > 0"});
+}
+
+// A torque-rate limit of 0 holds every joint's torque where it starts: the controller cannot act.
+// Refused at configure time, like an effort limit of 0.
+TEST(WrapperConfig, LimitsThatLeaveTheControllerNoTorqueAreRefused) {
+  expectError(controllerYaml("torque_rate_limit_nm_per_s: 0"),
+              {kPrefix + "torque_rate_limit_nm_per_s: must be > 0"});
+  expectError(controllerYaml("torque_rate_limit_nm_per_s: [1, 1, 1, 0, 1, 1, 1]"),
+              {kPrefix + "torque_rate_limit_nm_per_s: must be > 0"});
+  expectError(controllerYaml("effort_limit_nm: 0"), {kPrefix + "effort_limit_nm: must be > 0"});
+  expectError(controllerYaml("filter_alpha: 0"), {kPrefix + "filter_alpha: must be in (0, 1]"});
+  EXPECT_EQ(parse("torque_rate_limit_nm_per_s: 0.001").torque_rate_limit, repeated(0.001));
 }
 
 TEST(WrapperConfig, JointListBeyondTheCapacityIsRefused) {

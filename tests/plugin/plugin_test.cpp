@@ -128,6 +128,16 @@ TEST(PluginLoader, MissingFileIsFileNotFound) {
                     {path, "does not exist"});
 }
 
+// A symlink loop once threw std::filesystem's own error; it is refused like a missing file, with
+// the cause.
+TEST(PluginLoader, ASymlinkLoopIsNamedAsOne) {
+  const TempDir dir;
+  const std::string path = (dir.path() / "libcomply_loop.so").string();
+  fs::create_symlink("libcomply_loop.so", path);
+  expectPluginError([&] { PluginLibrary library(path); }, PluginErrc::kFileNotFound,
+                    {"plugin file '" + path + "': too many levels of symbolic links"});
+}
+
 TEST(PluginLoader, UnknownNameListsEveryPathTried) {
   const TempDir dir;
   const PluginPathGuard guard(dir.path().string());

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
 
@@ -216,13 +217,34 @@ TEST(SchemaCheck, ValueLimitsFollowTheUnitAndAdmitTheLimitItself) {
   over.twist[3] = 100.5;
   const CheckResult result = checkFields(over, kDof);
   EXPECT_EQ(result.violation, Violation::kValueTooLarge);
-  EXPECT_EQ(result.message,
-            "twist has an entry of 100.5 m/s, rad/s, above the limit of 100 for any arm");
+  EXPECT_EQ(
+      result.message,
+      "twist has an entry of 100.5 m/s, rad/s, above the limit of 100 m/s, rad/s for any arm");
   // Positions have no value limit: their reach is checked against the measured pose.
   CartesianCommand far = distinctCartesian();
   far.position.setConstant(1e300);
   far.nullspace_position.setConstant(1e3);
   EXPECT_TRUE(checkFields(far, kDof).ok());
+}
+
+// An entry just above its limit once read "an entry of 1e+06 N/m, above the limit of 1e+06": both
+// numbers are printed with as many digits as tell them apart.
+TEST(SchemaCheck, LimitMessagesTellTheEntryFromTheLimit) {
+  CartesianCommand stiff = distinctCartesian();
+  stiff.stiffness_translational = 1e6 * Eigen::Matrix3d::Identity();
+  stiff.stiffness_translational(2, 2) = 1000001.0;
+  EXPECT_EQ(checkFields(stiff, kDof).message,
+            "stiffness_translational has an entry of 1000001 N/m, above the limit of 1000000 N/m "
+            "for any arm");
+  stiff.stiffness_translational(2, 2) = 1e9;
+  EXPECT_EQ(checkFields(stiff, kDof).message,
+            "stiffness_translational has an entry of 1000000000 N/m, above the limit of 1000000 "
+            "N/m for any arm");
+  CartesianCommand fast = distinctCartesian();
+  fast.twist[0] = std::nextafter(100.0, 200.0);
+  EXPECT_EQ(checkFields(fast, kDof).message,
+            "twist has an entry of 100.00000000000001 m/s, rad/s, above the limit of 100 m/s, "
+            "rad/s for any arm");
 }
 
 TEST(SchemaCheck, EachJointViolationNamesItsField) {

@@ -51,6 +51,15 @@ TEST(Path, APointKilometresAwayIsRefusedBeforeAnySampleIsKept) {
     EXPECT_NE(std::string(error.what()).find("above the limit of 1000000"), std::string::npos)
         << error.what();
   }
+  try {
+    // Just beyond: 1000002 samples, once printed "1e+06 samples ... above the limit of 1000000".
+    (void)Path({Eigen::Vector3d::Zero(), Eigen::Vector3d(500.0001, 0.0, 0.0)});
+    FAIL() << "a path of 500.0001 m was accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("Path of 500.0001 m would need 1000002 samples"),
+              std::string::npos)
+        << error.what();
+  }
   const Path longest({Eigen::Vector3d::Zero(), Eigen::Vector3d(499.0, 0.0, 0.0)});
   EXPECT_NEAR(longest.length(), 499.0, 1e-9);
 }

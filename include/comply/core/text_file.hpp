@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <system_error>
 
 namespace comply {
 
@@ -19,10 +20,16 @@ struct TextFile {
   [[nodiscard]] bool ok() const noexcept { return error.empty(); }
 };
 
-/// The whole file, or the reason it was refused ("'<path>' is not a regular file", "... is 20.0 MB,
-/// more than an input file may be (16 MB)", "cannot read '<path>'"). Callers throw their own error
-/// type with `error`, so that their messages keep their form.
+/// The whole file, or the reason it was refused ("cannot read '<path>': no such file", "... too
+/// many levels of symbolic links (a symlink loop)", "'<path>' is not a regular file", "... is 20.0
+/// MB, more than an input file may be (16 MB)"). Callers throw their own error type with `error`,
+/// so that their messages keep their form.
 TextFile readTextFile(const std::filesystem::path& path,
                       std::size_t max_bytes = kMaxInputFileBytes);
+
+/// Why a path could not be looked up or opened, from the system's error: "no such file", "too many
+/// levels of symbolic links (a symlink loop)", "permission denied", "not a directory". Every cause
+/// once read "no such file", a symlink loop included.
+std::string fileErrorText(const std::error_code& error);
 
 }  // namespace comply

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "comply/core/gains.hpp"
+#include "comply/core/number_text.hpp"
 #include "comply/schema/generic.hpp"
 
 namespace comply::schema::generic {
@@ -41,9 +42,10 @@ CheckResult checkEntryLimit(const Value& value, const std::string& field, std::s
   }
   const double largest = value.cwiseAbs().maxCoeff();
   if (!(largest <= limit)) {
+    const NumberTexts texts = numbersApart(largest, limit);
     std::ostringstream text;
-    text << field << " has an entry of " << largest << " " << unit << ", above the limit of "
-         << limit << " for any arm";
+    text << field << " has an entry of " << texts.value << " " << unit << ", above the limit of "
+         << texts.limit << " " << unit << " for any arm";
     return {violation, field, text.str()};
   }
   return {};

@@ -5,6 +5,7 @@
 // host in a program). A new middleware is one folder implementing HostTransport plus one line in
 // the host's list of transports (src/host/live/transports.cpp).
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <stdexcept>
@@ -58,6 +59,10 @@ class HostTransport {
   virtual bool flush(double timeout_s) = 0;
   /// Where clients find the host, for its start-up line.
   [[nodiscard]] virtual std::string describe() const = 0;
+  /// Samples the middleware received and could not read (malformed, or another type under a
+  /// topic's name) since the transport started: they never reach the host, and the run's summary
+  /// counts them. 0 where the middleware cannot tell.
+  [[nodiscard]] virtual std::uint64_t malformedSamples() const { return 0; }
 };
 
 using HostTransportFactory =

@@ -113,7 +113,8 @@ void publisherThread(PublisherContext<Command> c, const std::atomic<bool>& runni
 }
 
 void printSummary(const LoopCounters& counters, const pipeline::GateCounts& counts,
-                  const hardware::LoopStats& stats, std::ostream& out) {
+                  const hardware::LoopStats& stats, std::uint64_t malformed_samples,
+                  std::ostream& out) {
   const auto us = [](double seconds) { return std::lround(seconds * 1e6); };
   out << "comply run: " << counters.cycles.load() << " cycles, " << counters.overruns.load()
       << " overruns, " << stats.read_failures << " read failures, " << stats.write_failures
@@ -123,7 +124,8 @@ void printSummary(const LoopCounters& counters, const pipeline::GateCounts& coun
       << us(histogramQuantile(counters.compute, 0.5)) << " us, p99 "
       << us(histogramQuantile(counters.compute, 0.99)) << " us (10 us bins)\n"
       << "comply run: commands received " << counts.received << ", applied " << counts.applied
-      << ", rejected " << counts.rejected << "\n";
+      << ", rejected " << counts.rejected << "; malformed samples dropped by the transport "
+      << malformed_samples << "\n";
 }
 
 template <typename Command>
@@ -190,7 +192,8 @@ int runWith(const LiveHostOptions& options,
   gate.abandonPending("the host shut down before a cycle took it");
   publishDiagnostics(context, outcomeMessages(gate.takeOutcomes()));
   transport->flush(1.0);
-  printSummary(observer.counters(), gate.counts(), loop.stats(), out);
+  printSummary(observer.counters(), gate.counts(), loop.stats(), transport->malformedSamples(),
+               out);
   return 0;
 }
 
