@@ -60,6 +60,9 @@ pipeline::WrapperConfig configOf(Condition condition, const RunSettings& setting
       "fr3", "", sourcePath("config/sim/cartesian_impedance.yaml").string());
   config.gain_ramps.enabled = condition == Condition::kRamps || condition == Condition::kTank;
   config.passivity.enabled = condition == Condition::kTank || condition == Condition::kTankOnly;
+  // The experiment measures what the schedules do to the energy, the gain stage's subject; the
+  // stability guard would end the runs without it in FAULT once a joint overspeeds.
+  config.stability_guard.enabled = false;
   if (settings.torque_rate_limit_nm_per_s) {
     std::fill(config.torque_rate_limit.begin(), config.torque_rate_limit.end(),
               *settings.torque_rate_limit_nm_per_s);

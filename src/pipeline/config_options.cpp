@@ -205,6 +205,31 @@ void addGainOptions(std::vector<Option>& table) {
       energy("passivity.nullspace_tank_max_j", "1.0", "J", &PassivityConfig::nullspace_tank_max_j));
 }
 
+Option guard(const char* key, const char* default_text, const char* comment,
+             double StabilityGuardConfig::*member, bool zero_allowed = false) {
+  return number(key, default_text, comment, 0.0, 1e6, !zero_allowed,
+                [member](WrapperConfig& c, double v) { c.stability_guard.*member = v; });
+}
+
+// What a running arm must never do, whatever the law and the gains ask.
+void addGuardOptions(std::vector<Option>& table) {
+  table.push_back(
+      spaced(flag("stability_guard.enabled", "true",
+                  "FAULT on a runaway: overspeed, a joint past its limit, sustained saturation",
+                  [](WrapperConfig& c, bool v) { c.stability_guard.enabled = v; })));
+  table.push_back(guard("stability_guard.velocity_factor", "1.0",
+                        "FAULT above this times a joint's URDF velocity limit",
+                        &StabilityGuardConfig::velocity_factor));
+  table.push_back(guard("stability_guard.velocity_time_s", "0.005", "s above it before FAULT",
+                        &StabilityGuardConfig::velocity_time_s, true));
+  table.push_back(guard("stability_guard.position_margin_rad", "0.05",
+                        "rad | m past a URDF position limit: FAULT",
+                        &StabilityGuardConfig::position_margin_rad, true));
+  table.push_back(guard("stability_guard.saturation_time_s", "1.0",
+                        "s a joint may sit at its effort limit before FAULT; 0: never",
+                        &StabilityGuardConfig::saturation_time_s, true));
+}
+
 // The sections are added in the order the YAML file prints them; the order is part of the file.
 std::vector<Option> makeTable() {
   std::vector<Option> table;
@@ -212,6 +237,7 @@ std::vector<Option> makeTable() {
   addCompensationOptions(table);
   addLimitAndShapingOptions(table);
   addGainOptions(table);
+  addGuardOptions(table);
   return table;
 }
 

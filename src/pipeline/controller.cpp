@@ -54,6 +54,8 @@ Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
   torque_.setZero(dof_);
   scratch_.setZero(dof_);
   hold_gravity_.setZero(dof_);
+  overspeed_s_.setZero(dof_);
+  saturated_s_.setZero(dof_);
   input_.dof = dof_;
 }
 
@@ -106,6 +108,8 @@ void Controller::activate(const JointState& state) {
   shaper_.reset(torque_);
   repeated_cycles_ = 0;
   state_frozen_ = false;
+  overspeed_s_.setZero(dof_);
+  saturated_s_.setZero(dof_);
   last_command_time_s_ = 0.0;
   watchdog_expired_ = false;
   reset_pending_ = false;

@@ -16,8 +16,11 @@ CycleStatus Controller::update(const JointState& state, double period_s,
     return CycleStatus::kFault;
   }
   state_usable_ = measure(state);  // cycle_measure.cpp; FAULT on a bad state
-  takeCommands();                  // cycle_commands.cpp
-  watchdog();                      // cycle_commands.cpp
+  if (state_usable_) {
+    guardMotion();  // cycle_guard.cpp; FAULT on a runaway (the state stays usable for the hold)
+  }
+  takeCommands();  // cycle_commands.cpp
+  watchdog();      // cycle_commands.cpp
   if (diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kFault) {
     // A reset is consumed either way: one refused for a bad state is not carried to a later cycle.
     const bool reset = reset_pending_ && state_usable_;
@@ -28,12 +31,12 @@ CycleStatus Controller::update(const JointState& state, double period_s,
     diagnostics_.state.store(WrapperState::kActive, std::memory_order_relaxed);
   }
   reset_pending_ = false;
-  guardGains();    // cycle_gains.cpp
+  guardGains();     // cycle_gains.cpp
   if (!runLaw()) {  // cycle_law.cpp
     return hold(torque);
   }
-  compensate();    // cycle_torque.cpp
-  if (!shape()) {  // cycle_torque.cpp
+  compensate();                          // cycle_torque.cpp
+  if (!shape() || !guardSaturation()) {  // cycle_torque.cpp; cycle_guard.cpp
     return hold(torque);
   }
   return write(torque);

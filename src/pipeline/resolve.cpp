@@ -103,6 +103,11 @@ std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig&
   parameters.effort_limit = effortLimits(config, model);
   parameters.gain_ramps = config.gain_ramps;
   parameters.passivity = config.passivity;
+  parameters.stability_guard = config.stability_guard;
+  parameters.velocity_limit.resize(dof);
+  for (int i = 0; i < dof; ++i) {
+    parameters.velocity_limit[i] = model.limits(i).velocity;
+  }
   parameters.fault_damping = toJointVector(config.fault_damping, dof);
   parameters.frozen_state_timeout_s = config.frozen_state_timeout_s;
   return resolved;

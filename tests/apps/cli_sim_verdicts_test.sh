@@ -1,8 +1,8 @@
 #!/bin/bash
 # `comply sim` fails (exit 1) on what used to pass as success: a task whose final target was
 # refused (a target 10 m or 1e300 m away: the error was measured against the last accepted
-# reference) and a law that pins a joint at its effort limit (stiffness 9e5 N/m on a 2 cm step); a
-# normal step still exits 0. A stiffness beyond any arm (1e9 N/m) does not run at all (exit 2,
+# reference) and a law that drives the arm beyond what it can do (stiffness 9e5 N/m on a 2 cm step:
+# a joint overspeeds, and the stability guard ends it in FAULT); a normal step still exits 0. A stiffness beyond any arm (1e9 N/m) does not run at all (exit 2,
 # field and limit named).
 # Usage: cli_sim_verdicts_test.sh COMPLY SOURCE_DIR WORK_DIR
 set -u
@@ -35,11 +35,11 @@ run 1 "TARGET NOT REACHED: the task's last command was refused (pose_jump" \
   --robot fr3 --task "$work/far.yaml" --out "$work/far"
 run 1 "TARGET NOT REACHED: the task's last command was refused (pose_jump: target is 1e+300 m" \
   --robot fr3 --task "$work/huge.yaml" --out "$work/huge"
-run 1 "SATURATED: joint" --config "$work/stiff.yaml" --task "$work/step.yaml" --out "$work/stiff"
+run 1 "FAULT: stability guard: " --config "$work/stiff.yaml" --task "$work/step.yaml" --out "$work/stiff"
 run 2 "stiffness_translational has an entry of 1000000000 N/m, above the limit of 1000000 N/m" \
   --config "$work/absurd.yaml" --task "$work/step.yaml" --out "$work/absurd"
 run 0 "faults                0" --robot fr3 --task "$work/step.yaml" --out "$work/normal"
 if [ "$failures" -ne 0 ]; then
   exit 1
 fi
-echo "ok: refused targets and sustained saturation fail the run; absurd gains do not run"
+echo "ok: refused targets and a runaway fail the run; absurd gains do not run"

@@ -34,6 +34,8 @@ fault_test:
     initial:
       stiffness: 200.0
       damping: 20.0
+    stability_guard:
+      enabled: false  # these are the law's own faults; a chasing arm would overspeed first
     plugin_parameters:
       fault: $1
       at_step: 200

@@ -82,6 +82,16 @@ struct PassivityConfig {
   double nullspace_tank_max_j = 1.0;
 };
 
+/// The stability guard (stability_guard.*): what a running arm must never do, whatever the law
+/// and the gains ask, each ending in FAULT with a named reason.
+struct StabilityGuardConfig {
+  bool enabled = true;
+  double velocity_factor = 1.0;       ///< FAULT above this times a joint's URDF velocity limit
+  double velocity_time_s = 0.005;     ///< ... for this long (a noisy sample is not a runaway)
+  double position_margin_rad = 0.05;  ///< FAULT this far past a URDF position limit [rad | m]
+  double saturation_time_s = 1.0;  ///< FAULT when a joint sits at its effort limit this long; 0 off
+};
+
 struct WrapperConfig {
   std::string name;    ///< controller name (top-level YAML key)
   std::string source;  ///< where it was read from (file name), for messages
@@ -124,6 +134,7 @@ struct WrapperConfig {
 
   GainRampConfig gain_ramps;
   PassivityConfig passivity;
+  StabilityGuardConfig stability_guard;
 
   /// Initial command (gains, task frame); the pose/joint reference is seeded on activation.
   /// Sized by completeForRobot().

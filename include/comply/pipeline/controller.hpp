@@ -4,12 +4,14 @@
 //
 //   measure      state check (finite; not frozen), model update, plugin input, publish the
 //                measured pose                                  -> FAULT on a bad state
+//   guard        overspeed, a joint past its limit              -> FAULT (stability_guard.*)
 //   commands     take every command the intake queued, merged by field mask
 //   watchdog     no command for command_timeout_s: hold (stop the motion) or re-anchor
 //   gains        ramps and the energy tank between the commanded gains and the law's (optional)
 //   law          plugin step, finite check                      -> FAULT on failure
 //   compensate   gravity, payload, friction, soft joint limits
-//   shape        low-pass, finite check, torque-rate limit, effort limit
+//   shape        low-pass, finite check, torque-rate limit, effort limit; a joint held at its
+//                effort limit too long                          -> FAULT (stability_guard.*)
 //   write        torque out; in FAULT a safe holding torque instead
 //
 // Threads. update() runs on the real-time thread. The lifecycle (activate, deactivate) runs
@@ -125,6 +127,8 @@ class Controller {
  private:
   // Stages, one file each (cycle_*.cpp).
   bool measure(const JointState& state) noexcept;
+  bool guardMotion() noexcept;      // cycle_guard.cpp
+  bool guardSaturation() noexcept;  // cycle_guard.cpp
   void takeCommands() noexcept;
   void watchdog() noexcept;
   void guardGains() noexcept;
@@ -163,6 +167,8 @@ class Controller {
   GainGuard gains_;
   bool in_force_changed_ = false;  // active_ changed since the gain stage last saw it
   bool torque_clipped_ = false;    // the last cycle's torque was rate or effort limited
+  JointVector overspeed_s_;        // per joint: how long it has been over its speed limit
+  JointVector saturated_s_;        // per joint: how long it has sat at its effort limit
   bool reset_pending_ = false;
   JointState state_;
   bool state_usable_ = false;  // this cycle's state passed measure(), so input_ is current

@@ -55,6 +55,8 @@ struct CycleParameters {
   double frozen_state_timeout_s = 0.1;
   GainRampConfig gain_ramps;
   PassivityConfig passivity;
+  StabilityGuardConfig stability_guard;
+  JointVector velocity_limit;  ///< URDF [rad/s | m/s], for the stability guard
 };
 
 struct ResolvedController {
