@@ -36,7 +36,7 @@ transport::ControllerStateMessage hostState(Participant& participant, const Clie
       std::chrono::steady_clock::now() + std::chrono::duration<double>(client.timeout_s);
   while (samples.empty() && std::chrono::steady_clock::now() < deadline) {
     reader.wait(0.1);
-    reader.take(samples, 1);
+    reader.take(samples, nullptr, 1);
   }
   if (samples.empty()) {
     throw transport::TransportError("no host '" + client.name + "' on domain " +

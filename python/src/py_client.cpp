@@ -92,7 +92,7 @@ bool Client::poll(double wait_s) {
     state_reader_.wait(wait_s);
   }
   state_reader_.take(states);
-  diagnostics_reader_.take(diagnostics, 100000);
+  diagnostics_reader_.take(diagnostics, nullptr, 100000);
   if (!states.empty()) {
     state_ = std::move(states.back().message);
   }

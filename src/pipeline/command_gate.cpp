@@ -142,6 +142,13 @@ void CommandGate::abandonPending(const std::string& why) {
   pending_.clear();
 }
 
+void CommandGate::releasePublisher(std::uint64_t publisher) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (holder_ == publisher) {
+    holder_ = 0;
+  }
+}
+
 void CommandGate::clearStampFloor() {
   const std::lock_guard<std::mutex> lock(mutex_);
   accepted_any_ = false;

@@ -36,8 +36,8 @@ class DdsHostTransport final : public HostTransport {
     // Malformed samples never wake the wait set: a count owed is printed from here.
     malformed_log_.tick();
     waitset_.wait(timeout_s);
-    cartesian_.take(inbox.cartesian);
-    joint_.take(inbox.joint);
+    cartesian_.take(inbox.cartesian, &inbox.departed);
+    joint_.take(inbox.joint, &inbox.departed);
     request_.take(inbox.requests);
   }
   void wake() override { waitset_.trigger(); }

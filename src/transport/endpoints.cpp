@@ -167,7 +167,8 @@ Reader<Message>::~Reader() {
 }
 
 template <typename Message>
-std::size_t Reader<Message>::take(std::vector<Sample<Message>>& out, std::size_t max) {
+std::size_t Reader<Message>::take(std::vector<Sample<Message>>& out,
+                                  std::vector<std::uint64_t>* departed, std::size_t max) {
   constexpr std::size_t kBatch = 64;
   void* samples[kBatch] = {};
   dds_sample_info_t infos[kBatch];
@@ -192,6 +193,14 @@ std::size_t Reader<Message>::take(std::vector<Sample<Message>>& out, std::size_t
     if (static_cast<std::size_t>(count) < want) {
       break;
     }
+  }
+  // A writer deleted (or whose process ended) unmatches: the status names the last one to, and
+  // reading it resets the change, so that each departure is reported once. Two writers leaving
+  // between two calls report the later only; the other's silence then times out as before.
+  dds_subscription_matched_status_t matched{};
+  if (departed != nullptr && dds_get_subscription_matched_status(entity_, &matched) >= 0 &&
+      matched.current_count_change < 0 && matched.last_publication_handle != 0) {
+    departed->push_back(matched.last_publication_handle);
   }
   return taken;
 }

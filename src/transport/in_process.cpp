@@ -61,6 +61,14 @@ void InProcessBus::send(const JointCommandMessage& message, std::uint64_t publis
   host_wakeup_.notify_all();
 }
 
+void InProcessBus::depart(std::uint64_t publisher) {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    inbox_.departed.push_back(publisher);
+  }
+  host_wakeup_.notify_all();
+}
+
 void InProcessBus::send(const RequestMessage& message, std::uint64_t publisher) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -111,6 +119,7 @@ void InProcessBus::receive(Inbox& inbox, double timeout_s) {
   for (auto& sample : inbox_.requests) {
     inbox.requests.push_back(std::move(sample));
   }
+  inbox.departed.insert(inbox.departed.end(), inbox_.departed.begin(), inbox_.departed.end());
   inbox_.clear();
 }
 

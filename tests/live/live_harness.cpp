@@ -38,6 +38,7 @@ class DdsHarness final : public HostHarness {
   bool request(transport::RequestType /*request*/, int /*publisher*/) override {
     return false;  // `comply send --request` is the DDS side's requester (tests/apps)
   }
+  void close(int publisher) override { writers_.erase(publisher); }
   std::optional<transport::ControllerStateMessage> state(
       std::chrono::milliseconds timeout) override {
     return client_->state(timeout);
@@ -120,6 +121,7 @@ class InProcessHarness final : public HostHarness {
     bus_->send(message, static_cast<std::uint64_t>(publisher));
     return true;
   }
+  void close(int publisher) override { bus_->depart(static_cast<std::uint64_t>(publisher)); }
   bool request(transport::RequestType request, int publisher) override {
     transport::RequestMessage message;
     message.header.stamp = transport::Stamp::now();

@@ -39,6 +39,8 @@ class HostHarness {
   /// Safe from one thread per publisher while another thread polls.
   virtual bool send(const transport::CartesianCommandMessage& message, int publisher) = 0;
   virtual bool send(const transport::JointCommandMessage& message, int publisher) = 0;
+  /// Deletes `publisher`'s writers, as a sender process that exits cleanly does.
+  virtual void close(int publisher) = 0;
   /// An operator request (activate, deactivate, reset) from `publisher`; false where the harness
   /// cannot send one.
   virtual bool request(transport::RequestType request, int publisher) = 0;

@@ -67,6 +67,43 @@ TEST(LiveHost, WatchdogHoldsWithinTheTimeoutOfAKilledSender) {
   EXPECT_EQ(second->state, transport::HostState::kActive);
 }
 
+/// A sender that exits cleanly releases the command topics at once: a second sender started right
+/// after it used to be refused as other_publisher for the whole command_timeout_s.
+TEST_P(LiveHostOn, APublisherThatLeavesReleasesTheCommandTopicsAtOnce) {
+  HostHarness& host = *host_;
+  host.start("departure");
+  const auto state = host.state(20s);
+  ASSERT_TRUE(state);
+  const int dof = static_cast<int>(state->position.size());
+  ASSERT_TRUE(host.connect(1, dof));  // takes the command topics
+  ASSERT_TRUE(host.connect(2, dof));  // refused while the first is there
+  const transport::Stamp first_stamp = transport::Stamp::now();
+  ASSERT_TRUE(host.send(poseCommand(*state, Eigen::Vector3d::Zero(), first_stamp), 1));
+  ASSERT_TRUE(host.poll(
+      5s, [&](const auto&) { return host.outcomes().count(first_stamp.nanoseconds()) > 0; }));
+  ASSERT_EQ(host.outcomes()[first_stamp.nanoseconds()].front().outcome,
+            transport::Outcome::kApplied);
+
+  host.close(1);
+  const auto closed = Clock::now();
+  // Within a tenth of the 0.5 s timeout, the second publisher's commands apply.
+  std::optional<transport::CommandOutcomeMessage> applied;
+  while (!applied && Clock::now() - closed < 5s) {
+    std::this_thread::sleep_for(10ms);
+    const transport::Stamp stamp = transport::Stamp::now();
+    ASSERT_TRUE(host.send(poseCommand(*state, Eigen::Vector3d::Zero(), stamp), 2));
+    host.poll(200ms, [&](const auto&) { return host.outcomes().count(stamp.nanoseconds()) > 0; });
+    const auto& outcomes = host.outcomes()[stamp.nanoseconds()];
+    if (!outcomes.empty() && outcomes.front().outcome == transport::Outcome::kApplied) {
+      applied = outcomes.front();
+    }
+  }
+  ASSERT_TRUE(applied) << "the second publisher was never let in";
+  EXPECT_LT(std::chrono::duration<double>(Clock::now() - closed).count(), 0.4)
+      << "let in only after the first's silence timed out";
+  EXPECT_EQ(host.stop(), 0);
+}
+
 TEST_P(LiveHostOn, SecondPublisherIsRefusedUntilTheFirstGoesSilent) {
   HostHarness& host = *host_;
   host.start("lockout");

@@ -135,6 +135,9 @@ class CommandGate {
   /// A reset request: the next command may carry any stamp again (within the lead), so that a
   /// stamp from a clock that ran ahead does not lock senders out until the host restarts.
   void clearStampFloor();
+  /// `publisher`'s writers went away: if it held the command topics, the next writer may take
+  /// them at once (a clean exit need not wait out publisher_timeout_s).
+  void releasePublisher(std::uint64_t publisher);
 
   [[nodiscard]] GateCounts counts() const;
   [[nodiscard]] std::size_t pending() const;

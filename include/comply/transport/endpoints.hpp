@@ -115,8 +115,10 @@ class Reader final : public Endpoint {
   /// (history is not matched against the writers', so either stays compatible with ROS 2 peers).
   Reader(Participant& participant, std::string_view host_name, int depth = 0);
   ~Reader();
-  /// Appends up to `max` waiting samples to `out` in arrival order; how many.
-  std::size_t take(std::vector<Sample<Message>>& out, std::size_t max = 64);
+  /// Appends up to `max` waiting samples to `out` in arrival order; how many. A writer that
+  /// unmatched since the last call (deleted, or its process ended) goes to `departed`, if given.
+  std::size_t take(std::vector<Sample<Message>>& out,
+                   std::vector<std::uint64_t>* departed = nullptr, std::size_t max = 64);
   /// Waits until a sample waits to be taken; false on timeout.
   bool wait(double timeout_s);
 

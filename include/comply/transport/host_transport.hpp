@@ -26,14 +26,18 @@ struct Inbox {
   std::vector<Sample<CartesianCommandMessage>> cartesian;
   std::vector<Sample<JointCommandMessage>> joint;
   std::vector<Sample<RequestMessage>> requests;
+  /// Writers that went away (deleted, or their process ended cleanly): a publisher that held the
+  /// command topics releases them at once rather than after its silence times out.
+  std::vector<std::uint64_t> departed;
 
   void clear() {
     cartesian.clear();
     joint.clear();
     requests.clear();
+    departed.clear();
   }
   [[nodiscard]] bool empty() const {
-    return cartesian.empty() && joint.empty() && requests.empty();
+    return cartesian.empty() && joint.empty() && requests.empty() && departed.empty();
   }
 };
 

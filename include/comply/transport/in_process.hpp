@@ -27,6 +27,8 @@ class InProcessBus {
 
   // The clients' side. `publisher` identifies the writer (non-zero), as a DDS instance handle.
   void send(const CartesianCommandMessage& message, std::uint64_t publisher);
+  /// `publisher`'s writers are gone (as a DDS writer deleted, or its process ended).
+  void depart(std::uint64_t publisher);
   void send(const JointCommandMessage& message, std::uint64_t publisher);
   void send(const RequestMessage& message, std::uint64_t publisher);
   /// The newest state the host published, if any.

@@ -42,6 +42,9 @@ void readerThread(transport::HostTransport& transport, Intake<Command>& intake,
     for (const auto& sample : inbox.requests) {
       intake.handle(sample);
     }
+    for (const std::uint64_t publisher : inbox.departed) {
+      intake.departed(publisher);
+    }
   }
 }
 

@@ -41,6 +41,8 @@ class Intake {
   void handle(const transport::Sample<transport::CartesianCommandMessage>& sample);
   void handle(const transport::Sample<transport::JointCommandMessage>& sample);
   void handle(const transport::Sample<transport::RequestMessage>& sample);
+  /// A writer went away: it no longer holds the command topics.
+  void departed(std::uint64_t publisher) { gate_.releasePublisher(publisher); }
 
  private:
   pipeline::Wrapper<Command>& wrapper_;
