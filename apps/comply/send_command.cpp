@@ -85,35 +85,55 @@ transport::Stamp nextStamp(transport::Stamp& last) {
   return now;
 }
 
-/// Waits for the outcome of every stamp in `sent`; prints each; true when all were applied.
-bool awaitOutcomes(transport::Reader<transport::DiagnosticsMessage>& diagnostics,
-                   std::map<std::int64_t, bool>& sent, double timeout_s, std::ostream& out) {
-  std::size_t settled = 0;
-  bool all_applied = true;
-  std::vector<transport::Sample<transport::DiagnosticsMessage>> samples;
-  auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  while (settled < sent.size() && std::chrono::steady_clock::now() < deadline) {
-    diagnostics.wait(0.05);
-    samples.clear();
-    diagnostics.take(samples);
-    for (const auto& sample : samples) {
+/// The outcome of every command sent, printed as it arrives. Read while sending as well as after,
+/// from a keep-all reader: a reader that looked only afterwards, keeping the last few diagnostics,
+/// reported commands as lost that had been applied.
+class OutcomeCollector {
+ public:
+  explicit OutcomeCollector(transport::Reader<transport::DiagnosticsMessage>& diagnostics)
+      : diagnostics_(diagnostics) {}
+
+  void expect(std::int64_t stamp_ns) { sent_.emplace(stamp_ns, false); }
+  /// Takes what has arrived; prints the outcomes of commands sent.
+  void drain(std::ostream& out) {
+    samples_.clear();
+    diagnostics_.take(samples_, nullptr, 1000);
+    for (const auto& sample : samples_) {
       for (const auto& outcome : sample.message.outcomes) {
-        const auto it = sent.find(outcome.stamp.nanoseconds());
-        if (it == sent.end() || it->second) {
+        const auto it = sent_.find(outcome.stamp.nanoseconds());
+        if (it == sent_.end() || it->second) {
           continue;
         }
         it->second = true;
-        ++settled;
-        all_applied = all_applied && outcome.outcome == transport::Outcome::kApplied;
+        ++settled_;
+        all_applied_ = all_applied_ && outcome.outcome == transport::Outcome::kApplied;
         out << outcomeLine(outcome) << "\n";
       }
     }
   }
-  if (settled < sent.size()) {
-    out << (sent.size() - settled) << " of " << sent.size() << " commands without an outcome\n";
+  /// Waits for the rest; true when every command was applied.
+  bool finish(double timeout_s, std::ostream& out) {
+    const auto deadline =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    while (settled_ < sent_.size() && std::chrono::steady_clock::now() < deadline) {
+      diagnostics_.wait(0.05);
+      drain(out);
+    }
+    if (settled_ < sent_.size()) {
+      out << (sent_.size() - settled_) << " of " << sent_.size()
+          << " commands without an outcome\n";
+    }
+    return all_applied_ && settled_ == sent_.size();
   }
-  return all_applied && settled == sent.size();
-}
+  [[nodiscard]] std::size_t sent() const { return sent_.size(); }
+
+ private:
+  transport::Reader<transport::DiagnosticsMessage>& diagnostics_;
+  std::map<std::int64_t, bool> sent_;
+  std::vector<transport::Sample<transport::DiagnosticsMessage>> samples_;
+  std::size_t settled_ = 0;
+  bool all_applied_ = true;
+};
 
 /// Sends empty commands (no field group: the host accounts them and changes nothing) until one
 /// has an outcome: the host's reader has then discovered this writer, so no later command is
@@ -161,8 +181,11 @@ int sendAll(Participant& participant, const SendOptions& options,
   } else {
     in_force = transport::jointReferenceInForce(state, dof);
   }
-  transport::Writer<Message> writer(participant, options.client.name);
-  transport::Reader<transport::DiagnosticsMessage> diagnostics(participant, options.client.name);
+  // Keep-all both ways: at any --rate the writer waits for room rather than drop a command, and no
+  // outcome is dropped before it is read.
+  transport::Writer<Message> writer(participant, options.client.name, transport::kKeepAll);
+  transport::Reader<transport::DiagnosticsMessage> diagnostics(participant, options.client.name,
+                                                               transport::kKeepAll);
   if (!writer.waitForMatch(1, options.client.timeout_s)) {
     throw transport::TransportError("the host's command reader did not match");
   }
@@ -174,7 +197,7 @@ int sendAll(Participant& participant, const SendOptions& options,
   const double rate_hz = options.rate_hz > 0.0 ? options.rate_hz : 100.0;
   const auto period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
       std::chrono::duration<double>(1.0 / rate_hz));
-  std::map<std::int64_t, bool> sent;
+  OutcomeCollector outcomes(diagnostics);
   auto next = std::chrono::steady_clock::now();
   for (std::size_t i = 0; i < objects.size(); ++i) {
     schema::ReadOptions<Command> read;
@@ -188,14 +211,17 @@ int sendAll(Participant& participant, const SendOptions& options,
     next += period;
     message.header.stamp = nextStamp(last);
     writer.write(message);
-    sent[message.header.stamp.nanoseconds()] = false;
+    outcomes.expect(message.header.stamp.nanoseconds());
+    if (!options.no_wait) {
+      outcomes.drain(out);
+    }
   }
   writer.flush(options.client.timeout_s);
-  out << "sent " << sent.size() << " command" << (sent.size() == 1 ? "" : "s") << "\n";
+  out << "sent " << outcomes.sent() << " command" << (outcomes.sent() == 1 ? "" : "s") << "\n";
   if (options.no_wait) {
     return 0;
   }
-  return awaitOutcomes(diagnostics, sent, options.client.timeout_s, out) ? 0 : 1;
+  return outcomes.finish(options.client.timeout_s, out) ? 0 : 1;
 }
 
 int sendRequest(Participant& participant, const SendOptions& options, std::ostream& out) {

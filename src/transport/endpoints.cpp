@@ -3,8 +3,10 @@
 #include "comply/transport/endpoints.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <iterator>
+#include <span>
 #include <thread>
 
 #include "wire.hpp"
@@ -194,15 +196,28 @@ std::size_t Reader<Message>::take(std::vector<Sample<Message>>& out,
       break;
     }
   }
-  // A writer deleted (or whose process ended) unmatches: the status names the last one to, and
-  // reading it resets the change, so that each departure is reported once. Two writers leaving
-  // between two calls report the later only; the other's silence then times out as before.
-  dds_subscription_matched_status_t matched{};
-  if (departed != nullptr && dds_get_subscription_matched_status(entity_, &matched) >= 0 &&
-      matched.current_count_change < 0 && matched.last_publication_handle != 0) {
-    departed->push_back(matched.last_publication_handle);
+  if (departed != nullptr) {
+    noteDepartures(*departed);
   }
   return taken;
+}
+
+template <typename Message>
+void Reader<Message>::noteDepartures(std::vector<std::uint64_t>& departed) {
+  // A writer deleted (or whose process ended) is no longer matched. The matched set is compared,
+  // not the matched status's count: a writer leaving while another arrives nets no change.
+  std::array<dds_instance_handle_t, 64> handles{};
+  const dds_return_t count = dds_get_matched_publications(entity_, handles.data(), handles.size());
+  if (count < 0) {
+    return;
+  }
+  const auto now = std::span(handles.data(), std::min<std::size_t>(count, handles.size()));
+  for (const std::uint64_t before : matched_) {
+    if (std::find(now.begin(), now.end(), before) == now.end()) {
+      departed.push_back(before);
+    }
+  }
+  matched_.assign(now.begin(), now.end());
 }
 
 template <typename Message>

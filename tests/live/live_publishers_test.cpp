@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <thread>
 
@@ -238,6 +239,49 @@ TEST(LiveHost, APositionAloneFromCommandSendKeepsTheOrientationInForce) {
   for (std::size_t i = 0; i < 4; ++i) {
     EXPECT_NEAR(after->reference_orientation[i], before->reference_orientation[i], 1e-9) << i;
   }
+}
+
+/// `comply send --file` with 300 commands at 100 Hz used to report "192 of 300 commands without an
+/// outcome" (exit 1) when all were applied: it read the outcomes only after sending, from a
+/// keep-last reader. And at a high --rate its keep-last writer dropped commands before they left.
+TEST(LiveHost, CommandSendAccountsEveryCommandOfAFileAtAnyRate) {
+  const int domain = randomDomain();
+  Process host(hostArgs(domain, "file"));
+  Client client(domain, "file");
+  const auto state = client.state(20s);
+  ASSERT_TRUE(state);
+  const std::string file = (std::filesystem::temp_directory_path() /
+                            ("comply_send_" + std::to_string(domain) + ".jsonl"))
+                               .string();
+  {
+    std::ofstream lines(file);
+    for (int i = 0; i < 300; ++i) {
+      lines << "{\"position\": [" << state->reference_position[0] << ", "
+            << state->reference_position[1] + 0.005 * std::sin(0.05 * i) << ", "
+            << state->reference_position[2] << "]}\n";
+    }
+  }
+  for (const std::string rate : {"100", "5000"}) {
+    SCOPED_TRACE("--rate " + rate);
+    const std::string output = file + "." + rate + ".out";
+    Process sender({"send", "--domain", std::to_string(domain), "--name", "file", "--file", file,
+                    "--rate", rate},
+                   output);
+    EXPECT_EQ(sender.wait(60s), 0);
+    std::ifstream printed(output);
+    // A newline first: every outcome line then starts after one, the first included.
+    const std::string text = "\n" + std::string((std::istreambuf_iterator<char>(printed)),
+                                                std::istreambuf_iterator<char>());
+    std::size_t applied = 0;
+    for (std::size_t at = text.find("\napplied "); at != std::string::npos;
+         at = text.find("\napplied ", at + 1)) {
+      ++applied;
+    }
+    EXPECT_EQ(applied, 300U) << text.substr(0, 2000);
+    EXPECT_EQ(text.find("without an outcome"), std::string::npos) << text.substr(text.size() - 300);
+    std::filesystem::remove(output);
+  }
+  std::filesystem::remove(file);
 }
 
 TEST(LiveState, CarriesTheTanksAccount) {

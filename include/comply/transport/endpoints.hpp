@@ -123,8 +123,11 @@ class Reader final : public Endpoint {
   bool wait(double timeout_s);
 
  private:
+  void noteDepartures(std::vector<std::uint64_t>& departed);
+
   std::int32_t waitset_ = 0;
   std::int32_t condition_ = 0;
+  std::vector<std::uint64_t> matched_;  ///< the writers matched when last asked
 };
 
 /// Waits on several readers at once (the host's reader thread).
