@@ -14,6 +14,8 @@ constexpr std::size_t kOutcomesKept = 100000;
 // The writers keep every unacknowledged command: a write waits while the commands before it fill
 // the writer's history and fails when the host acknowledges none of them within the reliability's
 // 0.1 s blocking time.
+constexpr const char* kNoHost =
+    "no comply host matches this client's command writer (comply run stopped, or never there)";
 constexpr const char* kRefused =
     "DDS refused the command: the host acknowledged none of the commands sent before it within "
     "0.1 s (is comply run stopped or stalled?)";
@@ -95,6 +97,7 @@ bool Client::poll(double wait_s) {
   diagnostics_reader_.take(diagnostics, nullptr, 100000);
   if (!states.empty()) {
     state_ = std::move(states.back().message);
+    state_received_ = SteadyClock::now();
   }
   for (auto& sample : diagnostics) {
     for (const auto& outcome : sample.message.outcomes) {
@@ -119,6 +122,9 @@ std::int64_t Client::sendCartesian(const py::kwargs& kwargs) {
       state_ ? transport::cartesianReferenceInForce(*state_, dof_) : CartesianCommand::zero(dof_);
   transport::CartesianCommandMessage message{{{}, ""}, cartesianFromKwargs(kwargs, dof_, base)};
   message.header.stamp = nextStamp();
+  if (cartesian_writer_.matched() == 0) {
+    throw std::runtime_error(kNoHost);  // DDS would drop it without a word
+  }
   if (!cartesian_writer_.write(message)) {
     throw std::runtime_error(kRefused);
   }
@@ -130,6 +136,9 @@ std::int64_t Client::sendJoint(const py::kwargs& kwargs) {
       state_ ? transport::jointReferenceInForce(*state_, dof_) : JointCommand::zero(dof_);
   transport::JointCommandMessage message{{{}, ""}, jointFromKwargs(kwargs, dof_, base)};
   message.header.stamp = nextStamp();
+  if (joint_writer_.matched() == 0) {
+    throw std::runtime_error(kNoHost);
+  }
   if (!joint_writer_.write(message)) {
     throw std::runtime_error(kRefused);
   }
@@ -140,19 +149,30 @@ void Client::request(transport::RequestType request) {
   transport::RequestMessage message;
   message.header.stamp = nextStamp();
   message.request = request;
+  if (request_writer_.matched() == 0) {
+    throw std::runtime_error(kNoHost);
+  }
   request_writer_.write(message);
 }
 
 py::object Client::state(double timeout_s) {
+  bool fresh = false;
   {
     const py::gil_scoped_release release;
     const auto deadline = deadlineAfter(timeout_s);
-    bool fresh = poll(0.0);
+    fresh = poll(0.0);
     while (!fresh && SteadyClock::now() < deadline) {
       fresh = poll(0.01);
     }
   }
-  return state_ ? py::object(toDict(*state_)) : py::object(py::none());
+  // A host that stopped publishing, or whose writer is gone (a state it sent before it stopped
+  // can still be waiting here), is gone or stalled: no state, rather than its last one.
+  if (!fresh || !state_ || state_reader_.matched() == 0) {
+    return py::none();
+  }
+  py::dict state = toDict(*state_);
+  state["age"] = std::chrono::duration<double>(SteadyClock::now() - state_received_).count();
+  return std::move(state);
 }
 
 py::object Client::diagnostics(double timeout_s) {

@@ -7,6 +7,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include <chrono>
 #include <cstdint>
 #include <deque>
 #include <map>
@@ -30,8 +31,8 @@ class Client {
   std::int64_t sendJoint(const py::kwargs& kwargs);
   void request(transport::RequestType request);
 
-  /// The newest state (dict of numpy arrays), waiting up to `timeout_s` for a new one; None
-  /// when none arrived.
+  /// A new state (dict of numpy arrays, with "age": seconds since it arrived), waiting up to
+  /// `timeout_s` for one; None when none arrived: the host is gone or stalled.
   py::object state(double timeout_s);
   /// The newest diagnostics (dict), or None.
   py::object diagnostics(double timeout_s);
@@ -57,6 +58,7 @@ class Client {
   transport::Reader<transport::ControllerStateMessage> state_reader_;
   transport::Reader<transport::DiagnosticsMessage> diagnostics_reader_;
   std::optional<transport::ControllerStateMessage> state_;
+  std::chrono::steady_clock::time_point state_received_;
   std::optional<transport::DiagnosticsMessage> diagnostics_;
   std::map<std::int64_t, transport::CommandOutcomeMessage> outcomes_;
   std::deque<std::int64_t> outcome_order_;  // oldest first, to bound outcomes_

@@ -3,6 +3,7 @@ invalid in seven ways: every command has exactly one outcome, applied or rejecte
 reason. Then SIGTERM: the host exits 0. Usage: live_client_test.py COMPLY_CLI SOURCE_DIR."""
 
 import math
+import signal
 import sys
 import time
 
@@ -81,7 +82,31 @@ def main():
         for name in ("pose_jump", "out_of_range"):  # one tenth of the commands, in seven ways
             assert diagnostics["rejections"][name] >= COMMANDS // 70 - 1, diagnostics
         assert client.wait_until(lambda s: s["state"] == "active", timeout=2.0)
+    dead_host(cli, source)
     print("ok")
+
+
+def dead_host(cli, source):
+    """A client whose host stops: state() says so (None) instead of repeating the last state, and
+    a send raises instead of vanishing."""
+    with running_host(cli, source, "gone") as (host, domain):
+        client = comply.Client(name="gone", domain=domain, timeout=30.0)
+        state = client.state()
+        assert state is not None and 0.0 <= state["age"] < 0.5, state
+        pose = dict(position=state["tcp_position"], orientation=state["tcp_orientation"])
+        assert client.outcome(client.send_cartesian(**pose), timeout=5.0)["applied"]
+        host.send_signal(signal.SIGTERM)
+        assert host.wait(timeout=10) == 0
+        assert client.state(timeout=0.5) is None, "a stopped host's last state was returned"
+        deadline = time.monotonic() + 10.0
+        while True:  # the host's reader unmatches once its process has gone
+            try:
+                client.send_cartesian(**pose)
+            except RuntimeError as error:
+                assert "no comply host" in str(error), error
+                break
+            assert time.monotonic() < deadline, "sends to a stopped host never raised"
+            time.sleep(0.05)
 
 
 if __name__ == "__main__":
