@@ -70,6 +70,7 @@ CommandReason CommandGate::admitLocked(const Offer& offer, bool active, CommandO
     return rejectLocked(outcome, CommandReason::kOtherPublisher, text.str());
   }
   holder_ = offer.publisher;
+  holder_participant_ = offer.participant;
   holder_heard_ns_ = offer.now_ns;
   if (!active) {
     return rejectLocked(outcome, CommandReason::kInactive,
@@ -140,6 +141,22 @@ void CommandGate::abandonPending(const std::string& why) {
     rejectLocked(pending.outcome, CommandReason::kInactive, why);
   }
   pending_.clear();
+}
+
+bool CommandGate::admitRequest(std::uint64_t participant, std::int64_t now_ns, std::string& why) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const double silent_s = 1e-9 * static_cast<double>(now_ns - holder_heard_ns_);
+  if (holder_ == 0 || silent_s > options_.publisher_timeout_s ||
+      (participant != 0 && participant == holder_participant_)) {
+    return true;
+  }
+  std::ostringstream text;
+  text << "request refused: publisher " << std::hex << holder_ << std::dec
+       << " holds the command topics (last heard " << static_cast<int>(silent_s * 1000.0)
+       << " ms ago); only its own process may send requests until it is silent for "
+       << options_.publisher_timeout_s << " s";
+  why = text.str();
+  return false;
 }
 
 void CommandGate::releasePublisher(std::uint64_t publisher) {

@@ -188,6 +188,7 @@ std::size_t Reader<Message>::take(std::vector<Sample<Message>>& out,
       }
       Sample<Message>& sample = out.emplace_back();
       sample.publisher = infos[i].publication_handle;
+      sample.participant = participantOf(infos[i].publication_handle);
       wire::Wire<Message>::read(samples[i], sample.message, sample.malformed);
       ++taken;
     }
@@ -200,6 +201,25 @@ std::size_t Reader<Message>::take(std::vector<Sample<Message>>& out,
     noteDepartures(*departed);
   }
   return taken;
+}
+
+template <typename Message>
+std::uint64_t Reader<Message>::participantOf(std::uint64_t publication) {
+  const auto known = participants_.find(publication);
+  if (known != participants_.end()) {
+    return known->second;
+  }
+  std::uint64_t participant = 0;
+  if (dds_builtintopic_endpoint_t* endpoint =
+          dds_get_matched_publication_data(entity_, publication)) {
+    participant = endpoint->participant_instance_handle;
+    dds_builtintopic_free_endpoint(endpoint);
+  }
+  if (participants_.size() > 4096) {
+    participants_.clear();  // writers come and go; a long-lived host must not grow without bound
+  }
+  participants_.emplace(publication, participant);
+  return participant;
 }
 
 template <typename Message>

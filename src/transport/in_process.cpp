@@ -48,7 +48,7 @@ std::shared_ptr<InProcessBus> InProcessBus::named(const std::string& name) {
 void InProcessBus::send(const CartesianCommandMessage& message, std::uint64_t publisher) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    inbox_.cartesian.push_back({message, publisher, {}});
+    inbox_.cartesian.push_back({message, publisher, {}, publisher});
   }
   host_wakeup_.notify_all();
 }
@@ -56,7 +56,7 @@ void InProcessBus::send(const CartesianCommandMessage& message, std::uint64_t pu
 void InProcessBus::send(const JointCommandMessage& message, std::uint64_t publisher) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    inbox_.joint.push_back({message, publisher, {}});
+    inbox_.joint.push_back({message, publisher, {}, publisher});
   }
   host_wakeup_.notify_all();
 }
@@ -72,7 +72,7 @@ void InProcessBus::depart(std::uint64_t publisher) {
 void InProcessBus::send(const RequestMessage& message, std::uint64_t publisher) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    inbox_.requests.push_back({message, publisher, {}});
+    inbox_.requests.push_back({message, publisher, {}, publisher});
   }
   host_wakeup_.notify_all();
 }

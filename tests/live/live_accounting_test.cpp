@@ -259,5 +259,41 @@ TEST(LiveHostInProcess, DeactivateHoldsTheArmAndTheStateSaysInactive) {
   EXPECT_EQ(host->stop(), 0);
 }
 
+/// Any process could deactivate the controller: requests skipped the one-publisher rule. Now a
+/// request from another process than the one holding the command topics is refused (and named in
+/// the diagnostics) while the holder is heard; the holder's own process may send them.
+TEST(LiveHostInProcess, RequestsObeyThePublisherRule) {
+  const std::unique_ptr<HostHarness> host = makeHarness("in_process");
+  host->start("requests");
+  const auto state = host->state(20s);
+  ASSERT_TRUE(state);
+  ASSERT_TRUE(host->connect(1, static_cast<int>(state->position.size())));  // holds the topics
+  const auto keepCommanding = [&] {
+    ASSERT_TRUE(
+        host->send(poseCommand(*state, Eigen::Vector3d::Zero(), transport::Stamp::now()), 1));
+  };
+  keepCommanding();
+  ASSERT_TRUE(host->request(transport::RequestType::kDeactivate, 2));
+  ASSERT_TRUE(host->poll(5s, [](const transport::DiagnosticsMessage& d) {
+    return d.last_rejection.find("request refused") != std::string::npos;
+  })) << "no refusal in the diagnostics";
+  keepCommanding();
+  std::this_thread::sleep_for(200ms);
+  auto now = host->state(1s);
+  ASSERT_TRUE(now);
+  EXPECT_EQ(now->state, transport::HostState::kActive) << "another process deactivated the arm";
+
+  ASSERT_TRUE(host->request(transport::RequestType::kDeactivate, 1));
+  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  while (std::chrono::steady_clock::now() < deadline &&
+         (!now || now->state != transport::HostState::kInactive)) {
+    std::this_thread::sleep_for(20ms);
+    now = host->state(100ms);
+  }
+  ASSERT_TRUE(now);
+  EXPECT_EQ(now->state, transport::HostState::kInactive) << "the holder's own request was refused";
+  EXPECT_EQ(host->stop(), 0);
+}
+
 }  // namespace
 }  // namespace comply::live_test

@@ -87,9 +87,10 @@ GateOptions gateOptions(const WrapperConfig& config, bool cartesian);
 struct Offer {
   std::int64_t stamp_ns = 0;
   CommandKind kind = CommandKind::kCartesian;
-  std::uint64_t publisher = 0;  ///< the writer's identity (a DDS instance handle, a ROS GID hash)
-  std::string_view malformed;   ///< non-empty: what the wire held that the type cannot
-  std::int64_t now_ns = 0;      ///< the intake's steady clock [ns], for the publisher rule
+  std::uint64_t publisher = 0;    ///< the writer's identity (a DDS instance handle, a ROS GID hash)
+  std::uint64_t participant = 0;  ///< the sending process (0: unknown), for the request rule
+  std::string_view malformed;     ///< non-empty: what the wire held that the type cannot
+  std::int64_t now_ns = 0;        ///< the intake's steady clock [ns], for the publisher rule
   /// The host's clock in the stamps' timebase [ns] (wall clock for `comply run`, simulated time
   /// for Python's Sim, the node's clock under ROS 2); 0: none, no lead rule.
   std::int64_t clock_ns = 0;
@@ -135,6 +136,11 @@ class CommandGate {
   /// A reset request: the next command may carry any stamp again (within the lead), so that a
   /// stamp from a clock that ran ahead does not lock senders out until the host restarts.
   void clearStampFloor();
+  /// An operator request (activate, deactivate, reset) from `participant` (the process that sent
+  /// it) at steady time `now_ns`: allowed when no publisher holds the command topics, or when
+  /// the holder is silent for publisher_timeout_s, or when it comes from the holder's own process.
+  /// Else false with `why` set: another process may not stop the arm of the one commanding it.
+  bool admitRequest(std::uint64_t participant, std::int64_t now_ns, std::string& why);
   /// `publisher`'s writers went away: if it held the command topics, the next writer may take
   /// them at once (a clean exit need not wait out publisher_timeout_s).
   void releasePublisher(std::uint64_t publisher);
@@ -169,6 +175,7 @@ class CommandGate {
   std::int64_t last_accepted_ns_ = 0;
   bool accepted_any_ = false;
   std::uint64_t holder_ = 0;
+  std::uint64_t holder_participant_ = 0;
   std::int64_t holder_heard_ns_ = 0;
   std::int64_t applied_stamp_ns_ = 0;
   std::deque<Pending> pending_;

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "comply/transport/messages.hpp"
@@ -124,10 +125,13 @@ class Reader final : public Endpoint {
 
  private:
   void noteDepartures(std::vector<std::uint64_t>& departed);
+  /// The participant (process) of a matched writer, asked of DDS once per writer.
+  std::uint64_t participantOf(std::uint64_t publication);
 
   std::int32_t waitset_ = 0;
   std::int32_t condition_ = 0;
   std::vector<std::uint64_t> matched_;  ///< the writers matched when last asked
+  std::unordered_map<std::uint64_t, std::uint64_t> participants_;  ///< writer -> participant
 };
 
 /// Waits on several readers at once (the host's reader thread).

@@ -168,6 +168,9 @@ struct Sample {
   /// Non-empty when the wire held something the C++ type cannot (a joint vector longer than
   /// kMaxDof): names the field. The message is then not to be used.
   std::string malformed;
+  /// The sending process's participant (0: unknown): one client's command and request writers
+  /// share it, so requests can be held to the publisher rule.
+  std::uint64_t participant = 0;
 };
 
 }  // namespace comply::transport

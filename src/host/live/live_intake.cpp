@@ -20,6 +20,7 @@ void offerSample(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gat
   offer.stamp_ns = sample.message.header.stamp.nanoseconds();
   offer.kind = kind;
   offer.publisher = sample.publisher;
+  offer.participant = sample.participant;
   offer.malformed = sample.malformed;
   offer.now_ns = monotonicNanoseconds();
   offer.clock_ns = wallClockNanoseconds();  // senders stamp with their wall clock (ROS 2 time)
@@ -77,6 +78,13 @@ void Intake<Command>::handle(const transport::Sample<transport::JointCommandMess
 
 template <typename Command>
 void Intake<Command>::handle(const transport::Sample<transport::RequestMessage>& sample) {
+  // The publisher rule holds for requests too: while one process commands the arm, another
+  // cannot deactivate or reset it. A refusal is the diagnostics' last rejection.
+  std::string why;
+  if (!gate_.admitRequest(sample.participant, monotonicNanoseconds(), why)) {
+    wrapper_.controller().diagnostics().setRejection("", why.c_str());
+    return;
+  }
   switch (sample.message.request) {
     case transport::RequestType::kActivate:
     case transport::RequestType::kDeactivate:
