@@ -20,7 +20,7 @@ bool Controller::measure(const JointState& state) noexcept {
   if (stateFrozen(state)) {
     enterFault("state: ",
                "joint state unchanged bit for bit for frozen_state_timeout_s while the torque "
-               "changed: a stale sensor stream");
+               "changed or its own velocity should have moved it: a stale sensor stream");
     return false;
   }
   const std::span<const double> q(state.position.data(), static_cast<std::size_t>(dof_));
@@ -66,8 +66,13 @@ bool Controller::stateFrozen(const JointState& state) noexcept {
   if (time_s_ - repeated_since_s_ < parameters_.frozen_state_timeout_s) {
     return false;
   }
+  // Stale either way: the torque moved and the state did not answer, or the state reports a
+  // velocity under which its own position would have moved, and it did not (an arm pushed by
+  // hand while its stream repeats a moving sample: the law's torque need not change for that).
+  const double unmoved_s = time_s_ - repeated_since_s_;
   state_frozen_ =
-      (torque_ - torque_when_repeated_).cwiseAbs().maxCoeff() > kFrozenStateTorqueChangeNm;
+      (torque_ - torque_when_repeated_).cwiseAbs().maxCoeff() > kFrozenStateTorqueChangeNm ||
+      state.velocity.cwiseAbs().maxCoeff() * unmoved_s > kFrozenStateMotionRad;
   return state_frozen_;
 }
 

@@ -99,9 +99,21 @@ TEST_F(FrozenState, ResetNeedsAStateThatMovesAgain) {
 
 TEST_F(FrozenState, RepeatedStateWithASteadyTorqueIsNotAFault) {
   // An arm (or a simulator) at rest repeats its state, and the law its torque: 2 s of it.
+  state.velocity.setZero();
   const int cycles = cyclesUntilFault(2000);
   EXPECT_EQ(cycles, 2000);
   EXPECT_EQ(wrapper.diagnostics().faults, 0U);
+}
+
+// A stream that repeats a moving sample while the law's torque stays put (an arm pushed by hand
+// moved 2.9 rad unnoticed): the velocity it reports would have moved the position, and it did not.
+TEST_F(FrozenState, ARepeatedMovingSampleIsStaleEvenWithASteadyTorque) {
+  const int faulted_at = cyclesUntilFault(1000);  // 0.1 rad/s on every joint, no command
+  EXPECT_GE(faulted_at, 99);
+  EXPECT_LE(faulted_at, 102);
+  EXPECT_NE(wrapper.diagnostics().last_error.find("its own velocity should have moved it"),
+            std::string::npos)
+      << wrapper.diagnostics().last_error;
 }
 
 TEST_F(FrozenState, ChangingStateIsNeverFrozenWhateverTheTorque) {

@@ -46,6 +46,9 @@ namespace comply::pipeline {
 /// repeats its state only while the torque repeats too; a driver that resends its last sample
 /// does not.
 inline constexpr double kFrozenStateTorqueChangeNm = 1.0;
+/// How far [rad | m] the reported velocity must carry a joint over frozen_state_timeout_s for
+/// an unchanged position to betray a stale stream (a thousand times an FR3 encoder's resolution).
+inline constexpr double kFrozenStateMotionRad = 1e-4;
 
 enum class CycleStatus {
   kOk,
