@@ -49,8 +49,9 @@ std::vector<T> readList(const YAML::Node& root, const char* key, const std::file
 }
 
 bool looksLikePath(std::string_view name_or_path) {
+  std::error_code error;  // a folder that cannot even be looked at (a symlink loop) is a path too
   return name_or_path.find('/') != std::string_view::npos || name_or_path.find('.') == 0 ||
-         std::filesystem::is_directory(name_or_path);
+         std::filesystem::is_directory(name_or_path, error) || error;
 }
 
 RobotDescription parseFolder(const std::filesystem::path& folder) {
@@ -155,9 +156,11 @@ std::vector<std::string> availableRobots() {
 RobotDescription loadRobotDescription(std::string_view name_or_path) {
   if (looksLikePath(name_or_path)) {
     const std::filesystem::path folder(name_or_path);
-    if (!std::filesystem::is_directory(folder)) {
+    std::error_code error;
+    if (!std::filesystem::is_directory(folder, error)) {
       throw ModelError(ModelErrc::kFileNotFound,
-                       "robot folder '" + folder.string() + "' does not exist");
+                       "robot folder '" + folder.string() + "' " +
+                           (error ? "cannot be read: " + fileErrorText(error) : "does not exist"));
     }
     return parseFolder(folder);
   }

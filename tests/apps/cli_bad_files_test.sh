@@ -51,6 +51,9 @@ expect_refused "$loop" "$comply" sim --robot fr3 --config "$work/loop.yaml" --ta
 expect_refused "$loop" "$comply" sim --robot fr3 --task "$work/loop.yaml" --no-plot \
   --out "$work/sim"
 expect_refused "$loop" "${validate[@]}" --inputs "$work/loop.yaml"
+ln -s robot_loop "$work/robot_loop"
+expect_refused "robot folder '$work/robot_loop' cannot be read: too many levels of symbolic links" \
+  "$comply" sim --robot "$work/robot_loop" --task "$task" --no-plot --out "$work/sim"
 if [ "$failures" -ne 0 ]; then
   exit 1
 fi
