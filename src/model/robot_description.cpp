@@ -49,9 +49,12 @@ std::vector<T> readList(const YAML::Node& root, const char* key, const std::file
 }
 
 bool looksLikePath(std::string_view name_or_path) {
-  std::error_code error;  // a folder that cannot even be looked at (a symlink loop) is a path too
+  // A name that cannot even be looked at (a symlink loop) is a path too; one that is not there is
+  // a robot's name to search for.
+  std::error_code error;
+  const bool folder = std::filesystem::is_directory(name_or_path, error);
   return name_or_path.find('/') != std::string_view::npos || name_or_path.find('.') == 0 ||
-         std::filesystem::is_directory(name_or_path, error) || error;
+         folder || (error && error != std::errc::no_such_file_or_directory);
 }
 
 RobotDescription parseFolder(const std::filesystem::path& folder) {
