@@ -24,8 +24,8 @@ struct PassivitySnapshot {
   bool enabled = false;                  ///< passivity.enabled
   double tank_energy_j = 0.0;            ///< [J] task account (Cartesian or joint stiffness)
   double nullspace_tank_energy_j = 0.0;  ///< [J] nullspace account (Cartesian control)
-  double injected_j = 0.0;     ///< [J] total paid for stiffness and task-frame changes
-  double dissipated_j = 0.0;   ///< [J] total credited from the damping (a lower bound)
+  double injected_j = 0.0;               ///< [J] total paid for stiffness and task-frame changes
+  double dissipated_j = 0.0;             ///< [J] total credited from the damping (a lower bound)
   double refused_j = 0.0;      ///< [J] what the change held back this cycle would have injected
   double gain_fraction = 1.0;  ///< [-] fraction of the commanded stiffness change in force
 };
