@@ -2,6 +2,7 @@
 
 #include <sched.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -98,11 +99,11 @@ class CycleTimer final : public hardware::LoopObserver {
 };
 
 template <typename Command>
-std::array<BenchRow, 2> benchWrapper(const BenchOptions& options, const std::string& wrapper_name,
-                                     const std::string& plugin_name,
-                                     const std::vector<double>& home, std::ostream& log,
-                                     DampingMode damping_mode = DampingMode::kRatio,
-                                     bool gain_stage = false) {
+std::vector<BenchRow> benchWrapper(const BenchOptions& options, const std::string& wrapper_name,
+                                   const std::string& plugin_name, const std::vector<double>& home,
+                                   std::ostream& log,
+                                   DampingMode damping_mode = DampingMode::kRatio,
+                                   bool gain_stage = false) {
   pipeline::WrapperConfig config = host::controllerConfig(options.robot, plugin_name);
   config.initial_cartesian.damping_mode = damping_mode;
   if (gain_stage) {
@@ -163,7 +164,26 @@ std::array<BenchRow, 2> benchWrapper(const BenchOptions& options, const std::str
     result.p50_min_us = result.p50_max_us = result.timing.p50_us;
     return result;
   };
-  return {row("plugin_step", step_us), row("full_cycle", cycle_us)};
+  std::vector<BenchRow> rows{row("plugin_step", step_us), row("full_cycle", cycle_us)};
+  if (options.paced_hz > 0.0) {
+    // The same cycle as a robot runs it: on the wall clock, the thread asleep between cycles, so
+    // that every cycle starts with whatever caches and predictors the sleep left.
+    const int paced = std::min(total, static_cast<int>(3.0 * options.paced_hz));
+    const int paced_warmup = std::min(options.warmup, paced / 10);
+    std::vector<double> paced_us;
+    paced_us.reserve(static_cast<std::size_t>(paced));
+    ReplayHardware paced_replay(home, paced);
+    wrapper.activate(paced_replay.at(0));
+    hardware::WallClock wall;
+    hardware::ControlLoop paced_loop(
+        paced_replay, wrapper, wall,
+        {.period_s = 1.0 / options.paced_hz, .cycles = static_cast<std::uint64_t>(paced)});
+    CycleTimer paced_timer(paced_warmup, paced_us);
+    paced_loop.setObserver(&paced_timer);
+    paced_loop.run();
+    rows.push_back(row("paced_cycle", paced_us));
+  }
+  return rows;
 }
 
 void pinToCpu(int cpu) {
@@ -191,8 +211,8 @@ std::vector<BenchRow> runBench(const BenchOptions& options, std::ostream& log) {
       << (options.cpu >= 0 ? ", pinned to CPU " + std::to_string(options.cpu) : std::string())
       << "\n";
   std::vector<BenchRow> rows;
-  const auto add = [&](const std::array<BenchRow, 2>& pair) {
-    for (BenchRow row : pair) {
+  const auto add = [&](const std::vector<BenchRow>& wrapper_rows) {
+    for (BenchRow row : wrapper_rows) {
       row.robot = robot.name;
       row.dof = static_cast<int>(robot.joints.size());
       rows.push_back(row);

@@ -150,7 +150,8 @@ std::vector<BenchRow> runBenchProcesses(const BenchOptions& options, std::ostrea
         runs.push_back(benchRowsFromJson(runCapturingOutput(
             {"comply", "bench", "--robot", target, "--iterations",
              std::to_string(options.iterations), "--warmup", std::to_string(options.warmup),
-             "--cpu", std::to_string(options.cpu), "--worker"},
+             "--cpu", std::to_string(options.cpu), "--paced", std::to_string(options.paced_hz),
+             "--worker"},
             paddingFor(process))));
       }
       for (BenchRow row : mergeBenchRuns(runs)) {

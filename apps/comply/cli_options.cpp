@@ -44,6 +44,11 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
                    "measuring processes per robot, each with another stack offset (median)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  command
+      ->add_option("--paced", options.paced_hz,
+                   "also time the full cycle paced at this rate [Hz], sleeping between cycles as "
+                   "a robot runs it (row paced_cycle; at most 3 s per wrapper; 0: not)")
+      ->check(CLI::NonNegativeNumber);
   // Internal: one measuring process of the above, JSON rows on stdout.
   command->add_flag("--worker", options.worker)->group("");
   return command;

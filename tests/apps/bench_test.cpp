@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -116,6 +117,29 @@ TEST(SyntheticChain, TwelveJointsLoadAndRunEveryWrapperWithoutAFault) {
     EXPECT_GT(bench_row.timing.p50_us, 0.0);
   }
   std::filesystem::remove_all(folder);
+}
+
+TEST(Bench, PacedRowsRunTheCycleOnTheWallClock) {
+  BenchOptions options;
+  options.iterations = 200;
+  options.warmup = 10;
+  options.paced_hz = 1000.0;
+  std::ostringstream log;
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<BenchRow> rows = runBench(options, log);
+  const double elapsed_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(rows.size(), 12U);  // four wrappers: step, back to back, paced
+  int paced = 0;
+  for (const BenchRow& bench_row : rows) {
+    if (bench_row.stage == "paced_cycle") {
+      ++paced;
+      EXPECT_GT(bench_row.timing.p50_us, 0.0);
+    }
+  }
+  EXPECT_EQ(paced, 4);
+  // 210 cycles per wrapper at 1 kHz on the wall clock: paced, not free-running.
+  EXPECT_GT(elapsed_s, 4 * 0.2);
 }
 
 }  // namespace
