@@ -143,6 +143,14 @@ void addLimitAndShapingOptions(std::vector<Option>& table) {
                            &WrapperConfig::torque_rate_limit));
   table.push_back(perJoint("effort_limit_nm", nullptr, "default from the URDF <limit effort>", 0.0,
                            true, &WrapperConfig::effort_limit));
+  Option saturation{"effort_saturation", Kind::kChoice, "clip",
+                    "clip: each joint on its own; scale: the law's torque as a whole, its "
+                    "direction kept"};
+  saturation.choices = "clip|scale";
+  saturation.apply = [](WrapperConfig& c, const Value& v) {
+    c.effort_saturation = v.text == "scale" ? EffortSaturation::kScale : EffortSaturation::kClip;
+  };
+  table.push_back(saturation);
   table.push_back(perJoint("fault_damping", "5.0",
                            "N m s/rad of the FAULT holding torque (gravity + damping)", 0.0, false,
                            &WrapperConfig::fault_damping));

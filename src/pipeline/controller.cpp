@@ -52,6 +52,7 @@ Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
   }
   state_ = JointState::zero(dof_);
   torque_.setZero(dof_);
+  law_torque_.setZero(dof_);
   scratch_.setZero(dof_);
   hold_gravity_.setZero(dof_);
   overspeed_s_.setZero(dof_);

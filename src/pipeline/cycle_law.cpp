@@ -17,6 +17,7 @@ bool Controller::runLaw() noexcept {
   for (int i = 0; i < dof_; ++i) {
     torque_[i] = output_.torque[i];
   }
+  law_torque_ = torque_;  // kept apart for a saturation that scales the law's torque alone
   if (!torque_.allFinite()) {
     enterFault("plugin: ", "non-finite torque");
     return false;

@@ -1,6 +1,7 @@
 // Stages "compensate", "shape" and "write", and the safe state "hold": what is added to the law's
 // torque, how the sum is shaped for the motors, and what goes out in FAULT.
 
+#include <algorithm>
 #include <cmath>
 
 #include "comply/pipeline/compensation.hpp"
@@ -25,7 +26,37 @@ void Controller::compensate() noexcept {
   }
 }
 
+void Controller::scaleIntoLimits() noexcept {
+  // The largest share s of the law's torque that keeps every joint within its limit with the
+  // compensation added in full: a wrench the arm cannot give whole is given in its direction.
+  double share = 1.0;
+  int binding = -1;
+  for (int i = 0; i < dof_; ++i) {
+    const double law = law_torque_[i];
+    const double compensation = torque_[i] - law;
+    const double limit = parameters_.effort_limit[i];
+    if (std::abs(torque_[i]) <= limit || law == 0.0) {
+      continue;
+    }
+    const double joint_share = ((law > 0.0 ? limit : -limit) - compensation) / law;
+    if (joint_share < share) {
+      share = std::max(joint_share, 0.0);
+      binding = i;
+    }
+  }
+  if (binding < 0) {
+    return;
+  }
+  for (int i = 0; i < dof_; ++i) {
+    torque_[i] -= (1.0 - share) * law_torque_[i];
+  }
+  diagnostics_.effort_limit_hits.fetch_add(1, std::memory_order_relaxed);
+}
+
 bool Controller::shape() noexcept {
+  if (parameters_.effort_saturation == EffortSaturation::kScale) {
+    scaleIntoLimits();
+  }
   const ShapingResult shaped = shaper_.apply(torque_, period_s_);
   if (!shaped.finite) {
     enterFault("shaping: ", "non-finite torque after compensation and filtering");

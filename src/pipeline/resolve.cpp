@@ -101,6 +101,7 @@ std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig&
   parameters.filter_alpha = config.filter_alpha;
   parameters.torque_rate_limit = toJointVector(config.torque_rate_limit, dof);
   parameters.effort_limit = effortLimits(config, model);
+  parameters.effort_saturation = config.effort_saturation;
   parameters.gain_ramps = config.gain_ramps;
   parameters.passivity = config.passivity;
   parameters.stability_guard = config.stability_guard;

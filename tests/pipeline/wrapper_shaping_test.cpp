@@ -73,5 +73,37 @@ TEST(WrapperShaping, EffortLimitClipsAndCountsEveryClippedCycle) {
   EXPECT_EQ(wrapper.diagnostics().effort_limit_hits, 2U * 10U);
 }
 
+// effort_saturation: scale. Clipping joint by joint turned the law's torque (and the wrench it
+// commanded) away from what was asked; scaling keeps its direction: the torque above gravity is
+// the law's times one share, the joint that binds exactly at its limit.
+TEST(WrapperShaping, ScaledSaturationKeepsTheDirectionOfTheLawsTorque) {
+  JointWrapper wrapper(fr3Config(
+      kJointImpedancePlugin,
+      "effort_saturation: scale\ntorque_rate_limit_nm_per_s: " + std::to_string(kNoRateLimit)));
+  const JointState state = restingAt(wrapper.controller(), fr3Home());
+  wrapper.activate(state);
+  const JointVector& limit = wrapper.controller().effortLimit();
+  TorqueBuffer torque;
+  JointCommand push = JointCommand::zero(kFr3Dof);
+  push.stamp_s = 1.0;
+  push.fields = CommandField::kTorqueFeedforward;
+  push.torque_feedforward[0] = 500.0;
+  push.torque_feedforward[5] = -500.0;
+  ASSERT_TRUE(wrapper.submit(push).accepted);
+  ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
+  const JointVector above_gravity = torque.values - state.effort;  // effort: the gravity torque
+  const double share = above_gravity[0] / 500.0;
+  EXPECT_GT(share, 0.0);
+  EXPECT_LT(share, 1.0);
+  EXPECT_NEAR(above_gravity[5], -500.0 * share, 1e-9) << "the direction turned";
+  EXPECT_NEAR(std::abs(above_gravity[3]), 0.0, 1e-9);
+  const bool joint0_binds = std::abs(std::abs(torque.values[0]) - limit[0]) < 1e-9;
+  const bool joint5_binds = std::abs(std::abs(torque.values[5]) - limit[5]) < 1e-9;
+  EXPECT_TRUE(joint0_binds || joint5_binds) << torque.values.transpose();
+  EXPECT_LE(std::abs(torque.values[0]), limit[0] + 1e-9);
+  EXPECT_LE(std::abs(torque.values[5]), limit[5] + 1e-9);
+  EXPECT_EQ(wrapper.diagnostics().effort_limit_hits, 1U);
+}
+
 }  // namespace
 }  // namespace comply::pipeline::test

@@ -31,6 +31,10 @@ namespace comply::pipeline {
 
 enum class TimeoutBehavior { kHold, kReanchor };
 enum class FrictionModel { kNone, kSigmoid, kViscousCoulomb };
+/// How a torque beyond the effort limits is brought within them: each joint clipped on its own
+/// (the direction of the law's torque turns), or the law's whole torque scaled (it keeps its
+/// direction, and so does the wrench it commands).
+enum class EffortSaturation { kClip, kScale };
 
 struct FrictionConfig {
   FrictionModel model = FrictionModel::kNone;
@@ -127,7 +131,8 @@ struct WrapperConfig {
   double filter_alpha = 1.0;              ///< tau_f = alpha tau + (1 - alpha) tau_f,prev; 1 = off
   std::vector<double> torque_rate_limit;  ///< N m/s per joint
   std::vector<double> effort_limit;       ///< N m; empty: URDF <limit effort>
-  std::vector<double> fault_damping;      ///< N m s/rad of the safe holding torque
+  EffortSaturation effort_saturation = EffortSaturation::kClip;
+  std::vector<double> fault_damping;  ///< N m s/rad of the safe holding torque
   /// A joint state unchanged bit for bit this long while the torque changes is a stale sensor
   /// stream (FAULT); 0: never.
   double frozen_state_timeout_s = 0.1;

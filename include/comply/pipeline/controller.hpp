@@ -138,6 +138,7 @@ class Controller {
   bool runLaw() noexcept;
   void compensate() noexcept;
   bool shape() noexcept;
+  void scaleIntoLimits() noexcept;  // effort_saturation: scale
   CycleStatus write(std::span<double> torque) noexcept;
   CycleStatus hold(std::span<double> torque) noexcept;
   /// Keeps the gravity (+ payload) of the state just evaluated as FAULT's holding base; called
@@ -178,6 +179,7 @@ class Controller {
   comply_input input_{};
   comply_output output_{};
   JointVector torque_;
+  JointVector law_torque_;  // this cycle's law output, before compensation
   JointVector scratch_;
   JointVector hold_gravity_;  // gravity (+ payload) at the last usable state: FAULT's holding base
   // Frozen-state detection: cycles the state has repeated, since when, the torque then.
