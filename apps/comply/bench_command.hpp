@@ -26,7 +26,8 @@ struct BenchOptions {
   int cpu = -1;       ///< pin the process to this CPU; -1 = leave to the scheduler
   int processes = 5;  ///< measuring processes per robot, each with another stack offset
   /// > 0: also the full cycle paced at this rate [Hz] on the wall clock, the control thread
-  /// sleeping between cycles as a robot runs it (row stage "paced_cycle", at most 3 s of it).
+  /// sleeping between cycles as a robot runs it (row stage "paced_cycle", at most 3 s of it),
+  /// and the same with the thread spinning instead of sleeping ("paced_spin").
   double paced_hz = 0.0;
   bool json = false;
   bool worker = false;  ///< internal: measure one robot in this process, JSON rows on stdout
@@ -37,7 +38,7 @@ struct BenchRow {
   int dof = 0;
   std::string wrapper;  ///< joint | cartesian (ratio damping) | cartesian_abs (absolute damping)
   std::string plugin;
-  std::string stage;           ///< plugin_step | full_cycle | paced_cycle
+  std::string stage;           ///< plugin_step | full_cycle | paced_cycle | paced_spin
   host::TimingSummary timing;  ///< per field, the median over the processes
   double p50_min_us = 0.0;     ///< smallest and largest p50 of one process: the spread
   double p50_max_us = 0.0;

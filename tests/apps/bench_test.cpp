@@ -129,17 +129,18 @@ TEST(Bench, PacedRowsRunTheCycleOnTheWallClock) {
   const std::vector<BenchRow> rows = runBench(options, log);
   const double elapsed_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  ASSERT_EQ(rows.size(), 12U);  // four wrappers: step, back to back, paced
+  ASSERT_EQ(rows.size(), 16U);  // four wrappers: step, back to back, paced asleep, paced spinning
   int paced = 0;
+  int spinning = 0;
   for (const BenchRow& bench_row : rows) {
-    if (bench_row.stage == "paced_cycle") {
-      ++paced;
-      EXPECT_GT(bench_row.timing.p50_us, 0.0);
-    }
+    paced += bench_row.stage == "paced_cycle" ? 1 : 0;
+    spinning += bench_row.stage == "paced_spin" ? 1 : 0;
+    EXPECT_GT(bench_row.timing.p50_us, 0.0) << bench_row.wrapper << " " << bench_row.stage;
   }
   EXPECT_EQ(paced, 4);
-  // 210 cycles per wrapper at 1 kHz on the wall clock: paced, not free-running.
-  EXPECT_GT(elapsed_s, 4 * 0.2);
+  EXPECT_EQ(spinning, 4);
+  // Twice 210 cycles per wrapper at 1 kHz on the wall clock: paced, not free-running.
+  EXPECT_GT(elapsed_s, 8 * 0.2);
 }
 
 }  // namespace
