@@ -61,6 +61,10 @@ bool ControlLoop::runOnce() {
     if (record.wrote && !hardware_.write(torque)) {
       ++stats_.write_failures;
     }
+    if (record.wrote && controller_.wantsHold()) {
+      record.held = hardware_.hold();
+      stats_.held_cycles += record.held ? 1 : 0;
+    }
     // No output (the controller is inactive): the robot holds, rather than keep the last torque.
     if (!record.wrote) {
       record.held = hardware_.hold();

@@ -35,7 +35,8 @@ class RecordingHardware final : public HardwareInterface {
   bool can_hold_;
 };
 
-/// Writes a torque in the cycles it is told to, nothing in the others (as an inactive wrapper).
+/// Writes a torque in the cycles it is told to, nothing in the others (as an inactive wrapper);
+/// asks for the hardware's hold when told to (as a wrapper in FAULT on a frozen sensor).
 class SwitchedController final : public CycleController {
  public:
   [[nodiscard]] int dof() const noexcept override { return 2; }
@@ -44,7 +45,9 @@ class SwitchedController final : public CycleController {
     torque[0] = torque[1] = 1.0;
     return active;
   }
+  [[nodiscard]] bool wantsHold() const noexcept override { return wants_hold; }
   bool active = false;
+  bool wants_hold = false;
 };
 
 TEST(ControlLoop, ACycleWithoutOutputHoldsTheArmInsteadOfLeavingTheLastTorque) {
@@ -64,6 +67,19 @@ TEST(ControlLoop, ACycleWithoutOutputHoldsTheArmInsteadOfLeavingTheLastTorque) {
   EXPECT_EQ(hardware.writes, 3);
   EXPECT_EQ(hardware.holds, 5) << "an active cycle writes; it does not hold";
   EXPECT_EQ(loop.stats().held_cycles, 5U);
+}
+
+TEST(ControlLoop, AControllerThatDistrustsItsStateGetsTheHardwaresHoldAfterItsTorque) {
+  RecordingHardware hardware(true);
+  SwitchedController controller;
+  controller.active = true;
+  controller.wants_hold = true;
+  FreeRunningClock clock;
+  ControlLoop loop(hardware, controller, clock, {.period_s = 0.001});
+  ASSERT_TRUE(loop.runOnce());
+  EXPECT_EQ(hardware.writes, 1) << "the holding torque is still written";
+  EXPECT_EQ(hardware.holds, 1) << "and the brakes asked for on top";
+  EXPECT_EQ(loop.stats().held_cycles, 1U);
 }
 
 TEST(ControlLoop, HardwareWithoutAHoldModeIsNotCountedAsHeld) {

@@ -30,6 +30,10 @@ class CycleController {
   /// One control cycle at `state`; true when `torque` (dof() long) holds a command to write.
   virtual bool cycle(const JointState& state, double period_s,
                      std::span<double> torque) noexcept = 0;
+  /// After a cycle that wrote: the controller cannot trust the state it holds the arm at (a
+  /// frozen sensor stream), so the hardware should hold it as well, with its brakes or its own
+  /// position hold (HardwareInterface::hold), where it has them.
+  [[nodiscard]] virtual bool wantsHold() const noexcept { return false; }
 };
 
 /// What the observer learns about one cycle.

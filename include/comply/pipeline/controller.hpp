@@ -117,6 +117,12 @@ class Controller {
   [[nodiscard]] const CommandBus& lawBus() const noexcept {
     return gains_.enabled() ? gains_.lawBus() : active_;
   }
+  /// In FAULT on a frozen sensor stream: the hold's gravity is that of a pose the arm may have
+  /// left, so the hardware's own hold (brakes) is asked for as well (CycleController::wantsHold).
+  [[nodiscard]] bool holdRequested() const noexcept {
+    return state_frozen_ &&
+           diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kFault;
+  }
   /// The stamp [s] of the command in force (what CommandGate::noteCycle() is told after a cycle).
   [[nodiscard]] double stampInForce() const noexcept {
     return std::visit([](const auto& bus) noexcept { return bus.stamp_s; }, active_);

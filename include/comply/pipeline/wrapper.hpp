@@ -66,6 +66,7 @@ class Wrapper final : public hardware::CycleController {
   bool cycle(const JointState& state, double period_s, std::span<double> torque) noexcept override {
     return update(state, period_s, torque) != CycleStatus::kInactive;
   }
+  [[nodiscard]] bool wantsHold() const noexcept override { return controller_.holdRequested(); }
 
   [[nodiscard]] DiagnosticsSnapshot diagnostics() const {
     return controller_.diagnostics().snapshot();

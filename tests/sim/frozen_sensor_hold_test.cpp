@@ -1,0 +1,100 @@
+// A sensor stream that freezes while the arm moves: the FAULT hold's gravity is that of the stale
+// pose, and without damping (its velocity is stale too) the arm drifted 2.55 rad. The controller
+// now asks the hardware to hold as well (CycleController::wantsHold -> HardwareInterface::hold):
+// on the simulated arm, the brake stops it where the FAULT found it.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "comply/hardware/control_loop.hpp"
+#include "comply/pipeline/wrapper.hpp"
+#include "comply/sim/simulated_clock.hpp"
+#include "comply/sim/simulated_robot.hpp"
+#include "sim_support.hpp"
+
+namespace comply::testing {
+namespace {
+
+/// The plant, seen through a sensor whose stream freezes after `frozen_after` reads; with or
+/// without brakes.
+class FreezingSensor final : public hardware::HardwareInterface {
+ public:
+  FreezingSensor(sim::SimulatedRobot& plant, int frozen_after, bool brakes)
+      : plant_(plant), frozen_after_(frozen_after), brakes_(brakes) {}
+  [[nodiscard]] int dof() const noexcept override { return plant_.dof(); }
+  bool read(JointState& state) noexcept override {
+    if (reads_++ < frozen_after_) {
+      plant_.read(last_);
+    }
+    state = last_;
+    return true;
+  }
+  bool write(std::span<const double> torque) noexcept override { return plant_.write(torque); }
+  bool hold() noexcept override { return brakes_ && plant_.hold(); }
+
+ private:
+  sim::SimulatedRobot& plant_;
+  int frozen_after_;
+  bool brakes_;
+  int reads_ = 0;
+  JointState last_;
+};
+
+struct Drift {
+  bool faulted = false;
+  double after_fault_rad = 0.0;  ///< largest joint motion from where the FAULT found the arm
+};
+
+Drift driftAfterAFrozenStream(bool brakes) {
+  pipeline::WrapperConfig config = simCartesianConfig("fr3");
+  config.stability_guard.enabled = false;  // the frozen stream is the subject here
+  sim::SimulatedRobot plant(*config.robot_description, sim::PlantOptions{});
+  sim::SimulatedClock clock(plant);
+  FreezingSensor sensor(plant, 150, brakes);
+  pipeline::CartesianWrapper wrapper(config);
+  JointState state = JointState::zero(plant.dof());
+  sensor.read(state);
+  wrapper.activate(state);
+  CartesianCommand target = CartesianCommand::zero(plant.dof());
+  target.stamp_s = 1.0;
+  target.fields = CommandField::kPosition;
+  target.position = wrapper.measuredPose().tcp_position + Eigen::Vector3d(0.0, 0.05, 0.0);
+  target.orientation = wrapper.measuredPose().tcp_orientation;
+  EXPECT_TRUE(wrapper.submit(target).accepted);  // the arm moves, then its stream freezes
+
+  hardware::ControlLoop loop(sensor, wrapper, clock, {.period_s = plant.controlPeriod()});
+  Drift drift;
+  JointState at_fault = JointState::zero(plant.dof());
+  JointState now = JointState::zero(plant.dof());
+  for (int cycle = 0; cycle < 2500; ++cycle) {
+    loop.runOnce();
+    const bool fault = wrapper.diagnostics().state == pipeline::WrapperState::kFault;
+    plant.read(now);
+    if (fault && !drift.faulted) {
+      drift.faulted = true;
+      at_fault = now;
+    }
+    if (drift.faulted) {
+      drift.after_fault_rad =
+          std::max(drift.after_fault_rad, (now.position - at_fault.position).cwiseAbs().maxCoeff());
+    }
+  }
+  EXPECT_NE(wrapper.diagnostics().last_fault.find("stale sensor stream"), std::string::npos)
+      << wrapper.diagnostics().last_fault;
+  return drift;
+}
+
+TEST(FrozenSensorHold, TheBrakesHoldTheArmWhereTheFaultFoundIt) {
+  const Drift without = driftAfterAFrozenStream(false);
+  const Drift with = driftAfterAFrozenStream(true);
+  ASSERT_TRUE(without.faulted);
+  ASSERT_TRUE(with.faulted);
+  RecordProperty("drift_without_brakes_rad", std::to_string(without.after_fault_rad));
+  RecordProperty("drift_with_brakes_rad", std::to_string(with.after_fault_rad));
+  EXPECT_GT(without.after_fault_rad, 0.01) << "the gravity hold at a stale pose drifts";
+  EXPECT_LT(with.after_fault_rad, 0.002) << "braked, the arm stays where the FAULT found it";
+}
+
+}  // namespace
+}  // namespace comply::testing
