@@ -160,16 +160,24 @@ void addLimitAndShapingOptions(std::vector<Option>& table) {
              0.0, 10.0, false, [](WrapperConfig& c, double v) { c.frozen_state_timeout_s = v; }));
 }
 
+/// A number kept in one field of a section of the configuration (gain_ramps, passivity, ...).
+template <typename Section>
+Option sectionNumber(const char* key, const char* default_text, const char* comment,
+                     Section WrapperConfig::*section, double Section::*field, double max,
+                     bool min_exclusive) {
+  return number(key, default_text, comment, 0.0, max, min_exclusive,
+                [section, field](WrapperConfig& c, double v) { (c.*section).*field = v; });
+}
+
 Option rate(const char* key, const char* default_text, const char* comment,
-            double GainRampConfig::*member) {
-  return number(key, default_text, comment, 0.0, kInfinity, true,
-                [member](WrapperConfig& c, double v) { c.gain_ramps.*member = v; });
+            double GainRampConfig::*field) {
+  return sectionNumber(key, default_text, comment, &WrapperConfig::gain_ramps, field, kInfinity,
+                       true);
 }
 
 Option energy(const char* key, const char* default_text, const char* comment,
-              double PassivityConfig::*member) {
-  return number(key, default_text, comment, 0.0, 1e6, false,
-                [member](WrapperConfig& c, double v) { c.passivity.*member = v; });
+              double PassivityConfig::*field) {
+  return sectionNumber(key, default_text, comment, &WrapperConfig::passivity, field, 1e6, false);
 }
 
 // What stands between the gains a command asks for and the gains the law sees: rate limits, and
@@ -214,9 +222,9 @@ void addGainOptions(std::vector<Option>& table) {
 }
 
 Option guard(const char* key, const char* default_text, const char* comment,
-             double StabilityGuardConfig::*member, bool zero_allowed = false) {
-  return number(key, default_text, comment, 0.0, 1e6, !zero_allowed,
-                [member](WrapperConfig& c, double v) { c.stability_guard.*member = v; });
+             double StabilityGuardConfig::*field, bool zero_allowed = false) {
+  return sectionNumber(key, default_text, comment, &WrapperConfig::stability_guard, field, 1e6,
+                       !zero_allowed);
 }
 
 // What a running arm must never do, whatever the law and the gains ask.

@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include "comply/core/rotation.hpp"
+#include "comply/schema/schema.hpp"
 
 namespace comply::pipeline {
 namespace {
@@ -81,17 +82,12 @@ double smallestEigenvalueBound(const double* m) noexcept {
   return std::max(bound, 0.0);
 }
 
+/// The task frame of a bus, normalised; an all-zero quaternion is the identity, as the laws
+/// read it.
 Eigen::Quaterniond frameOf(const double* xyzw) noexcept {
-  const Eigen::Quaterniond frame(xyzw[3], xyzw[0], xyzw[1], xyzw[2]);
+  const Eigen::Quaterniond frame = schema::fromXyzw(xyzw);
   const double norm = frame.norm();
   return norm > 1e-12 ? Eigen::Quaterniond(frame.coeffs() / norm) : Eigen::Quaterniond::Identity();
-}
-
-void writeFrame(const Eigen::Quaterniond& frame, double* xyzw) noexcept {
-  xyzw[0] = frame.x();
-  xyzw[1] = frame.y();
-  xyzw[2] = frame.z();
-  xyzw[3] = frame.w();
 }
 
 /// 1/2 e^T R K R^T e for a row-major task-frame K: the spring energy at error `error` [J].
@@ -276,7 +272,6 @@ void GainGuard::takeCommand(const CommandBus& command) noexcept {
 void GainGuard::update(const CommandBus& command, const model::Data& data, const JointState& state,
                        double period_s, bool torque_clipped, Diagnostics& diagnostics) noexcept {
   refused_j_ = 0.0;
-  torque_clipped_ = torque_clipped;
   // Once the gains in force are the command's, nothing moves them until the next command: the
   // common cycle then only keeps the refill window.
   const auto* cartesian = std::get_if<Cartesian>(&command);
@@ -288,9 +283,9 @@ void GainGuard::update(const CommandBus& command, const model::Data& data, const
   }
   if (passivity_.enabled) {
     if (cartesian != nullptr) {
-      refillCartesian(*std::get_if<Cartesian>(&law_), data, period_s);
+      refillCartesian(*std::get_if<Cartesian>(&law_), data, period_s, torque_clipped);
     } else {
-      refillJoint(*std::get_if<Joint>(&law_), state, period_s);
+      refillJoint(*std::get_if<Joint>(&law_), state, period_s, torque_clipped);
     }
   }
   publish(diagnostics);
@@ -395,7 +390,7 @@ bool GainGuard::updateCartesian(const Cartesian& target, const model::Data& data
   if (beta == 1.0 && candidate.frame.coeffs() == frameOf(target.task_frame).coeffs()) {
     copy(law.task_frame, target.task_frame, 4);
   } else if (applied.frame.coeffs() != in_force.frame.coeffs()) {
-    writeFrame(applied.frame, law.task_frame);
+    schema::toXyzw(applied.frame, law.task_frame);
   }
   blend(law.nullspace_stiffness, nullspace_candidate.data(), dof, nullspace_beta);
   return arrived && beta == 1.0 && nullspace_beta == 1.0;
@@ -454,8 +449,8 @@ void GainGuard::openWindow(bool ratio) noexcept {
   window_joint_stiffest_.setZero(joint_window_increment_.size());
 }
 
-void GainGuard::refillCartesian(const Cartesian& gains, const model::Data& data,
-                                double period_s) noexcept {
+void GainGuard::refillCartesian(const Cartesian& gains, const model::Data& data, double period_s,
+                                bool torque_clipped) noexcept {
   // This cycle's error increment: how far the tool moved relative to the commanded twist. The
   // turn since the last cycle as 2 vec(q q_prev^-1) (w >= 0): 2 sin(angle / 2) <= angle, so the
   // bound stays a lower one, without a logarithm every cycle.
@@ -481,7 +476,7 @@ void GainGuard::refillCartesian(const Cartesian& gains, const model::Data& data,
   }
   window_increment_ += increment;
   window_elapsed_s_ += period_s;
-  window_clipped_ = window_clipped_ || torque_clipped_;
+  window_clipped_ = window_clipped_ || torque_clipped;
   // The smallest damping (ratio mode: stiffness and ratio) and the largest stiffness of the window.
   window_translational_ = std::min(window_translational_, bounds_.translational);
   window_rotational_ = std::min(window_rotational_, bounds_.rotational);
@@ -555,7 +550,8 @@ bool GainGuard::ratioDampingBound(const model::Data& data, double& translational
   return true;
 }
 
-void GainGuard::refillJoint(const Joint& gains, const JointState& state, double period_s) noexcept {
+void GainGuard::refillJoint(const Joint& gains, const JointState& state, double period_s,
+                            bool torque_clipped) noexcept {
   const int dof = gains.dof;
   if (task_.energy_j >= task_.max_j) {
     window_open_ = false;  // as in refillCartesian()
@@ -573,7 +569,7 @@ void GainGuard::refillJoint(const Joint& gains, const JointState& state, double 
   }
   previous_joints_ = state.position;
   window_elapsed_s_ += period_s;
-  window_clipped_ = window_clipped_ || torque_clipped_;
+  window_clipped_ = window_clipped_ || torque_clipped;
   if (window_elapsed_s_ < kWindowS) {
     return;
   }

@@ -225,7 +225,14 @@ std::uint64_t Reader<Message>::participantOf(std::uint64_t publication) {
 template <typename Message>
 void Reader<Message>::noteDepartures(std::vector<std::uint64_t>& departed) {
   // A writer deleted (or whose process ended) is no longer matched. The matched set is compared,
-  // not the matched status's count: a writer leaving while another arrives nets no change.
+  // not the matched status's count: a writer leaving while another arrives nets no change. The
+  // set is listed only when the status says matching happened since the last call.
+  dds_subscription_matched_status_t status{};
+  if (dds_get_subscription_matched_status(entity_, &status) < 0 ||
+      (status.total_count == matches_seen_ && status.current_count == matched_.size())) {
+    return;
+  }
+  matches_seen_ = status.total_count;
   std::array<dds_instance_handle_t, 64> handles{};
   const dds_return_t count = dds_get_matched_publications(entity_, handles.data(), handles.size());
   if (count < 0) {

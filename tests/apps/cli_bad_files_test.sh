@@ -2,7 +2,8 @@
 # Input files that are not what they claim end in exit 2 with a message naming them, never in a
 # crash or an exhausted memory: JSON nested 100,000 levels deep (a stack overflow before), a
 # device as an inputs file or as a scene's tool (read until bad_alloc before), a file larger than
-# an input may be, a symlink loop (reported as a missing file before).
+# an input may be, a symlink loop (reported as a missing file before), a URDF whose link mass
+# urdfdom cannot read ("nan": urdfdom read 0 kg, so `validate` passed what MuJoCo refused).
 # Usage: cli_bad_files_test.sh COMPLY SOURCE_DIR WORK_DIR
 set -u
 comply=$1 source=$2 work=$3
@@ -54,6 +55,17 @@ expect_refused "$loop" "${validate[@]}" --inputs "$work/loop.yaml"
 ln -s robot_loop "$work/robot_loop"
 expect_refused "robot folder '$work/robot_loop' cannot be read: too many levels of symbolic links" \
   "$comply" sim --robot "$work/robot_loop" --task "$task" --no-plot --out "$work/sim"
+# The FR3 with link 3's mass (the first <mass> after its <link>) written as "nan": named with the
+# file, the link and the attribute, by validate and sim alike.
+mkdir -p "$work/nan_mass"
+cp "$source/robots/fr3/robot.yaml" "$work/nan_mass/"
+sed '/<link name="fr3_link3">/,/<mass /s/<mass value="[^"]*"/<mass value="nan"/' \
+  "$source/robots/fr3/fr3.urdf" >"$work/nan_mass/fr3.urdf"
+nan_mass="link 'fr3_link3': <mass value=\"nan\">: not a finite number (in '$work/nan_mass/fr3.urdf')"
+expect_refused "$nan_mass" "$comply" validate --robot "$work/nan_mass" \
+  --plugin cartesian_impedance --inputs "$source/examples/validate/fr3_cartesian_samples.json"
+expect_refused "$nan_mass" "$comply" sim --robot "$work/nan_mass" --task "$task" --duration 0.1 \
+  --no-plot --out "$work/sim"
 if [ "$failures" -ne 0 ]; then
   exit 1
 fi

@@ -50,6 +50,16 @@ TEST(WrapperShaping, TorqueRateLimitSpreadsAStepAndCountsEveryClippedCycle) {
   EXPECT_EQ(wrapper.diagnostics().effort_limit_hits, 0U);
 }
 
+/// 500 N m forward on joint 1 and back on joint 6, far beyond both joints' limits.
+JointCommand pushBeyondTheLimits() {
+  JointCommand push = JointCommand::zero(kFr3Dof);
+  push.stamp_s = 1.0;
+  push.fields = CommandField::kTorqueFeedforward;
+  push.torque_feedforward[0] = 500.0;
+  push.torque_feedforward[5] = -500.0;
+  return push;
+}
+
 TEST(WrapperShaping, EffortLimitClipsAndCountsEveryClippedCycle) {
   JointWrapper wrapper(fr3Config(kJointImpedancePlugin,
                                  "torque_rate_limit_nm_per_s: " + std::to_string(kNoRateLimit)));
@@ -57,13 +67,7 @@ TEST(WrapperShaping, EffortLimitClipsAndCountsEveryClippedCycle) {
   wrapper.activate(state);
   const JointVector& limit = wrapper.controller().effortLimit();
   TorqueBuffer torque;
-
-  JointCommand push = JointCommand::zero(kFr3Dof);
-  push.stamp_s = 1.0;
-  push.fields = CommandField::kTorqueFeedforward;
-  push.torque_feedforward[0] = 500.0;
-  push.torque_feedforward[5] = -500.0;
-  ASSERT_TRUE(wrapper.submit(push).accepted);
+  ASSERT_TRUE(wrapper.submit(pushBeyondTheLimits()).accepted);
   for (int cycle = 0; cycle < 10; ++cycle) {
     ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
   }
@@ -84,12 +88,7 @@ TEST(WrapperShaping, ScaledSaturationKeepsTheDirectionOfTheLawsTorque) {
   wrapper.activate(state);
   const JointVector& limit = wrapper.controller().effortLimit();
   TorqueBuffer torque;
-  JointCommand push = JointCommand::zero(kFr3Dof);
-  push.stamp_s = 1.0;
-  push.fields = CommandField::kTorqueFeedforward;
-  push.torque_feedforward[0] = 500.0;
-  push.torque_feedforward[5] = -500.0;
-  ASSERT_TRUE(wrapper.submit(push).accepted);
+  ASSERT_TRUE(wrapper.submit(pushBeyondTheLimits()).accepted);
   ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
   const JointVector above_gravity = torque.values - state.effort;  // effort: the gravity torque
   const double share = above_gravity[0] / 500.0;

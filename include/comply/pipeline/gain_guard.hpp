@@ -100,9 +100,9 @@ class GainGuard {
   void settle(EnergyAccount& account, double full_j, double injected_j) noexcept;
   void openWindow(bool ratio) noexcept;
   void refillCartesian(const comply_cartesian_command& gains, const model::Data& data,
-                       double period_s) noexcept;
-  void refillJoint(const comply_joint_command& gains, const JointState& state,
-                   double period_s) noexcept;
+                       double period_s, bool torque_clipped) noexcept;
+  void refillJoint(const comply_joint_command& gains, const JointState& state, double period_s,
+                   bool torque_clipped) noexcept;
   /// Ratio mode: from the window's smallest stiffness bounds (in: translational, rotational
   /// [N/m, N m/rad]) a lower bound of the law's damping (out: [N s/m, N m s/rad]).
   bool ratioDampingBound(const model::Data& data, double& translational,
@@ -114,9 +114,8 @@ class GainGuard {
   GainRampConfig ramps_;
   PassivityConfig passivity_;
   CommandBus law_;
-  bool pending_ = false;         ///< the gains in force are not yet the command's
-  bool torque_clipped_ = false;  ///< this cycle's update() was told the last torque was clipped
-  double fraction_ = 1.0;        ///< gainFraction() as of the last change
+  bool pending_ = false;   ///< the gains in force are not yet the command's
+  double fraction_ = 1.0;  ///< gainFraction() as of the last change
   /// Gershgorin bounds of the gains in force (Cartesian): the smallest damping (ratio mode: the
   /// smallest stiffness) and the largest stiffness per block, and the smallest damping ratio.
   struct Bounds {

@@ -131,6 +131,7 @@ class Reader final : public Endpoint {
   std::int32_t waitset_ = 0;
   std::int32_t condition_ = 0;
   std::vector<std::uint64_t> matched_;  ///< the writers matched when last asked
+  std::uint32_t matches_seen_ = 0;      ///< the status's total match count then
   std::unordered_map<std::uint64_t, std::uint64_t> participants_;  ///< writer -> participant
 };
 
