@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages comply builds and tests with. Idempotent: when every package is
-# already installed it only says so; apt lists are refreshed only when something is missing.
+# Installs the Debian 12 packages comply builds and tests with, then the npm packages of the MCAP
+# cross-check reader (tests/record/node) when node and npm are there. Idempotent: when every package
+# is already installed it only says so; apt lists are refreshed only when something is missing, and
+# npm ci runs only when node_modules is missing or older than package-lock.json.
 set -euo pipefail
 
 packages=(
@@ -16,6 +18,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev
   cyclonedds-dev cyclonedds-tools
   pybind11-dev python3-numpy
+  libzstd-dev python3-zstandard
   octave
 )
 
@@ -28,20 +31,32 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "deps: all ${#packages[@]} packages already installed"
-  exit 0
-fi
-
-if [ "$(id -u)" -eq 0 ]; then
-  sudo_cmd=()
-elif command -v sudo >/dev/null 2>&1; then
-  sudo_cmd=(sudo)
 else
-  echo "deps: need root or sudo to install: ${missing[*]}" >&2
-  exit 1
+  if [ "$(id -u)" -eq 0 ]; then
+    sudo_cmd=()
+  elif command -v sudo >/dev/null 2>&1; then
+    sudo_cmd=(sudo)
+  else
+    echo "deps: need root or sudo to install: ${missing[*]}" >&2
+    exit 1
+  fi
+
+  echo "deps: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -qq
+  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  echo "deps: done"
 fi
 
-echo "deps: installing ${missing[*]}"
-export DEBIAN_FRONTEND=noninteractive
-"${sudo_cmd[@]}" apt-get update -qq
-"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
-echo "deps: done"
+# npm writes node_modules/.package-lock.json on every install, so its age tells whether the
+# installed packages predate the lockfile.
+node_dir=$(cd "$(dirname "$0")/.." && pwd)/tests/record/node
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  echo "deps: no node/npm: the MCAP cross-check tests will be skipped"
+elif [ ! -f "$node_dir/node_modules/.package-lock.json" ] ||
+  [ "$node_dir/package-lock.json" -nt "$node_dir/node_modules/.package-lock.json" ]; then
+  echo "deps: npm ci in tests/record/node (the MCAP reader of the cross-check tests)"
+  npm ci --prefix "$node_dir" --no-audit --no-fund
+else
+  echo "deps: npm packages of tests/record/node already installed"
+fi

@@ -1,0 +1,156 @@
+#pragma once
+// Records what a host does to an MCAP file without touching its control loop: producers (the
+// control thread, the command reader, the publisher) each push whole records into their own
+// lock-free lane; a writer thread of its own drains the lanes, encodes (CDR) and writes the file.
+//
+//   Recorder recorder({.path = "run.mcap"});
+//   const auto schema = recorder.addSchema("comply_msgs/msg/CycleRecord", "ros2msg", text);
+//   const auto cycles = recorder.addChannel(schema, "/comply/cycle", encodeCycle);
+//   RecordLane& control = recorder.addLane("control", 16 << 20);
+//   recorder.start();
+//   control.push(cycles, wall_ns, sample);  // in the cycle: wait-free, no allocation, no syscall
+//   recorder.stop();                        // drains, writes the counts, closes the file
+//
+// A lane that is full drops the whole record and counts it; the counts are in the file (metadata
+// record "comply_recording") and in stats(). An I/O error (unwritable path, disk full, file size
+// limit) stops the recording with the error in stats(); producers are never told and never wait.
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <span>
+#include <string>
+#include <thread>
+#include <type_traits>
+#include <vector>
+
+#include "comply/record/mcap_writer.hpp"
+
+namespace comply::record {
+
+/// One producer thread's ring of records (single producer, the writer thread consumes).
+class RecordLane {
+ public:
+  RecordLane(std::string name, std::size_t bytes);
+  RecordLane(const RecordLane&) = delete;
+  RecordLane& operator=(const RecordLane&) = delete;
+
+  /// Producer thread only: `size` bytes as one record of `channel` at `log_time_ns` (wall clock).
+  /// Wait-free, never allocates, never makes a system call; false when the record was dropped
+  /// (the lane full: counted in dropped()) or the recorder is not recording.
+  bool push(std::uint16_t channel, std::int64_t log_time_ns, const void* data,
+            std::size_t size) noexcept;
+  template <typename T>
+  bool push(std::uint16_t channel, std::int64_t log_time_ns, const T& value) noexcept {
+    static_assert(std::is_trivially_copyable_v<T>, "a record is copied as bytes");
+    return push(channel, log_time_ns, &value, sizeof(T));
+  }
+
+  [[nodiscard]] const std::string& name() const noexcept { return name_; }
+  [[nodiscard]] std::size_t capacity() const noexcept { return mask_ + 1; }
+  [[nodiscard]] std::uint64_t pushed() const noexcept {
+    return pushed_.load(std::memory_order_relaxed);
+  }
+  [[nodiscard]] std::uint64_t dropped() const noexcept {
+    return dropped_.load(std::memory_order_relaxed);
+  }
+
+ private:
+  friend class Recorder;
+  struct Entry {
+    std::uint16_t channel;
+    std::int64_t log_time_ns;
+    std::span<const std::uint8_t> data;
+  };
+  /// Writer thread: calls f(entry) for every record pushed so far; returns how many.
+  std::size_t drain(const std::function<void(const Entry&)>& f);
+
+  std::string name_;
+  std::unique_ptr<std::uint8_t[]> buffer_;
+  std::size_t mask_ = 0;
+  std::atomic<bool>* accepting_ = nullptr;  // the recorder's flag
+  alignas(64) std::atomic<std::uint64_t> head_{0};  // bytes consumed; written by the writer
+  alignas(64) std::atomic<std::uint64_t> tail_{0};  // bytes produced; written by the producer
+  std::atomic<std::uint64_t> pushed_{0};
+  std::atomic<std::uint64_t> dropped_{0};
+};
+
+/// Turns the bytes a producer pushed into the message written (e.g. a fixed-size sample into CDR).
+/// Runs on the writer thread; may allocate.
+using RecordEncoder =
+    std::function<void(std::span<const std::uint8_t> raw, std::vector<std::uint8_t>& message)>;
+
+struct RecorderOptions {
+  std::string path;
+  McapWriterOptions mcap;
+  double writer_period_s = 0.005;  ///< the writer sleeps this long when the lanes are empty
+  double flush_period_s = 0.5;     ///< an open chunk is written at least this often (wall clock)
+};
+
+struct RecorderStats {
+  std::uint64_t written = 0;  ///< messages in the file
+  std::uint64_t dropped = 0;  ///< records a full lane refused
+  std::uint64_t lost = 0;     ///< records pushed after an I/O error stopped the recording
+  std::uint64_t bytes = 0;    ///< file size so far
+  double writer_cpu_s = 0.0;  ///< CPU time of the writer thread
+  bool recording = false;     ///< started, not stopped, no error
+  std::string error;          ///< the I/O error that stopped the recording ("" if none)
+};
+
+class Recorder {
+ public:
+  /// Creates the file (throws McapError: "cannot record to <path>: <reason>").
+  explicit Recorder(RecorderOptions options);
+  ~Recorder();
+  Recorder(const Recorder&) = delete;
+  Recorder& operator=(const Recorder&) = delete;
+
+  // Set-up, before start(): schemas, channels, lanes.
+  std::uint16_t addSchema(std::string_view name, std::string_view encoding, std::string_view text);
+  /// `encoder` empty: the pushed bytes are the message.
+  std::uint16_t addChannel(std::uint16_t schema, std::string_view topic, RecordEncoder encoder = {},
+                           const StringMap& metadata = {});
+  RecordLane& addLane(std::string name, std::size_t bytes);
+  /// Metadata written on stop() besides the counts (robot, controller, ...).
+  void addMetadata(std::string name, StringMap metadata);
+
+  void start();
+  /// Stops accepting, drains every lane, writes the counts and the summary and closes the file.
+  /// Idempotent; errors end up in stats().error.
+  void stop();
+
+  [[nodiscard]] RecorderStats stats() const;
+  [[nodiscard]] const std::string& path() const noexcept { return path_; }
+
+ private:
+  void writerLoop();
+  bool drainLanes();
+  void failed(const std::string& error);
+
+  std::string path_;
+  RecorderOptions options_;
+  std::unique_ptr<McapWriter> writer_;
+  struct Channel {
+    std::uint16_t id;
+    RecordEncoder encoder;
+  };
+  std::vector<Channel> channels_;
+  std::vector<std::unique_ptr<RecordLane>> lanes_;
+  std::atomic<bool> accepting_{false};
+  std::atomic<bool> stopping_{false};
+  std::atomic<std::uint64_t> written_{0};
+  std::atomic<std::uint64_t> lost_{0};
+  std::atomic<std::uint64_t> bytes_{0};
+  std::atomic<double> writer_cpu_s_{0.0};
+  std::atomic<bool> failed_{false};
+  mutable std::mutex error_mutex_;  // the writer thread and stats(); never a producer
+  std::string error_;
+  std::vector<std::uint8_t> message_;  // the writer thread's scratch
+  std::thread thread_;
+  std::atomic<bool> started_{false};
+  std::atomic<bool> stopped_{false};
+};
+
+}  // namespace comply::record

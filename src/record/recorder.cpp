@@ -1,0 +1,253 @@
+// The recorder (see recorder.hpp): lanes of whole records, a writer thread, the counts.
+
+#include "comply/record/recorder.hpp"
+
+#include <csignal>
+#include <cstring>
+#include <ctime>
+
+namespace comply::record {
+namespace {
+
+// Each entry: a 16-byte head, then the record's bytes, padded so the next head is 16-aligned.
+// A head with kPadding marks the unused end of the buffer when a record did not fit before it.
+struct EntryHead {
+  std::uint32_t size;
+  std::uint16_t channel;
+  std::uint16_t flags;
+  std::int64_t log_time_ns;
+};
+static_assert(sizeof(EntryHead) == 16);
+constexpr std::uint16_t kPadding = 1;
+
+constexpr std::size_t roundUp16(std::size_t size) { return (size + 15) & ~std::size_t{15}; }
+
+double threadCpuSeconds() {
+  timespec now{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
+
+}  // namespace
+
+RecordLane::RecordLane(std::string name, std::size_t bytes) : name_(std::move(name)) {
+  std::size_t size = 4096;
+  while (size < bytes) {
+    size *= 2;
+  }
+  mask_ = size - 1;
+  buffer_ = std::make_unique<std::uint8_t[]>(size);
+  // Touch every page now, so the cycle's first pushes do not take page faults.
+  std::memset(buffer_.get(), 0, size);
+}
+
+bool RecordLane::push(std::uint16_t channel, std::int64_t log_time_ns, const void* data,
+                      std::size_t size) noexcept {
+  if (accepting_ == nullptr || !accepting_->load(std::memory_order_relaxed)) {
+    return false;
+  }
+  const std::size_t capacity = mask_ + 1;
+  const std::size_t need = sizeof(EntryHead) + roundUp16(size);
+  const std::uint64_t tail = tail_.load(std::memory_order_relaxed);
+  const std::size_t at = tail & mask_;
+  const std::size_t to_end = capacity - at;
+  const std::size_t total = need <= to_end ? need : to_end + need;
+  if (need > capacity / 2 || total > capacity - (tail - head_.load(std::memory_order_acquire))) {
+    dropped_.fetch_add(1, std::memory_order_relaxed);
+    return false;
+  }
+  std::size_t write_at = at;
+  if (need > to_end) {
+    const EntryHead padding{static_cast<std::uint32_t>(to_end - sizeof(EntryHead)), 0, kPadding,
+                            0};
+    std::memcpy(buffer_.get() + at, &padding, sizeof padding);
+    write_at = 0;
+  }
+  const EntryHead head{static_cast<std::uint32_t>(size), channel, 0, log_time_ns};
+  std::memcpy(buffer_.get() + write_at, &head, sizeof head);
+  std::memcpy(buffer_.get() + write_at + sizeof head, data, size);
+  tail_.store(tail + total, std::memory_order_release);
+  pushed_.fetch_add(1, std::memory_order_relaxed);
+  return true;
+}
+
+std::size_t RecordLane::drain(const std::function<void(const Entry&)>& f) {
+  std::uint64_t head = head_.load(std::memory_order_relaxed);
+  const std::uint64_t tail = tail_.load(std::memory_order_acquire);
+  std::size_t count = 0;
+  while (head != tail) {
+    EntryHead entry{};
+    std::memcpy(&entry, buffer_.get() + (head & mask_), sizeof entry);
+    if (entry.flags != kPadding) {
+      f({entry.channel, entry.log_time_ns,
+         std::span<const std::uint8_t>(buffer_.get() + (head & mask_) + sizeof entry,
+                                       entry.size)});
+      ++count;
+    }
+    head += sizeof entry + roundUp16(entry.size);
+    // Released entry by entry: a producer gets the room back as early as possible.
+    head_.store(head, std::memory_order_release);
+  }
+  return count;
+}
+
+Recorder::Recorder(RecorderOptions options)
+    : path_(options.path),
+      options_(std::move(options)),
+      writer_(std::make_unique<McapWriter>(options_.path, options_.mcap)) {}
+
+Recorder::~Recorder() { stop(); }
+
+std::uint16_t Recorder::addSchema(std::string_view name, std::string_view encoding,
+                                  std::string_view text) {
+  return writer_->addSchema(name, encoding, text);
+}
+
+std::uint16_t Recorder::addChannel(std::uint16_t schema, std::string_view topic,
+                                   RecordEncoder encoder, const StringMap& metadata) {
+  const std::uint16_t id = writer_->addChannel(schema, topic, "cdr", metadata);
+  if (channels_.size() <= id) {
+    channels_.resize(id + 1);
+  }
+  channels_[id] = {id, std::move(encoder)};
+  return id;
+}
+
+RecordLane& Recorder::addLane(std::string name, std::size_t bytes) {
+  lanes_.push_back(std::make_unique<RecordLane>(std::move(name), bytes));
+  lanes_.back()->accepting_ = &accepting_;
+  return *lanes_.back();
+}
+
+void Recorder::addMetadata(std::string name, StringMap metadata) {
+  writer_->addMetadata(std::move(name), std::move(metadata));
+}
+
+void Recorder::start() {
+  if (started_) {
+    return;
+  }
+  started_ = true;
+  // A file-size limit (ulimit -f) must end the recording with an error, not the process.
+  std::signal(SIGXFSZ, SIG_IGN);
+  accepting_.store(true);
+  thread_ = std::thread([this] { writerLoop(); });
+}
+
+void Recorder::failed(const std::string& error) {
+  {
+    const std::lock_guard lock(error_mutex_);
+    error_ = error;
+  }
+  failed_.store(true);
+  writer_.reset();  // closes the descriptor; the file keeps its complete records
+}
+
+bool Recorder::drainLanes() {
+  std::size_t count = 0;
+  for (const auto& lane : lanes_) {
+    count += lane->drain([this](const RecordLane::Entry& entry) {
+      if (failed_.load(std::memory_order_relaxed) || writer_ == nullptr) {
+        lost_.fetch_add(1, std::memory_order_relaxed);
+        return;
+      }
+      std::span<const std::uint8_t> message = entry.data;
+      const Channel& channel = channels_.at(entry.channel);
+      if (channel.encoder) {
+        message_.clear();
+        channel.encoder(entry.data, message_);
+        message = message_;
+      }
+      const auto time = static_cast<std::uint64_t>(std::max<std::int64_t>(entry.log_time_ns, 0));
+      try {
+        writer_->write(channel.id, time, time, message);
+        written_.fetch_add(1, std::memory_order_relaxed);
+      } catch (const McapError& error) {
+        lost_.fetch_add(1, std::memory_order_relaxed);
+        failed(error.what());
+      }
+    });
+  }
+  if (writer_ != nullptr) {
+    bytes_.store(writer_->bytesWritten(), std::memory_order_relaxed);
+  }
+  return count > 0;
+}
+
+void Recorder::writerLoop() {
+  const double start_cpu = threadCpuSeconds();
+  auto last_flush = std::chrono::steady_clock::now();
+  const auto flush_period = std::chrono::duration<double>(options_.flush_period_s);
+  const auto idle = std::chrono::duration<double>(options_.writer_period_s);
+  while (!stopping_.load()) {
+    const bool any = drainLanes();
+    if (std::chrono::steady_clock::now() - last_flush >= flush_period) {
+      last_flush = std::chrono::steady_clock::now();
+      if (writer_ != nullptr && !failed_.load()) {
+        try {
+          writer_->flush();
+        } catch (const McapError& error) {
+          failed(error.what());
+        }
+      }
+    }
+    writer_cpu_s_.store(threadCpuSeconds() - start_cpu, std::memory_order_relaxed);
+    if (!any) {
+      std::this_thread::sleep_for(idle);
+    }
+  }
+  drainLanes();
+  writer_cpu_s_.store(threadCpuSeconds() - start_cpu, std::memory_order_relaxed);
+}
+
+void Recorder::stop() {
+  if (stopped_) {
+    return;
+  }
+  stopped_ = true;
+  accepting_.store(false);
+  stopping_.store(true);
+  if (thread_.joinable()) {
+    thread_.join();
+  } else {
+    drainLanes();
+  }
+  if (writer_ == nullptr) {
+    return;
+  }
+  std::uint64_t dropped = 0;
+  StringMap counts;
+  for (const auto& lane : lanes_) {
+    dropped += lane->dropped();
+    counts[lane->name() + ".records_pushed"] = std::to_string(lane->pushed());
+    counts[lane->name() + ".records_dropped"] = std::to_string(lane->dropped());
+    counts[lane->name() + ".lane_bytes"] = std::to_string(lane->capacity());
+  }
+  counts["records_written"] = std::to_string(written_.load());
+  counts["records_dropped"] = std::to_string(dropped);
+  counts["writer_cpu_s"] = std::to_string(writer_cpu_s_.load());
+  writer_->addMetadata("comply_recording", std::move(counts));
+  try {
+    writer_->close();
+    bytes_.store(writer_->bytesWritten());
+  } catch (const McapError& error) {
+    failed(error.what());
+  }
+}
+
+RecorderStats Recorder::stats() const {
+  RecorderStats s;
+  s.written = written_.load(std::memory_order_relaxed);
+  for (const auto& lane : lanes_) {
+    s.dropped += lane->dropped();
+  }
+  s.lost = lost_.load(std::memory_order_relaxed);
+  s.bytes = bytes_.load(std::memory_order_relaxed);
+  s.writer_cpu_s = writer_cpu_s_.load(std::memory_order_relaxed);
+  s.recording = started_ && !stopped_ && !failed_.load();
+  const std::lock_guard lock(error_mutex_);
+  s.error = error_;
+  return s;
+}
+
+}  // namespace comply::record
