@@ -82,6 +82,16 @@ struct ControllerStateMessage {
   double gain_fraction = 1.0;
 };
 
+/// comply_msgs/CycleRecord: one cycle as a recording keeps it (units in msg/CycleRecord.msg).
+/// The command in force is the one of the controller's kind; the other stays empty.
+struct CycleRecordMessage {
+  ControllerStateMessage state;
+  double compute_time_s = 0.0;
+  double start_lateness_s = 0.0;
+  std::vector<CartesianCommandMessage> cartesian_in_force;  ///< 0 or 1 entries
+  std::vector<JointCommandMessage> joint_in_force;          ///< 0 or 1 entries
+};
+
 /// CommandOutcome.OUTCOME_*.
 enum class Outcome : std::uint8_t { kApplied = 0, kRejected = 1 };
 
