@@ -44,7 +44,12 @@ class Reader {
       }
       if (!in_chunk && opcode == mcap::kFooter) {
         footer_ = true;
+        footer_start_ = at;
         footer_end_ = base + cursor.offset();
+        Cursor footer(body);
+        summary_start_ = footer.get<std::uint64_t>();
+        footer.get<std::uint64_t>();  // summary offset start
+        summary_crc_ = footer.get<std::uint32_t>();
         return true;
       }
       if (!record(opcode, body, at)) {
@@ -57,6 +62,15 @@ class Reader {
   McapContents& contents() { return contents_; }
   [[nodiscard]] bool footer() const { return footer_; }
   [[nodiscard]] std::uint64_t footerEnd() const { return footer_end_; }
+  /// The summary's CRC holds (or the file states none).
+  [[nodiscard]] bool summaryCrcHolds(std::span<const std::uint8_t> file) const {
+    // The CRC covers the summary through the footer's summary_offset_start field.
+    const std::uint64_t end = footer_start_ + 1 + 8 + 8 + 8;
+    if (summary_crc_ == 0 || summary_start_ == 0 || summary_start_ > end || end > file.size()) {
+      return true;
+    }
+    return mcap::crc32(file.subspan(summary_start_, end - summary_start_)) == summary_crc_;
+  }
 
  private:
   bool record(std::uint8_t opcode, std::span<const std::uint8_t> body, std::uint64_t at) {
@@ -193,7 +207,10 @@ class Reader {
   std::map<std::uint16_t, Schema> schemas_;
   std::vector<std::uint8_t> buffer_;
   bool footer_ = false;
+  std::uint64_t footer_start_ = 0;
   std::uint64_t footer_end_ = 0;
+  std::uint64_t summary_start_ = 0;
+  std::uint32_t summary_crc_ = 0;
 };
 
 }  // namespace
@@ -211,6 +228,9 @@ McapContents readMcap(const std::string& path,
   reader.readRecords(records, sizeof(mcap::kMagic), false);
   McapContents& contents = reader.contents();
   if (reader.footer()) {
+    if (!reader.summaryCrcHolds(file)) {
+      throw McapError(path + ": the summary fails its CRC");
+    }
     const std::uint64_t end = reader.footerEnd();
     contents.complete = end + sizeof(mcap::kMagic) == file.size() &&
                         std::memcmp(file.data() + end, mcap::kMagic, sizeof(mcap::kMagic)) == 0;

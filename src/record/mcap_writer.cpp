@@ -221,7 +221,7 @@ void McapWriter::close() {
     closeRecord(bytes, at);
     metadata_indexes.emplace_back(offset, file_offset_ + bytes.size() - offset, name);
   }
-  std::size_t at = openRecord(bytes, mcap::kDataEnd);
+  const std::size_t at = openRecord(bytes, mcap::kDataEnd);
   put(bytes, std::uint32_t{0});  // data section CRC: not computed (0 says so)
   closeRecord(bytes, at);
 
@@ -314,13 +314,14 @@ void McapWriter::close() {
     put(bytes, g.length);
     closeRecord(bytes, record);
   }
-  at = openRecord(bytes, mcap::kFooter);
+  // The footer's length is written before the CRC, which covers the summary up to and including
+  // the footer's summary_offset_start: opcode and length included.
+  bytes.push_back(mcap::kFooter);
+  put(bytes, std::uint64_t{8 + 8 + 4});
   put(bytes, summary_start);
   put(bytes, summary_offset_start);
-  // The summary CRC covers the summary up to and including summary_offset_start of the footer.
   const std::size_t summary_begin = summary_start - file_offset_;
   put(bytes, mcap::crc32(std::span<const std::uint8_t>(bytes).subspan(summary_begin)));
-  closeRecord(bytes, at);
   bytes.insert(bytes.end(), std::begin(mcap::kMagic), std::end(mcap::kMagic));
   append(bytes);
   const int fd = fd_;

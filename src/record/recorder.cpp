@@ -9,8 +9,9 @@
 namespace comply::record {
 namespace {
 
-// Each entry: a 16-byte head, then the record's bytes, padded so the next head is 16-aligned.
-// A head with kPadding marks the unused end of the buffer when a record did not fit before it.
+// Each entry: a head in a slot of kAlignment bytes, then the record's bytes, padded so the next
+// head is aligned again (records may hold Eigen's 32-byte aligned types). A head with kPadding
+// marks the unused end of the buffer when a record did not fit before it.
 struct EntryHead {
   std::uint32_t size;
   std::uint16_t channel;
@@ -20,7 +21,8 @@ struct EntryHead {
 static_assert(sizeof(EntryHead) == 16);
 constexpr std::uint16_t kPadding = 1;
 
-constexpr std::size_t roundUp16(std::size_t size) { return (size + 15) & ~std::size_t{15}; }
+constexpr std::size_t kSlot = 64;
+constexpr std::size_t roundUp(std::size_t size) { return (size + kSlot - 1) & ~(kSlot - 1); }
 
 double threadCpuSeconds() {
   timespec now{};
@@ -36,38 +38,52 @@ RecordLane::RecordLane(std::string name, std::size_t bytes) : name_(std::move(na
     size *= 2;
   }
   mask_ = size - 1;
-  buffer_ = std::make_unique<std::uint8_t[]>(size);
+  static_assert(kSlot == kAlignment);
+  buffer_.reset(new (std::align_val_t{kAlignment}) std::uint8_t[size]);
   // Touch every page now, so the cycle's first pushes do not take page faults.
   std::memset(buffer_.get(), 0, size);
 }
 
-bool RecordLane::push(std::uint16_t channel, std::int64_t log_time_ns, const void* data,
-                      std::size_t size) noexcept {
+void* RecordLane::reserve(std::uint16_t channel, std::int64_t log_time_ns,
+                         std::size_t size) noexcept {
   if (accepting_ == nullptr || !accepting_->load(std::memory_order_relaxed)) {
-    return false;
+    return nullptr;
   }
   const std::size_t capacity = mask_ + 1;
-  const std::size_t need = sizeof(EntryHead) + roundUp16(size);
+  const std::size_t need = kSlot + roundUp(size);
   const std::uint64_t tail = tail_.load(std::memory_order_relaxed);
   const std::size_t at = tail & mask_;
   const std::size_t to_end = capacity - at;
   const std::size_t total = need <= to_end ? need : to_end + need;
   if (need > capacity / 2 || total > capacity - (tail - head_.load(std::memory_order_acquire))) {
     dropped_.fetch_add(1, std::memory_order_relaxed);
-    return false;
+    return nullptr;
   }
   std::size_t write_at = at;
   if (need > to_end) {
-    const EntryHead padding{static_cast<std::uint32_t>(to_end - sizeof(EntryHead)), 0, kPadding,
-                            0};
+    const EntryHead padding{static_cast<std::uint32_t>(to_end - kSlot), 0, kPadding, 0};
     std::memcpy(buffer_.get() + at, &padding, sizeof padding);
     write_at = 0;
   }
   const EntryHead head{static_cast<std::uint32_t>(size), channel, 0, log_time_ns};
   std::memcpy(buffer_.get() + write_at, &head, sizeof head);
-  std::memcpy(buffer_.get() + write_at + sizeof head, data, size);
-  tail_.store(tail + total, std::memory_order_release);
+  reserved_tail_ = tail + total;
+  return buffer_.get() + write_at + kSlot;
+}
+
+void RecordLane::commit() noexcept {
+  tail_.store(reserved_tail_, std::memory_order_release);
   pushed_.fetch_add(1, std::memory_order_relaxed);
+}
+
+bool RecordLane::push(std::uint16_t channel, std::int64_t log_time_ns, const void* data,
+                      std::size_t size) noexcept {
+  void* slot = reserve(channel, log_time_ns, size);
+  if (slot == nullptr) {
+    return false;
+  }
+  std::memcpy(slot, data, size);
+  commit();
   return true;
 }
 
@@ -80,11 +96,10 @@ std::size_t RecordLane::drain(const std::function<void(const Entry&)>& f) {
     std::memcpy(&entry, buffer_.get() + (head & mask_), sizeof entry);
     if (entry.flags != kPadding) {
       f({entry.channel, entry.log_time_ns,
-         std::span<const std::uint8_t>(buffer_.get() + (head & mask_) + sizeof entry,
-                                       entry.size)});
+         std::span<const std::uint8_t>(buffer_.get() + (head & mask_) + kSlot, entry.size)});
       ++count;
     }
-    head += sizeof entry + roundUp16(entry.size);
+    head += kSlot + roundUp(entry.size);
     // Released entry by entry: a producer gets the room back as early as possible.
     head_.store(head, std::memory_order_release);
   }

@@ -8,8 +8,9 @@
 // through McapStreamReader up to its last complete record. Both paths also stream the whole file:
 // that pass counts the chunks and sees every record, indexed or not.
 // Every bigint becomes a decimal string, so one field always has one JSON type.
+// Each kept message: {log_time, publish_time, sequence, data}, or data null and decode_error.
 // Exit 0 on success; 1 with one line on stderr when the file is not MCAP, is corrupt (a CRC, a
-// payload its schema cannot decode, an index that misses messages) or the packages are missing.
+// chunk, an index that misses messages) or the packages are missing.
 import { readFileSync } from "node:fs";
 import { createRequire } from "node:module";
 
@@ -23,7 +24,7 @@ function fail(message) {
 let mcap, crc, fzstd, rosmsg, ros2;
 try {
   mcap = require("@mcap/core");
-  crc = require("@foxglove/crc"); // @mcap/core's own dependency, for the data section CRC
+  crc = require("@foxglove/crc"); // the CRC-32 @mcap/core uses, for the data section CRC
   fzstd = require("fzstd");
   rosmsg = require("@foxglove/rosmsg");
   ros2 = require("@foxglove/rosmsg2-serialization");
@@ -37,9 +38,9 @@ const FOOTER_LENGTH = 1 + 8 + 8 + 8 + 4;
 
 const decompressHandlers = {
   zstd: (data, size) => {
-    // The chunk states its uncompressed size; decompressing into exactly that much catches a
-    // wrong size even when the chunk carries no CRC.
-    const out = fzstd.decompress(data, new Uint8Array(Number(size)));
+    // Not decompressed into a buffer of the stated size: fzstd would hand that buffer back whole
+    // even when the frame is shorter, and a wrong size would go unseen in a chunk without CRC.
+    const out = fzstd.decompress(data);
     if (BigInt(out.byteLength) !== size) {
       throw new Error(`zstd chunk decompressed to ${out.byteLength} bytes, header says ${size}`);
     }
@@ -95,7 +96,7 @@ function hasFooter(buffer) {
 }
 
 // Decodes the messages of each channel from its schema; a channel whose encoding is not known
-// here still has its messages counted, each shown with its size only.
+// here has its messages shown with their size only.
 class Decoders {
   #readers = new Map();
 
@@ -105,23 +106,22 @@ class Decoders {
       reader = this.#makeReader(channel, schema);
       this.#readers.set(channel.id, reader);
     }
-    try {
-      return reader(data);
-    } catch (error) {
-      throw new Error(`cannot decode a message on ${channel.topic}: ${error.message}`);
-    }
+    return reader(data);
   }
 
   #makeReader(channel, schema) {
     if (channel.messageEncoding === "cdr" && schema?.encoding === "ros2msg") {
-      const text = new TextDecoder().decode(schema.data);
-      let definitions;
+      let reader;
       try {
-        definitions = rosmsg.parse(text, { ros2: true });
+        reader = new ros2.MessageReader(
+          rosmsg.parse(new TextDecoder().decode(schema.data), { ros2: true }),
+        );
       } catch (error) {
-        throw new Error(`schema ${schema.name} of ${channel.topic} does not parse: ${error.message}`);
+        const message = `schema ${schema.name} does not parse: ${error.message}`;
+        return () => {
+          throw new Error(message);
+        };
       }
-      const reader = new ros2.MessageReader(definitions);
       return (data) => reader.readMessage(data);
     }
     if (channel.messageEncoding === "json") {
@@ -132,8 +132,8 @@ class Decoders {
 }
 
 // Gathers what both reading paths report: messages per topic and the first N of each, decoded.
-// Every message is decoded, not only the kept ones, so a payload that does not match its schema
-// anywhere in the file is found.
+// A message that does not decode is kept with decode_error instead of data, not thrown: the
+// container is still worth checking when a payload is not what its schema says.
 class Tally {
   counts = {};
   messages = {};
@@ -149,17 +149,21 @@ class Tally {
   }
 
   add(message, channel, schema) {
-    const data = this.#decoders.decode(channel, schema, message.data);
     this.counts[channel.topic] += 1;
     const kept = this.messages[channel.topic];
-    if (kept.length < this.keep) {
-      kept.push({
-        log_time: message.logTime.toString(),
-        publish_time: message.publishTime.toString(),
-        sequence: message.sequence,
-        data: toJson(data),
-      });
+    if (kept.length >= this.keep) return;
+    const entry = {
+      log_time: message.logTime.toString(),
+      publish_time: message.publishTime.toString(),
+      sequence: message.sequence,
+    };
+    try {
+      entry.data = toJson(this.#decoders.decode(channel, schema, message.data));
+    } catch (error) {
+      entry.data = null;
+      entry.decode_error = error.message.split("\n")[0];
     }
+    kept.push(entry);
   }
 }
 
@@ -177,8 +181,7 @@ function channelJson(channel, schemasById) {
 
 // Every record in file order. In a file cut short the reader stops at the last complete record
 // (a chunk counts only once all of it is there); a reading error there ends the pass, said on
-// stderr, since a crash may leave anything after the last record written whole. A message that
-// does not decode is a fault either way.
+// stderr, since a crash may leave anything after the last record written whole.
 function streamPass(buffer, keep, complete) {
   const reader = new mcap.McapStreamReader({ includeChunks: true, decompressHandlers });
   const pass = {

@@ -20,6 +20,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <new>
 #include <span>
 #include <string>
 #include <thread>
@@ -47,6 +48,21 @@ class RecordLane {
     static_assert(std::is_trivially_copyable_v<T>, "a record is copied as bytes");
     return push(channel, log_time_ns, &value, sizeof(T));
   }
+  /// `value` copy-constructed into the lane, for a type that is not trivially copyable but
+  /// whose copy does not allocate (Eigen's fixed-size types); the encoder reads it back with
+  /// recordAs<T>().
+  template <typename T>
+  bool emplace(std::uint16_t channel, std::int64_t log_time_ns, const T& value) noexcept {
+    static_assert(std::is_nothrow_copy_constructible_v<T> && std::is_trivially_destructible_v<T>);
+    static_assert(alignof(T) <= kAlignment);
+    void* slot = reserve(channel, log_time_ns, sizeof(T));
+    if (slot == nullptr) {
+      return false;
+    }
+    ::new (slot) T(value);
+    commit();
+    return true;
+  }
 
   [[nodiscard]] const std::string& name() const noexcept { return name_; }
   [[nodiscard]] std::size_t capacity() const noexcept { return mask_ + 1; }
@@ -59,6 +75,11 @@ class RecordLane {
 
  private:
   friend class Recorder;
+  static constexpr std::size_t kAlignment = 64;  ///< of every record's bytes in the lane
+  /// Room for a record of `size` bytes with its head written, or nullptr (a drop, counted).
+  void* reserve(std::uint16_t channel, std::int64_t log_time_ns, std::size_t size) noexcept;
+  /// Publishes the record reserve() made room for.
+  void commit() noexcept;
   struct Entry {
     std::uint16_t channel;
     std::int64_t log_time_ns;
@@ -67,15 +88,27 @@ class RecordLane {
   /// Writer thread: calls f(entry) for every record pushed so far; returns how many.
   std::size_t drain(const std::function<void(const Entry&)>& f);
 
+  struct AlignedDelete {
+    void operator()(std::uint8_t* bytes) const noexcept {
+      ::operator delete[](bytes, std::align_val_t{kAlignment});
+    }
+  };
   std::string name_;
-  std::unique_ptr<std::uint8_t[]> buffer_;
+  std::unique_ptr<std::uint8_t[], AlignedDelete> buffer_;
   std::size_t mask_ = 0;
+  std::uint64_t reserved_tail_ = 0;  // the producer's: the tail once the reserved record commits
   std::atomic<bool>* accepting_ = nullptr;  // the recorder's flag
   alignas(64) std::atomic<std::uint64_t> head_{0};  // bytes consumed; written by the writer
   alignas(64) std::atomic<std::uint64_t> tail_{0};  // bytes produced; written by the producer
   std::atomic<std::uint64_t> pushed_{0};
   std::atomic<std::uint64_t> dropped_{0};
 };
+
+/// The record a producer emplace()d, in the bytes an encoder is given.
+template <typename T>
+const T& recordAs(std::span<const std::uint8_t> raw) noexcept {
+  return *std::launder(reinterpret_cast<const T*>(raw.data()));
+}
 
 /// Turns the bytes a producer pushed into the message written (e.g. a fixed-size sample into CDR).
 /// Runs on the writer thread; may allocate.
