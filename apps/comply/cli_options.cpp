@@ -93,6 +93,8 @@ CLI::App* addSimCommand(CLI::App& app, SimOptions& options) {
                    "simulated seconds (default: the task's; at most 600)")
       ->check(finiteIn(1e-3, host::kMaxSimDurationS));
   command->add_option("--out", options.out_dir, "output folder (default out/sim-<robot>)");
+  command->add_option("--record", options.record_path,
+                      "also record every cycle, command and outcome to this MCAP file");
   command
       ->add_option("--snapshot-every", options.snapshot_every_ms,
                    "also a PNG every N ms of simulated time (default: the task's)")

@@ -60,6 +60,8 @@ LiveCommands addLiveCommands(CLI::App& app) {
   run_command->add_option("--priority", run->priority, "SCHED_FIFO priority (0: normal)")
       ->capture_default_str()
       ->check(CLI::Range(0, 99));
+  run_command->add_option("--record", run->record_path,
+                          "record every cycle, command and outcome to this MCAP file");
 
   auto send = std::make_shared<SendOptions>();
   CLI::App* send_command = app.add_subcommand("send", "send a command (or a stream) to a host");

@@ -47,6 +47,7 @@ int simCommand(const SimOptions& options, std::ostream& out, std::ostream& err) 
                     ? std::filesystem::path("out") / ("sim-" + run.resolved->robot.name)
                     : std::filesystem::path(options.out_dir);
   run.progress = &err;
+  run.record_path = options.record_path;
 
   host::SimResult result = host::runSimulation(run);
   if (options.plot) {

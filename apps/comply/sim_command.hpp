@@ -16,6 +16,7 @@ struct SimOptions {
   std::string config_file;  ///< controller YAML
   std::string task_file;
   std::string out_dir;              ///< default out/sim-<robot>
+  std::string record_path;          ///< non-empty: an MCAP recording of the run
   double duration_s = 0.0;          ///< 0: the task's
   double snapshot_every_ms = -1.0;  ///< < 0: the task's
   bool realtime = false;

@@ -3,6 +3,7 @@
 // driven by a task file, logged every cycle. Used by `comply sim`, the experiments and the tests.
 
 #include <filesystem>
+#include <optional>
 #include <iosfwd>
 #include <limits>
 #include <memory>
@@ -38,6 +39,19 @@ struct SimRunOptions {
   /// Cartesian controllers only: when set, the command source (e.g. a task::PathCommand or an
   /// experiment's stream) asked before every cycle, in place of the task's waypoints.
   task::CartesianSource* cartesian_source = nullptr;  ///< not owned; outlives the run
+  /// Non-empty: every cycle, command and outcome recorded to this MCAP file, stamped with the
+  /// simulated time (seconds since the start, as if the epoch).
+  std::filesystem::path record_path;
+};
+
+/// What a recording wrote (SimSummary::recording).
+struct RecordingSummary {
+  std::filesystem::path path;
+  std::uint64_t written = 0;  ///< messages in the file
+  std::uint64_t dropped = 0;  ///< records a full lane refused
+  std::uint64_t bytes = 0;
+  double writer_cpu_s = 0.0;
+  std::string error;  ///< the I/O error that stopped it ("" if none)
 };
 
 /// Every control cycle, as the controller saw and commanded it. Poses in the base frame.
@@ -106,6 +120,7 @@ struct SimSummary {
   std::string fault_reason;           ///< why the controller entered FAULT ("" if it did not)
   std::vector<std::string> messages;  ///< rejection reasons, warnings (first few)
   std::vector<std::filesystem::path> files;
+  std::optional<RecordingSummary> recording;  ///< with SimRunOptions::record_path
 };
 
 /// Sustained saturation that fails a run [s] (libfranka's reflexes and polymetis's torque checks

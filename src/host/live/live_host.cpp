@@ -58,6 +58,7 @@ struct PublisherContext {
   pipeline::CommandGate& gate;
   transport::HostTransport& transport;
   double period_s;
+  HostRecording* recording;
 };
 
 template <typename Command>
@@ -71,6 +72,12 @@ void publishDiagnostics(PublisherContext<Command>& c,
       message.last_rejection = it->message;  // the host's reasons too, not only the wrapper's
       break;
     }
+  }
+  if (c.recording != nullptr) {
+    for (const transport::CommandOutcomeMessage& outcome : message.outcomes) {
+      c.recording->outcome(outcome);
+    }
+    c.recording->diagnostics(message);
   }
   c.transport.publish(message);
 }
@@ -131,6 +138,19 @@ void printSummary(const LoopCounters& counters, const pipeline::GateCounts& coun
       << malformed_samples << "\n";
 }
 
+void printRecording(const HostRecording& recording, std::ostream& out) {
+  const record::RecorderStats stats = recording.stats();
+  out << "comply run: recorded " << stats.written << " messages to " << recording.path() << " ("
+      << std::fixed << std::setprecision(1) << static_cast<double>(stats.bytes) / 1e6
+      << " MB), dropped " << stats.dropped << "; writer thread CPU " << std::setprecision(2)
+      << stats.writer_cpu_s << " s\n";
+  if (!stats.error.empty()) {
+    out << "comply run: the recording stopped early: " << stats.error << " (" << stats.lost
+        << " records not written)\n";
+  }
+  out.unsetf(std::ios::floatfield);
+}
+
 template <typename Command>
 int runWith(const LiveHostOptions& options,
             const std::shared_ptr<const pipeline::ResolvedController>& resolved,
@@ -158,6 +178,16 @@ int runWith(const LiveHostOptions& options,
                              {.period_s = period_s, .cycles = cycles});
   loop.setObserver(&observer);
   Intake<Command> intake(wrapper, observer, gate);
+  std::unique_ptr<HostRecording> recording;
+  if (!options.record_path.empty()) {
+    recording = std::make_unique<HostRecording>(
+        options.record_path, resolved, options.name,
+        record::StringMap{{"host", "comply run"},
+                          {"rate_hz", std::to_string(options.rate_hz)},
+                          {"hardware", backend.description}});
+    observer.setRecording(recording.get());
+    intake.setRecording(recording.get());
+  }
 
   std::atomic<bool> loop_running{true};
   std::atomic<bool> io_running{true};
@@ -173,8 +203,8 @@ int runWith(const LiveHostOptions& options,
     makeRealtime(options.priority > 1 ? options.priority - 1 : 0);
     readerThread(*transport, intake, io_running);
   });
-  PublisherContext<Command> context{options, *resolved,  wrapper, observer,
-                                    gate,    *transport, period_s};
+  PublisherContext<Command> context{options, *resolved,  wrapper,  observer,        gate,
+                                    *transport, period_s, recording.get()};
   std::thread publisher([&] { publisherThread(context, io_running); });
   out << "comply run: " << resolved->robot.name << " with " << resolved->config.plugin << " at "
       << options.rate_hz << " Hz on " << backend.description << "; " << transport->describe()
@@ -197,6 +227,10 @@ int runWith(const LiveHostOptions& options,
   transport->flush(1.0);
   printSummary(observer.counters(), gate.counts(), loop.stats(), transport->malformedSamples(),
                out);
+  if (recording != nullptr) {
+    recording->stop();
+    printRecording(*recording, out);
+  }
   return 0;
 }
 

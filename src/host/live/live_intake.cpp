@@ -68,16 +68,25 @@ std::vector<transport::CommandOutcomeMessage> outcomeMessages(
 
 template <typename Command>
 void Intake<Command>::handle(const transport::Sample<transport::CartesianCommandMessage>& sample) {
+  if (recording_ != nullptr && sample.malformed.empty()) {
+    recording_->command(sample.message, transport::Stamp::now());
+  }
   offerSample(wrapper_, gate_, sample, pipeline::CommandKind::kCartesian);
 }
 
 template <typename Command>
 void Intake<Command>::handle(const transport::Sample<transport::JointCommandMessage>& sample) {
+  if (recording_ != nullptr && sample.malformed.empty()) {
+    recording_->command(sample.message, transport::Stamp::now());
+  }
   offerSample(wrapper_, gate_, sample, pipeline::CommandKind::kJoint);
 }
 
 template <typename Command>
 void Intake<Command>::handle(const transport::Sample<transport::RequestMessage>& sample) {
+  if (recording_ != nullptr && sample.malformed.empty()) {
+    recording_->request(sample.message, transport::Stamp::now());
+  }
   // The publisher rule holds for requests too: while one process commands the arm, another
   // cannot deactivate or reset it. A refusal is the diagnostics' last rejection.
   std::string why;

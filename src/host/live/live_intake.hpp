@@ -8,6 +8,7 @@
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/transport/messages.hpp"
+#include "host_recording.hpp"
 #include "live_observer.hpp"
 
 namespace comply::host {
@@ -43,11 +44,14 @@ class Intake {
   void handle(const transport::Sample<transport::RequestMessage>& sample);
   /// A writer went away: it no longer holds the command topics.
   void departed(std::uint64_t publisher) { gate_.releasePublisher(publisher); }
+  /// Every well-formed command and request is recorded as received (nullptr: none).
+  void setRecording(HostRecording* recording) noexcept { recording_ = recording; }
 
  private:
   pipeline::Wrapper<Command>& wrapper_;
   LiveObserver<Command>& observer_;
   pipeline::CommandGate& gate_;
+  HostRecording* recording_ = nullptr;
 };
 
 extern template class Intake<CartesianCommand>;

@@ -10,14 +10,6 @@
 namespace comply::host {
 namespace {
 
-transport::Stamp stampOf(double seconds) {
-  return transport::Stamp::fromNanoseconds(static_cast<std::int64_t>(std::llround(seconds * 1e9)));
-}
-
-std::vector<double> vectorOf(const JointVector& values) {
-  return {values.data(), values.data() + values.size()};
-}
-
 std::vector<std::uint64_t> binsOf(
     const std::array<std::atomic<std::uint64_t>, LoopCounters::kBins>& bins) {
   std::vector<std::uint64_t> values;
@@ -28,62 +20,7 @@ std::vector<std::uint64_t> binsOf(
   return values;
 }
 
-void setPassivity(const pipeline::PassivitySnapshot& passivity,
-                  transport::ControllerStateMessage& message) noexcept {
-  message.passivity = passivity.enabled;
-  message.tank_energy_j = passivity.tank_energy_j;
-  message.nullspace_tank_energy_j = passivity.nullspace_tank_energy_j;
-  message.energy_injected_j = passivity.injected_j;
-  message.energy_dissipated_j = passivity.dissipated_j;
-  message.energy_refused_j = passivity.refused_j;
-  message.gain_fraction = passivity.gain_fraction;
-}
-
 }  // namespace
-
-transport::HostState hostState(pipeline::WrapperState state) {
-  switch (state) {
-    case pipeline::WrapperState::kActive:
-      return transport::HostState::kActive;
-    case pipeline::WrapperState::kFault:
-      return transport::HostState::kFault;
-    case pipeline::WrapperState::kInactive:
-      break;
-  }
-  return transport::HostState::kInactive;
-}
-
-transport::ControllerStateMessage stateMessage(const StateSample& sample,
-                                               const pipeline::ResolvedController& resolved) {
-  transport::ControllerStateMessage message;
-  message.header = {sample.wall, resolved.robot.base_frame};
-  message.state = hostState(sample.state);
-  message.command_kind = resolved.cartesian() ? transport::WireCommandKind::kCartesian
-                                              : transport::WireCommandKind::kJoint;
-  message.cycle = sample.cycle;
-  message.joint_names = resolved.config.joints;
-  message.position = vectorOf(sample.joints.position);
-  message.velocity = vectorOf(sample.joints.velocity);
-  message.effort = vectorOf(sample.joints.effort);
-  message.torque_command = vectorOf(sample.torque);
-  for (int i = 0; i < 3; ++i) {
-    message.tcp_position[i] = sample.tcp_position[i];
-    message.reference_position[i] = sample.reference_position[i];
-  }
-  schema::toXyzw(sample.tcp_orientation, message.tcp_orientation.data());
-  schema::toXyzw(sample.reference_orientation, message.reference_orientation.data());
-  for (int i = 0; i < 6; ++i) {
-    message.tcp_twist[i] = sample.tcp_twist[i];
-    message.contact_wrench[i] = sample.contact_wrench[i];
-  }
-  message.reference_stamp = stampOf(sample.reference_stamp_s);
-  message.reference_fields = sample.reference_fields;
-  if (!resolved.cartesian()) {
-    message.reference_joint_position = vectorOf(sample.reference_joint_position);
-  }
-  setPassivity(sample.passivity, message);
-  return message;
-}
 
 transport::DiagnosticsMessage diagnosticsMessage(
     const pipeline::DiagnosticsSnapshot& wrapper, const LoopCounters& loop, double period_s,

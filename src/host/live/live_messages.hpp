@@ -1,5 +1,5 @@
 #pragma once
-// The state and diagnostics messages of `comply run`, built on its publisher thread from what the
+// The diagnostics message of `comply run` (the state's is in state_sample.hpp), built on its publisher thread from what the
 // control thread and the intake report.
 
 #include <string>
@@ -11,11 +11,6 @@
 #include "live_observer.hpp"
 
 namespace comply::host {
-
-transport::HostState hostState(pipeline::WrapperState state);
-
-transport::ControllerStateMessage stateMessage(const StateSample& sample,
-                                               const pipeline::ResolvedController& resolved);
 
 /// The counters of the wrapper, the loop and the intake, with `outcomes` attached.
 transport::DiagnosticsMessage diagnosticsMessage(

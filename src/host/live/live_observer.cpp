@@ -6,9 +6,7 @@
 
 #include "comply/core/clock.hpp"
 #include "comply/hardware/loop_clock.hpp"
-#include "comply/model/update.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
-#include "comply/schema/schema.hpp"
 
 namespace comply::host {
 namespace {
@@ -22,9 +20,6 @@ void count(std::array<std::atomic<std::uint64_t>, LoopCounters::kBins>& bins,
       bin <= 0.0 ? 0 : std::min(static_cast<std::size_t>(bin), LoopCounters::kBins - 1);
   bins[index].fetch_add(1, std::memory_order_relaxed);
 }
-
-template <typename Command>
-using BusOfCommand = pipeline::BusOf<Command>;
 
 }  // namespace
 
@@ -53,10 +48,9 @@ LiveObserver<Command>::LiveObserver(pipeline::Wrapper<Command>& wrapper,
                                     pipeline::CommandGate& gate, hardware::HardwareInterface& robot,
                                     double wall_origin_s)
     : wrapper_(wrapper),
-      robot_(robot),
       wall_origin_s_(wall_origin_s),
       gate_(gate),
-      inactive_pose_(wrapper.controller().model()) {
+      sampler_(wrapper, robot) {
   const int dof = wrapper.dof();
   sample_.joints = JointState::zero(dof);
   sample_.torque.setZero(dof);
@@ -100,48 +94,13 @@ void LiveObserver<Command>::afterCycle(const hardware::CycleRecord& record) {
 
 template <typename Command>
 void LiveObserver<Command>::fillSample(const hardware::CycleRecord& record) noexcept {
-  StateSample& s = sample_;
-  s.cycle = record.index;
-  s.wall = transport::Stamp::now();
-  const pipeline::Diagnostics& diagnostics = wrapper_.controller().diagnostics();
-  s.state = diagnostics.state.load(std::memory_order_relaxed);
-  s.passivity = diagnostics.passivity();  // atomics only: no allocation on this thread
-  s.joints = last_state_;
-  for (std::size_t i = 0; i < record.torque.size(); ++i) {
-    s.torque[static_cast<Eigen::Index>(i)] = record.wrote ? record.torque[i] : 0.0;
+  sampler_.fill(record, last_state_, transport::Stamp::now(), sample_);
+  state_.publishFromSoleWriter(sample_);
+  if (recording_ != nullptr) {
+    recording_->cycle<Command>(
+        sample_, std::get<pipeline::BusOf<Command>>(wrapper_.controller().lawBus()),
+        record.compute_s, record.start_lateness_s);
   }
-  const model::Data* pose = &wrapper_.controller().modelData();
-  if (s.state == pipeline::WrapperState::kInactive) {
-    // No cycle measures while inactive: the state must still show where the arm is.
-    const std::span<const double> q(last_state_.position.data(),
-                                    static_cast<std::size_t>(last_state_.position.size()));
-    if (model::update(wrapper_.controller().model(), inactive_pose_, q, q,
-                      model::Quantity::kJacobian) == model::UpdateStatus::kOk) {
-      pose = &inactive_pose_;
-    }
-  }
-  const model::Data& data = *pose;
-  s.tcp_position = data.tip_position;
-  s.tcp_orientation = data.tip_orientation;
-  const int dof = wrapper_.dof();
-  s.tcp_twist =
-      data.jacobian.cols() == dof ? Vector6d(data.jacobian * s.joints.velocity) : Vector6d::Zero();
-  // The control thread is the one that reads the hardware: the wrench is read here, in the cycle.
-  if (!robot_.readWrench(s.contact_wrench)) {
-    s.contact_wrench.setZero();
-  }
-  const auto& bus = std::get<BusOfCommand<Command>>(wrapper_.controller().activeCommand());
-  s.reference_stamp_s = bus.stamp_s;
-  s.reference_fields = bus.fields;
-  if constexpr (std::is_same_v<Command, CartesianCommand>) {
-    s.reference_position = Eigen::Vector3d(bus.position[0], bus.position[1], bus.position[2]);
-    s.reference_orientation = schema::fromXyzw(bus.orientation);
-  } else {
-    for (int i = 0; i < dof; ++i) {
-      s.reference_joint_position[i] = bus.position[i];
-    }
-  }
-  state_.publishFromSoleWriter(s);
 }
 
 template <typename Command>

@@ -18,27 +18,10 @@
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/transport/messages.hpp"
+#include "host_recording.hpp"
+#include "state_sample.hpp"
 
 namespace comply::host {
-
-/// One cycle as the state topic shows it; fixed size, so copying it never allocates.
-struct StateSample {
-  std::uint64_t cycle = 0;
-  transport::Stamp wall;
-  pipeline::WrapperState state = pipeline::WrapperState::kInactive;
-  JointState joints;
-  JointVector torque;
-  Eigen::Vector3d tcp_position = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond tcp_orientation = Eigen::Quaterniond::Identity();
-  Vector6d tcp_twist = Vector6d::Zero();
-  Vector6d contact_wrench = Vector6d::Zero();
-  pipeline::PassivitySnapshot passivity;  ///< the energy tank's account after the cycle
-  double reference_stamp_s = 0.0;
-  std::uint32_t reference_fields = 0;
-  Eigen::Vector3d reference_position = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond reference_orientation = Eigen::Quaterniond::Identity();
-  JointVector reference_joint_position;
-};
 
 /// Cycle timing, written by the control thread, read by anyone.
 struct LoopCounters {
@@ -66,6 +49,8 @@ class LiveObserver final : public hardware::LoopObserver {
   void beforeCycle(std::uint64_t index, double time_s) override;
   void afterCycle(const hardware::CycleRecord& record) override;
 
+  /// Before the loop runs: every cycle is recorded there (nullptr: none).
+  void setRecording(HostRecording* recording) noexcept { recording_ = recording; }
   /// Any thread: activate or deactivate before the next cycle.
   void requestLifecycle(transport::RequestType request) noexcept;
   /// Why the last activation failed ("" if it did not); any thread.
@@ -78,16 +63,14 @@ class LiveObserver final : public hardware::LoopObserver {
   void fillSample(const hardware::CycleRecord& record) noexcept;
 
   pipeline::Wrapper<Command>& wrapper_;
-  hardware::HardwareInterface& robot_;
   double wall_origin_s_;
   LoopCounters counters_;
   pipeline::CommandGate& gate_;
   TripleBuffer<StateSample> state_;
   StateSample sample_;  // the control thread's scratch
   JointState last_state_;
-  /// The pose of the measured joints while the controller is inactive (its own model data then
-  /// stays where the last active cycle left it): the control thread's scratch.
-  model::Data inactive_pose_;
+  StateSampler<Command> sampler_;
+  HostRecording* recording_ = nullptr;
   std::atomic<std::uint8_t> lifecycle_request_{0};
   pipeline::MessageSlot activation_error_;
 };

@@ -197,6 +197,15 @@ void printSummary(const SimSummary& summary, std::ostream& out) {
   for (const std::string& message : summary.messages) {
     out << "  note: " << message << "\n";
   }
+  if (summary.recording) {
+    const RecordingSummary& r = *summary.recording;
+    out << "recording: " << r.written << " messages, " << std::setprecision(1)
+        << static_cast<double>(r.bytes) / 1e6 << " MB, dropped " << r.dropped
+        << "; writer thread CPU " << std::setprecision(2) << r.writer_cpu_s << " s\n";
+    if (!r.error.empty()) {
+      out << "recording stopped early: " << r.error << "\n";
+    }
+  }
   for (const std::filesystem::path& file : summary.files) {
     out << "  wrote " << file.string() << "\n";
   }

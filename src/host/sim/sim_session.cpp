@@ -11,7 +11,9 @@
 #include "comply/hardware/control_loop.hpp"
 #include "comply/host/task_source.hpp"
 #include "comply/pipeline/wrapper.hpp"
+#include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/sim/simulated_clock.hpp"
+#include "host_recording.hpp"
 #include "progress_bar.hpp"
 #include "sim_crash_guard.hpp"
 #include "sim_pictures.hpp"
@@ -56,6 +58,14 @@ class SimRecorder final : public hardware::LoopObserver {
     snapshot_every_ = snapshot_every;
   }
   void setGuard(CrashGuard* guard) { guard_ = guard; }
+  /// Every cycle, command and outcome is recorded there, stamped with the simulated time.
+  void setRecording(HostRecording* recording, const std::string& base_frame) {
+    recording_ = recording;
+    base_frame_ = base_frame;
+    if (recording != nullptr) {
+      sampler_.emplace(wrapper_, plant_);
+    }
+  }
 
   void beforeCycle(std::uint64_t index, double t) override {
     if (guard_ != nullptr) {
@@ -76,6 +86,12 @@ class SimRecorder final : public hardware::LoopObserver {
   }
 
   void afterCycle(const hardware::CycleRecord& record) override {
+    if (recording_ != nullptr && record.state != nullptr) {
+      sampler_->fill(record, *record.state, stampAt(record.time_s), sample_);
+      recording_->cycle<Command>(
+          sample_, std::get<pipeline::BusOf<Command>>(wrapper_.controller().lawBus()),
+          record.controller_s, record.start_lateness_s);
+    }
     SimLog& log = result_.log;
     SimSummary& summary = result_.summary;
     const Eigen::Map<const Eigen::VectorXd> torque(record.torque.data(),
@@ -144,8 +160,42 @@ class SimRecorder final : public hardware::LoopObserver {
     }
   }
 
+  static transport::Stamp stampAt(double t) {
+    return transport::Stamp::fromNanoseconds(static_cast<std::int64_t>(std::llround(t * 1e9)));
+  }
+
+  /// The command as it would have come over the wire, and its outcome.
+  void record(const Command& command, const pipeline::Verdict& verdict, double t) {
+    const transport::Stamp now = stampAt(t);
+    const transport::Header header{stampAt(command.stamp_s), base_frame_};
+    transport::CommandOutcomeMessage outcome;
+    outcome.stamp = header.stamp;
+    outcome.received = now;
+    if constexpr (std::is_same_v<Command, CartesianCommand>) {
+      recording_->command(transport::CartesianCommandMessage{header, command}, now);
+      outcome.command_kind = transport::WireCommandKind::kCartesian;
+    } else {
+      recording_->command(transport::JointCommandMessage{header, command}, now);
+      outcome.command_kind = transport::WireCommandKind::kJoint;
+    }
+    if (verdict.accepted) {
+      // Submitted before the cycle that takes it: that cycle is the next one.
+      outcome.outcome = transport::Outcome::kApplied;
+      outcome.cycle = static_cast<std::uint64_t>(result_.log.size());
+      outcome.applied = now;
+    } else {
+      outcome.outcome = transport::Outcome::kRejected;
+      outcome.reason = static_cast<transport::Reason>(verdict.reason);
+      outcome.message = verdict.message;
+    }
+    recording_->outcome(outcome);
+  }
+
   void submit(Command command, double t) {
     const pipeline::Verdict verdict = wrapper_.submit(command);
+    if (recording_ != nullptr) {
+      record(command, verdict, t);
+    }
     ++result_.summary.commands_sent;
     result_.summary.last_command_rejected = !verdict.accepted;
     result_.summary.last_rejection = verdict.message;
@@ -170,6 +220,10 @@ class SimRecorder final : public hardware::LoopObserver {
   double saturation_s_ = 0.0;
   CrashGuard* guard_ = nullptr;
   WallClock::time_point wall_start_ = WallClock::now();
+  HostRecording* recording_ = nullptr;
+  std::string base_frame_;
+  std::optional<StateSampler<Command>> sampler_;
+  StateSample sample_;  // the loop thread's scratch
 };
 
 // Wall time a single cycle may take before the run is declared hung (a plugin in an endless
@@ -222,6 +276,13 @@ SimResult runWith(const SimRunOptions& options,
           ? std::max<std::uint64_t>(1, cyclesIn(options.task.snapshot_every_ms * 1e-3, period_s))
           : 0);
   loop.setObserver(&recorder);
+  std::unique_ptr<HostRecording> recording;
+  if (!options.record_path.empty()) {
+    recording = std::make_unique<HostRecording>(
+        options.record_path.string(), resolved, "comply",
+        record::StringMap{{"host", "comply sim"}, {"clock", "simulated"}});
+    recorder.setRecording(recording.get(), resolved->robot.base_frame);
+  }
   {
     // log.csv is streamed while the loop runs; a crashing or hanging plugin is named.
     CrashGuard guard(
@@ -242,6 +303,12 @@ SimResult runWith(const SimRunOptions& options,
   summary.wall_s = recorder.wallSeconds();
   summary.simulated_s = plant.simTime();
   pictures.snapshot(plant, "end");
+  if (recording != nullptr) {
+    recording->stop();
+    const record::RecorderStats stats = recording->stats();
+    summary.recording = RecordingSummary{options.record_path, stats.written, stats.dropped,
+                                         stats.bytes, stats.writer_cpu_s, stats.error};
+  }
 
   const pipeline::DiagnosticsSnapshot diagnostics = wrapper.diagnostics();
   summary.rejections = diagnostics.rejectionsTotal();

@@ -1,0 +1,129 @@
+// The channels of a host's recording and the encoding of its records (see host_recording.hpp).
+
+#include "host_recording.hpp"
+
+#include <filesystem>
+
+#include "comply/schema/schema.hpp"
+#include "comply/transport/cdr.hpp"
+
+namespace comply::host {
+namespace {
+
+// A cycle is ~2 KB in its lane: 16 MiB hold 8 s of cycles at 1 kHz should the writer stall (a
+// slow disk); the command and publishing lanes see a few hundred records a second.
+constexpr std::size_t kControlLaneBytes = std::size_t{16} << 20;
+constexpr std::size_t kSideLaneBytes = std::size_t{4} << 20;
+
+record::RecorderOptions recorderOptions(const std::string& path) {
+  // `--record runs/today/a.mcap` makes its folder, as `--out` does.
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  if (!folder.empty()) {
+    std::error_code ignored;  // an uncreatable folder shows as the file's own error
+    std::filesystem::create_directories(folder, ignored);
+  }
+  record::RecorderOptions options;
+  options.path = path;
+  return options;
+}
+
+template <typename Command>
+void encodeCycle(std::span<const std::uint8_t> raw, const pipeline::ResolvedController& resolved,
+                 std::vector<std::uint8_t>& out) {
+  const auto& cycle = record::recordAs<RecordedCycle<Command>>(raw);
+  transport::CycleRecordMessage message;
+  message.state = stateMessage(cycle.state, resolved);
+  message.compute_time_s = cycle.compute_s;
+  message.start_lateness_s = cycle.start_lateness_s;
+  const transport::Header header{transport::Stamp::fromNanoseconds(static_cast<std::int64_t>(
+                                     std::llround(cycle.in_force.stamp_s * 1e9))),
+                                 resolved.robot.base_frame};
+  if constexpr (std::is_same_v<Command, CartesianCommand>) {
+    message.cartesian_in_force.push_back({header, schema::fromBus(cycle.in_force)});
+  } else {
+    message.joint_in_force.push_back({header, schema::fromBus(cycle.in_force)});
+  }
+  transport::encodeCdr(message, out);
+}
+
+template <typename Message>
+void push(record::RecordLane& lane, std::uint16_t channel, const Message& message,
+          transport::Stamp time, std::vector<std::uint8_t>& scratch) {
+  transport::encodeCdr(message, scratch);
+  lane.push(channel, time.nanoseconds(), scratch.data(), scratch.size());
+}
+
+}  // namespace
+
+template <typename Message>
+std::uint16_t HostRecording::addChannel(const std::string& topic, record::RecordEncoder encoder) {
+  const std::string_view type = transport::rosTypeName<Message>();
+  const std::uint16_t schema =
+      recorder_.addSchema(type, "ros2msg", transport::ros2MessageDefinition(type));
+  return recorder_.addChannel(schema, topic, std::move(encoder));
+}
+
+HostRecording::HostRecording(const std::string& path,
+                             std::shared_ptr<const pipeline::ResolvedController> resolved,
+                             const std::string& name, record::StringMap metadata)
+    : resolved_(std::move(resolved)),
+      recorder_(recorderOptions(path)),
+      control_(recorder_.addLane("control", kControlLaneBytes)),
+      intake_(recorder_.addLane("commands", kSideLaneBytes)),
+      publisher_(recorder_.addLane("publisher", kSideLaneBytes)) {
+  const std::string prefix = "/" + name + "/";
+  const pipeline::ResolvedController& controller = *resolved_;
+  if (controller.cartesian()) {
+    cycle_channel_ = addChannel<transport::CycleRecordMessage>(
+        prefix + "cycle", [&controller](std::span<const std::uint8_t> raw, auto& out) {
+          encodeCycle<CartesianCommand>(raw, controller, out);
+        });
+  } else {
+    cycle_channel_ = addChannel<transport::CycleRecordMessage>(
+        prefix + "cycle", [&controller](std::span<const std::uint8_t> raw, auto& out) {
+          encodeCycle<JointCommand>(raw, controller, out);
+        });
+  }
+  // Both command topics: a command of the other kind is refused, and recorded as received.
+  cartesian_channel_ = addChannel<transport::CartesianCommandMessage>(prefix + "cartesian_command");
+  joint_channel_ = addChannel<transport::JointCommandMessage>(prefix + "joint_command");
+  request_channel_ = addChannel<transport::RequestMessage>(prefix + "request");
+  outcome_channel_ = addChannel<transport::CommandOutcomeMessage>(prefix + "outcome");
+  diagnostics_channel_ = addChannel<transport::DiagnosticsMessage>(prefix + "diagnostics");
+  metadata["robot"] = controller.robot.name;
+  metadata["plugin"] = controller.config.plugin;
+  metadata["dof"] = std::to_string(controller.config.dof);
+  metadata["base_frame"] = controller.robot.base_frame;
+  recorder_.addMetadata("comply_run", std::move(metadata));
+  recorder_.start();
+}
+
+HostRecording::~HostRecording() { stop(); }
+
+void HostRecording::command(const transport::CartesianCommandMessage& message,
+                            transport::Stamp received) {
+  push(intake_, cartesian_channel_, message, received, intake_bytes_);
+}
+
+void HostRecording::command(const transport::JointCommandMessage& message,
+                            transport::Stamp received) {
+  push(intake_, joint_channel_, message, received, intake_bytes_);
+}
+
+void HostRecording::request(const transport::RequestMessage& message, transport::Stamp received) {
+  push(intake_, request_channel_, message, received, intake_bytes_);
+}
+
+void HostRecording::outcome(const transport::CommandOutcomeMessage& message) {
+  const transport::Stamp time =
+      message.outcome == transport::Outcome::kApplied ? message.applied : message.received;
+  push(publisher_, outcome_channel_, message, time, publisher_bytes_);
+}
+
+void HostRecording::diagnostics(const transport::DiagnosticsMessage& message) {
+  push(publisher_, diagnostics_channel_, message, message.header.stamp, publisher_bytes_);
+}
+
+void HostRecording::stop() { recorder_.stop(); }
+
+}  // namespace comply::host

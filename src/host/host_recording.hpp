@@ -1,0 +1,90 @@
+#pragma once
+// What every host records (`--record FILE`) and on which channel of the MCAP file:
+//
+//   /<name>/cycle              comply_msgs/CycleRecord   every control cycle
+//   /<name>/cartesian_command  comply_msgs/CartesianCommand  every command as received
+//   /<name>/joint_command      comply_msgs/JointCommand      every command as received
+//   /<name>/request            comply_msgs/Request       every request as received
+//   /<name>/outcome            comply_msgs/CommandOutcome   one per command
+//   /<name>/diagnostics        comply_msgs/Diagnostics   as published
+//
+// Messages are the CDR bytes of the wire. Each group of channels has its own lane with one
+// producer: cycle() is called by the control thread and costs a copy of a fixed-size record;
+// command() and request() by the thread that takes commands, outcome() and diagnostics() by the
+// one that publishes (these encode where they are called: they are off the control thread).
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "comply/pipeline/command_bus_variant.hpp"
+#include "comply/pipeline/resolved_controller.hpp"
+#include "comply/record/recorder.hpp"
+#include "comply/transport/messages.hpp"
+#include "state_sample.hpp"
+
+namespace comply::host {
+
+/// One cycle as the recording's control lane holds it.
+template <typename Command>
+struct RecordedCycle {
+  StateSample state;
+  pipeline::BusOf<Command> in_force;  ///< the command the law used (Controller::lawBus())
+  double compute_s = 0.0;
+  double start_lateness_s = 0.0;
+};
+
+class HostRecording {
+ public:
+  /// Creates `path` (throws record::McapError naming it) and starts the writer thread.
+  /// `metadata`: what the file says about the run besides the counts (robot, controller, ...).
+  HostRecording(const std::string& path,
+                std::shared_ptr<const pipeline::ResolvedController> resolved,
+                const std::string& name, record::StringMap metadata);
+  ~HostRecording();
+  HostRecording(const HostRecording&) = delete;
+  HostRecording& operator=(const HostRecording&) = delete;
+
+  /// The control thread, after a cycle: `state` (filled for this cycle), the command the law
+  /// used and the cycle's timing. Wait-free, no allocation; a full lane drops the record.
+  template <typename Command>
+  void cycle(const StateSample& state, const pipeline::BusOf<Command>& in_force, double compute_s,
+             double start_lateness_s) noexcept {
+    control_.emplace(cycle_channel_, state.wall.nanoseconds(),
+                     RecordedCycle<Command>{state, in_force, compute_s, start_lateness_s});
+  }
+
+  // The command thread.
+  void command(const transport::CartesianCommandMessage& message, transport::Stamp received);
+  void command(const transport::JointCommandMessage& message, transport::Stamp received);
+  void request(const transport::RequestMessage& message, transport::Stamp received);
+  // The publishing thread.
+  void outcome(const transport::CommandOutcomeMessage& message);
+  void diagnostics(const transport::DiagnosticsMessage& message);
+
+  /// Drains, writes the counts and closes the file; idempotent.
+  void stop();
+  [[nodiscard]] record::RecorderStats stats() const { return recorder_.stats(); }
+  [[nodiscard]] const std::string& path() const noexcept { return recorder_.path(); }
+
+ private:
+  template <typename Message>
+  std::uint16_t addChannel(const std::string& topic, record::RecordEncoder encoder = {});
+
+  std::shared_ptr<const pipeline::ResolvedController> resolved_;
+  record::Recorder recorder_;
+  std::uint16_t cycle_channel_ = 0;
+  std::uint16_t cartesian_channel_ = 0;
+  std::uint16_t joint_channel_ = 0;
+  std::uint16_t request_channel_ = 0;
+  std::uint16_t outcome_channel_ = 0;
+  std::uint16_t diagnostics_channel_ = 0;
+  record::RecordLane& control_;
+  record::RecordLane& intake_;
+  record::RecordLane& publisher_;
+  std::vector<std::uint8_t> intake_bytes_;     // the command thread's scratch
+  std::vector<std::uint8_t> publisher_bytes_;  // the publishing thread's scratch
+};
+
+}  // namespace comply::host

@@ -1,0 +1,136 @@
+// Filling a StateSample after a cycle (see state_sample.hpp).
+
+#include "state_sample.hpp"
+
+#include <cmath>
+
+#include "comply/model/update.hpp"
+#include "comply/pipeline/command_bus_variant.hpp"
+#include "comply/schema/schema.hpp"
+
+namespace comply::host {
+namespace {
+
+transport::Stamp stampOf(double seconds) {
+  return transport::Stamp::fromNanoseconds(static_cast<std::int64_t>(std::llround(seconds * 1e9)));
+}
+
+std::vector<double> vectorOf(const JointVector& values) {
+  return {values.data(), values.data() + values.size()};
+}
+
+void setPassivity(const pipeline::PassivitySnapshot& passivity,
+                  transport::ControllerStateMessage& message) noexcept {
+  message.passivity = passivity.enabled;
+  message.tank_energy_j = passivity.tank_energy_j;
+  message.nullspace_tank_energy_j = passivity.nullspace_tank_energy_j;
+  message.energy_injected_j = passivity.injected_j;
+  message.energy_dissipated_j = passivity.dissipated_j;
+  message.energy_refused_j = passivity.refused_j;
+  message.gain_fraction = passivity.gain_fraction;
+}
+
+}  // namespace
+
+transport::HostState hostState(pipeline::WrapperState state) {
+  switch (state) {
+    case pipeline::WrapperState::kActive:
+      return transport::HostState::kActive;
+    case pipeline::WrapperState::kFault:
+      return transport::HostState::kFault;
+    case pipeline::WrapperState::kInactive:
+      break;
+  }
+  return transport::HostState::kInactive;
+}
+
+transport::ControllerStateMessage stateMessage(const StateSample& sample,
+                                               const pipeline::ResolvedController& resolved) {
+  transport::ControllerStateMessage message;
+  message.header = {sample.wall, resolved.robot.base_frame};
+  message.state = hostState(sample.state);
+  message.command_kind = resolved.cartesian() ? transport::WireCommandKind::kCartesian
+                                              : transport::WireCommandKind::kJoint;
+  message.cycle = sample.cycle;
+  message.joint_names = resolved.config.joints;
+  message.position = vectorOf(sample.joints.position);
+  message.velocity = vectorOf(sample.joints.velocity);
+  message.effort = vectorOf(sample.joints.effort);
+  message.torque_command = vectorOf(sample.torque);
+  for (int i = 0; i < 3; ++i) {
+    message.tcp_position[i] = sample.tcp_position[i];
+    message.reference_position[i] = sample.reference_position[i];
+  }
+  schema::toXyzw(sample.tcp_orientation, message.tcp_orientation.data());
+  schema::toXyzw(sample.reference_orientation, message.reference_orientation.data());
+  for (int i = 0; i < 6; ++i) {
+    message.tcp_twist[i] = sample.tcp_twist[i];
+    message.contact_wrench[i] = sample.contact_wrench[i];
+  }
+  message.reference_stamp = stampOf(sample.reference_stamp_s);
+  message.reference_fields = sample.reference_fields;
+  if (!resolved.cartesian()) {
+    message.reference_joint_position = vectorOf(sample.reference_joint_position);
+  }
+  setPassivity(sample.passivity, message);
+  return message;
+}
+
+
+template <typename Command>
+StateSampler<Command>::StateSampler(const pipeline::Wrapper<Command>& wrapper,
+                                    hardware::HardwareInterface& robot)
+    : wrapper_(wrapper), robot_(robot), inactive_pose_(wrapper.controller().model()) {}
+
+template <typename Command>
+void StateSampler<Command>::fill(const hardware::CycleRecord& record, const JointState& measured,
+                                 transport::Stamp stamp, StateSample& s) noexcept {
+  const int dof = wrapper_.dof();
+  s.cycle = record.index;
+  s.wall = stamp;
+  const pipeline::Controller& controller = wrapper_.controller();
+  const pipeline::Diagnostics& diagnostics = controller.diagnostics();
+  s.state = diagnostics.state.load(std::memory_order_relaxed);
+  s.passivity = diagnostics.passivity();  // atomics only: no allocation on this thread
+  s.joints = measured;
+  s.torque.setZero(dof);
+  for (std::size_t i = 0; i < record.torque.size(); ++i) {
+    s.torque[static_cast<Eigen::Index>(i)] = record.wrote ? record.torque[i] : 0.0;
+  }
+  const model::Data* pose = &controller.modelData();
+  if (s.state == pipeline::WrapperState::kInactive) {
+    // No cycle measures while inactive: the sample must still show where the arm is.
+    const std::span<const double> q(measured.position.data(),
+                                    static_cast<std::size_t>(measured.position.size()));
+    if (model::update(controller.model(), inactive_pose_, q, q, model::Quantity::kJacobian) ==
+        model::UpdateStatus::kOk) {
+      pose = &inactive_pose_;
+    }
+  }
+  const model::Data& data = *pose;
+  s.tcp_position = data.tip_position;
+  s.tcp_orientation = data.tip_orientation;
+  s.tcp_twist =
+      data.jacobian.cols() == dof ? Vector6d(data.jacobian * s.joints.velocity) : Vector6d::Zero();
+  // The control thread is the one that reads the hardware: the wrench is read here, in the cycle.
+  if (!robot_.readWrench(s.contact_wrench)) {
+    s.contact_wrench.setZero();
+  }
+  const auto& bus = std::get<pipeline::BusOf<Command>>(controller.activeCommand());
+  s.reference_stamp_s = bus.stamp_s;
+  s.reference_fields = bus.fields;
+  s.reference_joint_position.setZero(dof);
+  if constexpr (std::is_same_v<Command, CartesianCommand>) {
+    s.reference_position = Eigen::Vector3d(bus.position[0], bus.position[1], bus.position[2]);
+    s.reference_orientation = schema::fromXyzw(bus.orientation);
+  } else {
+    for (int i = 0; i < dof; ++i) {
+      s.reference_joint_position[i] = bus.position[i];
+    }
+  }
+}
+
+template class StateSampler<CartesianCommand>;
+template class StateSampler<JointCommand>;
+
+}  // namespace comply::host

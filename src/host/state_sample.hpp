@@ -1,0 +1,63 @@
+#pragma once
+// One control cycle as the hosts report it (the state topic, the recording), taken on the control
+// thread right after the cycle: fixed size, so filling and copying it never allocates.
+
+#include <Eigen/Geometry>
+
+#include "comply/core/state.hpp"
+#include "comply/hardware/control_loop.hpp"
+#include "comply/model/data.hpp"
+#include "comply/pipeline/resolved_controller.hpp"
+#include "comply/pipeline/wrapper.hpp"
+#include "comply/transport/messages.hpp"
+
+namespace comply::host {
+
+struct StateSample {
+  std::uint64_t cycle = 0;
+  transport::Stamp wall;  ///< the host's clock at the cycle (simulated time under `comply sim`)
+  pipeline::WrapperState state = pipeline::WrapperState::kInactive;
+  JointState joints;
+  JointVector torque;
+  Eigen::Vector3d tcp_position = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond tcp_orientation = Eigen::Quaterniond::Identity();
+  Vector6d tcp_twist = Vector6d::Zero();
+  Vector6d contact_wrench = Vector6d::Zero();
+  pipeline::PassivitySnapshot passivity;  ///< the energy tank's account after the cycle
+  double reference_stamp_s = 0.0;
+  std::uint32_t reference_fields = 0;
+  Eigen::Vector3d reference_position = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond reference_orientation = Eigen::Quaterniond::Identity();
+  JointVector reference_joint_position;
+};
+
+/// Fills StateSamples from a wrapper and its hardware; the control thread's scratch lives here.
+template <typename Command>
+class StateSampler {
+ public:
+  /// `robot`: the hardware, for its measured wrench (if it has a sensor).
+  StateSampler(const pipeline::Wrapper<Command>& wrapper, hardware::HardwareInterface& robot);
+
+  /// The cycle `record` reported, the joint state it measured (`measured`) and `stamp`; on the
+  /// control thread, after the cycle. No allocation.
+  void fill(const hardware::CycleRecord& record, const JointState& measured,
+            transport::Stamp stamp, StateSample& sample) noexcept;
+
+ private:
+  const pipeline::Wrapper<Command>& wrapper_;
+  hardware::HardwareInterface& robot_;
+  /// The pose of the measured joints while the controller is inactive (its own model data then
+  /// stays where the last active cycle left it).
+  model::Data inactive_pose_;
+};
+
+transport::HostState hostState(pipeline::WrapperState state);
+
+/// The state topic's message of `sample` (allocates: off the control thread).
+transport::ControllerStateMessage stateMessage(const StateSample& sample,
+                                               const pipeline::ResolvedController& resolved);
+
+extern template class StateSampler<CartesianCommand>;
+extern template class StateSampler<JointCommand>;
+
+}  // namespace comply::host
