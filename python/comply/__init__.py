@@ -14,8 +14,32 @@ truncated, info). frenet_frame() and darboux_frame() build task frames (x y z w)
                                   orientation=s["tcp_orientation"],
                                   stiffness_translational=[3000, 3000, 500])
     print(client.outcome(stamp))
+
+read_recording(path) reads a recording (MCAP) into numpy columns per topic in pure Python
+(numpy, zstandard), so it works where the C++ extension is not built:
+
+    rec = comply.read_recording("run.mcap")
+    rec["/comply/state"]["position"], rec["/comply/state"].log_time, rec.truncated
 """
 
-from ._comply import Client, Sim, darboux_frame, frenet_frame
+from .recording import Recording, RecordingError, Topic, read_recording
 
-__all__ = ["Client", "Sim", "darboux_frame", "frenet_frame"]
+_EXTENSION_NAMES = ["Client", "Sim", "darboux_frame", "frenet_frame"]
+__all__ = ["Recording", "RecordingError", "Topic", "read_recording"]
+
+try:
+    from ._comply import Client, Sim, darboux_frame, frenet_frame
+    __all__ += _EXTENSION_NAMES
+except ModuleNotFoundError as _missing:
+    # Only the extension's absence is forgiven (a source checkout, a dataset machine): the
+    # recording reader does not need it. An extension that is there but fails to load raises.
+    if _missing.name != f"{__name__}._comply":
+        raise
+    _extension_error = _missing
+
+    def __getattr__(name):
+        if name in _EXTENSION_NAMES:
+            raise ImportError(f"comply.{name} needs the C++ extension comply._comply, which is "
+                              f"not on this path (build the comply_python target and put "
+                              f"build/python on PYTHONPATH)") from _extension_error
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -172,7 +172,7 @@ py::object Client::state(double timeout_s) {
   }
   py::dict state = toDict(*state_);
   state["age"] = std::chrono::duration<double>(SteadyClock::now() - state_received_).count();
-  return std::move(state);
+  return state;
 }
 
 py::object Client::diagnostics(double timeout_s) {

@@ -26,7 +26,14 @@ class DdsHarness final : public HostHarness {
   void start(const std::string& name) override {
     const int domain = randomDomain();
     name_ = name;
-    process_ = std::make_unique<Process>(hostArgs(domain, name));
+    std::vector<std::string> args = hostArgs(domain, name);
+    if (!record_path_.empty()) {
+      args.insert(args.end(), {"--record", record_path_});
+    }
+    if (duration_s_ > 0.0) {
+      args.insert(args.end(), {"--duration", std::to_string(duration_s_)});
+    }
+    process_ = std::make_unique<Process>(args);
     client_ = std::make_unique<Client>(domain, name);
   }
   bool send(const transport::CartesianCommandMessage& message, int publisher) override {
@@ -102,6 +109,8 @@ class InProcessHarness final : public HostHarness {
     options.transport = "in_process";
     options.name = name;
     options.priority = 0;
+    options.record_path = record_path_;
+    options.duration_s = duration_s_;
     const pipeline::WrapperConfig config =
         host::simControllerConfig(options.robot, "", options.config_file);
     host_ = std::thread([this, options, config] {

@@ -30,6 +30,12 @@ class HostHarness {
 
   /// Starts host `name` (config/sim/cartesian_impedance.yaml on a simulated fr3).
   virtual void start(const std::string& name) = 0;
+  /// Before start(): the host records to `path` (--record) and, with `duration_s` > 0, stops by
+  /// itself after that long (--duration): exactly duration_s x 1 kHz cycles.
+  void setRecording(std::string path, double duration_s) {
+    record_path_ = std::move(path);
+    duration_s_ = duration_s;
+  }
   /// Readies publisher `publisher` (1, 2, ...: each a writer of its own) and waits until the host
   /// has accounted a no-op command of each kind from it: nothing it sends later is lost to
   /// discovery. It may take the command topics (the publisher rule). False if the host never
@@ -61,6 +67,8 @@ class HostHarness {
   virtual int stop() = 0;
 
  protected:
+  std::string record_path_;
+  double duration_s_ = 0.0;
   /// Makes `publisher`'s writers and waits until they matched the host; false on timeout.
   virtual bool open(int publisher) = 0;
 

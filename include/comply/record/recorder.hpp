@@ -53,7 +53,9 @@ class RecordLane {
   /// recordAs<T>().
   template <typename T>
   bool emplace(std::uint16_t channel, std::int64_t log_time_ns, const T& value) noexcept {
-    static_assert(std::is_nothrow_copy_constructible_v<T> && std::is_trivially_destructible_v<T>);
+    // Eigen's copies do not say noexcept, but fixed-size ones cannot throw: only the type's
+    // destructor must be trivial, since the lane never runs one.
+    static_assert(std::is_copy_constructible_v<T> && std::is_trivially_destructible_v<T>);
     static_assert(alignof(T) <= kAlignment);
     void* slot = reserve(channel, log_time_ns, sizeof(T));
     if (slot == nullptr) {
