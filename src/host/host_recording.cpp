@@ -1,6 +1,6 @@
 // The channels of a host's recording and the encoding of its records (see host_recording.hpp).
 
-#include "host_recording.hpp"
+#include "comply/host/host_recording.hpp"
 
 #include <filesystem>
 

@@ -1,6 +1,6 @@
 // Filling a StateSample after a cycle (see state_sample.hpp).
 
-#include "state_sample.hpp"
+#include "comply/host/state_sample.hpp"
 
 #include <cmath>
 

@@ -8,7 +8,7 @@
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/transport/messages.hpp"
-#include "../host_recording.hpp"
+#include "comply/host/host_recording.hpp"
 #include "live_observer.hpp"
 
 namespace comply::host {

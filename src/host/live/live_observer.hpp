@@ -18,8 +18,8 @@
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/transport/messages.hpp"
-#include "../host_recording.hpp"
-#include "../state_sample.hpp"
+#include "comply/host/host_recording.hpp"
+#include "comply/host/state_sample.hpp"
 
 namespace comply::host {
 

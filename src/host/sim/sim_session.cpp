@@ -13,7 +13,7 @@
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/sim/simulated_clock.hpp"
-#include "../host_recording.hpp"
+#include "comply/host/host_recording.hpp"
 #include "progress_bar.hpp"
 #include "sim_crash_guard.hpp"
 #include "sim_pictures.hpp"

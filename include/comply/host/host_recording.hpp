@@ -22,7 +22,7 @@
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/record/recorder.hpp"
 #include "comply/transport/messages.hpp"
-#include "state_sample.hpp"
+#include "comply/host/state_sample.hpp"
 
 namespace comply::host {
 
