@@ -105,6 +105,14 @@ CLI::App* addSimCommand(CLI::App& app, SimOptions& options) {
   return command;
 }
 
+CLI::App* addInspectCommand(CLI::App& app, InspectOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "inspect", "what a recording (MCAP) holds: channels, counts, rates, time span, drops");
+  command->add_option("file", options.file, "the .mcap file")->required();
+  command->add_flag("--json", options.json, "one JSON object instead of the table");
+  return command;
+}
+
 CLI::App* addSchemaCommand(CLI::App& app, SchemaOptions& options) {
   CLI::App* command = app.add_subcommand(
       "schema", "print the command schema (docs/command-options.md, msg/*.msg are its output)");

@@ -5,6 +5,7 @@
 #include "bench_command.hpp"
 #include "codegen_command.hpp"
 #include "plugin_command.hpp"
+#include "inspect_command.hpp"
 #include "schema_command.hpp"
 #include "sim_command.hpp"
 #include "validate_command.hpp"
@@ -23,6 +24,7 @@ CLI::Validator finiteIn(double low, double high);
 CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options);
 CLI::App* addValidateCommand(CLI::App& app, ValidateOptions& options);
 CLI::App* addSimCommand(CLI::App& app, SimOptions& options);
+CLI::App* addInspectCommand(CLI::App& app, InspectOptions& options);
 CLI::App* addSchemaCommand(CLI::App& app, SchemaOptions& options);
 /// `comply codegen simulink`; returns the `simulink` subcommand.
 CLI::App* addCodegenCommand(CLI::App& app, CodegenOptions& options);

@@ -7,6 +7,7 @@
 //   comply run --config controller.yaml --sim [--robot R] [--rate HZ] [--domain N] [--name NAME]
 //   comply send --json '{"position": [...]}' | --file F [--rate HZ]
 //   comply echo [state|diagnostics]
+//   comply inspect FILE [--json]
 //   comply schema [--format markdown|json|msg|idl] [--kind cartesian|joint]
 //   comply codegen simulink [--out DIR]
 //   comply plugin new NAME --kind joint|cartesian --lang cpp|c [--out DIR]
@@ -33,6 +34,7 @@ int main(int argc, char** argv) {
   ValidateOptions validate;
   SimOptions sim;
   SchemaOptions schema;
+  InspectOptions inspect;
   ConfigOptions config;
   CodegenOptions codegen;
   PluginNewOptions plugin_new;
@@ -42,6 +44,7 @@ int main(int argc, char** argv) {
   const comply::experiments::Commands experiments = comply::experiments::addCommands(app);
   const LiveCommands live = addLiveCommands(app);
   CLI::App* schema_command = addSchemaCommand(app, schema);
+  CLI::App* inspect_command = addInspectCommand(app, inspect);
   CLI::App* config_command = addConfigCommand(app, config);
   CLI::App* codegen_simulink = addCodegenCommand(app, codegen);
   CLI::App* plugin_new_command = addPluginCommand(app, plugin_new);
@@ -67,6 +70,9 @@ int main(int argc, char** argv) {
     }
     if (experiments.parsed()) {
       return experiments.run(std::cout, std::cerr);
+    }
+    if (inspect_command->parsed()) {
+      return inspectCommand(inspect, std::cout, std::cerr);
     }
     if (schema_command->parsed()) {
       return schemaCommand(schema, std::cout, std::cerr);

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <set>
+#include <sys/wait.h>
 
 #include "comply/record/mcap_reader.hpp"
 #include "live_harness.hpp"
@@ -114,6 +115,20 @@ nlohmann::json readWithNode(const fs::path& path, int messages) {
   return nlohmann::json::parse(text);
 }
 
+/// `comply inspect` on `path`: its exit code and what it printed.
+std::pair<int, std::string> inspect(const fs::path& path) {
+  const std::string command = kComply + " inspect '" + path.string() + "' 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string text;
+  char buffer[4096];
+  std::size_t n = 0;
+  while (pipe != nullptr && (n = fread(buffer, 1, sizeof buffer, pipe)) > 0) {
+    text.append(buffer, n);
+  }
+  const int status = pipe != nullptr ? pclose(pipe) : -1;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
+}
+
 bool nodeAvailable() { return std::system("node --version > /dev/null 2>&1") == 0; }
 
 TEST_P(LiveHostOn, RecordsEveryCycleCommandAndOutcome) {
@@ -170,6 +185,12 @@ TEST_P(LiveHostOn, RecordsEveryCycleCommandAndOutcome) {
   EXPECT_EQ(channels.outcome_stamps.size(), channels.command_stamps.size());
   EXPECT_EQ(channels.recording.at("records_dropped"), "0");
   EXPECT_GT(channels.counts.at(prefix + "/diagnostics"), 0U);
+  // `comply inspect` lists the same counts and the drops.
+  const auto [inspect_code, inspect_text] = inspect(path);
+  EXPECT_EQ(inspect_code, 0) << inspect_text;
+  EXPECT_NE(inspect_text.find(prefix + "/cycle"), std::string::npos) << inspect_text;
+  EXPECT_NE(inspect_text.find(std::to_string(cycles)), std::string::npos) << inspect_text;
+  EXPECT_NE(inspect_text.find("dropped records: 0"), std::string::npos) << inspect_text;
   std::cerr << "recorded " << channels.contents.messages << " messages in "
             << fs::file_size(path) / 1000 << " kB; writer thread CPU "
             << channels.recording.at("writer_cpu_s") << " s for " << seconds << " s\n";
@@ -245,6 +266,10 @@ TEST(LiveRecording, AHostKilledMidRecordingLeavesItsCompleteChunks) {
   for (std::uint64_t i = 0; i < cycles; ++i) {
     ASSERT_EQ(channels.cycles[i], i);  // the first cycles, whole and in order
   }
+  const auto [inspect_code, inspect_text] = inspect(path);
+  EXPECT_EQ(inspect_code, 1) << inspect_text;  // incomplete, but listed
+  EXPECT_NE(inspect_text.find("INCOMPLETE"), std::string::npos) << inspect_text;
+  EXPECT_NE(inspect_text.find(std::to_string(cycles)), std::string::npos) << inspect_text;
   if (!nodeAvailable()) {
     GTEST_SKIP() << "no node: the independent reader's check did not run";
   }

@@ -10,6 +10,7 @@
 #include <iomanip>
 #include <mutex>
 #include <ostream>
+#include <sstream>
 #include <thread>
 
 #include "comply/hardware/control_loop.hpp"
@@ -183,7 +184,7 @@ int runWith(const LiveHostOptions& options,
     recording = std::make_unique<HostRecording>(
         options.record_path, resolved, options.name,
         record::StringMap{{"host", "comply run"},
-                          {"rate_hz", std::to_string(options.rate_hz)},
+                          {"rate_hz", (std::ostringstream() << options.rate_hz).str()},
                           {"hardware", backend.description}});
     observer.setRecording(recording.get());
     intake.setRecording(recording.get());
