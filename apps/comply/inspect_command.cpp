@@ -73,6 +73,8 @@ int inspectCommand(const InspectOptions& options, std::ostream& out, std::ostrea
     document["stopped"] = contents.stopped;
     document["chunks"] = contents.chunks;
     document["messages"] = contents.messages;
+    document["chunk_bytes"] = contents.chunk_bytes;
+    document["uncompressed_chunk_bytes"] = contents.uncompressed_chunk_bytes;
     document["start_ns"] = first;
     document["end_ns"] = last;
     document["channels"] = nlohmann::json::array();
@@ -96,6 +98,13 @@ int inspectCommand(const InspectOptions& options, std::ostream& out, std::ostrea
       << static_cast<double>(file_bytes) / 1e6 << " MB, " << contents.messages << " messages in "
       << contents.chunks << " chunks, written by " << contents.library << " (profile "
       << contents.profile << ")\n";
+  if (contents.uncompressed_chunk_bytes > contents.chunk_bytes) {
+    out << "chunks compressed " << std::setprecision(1)
+        << static_cast<double>(contents.uncompressed_chunk_bytes) /
+               static_cast<double>(std::max<std::uint64_t>(contents.chunk_bytes, 1))
+        << "x: " << static_cast<double>(contents.uncompressed_chunk_bytes) / 1e6
+        << " MB of messages\n";
+  }
   if (any) {
     out << "time span: " << seconds(last - first) << " s (log time " << seconds(first) << " to "
         << seconds(last) << " s)\n";

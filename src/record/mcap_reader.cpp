@@ -195,6 +195,8 @@ class Reader {
                       contents_.stopped);
     }
     ++contents_.chunks;
+    contents_.chunk_bytes += records.size();
+    contents_.uncompressed_chunk_bytes += plain.size();
     return true;
   }
 

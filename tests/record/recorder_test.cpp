@@ -13,6 +13,8 @@
 #include <filesystem>
 #include <thread>
 
+#include <Eigen/Geometry>
+
 #include "allocation_counter.hpp"
 #include "comply/record/mcap_reader.hpp"
 #include "comply/record/recorder.hpp"
@@ -141,6 +143,48 @@ TEST(Recorder, AFullLaneDropsWholeRecordsAndCountsThem) {
   EXPECT_EQ(contents.messages, accepted);
   EXPECT_EQ(metadataCount(contents, "records_dropped"), refused);
   EXPECT_EQ(metadataCount(contents, "control.records_dropped"), refused);
+}
+
+/// A record that is not trivially copyable (Eigen's types are not), as a cycle's is.
+struct EigenRecord {
+  Eigen::Quaterniond orientation;
+  Eigen::Matrix<double, 7, 1> position;
+  std::uint64_t index;
+};
+
+TEST(Recorder, AnEmplacedRecordReadsBackAsBuilt) {
+  const fs::path path = scratch("emplace.mcap");
+  Recorder recorder({.path = path.string(), .mcap = {}});
+  const auto schema = recorder.addSchema("test/msg/Sample", "ros2msg", "uint64 index\n");
+  std::vector<EigenRecord> seen;
+  const auto channel =
+      recorder.addChannel(schema, "/eigen", [&](std::span<const std::uint8_t> raw, auto& out) {
+        seen.push_back(recordAs<EigenRecord>(raw));  // the writer thread
+        out.assign(8, 0);
+      });
+  RecordLane& control = recorder.addLane("control", 1 << 16);
+  recorder.start();
+  testing::AllocationCounter counter;
+  counter.start();
+  for (std::uint64_t i = 0; i < 100; ++i) {
+    const auto angle = static_cast<double>(i) * 0.01;
+    const Eigen::Quaterniond q(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()));
+    while (!control.emplace<EigenRecord>(channel, static_cast<std::int64_t>(i), q,
+                                         Eigen::Matrix<double, 7, 1>::Constant(angle), i)) {
+      std::this_thread::yield();
+    }
+  }
+  EXPECT_EQ(counter.stop(), 0U);
+  recorder.stop();
+  ASSERT_EQ(seen.size(), 100U);
+  for (std::uint64_t i = 0; i < 100; ++i) {
+    const auto angle = static_cast<double>(i) * 0.01;
+    EXPECT_EQ(seen[i].index, i);
+    EXPECT_DOUBLE_EQ(seen[i].position[6], angle);
+    EXPECT_NEAR(seen[i].orientation.angularDistance(
+                    Eigen::Quaterniond(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()))),
+                0.0, 1e-12);
+  }
 }
 
 TEST(Recorder, APushNeitherAllocatesNorBlocks) {

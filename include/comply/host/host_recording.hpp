@@ -51,8 +51,8 @@ class HostRecording {
   template <typename Command>
   void cycle(const StateSample& state, const pipeline::BusOf<Command>& in_force, double compute_s,
              double start_lateness_s) noexcept {
-    control_.emplace(cycle_channel_, state.wall.nanoseconds(),
-                     RecordedCycle<Command>{state, in_force, compute_s, start_lateness_s});
+    control_.emplace<RecordedCycle<Command>>(cycle_channel_, state.wall.nanoseconds(), state,
+                                             in_force, compute_s, start_lateness_s);
   }
 
   // The command thread.

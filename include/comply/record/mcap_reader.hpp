@@ -51,6 +51,8 @@ struct McapContents {
   std::optional<McapStatistics> statistics;  ///< from the summary, when the file has one
   std::size_t chunks = 0;                     ///< complete chunks read
   std::uint64_t messages = 0;                 ///< messages read (in complete chunks)
+  std::uint64_t chunk_bytes = 0;              ///< the complete chunks as stored
+  std::uint64_t uncompressed_chunk_bytes = 0;  ///< ... and decompressed
   /// The footer and the closing magic were found: the file was closed properly.
   bool complete = false;
   /// Where and why reading stopped early ("" when complete), e.g. "incomplete chunk at byte N".

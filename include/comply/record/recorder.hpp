@@ -25,6 +25,7 @@
 #include <string>
 #include <thread>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "comply/record/mcap_writer.hpp"
@@ -48,20 +49,20 @@ class RecordLane {
     static_assert(std::is_trivially_copyable_v<T>, "a record is copied as bytes");
     return push(channel, log_time_ns, &value, sizeof(T));
   }
-  /// `value` copy-constructed into the lane, for a type that is not trivially copyable but
-  /// whose copy does not allocate (Eigen's fixed-size types); the encoder reads it back with
-  /// recordAs<T>().
-  template <typename T>
-  bool emplace(std::uint16_t channel, std::int64_t log_time_ns, const T& value) noexcept {
-    // Eigen's copies do not say noexcept, but fixed-size ones cannot throw: only the type's
-    // destructor must be trivial, since the lane never runs one.
-    static_assert(std::is_copy_constructible_v<T> && std::is_trivially_destructible_v<T>);
+  /// A T built in the lane from `args` (T{args...}), for a type that is not trivially copyable
+  /// but whose construction cannot fail or allocate (Eigen's fixed-size types): no temporary,
+  /// and a dropped record costs no copy. The encoder reads it back with recordAs<T>().
+  template <typename T, typename... Args>
+  bool emplace(std::uint16_t channel, std::int64_t log_time_ns, Args&&... args) noexcept {
+    // The lane never runs a destructor; Eigen's copies do not say noexcept, but fixed-size ones
+    // cannot throw.
+    static_assert(std::is_trivially_destructible_v<T>);
     static_assert(alignof(T) <= kAlignment);
     void* slot = reserve(channel, log_time_ns, sizeof(T));
     if (slot == nullptr) {
       return false;
     }
-    ::new (slot) T(value);
+    ::new (slot) T{std::forward<Args>(args)...};
     commit();
     return true;
   }
