@@ -77,10 +77,25 @@ transport::ControllerStateMessage stateMessage(const StateSample& sample,
 }
 
 
+transport::CommandOutcomeMessage outcomeMessage(const pipeline::CommandOutcome& outcome) {
+  transport::CommandOutcomeMessage message;
+  message.stamp = transport::Stamp::fromNanoseconds(outcome.stamp_ns);
+  message.command_kind = outcome.kind == pipeline::CommandKind::kCartesian
+                             ? transport::WireCommandKind::kCartesian
+                             : transport::WireCommandKind::kJoint;
+  message.outcome = outcome.applied ? transport::Outcome::kApplied : transport::Outcome::kRejected;
+  message.reason = static_cast<transport::Reason>(outcome.reason);
+  message.cycle = outcome.cycle;
+  message.received = transport::Stamp::fromNanoseconds(outcome.received_ns);
+  message.applied = transport::Stamp::fromNanoseconds(outcome.applied_ns);
+  message.message = outcome.message;
+  return message;
+}
+
 template <typename Command>
 StateSampler<Command>::StateSampler(const pipeline::Wrapper<Command>& wrapper,
                                     hardware::HardwareInterface& robot)
-    : wrapper_(wrapper), robot_(robot), inactive_pose_(wrapper.controller().model()) {}
+    : wrapper_(wrapper), robot_(&robot), inactive_pose_(wrapper.controller().model()) {}
 
 template <typename Command>
 void StateSampler<Command>::fill(const hardware::CycleRecord& record, const JointState& measured,
@@ -113,7 +128,7 @@ void StateSampler<Command>::fill(const hardware::CycleRecord& record, const Join
   s.tcp_twist =
       data.jacobian.cols() == dof ? Vector6d(data.jacobian * s.joints.velocity) : Vector6d::Zero();
   // The control thread is the one that reads the hardware: the wrench is read here, in the cycle.
-  if (!robot_.readWrench(s.contact_wrench)) {
+  if (robot_ == nullptr || !robot_->readWrench(s.contact_wrench)) {
     s.contact_wrench.setZero();
   }
   const auto& bus = std::get<pipeline::BusOf<Command>>(controller.activeCommand());

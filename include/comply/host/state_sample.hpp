@@ -7,6 +7,7 @@
 #include "comply/core/state.hpp"
 #include "comply/hardware/control_loop.hpp"
 #include "comply/model/data.hpp"
+#include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/transport/messages.hpp"
@@ -45,7 +46,7 @@ class StateSampler {
 
  private:
   const pipeline::Wrapper<Command>& wrapper_;
-  hardware::HardwareInterface& robot_;
+  hardware::HardwareInterface* robot_;
   /// The pose of the measured joints while the controller is inactive (its own model data then
   /// stays where the last active cycle left it).
   model::Data inactive_pose_;
@@ -56,6 +57,9 @@ transport::HostState hostState(pipeline::WrapperState state);
 /// The state topic's message of `sample` (allocates: off the control thread).
 transport::ControllerStateMessage stateMessage(const StateSample& sample,
                                                const pipeline::ResolvedController& resolved);
+
+/// A command gate's outcome as the wire's CommandOutcome.
+transport::CommandOutcomeMessage outcomeMessage(const pipeline::CommandOutcome& outcome);
 
 extern template class StateSampler<CartesianCommand>;
 extern template class StateSampler<JointCommand>;

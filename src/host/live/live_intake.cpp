@@ -9,10 +9,6 @@
 namespace comply::host {
 namespace {
 
-transport::Stamp stampOf(std::int64_t nanoseconds) {
-  return transport::Stamp::fromNanoseconds(nanoseconds);
-}
-
 template <typename Command, typename Message>
 void offerSample(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gate,
                  const transport::Sample<Message>& sample, pipeline::CommandKind kind) {
@@ -40,21 +36,6 @@ void offerSample(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gat
 }
 
 }  // namespace
-
-transport::CommandOutcomeMessage outcomeMessage(const pipeline::CommandOutcome& outcome) {
-  transport::CommandOutcomeMessage message;
-  message.stamp = stampOf(outcome.stamp_ns);
-  message.command_kind = outcome.kind == pipeline::CommandKind::kCartesian
-                             ? transport::WireCommandKind::kCartesian
-                             : transport::WireCommandKind::kJoint;
-  message.outcome = outcome.applied ? transport::Outcome::kApplied : transport::Outcome::kRejected;
-  message.reason = static_cast<transport::Reason>(outcome.reason);
-  message.cycle = outcome.cycle;
-  message.received = stampOf(outcome.received_ns);
-  message.applied = stampOf(outcome.applied_ns);
-  message.message = outcome.message;
-  return message;
-}
 
 std::vector<transport::CommandOutcomeMessage> outcomeMessages(
     const std::vector<pipeline::CommandOutcome>& outcomes) {

@@ -26,8 +26,7 @@ static_assert(static_cast<int>(transport::Reason::kQueueFull) ==
                   static_cast<int>(pipeline::CommandReason::kInactive) &&
               transport::kReasonCount == pipeline::kCommandReasonCount);
 
-/// A gate outcome as the wire's CommandOutcome.
-transport::CommandOutcomeMessage outcomeMessage(const pipeline::CommandOutcome& outcome);
+/// Gate outcomes as the wire's CommandOutcomes (outcomeMessage() of state_sample.hpp).
 std::vector<transport::CommandOutcomeMessage> outcomeMessages(
     const std::vector<pipeline::CommandOutcome>& outcomes);
 
