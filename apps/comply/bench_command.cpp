@@ -236,8 +236,8 @@ std::vector<BenchRow> benchWrapper(const BenchOptions& options, const std::strin
   std::vector<double> full_us;
   if (recording) {
     // Pushes into a full lane (its writer asleep): a drop must cost no more than a push.
-    record::Recorder stalled({.path = recording->path() + ".full", .mcap = {},
-                              .writer_period_s = 3600.0});
+    record::Recorder stalled(
+        {.path = recording->path() + ".full", .mcap = {}, .writer_period_s = 3600.0});
     const auto schema = stalled.addSchema("bench", "ros2msg", "");
     const auto channel = stalled.addChannel(schema, "/bench");
     record::RecordLane& lane = stalled.addLane("control", std::size_t{1} << 20);

@@ -4,8 +4,8 @@
 
 #include "bench_command.hpp"
 #include "codegen_command.hpp"
-#include "plugin_command.hpp"
 #include "inspect_command.hpp"
+#include "plugin_command.hpp"
 #include "schema_command.hpp"
 #include "sim_command.hpp"
 #include "validate_command.hpp"

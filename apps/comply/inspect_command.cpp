@@ -2,11 +2,10 @@
 
 #include "inspect_command.hpp"
 
-#include <nlohmann/json.hpp>
-
 #include <filesystem>
 #include <iomanip>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <ostream>
 
 #include "comply/record/mcap_reader.hpp"
@@ -25,8 +24,8 @@ double rateHz(const ChannelTally& tally) {
   if (tally.count < 2 || tally.last_ns <= tally.first_ns) {
     return 0.0;
   }
-  return static_cast<double>(tally.count - 1) / (1e-9 * static_cast<double>(tally.last_ns -
-                                                                            tally.first_ns));
+  return static_cast<double>(tally.count - 1) /
+         (1e-9 * static_cast<double>(tally.last_ns - tally.first_ns));
 }
 
 std::string seconds(std::uint64_t ns) {
@@ -113,8 +112,9 @@ int inspectCommand(const InspectOptions& options, std::ostream& out, std::ostrea
     out << "INCOMPLETE: " << contents.stopped
         << "; everything up to the last complete chunk is listed\n";
   }
-  out << "\n  " << std::left << std::setw(28) << "topic" << std::setw(34) << "type"
-      << std::right << std::setw(10) << "messages" << std::setw(12) << "rate [Hz]" << "\n";
+  out << "\n  " << std::left << std::setw(28) << "topic" << std::setw(34) << "type" << std::right
+      << std::setw(10) << "messages" << std::setw(12) << "rate [Hz]"
+      << "\n";
   for (const record::McapChannelInfo& channel : contents.channels) {
     const ChannelTally tally = tallies[channel.id];
     out << "  " << std::left << std::setw(28) << channel.topic << std::setw(34)

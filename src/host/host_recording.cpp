@@ -100,7 +100,9 @@ HostRecording::HostRecording(const std::string& path,
   recorder_.start();
 }
 
-HostRecording::~HostRecording() { stop(); }
+HostRecording::~HostRecording() {
+  stop();
+}
 
 void HostRecording::command(const transport::CartesianCommandMessage& message,
                             transport::Stamp received) {
@@ -126,6 +128,8 @@ void HostRecording::diagnostics(const transport::DiagnosticsMessage& message) {
   push(publisher_, diagnostics_channel_, message, message.header.stamp, publisher_bytes_);
 }
 
-void HostRecording::stop() { recorder_.stop(); }
+void HostRecording::stop() {
+  recorder_.stop();
+}
 
 }  // namespace comply::host

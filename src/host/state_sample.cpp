@@ -76,7 +76,6 @@ transport::ControllerStateMessage stateMessage(const StateSample& sample,
   return message;
 }
 
-
 transport::CommandOutcomeMessage outcomeMessage(const pipeline::CommandOutcome& outcome) {
   transport::CommandOutcomeMessage message;
   message.stamp = transport::Stamp::fromNanoseconds(outcome.stamp_ns);

@@ -176,8 +176,7 @@ class Reader {
       const std::size_t got =
           ZSTD_decompress(buffer_.data(), buffer_.size(), records.data(), records.size());
       if (ZSTD_isError(got) != 0 || got != uncompressed_size) {
-        throw McapError(path_ + ": chunk at byte " + std::to_string(at) +
-                        " does not decompress: " +
+        throw McapError(path_ + ": chunk at byte " + std::to_string(at) + " does not decompress: " +
                         (ZSTD_isError(got) != 0 ? ZSTD_getErrorName(got) : "wrong size"));
       }
       plain = buffer_;

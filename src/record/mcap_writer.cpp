@@ -100,8 +100,7 @@ std::uint16_t McapWriter::addSchema(std::string_view name, std::string_view enco
 }
 
 std::uint16_t McapWriter::addChannel(std::uint16_t schema_id, std::string_view topic,
-                                     std::string_view message_encoding,
-                                     const StringMap& metadata) {
+                                     std::string_view message_encoding, const StringMap& metadata) {
   const auto id = static_cast<std::uint16_t>(channels_.size());
   channels_.push_back({schema_id, std::string(topic), std::string(message_encoding), metadata, 0});
   std::vector<std::uint8_t> bytes;
@@ -140,7 +139,8 @@ void McapWriter::write(std::uint16_t channel_id, std::uint64_t log_time_ns,
   chunk_.insert(chunk_.end(), data.begin(), data.end());
   closeRecord(chunk_, at);
 
-  message_start_time_ = message_count_ == 0 ? log_time_ns : std::min(message_start_time_, log_time_ns);
+  message_start_time_ =
+      message_count_ == 0 ? log_time_ns : std::min(message_start_time_, log_time_ns);
   message_end_time_ = std::max(message_end_time_, log_time_ns);
   ++message_count_;
   ++channel_message_counts_[channel_id];
@@ -153,8 +153,8 @@ void McapWriter::writeChunk() {
   std::span<const std::uint8_t> records(chunk_);
   if (options_.compression == Compression::kZstd) {
     compressed_.resize(ZSTD_compressBound(chunk_.size()));
-    const std::size_t size = ZSTD_compress2(static_cast<ZSTD_CCtx*>(zstd_), compressed_.data(), compressed_.size(),
-                                            chunk_.data(), chunk_.size());
+    const std::size_t size = ZSTD_compress2(static_cast<ZSTD_CCtx*>(zstd_), compressed_.data(),
+                                            compressed_.size(), chunk_.data(), chunk_.size());
     if (ZSTD_isError(size) != 0) {
       throw McapError("recording to " + path_ + ": zstd: " + ZSTD_getErrorName(size));
     }
@@ -203,7 +203,9 @@ void McapWriter::addMetadata(std::string name, StringMap metadata) {
   metadata_.emplace_back(std::move(name), std::move(metadata));
 }
 
-void McapWriter::flush() { writeChunk(); }
+void McapWriter::flush() {
+  writeChunk();
+}
 
 void McapWriter::close() {
   if (fd_ < 0) {

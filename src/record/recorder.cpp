@@ -22,7 +22,9 @@ static_assert(sizeof(EntryHead) == 16);
 constexpr std::uint16_t kPadding = 1;
 
 constexpr std::size_t kSlot = 64;
-constexpr std::size_t roundUp(std::size_t size) { return (size + kSlot - 1) & ~(kSlot - 1); }
+constexpr std::size_t roundUp(std::size_t size) {
+  return (size + kSlot - 1) & ~(kSlot - 1);
+}
 
 double threadCpuSeconds() {
   timespec now{};
@@ -45,7 +47,7 @@ RecordLane::RecordLane(std::string name, std::size_t bytes) : name_(std::move(na
 }
 
 void* RecordLane::reserve(std::uint16_t channel, std::int64_t log_time_ns,
-                         std::size_t size) noexcept {
+                          std::size_t size) noexcept {
   if (accepting_ == nullptr || !accepting_->load(std::memory_order_relaxed)) {
     return nullptr;
   }
@@ -111,7 +113,9 @@ Recorder::Recorder(RecorderOptions options)
       options_(std::move(options)),
       writer_(std::make_unique<McapWriter>(options_.path, options_.mcap)) {}
 
-Recorder::~Recorder() { stop(); }
+Recorder::~Recorder() {
+  stop();
+}
 
 std::uint16_t Recorder::addSchema(std::string_view name, std::string_view encoding,
                                   std::string_view text) {

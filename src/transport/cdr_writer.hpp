@@ -4,8 +4,8 @@
 // strings as a uint32 length with the NUL, sequences as a uint32 count; the message padded to a
 // multiple of 4 bytes. Private to the transport.
 
-#include <cstdint>
 #include <bit>
+#include <cstdint>
 #include <cstring>
 #include <string_view>
 #include <vector>

@@ -1,11 +1,12 @@
 // A type's definition with its dependencies, as rosbag2 writes it into an MCAP schema.
 
+#include "message_definitions.hpp"
+
 #include <sstream>
 #include <stdexcept>
 #include <vector>
 
 #include "comply/transport/cdr.hpp"
-#include "message_definitions.hpp"
 
 namespace comply::transport {
 namespace {
@@ -16,8 +17,8 @@ constexpr std::string_view kHeader = "builtin_interfaces/Time stamp\nstring fram
 
 bool isPrimitive(std::string_view type) {
   static constexpr std::string_view kPrimitives[] = {
-      "bool",   "byte",   "char",  "int8",   "uint8",   "int16",   "uint16", "int32",
-      "uint32", "int64",  "uint64", "float32", "float64", "string", "wstring"};
+      "bool",   "byte",  "char",   "int8",    "uint8",   "int16",  "uint16", "int32",
+      "uint32", "int64", "uint64", "float32", "float64", "string", "wstring"};
   for (const std::string_view primitive : kPrimitives) {
     if (type == primitive || type.starts_with(std::string(primitive) + "<=")) {
       return true;

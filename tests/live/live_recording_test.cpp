@@ -6,14 +6,14 @@
 //
 // COMPLY_RECORD_SECONDS sets the run's length (default 4 s; the `long` test runs a minute).
 
-#include <nlohmann/json.hpp>
+#include <sys/wait.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <set>
-#include <sys/wait.h>
 
 #include "comply/record/mcap_reader.hpp"
 #include "live_harness.hpp"
@@ -59,8 +59,8 @@ std::uint64_t cycleIndex(std::span<const std::uint8_t> cdr) {
 
 struct Channels {
   std::map<std::string, std::uint64_t> counts;
-  std::vector<std::uint64_t> cycles;            // ControllerState.cycle of every cycle record
-  std::multiset<std::int64_t> command_stamps;   // both command topics
+  std::vector<std::uint64_t> cycles;           // ControllerState.cycle of every cycle record
+  std::multiset<std::int64_t> command_stamps;  // both command topics
   std::multiset<std::int64_t> outcome_stamps;
   std::map<std::string, std::string> recording;  // the comply_recording metadata
   record::McapContents contents;
@@ -129,7 +129,9 @@ std::pair<int, std::string> inspect(const fs::path& path) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
 }
 
-bool nodeAvailable() { return std::system("node --version > /dev/null 2>&1") == 0; }
+bool nodeAvailable() {
+  return std::system("node --version > /dev/null 2>&1") == 0;
+}
 
 TEST_P(LiveHostOn, RecordsEveryCycleCommandAndOutcome) {
   const double seconds = recordSeconds();
@@ -231,10 +233,10 @@ TEST_P(LiveHostOn, RecordsEveryCycleCommandAndOutcome) {
   // The outcomes say applied or stale, as the host decided.
   std::size_t stale = 0;
   for (const nlohmann::json& entry : node.at("messages").at(prefix + "/outcome")) {
-    stale += entry.at("data").at("reason").get<int>() ==
-                     static_cast<int>(transport::Reason::kStaleStamp)
-                 ? 1
-                 : 0;
+    stale +=
+        entry.at("data").at("reason").get<int>() == static_cast<int>(transport::Reason::kStaleStamp)
+            ? 1
+            : 0;
   }
   EXPECT_EQ(stale, sent.size() / 10);
   // A cycle record carries the gains in force: the controller file's stiffness.
@@ -277,6 +279,37 @@ TEST(LiveRecording, AHostKilledMidRecordingLeavesItsCompleteChunks) {
   ASSERT_FALSE(node.is_null());
   EXPECT_TRUE(node.at("truncated").get<bool>());
   EXPECT_EQ(node.at("counts").at("/rec_killed/cycle").get<std::uint64_t>(), cycles);
+}
+
+// A file-size limit reached mid-run (as a full disk would be): the recording stops with the
+// error named, the simulation runs to its end and succeeds, and what was written reads.
+TEST(LiveRecording, AFullDiskStopsTheRecordingNotTheRun) {
+  const fs::path path = scratch("limited.mcap");
+  // ulimit -f counts 512-byte blocks in sh: 1 MiB, reached by the recording's second chunk.
+  const std::string command = "ulimit -f 2048 && " + kComply + " sim --robot fr3 --config " +
+                              kSourceDir + "/config/sim/cartesian_impedance.yaml --task " +
+                              kSourceDir + "/examples/sim/press_on_table.yaml --no-plot --out '" +
+                              scratch("limited_sim").string() + "' --record '" + path.string() +
+                              "' 2>&1";
+  FILE* pipe = popen(("sh -c \"" + command + "\"").c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string text;
+  char buffer[4096];
+  std::size_t n = 0;
+  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) {
+    text.append(buffer, n);
+  }
+  const int status = pclose(pipe);
+  ASSERT_TRUE(WIFEXITED(status)) << text;
+  EXPECT_EQ(WEXITSTATUS(status), 0) << text;  // the run itself succeeded
+  EXPECT_NE(text.find("recording stopped early"), std::string::npos) << text;
+  EXPECT_NE(text.find("File too large"), std::string::npos) << text;
+  EXPECT_LE(fs::file_size(path), 1024U * 1024U);
+  // The log written beside it met the same limit, and the run says so.
+  EXPECT_NE(text.find("log.csv is incomplete"), std::string::npos) << text;
+  const record::McapContents contents = record::readMcap(path.string());
+  EXPECT_FALSE(contents.complete);
+  EXPECT_GT(contents.messages, 0U);
 }
 
 }  // namespace

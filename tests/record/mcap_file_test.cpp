@@ -118,7 +118,8 @@ TEST_P(McapFile, ChunksCloseAfterTheirTimeSpan) {
 TEST_P(McapFile, AFileCutAnywhereReadsItsCompleteChunks) {
   const fs::path closed = scratch("closed.mcap");
   const fs::path path = scratch("crashed.mcap");
-  const Written written = writeFile(closed, {.compression = GetParam(), .chunk_bytes = 4096}, &path);
+  const Written written =
+      writeFile(closed, {.compression = GetParam(), .chunk_bytes = 4096}, &path);
   std::ifstream in(path, std::ios::binary);
   const std::vector<char> whole{std::istreambuf_iterator<char>(in), {}};
   ASSERT_GT(written.chunks, 3U);
@@ -126,7 +127,8 @@ TEST_P(McapFile, AFileCutAnywhereReadsItsCompleteChunks) {
   std::uint64_t previous = 0;
   for (std::size_t cut = 8; cut <= whole.size(); cut += 97) {
     const fs::path cut_path = scratch("cut_part.mcap");
-    std::ofstream(cut_path, std::ios::binary).write(whole.data(), static_cast<std::streamsize>(cut));
+    std::ofstream(cut_path, std::ios::binary)
+        .write(whole.data(), static_cast<std::streamsize>(cut));
     const McapContents contents = readMcap(cut_path.string());
     EXPECT_FALSE(contents.complete);
     EXPECT_FALSE(contents.stopped.empty());

@@ -3,21 +3,21 @@
 // an unwritable path is refused at once; a file-size limit stops the recording with a named
 // error while the producer goes on pushing.
 
+#include "comply/record/recorder.hpp"
+
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <Eigen/Geometry>
 #include <array>
 #include <cstring>
 #include <filesystem>
 #include <thread>
 
-#include <Eigen/Geometry>
-
 #include "allocation_counter.hpp"
 #include "comply/record/mcap_reader.hpp"
-#include "comply/record/recorder.hpp"
 
 namespace comply::record {
 namespace {
@@ -225,8 +225,8 @@ TEST(Recorder, AFileSizeLimitStopsTheRecordingNotTheProducer) {
   if (child == 0) {
     const rlimit limit{64 * 1024, 64 * 1024};  // 64 KiB: reached within the first second
     setrlimit(RLIMIT_FSIZE, &limit);
-    Recorder recorder({.path = path.string(),
-                       .mcap = {.compression = Compression::kNone, .chunk_bytes = 8192}});
+    Recorder recorder(
+        {.path = path.string(), .mcap = {.compression = Compression::kNone, .chunk_bytes = 8192}});
     const auto schema = recorder.addSchema("test/msg/Sample", "ros2msg", "uint64 index\n");
     const auto samples = recorder.addChannel(schema, "/samples");
     RecordLane& control = recorder.addLane("control", 1 << 20);

@@ -111,12 +111,13 @@ TEST(TransportCdr, OversizedJointVectorIsReportedNotTruncated) {
       << samples[0].malformed;
 }
 
-
 // comply's own CDR encoder (what a recording stores) against CycloneDDS's serialisation of the
 // same message: byte for byte, for every message type, with every field away from its default
 // and vectors of uneven lengths so that each alignment rule is exercised.
 
-double value(std::mt19937& random) { return std::uniform_real_distribution<double>(-9, 9)(random); }
+double value(std::mt19937& random) {
+  return std::uniform_real_distribution<double>(-9, 9)(random);
+}
 
 template <std::size_t N>
 std::array<double, N> values(std::mt19937& random) {

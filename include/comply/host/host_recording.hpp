@@ -18,11 +18,11 @@
 #include <string>
 #include <vector>
 
+#include "comply/host/state_sample.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/record/recorder.hpp"
 #include "comply/transport/messages.hpp"
-#include "comply/host/state_sample.hpp"
 
 namespace comply::host {
 

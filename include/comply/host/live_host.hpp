@@ -27,7 +27,8 @@ struct LiveHostOptions {
   std::string network = "loopback";
   std::string name = "comply";
   int priority = 80;  ///< SCHED_FIFO priority of the control thread; 0: normal scheduling
-  std::string record_path;  ///< non-empty: record every cycle, command and outcome to this MCAP file
+  std::string
+      record_path;  ///< non-empty: record every cycle, command and outcome to this MCAP file
 };
 
 /// Runs the controller `config` (from controllerConfig() or simControllerConfig()) on the

@@ -3,10 +3,10 @@
 // driven by a task file, logged every cycle. Used by `comply sim`, the experiments and the tests.
 
 #include <filesystem>
-#include <optional>
 #include <iosfwd>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 

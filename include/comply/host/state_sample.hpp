@@ -41,8 +41,8 @@ class StateSampler {
 
   /// The cycle `record` reported, the joint state it measured (`measured`) and `stamp`; on the
   /// control thread, after the cycle. No allocation.
-  void fill(const hardware::CycleRecord& record, const JointState& measured,
-            transport::Stamp stamp, StateSample& sample) noexcept;
+  void fill(const hardware::CycleRecord& record, const JointState& measured, transport::Stamp stamp,
+            StateSample& sample) noexcept;
 
  private:
   const pipeline::Wrapper<Command>& wrapper_;

@@ -52,7 +52,7 @@ struct CycleParameters {
   JointVector torque_rate_limit;  ///< [N m/s]
   JointVector effort_limit;       ///< [N m]
   EffortSaturation effort_saturation = EffortSaturation::kClip;
-  JointVector fault_damping;      ///< [N m s/rad]
+  JointVector fault_damping;  ///< [N m s/rad]
   double frozen_state_timeout_s = 0.1;
   GainRampConfig gain_ramps;
   PassivityConfig passivity;

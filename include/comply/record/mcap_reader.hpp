@@ -48,10 +48,10 @@ struct McapContents {
   std::string library;
   std::vector<McapChannelInfo> channels;  ///< by id order of appearance
   std::vector<std::pair<std::string, StringMap>> metadata;
-  std::optional<McapStatistics> statistics;  ///< from the summary, when the file has one
-  std::size_t chunks = 0;                     ///< complete chunks read
-  std::uint64_t messages = 0;                 ///< messages read (in complete chunks)
-  std::uint64_t chunk_bytes = 0;              ///< the complete chunks as stored
+  std::optional<McapStatistics> statistics;    ///< from the summary, when the file has one
+  std::size_t chunks = 0;                      ///< complete chunks read
+  std::uint64_t messages = 0;                  ///< messages read (in complete chunks)
+  std::uint64_t chunk_bytes = 0;               ///< the complete chunks as stored
   std::uint64_t uncompressed_chunk_bytes = 0;  ///< ... and decompressed
   /// The footer and the closing magic were found: the file was closed properly.
   bool complete = false;

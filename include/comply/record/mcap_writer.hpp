@@ -12,8 +12,8 @@
 // after `chunk_span_ns` of log time, whichever comes first, which bounds what a crash can lose.
 //
 //   McapWriter writer("run.mcap", {});
-//   const std::uint16_t schema = writer.addSchema("comply_msgs/msg/ControllerState", "ros2msg", text);
-//   const std::uint16_t channel = writer.addChannel(schema, "/comply/state", "cdr", {});
+//   const std::uint16_t schema = writer.addSchema("comply_msgs/msg/ControllerState", "ros2msg",
+//   text); const std::uint16_t channel = writer.addChannel(schema, "/comply/state", "cdr", {});
 //   writer.write(channel, log_time_ns, log_time_ns, cdr_bytes);
 //   writer.close();
 //
@@ -42,8 +42,8 @@ std::string_view toString(Compression compression);  ///< "" or "zstd", as in th
 
 struct McapWriterOptions {
   Compression compression = Compression::kZstd;
-  std::size_t chunk_bytes = 1 << 20;             ///< close a chunk at this many record bytes
-  std::int64_t chunk_span_ns = 1'000'000'000;     ///< ... or after this much log time
+  std::size_t chunk_bytes = 1 << 20;           ///< close a chunk at this many record bytes
+  std::int64_t chunk_span_ns = 1'000'000'000;  ///< ... or after this much log time
   std::string profile = "ros2";
   std::string library = "comply";
   int zstd_level = 3;  ///< 1 (fastest) .. 19

@@ -100,7 +100,7 @@ class RecordLane {
   std::unique_ptr<std::uint8_t[], AlignedDelete> buffer_;
   std::size_t mask_ = 0;
   std::uint64_t reserved_tail_ = 0;  // the producer's: the tail once the reserved record commits
-  std::atomic<bool>* accepting_ = nullptr;  // the recorder's flag
+  std::atomic<bool>* accepting_ = nullptr;          // the recorder's flag
   alignas(64) std::atomic<std::uint64_t> head_{0};  // bytes consumed; written by the writer
   alignas(64) std::atomic<std::uint64_t> tail_{0};  // bytes produced; written by the producer
   std::atomic<std::uint64_t> pushed_{0};

@@ -204,8 +204,8 @@ int runWith(const LiveHostOptions& options,
     makeRealtime(options.priority > 1 ? options.priority - 1 : 0);
     readerThread(*transport, intake, io_running);
   });
-  PublisherContext<Command> context{options, *resolved,  wrapper,  observer,        gate,
-                                    *transport, period_s, recording.get()};
+  PublisherContext<Command> context{options, *resolved,  wrapper,  observer,
+                                    gate,    *transport, period_s, recording.get()};
   std::thread publisher([&] { publisherThread(context, io_running); });
   out << "comply run: " << resolved->robot.name << " with " << resolved->config.plugin << " at "
       << options.rate_hz << " Hz on " << backend.description << "; " << transport->describe()

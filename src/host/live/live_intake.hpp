@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "comply/host/host_recording.hpp"
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/transport/messages.hpp"
-#include "comply/host/host_recording.hpp"
 #include "live_observer.hpp"
 
 namespace comply::host {

@@ -1,6 +1,6 @@
 #pragma once
-// The diagnostics message of `comply run` (the state's is in state_sample.hpp), built on its publisher thread from what the
-// control thread and the intake report.
+// The diagnostics message of `comply run` (the state's is in state_sample.hpp), built on its
+// publisher thread from what the control thread and the intake report.
 
 #include <string>
 #include <vector>

@@ -47,10 +47,7 @@ template <typename Command>
 LiveObserver<Command>::LiveObserver(pipeline::Wrapper<Command>& wrapper,
                                     pipeline::CommandGate& gate, hardware::HardwareInterface& robot,
                                     double wall_origin_s)
-    : wrapper_(wrapper),
-      wall_origin_s_(wall_origin_s),
-      gate_(gate),
-      sampler_(wrapper, robot) {
+    : wrapper_(wrapper), wall_origin_s_(wall_origin_s), gate_(gate), sampler_(wrapper, robot) {
   const int dof = wrapper.dof();
   sample_.joints = JointState::zero(dof);
   sample_.torque.setZero(dof);
@@ -97,9 +94,9 @@ void LiveObserver<Command>::fillSample(const hardware::CycleRecord& record) noex
   sampler_.fill(record, last_state_, transport::Stamp::now(), sample_);
   state_.publishFromSoleWriter(sample_);
   if (recording_ != nullptr) {
-    recording_->cycle<Command>(
-        sample_, std::get<pipeline::BusOf<Command>>(wrapper_.controller().lawBus()),
-        record.compute_s, record.start_lateness_s);
+    recording_->cycle<Command>(sample_,
+                               std::get<pipeline::BusOf<Command>>(wrapper_.controller().lawBus()),
+                               record.compute_s, record.start_lateness_s);
   }
 }
 

@@ -14,12 +14,12 @@
 #include "comply/core/spsc_queue.hpp"
 #include "comply/core/triple_buffer.hpp"
 #include "comply/hardware/control_loop.hpp"
+#include "comply/host/host_recording.hpp"
+#include "comply/host/state_sample.hpp"
 #include "comply/model/data.hpp"
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/transport/messages.hpp"
-#include "comply/host/host_recording.hpp"
-#include "comply/host/state_sample.hpp"
 
 namespace comply::host {
 

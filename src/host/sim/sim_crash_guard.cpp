@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -24,10 +25,18 @@ std::atomic<bool> guard_active{false};
 constexpr std::array<int, 5> kFatalSignals = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
 std::array<struct sigaction, kFatalSignals.size()> previous_actions{};
 
+std::atomic<int> log_write_error{0};  // the first errno a write of the log met
+
 void writeAll(int fd, const char* data, std::size_t size) noexcept {
   while (size > 0) {
     const ssize_t written = ::write(fd, data, size);
+    if (written < 0 && errno == EINTR) {
+      continue;
+    }
     if (written <= 0) {
+      // A full disk or a file-size limit: the log is cut here, which the run must say.
+      int expected = 0;
+      log_write_error.compare_exchange_strong(expected, written < 0 ? errno : EIO);
       return;
     }
     data += written;
@@ -109,6 +118,7 @@ CrashGuard::CrashGuard(const std::string& plugin, const std::filesystem::path& c
   current_cycle.store(0);
   if (!csv.empty()) {
     log_fd = ::open(csv.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    log_write_error.store(0);
     if (log_fd < 0) {
       guard_active.store(false);
       throw std::runtime_error("cannot write '" + csv.string() + "'");
@@ -159,6 +169,11 @@ void CrashGuard::append(const std::string& lines) {
 
 void CrashGuard::flush() {
   flushPending();
+}
+
+std::string CrashGuard::writeError() const {
+  const int error = log_write_error.load();
+  return error == 0 ? std::string() : std::strerror(error);
 }
 
 void CrashGuard::cycle(std::uint64_t index) noexcept {

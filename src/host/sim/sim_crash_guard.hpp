@@ -31,6 +31,8 @@ class CrashGuard {
   void append(const std::string& lines);
   /// Writes what is pending to log.csv.
   void flush();
+  /// Why writing the log failed (a full disk, a file-size limit): the log ends early; "" if not.
+  [[nodiscard]] std::string writeError() const;
   /// The cycle about to run (a heartbeat for the hang watchdog).
   void cycle(std::uint64_t index) noexcept;
 

@@ -9,11 +9,11 @@
 #include <sstream>
 
 #include "comply/hardware/control_loop.hpp"
-#include "comply/host/task_source.hpp"
-#include "comply/pipeline/wrapper.hpp"
-#include "comply/pipeline/command_bus_variant.hpp"
-#include "comply/sim/simulated_clock.hpp"
 #include "comply/host/host_recording.hpp"
+#include "comply/host/task_source.hpp"
+#include "comply/pipeline/command_bus_variant.hpp"
+#include "comply/pipeline/wrapper.hpp"
+#include "comply/sim/simulated_clock.hpp"
 #include "progress_bar.hpp"
 #include "sim_crash_guard.hpp"
 #include "sim_pictures.hpp"
@@ -88,9 +88,9 @@ class SimRecorder final : public hardware::LoopObserver {
   void afterCycle(const hardware::CycleRecord& record) override {
     if (recording_ != nullptr && record.state != nullptr) {
       sampler_->fill(record, *record.state, stampAt(record.time_s), sample_);
-      recording_->cycle<Command>(
-          sample_, std::get<pipeline::BusOf<Command>>(wrapper_.controller().lawBus()),
-          record.controller_s, record.start_lateness_s);
+      recording_->cycle<Command>(sample_,
+                                 std::get<pipeline::BusOf<Command>>(wrapper_.controller().lawBus()),
+                                 record.controller_s, record.start_lateness_s);
     }
     SimLog& log = result_.log;
     SimSummary& summary = result_.summary;
@@ -297,6 +297,11 @@ SimResult runWith(const SimRunOptions& options,
       writeLogHeader(result.log, header);
       guard.append(header.str());
     }
+    guard.flush();
+    if (const std::string error = guard.writeError(); !error.empty()) {
+      addMessage(summary, "log.csv is incomplete: writing it failed (" + error + ")",
+                 options.progress);
+    }
   }
   clock.waitUntil(loop.nextCycleTime());  // the plant carries out the last torque written
   progress.finish();
@@ -306,8 +311,8 @@ SimResult runWith(const SimRunOptions& options,
   if (recording != nullptr) {
     recording->stop();
     const record::RecorderStats stats = recording->stats();
-    summary.recording = RecordingSummary{options.record_path, stats.written, stats.dropped,
-                                         stats.bytes, stats.writer_cpu_s, stats.error};
+    summary.recording = RecordingSummary{options.record_path, stats.written,      stats.dropped,
+                                         stats.bytes,         stats.writer_cpu_s, stats.error};
   }
 
   const pipeline::DiagnosticsSnapshot diagnostics = wrapper.diagnostics();
