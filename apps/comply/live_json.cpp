@@ -77,6 +77,8 @@ nlohmann::json toJson(const transport::DiagnosticsMessage& d) {
           {"last_fault", d.last_fault},
           {"last_rejection", d.last_rejection},
           {"publisher", d.publisher},
+          {"records_dropped", d.records_dropped},
+          {"recording", d.recording},
           {"outcomes", outcomes}};
 }
 

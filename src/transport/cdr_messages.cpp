@@ -148,6 +148,8 @@ void encodeCdr(const DiagnosticsMessage& message, std::vector<std::uint8_t>& out
   w.putString(message.last_fault);
   w.putString(message.last_rejection);
   w.putString(message.publisher);
+  w.put(message.records_dropped);
+  w.putString(message.recording);
   w.putCount(message.outcomes.size());
   for (const CommandOutcomeMessage& outcome : message.outcomes) {
     putOutcome(w, outcome);

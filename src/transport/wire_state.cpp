@@ -189,6 +189,8 @@ dds_return_t Wire<DiagnosticsMessage>::write(dds_entity_t writer,
   out.last_fault = const_cast<char*>(message.last_fault.c_str());
   out.last_rejection = const_cast<char*>(message.last_rejection.c_str());
   out.publisher = const_cast<char*>(message.publisher.c_str());
+  out.records_dropped = message.records_dropped;
+  out.recording = const_cast<char*>(message.recording.c_str());
   std::vector<comply_msgs_msg_dds__CommandOutcome_> outcomes;
   outcomes.reserve(message.outcomes.size());
   for (const CommandOutcomeMessage& outcome : message.outcomes) {
@@ -221,6 +223,8 @@ void Wire<DiagnosticsMessage>::read(const void* sample, DiagnosticsMessage& mess
   message.last_fault = text(in.last_fault);
   message.last_rejection = text(in.last_rejection);
   message.publisher = text(in.publisher);
+  message.records_dropped = in.records_dropped;
+  message.recording = text(in.recording);
   message.outcomes.clear();
   for (std::uint32_t i = 0; i < in.outcomes._length; ++i) {
     message.outcomes.push_back(outcomeFromWire(in.outcomes._buffer[i]));

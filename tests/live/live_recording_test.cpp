@@ -164,6 +164,9 @@ TEST_P(LiveHostOn, RecordsEveryCycleCommandAndOutcome) {
     return host_->outcomes().count(sent.back().header.stamp.nanoseconds()) > 0;
   }));
   const std::uint64_t received = host_->last().commands_received;
+  // The diagnostics name the recording and its drops while it runs.
+  EXPECT_EQ(host_->last().recording, path.string());
+  EXPECT_EQ(host_->last().records_dropped, 0U);
   // The host stops by itself after --duration (its set-up comes first): stopping it earlier
   // would cut the run short of its cycles.
   std::this_thread::sleep_until(started + std::chrono::duration<double>(seconds + 2.0));

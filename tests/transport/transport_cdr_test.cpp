@@ -222,6 +222,8 @@ TEST(TransportCdrEncoder, StateDiagnosticsAndRequestsMatchTheWire) {
   diagnostics.last_fault = "a fault";
   diagnostics.last_rejection = "no";
   diagnostics.publisher = "";
+  diagnostics.records_dropped = 12;
+  diagnostics.recording = "run.mcap";
   CommandOutcomeMessage outcome;
   outcome.stamp = {1, 2};
   outcome.command_kind = WireCommandKind::kJoint;

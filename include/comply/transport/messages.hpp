@@ -149,6 +149,8 @@ struct DiagnosticsMessage {
   std::string last_fault;
   std::string last_rejection;
   std::string publisher;
+  std::uint64_t records_dropped = 0;  ///< the recording's lanes full (--record)
+  std::string recording;  ///< the file recorded to, or why the recording stopped; "" when none
   std::vector<CommandOutcomeMessage> outcomes;
 };
 
