@@ -15,11 +15,24 @@ truncated, info). frenet_frame() and darboux_frame() build task frames (x y z w)
                                   stiffness_translational=[3000, 3000, 500])
     print(client.outcome(stamp))
 
+Both record to MCAP with record="path.mcap" (close() finishes the file; recording_stats() gives
+its counts). Client(..., record=...) keeps what it sent (its commands and requests, at their
+stamps) and every state and diagnostics message it took. Sim(..., record=...) keeps every cycle,
+command and outcome of every episode in one file, as `comply sim --record` does, on a simulated
+clock that runs on across episodes; an episode starts where the cycle index is 0 again:
+
+    sim = comply.Sim("config/sim/cartesian_impedance.yaml", robot="fr3", record="sim.mcap")
+    ...
+    sim.close()
+    cycles = comply.read_recording("sim.mcap")["/comply/cycle"]
+    starts = np.flatnonzero(cycles["state.cycle"] == 0)  # each episode's first row
+
 read_recording(path) reads a recording (MCAP) into numpy columns per topic in pure Python
 (numpy, zstandard), so it works where the C++ extension is not built:
 
     rec = comply.read_recording("run.mcap")
     rec["/comply/state"]["position"], rec["/comply/state"].log_time, rec.truncated
+    rec["/comply/cycle"]["cartesian_in_force.stiffness_translational"]  # (n, 9)
 """
 
 from .recording import Recording, RecordingError, Topic, read_recording

@@ -15,7 +15,15 @@ read_recording() decodes every message into numpy columns, one Topic per channel
 Columns: a scalar field is an array of shape (n,); a fixed array T[N] is (n, N); a sequence
 T[] is (n, k) when every message holds k elements, else a list of n arrays; strings are numpy
 object arrays (a string[] of varying length: a list of lists); a sequence or fixed array of
-messages is a list of n lists of dicts. Messages are in log-time order (stable).
+messages is a list of n lists of dicts, made on first access. When every message holds exactly
+one element of such a sequence (the "optional" idiom), the element's fields are columns too,
+under dotted names:
+
+    cycle = rec["/comply/cycle"]
+    cycle["cartesian_in_force.stiffness_translational"]   # float64 (n, 9)
+    cycle["cartesian_in_force"][k][0]["position"]          # the same values, message by message
+
+Messages are in log-time order (stable).
 
 The parts stand alone: McapReader walks the records in file order and yields the messages;
 parse_ros2msg() reads a schema's .msg text; MessageDecoder turns one CDR message into a dict.
@@ -617,6 +625,7 @@ class _Strings:
         self.path = _path(leaf_name)
         self.bound = _NO_BOUND if bound is None else bound
         self._memo = {}
+        self._last = None  # (raw bytes, texts) of the last sequence read
 
     def _one(self, buf, pos):
         pos += -pos & 3  # _read_count inlined, as in _Primitives.read
@@ -645,14 +654,23 @@ class _Strings:
     def read(self, buf, pos):
         if not self.sequence and self.length is None:
             return self._one(buf, pos)
-        count = self.length
+        if self.length == 0:
+            return (), pos
+        # The count (or the first string's length) sits at a multiple of 4, and from there the
+        # bytes alone decide the texts: joint names, the same in every message, are read once.
+        pos += -pos & 3
+        if self._last is not None and buf.startswith(self._last[0], pos):
+            return self._last[1], pos + len(self._last[0])
+        start, count = pos, self.length
         if count is None:
             count, pos = _read_count(buf, pos, self.name, self.bound)
         texts = []
         for _ in range(count):
             text, pos = self._one(buf, pos)
             texts.append(text)
-        return tuple(texts), pos
+        texts = tuple(texts)
+        self._last = (buf[start:pos], texts)
+        return texts, pos
 
     def fill(self, value, result):
         _put(result, self.path, value if isinstance(value, str) else list(value))
@@ -674,7 +692,13 @@ def _object_array(entries, shape):
 
 
 class _Messages:
-    """A sequence or fixed array of a nested message: a list of dicts per message."""
+    """A sequence or fixed array of a nested message: a message's value is its elements' step
+    values. The column under the plain name, a list of n lists of dicts, is made on first
+    access: readers mostly want the dotted columns, and the dicts would cost about as much as
+    all the rest of a cycle record's decoding. When every message holds exactly one element (the
+    "optional" idiom: CycleRecord's cartesian_in_force), the element's fields are also columns
+    of their own, under dotted names ("cartesian_in_force.position"); a topic without messages
+    has them too, empty."""
 
     def __init__(self, leaf_name, decoder, length=None, bound=None):
         self.name, self.decoder, self.length = leaf_name, decoder, length
@@ -686,19 +710,45 @@ class _Messages:
         if count is None:
             count, pos = _read_count(buf, pos, self.name, self.bound)
         items = []
+        read_values = self.decoder.read_values
         for index in range(count):
             try:
-                item, pos = self.decoder.read_dict(buf, pos)
+                values, pos = read_values(buf, pos)
             except _Mismatch as error:
                 raise _Mismatch(f"{self.name}[{index}].{error.field_name}", error.reason) from None
-            items.append(item)
+            items.append(values)
         return items, pos
 
+    def dicts(self, value):
+        to_dict = self.decoder.to_dict
+        return [to_dict(values) for values in value]
+
     def fill(self, value, result):
-        _put(result, self.path, value)
+        _put(result, self.path, self.dicts(value))
 
     def columns(self, entries):
-        yield self.name, entries
+        yield self.name, _Deferred(lambda: [self.dicts(entry) for entry in entries])
+        if any(len(entry) != 1 for entry in entries):
+            return
+        steps = self.decoder.steps
+        # Each step's values down the messages; none when there are no messages.
+        per_step = list(zip(*(entry[0] for entry in entries))) or [()] * len(steps)
+        for step, values in zip(steps, per_step):
+            for name, column in step.columns(list(values)):
+                yield f"{self.name}.{name}", column
+
+
+class _Deferred:
+    """A column made on first access (Topic.__getitem__ replaces it by what it makes)."""
+
+    __slots__ = ("_make",)
+
+    def __init__(self, make):
+        self._make = make
+
+    def __call__(self):
+        with _collector_paused():
+            return self._make()
 
 
 class MessageDecoder:
@@ -829,10 +879,13 @@ class Topic(Mapping):
 
     def __getitem__(self, name):
         try:
-            return self._columns[name]
+            column = self._columns[name]
         except KeyError:
             raise KeyError(f"{name!r}: topic {self.name} has the fields "
                            f"{', '.join(self._columns)}") from None
+        if type(column) is _Deferred:
+            column = self._columns[name] = column()
+        return column
 
     def __iter__(self):
         return iter(self._columns)

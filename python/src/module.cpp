@@ -5,7 +5,9 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
+#include "comply/record/mcap_writer.hpp"
 #include "comply/task/frames.hpp"
 #include "py_client.hpp"
 #include "py_sim.hpp"
@@ -21,15 +23,52 @@ Eigen::Vector4d quaternionOf(const Eigen::Matrix3d& rotation) {
   return Eigen::Quaterniond(rotation).normalized().coeffs();
 }
 
+constexpr const char* kClientDoc =
+    "Client(name='comply', domain=0, network='loopback', timeout=10.0, record=None): a "
+    "connection to the `comply run` host `name` on DDS `domain`.\n\n"
+    "record='path.mcap' records what the client sends (commands, requests and the discovery "
+    "probe, a command with no field group, logged at their stamps) and every state and "
+    "diagnostics message it takes (logged when taken) on /<name>/cartesian_command, "
+    "/<name>/joint_command, /<name>/request, /<name>/state and /<name>/diagnostics; "
+    "comply.read_recording() reads it. close() finishes the file (also on destruction).";
+
+constexpr const char* kSimDoc =
+    "Sim(config, robot='', steps_per_action=50, max_time=0.0, record=None): the controller on an "
+    "in-process MuJoCo plant, shaped like a Gymnasium environment.\n\n"
+    "record='path.mcap' records every cycle, command and outcome of every episode to one file, "
+    "as `comply sim --record` does (/comply/cycle, /comply/cartesian_command or "
+    "/comply/joint_command, /comply/outcome). An episode begins where the cycle index "
+    "(state.cycle) is 0 again. The file's clock is simulated time since the Sim was made: each "
+    "episode starts where the one before it stopped, so log times never go back; commands keep "
+    "the stamps they were sent with (the episode's time). close() finishes the file (also on "
+    "destruction); the Sim carries on unrecorded.";
+
+constexpr const char* kCloseDoc =
+    "Stop the recording and finish its file; idempotent (a no-op without record=)";
+constexpr const char* kStatsDoc =
+    "The recording's counts: dict(written, dropped, bytes, writer_cpu_s, error), or None "
+    "without record=";
+
 }  // namespace
 
 PYBIND11_MODULE(_comply, m) {
   m.doc() = "comply: live compliant control over DDS, and an in-process simulator";
+  // A recording that cannot be created is the file system's answer, as open() gives it.
+  py::register_exception_translator([](std::exception_ptr raised) {
+    try {
+      if (raised) {
+        std::rethrow_exception(raised);
+      }
+    } catch (const comply::record::McapError& error) {
+      PyErr_SetString(PyExc_OSError, error.what());
+    }
+  });
 
-  py::class_<Client>(m, "Client")
-      .def(py::init<const std::string&, int, const std::string&, double>(),
+  py::class_<Client>(m, "Client", kClientDoc)
+      .def(py::init<const std::string&, int, const std::string&, double,
+                    const std::optional<std::filesystem::path>&>(),
            py::arg("name") = "comply", py::arg("domain") = 0, py::arg("network") = "loopback",
-           py::arg("timeout") = 10.0)
+           py::arg("timeout") = 10.0, py::kw_only(), py::arg("record") = py::none())
       .def("send_cartesian", &Client::sendCartesian,
            "Send a Cartesian command by schema keywords; returns its stamp [ns]. Waits while "
            "the host is behind; RuntimeError when it acknowledged nothing for 0.1 s")
@@ -42,14 +81,20 @@ PYBIND11_MODULE(_comply, m) {
       .def("activate", [](Client& c) { c.request(comply::transport::RequestType::kActivate); })
       .def("deactivate", [](Client& c) { c.request(comply::transport::RequestType::kDeactivate); })
       .def("reset", [](Client& c) { c.request(comply::transport::RequestType::kReset); })
+      .def("close", &Client::close, kCloseDoc)
+      .def("recording_stats", &Client::recordingStats, kStatsDoc)
       .def_property_readonly("dof", &Client::dof)
       .def_property_readonly("cartesian", &Client::cartesian);
 
-  py::class_<Sim>(m, "Sim")
-      .def(py::init<const std::string&, const std::string&, int, double>(), py::arg("config"),
-           py::arg("robot") = "", py::arg("steps_per_action") = 50, py::arg("max_time") = 0.0)
+  py::class_<Sim>(m, "Sim", kSimDoc)
+      .def(py::init<const std::string&, const std::string&, int, double,
+                    const std::optional<std::filesystem::path>&>(),
+           py::arg("config"), py::arg("robot") = "", py::arg("steps_per_action") = 50,
+           py::arg("max_time") = 0.0, py::kw_only(), py::arg("record") = py::none())
       .def("reset", &Sim::reset)
       .def("step", &Sim::step, py::arg("command") = py::none())
+      .def("close", &Sim::close, kCloseDoc)
+      .def("recording_stats", &Sim::recordingStats, kStatsDoc)
       .def_property_readonly("dof", &Sim::dof)
       .def_property_readonly("cartesian", &Sim::cartesian)
       .def_property_readonly("time", &Sim::time);

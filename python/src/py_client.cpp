@@ -25,9 +25,23 @@ SteadyClock::time_point deadlineAfter(double seconds) {
          std::chrono::duration_cast<SteadyClock::duration>(std::chrono::duration<double>(seconds));
 }
 
+/// Every sample taken, once, at the wall clock when it was taken (a malformed one holds no
+/// message to record).
+template <typename Message>
+void recordTaken(ClientRecording& recording,
+                 const std::vector<transport::Sample<Message>>& samples) {
+  const transport::Stamp taken = transport::Stamp::now();
+  for (const transport::Sample<Message>& sample : samples) {
+    if (sample.malformed.empty()) {
+      recording.seen(sample.message, taken);
+    }
+  }
+}
+
 }  // namespace
 
-Client::Client(const std::string& name, int domain, const std::string& network, double timeout_s)
+Client::Client(const std::string& name, int domain, const std::string& network, double timeout_s,
+               const std::optional<std::filesystem::path>& record)
     : name_(name),
       participant_(
           {domain, network == "all" ? transport::Network::kAll : transport::Network::kLoopback}),
@@ -37,6 +51,9 @@ Client::Client(const std::string& name, int domain, const std::string& network, 
       request_writer_(participant_, name),
       state_reader_(participant_, name),
       diagnostics_reader_(participant_, name, 10000) {
+  if (record) {  // before the first state is taken: that one is recorded too
+    recording_ = std::make_unique<ClientRecording>(*record, name, domain, network);
+  }
   const auto deadline = deadlineAfter(timeout_s);
   {
     const py::gil_scoped_release release;
@@ -61,11 +78,11 @@ void Client::handshake(double timeout_s) {
     if (cartesian_) {
       transport::CartesianCommandMessage probe{{stamp, ""}, CartesianCommand::zero(dof_)};
       probe.command.fields = CommandField::kNone;
-      cartesian_writer_.write(probe);
+      write(cartesian_writer_, probe);
     } else {
       transport::JointCommandMessage probe{{stamp, ""}, JointCommand::zero(dof_)};
       probe.command.fields = CommandField::kNone;
-      joint_writer_.write(probe);
+      write(joint_writer_, probe);
     }
     const auto wait_until = deadlineAfter(0.1);
     while (SteadyClock::now() < wait_until) {
@@ -76,6 +93,17 @@ void Client::handshake(double timeout_s) {
     }
   }
   throw std::runtime_error("the host '" + name_ + "' did not account a probe command");
+}
+
+template <typename Message>
+bool Client::write(transport::Writer<Message>& writer, const Message& message) {
+  if (!writer.write(message)) {
+    return false;
+  }
+  if (recording_) {
+    recording_->sent(message);
+  }
+  return true;
 }
 
 transport::Stamp Client::nextStamp() {
@@ -95,6 +123,10 @@ bool Client::poll(double wait_s) {
   }
   state_reader_.take(states);
   diagnostics_reader_.take(diagnostics, nullptr, 100000);
+  if (recording_) {
+    recordTaken(*recording_, states);
+    recordTaken(*recording_, diagnostics);
+  }
   if (!states.empty()) {
     state_ = std::move(states.back().message);
     state_received_ = SteadyClock::now();
@@ -125,7 +157,7 @@ std::int64_t Client::sendCartesian(const py::kwargs& kwargs) {
   if (cartesian_writer_.matched() == 0) {
     throw std::runtime_error(kNoHost);  // DDS would drop it without a word
   }
-  if (!cartesian_writer_.write(message)) {
+  if (!write(cartesian_writer_, message)) {
     throw std::runtime_error(kRefused);
   }
   return message.header.stamp.nanoseconds();
@@ -139,7 +171,7 @@ std::int64_t Client::sendJoint(const py::kwargs& kwargs) {
   if (joint_writer_.matched() == 0) {
     throw std::runtime_error(kNoHost);
   }
-  if (!joint_writer_.write(message)) {
+  if (!write(joint_writer_, message)) {
     throw std::runtime_error(kRefused);
   }
   return message.header.stamp.nanoseconds();
@@ -152,7 +184,17 @@ void Client::request(transport::RequestType request) {
   if (request_writer_.matched() == 0) {
     throw std::runtime_error(kNoHost);
   }
-  request_writer_.write(message);
+  write(request_writer_, message);
+}
+
+void Client::close() {
+  if (recording_) {
+    recording_->stop();
+  }
+}
+
+py::object Client::recordingStats() const {
+  return recording_ ? py::object(toDict(recording_->stats())) : py::object(py::none());
 }
 
 py::object Client::state(double timeout_s) {

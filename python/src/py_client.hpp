@@ -4,18 +4,24 @@
 // discovered it (a probe command with no field group, accounted and otherwise ignored), and
 // then sends commands with strictly increasing wall-clock stamps. A restarted host is found
 // again by DDS discovery: the client carries on without being recreated.
+//
+// With `record`, what the client sends and every state and diagnostics message it takes go to an
+// MCAP file (py_client_recording.hpp), the probes included (commands with no field group).
+// Like the rest of the client, the recording expects one calling thread at a time.
 
 #include <pybind11/pybind11.h>
 
 #include <chrono>
 #include <cstdint>
 #include <deque>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
 
 #include "comply/transport/endpoints.hpp"
+#include "py_client_recording.hpp"
 
 namespace comply::python {
 
@@ -23,7 +29,9 @@ namespace py = pybind11;
 
 class Client {
  public:
-  Client(const std::string& name, int domain, const std::string& network, double timeout_s);
+  /// `record`: the MCAP file of what the client sends and sees (none: not recorded).
+  Client(const std::string& name, int domain, const std::string& network, double timeout_s,
+         const std::optional<std::filesystem::path>& record);
 
   /// Schema keywords (position=..., stiffness_translational=..., task_frame=...); the stamp [ns]
   /// that identifies the command in outcome().
@@ -44,11 +52,19 @@ class Client {
   [[nodiscard]] int dof() const noexcept { return dof_; }
   [[nodiscard]] bool cartesian() const noexcept { return cartesian_; }
 
+  /// Stops the recording: the file is complete when this returns. Idempotent.
+  void close();
+  /// The recording's counts (written, dropped, bytes, writer_cpu_s, error), or None.
+  [[nodiscard]] py::object recordingStats() const;
+
  private:
   /// Takes what arrived; true when a state arrived.
   bool poll(double wait_s);
   transport::Stamp nextStamp();
   void handshake(double timeout_s);
+  /// Writes `message`; true when DDS took it (then it is recorded).
+  template <typename Message>
+  bool write(transport::Writer<Message>& writer, const Message& message);
 
   std::string name_;
   transport::Participant participant_;
@@ -65,6 +81,7 @@ class Client {
   transport::Stamp last_stamp_;
   int dof_ = 0;
   bool cartesian_ = true;
+  std::unique_ptr<ClientRecording> recording_;
 };
 
 }  // namespace comply::python

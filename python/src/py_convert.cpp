@@ -145,9 +145,24 @@ py::dict toDict(const transport::DiagnosticsMessage& m) {
   d["rejections"] = rejections;
   d["watchdog_timeouts"] = m.watchdog_timeouts;
   d["faults"] = m.faults;
+  d["rate_limit_hits"] = m.rate_limit_hits;
+  d["effort_limit_hits"] = m.effort_limit_hits;
+  d["period"] = m.period_s;
   d["last_fault"] = m.last_fault;
   d["last_rejection"] = m.last_rejection;
   d["publisher"] = m.publisher;
+  d["records_dropped"] = m.records_dropped;
+  d["recording"] = m.recording;
+  return d;
+}
+
+py::dict toDict(const record::RecorderStats& stats) {
+  py::dict d;
+  d["written"] = stats.written;
+  d["dropped"] = stats.dropped;
+  d["bytes"] = stats.bytes;
+  d["writer_cpu_s"] = stats.writer_cpu_s;
+  d["error"] = stats.error;
   return d;
 }
 

@@ -11,6 +11,7 @@
 
 #include "comply/core/commands.hpp"
 #include "comply/pipeline/diagnostics.hpp"
+#include "comply/record/recorder.hpp"
 #include "comply/transport/messages.hpp"
 
 namespace comply::python {
@@ -42,5 +43,7 @@ void addPassivity(const pipeline::PassivitySnapshot& passivity, py::dict& d);
 py::dict toDict(const transport::ControllerStateMessage& state);
 py::dict toDict(const transport::CommandOutcomeMessage& outcome);
 py::dict toDict(const transport::DiagnosticsMessage& diagnostics);
+/// A recording's counts as Sim.recording_stats() and Client.recording_stats() give them.
+py::dict toDict(const record::RecorderStats& stats);
 
 }  // namespace comply::python

@@ -9,6 +9,7 @@
 #include "comply/core/clock.hpp"
 #include "comply/hardware/control_loop.hpp"
 #include "comply/host/controller_setup.hpp"
+#include "comply/host/state_sample.hpp"
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/sim/simulated_clock.hpp"
@@ -16,17 +17,72 @@
 #include "py_convert.hpp"
 
 namespace comply::python {
+namespace {
 
-/// The episode's controller of either kind, as the loop and the gate see it.
+std::int64_t nanosecondsOf(double seconds) {
+  return std::llround(seconds * 1e9);
+}
+
+/// The command as it would have come over the wire.
+template <typename Command>
+void recordCommand(host::HostRecording& recording, const Command& command,
+                   const transport::Header& header, transport::Stamp received) {
+  if constexpr (std::is_same_v<Command, CartesianCommand>) {
+    recording.command(transport::CartesianCommandMessage{header, command}, received);
+  } else {
+    recording.command(transport::JointCommandMessage{header, command}, received);
+  }
+}
+
+/// The gate's outcome on the recording's clock: the Sim's commands are received at the simulated
+/// time they are stamped with (the gate itself notes the wall clock).
+transport::CommandOutcomeMessage simOutcomeMessage(const pipeline::CommandOutcome& outcome,
+                                                   std::int64_t episode_start_ns) {
+  transport::CommandOutcomeMessage message = host::outcomeMessage(outcome);
+  message.received = transport::Stamp::fromNanoseconds(episode_start_ns + outcome.stamp_ns);
+  return message;
+}
+
+}  // namespace
+
+/// The episode's controller of either kind, as the loop and the gate see it, and its recording.
 template <typename Command>
 struct Episode final : hardware::LoopObserver {
-  explicit Episode(const std::shared_ptr<const pipeline::ResolvedController>& resolved)
-      : wrapper(resolved) {}
+  Episode(const std::shared_ptr<const pipeline::ResolvedController>& resolved,
+          std::int64_t episode_start_ns)
+      : wrapper(resolved), start_ns(episode_start_ns) {}
+
   void afterCycle(const hardware::CycleRecord& record) override {
-    gate->noteCycle(record.index, wrapper.controller().stampInForce(), wallClockNanoseconds);
+    const transport::Stamp now = clockAt(record.time_s);
+    // The gate's clock is the recording's, so an outcome's applied time is the cycle's.
+    gate->noteCycle(record.index, wrapper.controller().stampInForce(),
+                    [&] { return now.nanoseconds(); });
+    if (recording != nullptr && record.state != nullptr) {
+      sampler->fill(record, *record.state, now, sample);
+      recording->cycle<Command>(sample,
+                                std::get<pipeline::BusOf<Command>>(wrapper.controller().lawBus()),
+                                record.controller_s, record.start_lateness_s);
+    }
   }
+
+  void attach(host::HostRecording* to, hardware::HardwareInterface& plant) {
+    recording = to;
+    if (to != nullptr && !sampler) {
+      sampler.emplace(wrapper, plant);
+    }
+  }
+
+  /// The recording's clock at the episode's simulated time `t_s`.
+  [[nodiscard]] transport::Stamp clockAt(double t_s) const noexcept {
+    return transport::Stamp::fromNanoseconds(start_ns + nanosecondsOf(t_s));
+  }
+
   pipeline::Wrapper<Command> wrapper;
   pipeline::CommandGate* gate = nullptr;
+  std::int64_t start_ns;  ///< the recording's clock when the episode started
+  host::HostRecording* recording = nullptr;
+  std::optional<host::StateSampler<Command>> sampler;
+  host::StateSample sample;  // the loop's scratch
 };
 
 /// One episode: the plant on its simulated clock, the controller, the control loop and the gate
@@ -38,27 +94,42 @@ struct Sim::Session {
       episode;
   pipeline::CommandGate gate;
   std::unique_ptr<hardware::ControlLoop> loop;
+  std::int64_t start_ns;
 
-  explicit Session(const std::shared_ptr<const pipeline::ResolvedController>& resolved)
+  /// `episode_start_ns`: the recording's clock at the episode's start; `recording`: null when
+  /// there is none.
+  Session(const std::shared_ptr<const pipeline::ResolvedController>& resolved,
+          std::int64_t episode_start_ns, host::HostRecording* recording)
       : plant(resolved->robot, plantOptions(*resolved)),
         clock(plant),
-        gate(pipeline::gateOptions(resolved->config, resolved->cartesian())) {
+        gate(pipeline::gateOptions(resolved->config, resolved->cartesian())),
+        start_ns(episode_start_ns) {
     if (resolved->cartesian()) {
-      episode = std::make_unique<Episode<CartesianCommand>>(resolved);
+      episode = std::make_unique<Episode<CartesianCommand>>(resolved, episode_start_ns);
     } else {
-      episode = std::make_unique<Episode<JointCommand>>(resolved);
+      episode = std::make_unique<Episode<JointCommand>>(resolved, episode_start_ns);
     }
     JointState state = JointState::zero(plant.dof());
     plant.read(state);
     std::visit(
         [&](auto& e) {
           e->gate = &gate;
+          e->attach(recording, plant);
           e->wrapper.activate(state);
           loop = std::make_unique<hardware::ControlLoop>(
               plant, e->wrapper, clock, hardware::LoopOptions{.period_s = plant.controlPeriod()});
           loop->setObserver(e.get());
         },
         episode);
+  }
+
+  void detachRecording() {
+    std::visit([&](auto& e) { e->attach(nullptr, plant); }, episode);
+  }
+
+  /// The recording's clock now: where the next episode starts.
+  [[nodiscard]] std::int64_t clockNs() const noexcept {
+    return start_ns + nanosecondsOf(plant.simTime());
   }
 
   static sim::PlantOptions plantOptions(const pipeline::ResolvedController& resolved) {
@@ -102,16 +173,61 @@ struct Sim::Session {
 };
 
 Sim::Sim(const std::string& config, const std::string& robot, int steps_per_action,
-         double max_time_s)
+         double max_time_s, const std::optional<std::filesystem::path>& record)
     : resolved_(pipeline::resolveController(host::simControllerConfig(robot, "", config))),
       steps_per_action_(steps_per_action),
       max_time_s_(max_time_s) {
   if (steps_per_action < 1) {
     throw py::value_error("steps_per_action must be >= 1");
   }
+  if (record) {
+    recording_ = std::make_unique<host::HostRecording>(
+        record->string(), resolved_, "comply",
+        record::StringMap{{"host", "comply.Sim"},
+                          {"clock", "simulated"},
+                          {"steps_per_action", std::to_string(steps_per_action)}});
+    recording_open_ = true;
+  }
 }
 
-Sim::~Sim() = default;
+Sim::~Sim() {
+  close();
+}
+
+host::HostRecording* Sim::recording() const noexcept {
+  return recording_open_ ? recording_.get() : nullptr;
+}
+
+void Sim::close() {
+  if (!recording_open_) {
+    return;
+  }
+  if (session_) {
+    session_->detachRecording();
+  }
+  recording_->stop();
+  recording_open_ = false;
+}
+
+py::object Sim::recordingStats() const {
+  return recording_ ? py::object(toDict(recording_->stats())) : py::object(py::none());
+}
+
+void Sim::recordOutcome(const pipeline::CommandOutcome& outcome) {
+  if (host::HostRecording* to = recording()) {
+    to->outcome(simOutcomeMessage(outcome, session_->start_ns));
+  }
+}
+
+void Sim::endEpisode() {
+  if (!session_) {
+    return;
+  }
+  session_->gate.abandonPending("the episode ended before a cycle took the command");
+  for (const pipeline::CommandOutcome& outcome : session_->gate.takeOutcomes()) {
+    recordOutcome(outcome);
+  }
+}
 
 int Sim::dof() const noexcept {
   return resolved_->dof;
@@ -126,7 +242,13 @@ double Sim::time() const noexcept {
 }
 
 py::dict Sim::reset() {
-  session_ = std::make_unique<Session>(resolved_);
+  std::int64_t start_ns = 0;
+  if (session_) {
+    endEpisode();
+    start_ns = session_->clockNs();
+    session_.reset();
+  }
+  session_ = std::make_unique<Session>(resolved_, start_ns, recording());
   return session_->observation();
 }
 
@@ -157,6 +279,11 @@ py::tuple Sim::step(const py::object& command) {
             c = jointFromKwargs(kwargs, dof(), e->wrapper.lastAccepted());
           }
           c.stamp_s = stampSeconds(*stamp_ns);
+          if (host::HostRecording* to = recording()) {
+            const transport::Header header{transport::Stamp::fromNanoseconds(*stamp_ns),
+                                           resolved_->robot.base_frame};
+            recordCommand(*to, c, header, e->clockAt(session_->plant.simTime()));
+          }
           const bool active = e->wrapper.diagnostics().state != pipeline::WrapperState::kInactive;
           session_->gate.offer(offer, active, [&] { return e->wrapper.submit(c); });
         },
@@ -168,6 +295,7 @@ py::tuple Sim::step(const py::object& command) {
   }
   session_->gate.settle();
   for (const pipeline::CommandOutcome& outcome : session_->gate.takeOutcomes()) {
+    recordOutcome(outcome);
     if (!stamp_ns || outcome.stamp_ns != *stamp_ns) {
       continue;
     }

@@ -37,6 +37,8 @@ SCHEMA_TEXT = "\n".join([
     "float64[3] tcp_position",
     "int16[2] pair",
     "Contact[] contacts",
+    "Contact[] tool  # one in every message: its fields are columns too",
+    "Contact[<=1] maybe  # none or one: a list of lists of dicts only",
     "builtin_interfaces/Time reference_stamp",
     "float32[<=4] bounded",
     "uint8[20] blob",
@@ -96,6 +98,8 @@ def state_values(i):
         "varying": [float(i * 10 + k) for k in range(i % 4)], "flag": 200 + i % 50,
         "tcp_position": [0.5, -0.25 * i, 1e-3 * i], "pair": [-i, i],
         "contacts": [{"link": f"link{k}", "force": [k, 2.0 * k, -3.0]} for k in range(i % 3)],
+        "tool": [{"link": f"tool{i % 4}", "force": [0.5 * i, -1.0, i + 0.25]}],
+        "maybe": [{"link": "maybe", "force": [i, i, i]}] * (i % 2),
         "reference_stamp.sec": -i, "reference_stamp.nanosec": 7,
         "bounded": [0.5] * (i % 5), "blob": [(i + k) % 256 for k in range(20)],
         "gain_fraction": 1.0 - i / 1000,
@@ -118,10 +122,11 @@ def encode_state(v):
     cdr.put("B", v["flag"])
     cdr.array("d", v["tcp_position"])
     cdr.array("h", v["pair"])
-    cdr.put("I", len(v["contacts"]))
-    for contact in v["contacts"]:
-        cdr.string(contact["link"])
-        cdr.array("d", contact["force"])
+    for name in ("contacts", "tool", "maybe"):
+        cdr.put("I", len(v[name]))
+        for contact in v[name]:
+            cdr.string(contact["link"])
+            cdr.array("d", contact["force"])
     cdr.put("i", v["reference_stamp.sec"])
     cdr.put("I", v["reference_stamp.nanosec"])
     cdr.sequence("f", v["bounded"])
@@ -281,11 +286,24 @@ def check_columns(topic, indices):
         for got, v in zip(topic[name], expected):
             assert np.array_equal(got, v[name]), (name, got, v[name])
     assert topic["bounded"][1].dtype == np.float32
-    for got, v in zip(topic["contacts"], expected):
-        assert [c["link"] for c in got] == [c["link"] for c in v["contacts"]]
-        for c, want in zip(got, v["contacts"]):
-            assert np.array_equal(c["force"], want["force"])
+    for name in ("contacts", "tool", "maybe"):
+        for got, v in zip(topic[name], expected):
+            assert [c["link"] for c in got] == [c["link"] for c in v[name]], name
+            for c, want in zip(got, v[name]):
+                assert np.array_equal(c["force"], want["force"]), name
+    check_optional(topic, expected)
 
+
+def check_optional(topic, expected):
+    """A sequence of messages with one element in every message is columns as well."""
+    n = len(expected)
+    assert topic["tool.link"].shape == (n,)
+    assert topic["tool.link"].tolist() == [v["tool"][0]["link"] for v in expected]
+    assert topic["tool.force"].shape == (n, 3) and topic["tool.force"].dtype == np.float64
+    assert np.array_equal(topic["tool.force"], [v["tool"][0]["force"] for v in expected])
+    # "maybe" holds none in some messages and "contacts" two in others: no columns, only the
+    # lists of dicts (checked in check_columns).
+    assert not any(name.startswith(("maybe.", "contacts.")) for name in topic), list(topic)
 
 def check_complete(folder):
     data, _ = assemble(state_chunks(50, 20), {"records_dropped": "3", "robot": "fr3"})
@@ -302,6 +320,7 @@ def check_complete(folder):
     unused = rec["/comply/unused"]
     assert unused.count == 0 and unused["position"].shape == (0, 0)
     assert unused["tcp_position"].shape == (0, 3) and unused["state"].shape == (0,)
+    assert unused["tool.force"].shape == (0, 3) and unused["tool"] == []
     only = comply.read_recording(rec.path, topics=["/comply/state"])
     assert list(only) == ["/comply/state"] and only.message_counts["/comply/unused"] == 0
 
@@ -318,6 +337,8 @@ def check_decoder():
     assert np.array_equal(message["position"], v["position"])
     assert np.array_equal(message["tcp_position"], v["tcp_position"])
     assert message["contacts"][1]["link"] == "link1"
+    assert message["tool"][0]["link"] == "tool1" and message["maybe"][0]["link"] == "maybe"
+    assert np.array_equal(message["tool"][0]["force"], v["tool"][0]["force"])
     assert message["reference_stamp"] == {"sec": -5, "nanosec": 7}
     # A type without fields (std_msgs/Empty) is one byte on the wire, as rosidl makes it.
     empty = MessageDecoder.from_schema("test_msgs/msg/Ping", "\n".join([

@@ -1,0 +1,178 @@
+"""record= on comply.Sim and comply.Client, read back with comply.read_recording: the Sim's
+episodes (every cycle, the commands sent, one outcome each, the state the Sim returned), and what
+a client sent to and saw from a `comply run --sim` host. Usage: test_recording_hosts.py
+COMPLY_CLI SOURCE_DIR (the build's python/ on PYTHONPATH)."""
+
+import os
+import re
+import sys
+import tempfile
+
+import numpy as np
+
+import comply
+
+STEPS = 6  # per episode
+STEPS_PER_ACTION = 20
+EPISODES = 2
+REJECTED_STEP = 3  # in every episode: a command with invalid gains
+
+
+def constant(topic, name):
+    """A constant of the topic's message definition, as the file itself holds it."""
+    text = topic.schema.data.decode()
+    return int(re.search(rf"\b{name}=(\d+)", text).group(1))
+
+
+def stamps(topic, field):
+    """A builtin_interfaces/Time column as int64 nanoseconds."""
+    return topic[f"{field}.sec"].astype(np.int64) * 10**9 + topic[f"{field}.nanosec"]
+
+
+def config_stiffness(source):
+    """The controller's translational stiffness (isotropic) as CycleRecord holds it: 3x3, row
+    major."""
+    with open(f"{source}/config/sim/cartesian_impedance.yaml") as file:
+        value = float(re.search(r"stiffness_translational:\s*([\d.]+)", file.read()).group(1))
+    return (value * np.eye(3)).ravel()
+
+
+def run_episode(sim):
+    """reset() and STEPS steps; returns the observations at the step boundaries (from reset and
+    every step but the last: the cycle that would read the last one never runs) and the commands
+    sent, as (stamp ns, keywords, info)."""
+    obs = sim.reset()
+    boundaries, sent = [], []
+    for step in range(STEPS):
+        boundaries.append(obs)
+        if step == REJECTED_STEP:
+            command = {"stiffness_translational": -np.eye(3).ravel()}
+        else:
+            command = {"position": obs["tcp_position"] + [0.0, 0.002 * step, -0.003]}
+        stamp = round(obs["time"] * 1e9)  # the Sim stamps a command with its simulated time
+        obs, _, terminated, _, info = sim.step(command)
+        assert not terminated, info
+        assert info["accepted"] == (step != REJECTED_STEP), info
+        sent.append((stamp, command, info))
+    return boundaries, sent
+
+
+def check_sim_cycles(rec, episodes, stiffness):
+    cycles = rec["/comply/cycle"]
+    per_episode = STEPS * STEPS_PER_ACTION
+    assert cycles.count == EPISODES * per_episode, cycles
+    # Episodes start where the cycle index restarts; the file's clock never goes back.
+    assert np.array_equal(cycles["state.cycle"], np.tile(np.arange(per_episode), EPISODES))
+    assert np.all(np.diff(cycles.log_time) > 0)
+    for episode, (boundaries, _) in enumerate(episodes):
+        rows = episode * per_episode + np.arange(STEPS) * STEPS_PER_ACTION
+        want = np.array([obs["position"] for obs in boundaries])
+        got = cycles["state.position"][rows]
+        assert np.array_equal(got, want), (episode, np.abs(got - want).max())
+    gains = cycles["cartesian_in_force.stiffness_translational"]
+    assert gains.shape == (cycles.count, 9)
+    assert np.array_equal(gains, np.tile(stiffness, (cycles.count, 1))), gains[0]
+    assert len(cycles["cartesian_in_force"]) == cycles.count  # the list-of-dicts form stays
+    assert cycles["cartesian_in_force"][0][0]["stiffness_translational"].shape == (9,)
+
+
+def check_sim_commands(rec, episodes):
+    commands, outcomes = rec["/comply/cartesian_command"], rec["/comply/outcome"]
+    sent = [command for _, commands_sent in episodes for command in commands_sent]
+    assert commands.count == len(sent) == EPISODES * STEPS, commands
+    assert rec["/comply/joint_command"].count == 0
+    sent_stamps = stamps(commands, "header.stamp")
+    assert sent_stamps.tolist() == [stamp for stamp, _, _ in sent]
+    for row, (_, command, _) in enumerate(sent):
+        for name, value in command.items():
+            assert np.array_equal(commands[name][row], value), (row, name)
+
+    assert outcomes.count == len(sent), outcomes
+    assert stamps(outcomes, "stamp").tolist() == sent_stamps.tolist()
+    rejected = constant(outcomes, "OUTCOME_REJECTED")
+    for row, (_, command, info) in enumerate(sent):
+        if info["accepted"]:
+            assert outcomes["outcome"][row] == constant(outcomes, "OUTCOME_APPLIED")
+            assert outcomes["cycle"][row] == info["applied_cycle"]
+            assert info["applied_cycle"] == (row % STEPS) * STEPS_PER_ACTION
+        else:
+            assert outcomes["outcome"][row] == rejected
+            assert outcomes["reason"][row] == constant(outcomes, "REASON_INVALID_GAINS")
+            assert outcomes["message"][row] == info["message"], outcomes["message"][row]
+
+
+def check_sim(source, folder):
+    path = os.path.join(folder, "runs", "sim.mcap")  # its folder is made
+    sim = comply.Sim(f"{source}/config/sim/cartesian_impedance.yaml", robot="fr3",
+                     steps_per_action=STEPS_PER_ACTION, record=path)
+    episodes = [run_episode(sim) for _ in range(EPISODES)]
+    sim.close()
+    sim.close()  # idempotent
+    stats = sim.recording_stats()
+    sim.step(None)  # the Sim carries on, unrecorded
+    rec = comply.read_recording(path)
+    assert not rec.truncated
+    assert stats["error"] == "" and stats["dropped"] == 0, stats
+    assert stats["written"] == sum(rec.message_counts.values()), (stats, rec.message_counts)
+    assert rec.metadata["comply_run"]["host"] == "comply.Sim"
+    check_sim_cycles(rec, episodes, config_stiffness(source))
+    check_sim_commands(rec, episodes)
+    assert comply.Sim(f"{source}/config/sim/cartesian_impedance.yaml").recording_stats() is None
+    print(f"sim: {EPISODES} episodes, {stats['written']} messages recorded")
+
+
+def check_client(cli, source, folder):
+    from live_host import running_host  # beside this file
+
+    path = os.path.join(folder, "client.mcap")
+    with running_host(cli, source, "pyrec") as (_, domain):
+        client = comply.Client(name="pyrec", domain=domain, timeout=30.0, record=path)
+        state = client.state()
+        assert state is not None
+        sent = {}
+        for k in range(5):
+            position = state["tcp_position"] + [0.0, 0.0, -0.001 * k]
+            stamp = client.send_cartesian(position=position, orientation=state["tcp_orientation"])
+            sent[stamp] = position
+        client.activate()  # already active: accounted, harmless
+        assert all(client.outcome(stamp, timeout=5.0)["applied"] for stamp in sent)
+        assert client.state() is not None and client.diagnostics() is not None
+        client.close()
+        client.close()
+        stats = client.recording_stats()
+    rec = comply.read_recording(path)
+    assert not rec.truncated and stats["error"] == "" and stats["dropped"] == 0, stats
+    assert rec.metadata["comply_client"] == {"host": "pyrec", "domain": str(domain),
+                                             "network": "loopback"}, rec.metadata
+    commands = rec["/pyrec/cartesian_command"]
+    sent_stamps = stamps(commands, "header.stamp")
+    assert np.array_equal(commands.log_time, sent_stamps)  # logged when sent, at its stamp
+    # Besides the commands sent: the discovery probes (no field group) sent before them.
+    probes = commands["fields"] == 0
+    assert probes.any() and sent_stamps[probes].max() < min(sent), commands["fields"]
+    assert sent_stamps[~probes].tolist() == list(sent)
+    assert np.array_equal(commands["position"][~probes], list(sent.values()))
+    requests = rec["/pyrec/request"]
+    assert requests["request"].tolist() == [constant(requests, "REQUEST_ACTIVATE")]
+    states, diagnostics = rec["/pyrec/state"], rec["/pyrec/diagnostics"]
+    assert states.count >= 1 and diagnostics.count >= 1, rec.message_counts
+    assert states["position"].shape == (states.count, 7)
+    assert rec["/pyrec/joint_command"].count == 0
+    print(f"client: {len(sent)} commands, {np.count_nonzero(probes)} probe(s), "
+          f"{states.count} states, {diagnostics.count} diagnostics recorded")
+
+
+def main():
+    cli, source = sys.argv[1], sys.argv[2]
+    with tempfile.TemporaryDirectory() as folder:
+        check_sim(source, folder)
+        if not os.access(cli, os.X_OK):
+            print(f"skip: the Sim's recording passed; the host {cli} is not built, so the "
+                  f"client's is not tested")
+            return
+        check_client(cli, source, folder)
+    print("ok")
+
+
+if __name__ == "__main__":
+    main()
