@@ -17,12 +17,11 @@
 
 #include "comply/hardware/control_loop.hpp"
 #include "comply/host/controller_setup.hpp"
-#include "comply/host/host_recording.hpp"
-#include "comply/host/state_sample.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/pipeline/wrapper.hpp"
+#include "bench_recording.hpp"
 
 namespace comply::app {
 namespace {
@@ -104,50 +103,6 @@ class CycleTimer final : public hardware::LoopObserver {
   std::vector<double>& cycle_us_;
 };
 
-/// CycleTimer plus what the live host does after each cycle when it records: push the cycle into
-/// the recording's lane. The state sample it pushes is filled first, untimed in the cycle: the
-/// live host fills it for the state topic whether it records or not (its own row). Keeps the
-/// cycle with the push, the push alone and the sample.
-template <typename Command>
-class RecordingTimer final : public hardware::LoopObserver {
- public:
-  RecordingTimer(int warmup, const pipeline::Wrapper<Command>& wrapper,
-                 hardware::HardwareInterface& hardware, host::HostRecording& recording,
-                 std::vector<double>& cycle_us, std::vector<double>& push_us,
-                 std::vector<double>& sample_us)
-      : warmup_(warmup),
-        wrapper_(wrapper),
-        sampler_(wrapper, hardware),
-        recording_(recording),
-        cycle_us_(cycle_us),
-        push_us_(push_us),
-        sample_us_(sample_us) {}
-  void afterCycle(const hardware::CycleRecord& record) override {
-    const Clock::time_point start = Clock::now();
-    sampler_.fill(record, *record.state, transport::Stamp::now(), sample_);
-    const Clock::time_point filled = Clock::now();
-    recording_.cycle<Command>(sample_,
-                              std::get<pipeline::BusOf<Command>>(wrapper_.controller().lawBus()),
-                              record.compute_s, record.start_lateness_s);
-    const Clock::time_point end = Clock::now();
-    if (record.index >= static_cast<std::uint64_t>(warmup_)) {
-      cycle_us_.push_back(record.controller_s * 1e6 + microseconds(filled, end));
-      push_us_.push_back(microseconds(filled, end));
-      sample_us_.push_back(microseconds(start, filled));
-    }
-  }
-
- private:
-  int warmup_;
-  const pipeline::Wrapper<Command>& wrapper_;
-  host::StateSampler<Command> sampler_;
-  host::HostRecording& recording_;
-  host::StateSample sample_;
-  std::vector<double>& cycle_us_;
-  std::vector<double>& push_us_;
-  std::vector<double>& sample_us_;
-};
-
 /// The wall clock, waited for by spinning: the pace of a robot without the sleep, so that what
 /// the sleep costs the next cycle (caches, predictors, TLB given to others) shows apart.
 class SpinningWallClock final : public hardware::LoopClock {
@@ -213,55 +168,20 @@ std::vector<BenchRow> benchWrapper(const BenchOptions& options, const std::strin
   hardware::ControlLoop loop(replay, wrapper, clock,
                              {.period_s = kPeriodS, .cycles = static_cast<std::uint64_t>(total)});
   CycleTimer timer(options.warmup, cycle_us);
-  std::vector<double> push_us;
-  std::vector<double> sample_us;
-  std::unique_ptr<host::HostRecording> recording;
-  std::unique_ptr<RecordingTimer<Command>> recording_timer;
+  std::unique_ptr<BenchRecording<Command>> recording;
   if (recorded) {
-    // The recording's writer thread runs beside the cycle, as on a live host.
-    const std::filesystem::path file =
+    recording = std::make_unique<BenchRecording<Command>>(
+        options.warmup, wrapper, replay,
         std::filesystem::temp_directory_path() /
-        ("comply_bench_" + std::to_string(getpid()) + "_" + wrapper_name + ".mcap");
-    recording = std::make_unique<host::HostRecording>(file.string(), resolved, "bench",
-                                                      record::StringMap{});
-    push_us.reserve(static_cast<std::size_t>(options.iterations));
-    sample_us.reserve(static_cast<std::size_t>(options.iterations));
-    recording_timer = std::make_unique<RecordingTimer<Command>>(
-        options.warmup, wrapper, replay, *recording, cycle_us, push_us, sample_us);
-    loop.setObserver(recording_timer.get());
+            ("comply_bench_" + std::to_string(getpid()) + "_" + wrapper_name + ".mcap"));
+    loop.setObserver(recording.get());
   } else {
     loop.setObserver(&timer);
   }
   loop.run();
-  std::vector<double> full_us;
   if (recording) {
-    // Pushes into a full lane (its writer asleep): a drop must cost no more than a push.
-    record::Recorder stalled(
-        {.path = recording->path() + ".full", .mcap = {}, .writer_period_s = 3600.0});
-    const auto schema = stalled.addSchema("bench", "ros2msg", "");
-    const auto channel = stalled.addChannel(schema, "/bench");
-    record::RecordLane& lane = stalled.addLane("control", std::size_t{1} << 20);
-    stalled.start();
-    const host::StateSample sample;
-    const auto bus = std::get<pipeline::BusOf<Command>>(wrapper.controller().lawBus());
-    full_us.reserve(static_cast<std::size_t>(options.iterations));
-    for (int i = 0; i < options.warmup + options.iterations; ++i) {
-      const Clock::time_point start = Clock::now();
-      lane.emplace<host::RecordedCycle<Command>>(channel, i, sample, bus, 0.0, 0.0);
-      const Clock::time_point end = Clock::now();
-      if (i >= options.warmup) {
-        full_us.push_back(microseconds(start, end));
-      }
-    }
-    stalled.stop();
-    std::filesystem::remove(recording->path() + ".full");
-    recording->stop();
-    const record::RecorderStats stats = recording->stats();
-    std::filesystem::remove(recording->path());
-    if (stats.dropped > 0 || !stats.error.empty()) {
-      log << "  " << wrapper_name << ": the recording dropped " << stats.dropped << " cycles "
-          << stats.error << "\n";
-    }
+    recording->finish();
+    cycle_us = std::move(recording->cycle_us);
   }
   if (wrapper.diagnostics().state != pipeline::WrapperState::kActive) {
     throw std::runtime_error(
@@ -298,10 +218,11 @@ std::vector<BenchRow> benchWrapper(const BenchOptions& options, const std::strin
     return result;
   };
   std::vector<BenchRow> rows{row("plugin_step", step_us), row("full_cycle", cycle_us)};
-  if (recorded) {
-    rows.push_back(row("record_push", push_us));
+  if (recording) {
+    rows.push_back(row("record_push", recording->push_us));
+    std::vector<double> full_us = recording->fullLanePushes(options.warmup, options.iterations);
     rows.push_back(row("record_push_full", full_us));
-    rows.push_back(row("state_sample", sample_us));
+    rows.push_back(row("state_sample", recording->sample_us));
   }
   if (options.paced_hz > 0.0) {
     // The same cycle as a robot runs it: on the wall clock, the thread asleep between cycles, so

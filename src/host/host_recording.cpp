@@ -2,6 +2,7 @@
 
 #include "comply/host/host_recording.hpp"
 
+#include <cstring>
 #include <filesystem>
 
 #include "comply/schema/schema.hpp"
@@ -10,11 +11,7 @@
 namespace comply::host {
 namespace {
 
-// A cycle is ~2 KB in its lane: 1 MiB holds half a second of cycles at 1 kHz should the writer
-// stall (a slow disk), and stays in the control core's L2 cache: a 16 MiB lane made every push
-// miss it (0.39 us per push against 0.05 us, comply bench's record_push). The command and
-// publishing lanes see a few hundred records a second.
-constexpr std::size_t kControlLaneBytes = std::size_t{1} << 20;
+// The command and publishing lanes see a few hundred records a second.
 constexpr std::size_t kSideLaneBytes = std::size_t{4} << 20;
 
 record::RecorderOptions recorderOptions(const std::string& path) {
@@ -30,20 +27,20 @@ record::RecorderOptions recorderOptions(const std::string& path) {
 }
 
 template <typename Command>
-void encodeCycle(std::span<const std::uint8_t> raw, const pipeline::ResolvedController& resolved,
-                 std::vector<std::uint8_t>& out) {
-  const auto& cycle = record::recordAs<RecordedCycle<Command>>(raw);
+void encodeCycle(std::span<const std::uint8_t> raw, const pipeline::BusOf<Command>& in_force,
+                 const pipeline::ResolvedController& resolved, std::vector<std::uint8_t>& out) {
+  const auto& cycle = record::recordAs<RecordedCycle>(raw);
   transport::CycleRecordMessage message;
   message.state = stateMessage(cycle.state, resolved);
   message.compute_time_s = cycle.compute_s;
   message.start_lateness_s = cycle.start_lateness_s;
   const transport::Header header{transport::Stamp::fromNanoseconds(static_cast<std::int64_t>(
-                                     std::llround(cycle.in_force.stamp_s * 1e9))),
+                                     std::llround(in_force.stamp_s * 1e9))),
                                  resolved.robot.base_frame};
   if constexpr (std::is_same_v<Command, CartesianCommand>) {
-    message.cartesian_in_force.push_back({header, schema::fromBus(cycle.in_force)});
+    message.cartesian_in_force.push_back({header, schema::fromBus(in_force)});
   } else {
-    message.joint_in_force.push_back({header, schema::fromBus(cycle.in_force)});
+    message.joint_in_force.push_back({header, schema::fromBus(in_force)});
   }
   transport::encodeCdr(message, out);
 }
@@ -75,16 +72,23 @@ HostRecording::HostRecording(const std::string& path,
       publisher_(recorder_.addLane("publisher", kSideLaneBytes)) {
   const std::string prefix = "/" + name + "/";
   const pipeline::ResolvedController& controller = *resolved_;
+  const auto channels = [&]<typename Command>() {
+    using Bus = pipeline::BusOf<Command>;
+    in_force_ = Bus{};
+    // The writer thread keeps the command in force, and encodes each cycle with it.
+    in_force_channel_ = recorder_.addInternal([this](std::span<const std::uint8_t> raw) {
+      std::memcpy(&std::get<Bus>(in_force_), raw.data(), sizeof(Bus));
+    });
+    cycle_channel_ = addChannel<transport::CycleRecordMessage>(
+        prefix + "cycle", [this, &controller](std::span<const std::uint8_t> raw, auto& out) {
+          encodeCycle<Command>(raw, std::get<Bus>(in_force_), controller, out);
+        });
+    cycles_.emplace<CycleRecorder<Command>>(control_, cycle_channel_, in_force_channel_);
+  };
   if (controller.cartesian()) {
-    cycle_channel_ = addChannel<transport::CycleRecordMessage>(
-        prefix + "cycle", [&controller](std::span<const std::uint8_t> raw, auto& out) {
-          encodeCycle<CartesianCommand>(raw, controller, out);
-        });
+    channels.template operator()<CartesianCommand>();
   } else {
-    cycle_channel_ = addChannel<transport::CycleRecordMessage>(
-        prefix + "cycle", [&controller](std::span<const std::uint8_t> raw, auto& out) {
-          encodeCycle<JointCommand>(raw, controller, out);
-        });
+    channels.template operator()<JointCommand>();
   }
   // Both command topics: a command of the other kind is refused, and recorded as received.
   cartesian_channel_ = addChannel<transport::CartesianCommandMessage>(prefix + "cartesian_command");

@@ -70,12 +70,21 @@ void* RecordLane::reserve(std::uint16_t channel, std::int64_t log_time_ns,
   const EntryHead head{static_cast<std::uint32_t>(size), channel, 0, log_time_ns};
   std::memcpy(buffer_.get() + write_at, &head, sizeof head);
   reserved_tail_ = tail + total;
+  last_size_ = need;
   return buffer_.get() + write_at + kSlot;
 }
 
 void RecordLane::commit() noexcept {
   tail_.store(reserved_tail_, std::memory_order_release);
   pushed_.fetch_add(1, std::memory_order_relaxed);
+  // The next record's lines were last read by the writer on the other core: ask for them now,
+  // for writing, so that the next push finds them here instead of fetching them while the cycle
+  // waits. A hint only: it neither blocks nor faults.
+  const std::size_t next = reserved_tail_ & mask_;
+  const std::size_t ahead = std::min(last_size_, mask_ + 1 - next);
+  for (std::size_t offset = 0; offset < ahead; offset += kSlot) {
+    __builtin_prefetch(buffer_.get() + next + offset, 1, 3);
+  }
 }
 
 bool RecordLane::push(std::uint16_t channel, std::int64_t log_time_ns, const void* data,
@@ -128,7 +137,15 @@ std::uint16_t Recorder::addChannel(std::uint16_t schema, std::string_view topic,
   if (channels_.size() <= id) {
     channels_.resize(id + 1);
   }
-  channels_[id] = {id, std::move(encoder)};
+  channels_[id] = {id, std::move(encoder), {}};
+  return id;
+}
+
+std::uint16_t Recorder::addInternal(
+    std::function<void(std::span<const std::uint8_t> raw)> consumer) {
+  // Ids counted down from the top: the file's grow from 0.
+  const auto id = static_cast<std::uint16_t>(0xFFFF - internals_.size());
+  internals_.push_back({id, {}, std::move(consumer)});
   return id;
 }
 
@@ -171,7 +188,13 @@ bool Recorder::drainLanes() {
         return;
       }
       std::span<const std::uint8_t> message = entry.data;
-      const Channel& channel = channels_.at(entry.channel);
+      const std::size_t internal = 0xFFFF - entry.channel;
+      const Channel& channel =
+          internal < internals_.size() ? internals_[internal] : channels_.at(entry.channel);
+      if (channel.consumer) {
+        channel.consumer(entry.data);
+        return;
+      }
       if (channel.encoder) {
         message_.clear();
         channel.encoder(entry.data, message_);
@@ -212,7 +235,9 @@ void Recorder::writerLoop() {
     }
     writer_cpu_s_.store(threadCpuSeconds() - start_cpu, std::memory_order_relaxed);
     if (!any) {
-      std::this_thread::sleep_for(idle);
+      // Woken early by stop(): a long period must not delay it.
+      std::unique_lock lock(wake_mutex_);
+      wake_.wait_for(lock, idle, [this] { return stopping_.load(); });
     }
   }
   drainLanes();
@@ -225,7 +250,11 @@ void Recorder::stop() {
   }
   stopped_ = true;
   accepting_.store(false);
-  stopping_.store(true);
+  {
+    const std::lock_guard lock(wake_mutex_);
+    stopping_.store(true);
+  }
+  wake_.notify_all();
   if (thread_.joinable()) {
     thread_.join();
   } else {

@@ -111,11 +111,20 @@ TEST(SyntheticChain, TwelveJointsLoadAndRunEveryWrapperWithoutAFault) {
   options.warmup = 10;
   std::ostringstream log;
   const std::vector<BenchRow> rows = runBench(options, log);  // throws on a fault
-  ASSERT_EQ(rows.size(), 8U);  // joint, cartesian, cartesian_abs, cartesian_tank: step and cycle
+  // joint, cartesian, cartesian_abs, cartesian_tank: step and cycle; cartesian_recorded also the
+  // push, the push into a full lane and the state sample.
+  ASSERT_EQ(rows.size(), 13U);
+  int recording_stages = 0;
   for (const BenchRow& bench_row : rows) {
     EXPECT_EQ(bench_row.dof, 12);
     EXPECT_GT(bench_row.timing.p50_us, 0.0);
+    recording_stages += bench_row.stage == "record_push" || bench_row.stage == "record_push_full" ||
+                                bench_row.stage == "state_sample"
+                            ? 1
+                            : 0;
   }
+  EXPECT_EQ(recording_stages, 3);
+  EXPECT_EQ(log.str().find("dropped"), std::string::npos) << log.str();  // nothing lost
   std::filesystem::remove_all(folder);
 }
 
@@ -129,7 +138,9 @@ TEST(Bench, PacedRowsRunTheCycleOnTheWallClock) {
   const std::vector<BenchRow> rows = runBench(options, log);
   const double elapsed_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  ASSERT_EQ(rows.size(), 16U);  // four wrappers: step, back to back, paced asleep, paced spinning
+  // Five wrappers: step, back to back, paced asleep, paced spinning; the recorded one also its
+  // three recording stages.
+  ASSERT_EQ(rows.size(), 23U);
   int paced = 0;
   int spinning = 0;
   for (const BenchRow& bench_row : rows) {
@@ -137,10 +148,10 @@ TEST(Bench, PacedRowsRunTheCycleOnTheWallClock) {
     spinning += bench_row.stage == "paced_spin" ? 1 : 0;
     EXPECT_GT(bench_row.timing.p50_us, 0.0) << bench_row.wrapper << " " << bench_row.stage;
   }
-  EXPECT_EQ(paced, 4);
-  EXPECT_EQ(spinning, 4);
+  EXPECT_EQ(paced, 5);
+  EXPECT_EQ(spinning, 5);
   // Twice 210 cycles per wrapper at 1 kHz on the wall clock: paced, not free-running.
-  EXPECT_GT(elapsed_s, 8 * 0.2);
+  EXPECT_GT(elapsed_s, 10 * 0.2);
 }
 
 }  // namespace

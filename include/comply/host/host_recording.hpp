@@ -14,8 +14,10 @@
 // one that publishes (these encode where they are called: they are off the control thread).
 
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "comply/host/state_sample.hpp"
@@ -26,13 +28,48 @@
 
 namespace comply::host {
 
+/// The control lane's size. A cycle is ~1 KB in it (the command in force travels only when it
+/// changed), so 1 MiB holds about a second of cycles at 1 kHz should the writer stall (a slow
+/// disk), and stays in the control core's L2 cache: a 16 MiB lane made every push miss it.
+inline constexpr std::size_t kControlLaneBytes = std::size_t{1} << 20;
+
 /// One cycle as the recording's control lane holds it.
-template <typename Command>
 struct RecordedCycle {
   StateSample state;
-  pipeline::BusOf<Command> in_force;  ///< the command the law used (Controller::lawBus())
   double compute_s = 0.0;
   double start_lateness_s = 0.0;
+};
+
+/// The control thread's side of a recording: a RecordedCycle every cycle, and the command the
+/// law used (Controller::lawBus()) only when it changed (a new command, a ramp step), on a lane
+/// record of its own that the writer encodes every later cycle with. A cycle record is then
+/// half the size, and so is what a push costs.
+template <typename Command>
+class CycleRecorder {
+ public:
+  CycleRecorder(record::RecordLane& lane, std::uint16_t cycle_channel,
+                std::uint16_t in_force_channel)
+      : lane_(lane), cycle_channel_(cycle_channel), in_force_channel_(in_force_channel) {}
+
+  /// Wait-free, no allocation; a full lane drops the record (and a dropped command in force is
+  /// pushed again with the next cycle).
+  void push(const StateSample& state, const pipeline::BusOf<Command>& in_force, double compute_s,
+            double start_lateness_s) noexcept {
+    const std::int64_t time_ns = state.wall.nanoseconds();
+    if ((!pushed_any_ || std::memcmp(&in_force, &last_, sizeof last_) != 0) &&
+        lane_.push(in_force_channel_, time_ns, in_force)) {
+      last_ = in_force;
+      pushed_any_ = true;
+    }
+    lane_.emplace<RecordedCycle>(cycle_channel_, time_ns, state, compute_s, start_lateness_s);
+  }
+
+ private:
+  record::RecordLane& lane_;
+  std::uint16_t cycle_channel_;
+  std::uint16_t in_force_channel_;
+  pipeline::BusOf<Command> last_{};
+  bool pushed_any_ = false;
 };
 
 class HostRecording {
@@ -51,8 +88,7 @@ class HostRecording {
   template <typename Command>
   void cycle(const StateSample& state, const pipeline::BusOf<Command>& in_force, double compute_s,
              double start_lateness_s) noexcept {
-    control_.emplace<RecordedCycle<Command>>(cycle_channel_, state.wall.nanoseconds(), state,
-                                             in_force, compute_s, start_lateness_s);
+    std::get<CycleRecorder<Command>>(cycles_).push(state, in_force, compute_s, start_lateness_s);
   }
 
   // The command thread.
@@ -75,6 +111,8 @@ class HostRecording {
   std::shared_ptr<const pipeline::ResolvedController> resolved_;
   record::Recorder recorder_;
   std::uint16_t cycle_channel_ = 0;
+  std::uint16_t in_force_channel_ = 0;  // internal: the command in force when it changed
+  pipeline::CommandBus in_force_;       // the writer thread's: the one cycles are encoded with
   std::uint16_t cartesian_channel_ = 0;
   std::uint16_t joint_channel_ = 0;
   std::uint16_t request_channel_ = 0;
@@ -83,6 +121,8 @@ class HostRecording {
   record::RecordLane& control_;
   record::RecordLane& intake_;
   record::RecordLane& publisher_;
+  std::variant<std::monostate, CycleRecorder<CartesianCommand>, CycleRecorder<JointCommand>>
+      cycles_;
   std::vector<std::uint8_t> intake_bytes_;     // the command thread's scratch
   std::vector<std::uint8_t> publisher_bytes_;  // the publishing thread's scratch
 };

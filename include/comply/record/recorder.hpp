@@ -16,6 +16,7 @@
 // limit) stops the recording with the error in stats(); producers are never told and never wait.
 
 #include <atomic>
+#include <condition_variable>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -100,6 +101,7 @@ class RecordLane {
   std::unique_ptr<std::uint8_t[], AlignedDelete> buffer_;
   std::size_t mask_ = 0;
   std::uint64_t reserved_tail_ = 0;  // the producer's: the tail once the reserved record commits
+  std::size_t last_size_ = 0;        // the producer's: bytes of the last record, head included
   std::atomic<bool>* accepting_ = nullptr;          // the recorder's flag
   alignas(64) std::atomic<std::uint64_t> head_{0};  // bytes consumed; written by the writer
   alignas(64) std::atomic<std::uint64_t> tail_{0};  // bytes produced; written by the producer
@@ -148,6 +150,9 @@ class Recorder {
   /// `encoder` empty: the pushed bytes are the message.
   std::uint16_t addChannel(std::uint16_t schema, std::string_view topic, RecordEncoder encoder = {},
                            const StringMap& metadata = {});
+  /// A record kind the file has no channel for: `consumer` takes each such record on the writer
+  /// thread, in lane order (e.g. state that later records are encoded against).
+  std::uint16_t addInternal(std::function<void(std::span<const std::uint8_t> raw)> consumer);
   RecordLane& addLane(std::string name, std::size_t bytes);
   /// Metadata written on stop() besides the counts (robot, controller, ...).
   void addMetadata(std::string name, StringMap metadata);
@@ -171,8 +176,10 @@ class Recorder {
   struct Channel {
     std::uint16_t id;
     RecordEncoder encoder;
+    std::function<void(std::span<const std::uint8_t>)> consumer;  // set: no file channel
   };
-  std::vector<Channel> channels_;
+  std::vector<Channel> channels_;   // the file's, by id
+  std::vector<Channel> internals_;  // addInternal's: id 0xFFFF - index
   std::vector<std::unique_ptr<RecordLane>> lanes_;
   std::atomic<bool> accepting_{false};
   std::atomic<bool> stopping_{false};
@@ -182,6 +189,8 @@ class Recorder {
   std::atomic<double> writer_cpu_s_{0.0};
   std::atomic<bool> failed_{false};
   mutable std::mutex error_mutex_;  // the writer thread and stats(); never a producer
+  std::mutex wake_mutex_;           // the writer thread and stop(); never a producer
+  std::condition_variable wake_;
   std::string error_;
   std::vector<std::uint8_t> message_;  // the writer thread's scratch
   std::thread thread_;
