@@ -133,6 +133,8 @@ bool nodeAvailable() {
   return std::system("node --version > /dev/null 2>&1") == 0;
 }
 
+constexpr int kStiffnessChange = 150;  // the command (at 100 Hz) that changes the stiffness
+
 TEST_P(LiveHostOn, RecordsEveryCycleCommandAndOutcome) {
   const double seconds = recordSeconds();
   const fs::path path = scratch(GetParam() + "_run.mcap");
@@ -156,6 +158,13 @@ TEST_P(LiveHostOn, RecordsEveryCycleCommandAndOutcome) {
       stamp = transport::Stamp::fromNanoseconds(stamp.nanoseconds() - 1'000'000'000);
     }
     sent.push_back(poseCommand(*state, offset, stamp));
+    if (i == kStiffnessChange) {
+      // One command changes the gains: the cycle records must show the change from the cycle
+      // that took it on (the command in force travels in the lane only when it changes).
+      sent.back().command.fields = sent.back().command.fields | CommandField::kStiffness;
+      sent.back().command.stiffness_translational = Eigen::Vector3d(2345, 2345, 1234).asDiagonal();
+      sent.back().command.stiffness_rotational = Eigen::Vector3d(55, 55, 55).asDiagonal();
+    }
     ASSERT_TRUE(host_->send(sent.back(), 1));
     next += 10ms;
     std::this_thread::sleep_until(next);
@@ -242,12 +251,28 @@ TEST_P(LiveHostOn, RecordsEveryCycleCommandAndOutcome) {
             : 0;
   }
   EXPECT_EQ(stale, sent.size() / 10);
-  // A cycle record carries the gains in force: the controller file's stiffness.
-  const nlohmann::json& cycle = node.at("messages").at(prefix + "/cycle").at(0).at("data");
-  ASSERT_EQ(cycle.at("cartesian_in_force").size(), 1U);
-  EXPECT_GT(cycle.at("cartesian_in_force").at(0).at("stiffness_translational").at(0).get<double>(),
-            0.0);
-  EXPECT_EQ(cycle.at("joint_in_force").size(), 0U);
+  // Every cycle record carries the gains in force: the controller file's stiffness until the
+  // cycle that took the command changing it, that command's from then on.
+  const auto& changed = host_->outcomes().at(sent.at(kStiffnessChange).header.stamp.nanoseconds());
+  ASSERT_EQ(changed.size(), 1U);
+  ASSERT_EQ(changed[0].outcome, transport::Outcome::kApplied);
+  const std::uint64_t changed_at = changed[0].cycle;
+  const nlohmann::json& cycle_records = node.at("messages").at(prefix + "/cycle");
+  ASSERT_EQ(cycle_records.size(), cycles);
+  const nlohmann::json& initial =
+      cycle_records.at(0).at("data").at("cartesian_in_force").at(0).at("stiffness_translational");
+  EXPECT_GT(initial.at(0).get<double>(), 0.0);
+  EXPECT_NE(initial.at(0).get<double>(), 2345.0);
+  for (const nlohmann::json& entry : cycle_records) {
+    const nlohmann::json& data = entry.at("data");
+    ASSERT_EQ(data.at("cartesian_in_force").size(), 1U);
+    ASSERT_EQ(data.at("joint_in_force").size(), 0U);
+    const auto index = std::stoull(data.at("state").at("cycle").get<std::string>());
+    const nlohmann::json& k = data.at("cartesian_in_force").at(0).at("stiffness_translational");
+    ASSERT_EQ(k.at(0).get<double>(), index >= changed_at ? 2345.0 : initial.at(0).get<double>())
+        << "cycle " << index << " (the change took effect at cycle " << changed_at << ")";
+    ASSERT_EQ(k.at(8).get<double>(), index >= changed_at ? 1234.0 : initial.at(8).get<double>());
+  }
 }
 
 TEST(LiveRecording, AHostKilledMidRecordingLeavesItsCompleteChunks) {
