@@ -65,11 +65,11 @@ test-asan: deps
 	  ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS) -E "$(ASAN_EXCLUDE)"
 
 # CI's share of test-asan (CTest label asan_ci): the command, controller file, URDF and DDS
-# readers with their fuzz regressions, the model, the wrapper and the transport. The rest links the
-# simulator, whose sanitized build would not fit CI's time.
+# readers with their fuzz regressions, the model, the wrapper, the transport and the recorder. The
+# rest links the simulator, whose sanitized build would not fit CI's time.
 ASAN_CI_TARGETS = schema_test schema_realtime_test pipeline_unit_test wrapper_test \
 	wrapper_realtime_test triple_buffer_tsan_test model_unit_test model_reference_test \
-	model_parsed_urdf_test model_allocation_test transport_test \
+	model_parsed_urdf_test model_allocation_test transport_test record_test \
 	fuzz_command_json fuzz_controller_yaml fuzz_dds_sample fuzz_urdf
 test-asan-ci:
 	@$(MAKE) --no-print-directory test-asan ASAN_TARGETS="$(ASAN_CI_TARGETS)" CTEST_ARGS="-L asan_ci"

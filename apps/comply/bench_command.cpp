@@ -15,13 +15,13 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "bench_recording.hpp"
 #include "comply/hardware/control_loop.hpp"
 #include "comply/host/controller_setup.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/pipeline/wrapper.hpp"
-#include "bench_recording.hpp"
 
 namespace comply::app {
 namespace {

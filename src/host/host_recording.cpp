@@ -76,14 +76,14 @@ HostRecording::HostRecording(const std::string& path,
     using Bus = pipeline::BusOf<Command>;
     in_force_ = Bus{};
     // The writer thread keeps the command in force, and encodes each cycle with it.
-    in_force_channel_ = recorder_.addInternal([this](std::span<const std::uint8_t> raw) {
+    const std::uint16_t in_force = recorder_.addInternal([this](std::span<const std::uint8_t> raw) {
       std::memcpy(&std::get<Bus>(in_force_), raw.data(), sizeof(Bus));
     });
-    cycle_channel_ = addChannel<transport::CycleRecordMessage>(
+    const std::uint16_t cycle = addChannel<transport::CycleRecordMessage>(
         prefix + "cycle", [this, &controller](std::span<const std::uint8_t> raw, auto& out) {
           encodeCycle<Command>(raw, std::get<Bus>(in_force_), controller, out);
         });
-    cycles_.emplace<CycleRecorder<Command>>(control_, cycle_channel_, in_force_channel_);
+    cycles_.emplace<CycleRecorder<Command>>(control_, cycle, in_force);
   };
   if (controller.cartesian()) {
     channels.template operator()<CartesianCommand>();

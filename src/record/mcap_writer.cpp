@@ -207,6 +207,13 @@ void McapWriter::flush() {
   writeChunk();
 }
 
+void McapWriter::abandon() noexcept {
+  if (fd_ >= 0) {
+    ::close(fd_);
+    fd_ = -1;
+  }
+}
+
 void McapWriter::close() {
   if (fd_ < 0) {
     return;

@@ -176,7 +176,10 @@ void Recorder::failed(const std::string& error) {
     error_ = error;
   }
   failed_.store(true);
-  writer_.reset();  // closes the descriptor; the file keeps its complete records
+  // Closed without a summary: after a failed write the file may end inside a record, and
+  // anything appended now would follow it. A reader stops at the torn record.
+  writer_->abandon();
+  writer_.reset();
 }
 
 bool Recorder::drainLanes() {
@@ -187,24 +190,31 @@ bool Recorder::drainLanes() {
         lost_.fetch_add(1, std::memory_order_relaxed);
         return;
       }
-      std::span<const std::uint8_t> message = entry.data;
       const std::size_t internal = 0xFFFF - entry.channel;
-      const Channel& channel =
-          internal < internals_.size() ? internals_[internal] : channels_.at(entry.channel);
-      if (channel.consumer) {
-        channel.consumer(entry.data);
+      const Channel* channel = internal < internals_.size()       ? &internals_[internal]
+                               : entry.channel < channels_.size() ? &channels_[entry.channel]
+                                                                  : nullptr;
+      if (channel == nullptr) {
+        lost_.fetch_add(1, std::memory_order_relaxed);  // a producer's error, not the file's
         return;
       }
-      if (channel.encoder) {
-        message_.clear();
-        channel.encoder(entry.data, message_);
-        message = message_;
-      }
-      const auto time = static_cast<std::uint64_t>(std::max<std::int64_t>(entry.log_time_ns, 0));
       try {
-        writer_->write(channel.id, time, time, message);
+        if (channel->consumer) {
+          channel->consumer(entry.data);
+          return;
+        }
+        std::span<const std::uint8_t> message = entry.data;
+        if (channel->encoder) {
+          message_.clear();
+          channel->encoder(entry.data, message_);
+          message = message_;
+        }
+        const auto time = static_cast<std::uint64_t>(std::max<std::int64_t>(entry.log_time_ns, 0));
+        writer_->write(channel->id, time, time, message);
         written_.fetch_add(1, std::memory_order_relaxed);
-      } catch (const McapError& error) {
+      } catch (const std::exception& error) {
+        // An I/O error, or an encoder that could not (out of memory): the recording ends here,
+        // the host goes on.
         lost_.fetch_add(1, std::memory_order_relaxed);
         failed(error.what());
       }

@@ -9,7 +9,8 @@
 //   /<name>/diagnostics        comply_msgs/Diagnostics   as published
 //
 // Messages are the CDR bytes of the wire. Each group of channels has its own lane with one
-// producer: cycle() is called by the control thread and costs a copy of a fixed-size record;
+// producer: cycle() is called by the control thread and costs a copy of the state sample (about
+// 1 KB) and, when it changed, of the command in force (CycleRecorder);
 // command() and request() by the thread that takes commands, outcome() and diagnostics() by the
 // one that publishes (these encode where they are called: they are off the control thread).
 
@@ -110,9 +111,7 @@ class HostRecording {
 
   std::shared_ptr<const pipeline::ResolvedController> resolved_;
   record::Recorder recorder_;
-  std::uint16_t cycle_channel_ = 0;
-  std::uint16_t in_force_channel_ = 0;  // internal: the command in force when it changed
-  pipeline::CommandBus in_force_;       // the writer thread's: the one cycles are encoded with
+  pipeline::CommandBus in_force_;  // the writer thread's: the one cycles are encoded with
   std::uint16_t cartesian_channel_ = 0;
   std::uint16_t joint_channel_ = 0;
   std::uint16_t request_channel_ = 0;

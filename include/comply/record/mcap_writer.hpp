@@ -72,6 +72,9 @@ class McapWriter {
   void addMetadata(std::string name, StringMap metadata);
   /// Writes the open chunk, if any: once written, a record survives the process being killed.
   void flush();
+  /// Closes the file as it is, writing nothing more (after an I/O error); close() then does
+  /// nothing.
+  void abandon() noexcept;
   /// The open chunk, the metadata, the data end, the summary and the footer; then the file is
   /// closed. Idempotent.
   void close();

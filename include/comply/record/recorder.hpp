@@ -6,7 +6,7 @@
 //   Recorder recorder({.path = "run.mcap"});
 //   const auto schema = recorder.addSchema("comply_msgs/msg/CycleRecord", "ros2msg", text);
 //   const auto cycles = recorder.addChannel(schema, "/comply/cycle", encodeCycle);
-//   RecordLane& control = recorder.addLane("control", 16 << 20);
+//   RecordLane& control = recorder.addLane("control", 1 << 20);
 //   recorder.start();
 //   control.push(cycles, wall_ns, sample);  // in the cycle: wait-free, no allocation, no syscall
 //   recorder.stop();                        // drains, writes the counts, closes the file
