@@ -13,7 +13,9 @@ void addClientOptions(CLI::App* command, ClientOptions& client) {
   command->add_option("--domain", client.domain_id, "DDS domain id (ROS_DOMAIN_ID)")
       ->capture_default_str()
       ->check(CLI::Range(0, 232));
-  command->add_option("--network", client.network, "loopback (127.0.0.1 only) or all")
+  command
+      ->add_option("--network", client.network,
+                   "loopback (DDS traffic on 127.0.0.1 only; docs/live-control.md) or all")
       ->capture_default_str()
       ->check(CLI::IsMember({"loopback", "all"}));
   command->add_option("--name", client.name, "the host's name: topics /<name>/...")
@@ -53,7 +55,9 @@ LiveCommands addLiveCommands(CLI::App& app) {
   run_command->add_option("--domain", run->domain_id, "DDS domain id")
       ->capture_default_str()
       ->check(CLI::Range(0, 232));
-  run_command->add_option("--network", run->network, "loopback (127.0.0.1 only) or all")
+  run_command
+      ->add_option("--network", run->network,
+                   "loopback (DDS traffic on 127.0.0.1 only; docs/live-control.md) or all")
       ->capture_default_str()
       ->check(CLI::IsMember({"loopback", "all"}));
   run_command->add_option("--name", run->name, "topics /<name>/...")->capture_default_str();

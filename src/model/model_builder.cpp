@@ -302,6 +302,30 @@ std::vector<std::size_t> ModelBuilder::placeBodies(
 // read, and MuJoCo refuses to simulate a massless moving body, so `comply validate` would pass a
 // robot `comply sim` refuses. The body is checked, not the link: a massless link carrying a
 // massive one through a fixed joint is one massive body (and MuJoCo accepts it too).
+// A moving body needs a rotational inertia as well as a mass, as MuJoCo does (each principal
+// moment above its mjMINVAL, 1e-15 kg m^2): a point mass on a joint's axis makes M(q) singular,
+// and `comply validate` would pass a robot `comply sim` refuses.
+namespace {
+
+void requireRotationalInertia(const Eigen::Matrix3d& inertia_com, const urdf::Joint& joint) {
+  constexpr double kMinimumMoment = 1e-15;  // [kg m^2]
+  const Eigen::Vector3d moments =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia_com, Eigen::EigenvaluesOnly)
+          .eigenvalues();
+  if (!(moments.minCoeff() > kMinimumMoment)) {
+    throw ModelError(ModelErrc::kInvalidInertia,
+                     "joint '" + joint.name + "' moves a body without rotational inertia: link '" +
+                         joint.child_link_name +
+                         "' and the links it carries up to the next controlled joint have "
+                         "principal moments " +
+                         std::to_string(moments[0]) + ", " + std::to_string(moments[1]) + ", " +
+                         std::to_string(moments[2]) +
+                         " kg m^2 about their centre of mass (each must be above 1e-15)");
+  }
+}
+
+}  // namespace
+
 void ModelBuilder::foldInertias(const urdf::ModelInterface& urdf, const WrittenInertials& written,
                                 const std::vector<urdf::JointConstSharedPtr>& path,
                                 const std::vector<std::size_t>& body_path_position, Model& model) {
@@ -325,6 +349,7 @@ void ModelBuilder::foldInertias(const urdf::ModelInterface& urdf, const WrittenI
     body.inertia_com = accumulator.inertia_origin -
                        accumulator.mass * (body.com.squaredNorm() * Eigen::Matrix3d::Identity() -
                                            body.com * body.com.transpose());
+    requireRotationalInertia(body.inertia_com, *joint);
   }
 }
 

@@ -92,6 +92,9 @@ TEST(ModelErrorTest, NonPhysicalRobotsAreRefused) {
                    {"joint 'j' moves no mass", "'arm'"});
   expectModelError(load(oneJoint(inertial(0.0, 0.0, 0.0, 0.0), limit)), ModelErrc::kInvalidInertia,
                    {"moves no mass"});
+  // A mass without rotational inertia (a point mass): MuJoCo refuses it, and so does comply.
+  expectModelError(load(oneJoint(inertial(1.0, 0.0, 0.0, 0.0), limit)), ModelErrc::kInvalidInertia,
+                   {"joint 'j' moves a body without rotational inertia", "link 'arm'"});
   expectModelError(load(oneJoint(inertial(1e12, 1.0, 1.0, 1.0), limit)), ModelErrc::kInvalidInertia,
                    {"link 'arm'", "more than any arm's link"});
   expectModelError(load(oneJoint(inertial(1.0, 0.01, 0.01, 0.03), limit)),

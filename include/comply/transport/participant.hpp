@@ -16,7 +16,8 @@
 namespace comply::transport {
 
 enum class Network : std::uint8_t {
-  kLoopback,  ///< 127.0.0.1 only, no multicast (the default)
+  kLoopback,  ///< sends and discovers on 127.0.0.1 only, no multicast (the default; the sockets
+              ///< still bind to every address: docs/live-control.md)
   kAll,       ///< CycloneDDS's defaults: the machine's interfaces, multicast discovery
 };
 
