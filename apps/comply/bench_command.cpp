@@ -137,15 +137,22 @@ std::vector<double> pacedCycles(pipeline::Wrapper<Command>& wrapper,
   return cycle_us;
 }
 
+/// What a benchmarked wrapper has on besides its law.
+struct Variant {
+  DampingMode damping_mode = DampingMode::kRatio;
+  bool gain_stage = false;  ///< ramps and energy tank
+  bool recorded = false;    ///< the cycle pushed into a recording's lane
+  bool observer = false;    ///< the momentum observer
+};
+
 template <typename Command>
 std::vector<BenchRow> benchWrapper(const BenchOptions& options, const std::string& wrapper_name,
                                    const std::string& plugin_name, const std::vector<double>& home,
-                                   std::ostream& log,
-                                   DampingMode damping_mode = DampingMode::kRatio,
-                                   bool gain_stage = false, bool recorded = false) {
+                                   std::ostream& log, const Variant& variant = {}) {
   pipeline::WrapperConfig config = host::controllerConfig(options.robot, plugin_name);
-  config.initial_cartesian.damping_mode = damping_mode;
-  if (gain_stage) {
+  config.initial_cartesian.damping_mode = variant.damping_mode;
+  config.observer.enabled = variant.observer;
+  if (variant.gain_stage) {
     // Ramps and tank on, the tank far from full so that it refills (and, with ratios, bounds the
     // damping from the mass matrix) every window: the stage's dearest steady state.
     config.gain_ramps.enabled = true;
@@ -169,7 +176,7 @@ std::vector<BenchRow> benchWrapper(const BenchOptions& options, const std::strin
                              {.period_s = kPeriodS, .cycles = static_cast<std::uint64_t>(total)});
   CycleTimer timer(options.warmup, cycle_us);
   std::unique_ptr<BenchRecording<Command>> recording;
-  if (recorded) {
+  if (variant.recorded) {
     recording = std::make_unique<BenchRecording<Command>>(
         options.warmup, wrapper, replay,
         std::filesystem::temp_directory_path() /
@@ -279,14 +286,17 @@ std::vector<BenchRow> runBench(const BenchOptions& options, std::ostream& log) {
   // absolute mode shows what that costs.
   add(benchWrapper<CartesianCommand>(options, "cartesian", "cartesian_impedance", robot.home, log));
   add(benchWrapper<CartesianCommand>(options, "cartesian_abs", "cartesian_impedance", robot.home,
-                                     log, DampingMode::kAbsolute));
+                                     log, {.damping_mode = DampingMode::kAbsolute}));
   // The same ratio cycle with the gain stage (ramps and energy tank) on.
   add(benchWrapper<CartesianCommand>(options, "cartesian_tank", "cartesian_impedance", robot.home,
-                                     log, DampingMode::kRatio, true));
+                                     log, {.gain_stage = true}));
   // The ratio cycle recorded (comply run --record): the state sample and the push into the
   // recording's lane after each cycle, the writer thread running beside it.
   add(benchWrapper<CartesianCommand>(options, "cartesian_recorded", "cartesian_impedance",
-                                     robot.home, log, DampingMode::kRatio, false, true));
+                                     robot.home, log, {.recorded = true}));
+  // The ratio cycle with the momentum observer estimating the external wrench.
+  add(benchWrapper<CartesianCommand>(options, "cartesian_observer", "cartesian_impedance",
+                                     robot.home, log, {.observer = true}));
   return rows;
 }
 

@@ -126,8 +126,11 @@ void StateSampler<Command>::fill(const hardware::CycleRecord& record, const Join
   s.tcp_orientation = data.tip_orientation;
   s.tcp_twist =
       data.jacobian.cols() == dof ? Vector6d(data.jacobian * s.joints.velocity) : Vector6d::Zero();
-  // The control thread is the one that reads the hardware: the wrench is read here, in the cycle.
-  if (robot_ == nullptr || !robot_->readWrench(s.contact_wrench)) {
+  // The observer's estimate when it runs (observer.enabled); else the hardware's own sensor, read
+  // here because the control thread is the one that reads the hardware.
+  if (controller.observer().enabled()) {
+    s.contact_wrench = controller.observer().wrench();
+  } else if (robot_ == nullptr || !robot_->readWrench(s.contact_wrench)) {
     s.contact_wrench.setZero();
   }
   const auto& bus = std::get<pipeline::BusOf<Command>>(controller.activeCommand());

@@ -246,6 +246,25 @@ void addGuardOptions(std::vector<Option>& table) {
                         &StabilityGuardConfig::saturation_time_s, true));
 }
 
+// The external wrench, estimated from the joints' momentum (pipeline/momentum_observer.hpp).
+void addObserverOptions(std::vector<Option>& table) {
+  table.push_back(spaced(
+      flag("observer.enabled", "false",
+           "estimate the external wrench at the TCP from the joints' momentum (the state's wrench)",
+           [](WrapperConfig& c, bool v) { c.observer.enabled = v; })));
+  table.push_back(sectionNumber("observer.gain_per_s", "50.0",
+                                "1/s: the estimate's bandwidth (time constant 1/gain)",
+                                &WrapperConfig::observer, &ObserverConfig::gain_per_s, 1e4, true));
+  table.push_back(
+      sectionNumber("observer.damping", "0.001",
+                    "lambda of the pseudo-inverse (J J^T + lambda^2 I)^-1 J near a singularity",
+                    &WrapperConfig::observer, &ObserverConfig::damping, 1.0, false));
+  table.push_back(flag("observer.measured_torque", "false",
+                       "use the measured joint torque (torque-sensing arms) instead of the "
+                       "commanded one",
+                       [](WrapperConfig& c, bool v) { c.observer.measured_torque = v; }));
+}
+
 // The sections are added in the order the YAML file prints them; the order is part of the file.
 std::vector<Option> makeTable() {
   std::vector<Option> table;
@@ -254,6 +273,7 @@ std::vector<Option> makeTable() {
   addLimitAndShapingOptions(table);
   addGainOptions(table);
   addGuardOptions(table);
+  addObserverOptions(table);
   return table;
 }
 

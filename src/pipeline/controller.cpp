@@ -50,6 +50,10 @@ Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
   if (parameters_.payload_compensation) {
     quantities_ = quantities_ | Quantity::kPayloadGravity;
   }
+  observer_.configure(parameters_.observer, dof_);
+  if (observer_.enabled()) {
+    quantities_ = quantities_ | Quantity::kMassMatrix | Quantity::kCoriolis | Quantity::kJacobian;
+  }
   state_ = JointState::zero(dof_);
   torque_.setZero(dof_);
   law_torque_.setZero(dof_);
@@ -107,6 +111,7 @@ void Controller::activate(const JointState& state) {
     torque_ -= data_.gravity.head(dof_);
   }
   shaper_.reset(torque_);
+  observer_.reset();  // the torque before activation is not known
   repeated_cycles_ = 0;
   state_frozen_ = false;
   overspeed_s_.setZero(dof_);

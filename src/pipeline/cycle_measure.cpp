@@ -30,6 +30,7 @@ bool Controller::measure(const JointState& state) noexcept {
     return false;
   }
   state_ = state;
+  observe();
   keepHoldingGravity();
   fillPluginInput(state_, data_, quantities_, time_s_, period_s_, input_);
   measured_.publishFromSoleWriter(currentPose());
@@ -74,6 +75,23 @@ bool Controller::stateFrozen(const JointState& state) noexcept {
       (torque_ - torque_when_repeated_).cwiseAbs().maxCoeff() > kFrozenStateTorqueChangeNm ||
       state.velocity.cwiseAbs().maxCoeff() * unmoved_s > kFrozenStateMotionRad;
   return state_frozen_;
+}
+
+void Controller::observe() noexcept {
+  if (!observer_.enabled()) {
+    return;
+  }
+  // The torque that acted over the period that ended: measured, or what the last cycle wrote
+  // (comply's share, plus the gravity a robot that compensates it adds itself).
+  if (parameters_.observer.measured_torque && state_.effort.allFinite()) {
+    scratch_ = state_.effort;
+  } else {
+    scratch_ = torque_;
+    if (parameters_.hardware_compensates_gravity) {
+      scratch_ += data_.gravity.head(dof_);
+    }
+  }
+  observer_.update(state_.velocity, scratch_, data_, period_s_);
 }
 
 void Controller::keepHoldingGravity() noexcept {

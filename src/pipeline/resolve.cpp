@@ -105,6 +105,7 @@ std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig&
   parameters.gain_ramps = config.gain_ramps;
   parameters.passivity = config.passivity;
   parameters.stability_guard = config.stability_guard;
+  parameters.observer = config.observer;
   parameters.velocity_limit.resize(dof);
   for (int i = 0; i < dof; ++i) {
     parameters.velocity_limit[i] = model.limits(i).velocity;

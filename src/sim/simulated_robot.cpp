@@ -203,12 +203,30 @@ void SimulatedRobot::step() noexcept {
         data_->qfrc_applied[dof_address_[j]] = applied_[j];
       }
     }
+    applyExternalWrench();
     mj_step(model_.get(), data_.get());
   }
   if (braked_) {
     pinHeldJoints();
     mj_forward(model_.get(), data_.get());
   }
+}
+
+void SimulatedRobot::applyExternalWrench() noexcept {
+  // MuJoCo applies a body's xfrc_applied at its centre of mass, in world coordinates: the wrench
+  // at the TCP is moved there (recomputed every step, as the body turns).
+  const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> base_rotation(
+      data_->xmat + 9 * static_cast<std::ptrdiff_t>(base_body_));
+  const Eigen::Vector3d force = base_rotation * external_wrench_.head<3>();
+  const Eigen::Vector3d torque_at_tcp = base_rotation * external_wrench_.tail<3>();
+  const Eigen::Map<const Eigen::Vector3d> tcp(data_->xpos +
+                                              3 * static_cast<std::ptrdiff_t>(tip_body_));
+  const Eigen::Map<const Eigen::Vector3d> com(data_->xipos +
+                                              3 * static_cast<std::ptrdiff_t>(tip_body_));
+  Eigen::Map<Eigen::Matrix<double, 6, 1>> applied(data_->xfrc_applied +
+                                                  6 * static_cast<std::ptrdiff_t>(tip_body_));
+  applied.head<3>() = force;
+  applied.tail<3>() = torque_at_tcp + (tcp - com).cross(force);
 }
 
 Eigen::Isometry3d SimulatedRobot::tcpPose() const noexcept {

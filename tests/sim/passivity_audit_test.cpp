@@ -190,8 +190,8 @@ TEST_P(PassivityAudit, RandomGainStreamsNeverShowMoreEnergyThanAtTheStart) {
 
 INSTANTIATE_TEST_SUITE_P(Noise, PassivityAudit,
                          ::testing::Values(Noise{0.0, 0.0}, Noise{1e-4, 0.05}),
-                         [](const auto& info) {
-                           return info.param.velocity_rad_per_s > 0.0 ? std::string("Noisy")
+                         [](const auto& test) {
+                           return test.param.velocity_rad_per_s > 0.0 ? std::string("Noisy")
                                                                       : std::string("Clean");
                          });
 

@@ -84,7 +84,7 @@ TEST_P(StabilityGuard, GainsTheArmCannotRenderEndStableOrInANamedFault) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Robots, StabilityGuard, ::testing::ValuesIn(model::availableRobots()),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& test) { return test.param; });
 
 }  // namespace
 }  // namespace comply::testing

@@ -25,6 +25,7 @@
 #include "comply/core/commands.hpp"
 #include "comply/model/data.hpp"
 #include "comply/model/robot_description.hpp"
+#include "comply/pipeline/momentum_observer.hpp"
 #include "comply/plugin/loader.hpp"
 
 namespace comply::pipeline {
@@ -140,6 +141,7 @@ struct WrapperConfig {
   GainRampConfig gain_ramps;
   PassivityConfig passivity;
   StabilityGuardConfig stability_guard;
+  ObserverConfig observer;  ///< the external wrench estimate (observer.*)
 
   /// Initial command (gains, task frame); the pose/joint reference is seeded on activation.
   /// Sized by completeForRobot().

@@ -117,6 +117,9 @@ class Controller {
   [[nodiscard]] const CommandBus& lawBus() const noexcept {
     return gains_.enabled() ? gains_.lawBus() : active_;
   }
+  /// The external wrench estimate (observer.enabled): at the TCP, base frame, force first
+  /// [N, N m], and per joint [N m | N]. Real-time thread, or between cycles.
+  [[nodiscard]] const MomentumObserver& observer() const noexcept { return observer_; }
   /// In FAULT on a frozen sensor stream: the hold's gravity is that of a pose the arm may have
   /// left, so the hardware's own hold (brakes) is asked for as well (CycleController::wantsHold).
   [[nodiscard]] bool holdRequested() const noexcept {
@@ -150,6 +153,7 @@ class Controller {
   /// Keeps the gravity (+ payload) of the state just evaluated as FAULT's holding base; called
   /// only after a successful model update, which a failed one may leave half-written.
   void keepHoldingGravity() noexcept;
+  void observe() noexcept;  // cycle_measure.cpp: the momentum observer's update
   /// Whether `state` repeats the last one bit for bit for frozen_state_timeout_s while the torque
   /// moved kFrozenStateTorqueChangeNm: a stale sensor stream.
   bool stateFrozen(const JointState& state) noexcept;
@@ -175,6 +179,7 @@ class Controller {
   // Cycle state: real-time thread only (or the lifecycle, between cycles).
   CommandBus active_;
   GainGuard gains_;
+  MomentumObserver observer_;
   bool in_force_changed_ = false;  // active_ changed since the gain stage last saw it
   bool torque_clipped_ = false;    // the last cycle's torque was rate or effort limited
   JointVector overspeed_s_;        // per joint: how long it has been over its speed limit

@@ -57,6 +57,7 @@ struct CycleParameters {
   GainRampConfig gain_ramps;
   PassivityConfig passivity;
   StabilityGuardConfig stability_guard;
+  ObserverConfig observer;
   JointVector velocity_limit;  ///< URDF [rad/s | m/s], for the stability guard
 };
 

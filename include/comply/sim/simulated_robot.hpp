@@ -82,6 +82,11 @@ class SimulatedRobot final : public hardware::HardwareInterface {
     wrench = toolContactWrench();
     return true;
   }
+  /// A wrench the environment exerts on the tool at the TCP from the next step() on: base frame,
+  /// force first, torque about the TCP origin [N, N m] (a push by hand, a known load; the tests'
+  /// ground truth for the external-wrench estimate). Zero removes it. Not a contact: it is not in
+  /// toolContactWrench().
+  void setExternalWrench(const Vector6d& wrench) noexcept { external_wrench_ = wrench; }
   /// Effort the plant applied in the last period [N m | N], after clamping.
   [[nodiscard]] std::span<const double> appliedEffort() const noexcept { return applied_; }
   [[nodiscard]] std::span<const double> effortLimit() const noexcept { return effort_limit_; }
@@ -94,6 +99,7 @@ class SimulatedRobot final : public hardware::HardwareInterface {
 
  private:
   void pinHeldJoints() noexcept;
+  void applyExternalWrench() noexcept;
 
   struct MujocoDeleter {
     void operator()(mjModel* model) const noexcept { mj_deleteModel(model); }
@@ -117,6 +123,7 @@ class SimulatedRobot final : public hardware::HardwareInterface {
   std::normal_distribution<double> unit_normal_{0.0, 1.0};
   double position_noise_rad_ = 0.0;
   double velocity_noise_rad_per_s_ = 0.0;
+  Vector6d external_wrench_ = Vector6d::Zero();
 };
 
 }  // namespace comply::sim

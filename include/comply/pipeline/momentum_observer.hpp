@@ -1,0 +1,63 @@
+#pragma once
+// The generalized-momentum observer (De Luca and Mattone 2005; survey: Haddadin, De Luca and
+// Albu-Schaeffer, T-RO 2017): with the arm's dynamics M(q) ddq + C(q, dq) dq + g(q) = tau +
+// tau_ext, the residual
+//
+//   r = K_O ( M(q) dq - p0 - integral( tau + C^T(q, dq) dq - g(q) + r ) dt )
+//
+// follows the external joint torque as a first-order filter of bandwidth K_O (dr/dt = K_O
+// (tau_ext - r)), from joint positions and velocities alone: no acceleration. C^T dq comes from
+// dM/dt = C + C^T as dM/dt dq - C dq, dM/dt from the mass matrices of two cycles. The wrench at the
+// TCP is the damped least-squares solution of J^T F = r.
+//
+// Runs in the cycle's measure stage when observer.enabled: no allocation, no lock, no throw.
+
+#include "comply/core/capacity.hpp"
+#include "comply/core/commands.hpp"
+#include "comply/core/state.hpp"
+#include "comply/model/data.hpp"
+
+namespace comply::pipeline {
+
+/// observer.* in the controller file.
+struct ObserverConfig {
+  bool enabled = false;
+  double gain_per_s = 50.0;  ///< K_O [1/s]: the estimate's bandwidth (time constant 1/K_O)
+  /// lambda in (J J^T + lambda^2 I)^-1 J r: keeps the wrench bounded near a singularity.
+  double damping = 1e-3;
+  /// Use the hardware's measured joint torque (an arm with joint-torque sensing: its joint
+  /// friction then drops out of the estimate) instead of the torque the cycle commanded.
+  bool measured_torque = false;
+};
+
+class MomentumObserver {
+ public:
+  void configure(const ObserverConfig& config, int dof) noexcept;
+  [[nodiscard]] bool enabled() const noexcept { return config_.enabled; }
+  /// The next update() starts afresh: p0 from its state, the integral and r at zero.
+  void reset() noexcept { started_ = false; }
+
+  /// One cycle: this cycle's velocities and model data (mass matrix, Coriolis, gravity,
+  /// Jacobian), `tau` the joint torque that acted over the period that ended [N m | N].
+  void update(const JointVector& velocity, const JointVector& tau, const model::Data& data,
+              double period_s) noexcept;
+
+  /// The external joint torque estimate r [N m | N]; zero until two updates.
+  [[nodiscard]] const JointVector& jointTorque() const noexcept { return residual_; }
+  /// The external wrench on the tool at the TCP, base frame, force first [N, N m].
+  [[nodiscard]] const Vector6d& wrench() const noexcept { return wrench_; }
+
+ private:
+  ObserverConfig config_;
+  int dof_ = 0;
+  bool started_ = false;
+  JointVector initial_momentum_;  // p0
+  JointVector momentum_;          // M dq of this cycle
+  JointVector integral_;
+  JointVector residual_;
+  JointMatrix previous_mass_;
+  JointVector scratch_;
+  Vector6d wrench_ = Vector6d::Zero();
+};
+
+}  // namespace comply::pipeline
