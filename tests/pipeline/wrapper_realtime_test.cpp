@@ -149,9 +149,10 @@ std::string realtimeLines(const std::string& behavior) {
 }
 
 /// The gain stage on, its tank started low so that it both refuses and refills (the ratio-mode
-/// damping bound factorises the mass matrix) in the counted cycles.
+/// damping bound factorises the mass matrix) in the counted cycles; and the momentum observer.
 const std::string kGuardedLines =
-    "gain_ramps:\n  enabled: true\npassivity:\n  enabled: true\n  tank_initial_j: 0.02\n";
+    "gain_ramps:\n  enabled: true\npassivity:\n  enabled: true\n  tank_initial_j: 0.02\n"
+    "observer:\n  enabled: true\n";
 
 void expectTheGuardWorked(const DiagnosticsSnapshot& diagnostics) {
   EXPECT_TRUE(diagnostics.passivity.enabled);
@@ -238,6 +239,11 @@ TEST(WrapperRealtime, JointUpdateNeitherAllocatesNorLocks) {
     });
     if (guarded) {
       expectTheGuardWorked(wrapper.diagnostics());
+      // The observer ran in the counted cycles (the replayed state moves with no torque behind
+      // it: all of it is "external").
+      const auto& observer = wrapper.controller().observer();
+      EXPECT_TRUE(observer.wrench().allFinite());
+      EXPECT_GT(observer.jointTorque().norm(), 0.0);
     }
   }
 }
@@ -276,6 +282,11 @@ TEST(WrapperRealtime, CartesianUpdateNeitherAllocatesNorLocks) {
     });
     if (guarded) {
       expectTheGuardWorked(wrapper.diagnostics());
+      // The observer ran in the counted cycles (the replayed state moves with no torque behind
+      // it: all of it is "external").
+      const auto& observer = wrapper.controller().observer();
+      EXPECT_TRUE(observer.wrench().allFinite());
+      EXPECT_GT(observer.jointTorque().norm(), 0.0);
     }
   }
 }
