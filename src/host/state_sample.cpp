@@ -133,16 +133,20 @@ void StateSampler<Command>::fill(const hardware::CycleRecord& record, const Join
   } else if (robot_ == nullptr || !robot_->readWrench(s.contact_wrench)) {
     s.contact_wrench.setZero();
   }
-  const auto& bus = std::get<pipeline::BusOf<Command>>(controller.activeCommand());
-  s.reference_stamp_s = bus.stamp_s;
-  s.reference_fields = bus.fields;
   s.reference_joint_position.setZero(dof);
+  // The wrapper's kind is the bus's: get_if only because std::get may throw.
+  const auto* bus = std::get_if<pipeline::BusOf<Command>>(&controller.activeCommand());
+  if (bus == nullptr) {
+    return;
+  }
+  s.reference_stamp_s = bus->stamp_s;
+  s.reference_fields = bus->fields;
   if constexpr (std::is_same_v<Command, CartesianCommand>) {
-    s.reference_position = Eigen::Vector3d(bus.position[0], bus.position[1], bus.position[2]);
-    s.reference_orientation = schema::fromXyzw(bus.orientation);
+    s.reference_position = Eigen::Vector3d(bus->position[0], bus->position[1], bus->position[2]);
+    s.reference_orientation = schema::fromXyzw(bus->orientation);
   } else {
     for (int i = 0; i < dof; ++i) {
-      s.reference_joint_position[i] = bus.position[i];
+      s.reference_joint_position[i] = bus->position[i];
     }
   }
 }

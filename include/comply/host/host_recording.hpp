@@ -89,7 +89,10 @@ class HostRecording {
   template <typename Command>
   void cycle(const StateSample& state, const pipeline::BusOf<Command>& in_force, double compute_s,
              double start_lateness_s) noexcept {
-    std::get<CycleRecorder<Command>>(cycles_).push(state, in_force, compute_s, start_lateness_s);
+    // get_if: the recorder's kind is the controller's, but std::get may throw.
+    if (auto* cycles = std::get_if<CycleRecorder<Command>>(&cycles_)) {
+      cycles->push(state, in_force, compute_s, start_lateness_s);
+    }
   }
 
   // The command thread.
