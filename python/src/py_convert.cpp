@@ -103,6 +103,9 @@ py::dict toDict(const transport::ControllerStateMessage& s) {
   d["reference_orientation"] = array(s.reference_orientation);
   d["reference_joint_position"] = array(s.reference_joint_position);
   d["contact_wrench"] = array(s.contact_wrench);
+  d["contact_wrench_source"] = std::string(toString(s.contact_wrench_source));
+  d["contact_wrench_tcp"] = array(s.contact_wrench_tcp);
+  d["contact_wrench_task"] = array(s.contact_wrench_task);
   addPassivity({.enabled = s.passivity,
                 .tank_energy_j = s.tank_energy_j,
                 .nullspace_tank_energy_j = s.nullspace_tank_energy_j,

@@ -66,7 +66,10 @@ transport::ControllerStateMessage stateMessage(const StateSample& sample,
   for (int i = 0; i < 6; ++i) {
     message.tcp_twist[i] = sample.tcp_twist[i];
     message.contact_wrench[i] = sample.contact_wrench[i];
+    message.contact_wrench_tcp[i] = sample.contact_wrench_tcp[i];
+    message.contact_wrench_task[i] = sample.contact_wrench_task[i];
   }
+  message.contact_wrench_source = sample.contact_wrench_source;
   message.reference_stamp = stampOf(sample.reference_stamp_s);
   message.reference_fields = sample.reference_fields;
   if (!resolved.cartesian()) {
@@ -130,8 +133,27 @@ void StateSampler<Command>::fill(const hardware::CycleRecord& record, const Join
   // here because the control thread is the one that reads the hardware.
   if (controller.observer().enabled()) {
     s.contact_wrench = controller.observer().wrench();
-  } else if (robot_ == nullptr || !robot_->readWrench(s.contact_wrench)) {
+    s.contact_wrench_source = transport::WrenchSource::kObserver;
+  } else if (robot_ != nullptr && robot_->readWrench(s.contact_wrench)) {
+    s.contact_wrench_source = transport::WrenchSource::kSensor;
+  } else {
     s.contact_wrench.setZero();
+    s.contact_wrench_source = transport::WrenchSource::kNone;
+  }
+  // The same wrench about the same point, in the TCP frame and in the task frame in force (the
+  // frame a contact task's axes are named in, which turns with the task).
+  const Eigen::Matrix3d tcp_rotation = s.tcp_orientation.toRotationMatrix();
+  s.contact_wrench_tcp << tcp_rotation.transpose() * s.contact_wrench.head<3>(),
+      tcp_rotation.transpose() * s.contact_wrench.tail<3>();
+  // The task frame the law used (after the gain stage's slerp); the base frame under joint
+  // control.
+  s.contact_wrench_task = s.contact_wrench;
+  if constexpr (std::is_same_v<Command, CartesianCommand>) {
+    if (const auto* law = std::get_if<pipeline::BusOf<Command>>(&controller.lawBus())) {
+      const Eigen::Matrix3d task = schema::fromXyzw(law->task_frame).toRotationMatrix();
+      s.contact_wrench_task << task.transpose() * s.contact_wrench.head<3>(),
+          task.transpose() * s.contact_wrench.tail<3>();
+    }
   }
   s.reference_joint_position.setZero(dof);
   // The wrapper's kind is the bus's: get_if only because std::get may throw.

@@ -81,6 +81,9 @@ void putState(Writer& w, const ControllerStateMessage& message) {
   putArray(w, message.reference_orientation);
   putSequence(w, message.reference_joint_position);
   putArray(w, message.contact_wrench);
+  w.put(static_cast<std::uint8_t>(message.contact_wrench_source));
+  putArray(w, message.contact_wrench_tcp);
+  putArray(w, message.contact_wrench_task);
   w.putBool(message.passivity);
   w.put(message.tank_energy_j);
   w.put(message.nullspace_tank_energy_j);

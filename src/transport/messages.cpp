@@ -35,6 +35,18 @@ std::string_view toString(HostState state) {
   return "unknown";
 }
 
+std::string_view toString(WrenchSource source) {
+  switch (source) {
+    case WrenchSource::kObserver:
+      return "observer";
+    case WrenchSource::kSensor:
+      return "sensor";
+    case WrenchSource::kNone:
+      break;
+  }
+  return "none";
+}
+
 std::string_view toString(WireCommandKind kind) {
   return kind == WireCommandKind::kJoint ? "joint" : "cartesian";
 }

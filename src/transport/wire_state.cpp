@@ -85,6 +85,9 @@ dds_return_t Wire<ControllerStateMessage>::write(dds_entity_t writer,
   copyArray(message.reference_orientation, out.reference_orientation);
   out.reference_joint_position = borrow<dds_sequence_double>(message.reference_joint_position);
   copyArray(message.contact_wrench, out.contact_wrench);
+  out.contact_wrench_source = static_cast<std::uint8_t>(message.contact_wrench_source);
+  copyArray(message.contact_wrench_tcp, out.contact_wrench_tcp);
+  copyArray(message.contact_wrench_task, out.contact_wrench_task);
   out.passivity = message.passivity;
   out.tank_energy = message.tank_energy_j;
   out.nullspace_tank_energy = message.nullspace_tank_energy_j;
@@ -120,6 +123,9 @@ void Wire<ControllerStateMessage>::read(const void* sample, ControllerStateMessa
   copyArray(in.reference_orientation, message.reference_orientation);
   message.reference_joint_position = copyOf<double>(in.reference_joint_position);
   copyArray(in.contact_wrench, message.contact_wrench);
+  message.contact_wrench_source = static_cast<WrenchSource>(in.contact_wrench_source);
+  copyArray(in.contact_wrench_tcp, message.contact_wrench_tcp);
+  copyArray(in.contact_wrench_task, message.contact_wrench_task);
   message.passivity = in.passivity;
   message.tank_energy_j = in.tank_energy;
   message.nullspace_tank_energy_j = in.nullspace_tank_energy;

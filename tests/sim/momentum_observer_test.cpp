@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "comply/host/state_sample.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/sim/simulated_robot.hpp"
@@ -35,13 +36,19 @@ struct Logged {
   std::vector<JointVector> position, velocity, torque;  // per cycle: state and torque applied
   std::vector<JointVector> residual;                    // the wrapper's r after that cycle
   std::vector<Vector6d> wrench;                         // the wrapper's wrench after that cycle
+  host::StateSample last;  // the state a host reports after the last cycle
 };
+
+/// The task frame of the runs: turned, so that the state's task-frame wrench differs from the
+/// base frame's.
+const Eigen::Quaterniond kTaskFrame(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()));
 
 void runWithWrench(const std::string& robot, const Vector6d& applied, Logged& log,
                    bool with_armature = true) {
   pipeline::WrapperConfig config = simCartesianConfig(robot);
   config.observer.enabled = true;
   config.observer.gain_per_s = kGainPerS;
+  config.initial_cartesian.task_frame = kTaskFrame;
   sim::PlantOptions plant_options;
   plant_options.friction_scale = 0.0;
   sim::SimulatedRobot plant(*config.robot_description, plant_options);
@@ -73,6 +80,13 @@ void runWithWrench(const std::string& robot, const Vector6d& applied, Logged& lo
     log.residual.push_back(wrapper.controller().observer().jointTorque());
     log.wrench.push_back(wrapper.controller().observer().wrench());
   }
+  host::StateSampler<CartesianCommand> sampler(wrapper, plant);
+  hardware::CycleRecord record;
+  record.index = kCycles - 1;
+  record.wrote = true;
+  record.state = &state;
+  record.torque = {torque.data(), static_cast<std::size_t>(dof)};
+  sampler.fill(record, state, transport::Stamp{}, log.last);
 }
 
 /// The mean estimate over the last 100 ms, held to 5 % + 0.5 N and 5 % + 0.05 N m of `applied`.
@@ -120,6 +134,22 @@ TEST_P(MomentumObserver, EstimatesAKnownWrenchWithItsTimeConstant) {
   const double time_constant_s = (reached - kStepCycle) * kPeriodS;
   EXPECT_NEAR(time_constant_s, 1.0 / kGainPerS, 0.2 / kGainPerS);
   RecordProperty("time_constant_ms", std::to_string(time_constant_s * 1e3));
+
+  // What a host reports: the estimate, named as such, in the base, TCP and task frames.
+  const host::StateSample& state = log.last;
+  EXPECT_EQ(state.contact_wrench_source, transport::WrenchSource::kObserver);
+  EXPECT_TRUE(state.contact_wrench.isApprox(log.wrench.back(), 1e-12));
+  const Eigen::Matrix3d tcp = state.tcp_orientation.toRotationMatrix();
+  const Eigen::Matrix3d task = kTaskFrame.toRotationMatrix();
+  EXPECT_LT((tcp * state.contact_wrench_tcp.head<3>() - state.contact_wrench.head<3>()).norm(),
+            1e-9);
+  EXPECT_LT((tcp * state.contact_wrench_tcp.tail<3>() - state.contact_wrench.tail<3>()).norm(),
+            1e-9);
+  EXPECT_LT((task * state.contact_wrench_task.head<3>() - state.contact_wrench.head<3>()).norm(),
+            1e-9);
+  EXPECT_LT((task * state.contact_wrench_task.tail<3>() - state.contact_wrench.tail<3>()).norm(),
+            1e-9);
+  EXPECT_GT((state.contact_wrench_task - state.contact_wrench).norm(), 1.0);  // the frame turned
 }
 
 // With the armature the model does not know of (as on a real arm): wrong only while the arm

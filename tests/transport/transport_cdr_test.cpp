@@ -193,6 +193,9 @@ TEST(TransportCdrEncoder, StateDiagnosticsAndRequestsMatchTheWire) {
   state.reference_orientation = values<4>(random);
   state.reference_joint_position = values(random, 1);
   state.contact_wrench = values<6>(random);
+  state.contact_wrench_source = WrenchSource::kObserver;
+  state.contact_wrench_tcp = values<6>(random);
+  state.contact_wrench_task = values<6>(random);
   state.passivity = true;
   state.tank_energy_j = 1.5;
   state.nullspace_tank_energy_j = 2.5;

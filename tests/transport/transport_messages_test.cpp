@@ -189,6 +189,9 @@ TEST(TransportMessages, StateRoundTrip) {
   message.position = {0.1, 0.2};
   message.tcp_orientation = {0.0, 0.0, 1.0, 0.0};
   message.contact_wrench[2] = -15.5;
+  message.contact_wrench_source = WrenchSource::kSensor;
+  message.contact_wrench_tcp[4] = 0.25;
+  message.contact_wrench_task[0] = -3.0;
   // The tank's account: every field away from its default, each value distinct, so a swap shows.
   message.passivity = true;
   message.tank_energy_j = 0.75;
@@ -202,6 +205,9 @@ TEST(TransportMessages, StateRoundTrip) {
   EXPECT_EQ(got.position, message.position);
   EXPECT_EQ(got.tcp_orientation, message.tcp_orientation);
   EXPECT_EQ(got.contact_wrench[2], -15.5);
+  EXPECT_EQ(got.contact_wrench_source, WrenchSource::kSensor);
+  EXPECT_EQ(got.contact_wrench_tcp[4], 0.25);
+  EXPECT_EQ(got.contact_wrench_task[0], -3.0);
   EXPECT_TRUE(got.passivity);
   EXPECT_EQ(got.tank_energy_j, 0.75);
   EXPECT_EQ(got.nullspace_tank_energy_j, 0.25);

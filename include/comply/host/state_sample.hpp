@@ -23,8 +23,11 @@ struct StateSample {
   Eigen::Vector3d tcp_position = Eigen::Vector3d::Zero();
   Eigen::Quaterniond tcp_orientation = Eigen::Quaterniond::Identity();
   Vector6d tcp_twist = Vector6d::Zero();
-  Vector6d contact_wrench = Vector6d::Zero();
-  pipeline::PassivitySnapshot passivity;  ///< the energy tank's account after the cycle
+  Vector6d contact_wrench = Vector6d::Zero();  ///< base frame
+  transport::WrenchSource contact_wrench_source = transport::WrenchSource::kNone;
+  Vector6d contact_wrench_tcp = Vector6d::Zero();   ///< the same in the TCP frame
+  Vector6d contact_wrench_task = Vector6d::Zero();  ///< ... in the task frame in force
+  pipeline::PassivitySnapshot passivity;            ///< the energy tank's account after the cycle
   double reference_stamp_s = 0.0;
   std::uint32_t reference_fields = 0;
   Eigen::Vector3d reference_position = Eigen::Vector3d::Zero();

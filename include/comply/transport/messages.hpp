@@ -50,6 +50,9 @@ struct JointCommandMessage {
 
 /// ControllerState.STATE_*.
 enum class HostState : std::uint8_t { kInactive = 0, kActive = 1, kFault = 2 };
+/// ControllerState.WRENCH_SOURCE_*.
+enum class WrenchSource : std::uint8_t { kNone = 0, kObserver = 1, kSensor = 2 };
+std::string_view toString(WrenchSource source);
 /// ControllerState.COMMAND_KIND_*.
 enum class WireCommandKind : std::uint8_t { kCartesian = 0, kJoint = 1 };
 std::string_view toString(HostState state);
@@ -72,6 +75,9 @@ struct ControllerStateMessage {
   std::array<double, 4> reference_orientation{0.0, 0.0, 0.0, 1.0};  ///< x y z w
   std::vector<double> reference_joint_position;
   std::array<double, 6> contact_wrench{};
+  WrenchSource contact_wrench_source = WrenchSource::kNone;
+  std::array<double, 6> contact_wrench_tcp{};   ///< the same wrench in the TCP frame
+  std::array<double, 6> contact_wrench_task{};  ///< ... in the task frame in force
   /// The energy tank's account (pipeline::PassivitySnapshot): all 0, gain_fraction 1, when off.
   bool passivity = false;
   double tank_energy_j = 0.0;
