@@ -19,10 +19,6 @@
 namespace comply::python {
 namespace {
 
-std::int64_t nanosecondsOf(double seconds) {
-  return std::llround(seconds * 1e9);
-}
-
 /// The command as it would have come over the wire.
 template <typename Command>
 void recordCommand(host::HostRecording& recording, const Command& command,
@@ -74,7 +70,7 @@ struct Episode final : hardware::LoopObserver {
 
   /// The recording's clock at the episode's simulated time `t_s`.
   [[nodiscard]] transport::Stamp clockAt(double t_s) const noexcept {
-    return transport::Stamp::fromNanoseconds(start_ns + nanosecondsOf(t_s));
+    return transport::Stamp::fromNanoseconds(start_ns + stampNanoseconds(t_s));
   }
 
   pipeline::Wrapper<Command> wrapper;
@@ -129,7 +125,7 @@ struct Sim::Session {
 
   /// The recording's clock now: where the next episode starts.
   [[nodiscard]] std::int64_t clockNs() const noexcept {
-    return start_ns + nanosecondsOf(plant.simTime());
+    return start_ns + stampNanoseconds(plant.simTime());
   }
 
   static sim::PlantOptions plantOptions(const pipeline::ResolvedController& resolved) {
@@ -262,7 +258,7 @@ py::tuple Sim::step(const py::object& command) {
   if (!command.is_none()) {
     const py::dict kwargs = command.cast<py::dict>();
     // Simulated time is the stamp: it grows with every step, so the gate's strict rule holds.
-    stamp_ns = std::llround(session_->plant.simTime() * 1e9);
+    stamp_ns = stampNanoseconds(session_->plant.simTime());
     pipeline::Offer offer;
     offer.stamp_ns = *stamp_ns;
     offer.kind = cartesian() ? pipeline::CommandKind::kCartesian : pipeline::CommandKind::kJoint;

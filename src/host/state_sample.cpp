@@ -11,10 +11,6 @@
 namespace comply::host {
 namespace {
 
-transport::Stamp stampOf(double seconds) {
-  return transport::Stamp::fromNanoseconds(static_cast<std::int64_t>(std::llround(seconds * 1e9)));
-}
-
 std::vector<double> vectorOf(const JointVector& values) {
   return {values.data(), values.data() + values.size()};
 }
@@ -70,7 +66,7 @@ transport::ControllerStateMessage stateMessage(const StateSample& sample,
     message.contact_wrench_task[i] = sample.contact_wrench_task[i];
   }
   message.contact_wrench_source = sample.contact_wrench_source;
-  message.reference_stamp = stampOf(sample.reference_stamp_s);
+  message.reference_stamp = transport::Stamp::fromSeconds(sample.reference_stamp_s);
   message.reference_fields = sample.reference_fields;
   if (!resolved.cartesian()) {
     message.reference_joint_position = vectorOf(sample.reference_joint_position);

@@ -21,6 +21,32 @@ using mcap::put;
 using mcap::putString;
 using mcap::putStringMap;
 
+namespace {
+
+void appendSchemaRecord(std::vector<std::uint8_t>& out, std::uint16_t id, std::string_view name,
+                        std::string_view encoding, std::string_view data) {
+  const std::size_t at = openRecord(out, mcap::kSchema);
+  put(out, id);
+  putString(out, name);
+  putString(out, encoding);
+  putString(out, data);  // uint32 length + bytes, as a string is
+  closeRecord(out, at);
+}
+
+void appendChannelRecord(std::vector<std::uint8_t>& out, std::uint16_t id, std::uint16_t schema_id,
+                         std::string_view topic, std::string_view message_encoding,
+                         const StringMap& metadata) {
+  const std::size_t at = openRecord(out, mcap::kChannel);
+  put(out, id);
+  put(out, schema_id);
+  putString(out, topic);
+  putString(out, message_encoding);
+  putStringMap(out, metadata);
+  closeRecord(out, at);
+}
+
+}  // namespace
+
 std::string_view toString(Compression compression) {
   return compression == Compression::kZstd ? "zstd" : "";
 }
@@ -89,12 +115,7 @@ std::uint16_t McapWriter::addSchema(std::string_view name, std::string_view enco
   const auto id = static_cast<std::uint16_t>(schemas_.size() + 1);
   schemas_.push_back({std::string(name), std::string(encoding), std::string(data)});
   std::vector<std::uint8_t> bytes;
-  const std::size_t at = openRecord(bytes, mcap::kSchema);
-  put(bytes, id);
-  putString(bytes, name);
-  putString(bytes, encoding);
-  putString(bytes, data);  // uint32 length + bytes, as a string is
-  closeRecord(bytes, at);
+  appendSchemaRecord(bytes, id, name, encoding, data);
   append(bytes);
   return id;
 }
@@ -104,13 +125,7 @@ std::uint16_t McapWriter::addChannel(std::uint16_t schema_id, std::string_view t
   const auto id = static_cast<std::uint16_t>(channels_.size());
   channels_.push_back({schema_id, std::string(topic), std::string(message_encoding), metadata, 0});
   std::vector<std::uint8_t> bytes;
-  const std::size_t at = openRecord(bytes, mcap::kChannel);
-  put(bytes, id);
-  put(bytes, schema_id);
-  putString(bytes, topic);
-  putString(bytes, message_encoding);
-  putStringMap(bytes, metadata);
-  closeRecord(bytes, at);
+  appendChannelRecord(bytes, id, schema_id, topic, message_encoding, metadata);
   append(bytes);
   return id;
 }
@@ -251,23 +266,15 @@ void McapWriter::close() {
   };
   group(mcap::kSchema, [&] {
     for (std::size_t i = 0; i < schemas_.size(); ++i) {
-      const std::size_t record = openRecord(bytes, mcap::kSchema);
-      put(bytes, static_cast<std::uint16_t>(i + 1));
-      putString(bytes, schemas_[i].name);
-      putString(bytes, schemas_[i].encoding);
-      putString(bytes, schemas_[i].data);
-      closeRecord(bytes, record);
+      appendSchemaRecord(bytes, static_cast<std::uint16_t>(i + 1), schemas_[i].name,
+                         schemas_[i].encoding, schemas_[i].data);
     }
   });
   group(mcap::kChannel, [&] {
     for (std::size_t i = 0; i < channels_.size(); ++i) {
-      const std::size_t record = openRecord(bytes, mcap::kChannel);
-      put(bytes, static_cast<std::uint16_t>(i));
-      put(bytes, channels_[i].schema_id);
-      putString(bytes, channels_[i].topic);
-      putString(bytes, channels_[i].message_encoding);
-      putStringMap(bytes, channels_[i].metadata);
-      closeRecord(bytes, record);
+      const Channel& channel = channels_[i];
+      appendChannelRecord(bytes, static_cast<std::uint16_t>(i), channel.schema_id, channel.topic,
+                          channel.message_encoding, channel.metadata);
     }
   });
   group(mcap::kStatistics, [&] {

@@ -9,7 +9,6 @@
 #include <sys/wait.h>
 
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -18,6 +17,7 @@
 #include "comply/record/mcap_reader.hpp"
 #include "live_harness.hpp"
 #include "live_support.hpp"
+#include "scratch.hpp"
 
 namespace comply::live_test {
 namespace {
@@ -25,9 +25,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("comply_live_rec_" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  return dir / name;
+  return testing::scratchPath("comply_live_rec", name);
 }
 
 double recordSeconds() {
@@ -96,17 +94,7 @@ Channels readRecording(const fs::path& path) {
 nlohmann::json readWithNode(const fs::path& path, int messages) {
   const std::string command = "node " + kSourceDir + "/tests/record/read_mcap.mjs '" +
                               path.string() + "' --messages " + std::to_string(messages);
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) {
-    return nullptr;
-  }
-  std::string text;
-  char buffer[65536];
-  std::size_t n = 0;
-  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) {
-    text.append(buffer, n);
-  }
-  const int status = pclose(pipe);
+  const auto [status, text] = testing::runCommand(command);
   if (status != 0 || text.empty()) {
     ADD_FAILURE() << "read_mcap.mjs failed (exit " << status << "): run scripts/install-deps.sh "
                   << "to install Node's packages";
@@ -117,16 +105,7 @@ nlohmann::json readWithNode(const fs::path& path, int messages) {
 
 /// `comply inspect` on `path`: its exit code and what it printed.
 std::pair<int, std::string> inspect(const fs::path& path) {
-  const std::string command = kComply + " inspect '" + path.string() + "' 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string text;
-  char buffer[4096];
-  std::size_t n = 0;
-  while (pipe != nullptr && (n = fread(buffer, 1, sizeof buffer, pipe)) > 0) {
-    text.append(buffer, n);
-  }
-  const int status = pipe != nullptr ? pclose(pipe) : -1;
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
+  return testing::runCommand(kComply + " inspect '" + path.string() + "' 2>&1");
 }
 
 bool nodeAvailable() {
@@ -319,17 +298,8 @@ TEST(LiveRecording, AFullDiskStopsTheRecordingNotTheRun) {
                               kSourceDir + "/examples/sim/press_on_table.yaml --no-plot --out '" +
                               scratch("limited_sim").string() + "' --record '" + path.string() +
                               "' 2>&1";
-  FILE* pipe = popen(("sh -c \"" + command + "\"").c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string text;
-  char buffer[4096];
-  std::size_t n = 0;
-  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) {
-    text.append(buffer, n);
-  }
-  const int status = pclose(pipe);
-  ASSERT_TRUE(WIFEXITED(status)) << text;
-  EXPECT_EQ(WEXITSTATUS(status), 0) << text;  // the run itself succeeded
+  const auto [status, text] = testing::runCommand("sh -c \"" + command + "\"");
+  EXPECT_EQ(status, 0) << text;  // the run itself succeeded
   EXPECT_NE(text.find("recording stopped early"), std::string::npos) << text;
   EXPECT_NE(text.find("File too large"), std::string::npos) << text;
   EXPECT_LE(fs::file_size(path), 1024U * 1024U);

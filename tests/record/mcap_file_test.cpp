@@ -14,6 +14,7 @@
 
 #include "comply/record/mcap_reader.hpp"
 #include "comply/record/mcap_writer.hpp"
+#include "scratch.hpp"
 
 namespace comply::record {
 namespace {
@@ -21,9 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("comply_mcap_" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  return dir / name;
+  return testing::scratchPath("comply_mcap", name);
 }
 
 std::vector<std::uint8_t> payload(std::uint64_t i) {

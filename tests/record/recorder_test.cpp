@@ -18,6 +18,7 @@
 
 #include "allocation_counter.hpp"
 #include "comply/record/mcap_reader.hpp"
+#include "scratch.hpp"
 
 namespace comply::record {
 namespace {
@@ -25,9 +26,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("comply_recorder_" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  return dir / name;
+  return testing::scratchPath("comply_recorder", name);
 }
 
 /// A fixed-size sample as a control cycle pushes it.

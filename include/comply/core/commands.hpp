@@ -5,6 +5,7 @@
 // whose orientation travels with the command.
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <cstdint>
 
 #include "comply/core/capacity.hpp"
@@ -31,6 +32,11 @@ constexpr StampParts splitStamp(std::int64_t stamp_ns) noexcept {
 constexpr double stampSeconds(std::int64_t stamp_ns) noexcept {
   const StampParts parts = splitStamp(stamp_ns);
   return static_cast<double>(parts.sec) + 1e-9 * static_cast<double>(parts.nanosec);
+}
+
+/// A stamp_s [s] (or any time in seconds) as nanoseconds, to the nearest one.
+inline std::int64_t stampNanoseconds(double stamp_s) noexcept {
+  return std::llround(stamp_s * 1e9);
 }
 
 /// Field groups of a command; a sender sets only those it updates, the rest stays in force.

@@ -23,6 +23,10 @@ struct Stamp {
   /// The wall clock (CLOCK_REALTIME), as ROS time is.
   static Stamp now() noexcept;
   static Stamp fromNanoseconds(std::int64_t nanoseconds) noexcept;
+  /// `seconds` since the epoch, to the nearest nanosecond (a command's stamp_s, simulated time).
+  static Stamp fromSeconds(double seconds) noexcept {
+    return fromNanoseconds(stampNanoseconds(seconds));
+  }
   [[nodiscard]] std::int64_t nanoseconds() const noexcept;
   /// What a command's stamp_s becomes [s].
   [[nodiscard]] double seconds() const noexcept;

@@ -87,7 +87,7 @@ class SimRecorder final : public hardware::LoopObserver {
 
   void afterCycle(const hardware::CycleRecord& record) override {
     if (recording_ != nullptr && record.state != nullptr) {
-      sampler_->fill(record, *record.state, stampAt(record.time_s), sample_);
+      sampler_->fill(record, *record.state, transport::Stamp::fromSeconds(record.time_s), sample_);
       recording_->cycle<Command>(sample_,
                                  std::get<pipeline::BusOf<Command>>(wrapper_.controller().lawBus()),
                                  record.controller_s, record.start_lateness_s);
@@ -160,14 +160,10 @@ class SimRecorder final : public hardware::LoopObserver {
     }
   }
 
-  static transport::Stamp stampAt(double t) {
-    return transport::Stamp::fromNanoseconds(static_cast<std::int64_t>(std::llround(t * 1e9)));
-  }
-
   /// The command as it would have come over the wire, and its outcome.
   void record(const Command& command, const pipeline::Verdict& verdict, double t) {
-    const transport::Stamp now = stampAt(t);
-    const transport::Header header{stampAt(command.stamp_s), base_frame_};
+    const transport::Stamp now = transport::Stamp::fromSeconds(t);
+    const transport::Header header{transport::Stamp::fromSeconds(command.stamp_s), base_frame_};
     transport::CommandOutcomeMessage outcome;
     outcome.stamp = header.stamp;
     outcome.received = now;
