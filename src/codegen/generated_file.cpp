@@ -3,6 +3,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "embedded_templates.hpp"
+
 namespace comply::codegen {
 
 void writeFiles(const std::filesystem::path& out, std::span<const GeneratedFile> files) {
@@ -15,6 +17,15 @@ void writeFiles(const std::filesystem::path& out, std::span<const GeneratedFile>
       throw std::runtime_error("cannot write " + path.string());
     }
   }
+}
+
+std::string_view embeddedTemplate(std::string_view path) {
+  const auto& templates = embeddedTemplates();
+  const auto found = templates.find(path);
+  if (found == templates.end()) {
+    throw std::out_of_range("no embedded template " + std::string(path));
+  }
+  return found->second;
 }
 
 std::string replaceAll(std::string text, std::string_view from, std::string_view to) {
