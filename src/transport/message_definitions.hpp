@@ -1,5 +1,6 @@
 #pragma once
-// The comply_msgs .msg texts, embedded from msg/ at build time (embed_messages.cmake).
+// The comply_msgs .msg texts, embedded from msg/ at build time (comply_embed_files in
+// src/transport/CMakeLists.txt).
 
 #include <map>
 #include <string>
