@@ -93,6 +93,10 @@ std::string_view toString(RejectionReason reason) {
       return "queue_full";
     case RejectionReason::kOutOfRange:
       return "out_of_range";
+    case RejectionReason::kLateChunk:
+      return "late_chunk";
+    case RejectionReason::kInvalidChunk:
+      return "invalid_chunk";
     case RejectionReason::kCount:
       break;
   }

@@ -60,6 +60,10 @@ void addCommandOptions(std::vector<Option>& table) {
     c.timeout_behavior = v.text == "hold" ? TimeoutBehavior::kHold : TimeoutBehavior::kReanchor;
   };
   table.push_back(behavior);
+  table.push_back(number("chunk_blend_time_s", "0.1",
+                         "s over which a new timed chunk takes over from the reference in force",
+                         0.0, 10.0, false,
+                         [](WrapperConfig& c, double v) { c.chunk_blend_time_s = v; }));
   table.push_back(number(
       "validation.quaternion_tolerance", "1.0e-3", "|norm - 1| renormalised below, rejected above",
       0.0, 0.5, true, [](WrapperConfig& c, double v) { c.validation.quaternion_tolerance = v; }));

@@ -39,7 +39,8 @@ Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
       measured_(MeasuredPose{}),
       in_force_(emptyBus(resolved_->command_kind)),
       active_(initialBus(*resolved_)),
-      gains_(parameters_.gain_ramps, parameters_.passivity) {
+      gains_(parameters_.gain_ramps, parameters_.passivity),
+      chunks_(resolved_->command_kind, dof_, parameters_.chunk_blend_time_s) {
   data_.payload = parameters_.payload;
   plugin_ = std::make_unique<plugin::PluginInstance>(resolved_->plugin, dof_,
                                                      resolved_->config.plugin_parameters);
@@ -90,9 +91,12 @@ void Controller::activate(const JointState& state) {
        message = intake_.front()) {
     if (message->type == IntakeMessage::Type::kCommand) {
       mergeInto(active_, message->command);
+    } else if (message->type == IntakeMessage::Type::kChunk) {
+      chunks_.release(message->chunk_slot);  // a chunk's times were for the cycle that ran
     }
     intake_.pop();
   }
+  chunks_.stop();
   CommandBus seeded = active_;
   seedFromMeasured(seeded, currentPose());
   if (plugin_->activate(input_) != COMPLY_OK) {
@@ -160,7 +164,9 @@ void Controller::enterFault(const char* prefix, const char* detail) noexcept {
 }
 
 MeasuredPose Controller::currentPose() const noexcept {
-  return measuredPoseFrom(state_.position, data_);
+  MeasuredPose pose = measuredPoseFrom(state_.position, data_);
+  pose.time_s = time_s_;
+  return pose;
 }
 
 void Controller::publishInForce() noexcept {

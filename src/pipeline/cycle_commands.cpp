@@ -15,8 +15,14 @@ void Controller::takeCommands() noexcept {
       // Only a fault present when the request arrives can be reset: a request must not stay armed
       // and clear a later fault unasked.
       reset_pending_ = diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kFault;
+    } else if (message->type == IntakeMessage::Type::kChunk) {
+      if (chunks_.playing()) {
+        (void)chunks_.play(time_s_, active_);  // the running chunk's reference at this time
+      }
+      chunks_.start(message->chunk_slot, active_, time_s_);
+      changed = true;
     } else {
-      mergeInto(active_, message->command);
+      takeCommand(message->command);
       changed = true;
     }
     intake_.pop();
@@ -24,8 +30,40 @@ void Controller::takeCommands() noexcept {
   if (changed) {
     last_command_time_s_ = time_s_;
     watchdog_expired_ = false;
+  }
+  const bool chunk_ran = chunks_.playing();
+  playChunk();
+  if (changed || chunk_ran) {
     publishInForce();
   }
+}
+
+void Controller::takeCommand(const CommandBus& command) noexcept {
+  const std::uint32_t sets =
+      std::visit([](const auto& bus) noexcept { return bus.fields; }, command);
+  if ((sets & chunks_.fields()) != 0) {
+    (void)chunks_.play(time_s_, active_);
+    chunks_.stop();
+    stopMotion(active_);
+  }
+  mergeInto(active_, command);
+}
+
+void Controller::playChunk() noexcept {
+  if (!chunks_.playing()) {
+    return;
+  }
+  if (diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kFault) {
+    // A reset resumes from the reference where the fault left it, not from wherever the chunk
+    // would have carried it meanwhile.
+    chunks_.stop();
+    stopMotion(active_);
+    return;
+  }
+  (void)chunks_.play(time_s_, active_);
+  // A chunk is a command that lasts: the watchdog counts from its end.
+  last_command_time_s_ = time_s_;
+  watchdog_expired_ = false;
 }
 
 void Controller::watchdog() noexcept {
@@ -34,6 +72,7 @@ void Controller::watchdog() noexcept {
     return;
   }
   watchdog_expired_ = true;
+  chunks_.stop();
   diagnostics_.watchdog_timeouts.fetch_add(1, std::memory_order_relaxed);
   if (parameters_.timeout_behavior == TimeoutBehavior::kReanchor) {
     if (state_usable_) {

@@ -91,6 +91,7 @@ std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig&
   }
   CycleParameters& parameters = resolved->parameters;
   parameters.command_timeout_s = config.command_timeout_s;
+  parameters.chunk_blend_time_s = config.chunk_blend_time_s;
   parameters.timeout_behavior = config.timeout_behavior;
   parameters.gravity_compensation = config.gravity_compensation;
   parameters.hardware_compensates_gravity = config.hardware_compensates_gravity;

@@ -23,6 +23,13 @@ std::shared_ptr<const ResolvedController> checkedKind(
   return resolved;
 }
 
+Verdict queueFull() {
+  return {false, RejectionReason::kQueueFull,
+          std::string(toString(RejectionReason::kQueueFull)) + ": " +
+              std::to_string(Controller::kIntakeCapacity) +
+              " commands already wait for the cycle; the sender is faster than the control rate"};
+}
+
 }  // namespace
 
 template <typename Command>
@@ -43,6 +50,19 @@ void Wrapper<Command>::reset() {
 }
 
 template <typename Command>
+Verdict Wrapper<Command>::account(Verdict verdict, double stamp_s) {
+  Diagnostics& diagnostics = controller_.diagnostics();
+  if (!verdict.accepted) {
+    diagnostics.rejections[static_cast<std::size_t>(verdict.reason)].fetch_add(1);
+    diagnostics.setRejection("command rejected: ", verdict.message.c_str());
+    return verdict;
+  }
+  last_stamp_s_ = stamp_s;
+  diagnostics.commands_accepted.fetch_add(1);
+  return verdict;
+}
+
+template <typename Command>
 Verdict Wrapper<Command>::submit(const Command& command) {
   const std::lock_guard<std::mutex> lock(intake_mutex_);
   const int dof = controller_.dof();
@@ -51,27 +71,42 @@ Verdict Wrapper<Command>::submit(const Command& command) {
   checked.stamp_s = last_stamp_s_;
   Verdict verdict =
       validateAndMerge(command, controller_.resolved().config.validation, dof, measured, checked);
-  Diagnostics& diagnostics = controller_.diagnostics();
   if (verdict.accepted) {
     IntakeMessage message;
     message.command = toBus(checked, dof);
     std::get<BusOf<Command>>(message.command).fields = static_cast<std::uint32_t>(command.fields);
     if (!controller_.enqueue(message)) {
-      verdict = {false, RejectionReason::kQueueFull,
-                 std::string(toString(RejectionReason::kQueueFull)) + ": " +
-                     std::to_string(Controller::kIntakeCapacity) +
-                     " commands already wait for the cycle; the sender is faster than the "
-                     "control rate"};
+      verdict = queueFull();
     }
   }
-  if (!verdict.accepted) {
-    diagnostics.rejections[static_cast<std::size_t>(verdict.reason)].fetch_add(1);
-    diagnostics.setRejection("command rejected: ", verdict.message.c_str());
-    return verdict;
+  return account(std::move(verdict), command.stamp_s);
+}
+
+template <typename Command>
+Verdict Wrapper<Command>::submitChunk(const Chunk<Command>& chunk, double host_time_s) {
+  const std::lock_guard<std::mutex> lock(intake_mutex_);
+  const int dof = controller_.dof();
+  const MeasuredPose measured = controller_.measuredPose();
+  Chunk<Command> checked = chunk;
+  Verdict verdict = validateChunk(checked, controller_.resolved().config.validation, dof, measured,
+                                  last_stamp_s_, host_time_s);
+  if (verdict.accepted) {
+    // The last cycle ran at controller time measured.time_s; the host's clock reads host_time_s
+    // somewhat later (less than a period when the cycle runs): the chunk then runs that early.
+    const double host_to_controller_s = measured.time_s - host_time_s;
+    ChunkPlayer& chunks = controller_.chunks();
+    IntakeMessage message;
+    message.type = IntakeMessage::Type::kChunk;
+    message.command = emptyBus(kKind<Command>);
+    message.chunk_slot = chunks.load(checked, host_to_controller_s);
+    if (message.chunk_slot < 0) {
+      verdict = queueFull();
+    } else if (!controller_.enqueue(message)) {
+      chunks.release(message.chunk_slot);
+      verdict = queueFull();
+    }
   }
-  last_stamp_s_ = command.stamp_s;
-  diagnostics.commands_accepted.fetch_add(1);
-  return verdict;
+  return account(std::move(verdict), chunk.stamp_s);
 }
 
 template <typename Command>

@@ -69,6 +69,10 @@ std::string_view toString(Reason reason) {
       return "queue_full";
     case Reason::kOutOfRange:
       return "out_of_range";
+    case Reason::kLateChunk:
+      return "late_chunk";
+    case Reason::kInvalidChunk:
+      return "invalid_chunk";
     case Reason::kOtherPublisher:
       return "other_publisher";
     case Reason::kWrongKind:

@@ -28,6 +28,9 @@ struct MeasuredPose {
   Eigen::Vector3d tcp_position = Eigen::Vector3d::Zero();               ///< base frame [m]
   Eigen::Quaterniond tcp_orientation = Eigen::Quaterniond::Identity();  ///< base frame
   bool valid = false;  ///< false until the controller has measured anything
+  /// The controller's clock at that cycle [s since activation]: where the intake places a
+  /// chunk's waypoints on the cycle's time.
+  double time_s = 0.0;
 };
 
 }  // namespace comply

@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 
+#include "comply/core/chunk.hpp"
 #include "comply/core/commands.hpp"
 #include "comply/core/state.hpp"
 #include "comply/pipeline/config.hpp"
@@ -23,6 +24,8 @@ enum class RejectionReason : std::uint8_t {
   kPoseJump,           ///< target too far from the measured pose / joint position
   kQueueFull,          ///< the cycle has not taken the commands queued before (sender too fast)
   kOutOfRange,         ///< a rate or feedforward entry above the limit of its unit for any arm
+  kLateChunk,          ///< a chunk whose last waypoint is already past on the host's clock
+  kInvalidChunk,       ///< a chunk's shape: waypoint count, times, field groups, damping modes
   kCount,
 };
 inline constexpr std::size_t kRejectionReasonCount =
@@ -54,5 +57,16 @@ Verdict validateAndMerge(const CartesianCommand& incoming, const ValidationConfi
                          const MeasuredPose& measured, CartesianCommand& merged);
 Verdict validateAndMerge(const JointCommand& incoming, const ValidationConfig& limits, int dof,
                          const MeasuredPose& measured, JointCommand& merged);
+
+/// Checks a timed chunk as a whole at the intake (chunk_validation.cpp): 1 to kMaxChunkWaypoints
+/// waypoints; groups within kChunkFields and kPosition among them; finite, strictly increasing
+/// times; the last one after `host_time_s` (the host's clock, the times' timebase); one damping
+/// mode; and every waypoint as a command (validateCommand: stamp, fields), the first waypoint not
+/// yet past against the measured pose and each later one against the one before it, with the
+/// jump limits. Renormalises quaternions in place. The message names the waypoint.
+Verdict validateChunk(CartesianChunk& chunk, const ValidationConfig& limits, int dof,
+                      const MeasuredPose& measured, double last_stamp_s, double host_time_s);
+Verdict validateChunk(JointChunk& chunk, const ValidationConfig& limits, int dof,
+                      const MeasuredPose& measured, double last_stamp_s, double host_time_s);
 
 }  // namespace comply::pipeline

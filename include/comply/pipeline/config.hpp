@@ -114,6 +114,8 @@ struct WrapperConfig {
   std::shared_ptr<const nlohmann::json> initial_block;
 
   double command_timeout_s = 0.5;
+  /// A new timed chunk takes over from the reference in force over this time [s] (0: at once).
+  double chunk_blend_time_s = 0.1;
   TimeoutBehavior timeout_behavior = TimeoutBehavior::kHold;
   ValidationConfig validation;
 

@@ -5,7 +5,8 @@
 //   measure      state check (finite; not frozen), model update, plugin input, publish the
 //                measured pose                                  -> FAULT on a bad state
 //   guard        overspeed, a joint past its limit              -> FAULT (stability_guard.*)
-//   commands     take every command the intake queued, merged by field mask
+//   commands     take every command the intake queued, merged by field mask; a timed chunk
+//                starts, and the running one writes its reference at this cycle's time
 //   watchdog     no command for command_timeout_s: hold (stop the motion) or re-anchor
 //   gains        ramps and the energy tank between the commanded gains and the law's (optional)
 //   law          plugin step, finite check                      -> FAULT on failure
@@ -32,6 +33,7 @@
 #include "comply/core/triple_buffer.hpp"
 #include "comply/model/data.hpp"
 #include "comply/model/update.hpp"
+#include "comply/pipeline/chunk_player.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/diagnostics.hpp"
 #include "comply/pipeline/gain_guard.hpp"
@@ -58,9 +60,10 @@ enum class CycleStatus {
 
 /// One entry of the intake queue.
 struct IntakeMessage {
-  enum class Type : std::uint8_t { kCommand, kReset };
+  enum class Type : std::uint8_t { kCommand, kReset, kChunk };
   Type type = Type::kCommand;
-  CommandBus command;  ///< kCommand: a validated command with its field mask
+  CommandBus command;   ///< kCommand: a validated command with its field mask
+  int chunk_slot = -1;  ///< kChunk: the ChunkPlayer slot the intake loaded it into
 };
 
 class Controller {
@@ -92,6 +95,9 @@ class Controller {
   // ---- intake side (one producer at a time: the wrapper serialises its senders) ---------------
   /// Queues a message for the next cycle; false when the queue is full.
   bool enqueue(const IntakeMessage& message) noexcept { return intake_.push(message); }
+  /// The timed chunks' slots: the intake loads a validated chunk here and then enqueues a
+  /// kChunk message naming its slot.
+  [[nodiscard]] ChunkPlayer& chunks() noexcept { return chunks_; }
   /// The pose the cycle last measured (reader: the intake, under its mutex).
   [[nodiscard]] MeasuredPose measuredPose();
   /// The command in force as of the last cycle (same reader).
@@ -142,6 +148,10 @@ class Controller {
   bool guardMotion() noexcept;      // cycle_guard.cpp
   bool guardSaturation() noexcept;  // cycle_guard.cpp
   void takeCommands() noexcept;
+  /// A queued command that sets a group the running chunk drives ends the chunk (its reference
+  /// at this cycle stays, at rest unless the command sets a velocity).
+  void takeCommand(const CommandBus& command) noexcept;
+  void playChunk() noexcept;  // cycle_commands.cpp
   void watchdog() noexcept;
   void guardGains() noexcept;
   bool runLaw() noexcept;
@@ -180,6 +190,7 @@ class Controller {
   CommandBus active_;
   GainGuard gains_;
   MomentumObserver observer_;
+  ChunkPlayer chunks_;
   bool in_force_changed_ = false;  // active_ changed since the gain stage last saw it
   bool torque_clipped_ = false;    // the last cycle's torque was rate or effort limited
   JointVector overspeed_s_;        // per joint: how long it has been over its speed limit

@@ -41,6 +41,7 @@ struct SoftLimitParameters {
 /// Everything the cycle reads, each per-joint value sized to the controller's dof.
 struct CycleParameters {
   double command_timeout_s = 0.5;
+  double chunk_blend_time_s = 0.1;
   TimeoutBehavior timeout_behavior = TimeoutBehavior::kHold;
   bool gravity_compensation = true;
   bool hardware_compensates_gravity = false;  ///< see WrapperConfig

@@ -19,6 +19,7 @@
 #include <mutex>
 #include <span>
 
+#include "comply/core/chunk.hpp"
 #include "comply/core/commands.hpp"
 #include "comply/core/state.hpp"
 #include "comply/hardware/control_loop.hpp"
@@ -52,6 +53,11 @@ class Wrapper final : public hardware::CycleController {
   /// and the last accepted stamp and queues it for the next cycle. A rejected command changes
   /// nothing; the reason is counted in the diagnostics.
   Verdict submit(const Command& command);
+  /// Any non-RT thread. Validates a timed chunk as a whole (validateChunk) and queues it: the
+  /// next cycle starts it, blending in from the reference in force. `host_time_s` is the host's
+  /// clock now, in the timebase of the waypoints' times; the cycle meets those times to within
+  /// one control period. A rejected chunk changes nothing.
+  Verdict submitChunk(const Chunk<Command>& chunk, double host_time_s);
   /// The command in force (merged) as of the last cycle.
   [[nodiscard]] Command lastAccepted() const;
   /// The pose the cycle last measured (what commands are validated against).
@@ -77,6 +83,9 @@ class Wrapper final : public hardware::CycleController {
 
  private:
   mutable Controller controller_;    // mutable: reading its published values is a reader's update
+  /// Counts a rejection and returns it; counts an acceptance and moves the stamp floor.
+  Verdict account(Verdict verdict, double stamp_s);
+
   mutable std::mutex intake_mutex_;  // senders and lifecycle calls only, never the cycle
   double last_stamp_s_ = 0.0;
 };

@@ -116,14 +116,16 @@ enum class Reason : std::uint8_t {
   kPoseJump = 5,
   kQueueFull = 6,
   kOutOfRange = 7,
-  kOtherPublisher = 8,  ///< another writer holds the command topics
-  kWrongKind = 9,       ///< a joint command to a Cartesian controller, or the reverse
-  kInactive = 10,       ///< the controller is not active
-  kFutureStamp = 11,    ///< stamped too far ahead of the host's clock
-  kInvalidStamp = 12,   ///< header.stamp.nanosec not below 1e9
+  kLateChunk = 8,        ///< a chunk whose last waypoint is already past
+  kInvalidChunk = 9,     ///< a chunk's shape: waypoint count, times, groups, damping modes
+  kOtherPublisher = 10,  ///< another writer holds the command topics
+  kWrongKind = 11,       ///< a joint command to a Cartesian controller, or the reverse
+  kInactive = 12,        ///< the controller is not active
+  kFutureStamp = 13,     ///< stamped too far ahead of the host's clock
+  kInvalidStamp = 14,    ///< header.stamp.nanosec not below 1e9
   kNone = 255,
 };
-inline constexpr std::size_t kReasonCount = 13;
+inline constexpr std::size_t kReasonCount = 15;
 std::string_view toString(Reason reason);
 
 /// comply_msgs/CommandOutcome.

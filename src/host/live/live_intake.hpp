@@ -18,6 +18,8 @@ static_assert(static_cast<int>(transport::Reason::kQueueFull) ==
                   static_cast<int>(pipeline::RejectionReason::kQueueFull) &&
               static_cast<int>(transport::Reason::kOutOfRange) ==
                   static_cast<int>(pipeline::RejectionReason::kOutOfRange) &&
+              static_cast<int>(transport::Reason::kInvalidChunk) ==
+                  static_cast<int>(pipeline::RejectionReason::kInvalidChunk) &&
               static_cast<int>(transport::Reason::kOtherPublisher) ==
                   static_cast<int>(pipeline::CommandReason::kOtherPublisher) &&
               static_cast<int>(transport::Reason::kWrongKind) ==

@@ -1,0 +1,89 @@
+#pragma once
+// The curves a chunk is evaluated on (chunk_player.cpp): the cubic Hermite basis of a segment
+// between two waypoints, the quintic that blends a new chunk in from the reference in force, and
+// the SO(3) exponential and its right Jacobian for orientation segments. Real-time safe.
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+namespace comply::pipeline::curve {
+
+/// The cubic Hermite basis at s in [0, 1] and its first and second derivatives in s: a value is
+/// w[0] p0 + w[1] h m0 + w[2] p1 + w[3] h m1 for end values p0, p1 and end slopes m0, m1 per
+/// unit time over a segment of length h.
+struct HermiteWeights {
+  double value[4];
+  double first[4];
+  double second[4];
+};
+
+inline HermiteWeights hermite(double s) noexcept {
+  const double s2 = s * s;
+  const double s3 = s2 * s;
+  return {{2 * s3 - 3 * s2 + 1, s3 - 2 * s2 + s, -2 * s3 + 3 * s2, s3 - s2},
+          {6 * s2 - 6 * s, 3 * s2 - 4 * s + 1, -6 * s2 + 6 * s, 3 * s2 - 2 * s},
+          {12 * s - 6, 6 * s - 4, -12 * s + 6, 6 * s - 2}};
+}
+
+/// The quintic that takes an offset with value, slope and curvature (e0, de0, dde0) at s = 0 to
+/// zero with zero slope and curvature at s = 1: e(s) = e0 w[0] + T de0 w[1] + T^2 dde0 w[2] for a
+/// blend of length T. `fade` is 1 - w[0]: 0 at the start, 1 at the end, flat at both.
+struct QuinticWeights {
+  double value[3];
+  double first[3];   ///< d/ds
+  double second[3];  ///< d^2/ds^2
+};
+
+inline QuinticWeights quinticDecay(double s) noexcept {
+  const double s2 = s * s;
+  const double s3 = s2 * s;
+  const double s4 = s3 * s;
+  const double s5 = s4 * s;
+  return {{1 - 10 * s3 + 15 * s4 - 6 * s5, s - 6 * s3 + 8 * s4 - 3 * s5,
+           0.5 * s2 - 1.5 * s3 + 1.5 * s4 - 0.5 * s5},
+          {-30 * s2 + 60 * s3 - 30 * s4, 1 - 18 * s2 + 32 * s3 - 15 * s4,
+           s - 4.5 * s2 + 6 * s3 - 2.5 * s4},
+          {-60 * s + 180 * s2 - 120 * s3, -36 * s + 96 * s2 - 60 * s3,
+           1 - 9 * s + 18 * s2 - 10 * s3}};
+}
+
+inline Eigen::Matrix3d hat(const Eigen::Vector3d& v) noexcept {
+  Eigen::Matrix3d m;
+  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return m;
+}
+
+/// exp of a rotation vector as a unit quaternion.
+inline Eigen::Quaterniond expRotation(const Eigen::Vector3d& phi) noexcept {
+  const double angle = phi.norm();
+  if (angle < 1e-12) {
+    return Eigen::Quaterniond(1.0, 0.5 * phi.x(), 0.5 * phi.y(), 0.5 * phi.z()).normalized();
+  }
+  return Eigen::Quaterniond(Eigen::AngleAxisd(angle, phi / angle));
+}
+
+/// The right Jacobian of SO(3): the body angular velocity of Exp(phi(t)) is J_r(phi) dphi/dt.
+inline Eigen::Matrix3d rightJacobian(const Eigen::Vector3d& phi) noexcept {
+  const double angle = phi.norm();
+  const Eigen::Matrix3d skew = hat(phi);
+  if (angle < 1e-6) {
+    return Eigen::Matrix3d::Identity() - 0.5 * skew + skew * skew / 6.0;
+  }
+  const double a2 = angle * angle;
+  return Eigen::Matrix3d::Identity() - (1 - std::cos(angle)) / a2 * skew +
+         (angle - std::sin(angle)) / (a2 * angle) * skew * skew;
+}
+
+/// Its inverse (|phi| < pi).
+inline Eigen::Matrix3d rightJacobianInverse(const Eigen::Vector3d& phi) noexcept {
+  const double angle = phi.norm();
+  const Eigen::Matrix3d skew = hat(phi);
+  if (angle < 1e-6) {
+    return Eigen::Matrix3d::Identity() + 0.5 * skew + skew * skew / 12.0;
+  }
+  const double a2 = angle * angle;
+  const double k = 1.0 / a2 - (1 + std::cos(angle)) / (2 * angle * std::sin(angle));
+  return Eigen::Matrix3d::Identity() + 0.5 * skew + k * skew * skew;
+}
+
+}  // namespace comply::pipeline::curve

@@ -1,0 +1,135 @@
+// validateChunk (command_validation.hpp): a chunk is checked as a whole before any of it can
+// reach the cycle, so a chunk with one bad waypoint changes nothing.
+
+#include <cmath>
+#include <sstream>
+
+#include "comply/pipeline/command_validation.hpp"
+#include "comply/schema/schema.hpp"
+
+namespace comply::pipeline {
+namespace {
+
+Verdict reject(RejectionReason reason, const std::string& message) {
+  return {false, reason, std::string(toString(reason)) + ": " + message};
+}
+
+/// The pose a waypoint's target is compared with: the measured one for the first waypoint not
+/// yet past, the waypoint before it for the others.
+MeasuredPose poseOf(const CartesianCommand& command) {
+  MeasuredPose pose;
+  pose.tcp_position = command.position;
+  pose.tcp_orientation = command.orientation;
+  pose.valid = true;
+  return pose;
+}
+MeasuredPose poseOf(const JointCommand& command) {
+  MeasuredPose pose;
+  pose.position = command.position;
+  pose.valid = true;
+  return pose;
+}
+
+std::string groupNames(CommandField fields) {
+  std::string names;
+  for (const schema::GroupInfo& group : schema::groups()) {
+    if (has(fields, group.field)) {
+      names += (names.empty() ? "" : ", ") + std::string(group.name);
+    }
+  }
+  return names;
+}
+
+/// The rules of a chunk's shape; kNone-like (accepted) when they hold.
+template <typename Command>
+Verdict checkShape(const Chunk<Command>& chunk, double host_time_s) {
+  const std::size_t count = chunk.waypoints.size();
+  if (count == 0 || count > static_cast<std::size_t>(kMaxChunkWaypoints)) {
+    return reject(RejectionReason::kInvalidChunk,
+                  "a chunk carries 1 to " + std::to_string(kMaxChunkWaypoints) +
+                      " waypoints, this one " + std::to_string(count));
+  }
+  if (!has(chunk.fields, CommandField::kPosition)) {
+    return reject(RejectionReason::kInvalidChunk, "a chunk's waypoints must set the position");
+  }
+  const auto outside = static_cast<CommandField>(static_cast<std::uint32_t>(chunk.fields) &
+                                                 ~static_cast<std::uint32_t>(kChunkFields));
+  if (outside != CommandField::kNone) {
+    return reject(RejectionReason::kInvalidChunk,
+                  "a chunk cannot set " + groupNames(outside) +
+                      " (the acceleration follows from the curve through the waypoints)");
+  }
+  for (std::size_t k = 0; k < count; ++k) {
+    const double t = chunk.waypoints[k].time_s;
+    if (!std::isfinite(t)) {
+      return reject(RejectionReason::kNonFinite, "waypoint " + std::to_string(k) + ": time");
+    }
+    if (k > 0 && !(t > chunk.waypoints[k - 1].time_s)) {
+      return reject(RejectionReason::kInvalidChunk,
+                    "waypoint " + std::to_string(k) + "'s time is not after waypoint " +
+                        std::to_string(k - 1) + "'s (times must increase strictly)");
+    }
+  }
+  const double last_s = chunk.waypoints.back().time_s;
+  if (std::isfinite(host_time_s) && last_s <= host_time_s) {
+    std::ostringstream late;
+    late << host_time_s - last_s;
+    return reject(RejectionReason::kLateChunk, "its last waypoint was due " + late.str() +
+                                                   " s ago on the host's clock; nothing of it is "
+                                                   "left to play");
+  }
+  return {};
+}
+
+template <typename Command>
+Verdict validateChunkAny(Chunk<Command>& chunk, const ValidationConfig& limits, int dof,
+                         const MeasuredPose& measured, double last_stamp_s, double host_time_s) {
+  if (!std::isfinite(chunk.stamp_s)) {
+    return reject(RejectionReason::kNonFinite, "stamp");
+  }
+  if (Verdict shape = checkShape(chunk, host_time_s); !shape.accepted) {
+    return shape;
+  }
+  bool compared_with_measured = false;
+  for (std::size_t k = 0; k < chunk.waypoints.size(); ++k) {
+    ChunkWaypoint<Command>& waypoint = chunk.waypoints[k];
+    waypoint.command.stamp_s = chunk.stamp_s;
+    waypoint.command.fields = chunk.fields;
+    const bool past = waypoint.time_s <= host_time_s;
+    MeasuredPose against;  // invalid: no jump check (a past waypoint after a past one)
+    if (!past && !compared_with_measured) {
+      against = measured;
+      compared_with_measured = true;
+    } else if (k > 0) {
+      against = poseOf(chunk.waypoints[k - 1].command);
+    }
+    Verdict verdict = validateCommand(waypoint.command, limits, dof, against, last_stamp_s);
+    if (!verdict.accepted) {
+      verdict.message = "waypoint " + std::to_string(k) + ": " + verdict.message;
+      return verdict;
+    }
+    if constexpr (std::is_same_v<Command, CartesianCommand>) {
+      if (has(chunk.fields, CommandField::kDamping) &&
+          waypoint.command.damping_mode != chunk.waypoints[0].command.damping_mode) {
+        return reject(RejectionReason::kInvalidChunk,
+                      "waypoint " + std::to_string(k) +
+                          ": its damping mode differs from waypoint 0's (one mode per chunk)");
+      }
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+Verdict validateChunk(CartesianChunk& chunk, const ValidationConfig& limits, int dof,
+                      const MeasuredPose& measured, double last_stamp_s, double host_time_s) {
+  return validateChunkAny(chunk, limits, dof, measured, last_stamp_s, host_time_s);
+}
+
+Verdict validateChunk(JointChunk& chunk, const ValidationConfig& limits, int dof,
+                      const MeasuredPose& measured, double last_stamp_s, double host_time_s) {
+  return validateChunkAny(chunk, limits, dof, measured, last_stamp_s, host_time_s);
+}
+
+}  // namespace comply::pipeline
