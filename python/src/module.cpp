@@ -29,7 +29,8 @@ constexpr const char* kClientDoc =
     "record='path.mcap' records what the client sends (commands, requests and the discovery "
     "probe, a command with no field group, logged at their stamps) and every state and "
     "diagnostics message it takes (logged when taken) on /<name>/cartesian_command, "
-    "/<name>/joint_command, /<name>/request, /<name>/state and /<name>/diagnostics; "
+    "/<name>/joint_command, /<name>/cartesian_chunk, /<name>/joint_chunk, /<name>/request, "
+    "/<name>/state and /<name>/diagnostics; "
     "comply.read_recording() reads it. close() finishes the file (also on destruction).";
 
 constexpr const char* kSimDoc =
@@ -74,6 +75,14 @@ PYBIND11_MODULE(_comply, m) {
            "the host is behind; RuntimeError when it acknowledged nothing for 0.1 s")
       .def("send_joint", &Client::sendJoint,
            "Send a joint command; returns its stamp [ns]. Waits and raises as send_cartesian")
+      .def("send_chunk", &Client::sendChunk, py::arg("chunk"), py::arg("relative_to") = py::none(),
+           "Send a timed chunk: a list of dicts, each with a 'time' [s] and schema keywords (a "
+           "key given once holds for the waypoints after it). Times are relative to "
+           "`relative_to` [s on the host's clock, e.g. the 'stamp' of the state the policy "
+           "acted on], or to the host's clock now as clock() estimates it. Returns the stamp [ns]")
+      .def("clock", &Client::clock,
+           "The host's clock from the commands' round trips: dict(offset [s, host minus this "
+           "machine], one_way_latency [s], round_trip [s], samples), or None")
       .def("state", &Client::state, py::arg("timeout") = 1.0)
       .def("diagnostics", &Client::diagnostics, py::arg("timeout") = 1.0)
       .def("outcome", &Client::outcome, py::arg("stamp"), py::arg("timeout") = 1.0)
@@ -92,7 +101,10 @@ PYBIND11_MODULE(_comply, m) {
            py::arg("config"), py::arg("robot") = "", py::arg("steps_per_action") = 50,
            py::arg("max_time") = 0.0, py::kw_only(), py::arg("record") = py::none())
       .def("reset", &Sim::reset)
-      .def("step", &Sim::step, py::arg("command") = py::none())
+      .def("step", &Sim::step, py::arg("command") = py::none(),
+           "Hold `command` (a dict of schema keywords, or a timed chunk: a list of such dicts "
+           "each with a 'time' [s] after this observation, see docs/chunks.md) for "
+           "steps_per_action cycles; returns (observation, reward, terminated, truncated, info)")
       .def("close", &Sim::close, kCloseDoc)
       .def("recording_stats", &Sim::recordingStats, kStatsDoc)
       .def_property_readonly("dof", &Sim::dof)

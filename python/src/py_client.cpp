@@ -2,6 +2,7 @@
 
 #include "py_client.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "py_convert.hpp"
@@ -11,6 +12,8 @@ namespace {
 
 using SteadyClock = std::chrono::steady_clock;
 constexpr std::size_t kOutcomesKept = 100000;
+// Round trips the clock estimate keeps: the one with the least delay of them gives the offset.
+constexpr std::size_t kClockSamples = 64;
 // The writers keep every unacknowledged command: a write waits while the commands before it fill
 // the writer's history and fails when the host acknowledges none of them within the reliability's
 // 0.1 s blocking time.
@@ -48,6 +51,8 @@ Client::Client(const std::string& name, int domain, const std::string& network, 
       // A sender faster than the host waits for room instead of losing its oldest command.
       cartesian_writer_(participant_, name, transport::kKeepAll),
       joint_writer_(participant_, name, transport::kKeepAll),
+      cartesian_chunk_writer_(participant_, name, transport::kKeepAll),
+      joint_chunk_writer_(participant_, name, transport::kKeepAll),
       request_writer_(participant_, name),
       state_reader_(participant_, name),
       diagnostics_reader_(participant_, name, 10000) {
@@ -131,11 +136,22 @@ bool Client::poll(double wait_s) {
     state_ = std::move(states.back().message);
     state_received_ = SteadyClock::now();
   }
+  const std::int64_t taken_ns = transport::Stamp::now().nanoseconds();
   for (auto& sample : diagnostics) {
+    const std::int64_t published_ns = sample.message.header.stamp.nanoseconds();
     for (const auto& outcome : sample.message.outcomes) {
       const std::int64_t stamp = outcome.stamp.nanoseconds();
       if (outcomes_.emplace(stamp, outcome).second) {
         outcome_order_.push_back(stamp);
+        // Sent at `stamp` here, received by the host, published by it, taken here.
+        const std::int64_t received_ns = outcome.received.nanoseconds();
+        if (stamp <= last_stamp_.nanoseconds() && received_ns > 0) {
+          clock_samples_.push_back({(taken_ns - stamp) - (published_ns - received_ns),
+                                    ((received_ns - stamp) + (published_ns - taken_ns)) / 2});
+          if (clock_samples_.size() > kClockSamples) {
+            clock_samples_.pop_front();
+          }
+        }
       }
     }
     sample.message.outcomes.clear();
@@ -175,6 +191,59 @@ std::int64_t Client::sendJoint(const py::kwargs& kwargs) {
     throw std::runtime_error(kRefused);
   }
   return message.header.stamp.nanoseconds();
+}
+
+std::int64_t Client::sendChunk(const py::object& chunk, const py::object& relative_to) {
+  const transport::Stamp stamp = nextStamp();
+  double origin_s = 0.0;
+  if (relative_to.is_none()) {
+    std::int64_t offset_ns = 0;
+    if (!clock_samples_.empty()) {
+      offset_ns = std::min_element(clock_samples_.begin(), clock_samples_.end(),
+                                   [](const ClockSample& a, const ClockSample& b) {
+                                     return a.delay_ns < b.delay_ns;
+                                   })
+                      ->offset_ns;
+    }
+    origin_s = stampSeconds(stamp.nanoseconds() + offset_ns);
+  } else {
+    origin_s = relative_to.cast<double>();
+  }
+  const auto send = [&](auto& writer, auto message, const auto& base) {
+    message.header.stamp = stamp;
+    message.chunk = chunkFromPython(chunk, dof_, origin_s, std::optional(base));
+    message.chunk.stamp_s = stamp.seconds();
+    if (writer.matched() == 0) {
+      throw std::runtime_error(kNoHost);
+    }
+    if (!write(writer, message)) {
+      throw std::runtime_error(kRefused);
+    }
+  };
+  if (cartesian_) {
+    send(cartesian_chunk_writer_, transport::CartesianChunkMessage{},
+         state_ ? transport::cartesianReferenceInForce(*state_, dof_)
+                : CartesianCommand::zero(dof_));
+  } else {
+    send(joint_chunk_writer_, transport::JointChunkMessage{},
+         state_ ? transport::jointReferenceInForce(*state_, dof_) : JointCommand::zero(dof_));
+  }
+  return stamp.nanoseconds();
+}
+
+py::object Client::clock() const {
+  if (clock_samples_.empty()) {
+    return py::none();
+  }
+  const ClockSample best = *std::min_element(
+      clock_samples_.begin(), clock_samples_.end(),
+      [](const ClockSample& a, const ClockSample& b) { return a.delay_ns < b.delay_ns; });
+  py::dict d;
+  d["offset"] = 1e-9 * static_cast<double>(best.offset_ns);
+  d["round_trip"] = 1e-9 * static_cast<double>(best.delay_ns);
+  d["one_way_latency"] = 0.5e-9 * static_cast<double>(best.delay_ns);
+  d["samples"] = clock_samples_.size();
+  return d;
 }
 
 void Client::request(transport::RequestType request) {

@@ -37,6 +37,14 @@ class Client {
   /// that identifies the command in outcome().
   std::int64_t sendCartesian(const py::kwargs& kwargs);
   std::int64_t sendJoint(const py::kwargs& kwargs);
+  /// A timed chunk (chunkFromPython: a list of dicts with "time" and schema keywords), its times
+  /// relative to `relative_to` [s on the host's clock: the "stamp" of the state the policy acted
+  /// on], or, when None, to the host's clock now as estimated (clock()). The stamp [ns].
+  std::int64_t sendChunk(const py::object& chunk, const py::object& relative_to);
+  /// The host's clock as estimated from the commands' round trips (NTP's way: sent, received by
+  /// the host, published, taken): offset [s] (host minus this machine), one-way latency [s], round
+  /// trip [s], samples; None before any command came back.
+  [[nodiscard]] py::object clock() const;
   void request(transport::RequestType request);
 
   /// A new state (dict of numpy arrays, with "age": seconds since it arrived), waiting up to
@@ -70,6 +78,8 @@ class Client {
   transport::Participant participant_;
   transport::Writer<transport::CartesianCommandMessage> cartesian_writer_;
   transport::Writer<transport::JointCommandMessage> joint_writer_;
+  transport::Writer<transport::CartesianChunkMessage> cartesian_chunk_writer_;
+  transport::Writer<transport::JointChunkMessage> joint_chunk_writer_;
   transport::Writer<transport::RequestMessage> request_writer_;
   transport::Reader<transport::ControllerStateMessage> state_reader_;
   transport::Reader<transport::DiagnosticsMessage> diagnostics_reader_;
@@ -78,6 +88,13 @@ class Client {
   std::optional<transport::DiagnosticsMessage> diagnostics_;
   std::map<std::int64_t, transport::CommandOutcomeMessage> outcomes_;
   std::deque<std::int64_t> outcome_order_;  // oldest first, to bound outcomes_
+  /// One round trip of a command: its delay (round trip less the host's time holding it) and the
+  /// clock offset it implies [ns].
+  struct ClockSample {
+    std::int64_t delay_ns;
+    std::int64_t offset_ns;
+  };
+  std::deque<ClockSample> clock_samples_;  // the newest kClockSamples
   transport::Stamp last_stamp_;
   int dof_ = 0;
   bool cartesian_ = true;

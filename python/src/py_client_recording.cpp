@@ -37,6 +37,9 @@ ClientRecording::ClientRecording(const std::filesystem::path& path, const std::s
   const std::string prefix = "/" + name + "/";
   cartesian_channel_ = addChannel<transport::CartesianCommandMessage>(prefix + "cartesian_command");
   joint_channel_ = addChannel<transport::JointCommandMessage>(prefix + "joint_command");
+  cartesian_chunk_channel_ =
+      addChannel<transport::CartesianChunkMessage>(prefix + "cartesian_chunk");
+  joint_chunk_channel_ = addChannel<transport::JointChunkMessage>(prefix + "joint_chunk");
   request_channel_ = addChannel<transport::RequestMessage>(prefix + "request");
   state_channel_ = addChannel<transport::ControllerStateMessage>(prefix + "state");
   diagnostics_channel_ = addChannel<transport::DiagnosticsMessage>(prefix + "diagnostics");
@@ -60,6 +63,14 @@ void ClientRecording::sent(const transport::CartesianCommandMessage& message) {
 
 void ClientRecording::sent(const transport::JointCommandMessage& message) {
   push(joint_channel_, message, message.header.stamp);
+}
+
+void ClientRecording::sent(const transport::CartesianChunkMessage& message) {
+  push(cartesian_chunk_channel_, message, message.header.stamp);
+}
+
+void ClientRecording::sent(const transport::JointChunkMessage& message) {
+  push(joint_chunk_channel_, message, message.header.stamp);
 }
 
 void ClientRecording::sent(const transport::RequestMessage& message) {

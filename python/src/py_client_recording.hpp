@@ -3,6 +3,8 @@
 //
 //   /<name>/cartesian_command  comply_msgs/CartesianCommand  every command written
 //   /<name>/joint_command      comply_msgs/JointCommand      every command written
+//   /<name>/cartesian_chunk    comply_msgs/CartesianChunk    every chunk written
+//   /<name>/joint_chunk        comply_msgs/JointChunk        every chunk written
 //   /<name>/request            comply_msgs/Request           every request written
 //   /<name>/state              comply_msgs/ControllerState   every state taken from the host
 //   /<name>/diagnostics        comply_msgs/Diagnostics       every diagnostics message taken
@@ -30,6 +32,8 @@ class ClientRecording {
 
   void sent(const transport::CartesianCommandMessage& message);
   void sent(const transport::JointCommandMessage& message);
+  void sent(const transport::CartesianChunkMessage& message);
+  void sent(const transport::JointChunkMessage& message);
   void sent(const transport::RequestMessage& message);
   void seen(const transport::ControllerStateMessage& message, transport::Stamp taken);
   void seen(const transport::DiagnosticsMessage& message, transport::Stamp taken);
@@ -48,6 +52,8 @@ class ClientRecording {
   record::RecordLane& lane_;
   std::uint16_t cartesian_channel_ = 0;
   std::uint16_t joint_channel_ = 0;
+  std::uint16_t cartesian_chunk_channel_ = 0;
+  std::uint16_t joint_chunk_channel_ = 0;
   std::uint16_t request_channel_ = 0;
   std::uint16_t state_channel_ = 0;
   std::uint16_t diagnostics_channel_ = 0;

@@ -59,6 +59,43 @@ nlohmann::json kwargsToJson(const py::dict& kwargs) {
   return object;
 }
 
+bool isChunk(const py::handle& value) {
+  return py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value) ||
+         (py::isinstance<py::dict>(value) && value.cast<py::dict>().contains("chunk"));
+}
+
+template <typename Command>
+Chunk<Command> chunkFromPython(const py::handle& chunk, int dof, double time_origin_s,
+                               const std::optional<Command>& base) {
+  const py::handle list =
+      py::isinstance<py::dict>(chunk) ? chunk.cast<py::dict>()["chunk"] : chunk;
+  if (!py::isinstance<py::list>(list) && !py::isinstance<py::tuple>(list)) {
+    throw py::type_error("a chunk is a list of dicts, each with a \"time\" and schema keywords");
+  }
+  nlohmann::json waypoints = nlohmann::json::array();
+  for (const py::handle& waypoint : list) {
+    if (!py::isinstance<py::dict>(waypoint)) {
+      throw py::type_error("each waypoint of a chunk is a dict");
+    }
+    waypoints.push_back(kwargsToJson(waypoint.cast<py::dict>()));
+  }
+  schema::ReadOptions<Command> options;
+  options.base = base;
+  options.allow_shorthand = true;
+  options.source = "chunk";
+  try {
+    return schema::chunkFromJson<Command>(nlohmann::json{{"chunk", waypoints}}, dof,
+                                          time_origin_s, options);
+  } catch (const InputError& error) {
+    throw py::value_error(error.what());
+  }
+}
+
+template Chunk<CartesianCommand> chunkFromPython(const py::handle&, int, double,
+                                                 const std::optional<CartesianCommand>&);
+template Chunk<JointCommand> chunkFromPython(const py::handle&, int, double,
+                                             const std::optional<JointCommand>&);
+
 CartesianCommand cartesianFromKwargs(const py::dict& kwargs, int dof,
                                      const std::optional<CartesianCommand>& base) {
   return fromKwargs<CartesianCommand>(kwargs, dof, base);

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "comply/core/chunk.hpp"
 #include "comply/core/commands.hpp"
 #include "comply/pipeline/diagnostics.hpp"
 #include "comply/record/recorder.hpp"
@@ -29,6 +30,16 @@ CartesianCommand cartesianFromKwargs(const py::dict& kwargs, int dof,
                                      const std::optional<CartesianCommand>& base = std::nullopt);
 JointCommand jointFromKwargs(const py::dict& kwargs, int dof,
                              const std::optional<JointCommand>& base = std::nullopt);
+
+/// A timed chunk from Python: a list of dicts, each a waypoint's schema keywords plus "time" [s]
+/// relative to `time_origin_s`, or {"chunk": that list}. Each waypoint builds on the one before
+/// (`base` for the first), so a key given once holds for the rest. Raises ValueError naming
+/// "chunk[k].<key>".
+template <typename Command>
+Chunk<Command> chunkFromPython(const py::handle& chunk, int dof, double time_origin_s,
+                               const std::optional<Command>& base = std::nullopt);
+/// Whether `value` is a chunk (a list, or a dict with "chunk") rather than one command.
+bool isChunk(const py::handle& value);
 
 py::array_t<double> array(const double* values, std::size_t size);
 template <typename Container>

@@ -256,18 +256,36 @@ py::tuple Sim::step(const py::object& command) {
   info["accepted"] = true;
   std::optional<std::int64_t> stamp_ns;
   if (!command.is_none()) {
-    const py::dict kwargs = command.cast<py::dict>();
     // Simulated time is the stamp: it grows with every step, so the gate's strict rule holds.
-    stamp_ns = stampNanoseconds(session_->plant.simTime());
+    // It is also the observation's time, which a chunk's times are relative to.
+    const double now_s = session_->plant.simTime();
+    stamp_ns = stampNanoseconds(now_s);
     pipeline::Offer offer;
     offer.stamp_ns = *stamp_ns;
     offer.kind = cartesian() ? pipeline::CommandKind::kCartesian : pipeline::CommandKind::kJoint;
     offer.publisher = 1;  // this process is the only writer
     offer.now_ns = monotonicNanoseconds();
     offer.clock_ns = *stamp_ns;  // the stamps are the simulated clock itself
+    const bool chunk = isChunk(command);
     std::visit(
         [&](auto& e) {
           using Command = std::remove_cvref_t<decltype(e->wrapper.lastAccepted())>;
+          const transport::Header header{transport::Stamp::fromNanoseconds(*stamp_ns),
+                                         resolved_->robot.base_frame};
+          const bool active = e->wrapper.diagnostics().state != pipeline::WrapperState::kInactive;
+          if (chunk) {
+            Chunk<Command> c = chunkFromPython<Command>(command, dof(), now_s,
+                                                        e->wrapper.lastAccepted());
+            c.stamp_s = stampSeconds(*stamp_ns);
+            if (host::HostRecording* to = recording()) {
+              to->command(transport::ChunkMessageOf<Command>{header, c},
+                          e->clockAt(session_->plant.simTime()));
+            }
+            session_->gate.offer(offer, active,
+                                 [&] { return e->wrapper.submitChunk(c, stampSeconds(*stamp_ns)); });
+            return;
+          }
+          const py::dict kwargs = command.cast<py::dict>();
           Command c;
           if constexpr (std::is_same_v<Command, CartesianCommand>) {
             c = cartesianFromKwargs(kwargs, dof(), e->wrapper.lastAccepted());
@@ -276,11 +294,8 @@ py::tuple Sim::step(const py::object& command) {
           }
           c.stamp_s = stampSeconds(*stamp_ns);
           if (host::HostRecording* to = recording()) {
-            const transport::Header header{transport::Stamp::fromNanoseconds(*stamp_ns),
-                                           resolved_->robot.base_frame};
             recordCommand(*to, c, header, e->clockAt(session_->plant.simTime()));
           }
-          const bool active = e->wrapper.diagnostics().state != pipeline::WrapperState::kInactive;
           session_->gate.offer(offer, active, [&] { return e->wrapper.submit(c); });
         },
         session_->episode);

@@ -37,8 +37,9 @@ class Sim {
 
   /// A fresh plant at the robot's home pose and a freshly activated controller.
   py::dict reset();
-  /// `command`: a dict of schema keywords (or None: no new command). Never raises on a rejected
-  /// command: info["accepted"] is False and info["reason"] says why.
+  /// `command`: a dict of schema keywords, or a timed chunk (a list of such dicts, each with a
+  /// "time" [s] after this step's observation), or None: no new command. Never raises on a
+  /// rejected command: info["accepted"] is False and info["reason"] says why.
   py::tuple step(const py::object& command);
 
   [[nodiscard]] int dof() const noexcept;

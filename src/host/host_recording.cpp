@@ -92,6 +92,9 @@ HostRecording::HostRecording(const std::string& path,
   // Both command topics: a command of the other kind is refused, and recorded as received.
   cartesian_channel_ = addChannel<transport::CartesianCommandMessage>(prefix + "cartesian_command");
   joint_channel_ = addChannel<transport::JointCommandMessage>(prefix + "joint_command");
+  cartesian_chunk_channel_ =
+      addChannel<transport::CartesianChunkMessage>(prefix + "cartesian_chunk");
+  joint_chunk_channel_ = addChannel<transport::JointChunkMessage>(prefix + "joint_chunk");
   request_channel_ = addChannel<transport::RequestMessage>(prefix + "request");
   outcome_channel_ = addChannel<transport::CommandOutcomeMessage>(prefix + "outcome");
   diagnostics_channel_ = addChannel<transport::DiagnosticsMessage>(prefix + "diagnostics");
@@ -115,6 +118,16 @@ void HostRecording::command(const transport::CartesianCommandMessage& message,
 void HostRecording::command(const transport::JointCommandMessage& message,
                             transport::Stamp received) {
   push(intake_, joint_channel_, message, received, intake_bytes_);
+}
+
+void HostRecording::command(const transport::CartesianChunkMessage& message,
+                            transport::Stamp received) {
+  push(intake_, cartesian_chunk_channel_, message, received, intake_bytes_);
+}
+
+void HostRecording::command(const transport::JointChunkMessage& message,
+                            transport::Stamp received) {
+  push(intake_, joint_chunk_channel_, message, received, intake_bytes_);
 }
 
 void HostRecording::request(const transport::RequestMessage& message, transport::Stamp received) {

@@ -116,6 +116,21 @@ void putJoint(Writer& w, const JointCommandMessage& message) {
   COMPLY_JOINT_COMMAND_FIELDS(COMPLY_CDR_FIELD)
 }
 
+/// A chunk: each waypoint a command whose header.stamp is its time (as the wire writes it).
+template <typename Command, typename CommandMessage, typename Message, typename Put>
+void putChunk(Writer& w, const Message& message, Put&& put) {
+  putHeader(w, message.header);
+  w.put(static_cast<std::uint32_t>(message.chunk.fields));
+  w.putCount(message.chunk.waypoints.size());
+  CommandMessage waypoint{{Stamp{}, message.header.frame_id}, Command{}};
+  for (const ChunkWaypoint<Command>& from : message.chunk.waypoints) {
+    waypoint.header.stamp = Stamp::fromSeconds(from.time_s);
+    waypoint.command = from.command;
+    waypoint.command.fields = message.chunk.fields;
+    put(w, waypoint);
+  }
+}
+
 }  // namespace
 
 void encodeCdr(const ControllerStateMessage& message, std::vector<std::uint8_t>& out) {
@@ -172,6 +187,18 @@ void encodeCdr(const JointCommandMessage& message, std::vector<std::uint8_t>& ou
   w.finish();
 }
 
+void encodeCdr(const CartesianChunkMessage& message, std::vector<std::uint8_t>& out) {
+  Writer w(out);
+  putChunk<CartesianCommand, CartesianCommandMessage>(w, message, putCartesian);
+  w.finish();
+}
+
+void encodeCdr(const JointChunkMessage& message, std::vector<std::uint8_t>& out) {
+  Writer w(out);
+  putChunk<JointCommand, JointCommandMessage>(w, message, putJoint);
+  w.finish();
+}
+
 void encodeCdr(const RequestMessage& message, std::vector<std::uint8_t>& out) {
   Writer w(out);
   putHeader(w, message.header);
@@ -214,6 +241,14 @@ std::string_view rosTypeName<CartesianCommandMessage>() {
 template <>
 std::string_view rosTypeName<JointCommandMessage>() {
   return "comply_msgs/msg/JointCommand";
+}
+template <>
+std::string_view rosTypeName<CartesianChunkMessage>() {
+  return "comply_msgs/msg/CartesianChunk";
+}
+template <>
+std::string_view rosTypeName<JointChunkMessage>() {
+  return "comply_msgs/msg/JointChunk";
 }
 template <>
 std::string_view rosTypeName<RequestMessage>() {

@@ -23,12 +23,16 @@ class DdsHostTransport final : public HostTransport {
                       options.receive_priority}),
         cartesian_(participant_, options.name, kCommandDepth),
         joint_(participant_, options.name, kCommandDepth),
+        cartesian_chunks_(participant_, options.name, kCommandDepth),
+        joint_chunks_(participant_, options.name, kCommandDepth),
         request_(participant_, options.name),
         state_(participant_, options.name),
         diagnostics_(participant_, options.name),
         waitset_(participant_) {
     waitset_.attach(cartesian_);
     waitset_.attach(joint_);
+    waitset_.attach(cartesian_chunks_);
+    waitset_.attach(joint_chunks_);
     waitset_.attach(request_);
   }
 
@@ -38,6 +42,8 @@ class DdsHostTransport final : public HostTransport {
     waitset_.wait(timeout_s);
     cartesian_.take(inbox.cartesian, &inbox.departed);
     joint_.take(inbox.joint, &inbox.departed);
+    cartesian_chunks_.take(inbox.cartesian_chunks, &inbox.departed);
+    joint_chunks_.take(inbox.joint_chunks, &inbox.departed);
     request_.take(inbox.requests);
   }
   void wake() override { waitset_.trigger(); }
@@ -57,6 +63,8 @@ class DdsHostTransport final : public HostTransport {
   Participant participant_;
   Reader<CartesianCommandMessage> cartesian_;
   Reader<JointCommandMessage> joint_;
+  Reader<CartesianChunkMessage> cartesian_chunks_;
+  Reader<JointChunkMessage> joint_chunks_;
   Reader<RequestMessage> request_;
   Writer<ControllerStateMessage> state_;
   Writer<DiagnosticsMessage> diagnostics_;

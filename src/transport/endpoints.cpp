@@ -20,6 +20,10 @@ std::string_view suffixOf(Topic topic) {
       return "cartesian_command";
     case Topic::kJointCommand:
       return "joint_command";
+    case Topic::kCartesianChunk:
+      return "cartesian_chunk";
+    case Topic::kJointChunk:
+      return "joint_chunk";
     case Topic::kRequest:
       return "request";
     case Topic::kState:
@@ -36,6 +40,10 @@ const dds_topic_descriptor_t* descriptorOf(Topic topic) {
       return wire::Wire<CartesianCommandMessage>::descriptor();
     case Topic::kJointCommand:
       return wire::Wire<JointCommandMessage>::descriptor();
+    case Topic::kCartesianChunk:
+      return wire::Wire<CartesianChunkMessage>::descriptor();
+    case Topic::kJointChunk:
+      return wire::Wire<JointChunkMessage>::descriptor();
     case Topic::kRequest:
       return wire::Wire<RequestMessage>::descriptor();
     case Topic::kState:
@@ -287,11 +295,15 @@ void WaitSet::trigger() {
 
 template class Writer<CartesianCommandMessage>;
 template class Writer<JointCommandMessage>;
+template class Writer<CartesianChunkMessage>;
+template class Writer<JointChunkMessage>;
 template class Writer<RequestMessage>;
 template class Writer<ControllerStateMessage>;
 template class Writer<DiagnosticsMessage>;
 template class Reader<CartesianCommandMessage>;
 template class Reader<JointCommandMessage>;
+template class Reader<CartesianChunkMessage>;
+template class Reader<JointChunkMessage>;
 template class Reader<RequestMessage>;
 template class Reader<ControllerStateMessage>;
 template class Reader<DiagnosticsMessage>;

@@ -45,34 +45,40 @@ std::shared_ptr<InProcessBus> InProcessBus::named(const std::string& name) {
   return bus;
 }
 
-void InProcessBus::send(const CartesianCommandMessage& message, std::uint64_t publisher) {
+template <typename Message>
+void InProcessBus::post(std::vector<Sample<Message>>& list, const Message& message,
+                        std::uint64_t publisher) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    inbox_.cartesian.push_back({message, publisher, {}, publisher});
+    list.push_back({message, publisher, {}, publisher});
   }
   host_wakeup_.notify_all();
 }
 
+void InProcessBus::send(const CartesianCommandMessage& message, std::uint64_t publisher) {
+  post(inbox_.cartesian, message, publisher);
+}
+
 void InProcessBus::send(const JointCommandMessage& message, std::uint64_t publisher) {
-  {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    inbox_.joint.push_back({message, publisher, {}, publisher});
-  }
-  host_wakeup_.notify_all();
+  post(inbox_.joint, message, publisher);
+}
+
+void InProcessBus::send(const CartesianChunkMessage& message, std::uint64_t publisher) {
+  post(inbox_.cartesian_chunks, message, publisher);
+}
+
+void InProcessBus::send(const JointChunkMessage& message, std::uint64_t publisher) {
+  post(inbox_.joint_chunks, message, publisher);
+}
+
+void InProcessBus::send(const RequestMessage& message, std::uint64_t publisher) {
+  post(inbox_.requests, message, publisher);
 }
 
 void InProcessBus::depart(std::uint64_t publisher) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     inbox_.departed.push_back(publisher);
-  }
-  host_wakeup_.notify_all();
-}
-
-void InProcessBus::send(const RequestMessage& message, std::uint64_t publisher) {
-  {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    inbox_.requests.push_back({message, publisher, {}, publisher});
   }
   host_wakeup_.notify_all();
 }
@@ -110,15 +116,16 @@ void InProcessBus::receive(Inbox& inbox, double timeout_s) {
   std::unique_lock<std::mutex> lock(mutex_);
   host_wakeup_.wait_for(lock, seconds(timeout_s), [&] { return !inbox_.empty() || woken_; });
   woken_ = false;
-  for (auto& sample : inbox_.cartesian) {
-    inbox.cartesian.push_back(std::move(sample));
-  }
-  for (auto& sample : inbox_.joint) {
-    inbox.joint.push_back(std::move(sample));
-  }
-  for (auto& sample : inbox_.requests) {
-    inbox.requests.push_back(std::move(sample));
-  }
+  const auto move_into = [](auto& from, auto& to) {
+    for (auto& sample : from) {
+      to.push_back(std::move(sample));
+    }
+  };
+  move_into(inbox_.cartesian, inbox.cartesian);
+  move_into(inbox_.joint, inbox.joint);
+  move_into(inbox_.cartesian_chunks, inbox.cartesian_chunks);
+  move_into(inbox_.joint_chunks, inbox.joint_chunks);
+  move_into(inbox_.requests, inbox.requests);
   inbox.departed.insert(inbox.departed.end(), inbox_.departed.begin(), inbox_.departed.end());
   inbox_.clear();
 }

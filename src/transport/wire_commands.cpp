@@ -1,12 +1,16 @@
-// The command messages on the wire, field by field from the schema tables (schema/table.hpp):
-// the generated DDS structs have one member per table row with the same name, so a new row
-// needs no code here.
+// The command and chunk messages on the wire, field by field from the schema tables
+// (schema/table.hpp): the generated DDS structs have one member per table row with the same name,
+// so a new row needs no code here. A chunk's waypoints are commands.
 
 #include <Eigen/Core>
 
 #include "comply/schema/schema.hpp"
 #include "comply/schema/table.hpp"
+#include <vector>
+
+#include "comply_msgs/msg/CartesianChunk.h"
 #include "comply_msgs/msg/CartesianCommand.h"
+#include "comply_msgs/msg/JointChunk.h"
 #include "comply_msgs/msg/JointCommand.h"
 #include "wire.hpp"
 
@@ -75,9 +79,91 @@ void headerFromWire(const WireHeader& in, Header& header) {
 }
 
 #define COMPLY_WIRE_TO(name, group, kind, type, unit, constraint, role, init, doc) \
-  toWire<FieldKind::kind>(message.command.name, out.name);
+  toWire<FieldKind::kind>(command.name, out.name);
 #define COMPLY_WIRE_FROM(name, group, kind, type, unit, constraint, role, init, doc) \
-  fromWire<FieldKind::kind>(in.name, message.command.name, #name, malformed);
+  fromWire<FieldKind::kind>(in.name, command.name, #name, malformed);
+
+using WireCartesian = comply_msgs_msg_dds__CartesianCommand_;
+using WireJoint = comply_msgs_msg_dds__JointCommand_;
+
+/// One command's fields (not its header); the wire value points into `command` where it can.
+void commandToWire(const CartesianCommand& command, WireCartesian& out) {
+  out.fields = static_cast<std::uint32_t>(command.fields);
+  COMPLY_CARTESIAN_COMMAND_FIELDS(COMPLY_WIRE_TO)
+}
+void commandToWire(const JointCommand& command, WireJoint& out) {
+  out.fields = static_cast<std::uint32_t>(command.fields);
+  COMPLY_JOINT_COMMAND_FIELDS(COMPLY_WIRE_TO)
+}
+void commandFromWire(const WireCartesian& in, CartesianCommand& command, std::string& malformed) {
+  command.fields = static_cast<CommandField>(in.fields);
+  COMPLY_CARTESIAN_COMMAND_FIELDS(COMPLY_WIRE_FROM)
+}
+void commandFromWire(const WireJoint& in, JointCommand& command, std::string& malformed) {
+  command.fields = static_cast<CommandField>(in.fields);
+  COMPLY_JOINT_COMMAND_FIELDS(COMPLY_WIRE_FROM)
+}
+
+template <typename WireCommand, typename Message>
+dds_return_t writeCommand(dds_entity_t writer, const Message& message) {
+  WireCommand out{};
+  headerToWire(message.header, out.header);
+  commandToWire(message.command, out);
+  return dds_write(writer, &out);
+}
+
+template <typename WireCommand, typename Message>
+void readCommand(const void* sample, Message& message, std::string& malformed) {
+  const auto& in = *static_cast<const WireCommand*>(sample);
+  headerFromWire(in.header, message.header);
+  message.command.stamp_s = message.header.stamp.seconds();
+  commandFromWire(in, message.command, malformed);
+}
+
+/// A chunk: each waypoint a command whose header.stamp is its time.
+template <typename WireChunk, typename WireCommand, typename Message>
+dds_return_t writeChunk(dds_entity_t writer, const Message& message) {
+  const auto& waypoints = message.chunk.waypoints;
+  std::vector<WireCommand> wire_waypoints(waypoints.size());
+  for (std::size_t k = 0; k < waypoints.size(); ++k) {
+    toWireStamp(Stamp::fromSeconds(waypoints[k].time_s), wire_waypoints[k].header.stamp);
+    wire_waypoints[k].header.frame_id = const_cast<char*>(message.header.frame_id.c_str());
+    commandToWire(waypoints[k].command, wire_waypoints[k]);
+    wire_waypoints[k].fields = static_cast<std::uint32_t>(message.chunk.fields);
+  }
+  WireChunk out{};
+  headerToWire(message.header, out.header);
+  out.fields = static_cast<std::uint32_t>(message.chunk.fields);
+  out.waypoints._maximum = out.waypoints._length = static_cast<std::uint32_t>(waypoints.size());
+  out.waypoints._buffer = wire_waypoints.data();
+  out.waypoints._release = false;
+  return dds_write(writer, &out);
+}
+
+template <typename WireChunk, typename Message>
+void readChunk(const void* sample, Message& message, std::string& malformed) {
+  const auto& in = *static_cast<const WireChunk*>(sample);
+  headerFromWire(in.header, message.header);
+  message.chunk.stamp_s = message.header.stamp.seconds();
+  message.chunk.fields = static_cast<CommandField>(in.fields);
+  if (in.waypoints._length > static_cast<std::uint32_t>(kMaxChunkWaypoints)) {
+    malformed = "waypoints has " + std::to_string(in.waypoints._length) +
+                " entries, more than a chunk may carry (" + std::to_string(kMaxChunkWaypoints) +
+                ")";
+    return;
+  }
+  message.chunk.waypoints.resize(in.waypoints._length);
+  for (std::uint32_t k = 0; k < in.waypoints._length; ++k) {
+    const auto& wire = in.waypoints._buffer[k];
+    auto& waypoint = message.chunk.waypoints[k];
+    waypoint.time_s = fromWireStamp(wire.header.stamp.sec, wire.header.stamp.nanosec).seconds();
+    commandFromWire(wire, waypoint.command, malformed);
+    if (!malformed.empty()) {
+      malformed = "waypoint " + std::to_string(k) + ": " + malformed;
+      return;
+    }
+  }
+}
 
 }  // namespace
 
@@ -85,50 +171,59 @@ template <>
 const dds_topic_descriptor_t* Wire<CartesianCommandMessage>::descriptor() {
   return &comply_msgs_msg_dds__CartesianCommand__desc;
 }
-
 template <>
 dds_return_t Wire<CartesianCommandMessage>::write(dds_entity_t writer,
                                                   const CartesianCommandMessage& message) {
-  comply_msgs_msg_dds__CartesianCommand_ out{};
-  headerToWire(message.header, out.header);
-  out.fields = static_cast<std::uint32_t>(message.command.fields);
-  COMPLY_CARTESIAN_COMMAND_FIELDS(COMPLY_WIRE_TO)
-  return dds_write(writer, &out);
+  return writeCommand<WireCartesian>(writer, message);
 }
-
 template <>
 void Wire<CartesianCommandMessage>::read(const void* sample, CartesianCommandMessage& message,
                                          std::string& malformed) {
-  const auto& in = *static_cast<const comply_msgs_msg_dds__CartesianCommand_*>(sample);
-  headerFromWire(in.header, message.header);
-  message.command.stamp_s = message.header.stamp.seconds();
-  message.command.fields = static_cast<CommandField>(in.fields);
-  COMPLY_CARTESIAN_COMMAND_FIELDS(COMPLY_WIRE_FROM)
+  readCommand<WireCartesian>(sample, message, malformed);
 }
 
 template <>
 const dds_topic_descriptor_t* Wire<JointCommandMessage>::descriptor() {
   return &comply_msgs_msg_dds__JointCommand__desc;
 }
-
 template <>
 dds_return_t Wire<JointCommandMessage>::write(dds_entity_t writer,
                                               const JointCommandMessage& message) {
-  comply_msgs_msg_dds__JointCommand_ out{};
-  headerToWire(message.header, out.header);
-  out.fields = static_cast<std::uint32_t>(message.command.fields);
-  COMPLY_JOINT_COMMAND_FIELDS(COMPLY_WIRE_TO)
-  return dds_write(writer, &out);
+  return writeCommand<WireJoint>(writer, message);
 }
-
 template <>
 void Wire<JointCommandMessage>::read(const void* sample, JointCommandMessage& message,
                                      std::string& malformed) {
-  const auto& in = *static_cast<const comply_msgs_msg_dds__JointCommand_*>(sample);
-  headerFromWire(in.header, message.header);
-  message.command.stamp_s = message.header.stamp.seconds();
-  message.command.fields = static_cast<CommandField>(in.fields);
-  COMPLY_JOINT_COMMAND_FIELDS(COMPLY_WIRE_FROM)
+  readCommand<WireJoint>(sample, message, malformed);
+}
+
+template <>
+const dds_topic_descriptor_t* Wire<CartesianChunkMessage>::descriptor() {
+  return &comply_msgs_msg_dds__CartesianChunk__desc;
+}
+template <>
+dds_return_t Wire<CartesianChunkMessage>::write(dds_entity_t writer,
+                                                const CartesianChunkMessage& message) {
+  return writeChunk<comply_msgs_msg_dds__CartesianChunk_, WireCartesian>(writer, message);
+}
+template <>
+void Wire<CartesianChunkMessage>::read(const void* sample, CartesianChunkMessage& message,
+                                       std::string& malformed) {
+  readChunk<comply_msgs_msg_dds__CartesianChunk_>(sample, message, malformed);
+}
+
+template <>
+const dds_topic_descriptor_t* Wire<JointChunkMessage>::descriptor() {
+  return &comply_msgs_msg_dds__JointChunk__desc;
+}
+template <>
+dds_return_t Wire<JointChunkMessage>::write(dds_entity_t writer, const JointChunkMessage& message) {
+  return writeChunk<comply_msgs_msg_dds__JointChunk_, WireJoint>(writer, message);
+}
+template <>
+void Wire<JointChunkMessage>::read(const void* sample, JointChunkMessage& message,
+                                   std::string& malformed) {
+  readChunk<comply_msgs_msg_dds__JointChunk_>(sample, message, malformed);
 }
 
 }  // namespace comply::transport::wire

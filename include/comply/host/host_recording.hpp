@@ -4,6 +4,8 @@
 //   /<name>/cycle              comply_msgs/CycleRecord   every control cycle
 //   /<name>/cartesian_command  comply_msgs/CartesianCommand  every command as received
 //   /<name>/joint_command      comply_msgs/JointCommand      every command as received
+//   /<name>/cartesian_chunk    comply_msgs/CartesianChunk    every chunk as received
+//   /<name>/joint_chunk        comply_msgs/JointChunk        every chunk as received
 //   /<name>/request            comply_msgs/Request       every request as received
 //   /<name>/outcome            comply_msgs/CommandOutcome   one per command
 //   /<name>/diagnostics        comply_msgs/Diagnostics   as published
@@ -98,6 +100,8 @@ class HostRecording {
   // The command thread.
   void command(const transport::CartesianCommandMessage& message, transport::Stamp received);
   void command(const transport::JointCommandMessage& message, transport::Stamp received);
+  void command(const transport::CartesianChunkMessage& message, transport::Stamp received);
+  void command(const transport::JointChunkMessage& message, transport::Stamp received);
   void request(const transport::RequestMessage& message, transport::Stamp received);
   // The publishing thread.
   void outcome(const transport::CommandOutcomeMessage& message);
@@ -117,6 +121,8 @@ class HostRecording {
   pipeline::CommandBus in_force_;  // the writer thread's: the one cycles are encoded with
   std::uint16_t cartesian_channel_ = 0;
   std::uint16_t joint_channel_ = 0;
+  std::uint16_t cartesian_chunk_channel_ = 0;
+  std::uint16_t joint_chunk_channel_ = 0;
   std::uint16_t request_channel_ = 0;
   std::uint16_t outcome_channel_ = 0;
   std::uint16_t diagnostics_channel_ = 0;

@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 
+#include "comply/core/chunk.hpp"
 #include "comply/schema/schema.hpp"
 
 namespace YAML {
@@ -44,6 +45,22 @@ extern template Parsed<CartesianCommand> fromJson(const nlohmann::json&, int,
                                                   const ReadOptions<CartesianCommand>&);
 extern template Parsed<JointCommand> fromJson(const nlohmann::json&, int,
                                               const ReadOptions<JointCommand>&);
+
+/// A timed chunk from {"chunk": [{"time": t, <command keys>}, ...]}: each waypoint is read as a
+/// command on top of the one before it (`options.base` for the first), so a group given once
+/// holds for the waypoints after it; the chunk's groups are those any waypoint sets. `time` [s] is
+/// relative to `time_origin_s` (the chunk's stamp, or the observation it acts on). The stamp is
+/// left to the caller. Errors (no `chunk` list, a waypoint without `time`, unknown keys) throw
+/// InputError naming "chunk[k].<key>".
+template <typename Command>
+Chunk<Command> chunkFromJson(const nlohmann::json& object, int dof, double time_origin_s,
+                             const ReadOptions<Command>& options = {});
+extern template Chunk<CartesianCommand> chunkFromJson(const nlohmann::json&, int, double,
+                                                      const ReadOptions<CartesianCommand>&);
+extern template Chunk<JointCommand> chunkFromJson(const nlohmann::json&, int, double,
+                                                  const ReadOptions<JointCommand>&);
+/// Whether `object` is a chunk ({"chunk": [...]}) rather than a command.
+bool isChunkJson(const nlohmann::json& object);
 
 /// Every field, the stamp and the `fields` list; fromJson() reads it back bit for bit.
 /// Deepest nesting of objects and arrays accepted in JSON input: commands and samples are a few

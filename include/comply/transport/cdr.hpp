@@ -20,6 +20,8 @@ void encodeCdr(const CommandOutcomeMessage& message, std::vector<std::uint8_t>& 
 void encodeCdr(const DiagnosticsMessage& message, std::vector<std::uint8_t>& out);
 void encodeCdr(const CartesianCommandMessage& message, std::vector<std::uint8_t>& out);
 void encodeCdr(const JointCommandMessage& message, std::vector<std::uint8_t>& out);
+void encodeCdr(const CartesianChunkMessage& message, std::vector<std::uint8_t>& out);
+void encodeCdr(const JointChunkMessage& message, std::vector<std::uint8_t>& out);
 void encodeCdr(const RequestMessage& message, std::vector<std::uint8_t>& out);
 void encodeCdr(const CycleRecordMessage& message, std::vector<std::uint8_t>& out);
 

@@ -6,6 +6,8 @@
 //   ROS topic                   DDS type (module comply_msgs::msg::dds_)   QoS
 //   /<name>/cartesian_command   CartesianCommand_                          R
 //   /<name>/joint_command       JointCommand_                              R
+//   /<name>/cartesian_chunk     CartesianChunk_                            R
+//   /<name>/joint_chunk         JointChunk_                                R
 //   /<name>/request             Request_                                   R
 //   /<name>/state               ControllerState_                           S
 //   /<name>/diagnostics         Diagnostics_                               D
@@ -30,6 +32,8 @@ enum class Topic : std::uint8_t {
   kCartesianCommand,
   kJointCommand,
   kRequest,
+  kCartesianChunk,
+  kJointChunk,
   kState,
   kDiagnostics
 };
@@ -61,6 +65,14 @@ struct TopicOf<CartesianCommandMessage> {
 template <>
 struct TopicOf<JointCommandMessage> {
   static constexpr Topic kTopic = Topic::kJointCommand;
+};
+template <>
+struct TopicOf<CartesianChunkMessage> {
+  static constexpr Topic kTopic = Topic::kCartesianChunk;
+};
+template <>
+struct TopicOf<JointChunkMessage> {
+  static constexpr Topic kTopic = Topic::kJointChunk;
 };
 template <>
 struct TopicOf<RequestMessage> {
@@ -156,11 +168,15 @@ class WaitSet {
 
 extern template class Writer<CartesianCommandMessage>;
 extern template class Writer<JointCommandMessage>;
+extern template class Writer<CartesianChunkMessage>;
+extern template class Writer<JointChunkMessage>;
 extern template class Writer<RequestMessage>;
 extern template class Writer<ControllerStateMessage>;
 extern template class Writer<DiagnosticsMessage>;
 extern template class Reader<CartesianCommandMessage>;
 extern template class Reader<JointCommandMessage>;
+extern template class Reader<CartesianChunkMessage>;
+extern template class Reader<JointChunkMessage>;
 extern template class Reader<RequestMessage>;
 extern template class Reader<ControllerStateMessage>;
 extern template class Reader<DiagnosticsMessage>;

@@ -25,6 +25,8 @@ class TransportError : public std::runtime_error {
 struct Inbox {
   std::vector<Sample<CartesianCommandMessage>> cartesian;
   std::vector<Sample<JointCommandMessage>> joint;
+  std::vector<Sample<CartesianChunkMessage>> cartesian_chunks;
+  std::vector<Sample<JointChunkMessage>> joint_chunks;
   std::vector<Sample<RequestMessage>> requests;
   /// Writers that went away (deleted, or their process ended cleanly): a publisher that held the
   /// command topics releases them at once rather than after its silence times out.
@@ -33,11 +35,14 @@ struct Inbox {
   void clear() {
     cartesian.clear();
     joint.clear();
+    cartesian_chunks.clear();
+    joint_chunks.clear();
     requests.clear();
     departed.clear();
   }
   [[nodiscard]] bool empty() const {
-    return cartesian.empty() && joint.empty() && requests.empty() && departed.empty();
+    return cartesian.empty() && joint.empty() && cartesian_chunks.empty() &&
+           joint_chunks.empty() && requests.empty() && departed.empty();
   }
 };
 

@@ -30,6 +30,8 @@ class InProcessBus {
   /// `publisher`'s writers are gone (as a DDS writer deleted, or its process ended).
   void depart(std::uint64_t publisher);
   void send(const JointCommandMessage& message, std::uint64_t publisher);
+  void send(const CartesianChunkMessage& message, std::uint64_t publisher);
+  void send(const JointChunkMessage& message, std::uint64_t publisher);
   void send(const RequestMessage& message, std::uint64_t publisher);
   /// The newest state the host published, if any.
   [[nodiscard]] std::optional<ControllerStateMessage> state() const;
@@ -45,6 +47,10 @@ class InProcessBus {
   void publish(const DiagnosticsMessage& diagnostics);
 
  private:
+  /// Appends `message` to one of the inbox's lists and wakes the host.
+  template <typename Message>
+  void post(std::vector<Sample<Message>>& list, const Message& message, std::uint64_t publisher);
+
   mutable std::mutex mutex_;
   std::condition_variable host_wakeup_;
   std::condition_variable client_wakeup_;

@@ -9,8 +9,10 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
+#include "comply/core/chunk.hpp"
 #include "comply/core/commands.hpp"
 
 namespace comply::transport {
@@ -51,6 +53,28 @@ struct JointCommandMessage {
   Header header;
   JointCommand command;
 };
+
+/// comply_msgs/CartesianChunk: each waypoint travels as a CartesianCommand whose header.stamp is
+/// its time; chunk.waypoints[k].time_s is derived from that stamp when read, chunk.stamp_s from
+/// the header's (both ignored when written, where the stamps are used).
+struct CartesianChunkMessage {
+  Header header;
+  CartesianChunk chunk;
+};
+
+/// comply_msgs/JointChunk (see CartesianChunkMessage).
+struct JointChunkMessage {
+  Header header;
+  JointChunk chunk;
+};
+
+/// The command and chunk message of a command type.
+template <typename Command>
+using CommandMessageOf = std::conditional_t<std::is_same_v<Command, CartesianCommand>,
+                                            CartesianCommandMessage, JointCommandMessage>;
+template <typename Command>
+using ChunkMessageOf = std::conditional_t<std::is_same_v<Command, CartesianCommand>,
+                                          CartesianChunkMessage, JointChunkMessage>;
 
 /// ControllerState.STATE_*.
 enum class HostState : std::uint8_t { kInactive = 0, kActive = 1, kFault = 2 };

@@ -9,6 +9,25 @@
 namespace comply::host {
 namespace {
 
+/// A command or a chunk of the controller's kind (the gate refuses the other kind before it
+/// asks). header.stamp is the stamp on every wire; what a transport left in stamp_s is not used,
+/// so that the stamp the cycle reports in force is the one the gate accepted.
+template <typename Command, typename Message>
+pipeline::Verdict submitSample(pipeline::Wrapper<Command>& wrapper, const Message& message,
+                               std::int64_t stamp_ns, std::int64_t clock_ns) {
+  if constexpr (std::is_same_v<Message, transport::CommandMessageOf<Command>>) {
+    Command command = message.command;
+    command.stamp_s = stampSeconds(stamp_ns);
+    return wrapper.submit(command);
+  } else if constexpr (std::is_same_v<Message, transport::ChunkMessageOf<Command>>) {
+    Chunk<Command> chunk = message.chunk;
+    chunk.stamp_s = stampSeconds(stamp_ns);
+    return wrapper.submitChunk(chunk, stampSeconds(clock_ns));
+  } else {
+    return {};  // unreachable
+  }
+}
+
 template <typename Command, typename Message>
 void offerSample(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gate,
                  const transport::Sample<Message>& sample, pipeline::CommandKind kind) {
@@ -22,16 +41,8 @@ void offerSample(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gat
   offer.clock_ns = wallClockNanoseconds();  // senders stamp with their wall clock (ROS 2 time)
   offer.nanosec = sample.message.header.stamp.nanosec;
   const bool active = wrapper.diagnostics().state != pipeline::WrapperState::kInactive;
-  gate.offer(offer, active, [&]() -> pipeline::Verdict {
-    if constexpr (std::is_same_v<decltype(sample.message.command), Command>) {
-      // header.stamp is the stamp on every wire; what a transport left in stamp_s is not used,
-      // so that the stamp the cycle reports in force is the one the gate accepted.
-      Command command = sample.message.command;
-      command.stamp_s = stampSeconds(offer.stamp_ns);
-      return wrapper.submit(command);
-    } else {
-      return {};  // unreachable: the gate refused the other kind before asking
-    }
+  gate.offer(offer, active, [&] {
+    return submitSample(wrapper, sample.message, offer.stamp_ns, offer.clock_ns);
   });
 }
 
@@ -57,6 +68,22 @@ void Intake<Command>::handle(const transport::Sample<transport::CartesianCommand
 
 template <typename Command>
 void Intake<Command>::handle(const transport::Sample<transport::JointCommandMessage>& sample) {
+  if (recording_ != nullptr && sample.malformed.empty()) {
+    recording_->command(sample.message, transport::Stamp::now());
+  }
+  offerSample(wrapper_, gate_, sample, pipeline::CommandKind::kJoint);
+}
+
+template <typename Command>
+void Intake<Command>::handle(const transport::Sample<transport::CartesianChunkMessage>& sample) {
+  if (recording_ != nullptr && sample.malformed.empty()) {
+    recording_->command(sample.message, transport::Stamp::now());
+  }
+  offerSample(wrapper_, gate_, sample, pipeline::CommandKind::kCartesian);
+}
+
+template <typename Command>
+void Intake<Command>::handle(const transport::Sample<transport::JointChunkMessage>& sample) {
   if (recording_ != nullptr && sample.malformed.empty()) {
     recording_->command(sample.message, transport::Stamp::now());
   }

@@ -32,7 +32,7 @@ static_assert(static_cast<int>(transport::Reason::kQueueFull) ==
 std::vector<transport::CommandOutcomeMessage> outcomeMessages(
     const std::vector<pipeline::CommandOutcome>& outcomes);
 
-/// Takes the samples of the command topics and the request topic and feeds the gate.
+/// Takes the samples of the command and chunk topics and the request topic and feeds the gate.
 template <typename Command>
 class Intake {
  public:
@@ -42,6 +42,8 @@ class Intake {
 
   void handle(const transport::Sample<transport::CartesianCommandMessage>& sample);
   void handle(const transport::Sample<transport::JointCommandMessage>& sample);
+  void handle(const transport::Sample<transport::CartesianChunkMessage>& sample);
+  void handle(const transport::Sample<transport::JointChunkMessage>& sample);
   void handle(const transport::Sample<transport::RequestMessage>& sample);
   /// A writer went away: it no longer holds the command topics.
   void departed(std::uint64_t publisher) { gate_.releasePublisher(publisher); }
