@@ -132,6 +132,11 @@ void ComplyController<Command>::createEndpoints() {
       [this](const std::shared_ptr<const CommandMessage> message, const rclcpp::MessageInfo& info) {
         onCommand(*message, info);
       });
+  chunk_subscription_ = node->create_subscription<ChunkMessage>(
+      CommandTopic<Command>::kChunkName, rclcpp::QoS(kCommandDepth).reliable(),
+      [this](const std::shared_ptr<const ChunkMessage> message, const rclcpp::MessageInfo& info) {
+        onChunk(*message, info);
+      });
   reset_service_ = node->create_service<std_srvs::srv::Trigger>(
       "~/reset_fault", [this](const std::shared_ptr<std_srvs::srv::Trigger::Request>,
                               std::shared_ptr<std_srvs::srv::Trigger::Response> response) {
@@ -214,6 +219,7 @@ CallbackReturn ComplyController<Command>::on_cleanup(const rclcpp_lifecycle::Sta
   diagnostics_timer_.reset();
   reset_service_.reset();
   command_subscription_.reset();
+  chunk_subscription_.reset();
   diagnostics_publisher_.reset();
   state_publisher_.reset();
   wrapper_.reset();
@@ -258,9 +264,28 @@ void ComplyController<Command>::onCommand(const CommandMessage& message,
   }
   std::string malformed;
   const Command command = fromMessage(message, malformed);
+  offerToGate(message.header, info, malformed, [&] { return wrapper_->submit(command); });
+}
+
+template <typename Command>
+void ComplyController<Command>::onChunk(const ChunkMessage& message,
+                                        const rclcpp::MessageInfo& info) {
+  if (!wrapper_) {
+    return;
+  }
+  std::string malformed;
+  const comply::Chunk<Command> chunk = fromMessage(message, malformed);
+  const double now_s = comply::stampSeconds(get_node()->now().nanoseconds());
+  offerToGate(message.header, info, malformed, [&] { return wrapper_->submitChunk(chunk, now_s); });
+}
+
+template <typename Command>
+template <typename Header, typename Submit>
+void ComplyController<Command>::offerToGate(const Header& header, const rclcpp::MessageInfo& info,
+                                            const std::string& malformed, Submit&& submit) {
   comply::pipeline::Offer offer;
-  offer.stamp_ns = static_cast<std::int64_t>(message.header.stamp.sec) * 1'000'000'000 +
-                   message.header.stamp.nanosec;
+  offer.stamp_ns =
+      static_cast<std::int64_t>(header.stamp.sec) * 1'000'000'000 + header.stamp.nanosec;
   offer.kind = std::is_same_v<Command, comply::CartesianCommand>
                    ? comply::pipeline::CommandKind::kCartesian
                    : comply::pipeline::CommandKind::kJoint;
@@ -268,10 +293,9 @@ void ComplyController<Command>::onCommand(const CommandMessage& message,
   offer.malformed = malformed;
   offer.now_ns = comply::monotonicNanoseconds();
   offer.clock_ns = get_node()->now().nanoseconds();  // the node's clock: ROS time, or /clock
-  offer.nanosec = message.header.stamp.nanosec;
+  offer.nanosec = header.stamp.nanosec;
   const bool active = wrapper_->diagnostics().state != comply::pipeline::WrapperState::kInactive;
-  const comply::pipeline::CommandReason refused =
-      gate_->offer(offer, active, [&] { return wrapper_->submit(command); });
+  const comply::pipeline::CommandReason refused = gate_->offer(offer, active, submit);
   if (refused != comply::pipeline::CommandReason::kNone) {
     RCLCPP_WARN_THROTTLE(
         get_node()->get_logger(), *get_node()->get_clock(), 1000,

@@ -91,6 +91,37 @@ comply::JointCommand fromMessage(const comply_msgs::msg::JointCommand& message,
   return command;
 }
 
+namespace {
+
+/// A chunk's waypoints are commands whose header.stamp is their time. The wire bounds them at
+/// comply::kMaxChunkWaypoints; validation checks the count again.
+template <typename Command, typename Message>
+comply::Chunk<Command> chunkFromMessage(const Message& message, std::string& malformed) {
+  comply::Chunk<Command> chunk;
+  chunk.stamp_s = seconds(message.header.stamp);
+  chunk.fields = static_cast<comply::CommandField>(message.fields);
+  for (std::size_t k = 0; k < message.waypoints.size() && malformed.empty(); ++k) {
+    const auto& waypoint = message.waypoints[k];
+    chunk.waypoints.push_back({seconds(waypoint.header.stamp), fromMessage(waypoint, malformed)});
+    if (!malformed.empty()) {
+      malformed = "waypoint " + std::to_string(k) + ": " + malformed;
+    }
+  }
+  return chunk;
+}
+
+}  // namespace
+
+comply::CartesianChunk fromMessage(const comply_msgs::msg::CartesianChunk& message,
+                                   std::string& malformed) {
+  return chunkFromMessage<comply::CartesianCommand>(message, malformed);
+}
+
+comply::JointChunk fromMessage(const comply_msgs::msg::JointChunk& message,
+                               std::string& malformed) {
+  return chunkFromMessage<comply::JointCommand>(message, malformed);
+}
+
 void prepareState(const comply::pipeline::Controller& controller,
                   comply_msgs::msg::ControllerState& message) {
   const auto& config = controller.resolved().config;

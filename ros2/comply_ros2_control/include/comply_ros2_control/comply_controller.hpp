@@ -14,6 +14,8 @@
 //   ~/cartesian_command or ~/joint_command   comply_msgs command, through comply's command gate as
 //                  in `comply run`: strictly newer stamps, one publisher at a time, every command
 //                  applied (with the cycle that took it) or rejected with a reason
+//   ~/cartesian_chunk or ~/joint_chunk   comply_msgs timed chunk (docs/chunks.md), through the
+//                  same gate; waypoint times on the node's clock
 //   ~/state        comply_msgs/ControllerState every state_publish_rate_hz (default 100 Hz)
 //   ~/diagnostics  comply_msgs/Diagnostics at diagnostics_publish_rate_hz (default 10 Hz), with
 //                  the compute time of update() as a histogram (1 us bins), its overruns, and
@@ -50,12 +52,16 @@ struct CommandTopic;
 template <>
 struct CommandTopic<comply::CartesianCommand> {
   using Message = comply_msgs::msg::CartesianCommand;
+  using ChunkMessage = comply_msgs::msg::CartesianChunk;
   static constexpr const char* kName = "~/cartesian_command";
+  static constexpr const char* kChunkName = "~/cartesian_chunk";
 };
 template <>
 struct CommandTopic<comply::JointCommand> {
   using Message = comply_msgs::msg::JointCommand;
+  using ChunkMessage = comply_msgs::msg::JointChunk;
   static constexpr const char* kName = "~/joint_command";
+  static constexpr const char* kChunkName = "~/joint_chunk";
 };
 
 template <typename Command>
@@ -63,6 +69,7 @@ class ComplyController : public controller_interface::ControllerInterface {
  public:
   using CallbackReturn = controller_interface::CallbackReturn;
   using CommandMessage = typename CommandTopic<Command>::Message;
+  using ChunkMessage = typename CommandTopic<Command>::ChunkMessage;
 
   CallbackReturn on_init() override;
   [[nodiscard]] controller_interface::InterfaceConfiguration command_interface_configuration()
@@ -82,6 +89,11 @@ class ComplyController : public controller_interface::ControllerInterface {
   bool mapInterfaces();
   void readState() noexcept;
   void onCommand(const CommandMessage& message, const rclcpp::MessageInfo& info);
+  void onChunk(const ChunkMessage& message, const rclcpp::MessageInfo& info);
+  /// A command or chunk with `header` through the gate; `submit` hands it to the wrapper.
+  template <typename Header, typename Submit>
+  void offerToGate(const Header& header, const rclcpp::MessageInfo& info,
+                   const std::string& malformed, Submit&& submit);
   void onResetFault(std_srvs::srv::Trigger::Response& response);
   void publishDiagnostics();
 
@@ -106,6 +118,7 @@ class ComplyController : public controller_interface::ControllerInterface {
   std::atomic<std::uint64_t> overruns_{0};
 
   typename rclcpp::Subscription<CommandMessage>::SharedPtr command_subscription_;
+  typename rclcpp::Subscription<ChunkMessage>::SharedPtr chunk_subscription_;
   rclcpp::Service<std_srvs::srv::Trigger>::SharedPtr reset_service_;
   rclcpp::TimerBase::SharedPtr diagnostics_timer_;
   std::unique_ptr<realtime_tools::RealtimePublisher<comply_msgs::msg::ControllerState>>

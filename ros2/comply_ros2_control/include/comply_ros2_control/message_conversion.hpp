@@ -5,15 +5,18 @@
 #include <span>
 #include <string>
 
+#include "comply/core/chunk.hpp"
 #include "comply/core/commands.hpp"
 #include "comply/core/state.hpp"
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/controller.hpp"
 #include "comply/pipeline/diagnostics.hpp"
+#include "comply_msgs/msg/cartesian_chunk.hpp"
 #include "comply_msgs/msg/cartesian_command.hpp"
 #include "comply_msgs/msg/command_outcome.hpp"
 #include "comply_msgs/msg/controller_state.hpp"
 #include "comply_msgs/msg/diagnostics.hpp"
+#include "comply_msgs/msg/joint_chunk.hpp"
 #include "comply_msgs/msg/joint_command.hpp"
 
 namespace comply_ros2_control {
@@ -24,6 +27,12 @@ comply::CartesianCommand fromMessage(const comply_msgs::msg::CartesianCommand& m
                                      std::string& malformed);
 comply::JointCommand fromMessage(const comply_msgs::msg::JointCommand& message,
                                  std::string& malformed);
+
+/// The chunk a message carries: its stamp is header.stamp, each waypoint's time its
+/// header.stamp; `malformed` as for commands, naming the waypoint.
+comply::CartesianChunk fromMessage(const comply_msgs::msg::CartesianChunk& message,
+                                   std::string& malformed);
+comply::JointChunk fromMessage(const comply_msgs::msg::JointChunk& message, std::string& malformed);
 
 /// Sizes the per-joint members of `message` and sets what never changes (joint names, frame).
 void prepareState(const comply::pipeline::Controller& controller,
