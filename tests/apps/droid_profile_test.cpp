@@ -33,7 +33,7 @@ using Vector7d = Eigen::Matrix<double, 7, 1>;
 // DROID's Franka under polymetis (profiles/README.md gives the sources).
 const Vector7d kKq = (Vector7d() << 40, 30, 50, 25, 35, 25, 10).finished();
 const Vector7d kKqd = (Vector7d() << 4, 6, 5, 5, 3, 2, 1).finished();
-const Vector6d kKx = (Vector6d() << 750, 750, 750, 15, 15, 15).finished();
+const Vector6d kKx = (Vector6d() << 400, 400, 400, 15, 15, 15).finished();
 const Vector6d kKxd = (Vector6d() << 37, 37, 37, 2, 2, 2).finished();
 
 // Max absolute torque error [N m] `comply validate` may report. The law and the golden torque
