@@ -4,6 +4,7 @@
 #include <memory>
 #include <utility>
 
+#include "chunks/chunk_experiment.hpp"
 #include "connector_mating/connector_mating_experiment.hpp"
 #include "cross_platform/cross_platform_experiment.hpp"
 #include "passivity/passivity_experiment.hpp"
@@ -16,10 +17,12 @@ struct Commands::State {
   SurfaceFollowingOptions surface;
   ConnectorMatingOptions mating;
   PassivityOptions passivity;
+  ChunkOptions chunks;
   CLI::App* cross_platform_command = nullptr;
   CLI::App* surface_command = nullptr;
   CLI::App* mating_command = nullptr;
   CLI::App* passivity_command = nullptr;
+  CLI::App* chunks_command = nullptr;
 };
 
 namespace {
@@ -111,6 +114,33 @@ CLI::App* addPassivity(CLI::App& experiment, PassivityOptions& options) {
   return command;
 }
 
+CLI::App* addChunks(CLI::App& experiment, ChunkOptions& options) {
+  CLI::App* command = experiment.add_subcommand(
+      "chunks", "a circle from a policy's actions: stepped setpoints vs timed chunks");
+  command->add_option("--out", options.out_dir, "output folder")->capture_default_str();
+  command->add_option("--duration", options.settings.duration_s, "simulated seconds per run")
+      ->capture_default_str()
+      ->check(CLI::Range(2.0, 600.0));
+  command
+      ->add_option("--conditions", options.conditions,
+                   "stepped_<rate>hz (one target per step, held) or chunks_<rate>hz (16 waypoints "
+                   "1/15 s apart), e.g. chunks_10hz")
+      ->capture_default_str();
+  command
+      ->add_option("--latency", options.settings.latency_s,
+                   "s from the observation to the action at the host")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 0.5));
+  command
+      ->add_option("--action-error", options.settings.action_error_m,
+                   "m, standard deviation of each action's error per axis")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 0.02));
+  command->add_option("--seed", options.settings.seed, "of the actions' errors")
+      ->capture_default_str();
+  return command;
+}
+
 }  // namespace
 
 Commands::Commands(std::unique_ptr<State> state) : state_(std::move(state)) {}
@@ -120,7 +150,8 @@ Commands::~Commands() = default;
 
 bool Commands::parsed() const {
   return state_->cross_platform_command->parsed() || state_->surface_command->parsed() ||
-         state_->mating_command->parsed() || state_->passivity_command->parsed();
+         state_->mating_command->parsed() || state_->passivity_command->parsed() ||
+         state_->chunks_command->parsed();
 }
 
 int Commands::run(std::ostream& out, std::ostream& err) const {
@@ -129,6 +160,9 @@ int Commands::run(std::ostream& out, std::ostream& err) const {
   }
   if (state_->passivity_command->parsed()) {
     return passivityCommand(state_->passivity, out, err);
+  }
+  if (state_->chunks_command->parsed()) {
+    return chunksCommand(state_->chunks, out, err);
   }
   if (state_->surface_command->parsed()) {
     return surfaceFollowingCommand(state_->surface, out, err);
@@ -145,6 +179,7 @@ Commands addCommands(CLI::App& app) {
   state->surface_command = addSurfaceFollowing(*experiment, state->surface);
   state->mating_command = addConnectorMating(*experiment, state->mating);
   state->passivity_command = addPassivity(*experiment, state->passivity);
+  state->chunks_command = addChunks(*experiment, state->chunks);
   return Commands(std::move(state));
 }
 

@@ -35,7 +35,7 @@ class Commands {
   std::unique_ptr<State> state_;
 };
 
-/// Adds `experiment cross-platform|surface-following|connector-mating|passivity` with their
+/// Adds `experiment cross-platform|surface-following|connector-mating|passivity|chunks` with their
 /// options to `app`; the options are bound to storage the returned handle owns, so keep it until
 /// run().
 Commands addCommands(CLI::App& app);
