@@ -62,7 +62,12 @@ CommandReason CommandGate::admitLocked(const Offer& offer, bool active, CommandO
                             " commands");
   }
   const double silent_s = 1e-9 * static_cast<double>(offer.now_ns - holder_heard_ns_);
-  if (holder_ != 0 && holder_ != offer.publisher && silent_s <= options_.publisher_timeout_s) {
+  // The holder is a sending process where the transport names it (its command and chunk writers
+  // are one sender), else a writer.
+  const bool holder_speaks =
+      holder_ == offer.publisher ||
+      (offer.participant != 0 && offer.participant == holder_participant_);
+  if (holder_ != 0 && !holder_speaks && silent_s <= options_.publisher_timeout_s) {
     std::ostringstream text;
     text << "publisher " << std::hex << holder_ << std::dec
          << " holds the command topics (last heard " << static_cast<int>(silent_s * 1000.0)

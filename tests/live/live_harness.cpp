@@ -19,12 +19,13 @@ namespace comply::live_test {
 namespace {
 
 /// `comply run` as a child process on a random loopback domain, this process its DDS client. A
-/// publisher is a pair of writers (Cartesian, joint) of its own: the host tells writers apart by
-/// their DDS publication handles.
+/// publisher is a participant with a pair of writers (Cartesian, joint) of its own, as a sending
+/// process is: the host's publisher rule holds per sending process.
 class DdsHarness final : public HostHarness {
  public:
   void start(const std::string& name) override {
     const int domain = randomDomain();
+    domain_ = domain;
     name_ = name;
     std::vector<std::string> args = hostArgs(domain, name);
     if (!record_path_.empty()) {
@@ -41,6 +42,9 @@ class DdsHarness final : public HostHarness {
   }
   bool send(const transport::JointCommandMessage& message, int publisher) override {
     return writers_.at(publisher)->joint.write(message);
+  }
+  bool send(const transport::CartesianChunkMessage& message, int publisher) override {
+    return writers_.at(publisher)->chunk.write(message);
   }
   bool request(transport::RequestType /*request*/, int /*publisher*/) override {
     return false;  // `comply send --request` is the DDS side's requester (tests/apps)
@@ -70,20 +74,26 @@ class DdsHarness final : public HostHarness {
 
  protected:
   bool open(int publisher) override {
-    const auto& writers = writers_[publisher] =
-        std::make_unique<Writers>(client_->participant(), name_);
-    return writers->cartesian.waitForMatch(1, 10.0) && writers->joint.waitForMatch(1, 10.0);
+    const auto& writers = writers_[publisher] = std::make_unique<Writers>(domain_, name_);
+    return writers->cartesian.waitForMatch(1, 10.0) && writers->joint.waitForMatch(1, 10.0) &&
+           writers->chunk.waitForMatch(1, 10.0);
   }
 
  private:
   struct Writers {
-    Writers(transport::Participant& participant, const std::string& name)
-        : cartesian(participant, name), joint(participant, name) {}
+    Writers(int domain, const std::string& name)
+        : participant({domain, transport::Network::kLoopback}),
+          cartesian(participant, name),
+          joint(participant, name),
+          chunk(participant, name) {}
+    transport::Participant participant;
     transport::Writer<transport::CartesianCommandMessage> cartesian;
     transport::Writer<transport::JointCommandMessage> joint;
+    transport::Writer<transport::CartesianChunkMessage> chunk;
   };
 
   std::string name_;
+  int domain_ = 0;
   // In this order: the writers go before the client's participant, the host last.
   std::unique_ptr<Process> process_;
   std::unique_ptr<Client> client_;
@@ -127,6 +137,10 @@ class InProcessHarness final : public HostHarness {
     return true;
   }
   bool send(const transport::JointCommandMessage& message, int publisher) override {
+    bus_->send(message, static_cast<std::uint64_t>(publisher));
+    return true;
+  }
+  bool send(const transport::CartesianChunkMessage& message, int publisher) override {
     bus_->send(message, static_cast<std::uint64_t>(publisher));
     return true;
   }
@@ -205,6 +219,21 @@ bool HostHarness::handshake(int publisher, int dof) {
     message.header.stamp = transport::Stamp::now();
     message.command = decltype(message.command)::zero(dof);
     message.command.fields = CommandField::kNone;
+    send(message, publisher);
+    const std::int64_t stamp = message.header.stamp.nanoseconds();
+    if (poll(100ms, [&](const auto&) { return outcomes().count(stamp) > 0; })) {
+      outcomes().clear();
+      return true;
+    }
+  }
+  return false;
+}
+
+bool HostHarness::connectChunks(int publisher) {
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    transport::CartesianChunkMessage message;
+    message.header.stamp = transport::Stamp::now();
+    message.chunk.waypoints.push_back({1.0, CartesianCommand::zero(1)});
     send(message, publisher);
     const std::int64_t stamp = message.header.stamp.nanoseconds();
     if (poll(100ms, [&](const auto&) { return outcomes().count(stamp) > 0; })) {

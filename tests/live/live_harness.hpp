@@ -45,6 +45,10 @@ class HostHarness {
   /// Safe from one thread per publisher while another thread polls.
   virtual bool send(const transport::CartesianCommandMessage& message, int publisher) = 0;
   virtual bool send(const transport::JointCommandMessage& message, int publisher) = 0;
+  virtual bool send(const transport::CartesianChunkMessage& message, int publisher) = 0;
+  /// After connect(): waits until the host has accounted a chunk from `publisher` (a late one,
+  /// refused as late_chunk), so that no chunk it sends later is lost to discovery.
+  bool connectChunks(int publisher);
   /// Deletes `publisher`'s writers, as a sender process that exits cleanly does.
   virtual void close(int publisher) = 0;
   /// An operator request (activate, deactivate, reset) from `publisher`; false where the harness

@@ -153,6 +153,23 @@ TEST_F(CommandGateTest, ASecondPublisherIsRefusedUntilTheFirstIsSilent) {
   EXPECT_EQ(offer(offerAt(6 * kSecond, kWriterA, kSecond + 1)).size(), 1U);
 }
 
+TEST_F(CommandGateTest, TheWritersOfOneSendingProcessAreOneSender) {
+  // A client's command writer and chunk writer: two writers, one participant.
+  constexpr std::uint64_t kClient = 77;
+  constexpr std::uint64_t kOtherProcess = 78;
+  Offer command = offerAt(1 * kSecond, kWriterA, 0);
+  command.participant = kClient;
+  EXPECT_TRUE(offer(command).empty());
+  Offer chunk = offerAt(2 * kSecond, kWriterB, kSecond / 10);
+  chunk.participant = kClient;
+  EXPECT_TRUE(offer(chunk).empty()) << "the chunk writer of the holder's process";
+  Offer stranger = offerAt(3 * kSecond, kWriterB + 1, kSecond / 5);
+  stranger.participant = kOtherProcess;
+  const std::vector<CommandOutcome> refused = offer(stranger);
+  ASSERT_EQ(refused.size(), 1U);
+  EXPECT_EQ(refused[0].reason, CommandReason::kOtherPublisher);
+}
+
 TEST_F(CommandGateTest, WrongKindMalformedAndInactiveAreRefusedBeforeTheWrapperIsAsked) {
   int asked = 0;
   const auto submit = [&] {

@@ -291,6 +291,73 @@ TEST(WrapperRealtime, CartesianUpdateNeitherAllocatesNorLocks) {
   }
 }
 
+// ---- timed chunks -----------------------------------------------------------------------------
+
+/// A chunk of 16 waypoints 25 ms apart from `now_s`, around the measured pose, with stiffness,
+/// damping, task frame and feedforward moving along it.
+CartesianChunk movingChunk(const model::Data& measured, double now_s, double stamp_s) {
+  CartesianChunk chunk;
+  chunk.stamp_s = stamp_s;
+  chunk.fields = CommandField::kPosition | CommandField::kStiffness | CommandField::kDamping |
+                 CommandField::kTaskFrame | CommandField::kWrenchFeedforward;
+  for (int k = 0; k < 16; ++k) {
+    ChunkWaypoint<CartesianCommand> waypoint{now_s + 0.025 * (k - 2),
+                                             CartesianCommand::zero(kFr3Dof)};
+    CartesianCommand& c = waypoint.command;
+    c.position = measured.tip_position + Eigen::Vector3d(0.002 * k, 0.001 * (k % 3), 0.0);
+    c.orientation = measured.tip_orientation;
+    c.stiffness_translational = (400.0 + 50.0 * k) * Eigen::Matrix3d::Identity();
+    c.stiffness_rotational = 30.0 * Eigen::Matrix3d::Identity();
+    c.damping_mode = DampingMode::kRatio;
+    c.task_frame = Eigen::AngleAxisd(0.05 * k, Eigen::Vector3d::UnitZ()) *
+                   Eigen::Quaterniond::Identity();
+    c.wrench_feedforward[2] = 0.1 * k;
+    chunk.waypoints.push_back(waypoint);
+  }
+  return chunk;
+}
+
+// Chunks taking over from each other and from single commands, played with the gain stage and the
+// observer on, a command on the chunk's groups ending one, the watchdog after the last.
+TEST(WrapperRealtime, PlayingChunksNeitherAllocatesNorLocks) {
+  CartesianWrapper wrapper(
+      fr3Config(kCartesianImpedancePlugin, realtimeLines("hold") + kGuardedLines));
+  const JointVector home = fr3Home();
+  wrapper.activate(movingState(home, 0));
+  RealtimeProbe probe;
+  TorqueBuffer torque;
+  int not_ok = 0;
+  int chunks = 0;
+  for (int cycle = 1; cycle <= kCycles; ++cycle) {
+    const double now_s = cycle * kPeriod;  // the host's clock: the controller's since activation
+    const model::Data& measured = wrapper.controller().modelData();
+    if (cycle < kCycles - 1000 && cycle % 150 == 75) {
+      const Verdict verdict = wrapper.submitChunk(movingChunk(measured, now_s, now_s), now_s);
+      ASSERT_TRUE(verdict.accepted) << "cycle " << cycle << ": " << verdict.message;
+      ++chunks;
+    }
+    if (cycle % 1000 == 500) {  // the chunk's own group: ends it
+      CartesianCommand command = CartesianCommand::zero(kFr3Dof);
+      command.stamp_s = now_s + 1e-4;
+      command.fields = CommandField::kPosition;
+      command.position = measured.tip_position;
+      command.orientation = measured.tip_orientation;
+      ASSERT_TRUE(wrapper.submit(command).accepted);
+    }
+    const JointState state = movingState(home, cycle);
+    const CycleStatus status =
+        probe.measure([&] { return wrapper.update(state, kPeriod, torque.span()); });
+    not_ok += status != CycleStatus::kOk;
+  }
+  EXPECT_EQ(probe.allocations, 0U);
+  EXPECT_EQ(probe.locks, 0U);
+  EXPECT_EQ(not_ok, 0);
+  const DiagnosticsSnapshot diagnostics = wrapper.diagnostics();
+  EXPECT_EQ(diagnostics.commands_accepted, static_cast<std::uint64_t>(chunks + kCycles / 1000));
+  EXPECT_GE(diagnostics.watchdog_timeouts, 1U) << "the watchdog never followed a chunk's end";
+  expectTheGuardWorked(diagnostics);
+}
+
 // ---- FAULT ------------------------------------------------------------------------------------
 
 /// Counted cycles at a moving state; returns how many were not `expected`.

@@ -6,8 +6,10 @@
 // A command passes, in order:
 //   1. well-formed: nothing the C++ type could not hold (a joint vector longer than kMaxDof)
 //   2. the controller's kind (Cartesian or joint)
-//   3. the publisher rule: the first writer holds the command topics until it is silent for
-//      `publisher_timeout_s` (the controller's command_timeout_s, when the watchdog holds)
+//   3. the publisher rule: the first sender holds the command topics until it is silent for
+//      `publisher_timeout_s` (the controller's command_timeout_s, when the watchdog holds); a
+//      sender is a process where the transport names it (Offer::participant: its command and
+//      chunk writers are one sender), else a writer
 //   4. an active controller
 //   5. the stamp rules: a well-formed stamp (nanoseconds below 1e9), not more than
 //      `max_stamp_lead_s` ahead of the host's clock (a sender whose clock runs ahead, or one

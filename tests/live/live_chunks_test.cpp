@@ -1,0 +1,85 @@
+// Timed chunks on the live host, over DDS and in process alike: a chunk's waypoints are played on
+// the host's clock (the wall clock, which the chunk's times are on) to its last one; a late chunk
+// is refused as late_chunk; one sender's commands and chunks pass the publisher rule together.
+
+#include <gtest/gtest.h>
+
+#include <thread>
+
+#include "live_harness.hpp"
+
+namespace comply::live_test {
+namespace {
+
+using namespace std::chrono_literals;
+
+/// `count` waypoints from `start_s` on the host's clock, `spacing_s` apart, 5 mm along y each.
+transport::CartesianChunkMessage chunkAlongY(const transport::ControllerStateMessage& state,
+                                              double start_s, double spacing_s, int count) {
+  transport::CartesianChunkMessage message;
+  message.header.stamp = transport::Stamp::now();
+  message.chunk.fields = CommandField::kPosition;
+  const int dof = static_cast<int>(state.position.size());
+  for (int k = 0; k < count; ++k) {
+    ChunkWaypoint<CartesianCommand> waypoint{start_s + spacing_s * k, CartesianCommand::zero(dof)};
+    waypoint.command.position = Eigen::Vector3d(state.tcp_position[0],
+                                                state.tcp_position[1] + 0.005 * k,
+                                                state.tcp_position[2]);
+    const auto& q = state.tcp_orientation;  // x y z w
+    waypoint.command.orientation = Eigen::Quaterniond(q[3], q[0], q[1], q[2]);
+    message.chunk.waypoints.push_back(waypoint);
+  }
+  return message;
+}
+
+TEST_P(LiveHostOn, PlaysAChunkOnTheHostsClockAndRefusesALateOne) {
+  HostHarness& host = *host_;
+  host.start("chunks");
+  const auto state = host.state(20s);
+  ASSERT_TRUE(state);
+  ASSERT_TRUE(host.connect(1, static_cast<int>(state->position.size())));
+  ASSERT_TRUE(host.connectChunks(1));
+
+  const double now_s = transport::Stamp::now().seconds();
+  const transport::CartesianChunkMessage chunk = chunkAlongY(*state, now_s + 0.1, 0.05, 8);
+  ASSERT_TRUE(host.send(chunk, 1));
+  const std::int64_t stamp = chunk.header.stamp.nanoseconds();
+  ASSERT_TRUE(host.poll(5s, [&](const auto&) { return host.outcomes().count(stamp) > 0; }));
+  ASSERT_EQ(host.outcomes()[stamp].front().outcome, transport::Outcome::kApplied)
+      << host.outcomes()[stamp].front().message;
+
+  // The last waypoint is due 0.45 s after now_s: the reference is on it soon after, and stays.
+  const double last_y = chunk.chunk.waypoints.back().command.position.y();
+  std::this_thread::sleep_until(std::chrono::system_clock::time_point(
+      std::chrono::duration_cast<std::chrono::system_clock::duration>(
+          std::chrono::duration<double>(now_s + 0.7))));
+  const auto after = host.state(2s);
+  ASSERT_TRUE(after);
+  EXPECT_NEAR(after->reference_position[1], last_y, 1e-9);
+  EXPECT_NEAR(after->tcp_position[1], last_y, 0.01) << "the arm followed the chunk";
+
+  // A chunk whose last waypoint is past, and a command from the same sender: the one refused
+  // with its reason, the other applied (one sender, whatever topic it writes).
+  const double late_s = transport::Stamp::now().seconds() - 1.0;
+  const transport::CartesianChunkMessage late = chunkAlongY(*after, late_s, 0.05, 4);
+  ASSERT_TRUE(host.send(late, 1));
+  transport::CartesianCommandMessage command;
+  command.header.stamp = transport::Stamp::now();
+  command.command = CartesianCommand::zero(static_cast<int>(state->position.size()));
+  command.command.fields = CommandField::kNone;
+  ASSERT_TRUE(host.send(command, 1));
+  const std::int64_t late_stamp = late.header.stamp.nanoseconds();
+  const std::int64_t command_stamp = command.header.stamp.nanoseconds();
+  ASSERT_TRUE(host.poll(5s, [&](const auto&) {
+    return host.outcomes().count(late_stamp) > 0 && host.outcomes().count(command_stamp) > 0;
+  }));
+  const transport::CommandOutcomeMessage& refused = host.outcomes()[late_stamp].front();
+  EXPECT_EQ(refused.outcome, transport::Outcome::kRejected);
+  EXPECT_EQ(refused.reason, transport::Reason::kLateChunk);
+  EXPECT_NE(refused.message.find("last waypoint was due"), std::string::npos) << refused.message;
+  EXPECT_EQ(host.outcomes()[command_stamp].front().outcome, transport::Outcome::kApplied);
+  EXPECT_EQ(host.stop(), 0);
+}
+
+}  // namespace
+}  // namespace comply::live_test
