@@ -4,9 +4,11 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <ostream>
 #include <sstream>
 #include <thread>
@@ -172,6 +174,7 @@ int sendAll(Participant& participant, const SendOptions& options,
             const std::vector<nlohmann::json>& objects,
             const transport::ControllerStateMessage& state, std::ostream& out) {
   using Command = decltype(Message{}.command);
+  using ChunkMessage = transport::ChunkMessageOf<Command>;
   const int dof = static_cast<int>(state.position.size());
   // A group given in part keeps the rest in force: the host's reference for the first command,
   // then what the command before it left (a stream of positions keeps the orientation).
@@ -186,6 +189,15 @@ int sendAll(Participant& participant, const SendOptions& options,
   transport::Writer<Message> writer(participant, options.client.name, transport::kKeepAll);
   transport::Reader<transport::DiagnosticsMessage> diagnostics(participant, options.client.name,
                                                                transport::kKeepAll);
+  // Chunks, when the file has any, on their own topic; reliable and keep-all, a chunk the host's
+  // reader had not yet discovered is sent again until it is acknowledged.
+  std::optional<transport::Writer<ChunkMessage>> chunk_writer;
+  if (std::any_of(objects.begin(), objects.end(), schema::isChunkJson)) {
+    chunk_writer.emplace(participant, options.client.name, transport::kKeepAll);
+    if (!chunk_writer->waitForMatch(1, options.client.timeout_s)) {
+      throw transport::TransportError("the host's chunk reader did not match");
+    }
+  }
   if (!writer.waitForMatch(1, options.client.timeout_s)) {
     throw transport::TransportError("the host's command reader did not match");
   }
@@ -205,18 +217,41 @@ int sendAll(Participant& participant, const SendOptions& options,
     read.allow_shorthand = true;  // typed by hand: a block as 1 or 3 numbers, a vector as 1
     read.key_prefix = objects.size() > 1 ? "[" + std::to_string(i) + "]." : "";
     read.base = in_force;
-    Message message{{{}, ""}, schema::fromJson<Command>(objects[i], dof, read).command};
-    in_force = message.command;
+    const bool chunk = schema::isChunkJson(objects[i]);
+    // Read before the wait, so that a bad line stops the run before anything of it is sent.
+    std::optional<Message> message;
+    std::optional<Chunk<Command>> waypoints;
+    if (chunk) {
+      waypoints = schema::chunkFromJson<Command>(objects[i], dof, 0.0, read);
+      in_force = waypoints->waypoints.back().command;
+    } else {
+      message = Message{{{}, ""}, schema::fromJson<Command>(objects[i], dof, read).command};
+      in_force = message->command;
+    }
     std::this_thread::sleep_until(next);
     next += period;
-    message.header.stamp = nextStamp(last);
-    writer.write(message);
-    outcomes.expect(message.header.stamp.nanoseconds());
+    const transport::Stamp stamp = nextStamp(last);
+    if (chunk) {
+      // A chunk's times are seconds after it is sent, on this machine's clock (the host's, on
+      // one machine).
+      ChunkMessage chunk_message{{stamp, ""}, std::move(*waypoints)};
+      for (ChunkWaypoint<Command>& waypoint : chunk_message.chunk.waypoints) {
+        waypoint.time_s += stamp.seconds();
+      }
+      chunk_writer->write(chunk_message);
+    } else {
+      message->header.stamp = stamp;
+      writer.write(*message);
+    }
+    outcomes.expect(stamp.nanoseconds());
     if (!options.no_wait) {
       outcomes.drain(out);
     }
   }
   writer.flush(options.client.timeout_s);
+  if (chunk_writer) {
+    chunk_writer->flush(options.client.timeout_s);
+  }
   out << "sent " << outcomes.sent() << " command" << (outcomes.sent() == 1 ? "" : "s") << "\n";
   if (options.no_wait) {
     return 0;

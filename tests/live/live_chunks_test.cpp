@@ -4,9 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <thread>
 
 #include "live_harness.hpp"
+#include "live_support.hpp"
 
 namespace comply::live_test {
 namespace {
@@ -79,6 +83,55 @@ TEST_P(LiveHostOn, PlaysAChunkOnTheHostsClockAndRefusesALateOne) {
   EXPECT_NE(refused.message.find("last waypoint was due"), std::string::npos) << refused.message;
   EXPECT_EQ(host.outcomes()[command_stamp].front().outcome, transport::Outcome::kApplied);
   EXPECT_EQ(host.stop(), 0);
+}
+
+// `comply send --file` with chunks among commands: each chunk's times are seconds after it is
+// sent; commands and chunks are all applied, and the arm ends on the last chunk's last waypoint.
+TEST(LiveHost, CommandSendSendsChunksFromAFile) {
+  const int domain = randomDomain();
+  Process host(hostArgs(domain, "chunkfile"));
+  Client client(domain, "chunkfile");
+  const auto state = client.state(20s);
+  ASSERT_TRUE(state);
+  const std::string file = (std::filesystem::temp_directory_path() /
+                            ("comply_send_chunks_" + std::to_string(domain) + ".jsonl"))
+                               .string();
+  const double x = state->reference_position[0];
+  const double y = state->reference_position[1];
+  const double z = state->reference_position[2];
+  {
+    std::ofstream lines(file);
+    lines << "{\"position\": [" << x << ", " << y << ", " << z << "]}\n";
+    for (int c = 0; c < 3; ++c) {  // three chunks, each 2 cm further along y over 0.4 s
+      lines << "{\"chunk\": [";
+      for (int k = 0; k <= 4; ++k) {
+        lines << (k > 0 ? ", " : "") << "{\"time\": " << 0.1 * k << ", \"position\": [" << x
+              << ", " << y + 0.02 * c + 0.005 * k << ", " << z << "]"
+              << (k == 0 ? ", \"stiffness_translational\": 800" : "") << "}";
+      }
+      lines << "]}\n";
+    }
+  }
+  const std::string output = file + ".out";
+  Process sender({"send", "--domain", std::to_string(domain), "--name", "chunkfile", "--file", file,
+                  "--rate", "2"},
+                 output);
+  EXPECT_EQ(sender.wait(60s), 0);
+  std::ifstream printed(output);
+  const std::string text = "\n" + std::string((std::istreambuf_iterator<char>(printed)),
+                                              std::istreambuf_iterator<char>());
+  std::size_t applied = 0;
+  for (std::size_t at = text.find("\napplied "); at != std::string::npos;
+       at = text.find("\napplied ", at + 1)) {
+    ++applied;
+  }
+  EXPECT_EQ(applied, 4U) << text;
+  std::this_thread::sleep_for(600ms);  // the last chunk runs 0.4 s after it was sent
+  const auto after = client.state(2s);
+  ASSERT_TRUE(after);
+  EXPECT_NEAR(after->reference_position[1], y + 0.06, 1e-6);
+  std::filesystem::remove(file);
+  std::filesystem::remove(output);
 }
 
 }  // namespace
