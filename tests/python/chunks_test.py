@@ -1,0 +1,95 @@
+"""Timed chunks from Python: Sim.step(chunk) on the in-process simulator, and Client.send_chunk to
+comply run --sim on loopback with the host's clock estimated from round trips (Client.clock()).
+A late chunk and a malformed one are refused with their reasons. Prints the clock estimate.
+Usage: chunks_test.py COMPLY_CLI SOURCE_DIR."""
+
+import sys
+import time
+
+import numpy as np
+
+import comply
+from live_host import running_host
+
+
+def along_y(position, orientation, count, spacing, first=0.0, step=0.005):
+    """`count` waypoints `spacing` s apart from `first`, `step` m further along y each."""
+    return [{"time": first + spacing * k, "position": position + [0.0, step * k, 0.0],
+             "orientation": orientation} for k in range(count)]
+
+
+def check_sim(source):
+    sim = comply.Sim(f"{source}/config/sim/cartesian_impedance.yaml", robot="fr3",
+                     steps_per_action=100)
+    obs = sim.reset()
+    start = obs["tcp_position"].copy()
+    chunk = along_y(start, obs["tcp_orientation"], 16, 0.05, first=0.05)
+    chunk[0]["stiffness_translational"] = 1500.0  # holds for the waypoints after it
+    obs, _, terminated, _, info = sim.step(chunk)
+    assert info["accepted"] and not terminated, info
+    for _ in range(8):
+        obs, *_ = sim.step(None)
+    moved = obs["tcp_position"] - start
+    assert abs(moved[1] - 0.075) < 0.003 and abs(moved[0]) < 0.005, moved  # 15 x 5 mm along y
+
+    _, _, _, _, info = sim.step(along_y(obs["tcp_position"], obs["tcp_orientation"], 3, 0.05,
+                                        first=-1.0))
+    assert not info["accepted"] and info["reason"] == "late_chunk", info
+    try:
+        sim.step([{"position": obs["tcp_position"]}])
+    except ValueError as error:
+        assert "chunk[0].time" in str(error), error
+    else:
+        raise AssertionError("a waypoint without a time was taken")
+    _, _, _, _, info = sim.step([{"time": 0.1, "position": obs["tcp_position"]},
+                                 {"time": 0.1, "position": obs["tcp_position"]}])
+    assert info["reason"] == "invalid_chunk" and "waypoint 1's time" in info["message"], info
+
+
+def check_client(cli, source):
+    with running_host(cli, source, "chunks") as (_, domain):
+        client = comply.Client(name="chunks", domain=domain, timeout=30.0)
+        for _ in range(50):  # round trips for the clock estimate
+            client.outcome(client.send_cartesian(), timeout=1.0)
+        clock = client.clock()
+        assert clock is not None and clock["samples"] >= 40, clock
+        # One machine: one clock. The offset is what the estimate gets wrong.
+        assert abs(clock["offset"]) < 0.005, clock
+        assert 0.0 < clock["one_way_latency"] < 0.05, clock
+        print(f"clock on loopback: offset {1e6 * clock['offset']:.0f} us, one-way latency "
+              f"{1e6 * clock['one_way_latency']:.0f} us, round trip "
+              f"{1e6 * clock['round_trip']:.0f} us over {clock['samples']} samples")
+
+        state = client.state()
+        start = state["tcp_position"].copy()
+        # Times after the observation the "policy" acted on: its stamp on the host's clock.
+        chunk = along_y(start, state["tcp_orientation"], 8, 0.05, first=0.1)
+        stamp = client.send_chunk(chunk, relative_to=state["stamp"])
+        outcome = client.outcome(stamp, timeout=2.0)
+        assert outcome is not None and outcome["applied"], outcome
+        deadline = state["stamp"] + 0.1 + 7 * 0.05 + 0.3
+        while time.time() < deadline:
+            time.sleep(0.02)
+        state = client.state()
+        assert abs(state["reference_position"][1] - (start[1] + 0.035)) < 1e-6, state
+        assert abs(state["tcp_position"][1] - (start[1] + 0.035)) < 0.01, state
+
+        # Relative to the host's clock now, as estimated; then one entirely past.
+        stamp = client.send_chunk(along_y(state["tcp_position"], state["tcp_orientation"], 4,
+                                          0.05, first=0.05))
+        assert client.outcome(stamp, timeout=2.0)["applied"]
+        stamp = client.send_chunk(along_y(state["tcp_position"], state["tcp_orientation"], 4,
+                                          0.05), relative_to=state["stamp"] - 5.0)
+        late = client.outcome(stamp, timeout=2.0)
+        assert late is not None and late["reason"] == "late_chunk", late
+
+
+def main():
+    cli, source = sys.argv[1], sys.argv[2]
+    check_sim(source)
+    check_client(cli, source)
+    print("ok")
+
+
+if __name__ == "__main__":
+    main()
