@@ -160,6 +160,21 @@ struct Sim::Session {
     obs["tcp_position"] = array(p);
     obs["tcp_orientation"] = array(q.coeffs());  // Eigen stores x y z w
     obs["contact_wrench"] = array(plant.toolContactWrench());
+    // The reference the law used this cycle (a chunk's point on its curve), as the state's
+    // reference_* fields carry it.
+    std::visit(
+        [&](const auto& e) {
+          const auto& bus = std::get<pipeline::BusOf<std::remove_cvref_t<
+              decltype(e->wrapper.lastAccepted())>>>(e->wrapper.controller().lawBus());
+          if constexpr (requires { bus.orientation; }) {
+            obs["reference_position"] = array(bus.position, 3);
+            obs["reference_orientation"] = array(bus.orientation, 4);
+          } else {
+            obs["reference_joint_position"] =
+                array(bus.position, static_cast<std::size_t>(plant.dof()));
+          }
+        },
+        episode);
     addPassivity(
         std::visit([](const auto& e) { return e->wrapper.controller().diagnostics().passivity(); },
                    episode),

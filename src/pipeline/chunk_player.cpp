@@ -50,15 +50,21 @@ struct RotationSegment {
   Vector3d slope1 = Vector3d::Zero();
 };
 
+/// A loaded chunk: its waypoints after a lead-in waypoint (index 0) that the intake adds one
+/// segment before the first, half that segment's travel behind it at the first's velocity, and at
+/// rest: from there the reference accelerates evenly into the first waypoint, so the curve is C1
+/// also where a chunk that starts in the future begins.
+inline constexpr int kTrackWaypoints = kMaxChunkWaypoints + 1;
+
 template <typename Bus>
 struct Track {
-  int count = 0;
+  int count = 0;  ///< the chunk's waypoints plus the lead-in
   std::uint32_t fields = 0;
   double stamp_s = 0.0;
-  std::array<double, kMaxChunkWaypoints> time_s{};
+  std::array<double, kTrackWaypoints> time_s{};
   /// Each waypoint's bus; its twist (velocity) holds the waypoint's velocity, given or implied.
-  std::array<Bus, kMaxChunkWaypoints> waypoints{};
-  std::array<RotationSegment, kMaxChunkWaypoints> rotation{};  // Cartesian only
+  std::array<Bus, kTrackWaypoints> waypoints{};
+  std::array<RotationSegment, kTrackWaypoints> rotation{};  // Cartesian only
 };
 
 /// Where the reference is at one time: value, velocity, acceleration.
@@ -104,41 +110,54 @@ Place placeOf(const Track<Bus>& track, double t_s, int& cursor) noexcept {
 
 // ---- derived at load (intake thread) ----------------------------------------------------------
 
-/// Implied velocity at each waypoint of values `at(k)` (a vector type), zero at both ends.
+/// Implied velocity at waypoints first..count-1 of values `at(k)` (a vector type): the
+/// interval-weighted mean of the neighbouring secants inside, the secant at the first, zero at the
+/// last (a chunk comes to rest at its end).
 template <typename Value, typename At>
-void impliedVelocities(const std::array<double, kMaxChunkWaypoints>& time_s, int count, At&& at,
-                       Value* velocity) {
-  for (int k = 0; k < count; ++k) {
-    if (k == 0 || k == count - 1) {
+void impliedVelocities(const std::array<double, kTrackWaypoints>& time_s, int first, int count,
+                       At&& at, Value* velocity) {
+  for (int k = first; k < count; ++k) {
+    if (k == count - 1) {
       velocity[k] = at(k) * 0.0;
-      continue;
+    } else if (k == first) {
+      velocity[k] = (at(k + 1) - at(k)) / (time_s[k + 1] - time_s[k]);
+    } else {
+      const double before = time_s[k] - time_s[k - 1];
+      const double after = time_s[k + 1] - time_s[k];
+      const Value secant_before = (at(k) - at(k - 1)) / before;
+      const Value secant_after = (at(k + 1) - at(k)) / after;
+      velocity[k] = (after * secant_before + before * secant_after) / (before + after);
     }
-    const double before = time_s[k] - time_s[k - 1];
-    const double after = time_s[k + 1] - time_s[k];
-    const Value secant_before = (at(k) - at(k - 1)) / before;
-    const Value secant_after = (at(k + 1) - at(k)) / after;
-    velocity[k] = (after * secant_before + before * secant_after) / (before + after);
   }
+}
+
+/// The lead-in's time: one segment before the first waypoint (1 s for a chunk of one).
+template <typename Bus>
+double leadInTime(const Track<Bus>& track) {
+  const double segment_s = track.count > 2 ? track.time_s[2] - track.time_s[1] : 1.0;
+  return track.time_s[1] - segment_s;
 }
 
 void deriveVelocities(Track<Cartesian>& track) {
   const int n = track.count;
   auto& w = track.waypoints;
   if ((track.fields & COMPLY_FIELD_VELOCITY) == 0) {
-    std::array<Vector3d, kMaxChunkWaypoints> linear;
+    std::array<Vector3d, kTrackWaypoints> linear;
     impliedVelocities(
-        track.time_s, n, [&](int k) { return Vector3d(ConstVector3Map(w[k].position)); },
+        track.time_s, 1, n, [&](int k) { return Vector3d(ConstVector3Map(w[k].position)); },
         linear.data());
-    // Angular: the same weighting of each segment's mean angular velocity (base frame).
-    std::array<Vector3d, kMaxChunkWaypoints> segment;
-    for (int k = 0; k + 1 < n; ++k) {
+    // Angular: the same rule on each segment's mean angular velocity (base frame).
+    std::array<Vector3d, kTrackWaypoints> segment;
+    for (int k = 1; k + 1 < n; ++k) {
       segment[k] = orientationError(quaternionOf(w[k].orientation),
                                     quaternionOf(w[k + 1].orientation)) /
                    (track.time_s[k + 1] - track.time_s[k]);
     }
-    for (int k = 0; k < n; ++k) {
+    for (int k = 1; k < n; ++k) {
       Vector3d angular = Vector3d::Zero();
-      if (k > 0 && k < n - 1) {
+      if (k == 1 && n > 2) {
+        angular = segment[1];
+      } else if (k > 1 && k < n - 1) {
         const double before = track.time_s[k] - track.time_s[k - 1];
         const double after = track.time_s[k + 1] - track.time_s[k];
         angular = (after * segment[k - 1] + before * segment[k]) / (before + after);
@@ -147,6 +166,17 @@ void deriveVelocities(Track<Cartesian>& track) {
       twist << linear[k], angular;
     }
   }
+  // The lead-in: at rest, half a segment's travel at the first waypoint's velocity behind it.
+  const double lead_s = track.time_s[1] - leadInTime(track);
+  const Eigen::Quaterniond first = quaternionOf(w[1].orientation);
+  const Vector3d first_body_rate = first.toRotationMatrix().transpose() * Vector3d(w[1].twist + 3);
+  track.time_s[0] = leadInTime(track);
+  w[0] = w[1];
+  Vector3Map(w[0].position) = ConstVector3Map(w[1].position) - 0.5 * lead_s * Vector3d(w[1].twist);
+  store((first * curve::expRotation(-0.5 * lead_s * first_body_rate)).normalized(),
+        w[0].orientation);
+  Eigen::Map<Vector6d>(w[0].twist).setZero();
+
   for (int k = 0; k + 1 < n; ++k) {
     const Eigen::Quaterniond q0 = quaternionOf(w[k].orientation);
     const Eigen::Quaterniond q1 = quaternionOf(w[k + 1].orientation);
@@ -154,28 +184,34 @@ void deriveVelocities(Track<Cartesian>& track) {
     if (relative.w() < 0.0) {
       relative.coeffs() = -relative.coeffs();
     }
-    RotationSegment& segment = track.rotation[k];
+    RotationSegment& rotation = track.rotation[k];
     const double length = track.time_s[k + 1] - track.time_s[k];
-    segment.phi = quaternionLog(relative);
-    segment.slope0 = length * (q0.toRotationMatrix().transpose() * Vector3d(w[k].twist + 3));
-    segment.slope1 = length * curve::rightJacobianInverse(segment.phi) *
-                     (q1.toRotationMatrix().transpose() * Vector3d(w[k + 1].twist + 3));
+    rotation.phi = quaternionLog(relative);
+    rotation.slope0 = length * (q0.toRotationMatrix().transpose() * Vector3d(w[k].twist + 3));
+    rotation.slope1 = length * curve::rightJacobianInverse(rotation.phi) *
+                      (q1.toRotationMatrix().transpose() * Vector3d(w[k + 1].twist + 3));
   }
 }
 
 void deriveVelocities(Track<Joint>& track) {
-  if ((track.fields & COMPLY_FIELD_VELOCITY) != 0) {
-    return;
+  auto& w = track.waypoints;
+  const int dof = w[1].dof;
+  if ((track.fields & COMPLY_FIELD_VELOCITY) == 0) {
+    std::array<Eigen::VectorXd, kTrackWaypoints> velocity;
+    impliedVelocities(
+        track.time_s, 1, track.count,
+        [&](int k) { return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(w[k].position, dof)); },
+        velocity.data());
+    for (int k = 1; k < track.count; ++k) {
+      std::copy_n(velocity[k].data(), dof, w[k].velocity);
+    }
   }
-  const int dof = track.waypoints[0].dof;
-  std::array<Eigen::VectorXd, kMaxChunkWaypoints> velocity;
-  impliedVelocities(
-      track.time_s, track.count,
-      [&](int k) { return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(
-                       track.waypoints[k].position, dof)); },
-      velocity.data());
-  for (int k = 0; k < track.count; ++k) {
-    std::copy_n(velocity[k].data(), dof, track.waypoints[k].velocity);
+  const double lead_s = track.time_s[1] - leadInTime(track);
+  track.time_s[0] = leadInTime(track);
+  w[0] = w[1];
+  for (int j = 0; j < dof; ++j) {
+    w[0].position[j] = w[1].position[j] - 0.5 * lead_s * w[1].velocity[j];
+    w[0].velocity[j] = 0.0;
   }
 }
 
@@ -463,11 +499,11 @@ int loadInto(ChunkPlayer::Slots& slots, Engine<Bus>& engine, const Chunk<Command
     return -1;
   }
   Track<Bus>& track = engine.tracks[slot];
-  track.count = static_cast<int>(chunk.waypoints.size());
+  track.count = static_cast<int>(chunk.waypoints.size()) + 1;  // after the lead-in
   track.fields = static_cast<std::uint32_t>(chunk.fields);
   track.stamp_s = chunk.stamp_s;
-  for (int k = 0; k < track.count; ++k) {
-    const ChunkWaypoint<Command>& waypoint = chunk.waypoints[k];
+  for (int k = 1; k < track.count; ++k) {
+    const ChunkWaypoint<Command>& waypoint = chunk.waypoints[k - 1];
     track.time_s[k] = waypoint.time_s + host_to_controller_s;
     track.waypoints[k] = schema::toBus(waypoint.command, slots.dof);
   }

@@ -87,8 +87,9 @@ TEST(ChunkPlayer, ReproducesACubicThroughGivenVelocitiesAndARotationAtConstantRa
   EXPECT_EQ(linearOf(std::get<Cartesian>(active).twist).norm(), 0.0);
 }
 
-TEST(ChunkPlayer, ImpliesVelocitiesFromNeighboursAndStartsAndEndsAtRest) {
-  // Evenly timed points on a line at 0.2 m/s: interior velocities are the secant, ends zero.
+TEST(ChunkPlayer, ImpliesVelocitiesFromNeighboursComesInFromRestAndEndsAtRest) {
+  // Evenly timed points on a line at 0.2 m/s: the velocity is the line's from the first waypoint
+  // to the one before the last, zero at the last.
   JointChunk chunk;
   for (int k = 0; k < 5; ++k) {
     ChunkWaypoint<JointCommand> waypoint{0.1 * k, JointCommand::zero(kDof)};
@@ -98,16 +99,22 @@ TEST(ChunkPlayer, ImpliesVelocitiesFromNeighboursAndStartsAndEndsAtRest) {
   ChunkPlayer player(COMPLY_COMMAND_JOINT, kDof, 0.0);
   const int slot = player.load(chunk, 0.0);
   CommandBus active = schema::toBus(JointCommand::zero(kDof), kDof);
-  player.start(slot, active, 0.0);
+  player.start(slot, active, -1.0);
   const auto velocityAt = [&](double t) {
     player.play(t, active);
     return std::get<Joint>(active).velocity[3];
   };
-  EXPECT_NEAR(velocityAt(0.0), 0.0, 1e-12);
+  const auto positionNow = [&] { return std::get<Joint>(active).position[3]; };
+  // The lead-in: at rest 1 cm behind until one segment (0.1 s) before, then evenly faster.
+  EXPECT_NEAR(velocityAt(-0.5), 0.0, 1e-12);
+  EXPECT_NEAR(positionNow(), -0.01, 1e-12);
+  EXPECT_NEAR(velocityAt(-0.05), 0.1, 1e-12);
+  EXPECT_NEAR(std::get<Joint>(active).acceleration[3], 2.0, 1e-9);
+  EXPECT_NEAR(velocityAt(0.0), 0.2, 1e-12);
+  EXPECT_NEAR(positionNow(), 0.0, 1e-12);
   EXPECT_NEAR(velocityAt(0.1), 0.2, 1e-12);
-  EXPECT_NEAR(velocityAt(0.2), 0.2, 1e-12);
   EXPECT_NEAR(velocityAt(0.25), 0.2, 1e-12);  // between two interior waypoints: the line itself
-  EXPECT_NEAR(std::get<Joint>(active).position[3], 0.05, 1e-12);
+  EXPECT_NEAR(positionNow(), 0.05, 1e-12);
   EXPECT_NEAR(std::get<Joint>(active).acceleration[3], 0.0, 1e-9);
   EXPECT_NEAR(velocityAt(0.4), 0.0, 1e-12);
 }

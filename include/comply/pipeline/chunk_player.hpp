@@ -4,13 +4,15 @@
 //
 // Curve. Positions (TCP or joints) follow a cubic Hermite spline through the waypoints, C1: the
 // velocity at a waypoint is the one the chunk gives (kVelocity) or else implied, the
-// interval-weighted mean of the two neighbouring secants, and zero at the first and the last
-// waypoint, so a chunk starts from and comes to rest. Orientations follow the same spline on
-// SO(3), in the rotation vector of each segment relative to its first waypoint, with the end
-// slopes mapped through the right Jacobian, so the angular velocity is continuous too. Gains,
-// feedforward and nullspace move linearly between waypoints (a convex combination: symmetric
-// positive semi-definite blocks stay so), the task frame by spherical interpolation. Before the
-// first waypoint the chunk holds it, after the last it holds the last.
+// interval-weighted mean of the two neighbouring secants, the secant at the first waypoint, and
+// zero at the last, so a chunk comes to rest at its end and holds its last waypoint after it.
+// Before the first waypoint the curve comes from rest: one segment earlier, half that segment's
+// travel behind, it accelerates evenly into the first waypoint's velocity (and holds that lead-in
+// point before). Orientations follow the same spline on SO(3), in the rotation vector of each
+// segment relative to its first waypoint, with the end slopes mapped through the right Jacobian,
+// so the angular velocity is continuous too. Gains, feedforward and nullspace move linearly
+// between waypoints (a convex combination: symmetric positive semi-definite blocks stay so), the
+// task frame by spherical interpolation.
 //
 // Preemption. A chunk starts from the reference in force: over `blend_time_s` the difference
 // between the two (position, velocity and acceleration at the start) decays along a quintic to
