@@ -172,6 +172,28 @@ TEST(TransportCdrEncoder, CommandsMatchTheWire) {
   expectEncoderMatchesTheWire(joint);
 }
 
+TEST(TransportCdrEncoder, ChunksMatchTheWire) {
+  std::mt19937 random(11);
+  CartesianChunkMessage cartesian;
+  cartesian.header = {{100, 7}, "fr3_link0"};
+  cartesian.chunk.fields = CommandField::kPosition | CommandField::kStiffness;
+  for (int k = 0; k < 4; ++k) {
+    ChunkWaypoint<CartesianCommand> waypoint{100.5 + 0.0667 * k, CartesianCommand::zero(6)};
+    waypoint.command.position = Eigen::Vector3d(value(random), value(random), value(random));
+    waypoint.command.stiffness_translational.diagonal() << value(random), 2, 3;
+    waypoint.command.nullspace_position.setConstant(value(random));
+    cartesian.chunk.waypoints.push_back(waypoint);
+  }
+  expectEncoderMatchesTheWire(cartesian);
+
+  JointChunkMessage joint;
+  joint.header = {{-1, 1}, ""};
+  expectEncoderMatchesTheWire(joint);  // no waypoints
+  joint.chunk.waypoints.push_back({3.5, JointCommand::zero(2)});
+  joint.chunk.waypoints.front().command.velocity.resize(0);
+  expectEncoderMatchesTheWire(joint);
+}
+
 TEST(TransportCdrEncoder, StateDiagnosticsAndRequestsMatchTheWire) {
   std::mt19937 random(11);
   ControllerStateMessage state;
@@ -259,6 +281,9 @@ TEST(TransportCdrEncoder, DefinitionsCarryTheirDependencies) {
     EXPECT_EQ(definition.find(separator + dependency + "\n", at + 1), std::string::npos)
         << dependency << " twice";
   }
+  const std::string chunk = ros2MessageDefinition("comply_msgs/msg/JointChunk");
+  EXPECT_NE(chunk.find(separator + "comply_msgs/JointCommand\n"), std::string::npos);
+  EXPECT_NE(chunk.find(separator + "builtin_interfaces/Time\n"), std::string::npos);
   EXPECT_EQ(ros2MessageDefinition("comply_msgs/Request").find("MSG: comply_msgs"),
             std::string::npos);
   EXPECT_THROW(ros2MessageDefinition("comply_msgs/msg/Nothing"), std::out_of_range);

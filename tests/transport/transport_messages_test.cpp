@@ -45,28 +45,38 @@ std::string idlType(const std::string& msg_type) {
       {"std_msgs/Header", "std_msgs::msg::dds_::Header_"},
       {"builtin_interfaces/Time", "builtin_interfaces::msg::dds_::Time_"}};
   const auto known = kTypes.find(msg_type);
-  return known != kTypes.end() ? known->second : "comply_msgs::msg::dds_::" + msg_type + "_";
+  if (known != kTypes.end()) {
+    return known->second;
+  }
+  const std::string package = "comply_msgs/";
+  const std::string name =
+      msg_type.starts_with(package) ? msg_type.substr(package.size()) : msg_type;
+  return "comply_msgs::msg::dds_::" + name + "_";
 }
 
 /// The members of a .msg file as IDL declarations ("double position[3]").
 std::vector<std::string> msgMembers(const std::filesystem::path& file) {
   std::vector<std::string> members;
   std::istringstream lines(contents(file));
-  const std::regex member(R"(([A-Za-z0-9_/]+)(\[(\d*)\])?\s+([a-z0-9_]+))");
+  const std::regex member(R"(([A-Za-z0-9_/]+)(\[(<=)?(\d*)\])?\s+([a-z0-9_]+))");
   for (std::string line; std::getline(lines, line);) {
     line = trim(line.substr(0, line.find('#')));
     std::smatch match;
-    if (line.empty() || line.find('=') != std::string::npos) {
-      continue;  // a constant: not on the wire
+    if (line.empty() ||
+        (line.find('=') != std::string::npos && line.find("<=") == std::string::npos)) {
+      continue;  // a constant: not on the wire (a bound, T[<=N], is not one)
     }
     EXPECT_TRUE(std::regex_match(line, match, member)) << file << ": " << line;
     const std::string type = idlType(match[1]);
+    const std::string name = match[5].str();
     if (!match[2].matched) {
-      members.push_back(type + " " + match[4].str());
-    } else if (match[3].length() == 0) {
-      members.push_back("sequence<" + type + "> " + match[4].str());
+      members.push_back(type + " " + name);
+    } else if (match[3].matched) {  // bounded: T[<=N]
+      members.push_back("sequence<" + type + ", " + match[4].str() + "> " + name);
+    } else if (match[4].length() == 0) {
+      members.push_back("sequence<" + type + "> " + name);
     } else {
-      members.push_back(type + " " + match[4].str() + "[" + match[3].str() + "]");
+      members.push_back(type + " " + name + "[" + match[4].str() + "]");
     }
   }
   return members;
@@ -100,8 +110,8 @@ TEST(TransportMessages, CommandIdlIsGeneratedFromTheSchema) {
 }
 
 TEST(TransportMessages, EveryIdlStructMatchesItsMsg) {
-  for (const std::string name : {"CartesianCommand", "JointCommand", "ControllerState",
-                                 "CommandOutcome", "Diagnostics", "Request"}) {
+  for (const std::string name : {"CartesianCommand", "JointCommand", "CartesianChunk", "JointChunk",
+                                 "ControllerState", "CommandOutcome", "Diagnostics", "Request"}) {
     const std::vector<std::string> msg = msgMembers(kSourceDir / "msg" / (name + ".msg"));
     const std::vector<std::string> idl =
         idlMembers(kIdlDir / "comply_msgs" / "msg" / (name + ".idl"), name);
@@ -154,6 +164,33 @@ TEST(TransportMessages, CartesianCommandRoundTrip) {
   EXPECT_EQ(got.message.command.damping_mode, DampingMode::kRatio);
   EXPECT_EQ(got.message.command.nullspace_position, message.command.nullspace_position);
   EXPECT_NE(got.publisher, 0U);
+}
+
+TEST(TransportMessages, ChunkRoundTripCarriesEachWaypointsTime) {
+  JointChunkMessage message;
+  message.header = {{1700000000, 5}, "base"};
+  message.chunk.fields = CommandField::kPosition | CommandField::kStiffness;
+  for (int k = 0; k < 3; ++k) {
+    ChunkWaypoint<JointCommand> waypoint{1700000000.25 + 0.1 * k, JointCommand::zero(7)};
+    waypoint.command.position.setConstant(0.1 * k);
+    waypoint.command.stiffness.setConstant(100.0 + k);
+    message.chunk.waypoints.push_back(waypoint);
+  }
+  const Sample<JointChunkMessage> got = roundTrip(message);
+  EXPECT_TRUE(got.malformed.empty()) << got.malformed;
+  EXPECT_EQ(got.message.header.stamp, message.header.stamp);
+  EXPECT_DOUBLE_EQ(got.message.chunk.stamp_s, message.header.stamp.seconds());
+  EXPECT_EQ(got.message.chunk.fields, message.chunk.fields);
+  ASSERT_EQ(got.message.chunk.waypoints.size(), 3U);
+  for (int k = 0; k < 3; ++k) {
+    const auto& waypoint = got.message.chunk.waypoints[static_cast<std::size_t>(k)];
+    // Times travel as stamps, to the nanosecond; a double of seconds since the epoch holds them to
+    // 0.24 us.
+    EXPECT_NEAR(waypoint.time_s, message.chunk.waypoints[static_cast<std::size_t>(k)].time_s, 5e-7);
+    EXPECT_EQ(waypoint.command.position,
+              message.chunk.waypoints[static_cast<std::size_t>(k)].command.position);
+    EXPECT_EQ(waypoint.command.stiffness[6], 100.0 + k);
+  }
 }
 
 TEST(TransportMessages, DiagnosticsRoundTrip) {
