@@ -3,7 +3,9 @@ comply run --sim on loopback with the host's clock estimated from round trips (C
 A late chunk and a malformed one are refused with their reasons. Prints the clock estimate.
 Usage: chunks_test.py COMPLY_CLI SOURCE_DIR."""
 
+import os
 import sys
+import tempfile
 import time
 
 import numpy as np
@@ -18,9 +20,9 @@ def along_y(position, orientation, count, spacing, first=0.0, step=0.005):
              "orientation": orientation} for k in range(count)]
 
 
-def check_sim(source):
+def check_sim(source, recording):
     sim = comply.Sim(f"{source}/config/sim/cartesian_impedance.yaml", robot="fr3",
-                     steps_per_action=100)
+                     steps_per_action=100, record=recording)
     obs = sim.reset()
     start = obs["tcp_position"].copy()
     chunk = along_y(start, obs["tcp_orientation"], 16, 0.05, first=0.05)
@@ -44,6 +46,17 @@ def check_sim(source):
     _, _, _, _, info = sim.step([{"time": 0.1, "position": obs["tcp_position"]},
                                  {"time": 0.1, "position": obs["tcp_position"]}])
     assert info["reason"] == "invalid_chunk" and "waypoint 1's time" in info["message"], info
+    sim.close()
+
+    # The recording holds every chunk as sent, each waypoint's time its header stamp.
+    chunks = comply.read_recording(recording)["/comply/cartesian_chunk"]
+    # The played one, the late one, the one with two equal times (the one without a time never
+    # became a chunk).
+    assert chunks.count == 3, chunks
+    first = chunks["waypoints"][0]
+    assert len(first) == 16 and first[0]["stiffness_translational"][0] == 1500.0, first[0]
+    assert [w["header"]["stamp"]["nanosec"] for w in first[:3]] == [50_000_000, 100_000_000,
+                                                                   150_000_000], first[:3]
 
 
 def check_client(cli, source):
@@ -86,7 +99,8 @@ def check_client(cli, source):
 
 def main():
     cli, source = sys.argv[1], sys.argv[2]
-    check_sim(source)
+    with tempfile.TemporaryDirectory() as folder:
+        check_sim(source, os.path.join(folder, "chunks.mcap"))
     check_client(cli, source)
     print("ok")
 
