@@ -143,7 +143,28 @@ struct Variant {
   bool gain_stage = false;  ///< ramps and energy tank
   bool recorded = false;    ///< the cycle pushed into a recording's lane
   bool observer = false;    ///< the momentum observer
+  bool chunked = false;     ///< a timed chunk plays through every cycle
 };
+
+/// A chunk that lasts the whole run: 64 waypoints around the measured TCP, the stiffness and the
+/// task frame changing at each, so every cycle evaluates the curve, the gains and the frame.
+CartesianChunk benchChunk(const MeasuredPose& measured, double run_s, int dof) {
+  CartesianChunk chunk;
+  chunk.fields = CommandField::kPosition | CommandField::kStiffness | CommandField::kTaskFrame;
+  for (int k = 0; k < kMaxChunkWaypoints; ++k) {
+    const double t = run_s * k / (kMaxChunkWaypoints - 1);
+    ChunkWaypoint<CartesianCommand> waypoint{t, CartesianCommand::zero(dof)};
+    waypoint.command.position =
+        measured.tcp_position + 0.01 * Eigen::Vector3d(std::sin(k), std::cos(k), 0.0);
+    waypoint.command.orientation = measured.tcp_orientation;
+    waypoint.command.stiffness_translational = (500.0 + 20.0 * k) * Eigen::Matrix3d::Identity();
+    waypoint.command.stiffness_rotational = 30.0 * Eigen::Matrix3d::Identity();
+    waypoint.command.task_frame =
+        Eigen::AngleAxisd(0.1 * k, Eigen::Vector3d::UnitZ()) * Eigen::Quaterniond::Identity();
+    chunk.waypoints.push_back(waypoint);
+  }
+  return chunk;
+}
 
 template <typename Command>
 std::vector<BenchRow> benchWrapper(const BenchOptions& options, const std::string& wrapper_name,
@@ -165,6 +186,17 @@ std::vector<BenchRow> benchWrapper(const BenchOptions& options, const std::strin
   const int total = options.warmup + options.iterations;
   ReplayHardware replay(home, total);
   wrapper.activate(replay.at(0));
+  if constexpr (std::is_same_v<Command, CartesianCommand>) {
+    if (variant.chunked) {
+      // The host's clock is the controller's here: 0 at activation.
+      const pipeline::Verdict verdict = wrapper.submitChunk(
+          benchChunk(wrapper.measuredPose(), 1.5 * total * kPeriodS, wrapper.dof()), 0.0);
+      if (!verdict.accepted) {
+        throw std::runtime_error(wrapper_name + ": the benchmark's chunk was refused: " +
+                                 verdict.message);
+      }
+    }
+  }
   std::vector<double> step_us;
   std::vector<double> cycle_us;
   step_us.reserve(static_cast<std::size_t>(options.iterations));
@@ -297,6 +329,9 @@ std::vector<BenchRow> runBench(const BenchOptions& options, std::ostream& log) {
   // The ratio cycle with the momentum observer estimating the external wrench.
   add(benchWrapper<CartesianCommand>(options, "cartesian_observer", "cartesian_impedance",
                                      robot.home, log, {.observer = true}));
+  // The ratio cycle with a timed chunk playing: its curve, gains and task frame every cycle.
+  add(benchWrapper<CartesianCommand>(options, "cartesian_chunk", "cartesian_impedance",
+                                     robot.home, log, {.chunked = true}));
   return rows;
 }
 
