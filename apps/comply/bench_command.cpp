@@ -192,8 +192,8 @@ std::vector<BenchRow> benchWrapper(const BenchOptions& options, const std::strin
       const pipeline::Verdict verdict = wrapper.submitChunk(
           benchChunk(wrapper.measuredPose(), 1.5 * total * kPeriodS, wrapper.dof()), 0.0);
       if (!verdict.accepted) {
-        throw std::runtime_error(wrapper_name + ": the benchmark's chunk was refused: " +
-                                 verdict.message);
+        throw std::runtime_error(wrapper_name +
+                                 ": the benchmark's chunk was refused: " + verdict.message);
       }
     }
   }
@@ -330,8 +330,8 @@ std::vector<BenchRow> runBench(const BenchOptions& options, std::ostream& log) {
   add(benchWrapper<CartesianCommand>(options, "cartesian_observer", "cartesian_impedance",
                                      robot.home, log, {.observer = true}));
   // The ratio cycle with a timed chunk playing: its curve, gains and task frame every cycle.
-  add(benchWrapper<CartesianCommand>(options, "cartesian_chunk", "cartesian_impedance",
-                                     robot.home, log, {.chunked = true}));
+  add(benchWrapper<CartesianCommand>(options, "cartesian_chunk", "cartesian_impedance", robot.home,
+                                     log, {.chunked = true}));
   return rows;
 }
 

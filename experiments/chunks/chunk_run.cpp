@@ -92,7 +92,8 @@ class Policy final : public hardware::LoopObserver {
     double torque_rate = 0.0;
     if (!last_torque_.empty()) {
       for (std::size_t j = 0; j < record.torque.size(); ++j) {
-        torque_rate = std::max(torque_rate, std::abs(record.torque[j] - last_torque_[j]) / period_s_);
+        torque_rate =
+            std::max(torque_rate, std::abs(record.torque[j] - last_torque_[j]) / period_s_);
       }
     }
     last_torque_.assign(record.torque.begin(), record.torque.end());
@@ -152,8 +153,8 @@ class Policy final : public hardware::LoopObserver {
       verdict = wrapper_.submitChunk(chunk, now_s);
     }
     if (!verdict.accepted) {
-      throw std::runtime_error("chunks " + condition_.name + ": an action was refused: " +
-                               verdict.message);
+      throw std::runtime_error("chunks " + condition_.name +
+                               ": an action was refused: " + verdict.message);
     }
   }
 
@@ -175,7 +176,8 @@ class Policy final : public hardware::LoopObserver {
     if (history_ >= 4) {
       const Eigen::Vector3d third =
           references_[0] - 3 * references_[1] + 3 * references_[2] - references_[3];
-      result_.max_reference_jerk = std::max(result_.max_reference_jerk, third.norm() / (dt * dt * dt));
+      result_.max_reference_jerk =
+          std::max(result_.max_reference_jerk, third.norm() / (dt * dt * dt));
     }
   }
 

@@ -67,8 +67,7 @@ bool isChunk(const py::handle& value) {
 template <typename Command>
 Chunk<Command> chunkFromPython(const py::handle& chunk, int dof, double time_origin_s,
                                const std::optional<Command>& base) {
-  const py::handle list =
-      py::isinstance<py::dict>(chunk) ? chunk.cast<py::dict>()["chunk"] : chunk;
+  const py::handle list = py::isinstance<py::dict>(chunk) ? chunk.cast<py::dict>()["chunk"] : chunk;
   if (!py::isinstance<py::list>(list) && !py::isinstance<py::tuple>(list)) {
     throw py::type_error("a chunk is a list of dicts, each with a \"time\" and schema keywords");
   }
@@ -84,8 +83,8 @@ Chunk<Command> chunkFromPython(const py::handle& chunk, int dof, double time_ori
   options.allow_shorthand = true;
   options.source = "chunk";
   try {
-    return schema::chunkFromJson<Command>(nlohmann::json{{"chunk", waypoints}}, dof,
-                                          time_origin_s, options);
+    return schema::chunkFromJson<Command>(nlohmann::json{{"chunk", waypoints}}, dof, time_origin_s,
+                                          options);
   } catch (const InputError& error) {
     throw py::value_error(error.what());
   }

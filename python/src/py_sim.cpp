@@ -164,8 +164,9 @@ struct Sim::Session {
     // reference_* fields carry it.
     std::visit(
         [&](const auto& e) {
-          const auto& bus = std::get<pipeline::BusOf<std::remove_cvref_t<
-              decltype(e->wrapper.lastAccepted())>>>(e->wrapper.controller().lawBus());
+          const auto& bus =
+              std::get<pipeline::BusOf<std::remove_cvref_t<decltype(e->wrapper.lastAccepted())>>>(
+                  e->wrapper.controller().lawBus());
           if constexpr (requires { bus.orientation; }) {
             obs["reference_position"] = array(bus.position, 3);
             obs["reference_orientation"] = array(bus.orientation, 4);
@@ -289,15 +290,15 @@ py::tuple Sim::step(const py::object& command) {
                                          resolved_->robot.base_frame};
           const bool active = e->wrapper.diagnostics().state != pipeline::WrapperState::kInactive;
           if (chunk) {
-            Chunk<Command> c = chunkFromPython<Command>(command, dof(), now_s,
-                                                        e->wrapper.lastAccepted());
+            Chunk<Command> c =
+                chunkFromPython<Command>(command, dof(), now_s, e->wrapper.lastAccepted());
             c.stamp_s = stampSeconds(*stamp_ns);
             if (host::HostRecording* to = recording()) {
               to->command(transport::ChunkMessageOf<Command>{header, c},
                           e->clockAt(session_->plant.simTime()));
             }
-            session_->gate.offer(offer, active,
-                                 [&] { return e->wrapper.submitChunk(c, stampSeconds(*stamp_ns)); });
+            session_->gate.offer(
+                offer, active, [&] { return e->wrapper.submitChunk(c, stampSeconds(*stamp_ns)); });
             return;
           }
           const py::dict kwargs = command.cast<py::dict>();

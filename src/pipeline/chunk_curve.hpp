@@ -39,12 +39,12 @@ inline QuinticWeights quinticDecay(double s) noexcept {
   const double s3 = s2 * s;
   const double s4 = s3 * s;
   const double s5 = s4 * s;
-  return {{1 - 10 * s3 + 15 * s4 - 6 * s5, s - 6 * s3 + 8 * s4 - 3 * s5,
-           0.5 * s2 - 1.5 * s3 + 1.5 * s4 - 0.5 * s5},
-          {-30 * s2 + 60 * s3 - 30 * s4, 1 - 18 * s2 + 32 * s3 - 15 * s4,
-           s - 4.5 * s2 + 6 * s3 - 2.5 * s4},
-          {-60 * s + 180 * s2 - 120 * s3, -36 * s + 96 * s2 - 60 * s3,
-           1 - 9 * s + 18 * s2 - 10 * s3}};
+  return {
+      {1 - 10 * s3 + 15 * s4 - 6 * s5, s - 6 * s3 + 8 * s4 - 3 * s5,
+       0.5 * s2 - 1.5 * s3 + 1.5 * s4 - 0.5 * s5},
+      {-30 * s2 + 60 * s3 - 30 * s4, 1 - 18 * s2 + 32 * s3 - 15 * s4,
+       s - 4.5 * s2 + 6 * s3 - 2.5 * s4},
+      {-60 * s + 180 * s2 - 120 * s3, -36 * s + 96 * s2 - 60 * s3, 1 - 9 * s + 18 * s2 - 10 * s3}};
 }
 
 inline Eigen::Matrix3d hat(const Eigen::Vector3d& v) noexcept {

@@ -149,9 +149,9 @@ void deriveVelocities(Track<Cartesian>& track) {
     // Angular: the same rule on each segment's mean angular velocity (base frame).
     std::array<Vector3d, kTrackWaypoints> segment;
     for (int k = 1; k + 1 < n; ++k) {
-      segment[k] = orientationError(quaternionOf(w[k].orientation),
-                                    quaternionOf(w[k + 1].orientation)) /
-                   (track.time_s[k + 1] - track.time_s[k]);
+      segment[k] =
+          orientationError(quaternionOf(w[k].orientation), quaternionOf(w[k + 1].orientation)) /
+          (track.time_s[k + 1] - track.time_s[k]);
     }
     for (int k = 1; k < n; ++k) {
       Vector3d angular = Vector3d::Zero();
@@ -200,7 +200,9 @@ void deriveVelocities(Track<Joint>& track) {
     std::array<Eigen::VectorXd, kTrackWaypoints> velocity;
     impliedVelocities(
         track.time_s, 1, track.count,
-        [&](int k) { return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(w[k].position, dof)); },
+        [&](int k) {
+          return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(w[k].position, dof));
+        },
         velocity.data());
     for (int k = 1; k < track.count; ++k) {
       std::copy_n(velocity[k].data(), dof, w[k].velocity);
@@ -247,8 +249,7 @@ CartesianMotion motionAt(const Track<Cartesian>& track, double t_s, int& cursor)
   motion.orientation = (quaternionOf(a.orientation) * curve::expRotation(phi)).normalized();
   // d/dt (R J_r dphi) = R (J_r ddphi + dJ_r/dt dphi): the second term, quadratic in the
   // segment's rate, is left out of the acceleration (a feedforward, not the path).
-  const Eigen::Matrix3d to_base = motion.orientation.toRotationMatrix() *
-                                  curve::rightJacobian(phi);
+  const Eigen::Matrix3d to_base = motion.orientation.toRotationMatrix() * curve::rightJacobian(phi);
   motion.angular_velocity = to_base * dphi;
   motion.angular_acceleration = to_base * ddphi;
   return motion;

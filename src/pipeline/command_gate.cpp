@@ -64,9 +64,8 @@ CommandReason CommandGate::admitLocked(const Offer& offer, bool active, CommandO
   const double silent_s = 1e-9 * static_cast<double>(offer.now_ns - holder_heard_ns_);
   // The holder is a sending process where the transport names it (its command and chunk writers
   // are one sender), else a writer.
-  const bool holder_speaks =
-      holder_ == offer.publisher ||
-      (offer.participant != 0 && offer.participant == holder_participant_);
+  const bool holder_speaks = holder_ == offer.publisher ||
+                             (offer.participant != 0 && offer.participant == holder_participant_);
   if (holder_ != 0 && !holder_speaks && silent_s <= options_.publisher_timeout_s) {
     std::ostringstream text;
     text << "publisher " << std::hex << holder_ << std::dec

@@ -3,11 +3,10 @@
 // so a new row needs no code here. A chunk's waypoints are commands.
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "comply/schema/schema.hpp"
 #include "comply/schema/table.hpp"
-#include <vector>
-
 #include "comply_msgs/msg/CartesianChunk.h"
 #include "comply_msgs/msg/CartesianCommand.h"
 #include "comply_msgs/msg/JointChunk.h"

@@ -2,14 +2,15 @@
 // constant-rate rotation), implied velocities, the blend from the reference in force (no jump in
 // position, velocity or acceleration), gains at their times and positive semi-definite between.
 
+#include "comply/pipeline/chunk_player.hpp"
+
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <Eigen/Eigenvalues>
+#include <cmath>
 #include <random>
 
 #include "comply/core/rotation.hpp"
-#include "comply/pipeline/chunk_player.hpp"
 #include "comply/schema/schema.hpp"
 
 namespace comply::pipeline {
@@ -154,10 +155,10 @@ TEST(ChunkPlayer, BlendsInFromTheReferenceInForceWithoutAJumpInPositionVelocityO
   EXPECT_LT((positionOf(active) - positionOf(from)).norm(), 1e-12);
   EXPECT_LT((Eigen::Map<const Vector6d>(now.twist) - Eigen::Map<const Vector6d>(old.twist)).norm(),
             1e-12);
-  EXPECT_LT((Eigen::Map<const Vector6d>(now.acceleration) -
-             Eigen::Map<const Vector6d>(old.acceleration))
-                .norm(),
-            1e-12);
+  EXPECT_LT(
+      (Eigen::Map<const Vector6d>(now.acceleration) - Eigen::Map<const Vector6d>(old.acceleration))
+          .norm(),
+      1e-12);
   EXPECT_LT(orientationOf(active).angularDistance(old_orientation), 1e-12);
 
   // Along the blend the reference is smooth: the finite difference of the position matches the
@@ -219,7 +220,8 @@ TEST(ChunkPlayer, GainsReachTheirValuesAtTheirTimesAndStayPositiveSemiDefiniteBe
       const Cartesian& bus = std::get<Cartesian>(active);
       for (const double* block : {bus.stiffness_translational, bus.stiffness_rotational,
                                   bus.damping_translational, bus.damping_rotational}) {
-        const Eigen::Matrix3d m = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(block);
+        const Eigen::Matrix3d m =
+            Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(block);
         EXPECT_LT((m - m.transpose()).norm(), 1e-12 * (1.0 + m.norm()));
         EXPECT_GE(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m).eigenvalues().minCoeff(),
                   -1e-9 * (1.0 + m.norm()));

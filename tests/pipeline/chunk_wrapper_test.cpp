@@ -21,10 +21,11 @@ constexpr double kHostStart = 1000.0;  // s: the host's clock at activation (any
 class CartesianChunks : public ::testing::Test {
  protected:
   CartesianChunks()
-      : wrapper(fr3Config(kCartesianImpedancePlugin,
-                          "command_timeout_s: 0.05\nchunk_blend_time_s: 0.02\nfrozen_state_timeout_s: 0\n"
-                          "torque_rate_limit_nm_per_s: " +
-                              std::to_string(kNoRateLimit) + "\n")) {}
+      : wrapper(fr3Config(
+            kCartesianImpedancePlugin,
+            "command_timeout_s: 0.05\nchunk_blend_time_s: 0.02\nfrozen_state_timeout_s: 0\n"
+            "torque_rate_limit_nm_per_s: " +
+                std::to_string(kNoRateLimit) + "\n")) {}
 
   void SetUp() override {
     state = restingAt(wrapper.controller(), fr3Home());
@@ -238,13 +239,14 @@ TEST_F(CartesianChunks, ANewChunkTakesOverWithoutAJump) {
     cycles(1);
     const Eigen::Vector3d velocity = Eigen::Map<const Eigen::Vector3d>(law().twist);
     const Eigen::Vector3d acceleration = Eigen::Map<const Eigen::Vector3d>(law().acceleration);
-    position_mismatch = std::max(
-        position_mismatch, (reference() - last - 0.5 * kPeriod * (velocity + last_velocity)).norm());
+    position_mismatch =
+        std::max(position_mismatch,
+                 (reference() - last - 0.5 * kPeriod * (velocity + last_velocity)).norm());
     // The acceleration moves inside a cycle too (cubic in time along the blend): 5 % leeway.
-    velocity_mismatch = std::max(
-        velocity_mismatch,
-        (velocity - last_velocity).norm() /
-            (1e-9 + kPeriod * std::max(acceleration.norm(), last_acceleration.norm())));
+    velocity_mismatch =
+        std::max(velocity_mismatch,
+                 (velocity - last_velocity).norm() /
+                     (1e-9 + kPeriod * std::max(acceleration.norm(), last_acceleration.norm())));
     last = reference();
     last_velocity = velocity;
     last_acceleration = acceleration;

@@ -309,8 +309,8 @@ CartesianChunk movingChunk(const model::Data& measured, double now_s, double sta
     c.stiffness_translational = (400.0 + 50.0 * k) * Eigen::Matrix3d::Identity();
     c.stiffness_rotational = 30.0 * Eigen::Matrix3d::Identity();
     c.damping_mode = DampingMode::kRatio;
-    c.task_frame = Eigen::AngleAxisd(0.05 * k, Eigen::Vector3d::UnitZ()) *
-                   Eigen::Quaterniond::Identity();
+    c.task_frame =
+        Eigen::AngleAxisd(0.05 * k, Eigen::Vector3d::UnitZ()) * Eigen::Quaterniond::Identity();
     c.wrench_feedforward[2] = 0.1 * k;
     chunk.waypoints.push_back(waypoint);
   }

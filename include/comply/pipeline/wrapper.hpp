@@ -82,7 +82,7 @@ class Wrapper final : public hardware::CycleController {
   [[nodiscard]] const Controller& controller() const noexcept { return controller_; }
 
  private:
-  mutable Controller controller_;    // mutable: reading its published values is a reader's update
+  mutable Controller controller_;  // mutable: reading its published values is a reader's update
   /// Counts a rejection and returns it; counts an acceptance and moves the stamp floor.
   Verdict account(Verdict verdict, double stamp_s);
 

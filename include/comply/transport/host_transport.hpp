@@ -41,8 +41,8 @@ struct Inbox {
     departed.clear();
   }
   [[nodiscard]] bool empty() const {
-    return cartesian.empty() && joint.empty() && cartesian_chunks.empty() &&
-           joint_chunks.empty() && requests.empty() && departed.empty();
+    return cartesian.empty() && joint.empty() && cartesian_chunks.empty() && joint_chunks.empty() &&
+           requests.empty() && departed.empty();
   }
 };
 

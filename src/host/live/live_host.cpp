@@ -120,8 +120,7 @@ void publishDiagnostics(PublisherContext<Command>& c,
   if (c.recording != nullptr) {
     const record::RecorderStats stats = c.recording->stats();
     message.records_dropped = stats.dropped;
-    message.recording = stats.error.empty() ? c.recording->path()
-                                            : "stopped early: " + stats.error;
+    message.recording = stats.error.empty() ? c.recording->path() : "stopped early: " + stats.error;
     for (const transport::CommandOutcomeMessage& outcome : message.outcomes) {
       c.recording->outcome(outcome);
     }

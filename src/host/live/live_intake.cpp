@@ -41,9 +41,8 @@ void offerSample(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gat
   offer.clock_ns = wallClockNanoseconds();  // senders stamp with their wall clock (ROS 2 time)
   offer.nanosec = sample.message.header.stamp.nanosec;
   const bool active = wrapper.diagnostics().state != pipeline::WrapperState::kInactive;
-  gate.offer(offer, active, [&] {
-    return submitSample(wrapper, sample.message, offer.stamp_ns, offer.clock_ns);
-  });
+  gate.offer(offer, active,
+             [&] { return submitSample(wrapper, sample.message, offer.stamp_ns, offer.clock_ns); });
 }
 
 }  // namespace
