@@ -585,10 +585,13 @@ void ChunkPlayer::start(int slot, const CommandBus& in_force, double now_s) noex
     release(playing_);
   }
   playing_ = slot;
-  if (slots_->cartesian) {
-    startIn(*slots_->cartesian, slot, std::get<Cartesian>(in_force), now_s);
+  // get_if: the buses are of the player's kind (one controller), and the cycle must not throw.
+  if (const auto* cartesian = std::get_if<Cartesian>(&in_force); slots_->cartesian && cartesian) {
+    startIn(*slots_->cartesian, slot, *cartesian, now_s);
+  } else if (const auto* joint = std::get_if<Joint>(&in_force); slots_->joint && joint) {
+    startIn(*slots_->joint, slot, *joint, now_s);
   } else {
-    startIn(*slots_->joint, slot, std::get<Joint>(in_force), now_s);
+    stop();
   }
 }
 
@@ -596,11 +599,12 @@ bool ChunkPlayer::play(double now_s, CommandBus& active) noexcept {
   if (playing_ < 0) {
     return false;
   }
-  const bool running =
-      slots_->cartesian
-          ? playIn(*slots_->cartesian, playing_, slots_->blend_time_s, now_s,
-                   std::get<Cartesian>(active))
-          : playIn(*slots_->joint, playing_, slots_->blend_time_s, now_s, std::get<Joint>(active));
+  bool running = false;
+  if (auto* cartesian = std::get_if<Cartesian>(&active); slots_->cartesian && cartesian) {
+    running = playIn(*slots_->cartesian, playing_, slots_->blend_time_s, now_s, *cartesian);
+  } else if (auto* joint = std::get_if<Joint>(&active); slots_->joint && joint) {
+    running = playIn(*slots_->joint, playing_, slots_->blend_time_s, now_s, *joint);
+  }
   if (!running) {
     stop();
   }
