@@ -111,26 +111,14 @@ TEST(LiveHost, CommandSendSendsChunksFromAFile) {
       lines << "]}\n";
     }
   }
-  const std::string output = file + ".out";
-  Process sender({"send", "--domain", std::to_string(domain), "--name", "chunkfile", "--file", file,
-                  "--rate", "2"},
-                 output);
-  EXPECT_EQ(sender.wait(60s), 0);
-  std::ifstream printed(output);
-  const std::string text = "\n" + std::string((std::istreambuf_iterator<char>(printed)),
-                                              std::istreambuf_iterator<char>());
-  std::size_t applied = 0;
-  for (std::size_t at = text.find("\napplied "); at != std::string::npos;
-       at = text.find("\napplied ", at + 1)) {
-    ++applied;
-  }
-  EXPECT_EQ(applied, 4U) << text;
+  const SendResult sent = sendFile(domain, "chunkfile", file, "2");
+  EXPECT_EQ(sent.exit_code, 0);
+  EXPECT_EQ(sent.applied, 4U) << sent.text;
   std::this_thread::sleep_for(600ms);  // the last chunk runs 0.4 s after it was sent
   const auto after = client.state(2s);
   ASSERT_TRUE(after);
   EXPECT_NEAR(after->reference_position[1], y + 0.06, 1e-6);
   std::filesystem::remove(file);
-  std::filesystem::remove(output);
 }
 
 }  // namespace

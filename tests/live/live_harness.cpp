@@ -201,41 +201,37 @@ class InProcessHarness final : public HostHarness {
   Outcomes outcomes_;
 };
 
+/// A no-op command of `Command`'s kind: no field group, so the host accounts it and changes
+/// nothing (a joint one to the Cartesian controller is refused as wrong_kind, an outcome too).
+template <typename Message>
+Message noOp(int dof) {
+  Message message;
+  message.command = decltype(message.command)::zero(dof);
+  message.command.fields = CommandField::kNone;
+  return message;
+}
+
 }  // namespace
 
 bool HostHarness::connect(int publisher, int dof) {
-  return open(publisher) && handshake<transport::CartesianCommandMessage>(publisher, dof) &&
-         handshake<transport::JointCommandMessage>(publisher, dof);
-}
-
-/// Sends no-op commands (no field group: the host still accounts them; a joint one to the
-/// Cartesian controller is rejected as wrong_kind, which is an outcome too) until the host reports
-/// one. Over DDS a reader that has not yet discovered a writer drops its first samples: after an
-/// outcome it has.
-template <typename Message>
-bool HostHarness::handshake(int publisher, int dof) {
-  for (int attempt = 0; attempt < 100; ++attempt) {
-    Message message;
-    message.header.stamp = transport::Stamp::now();
-    message.command = decltype(message.command)::zero(dof);
-    message.command.fields = CommandField::kNone;
-    send(message, publisher);
-    const std::int64_t stamp = message.header.stamp.nanoseconds();
-    if (poll(100ms, [&](const auto&) { return outcomes().count(stamp) > 0; })) {
-      outcomes().clear();
-      return true;
-    }
-  }
-  return false;
+  return open(publisher) && handshake(noOp<transport::CartesianCommandMessage>(dof), publisher) &&
+         handshake(noOp<transport::JointCommandMessage>(dof), publisher);
 }
 
 bool HostHarness::connectChunks(int publisher) {
+  transport::CartesianChunkMessage late;  // one waypoint in 1970: refused as late_chunk
+  late.chunk.waypoints.push_back({1.0, CartesianCommand::zero(1)});
+  return handshake(late, publisher);
+}
+
+/// Sends `probe`, newly stamped, until the host reports its outcome. Over DDS a reader that has
+/// not yet discovered a writer drops its first samples: after an outcome it has.
+template <typename Message>
+bool HostHarness::handshake(Message probe, int publisher) {
   for (int attempt = 0; attempt < 100; ++attempt) {
-    transport::CartesianChunkMessage message;
-    message.header.stamp = transport::Stamp::now();
-    message.chunk.waypoints.push_back({1.0, CartesianCommand::zero(1)});
-    send(message, publisher);
-    const std::int64_t stamp = message.header.stamp.nanoseconds();
+    probe.header.stamp = transport::Stamp::now();
+    send(probe, publisher);
+    const std::int64_t stamp = probe.header.stamp.nanoseconds();
     if (poll(100ms, [&](const auto&) { return outcomes().count(stamp) > 0; })) {
       outcomes().clear();
       return true;

@@ -78,7 +78,7 @@ class HostHarness {
 
  private:
   template <typename Message>
-  bool handshake(int publisher, int dof);
+  bool handshake(Message probe, int publisher);
 };
 
 /// "dds" or "in_process".

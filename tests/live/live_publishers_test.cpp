@@ -263,23 +263,11 @@ TEST(LiveHost, CommandSendAccountsEveryCommandOfAFileAtAnyRate) {
   }
   for (const std::string rate : {"100", "5000"}) {
     SCOPED_TRACE("--rate " + rate);
-    const std::string output = file + "." + rate + ".out";
-    Process sender({"send", "--domain", std::to_string(domain), "--name", "file", "--file", file,
-                    "--rate", rate},
-                   output);
-    EXPECT_EQ(sender.wait(60s), 0);
-    std::ifstream printed(output);
-    // A newline first: every outcome line then starts after one, the first included.
-    const std::string text = "\n" + std::string((std::istreambuf_iterator<char>(printed)),
-                                                std::istreambuf_iterator<char>());
-    std::size_t applied = 0;
-    for (std::size_t at = text.find("\napplied "); at != std::string::npos;
-         at = text.find("\napplied ", at + 1)) {
-      ++applied;
-    }
-    EXPECT_EQ(applied, 300U) << text.substr(0, 2000);
-    EXPECT_EQ(text.find("without an outcome"), std::string::npos) << text.substr(text.size() - 300);
-    std::filesystem::remove(output);
+    const SendResult sent = sendFile(domain, "file", file, rate);
+    EXPECT_EQ(sent.exit_code, 0);
+    EXPECT_EQ(sent.applied, 300U) << sent.text.substr(0, 2000);
+    EXPECT_EQ(sent.text.find("without an outcome"), std::string::npos)
+        << sent.text.substr(sent.text.size() - 300);
   }
   std::filesystem::remove(file);
 }

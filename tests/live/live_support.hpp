@@ -9,7 +9,10 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <random>
 #include <string>
@@ -96,6 +99,33 @@ inline std::vector<std::string> hostArgs(int domain, const std::string& name) {
   return {"run",    "--config", kHostConfig, "--robot",
           "fr3",    "--sim",    "--domain",  std::to_string(domain),
           "--name", name};
+}
+
+/// What `comply send --file` printed and how it ended.
+struct SendResult {
+  int exit_code = -1;
+  std::string text;         ///< its output, after a newline (every outcome line follows one)
+  std::size_t applied = 0;  ///< lines "applied ..."
+};
+
+/// Runs `comply send --file file --rate rate` to host `name` on `domain` and waits for it.
+inline SendResult sendFile(int domain, const std::string& name, const std::string& file,
+                           const std::string& rate) {
+  const std::string output = file + "." + rate + ".out";
+  Process sender(
+      {"send", "--domain", std::to_string(domain), "--name", name, "--file", file, "--rate", rate},
+      output);
+  SendResult result;
+  result.exit_code = sender.wait(std::chrono::seconds(60));
+  std::ifstream printed(output);
+  result.text = "\n" + std::string((std::istreambuf_iterator<char>(printed)),
+                                   std::istreambuf_iterator<char>());
+  for (std::size_t at = result.text.find("\napplied "); at != std::string::npos;
+       at = result.text.find("\napplied ", at + 1)) {
+    ++result.applied;
+  }
+  std::filesystem::remove(output);
+  return result;
 }
 
 /// The client side: state and diagnostics readers and the outcome of every command by stamp.

@@ -58,35 +58,32 @@ std::vector<transport::CommandOutcomeMessage> outcomeMessages(
 }
 
 template <typename Command>
-void Intake<Command>::handle(const transport::Sample<transport::CartesianCommandMessage>& sample) {
+template <typename Message>
+void Intake<Command>::handleCommand(const transport::Sample<Message>& sample) {
   if (recording_ != nullptr && sample.malformed.empty()) {
     recording_->command(sample.message, transport::Stamp::now());
   }
-  offerSample(wrapper_, gate_, sample, pipeline::CommandKind::kCartesian);
+  constexpr bool kCartesian = std::is_same_v<Message, transport::CartesianCommandMessage> ||
+                              std::is_same_v<Message, transport::CartesianChunkMessage>;
+  offerSample(wrapper_, gate_, sample,
+              kCartesian ? pipeline::CommandKind::kCartesian : pipeline::CommandKind::kJoint);
 }
 
+template <typename Command>
+void Intake<Command>::handle(const transport::Sample<transport::CartesianCommandMessage>& sample) {
+  handleCommand(sample);
+}
 template <typename Command>
 void Intake<Command>::handle(const transport::Sample<transport::JointCommandMessage>& sample) {
-  if (recording_ != nullptr && sample.malformed.empty()) {
-    recording_->command(sample.message, transport::Stamp::now());
-  }
-  offerSample(wrapper_, gate_, sample, pipeline::CommandKind::kJoint);
+  handleCommand(sample);
 }
-
 template <typename Command>
 void Intake<Command>::handle(const transport::Sample<transport::CartesianChunkMessage>& sample) {
-  if (recording_ != nullptr && sample.malformed.empty()) {
-    recording_->command(sample.message, transport::Stamp::now());
-  }
-  offerSample(wrapper_, gate_, sample, pipeline::CommandKind::kCartesian);
+  handleCommand(sample);
 }
-
 template <typename Command>
 void Intake<Command>::handle(const transport::Sample<transport::JointChunkMessage>& sample) {
-  if (recording_ != nullptr && sample.malformed.empty()) {
-    recording_->command(sample.message, transport::Stamp::now());
-  }
-  offerSample(wrapper_, gate_, sample, pipeline::CommandKind::kJoint);
+  handleCommand(sample);
 }
 
 template <typename Command>

@@ -51,6 +51,10 @@ class Intake {
   void setRecording(HostRecording* recording) noexcept { recording_ = recording; }
 
  private:
+  /// A command or chunk of either kind: recorded as received, then offered to the gate.
+  template <typename Message>
+  void handleCommand(const transport::Sample<Message>& sample);
+
   pipeline::Wrapper<Command>& wrapper_;
   LiveObserver<Command>& observer_;
   pipeline::CommandGate& gate_;
