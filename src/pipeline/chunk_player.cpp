@@ -4,314 +4,17 @@
 #include <cmath>
 
 #include "chunk_curve.hpp"
+#include "chunk_track.hpp"
 #include "comply/core/rotation.hpp"
 #include "comply/schema/schema.hpp"
 
 namespace comply::pipeline {
 namespace {
 
-using Cartesian = comply_cartesian_command;
-using Joint = comply_joint_command;
-using Eigen::Vector3d;
-using Vector3Map = Eigen::Map<Vector3d>;
-using ConstVector3Map = Eigen::Map<const Vector3d>;
+using namespace chunk;  // NOLINT(google-build-using-namespace): the track's types and helpers
 
 constexpr std::uint8_t kFree = 0;
 constexpr std::uint8_t kLoaded = 1;
-
-Eigen::Quaterniond quaternionOf(const double* xyzw) noexcept {
-  return {xyzw[3], xyzw[0], xyzw[1], xyzw[2]};
-}
-void store(const Eigen::Quaterniond& q, double* xyzw) noexcept {
-  xyzw[0] = q.x();
-  xyzw[1] = q.y();
-  xyzw[2] = q.z();
-  xyzw[3] = q.w();
-}
-
-/// to = a + (b - a) * fraction, entry by entry.
-void lerp(const double* a, const double* b, double fraction, int size, double* to) noexcept {
-  for (int i = 0; i < size; ++i) {
-    to[i] = a[i] + (b[i] - a[i]) * fraction;
-  }
-}
-
-Eigen::Quaterniond slerpShort(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b,
-                              double fraction) noexcept {
-  return a.slerp(fraction, b).normalized();  // Eigen's slerp takes the short way
-}
-
-/// The orientation part of one segment, precomputed at load: the rotation vector from its first
-/// waypoint to its second (in the first's frame) and the Hermite end slopes of that vector over
-/// the segment [rad], so the cycle evaluates it without a logarithm or an inverse.
-struct RotationSegment {
-  Vector3d phi = Vector3d::Zero();
-  Vector3d slope0 = Vector3d::Zero();
-  Vector3d slope1 = Vector3d::Zero();
-};
-
-/// A loaded chunk: its waypoints after a lead-in waypoint (index 0) that the intake adds one
-/// segment before the first, half that segment's travel behind it at the first's velocity, and at
-/// rest: from there the reference accelerates evenly into the first waypoint, so the curve is C1
-/// also where a chunk that starts in the future begins.
-inline constexpr int kTrackWaypoints = kMaxChunkWaypoints + 1;
-
-template <typename Bus>
-struct Track {
-  int count = 0;  ///< the chunk's waypoints plus the lead-in
-  std::uint32_t fields = 0;
-  double stamp_s = 0.0;
-  std::array<double, kTrackWaypoints> time_s{};
-  /// Each waypoint's bus; its twist (velocity) holds the waypoint's velocity, given or implied.
-  std::array<Bus, kTrackWaypoints> waypoints{};
-  std::array<RotationSegment, kTrackWaypoints> rotation{};  // Cartesian only
-};
-
-/// Where the reference is at one time: value, velocity, acceleration.
-struct CartesianMotion {
-  Vector3d position = Vector3d::Zero();
-  Vector3d velocity = Vector3d::Zero();
-  Vector3d acceleration = Vector3d::Zero();
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
-  Vector3d angular_velocity = Vector3d::Zero();
-  Vector3d angular_acceleration = Vector3d::Zero();
-};
-struct JointMotion {
-  JointVector position, velocity, acceleration;
-};
-
-/// Where `t_s` falls: waypoint `index` and the fraction of the segment after it (0 before the
-/// first waypoint, 1 after the last: the chunk holds its ends).
-struct Place {
-  int index = 0;
-  double fraction = 0.0;
-  double length_s = 0.0;  ///< the segment's length, 0 when holding an end
-};
-
-template <typename Bus>
-Place placeOf(const Track<Bus>& track, double t_s, int& cursor) noexcept {
-  const int last = track.count - 1;
-  if (last == 0 || t_s < track.time_s[0]) {
-    return {0, 0.0, 0.0};
-  }
-  if (t_s >= track.time_s[last]) {
-    return {last, 0.0, 0.0};
-  }
-  cursor = std::clamp(cursor, 0, last - 1);
-  while (cursor > 0 && track.time_s[cursor] > t_s) {
-    --cursor;
-  }
-  while (cursor + 1 < last && track.time_s[cursor + 1] <= t_s) {
-    ++cursor;
-  }
-  const double length = track.time_s[cursor + 1] - track.time_s[cursor];
-  return {cursor, (t_s - track.time_s[cursor]) / length, length};
-}
-
-// ---- derived at load (intake thread) ----------------------------------------------------------
-
-/// Implied velocity at waypoints first..count-1 of values `at(k)` (a vector type): the
-/// interval-weighted mean of the neighbouring secants inside, the secant at the first, zero at the
-/// last (a chunk comes to rest at its end).
-template <typename Value, typename At>
-void impliedVelocities(const std::array<double, kTrackWaypoints>& time_s, int first, int count,
-                       At&& at, Value* velocity) {
-  for (int k = first; k < count; ++k) {
-    if (k == count - 1) {
-      velocity[k] = at(k) * 0.0;
-    } else if (k == first) {
-      velocity[k] = (at(k + 1) - at(k)) / (time_s[k + 1] - time_s[k]);
-    } else {
-      const double before = time_s[k] - time_s[k - 1];
-      const double after = time_s[k + 1] - time_s[k];
-      const Value secant_before = (at(k) - at(k - 1)) / before;
-      const Value secant_after = (at(k + 1) - at(k)) / after;
-      velocity[k] = (after * secant_before + before * secant_after) / (before + after);
-    }
-  }
-}
-
-/// The lead-in's time: one segment before the first waypoint (1 s for a chunk of one).
-template <typename Bus>
-double leadInTime(const Track<Bus>& track) {
-  const double segment_s = track.count > 2 ? track.time_s[2] - track.time_s[1] : 1.0;
-  return track.time_s[1] - segment_s;
-}
-
-void deriveVelocities(Track<Cartesian>& track) {
-  const int n = track.count;
-  auto& w = track.waypoints;
-  if ((track.fields & COMPLY_FIELD_VELOCITY) == 0) {
-    std::array<Vector3d, kTrackWaypoints> linear;
-    impliedVelocities(
-        track.time_s, 1, n, [&](int k) { return Vector3d(ConstVector3Map(w[k].position)); },
-        linear.data());
-    // Angular: the same rule on each segment's mean angular velocity (base frame).
-    std::array<Vector3d, kTrackWaypoints> segment;
-    for (int k = 1; k + 1 < n; ++k) {
-      segment[k] =
-          orientationError(quaternionOf(w[k].orientation), quaternionOf(w[k + 1].orientation)) /
-          (track.time_s[k + 1] - track.time_s[k]);
-    }
-    for (int k = 1; k < n; ++k) {
-      Vector3d angular = Vector3d::Zero();
-      if (k == 1 && n > 2) {
-        angular = segment[1];
-      } else if (k > 1 && k < n - 1) {
-        const double before = track.time_s[k] - track.time_s[k - 1];
-        const double after = track.time_s[k + 1] - track.time_s[k];
-        angular = (after * segment[k - 1] + before * segment[k]) / (before + after);
-      }
-      Eigen::Map<Vector6d> twist(w[k].twist);
-      twist << linear[k], angular;
-    }
-  }
-  // The lead-in: at rest, half a segment's travel at the first waypoint's velocity behind it.
-  const double lead_s = track.time_s[1] - leadInTime(track);
-  const Eigen::Quaterniond first = quaternionOf(w[1].orientation);
-  const Vector3d first_body_rate = first.toRotationMatrix().transpose() * Vector3d(w[1].twist + 3);
-  track.time_s[0] = leadInTime(track);
-  w[0] = w[1];
-  Vector3Map(w[0].position) = ConstVector3Map(w[1].position) - 0.5 * lead_s * Vector3d(w[1].twist);
-  store((first * curve::expRotation(-0.5 * lead_s * first_body_rate)).normalized(),
-        w[0].orientation);
-  Eigen::Map<Vector6d>(w[0].twist).setZero();
-
-  for (int k = 0; k + 1 < n; ++k) {
-    const Eigen::Quaterniond q0 = quaternionOf(w[k].orientation);
-    const Eigen::Quaterniond q1 = quaternionOf(w[k + 1].orientation);
-    Eigen::Quaterniond relative = q0.conjugate() * q1;
-    if (relative.w() < 0.0) {
-      relative.coeffs() = -relative.coeffs();
-    }
-    RotationSegment& rotation = track.rotation[k];
-    const double length = track.time_s[k + 1] - track.time_s[k];
-    rotation.phi = quaternionLog(relative);
-    rotation.slope0 = length * (q0.toRotationMatrix().transpose() * Vector3d(w[k].twist + 3));
-    rotation.slope1 = length * curve::rightJacobianInverse(rotation.phi) *
-                      (q1.toRotationMatrix().transpose() * Vector3d(w[k + 1].twist + 3));
-  }
-}
-
-void deriveVelocities(Track<Joint>& track) {
-  auto& w = track.waypoints;
-  const int dof = w[1].dof;
-  if ((track.fields & COMPLY_FIELD_VELOCITY) == 0) {
-    std::array<Eigen::VectorXd, kTrackWaypoints> velocity;
-    impliedVelocities(
-        track.time_s, 1, track.count,
-        [&](int k) {
-          return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(w[k].position, dof));
-        },
-        velocity.data());
-    for (int k = 1; k < track.count; ++k) {
-      std::copy_n(velocity[k].data(), dof, w[k].velocity);
-    }
-  }
-  const double lead_s = track.time_s[1] - leadInTime(track);
-  track.time_s[0] = leadInTime(track);
-  w[0] = w[1];
-  for (int j = 0; j < dof; ++j) {
-    w[0].position[j] = w[1].position[j] - 0.5 * lead_s * w[1].velocity[j];
-    w[0].velocity[j] = 0.0;
-  }
-}
-
-// ---- evaluated in the cycle --------------------------------------------------------------------
-
-CartesianMotion motionAt(const Track<Cartesian>& track, double t_s, int& cursor) noexcept {
-  const Place place = placeOf(track, t_s, cursor);
-  const Cartesian& a = track.waypoints[place.index];
-  CartesianMotion motion;
-  if (place.length_s == 0.0) {  // holding an end, at rest
-    motion.position = ConstVector3Map(a.position);
-    motion.orientation = quaternionOf(a.orientation);
-    return motion;
-  }
-  const Cartesian& b = track.waypoints[place.index + 1];
-  const double h = place.length_s;
-  const curve::HermiteWeights w = curve::hermite(place.fraction);
-  const ConstVector3Map p0(a.position);
-  const ConstVector3Map p1(b.position);
-  const ConstVector3Map v0(a.twist);
-  const ConstVector3Map v1(b.twist);
-  motion.position = w.value[0] * p0 + w.value[1] * h * v0 + w.value[2] * p1 + w.value[3] * h * v1;
-  motion.velocity =
-      (w.first[0] * p0 + w.first[1] * h * v0 + w.first[2] * p1 + w.first[3] * h * v1) / h;
-  motion.acceleration =
-      (w.second[0] * p0 + w.second[1] * h * v0 + w.second[2] * p1 + w.second[3] * h * v1) / (h * h);
-
-  const RotationSegment& r = track.rotation[place.index];
-  const Vector3d phi = w.value[1] * r.slope0 + w.value[2] * r.phi + w.value[3] * r.slope1;
-  const Vector3d dphi = (w.first[1] * r.slope0 + w.first[2] * r.phi + w.first[3] * r.slope1) / h;
-  const Vector3d ddphi =
-      (w.second[1] * r.slope0 + w.second[2] * r.phi + w.second[3] * r.slope1) / (h * h);
-  motion.orientation = (quaternionOf(a.orientation) * curve::expRotation(phi)).normalized();
-  // d/dt (R J_r dphi) = R (J_r ddphi + dJ_r/dt dphi): the second term, quadratic in the
-  // segment's rate, is left out of the acceleration (a feedforward, not the path).
-  const Eigen::Matrix3d to_base = motion.orientation.toRotationMatrix() * curve::rightJacobian(phi);
-  motion.angular_velocity = to_base * dphi;
-  motion.angular_acceleration = to_base * ddphi;
-  return motion;
-}
-
-JointMotion motionAt(const Track<Joint>& track, double t_s, int& cursor) noexcept {
-  const Place place = placeOf(track, t_s, cursor);
-  const Joint& a = track.waypoints[place.index];
-  const int dof = a.dof;
-  JointMotion motion;
-  motion.position = Eigen::Map<const Eigen::VectorXd>(a.position, dof);
-  motion.velocity.setZero(dof);
-  motion.acceleration.setZero(dof);
-  if (place.length_s == 0.0) {
-    return motion;
-  }
-  const Joint& b = track.waypoints[place.index + 1];
-  const double h = place.length_s;
-  const curve::HermiteWeights w = curve::hermite(place.fraction);
-  for (int j = 0; j < dof; ++j) {
-    const double p0 = a.position[j];
-    const double p1 = b.position[j];
-    const double m0 = h * a.velocity[j];
-    const double m1 = h * b.velocity[j];
-    motion.position[j] = w.value[0] * p0 + w.value[1] * m0 + w.value[2] * p1 + w.value[3] * m1;
-    motion.velocity[j] =
-        (w.first[0] * p0 + w.first[1] * m0 + w.first[2] * p1 + w.first[3] * m1) / h;
-    motion.acceleration[j] =
-        (w.second[0] * p0 + w.second[1] * m0 + w.second[2] * p1 + w.second[3] * m1) / (h * h);
-  }
-  return motion;
-}
-
-/// The chunk's gains, feedforward, task frame and nullspace at a place, written into `to`:
-/// linear between the segment's waypoints, the task frame by spherical interpolation.
-void settingsAt(const Track<Cartesian>& track, const Place& place, Cartesian& to) noexcept {
-  const Cartesian& a = track.waypoints[place.index];
-  const Cartesian& b = place.length_s > 0.0 ? track.waypoints[place.index + 1] : a;
-  const double u = place.fraction;
-  const int dof = a.dof;
-  lerp(a.stiffness_translational, b.stiffness_translational, u, 9, to.stiffness_translational);
-  lerp(a.stiffness_rotational, b.stiffness_rotational, u, 9, to.stiffness_rotational);
-  lerp(a.damping_translational, b.damping_translational, u, 9, to.damping_translational);
-  lerp(a.damping_rotational, b.damping_rotational, u, 9, to.damping_rotational);
-  lerp(a.damping_ratio, b.damping_ratio, u, 6, to.damping_ratio);
-  to.damping_mode = a.damping_mode;
-  store(slerpShort(quaternionOf(a.task_frame), quaternionOf(b.task_frame), u), to.task_frame);
-  lerp(a.wrench_feedforward, b.wrench_feedforward, u, 6, to.wrench_feedforward);
-  lerp(a.torque_feedforward, b.torque_feedforward, u, dof, to.torque_feedforward);
-  lerp(a.nullspace_position, b.nullspace_position, u, dof, to.nullspace_position);
-  lerp(a.nullspace_stiffness, b.nullspace_stiffness, u, dof, to.nullspace_stiffness);
-  lerp(a.nullspace_damping, b.nullspace_damping, u, dof, to.nullspace_damping);
-}
-
-void settingsAt(const Track<Joint>& track, const Place& place, Joint& to) noexcept {
-  const Joint& a = track.waypoints[place.index];
-  const Joint& b = place.length_s > 0.0 ? track.waypoints[place.index + 1] : a;
-  const double u = place.fraction;
-  lerp(a.stiffness, b.stiffness, u, a.dof, to.stiffness);
-  lerp(a.damping, b.damping, u, a.dof, to.damping);
-  lerp(a.torque_feedforward, b.torque_feedforward, u, a.dof, to.torque_feedforward);
-}
 
 /// Fades the groups `fields` of `chunk` in from `from` (fraction 0: all `from`, 1: all chunk)
 /// into `active`.
@@ -431,9 +134,9 @@ void addOffset(const CartesianOffset& e, const curve::QuinticWeights& w, double 
   m.position += position[0];
   m.velocity += position[1];
   m.acceleration += position[2];
-  // The rotation's rates add as vectors: exact at the start, where the rate of the offset's
-  // exponential equals the offset's rate only to first order in its angle, and the offset is
-  // small when a chunk continues the one before it.
+  // The rotation's rates add as vectors, which holds to first order in the offset's angle (the
+  // exact rate of Exp(e) q has Jacobian terms in e): the offset is small when a chunk continues
+  // the one before it, and the orientation itself stays continuous whatever its size.
   m.orientation = (curve::expRotation(rotation[0]) * m.orientation).normalized();
   m.angular_velocity += rotation[1];
   m.angular_acceleration += rotation[2];
@@ -508,7 +211,7 @@ int loadInto(ChunkPlayer::Slots& slots, Engine<Bus>& engine, const Chunk<Command
     track.time_s[k] = waypoint.time_s + host_to_controller_s;
     track.waypoints[k] = schema::toBus(waypoint.command, slots.dof);
   }
-  deriveVelocities(track);
+  derive(track);
   slots.state[slot].store(kLoaded, std::memory_order_release);
   return slot;
 }
