@@ -37,8 +37,8 @@ void fadeSettings(const Cartesian& from, const Cartesian& chunk, std::uint32_t f
     active.damping_mode = chunk.damping_mode;
   }
   if ((fields & COMPLY_FIELD_TASK_FRAME) != 0) {
-    store(slerpShort(quaternionOf(from.task_frame), quaternionOf(chunk.task_frame), fraction),
-          active.task_frame);
+    toXyzw(slerpShort(fromXyzw(from.task_frame), fromXyzw(chunk.task_frame), fraction),
+           active.task_frame);
   }
   if ((fields & COMPLY_FIELD_WRENCH_FEEDFORWARD) != 0) {
     lerp(from.wrench_feedforward, chunk.wrench_feedforward, fraction, 6, active.wrench_feedforward);
@@ -86,7 +86,7 @@ CartesianOffset offsetAt(const Cartesian& from, const CartesianMotion& chunk) no
   offset.position[1] = ConstVector3Map(from.twist) - chunk.velocity;
   offset.position[2] = ConstVector3Map(from.acceleration) - chunk.acceleration;
   // orientationError(a, b) is the base-frame rotation vector taking a to b.
-  offset.rotation[0] = orientationError(chunk.orientation, quaternionOf(from.orientation));
+  offset.rotation[0] = orientationError(chunk.orientation, fromXyzw(from.orientation));
   offset.rotation[1] = ConstVector3Map(from.twist + 3) - chunk.angular_velocity;
   offset.rotation[2] = ConstVector3Map(from.acceleration + 3) - chunk.angular_acceleration;
   return offset;
@@ -113,7 +113,7 @@ void decay(const Value (&e)[3], const curve::QuinticWeights& w, double length_s,
 
 void writeMotion(const CartesianMotion& m, Cartesian& to) noexcept {
   Vector3Map(to.position) = m.position;
-  store(m.orientation, to.orientation);
+  toXyzw(m.orientation, to.orientation);
   Eigen::Map<Vector6d>(to.twist) << m.velocity, m.angular_velocity;
   Eigen::Map<Vector6d>(to.acceleration) << m.acceleration, m.angular_acceleration;
 }

@@ -51,9 +51,8 @@ void derive(Track<Cartesian>& track) {
     // Angular: the same rule on each segment's mean angular velocity (base frame).
     std::array<Vector3d, kTrackWaypoints> segment;
     for (int k = 1; k + 1 < n; ++k) {
-      segment[k] =
-          orientationError(quaternionOf(w[k].orientation), quaternionOf(w[k + 1].orientation)) /
-          (track.time_s[k + 1] - track.time_s[k]);
+      segment[k] = orientationError(fromXyzw(w[k].orientation), fromXyzw(w[k + 1].orientation)) /
+                   (track.time_s[k + 1] - track.time_s[k]);
     }
     for (int k = 1; k < n; ++k) {
       Vector3d angular = Vector3d::Zero();
@@ -70,18 +69,18 @@ void derive(Track<Cartesian>& track) {
   }
   // The lead-in: at rest, half a segment's travel at the first waypoint's velocity behind it.
   const double lead_s = track.time_s[1] - leadInTime(track);
-  const Eigen::Quaterniond first = quaternionOf(w[1].orientation);
+  const Eigen::Quaterniond first = fromXyzw(w[1].orientation);
   const Vector3d first_body_rate = first.toRotationMatrix().transpose() * Vector3d(w[1].twist + 3);
   track.time_s[0] = leadInTime(track);
   w[0] = w[1];
   Vector3Map(w[0].position) = ConstVector3Map(w[1].position) - 0.5 * lead_s * Vector3d(w[1].twist);
-  store((first * curve::expRotation(-0.5 * lead_s * first_body_rate)).normalized(),
-        w[0].orientation);
+  toXyzw((first * curve::expRotation(-0.5 * lead_s * first_body_rate)).normalized(),
+         w[0].orientation);
   Eigen::Map<Vector6d>(w[0].twist).setZero();
 
   for (int k = 0; k + 1 < n; ++k) {
-    const Eigen::Quaterniond q0 = quaternionOf(w[k].orientation);
-    const Eigen::Quaterniond q1 = quaternionOf(w[k + 1].orientation);
+    const Eigen::Quaterniond q0 = fromXyzw(w[k].orientation);
+    const Eigen::Quaterniond q1 = fromXyzw(w[k + 1].orientation);
     Eigen::Quaterniond relative = q0.conjugate() * q1;
     if (relative.w() < 0.0) {
       relative.coeffs() = -relative.coeffs();
@@ -127,7 +126,7 @@ CartesianMotion motionAt(const Track<Cartesian>& track, double t_s, int& cursor)
   CartesianMotion motion;
   if (place.length_s == 0.0) {  // holding an end, at rest
     motion.position = ConstVector3Map(a.position);
-    motion.orientation = quaternionOf(a.orientation);
+    motion.orientation = fromXyzw(a.orientation);
     return motion;
   }
   const Cartesian& b = track.waypoints[place.index + 1];
@@ -148,7 +147,7 @@ CartesianMotion motionAt(const Track<Cartesian>& track, double t_s, int& cursor)
   const Vector3d dphi = (w.first[1] * r.slope0 + w.first[2] * r.phi + w.first[3] * r.slope1) / h;
   const Vector3d ddphi =
       (w.second[1] * r.slope0 + w.second[2] * r.phi + w.second[3] * r.slope1) / (h * h);
-  motion.orientation = (quaternionOf(a.orientation) * curve::expRotation(phi)).normalized();
+  motion.orientation = (fromXyzw(a.orientation) * curve::expRotation(phi)).normalized();
   // d/dt (R J_r dphi) = R (J_r ddphi + dJ_r/dt dphi): the second term, quadratic in the
   // segment's rate, is left out of the acceleration (a feedforward, not the path).
   const Eigen::Matrix3d to_base = motion.orientation.toRotationMatrix() * curve::rightJacobian(phi);
@@ -196,7 +195,7 @@ void settingsAt(const Track<Cartesian>& track, const Place& place, Cartesian& to
   lerp(a.damping_rotational, b.damping_rotational, u, 9, to.damping_rotational);
   lerp(a.damping_ratio, b.damping_ratio, u, 6, to.damping_ratio);
   to.damping_mode = a.damping_mode;
-  store(slerpShort(quaternionOf(a.task_frame), quaternionOf(b.task_frame), u), to.task_frame);
+  toXyzw(slerpShort(fromXyzw(a.task_frame), fromXyzw(b.task_frame), u), to.task_frame);
   lerp(a.wrench_feedforward, b.wrench_feedforward, u, 6, to.wrench_feedforward);
   lerp(a.torque_feedforward, b.torque_feedforward, u, dof, to.torque_feedforward);
   lerp(a.nullspace_position, b.nullspace_position, u, dof, to.nullspace_position);

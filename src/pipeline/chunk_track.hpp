@@ -11,6 +11,7 @@
 #include "comply/core/capacity.hpp"
 #include "comply/core/chunk.hpp"
 #include "comply/plugin/abi.h"
+#include "comply/schema/schema.hpp"
 
 namespace comply::pipeline::chunk {
 
@@ -20,15 +21,8 @@ using Eigen::Vector3d;
 using Vector3Map = Eigen::Map<Vector3d>;
 using ConstVector3Map = Eigen::Map<const Vector3d>;
 
-inline Eigen::Quaterniond quaternionOf(const double* xyzw) noexcept {
-  return {xyzw[3], xyzw[0], xyzw[1], xyzw[2]};
-}
-inline void store(const Eigen::Quaterniond& q, double* xyzw) noexcept {
-  xyzw[0] = q.x();
-  xyzw[1] = q.y();
-  xyzw[2] = q.z();
-  xyzw[3] = q.w();
-}
+using schema::fromXyzw;
+using schema::toXyzw;
 
 /// to = a + (b - a) * fraction, entry by entry.
 inline void lerp(const double* a, const double* b, double fraction, int size, double* to) noexcept {
