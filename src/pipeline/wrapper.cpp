@@ -23,11 +23,15 @@ std::shared_ptr<const ResolvedController> checkedKind(
   return resolved;
 }
 
-Verdict queueFull() {
+/// `full`: what filled up.
+Verdict queueFull(const std::string& full) {
   return {false, RejectionReason::kQueueFull,
-          std::string(toString(RejectionReason::kQueueFull)) + ": " +
-              std::to_string(Controller::kIntakeCapacity) +
-              " commands already wait for the cycle; the sender is faster than the control rate"};
+          std::string(toString(RejectionReason::kQueueFull)) + ": " + full +
+              "; the sender is faster than the control rate"};
+}
+
+std::string commandsWaiting() {
+  return std::to_string(Controller::kIntakeCapacity) + " commands already wait for the cycle";
 }
 
 }  // namespace
@@ -76,7 +80,7 @@ Verdict Wrapper<Command>::submit(const Command& command) {
     message.command = toBus(checked, dof);
     std::get<BusOf<Command>>(message.command).fields = static_cast<std::uint32_t>(command.fields);
     if (!controller_.enqueue(message)) {
-      verdict = queueFull();
+      verdict = queueFull(commandsWaiting());
     }
   }
   return account(std::move(verdict), command.stamp_s);
@@ -100,10 +104,12 @@ Verdict Wrapper<Command>::submitChunk(const Chunk<Command>& chunk, double host_t
     message.command = emptyBus(kKind<Command>);
     message.chunk_slot = chunks.load(checked, host_to_controller_s);
     if (message.chunk_slot < 0) {
-      verdict = queueFull();
+      verdict =
+          queueFull("all " + std::to_string(ChunkPlayer::kSlots) +
+                    " chunk slots are taken (the chunk playing, those waiting for the cycle)");
     } else if (!controller_.enqueue(message)) {
       chunks.release(message.chunk_slot);
-      verdict = queueFull();
+      verdict = queueFull(commandsWaiting());
     }
   }
   return account(std::move(verdict), chunk.stamp_s);

@@ -166,6 +166,17 @@ TEST_F(CartesianChunks, ALateOrMalformedChunkIsRefusedWithItsReasonAndChangesNot
   EXPECT_EQ(diagnostics.rejections[static_cast<std::size_t>(RejectionReason::kInvalidChunk)], 5U);
 }
 
+TEST_F(CartesianChunks, ChunksFasterThanTheCycleRunOutOfSlotsAndTheNextCycleFreesThem) {
+  for (int k = 0; k < ChunkPlayer::kSlots; ++k) {
+    ASSERT_TRUE(wrapper.submitChunk(chunk(3), hostTime()).accepted) << k;
+  }
+  const Verdict full = wrapper.submitChunk(chunk(3), hostTime());
+  EXPECT_EQ(full.reason, RejectionReason::kQueueFull);
+  EXPECT_NE(full.message.find("chunk slots are taken"), std::string::npos) << full.message;
+  cycles(1);  // starts the last, frees the others
+  EXPECT_TRUE(wrapper.submitChunk(chunk(3), hostTime()).accepted);
+}
+
 TEST_F(CartesianChunks, AWaypointAlreadyPastIsSkippedAndNotComparedWithTheArm) {
   // The policy acted on an old observation: its first waypoints are behind the host's clock and
   // 3 cm away, where the arm no longer is; the first one still ahead is checked and played.
