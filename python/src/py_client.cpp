@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <type_traits>
 
 #include "py_convert.hpp"
 
@@ -108,6 +109,13 @@ bool Client::write(transport::Writer<Message>& writer, const Message& message) {
   if (recording_) {
     recording_->sent(message);
   }
+  if constexpr (!std::is_same_v<Message, transport::RequestMessage>) {
+    // Only this client's own commands time a round trip: another sender's stamps are on its clock.
+    awaiting_.push_back(message.header.stamp.nanoseconds());
+    if (awaiting_.size() > kClockSamples) {
+      awaiting_.pop_front();
+    }
+  }
   return true;
 }
 
@@ -145,7 +153,9 @@ bool Client::poll(double wait_s) {
         outcome_order_.push_back(stamp);
         // Sent at `stamp` here, received by the host, published by it, taken here.
         const std::int64_t received_ns = outcome.received.nanoseconds();
-        if (stamp <= last_stamp_.nanoseconds() && received_ns > 0) {
+        const auto mine = std::find(awaiting_.begin(), awaiting_.end(), stamp);
+        if (mine != awaiting_.end() && received_ns > 0) {
+          awaiting_.erase(mine);
           clock_samples_.push_back({(taken_ns - stamp) - (published_ns - received_ns),
                                     ((received_ns - stamp) + (published_ns - taken_ns)) / 2});
           if (clock_samples_.size() > kClockSamples) {

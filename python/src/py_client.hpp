@@ -95,6 +95,7 @@ class Client {
     std::int64_t offset_ns;
   };
   std::deque<ClockSample> clock_samples_;  // the newest kClockSamples
+  std::deque<std::int64_t> awaiting_;      // stamps of the newest commands sent, not yet back
   transport::Stamp last_stamp_;
   int dof_ = 0;
   bool cartesian_ = true;
