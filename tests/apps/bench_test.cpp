@@ -111,9 +111,9 @@ TEST(SyntheticChain, TwelveJointsLoadAndRunEveryWrapperWithoutAFault) {
   options.warmup = 10;
   std::ostringstream log;
   const std::vector<BenchRow> rows = runBench(options, log);  // throws on a fault
-  // joint, cartesian, cartesian_abs, cartesian_tank, cartesian_observer: step and cycle;
-  // cartesian_recorded also the push, the push into a full lane and the state sample.
-  ASSERT_EQ(rows.size(), 15U);
+  // joint, cartesian, cartesian_abs, cartesian_tank, cartesian_observer, cartesian_chunk: step
+  // and cycle; cartesian_recorded also the push, the push into a full lane and the state sample.
+  ASSERT_EQ(rows.size(), 17U);
   int recording_stages = 0;
   for (const BenchRow& bench_row : rows) {
     EXPECT_EQ(bench_row.dof, 12);
@@ -138,9 +138,9 @@ TEST(Bench, PacedRowsRunTheCycleOnTheWallClock) {
   const std::vector<BenchRow> rows = runBench(options, log);
   const double elapsed_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  // Six wrappers: step, back to back, paced asleep, paced spinning; the recorded one also its
+  // Seven wrappers: step, back to back, paced asleep, paced spinning; the recorded one also its
   // three recording stages.
-  ASSERT_EQ(rows.size(), 27U);
+  ASSERT_EQ(rows.size(), 31U);
   int paced = 0;
   int spinning = 0;
   for (const BenchRow& bench_row : rows) {
@@ -148,10 +148,10 @@ TEST(Bench, PacedRowsRunTheCycleOnTheWallClock) {
     spinning += bench_row.stage == "paced_spin" ? 1 : 0;
     EXPECT_GT(bench_row.timing.p50_us, 0.0) << bench_row.wrapper << " " << bench_row.stage;
   }
-  EXPECT_EQ(paced, 6);
-  EXPECT_EQ(spinning, 6);
+  EXPECT_EQ(paced, 7);
+  EXPECT_EQ(spinning, 7);
   // Twice 210 cycles per wrapper at 1 kHz on the wall clock: paced, not free-running.
-  EXPECT_GT(elapsed_s, 12 * 0.2);
+  EXPECT_GT(elapsed_s, 14 * 0.2);
 }
 
 }  // namespace
