@@ -41,6 +41,8 @@ constexpr const char* kReferenceMachine =
 constexpr const char* kReferenceDate = "2026-11-22";
 constexpr const char* kReferenceSource = "docs/timing.md";
 constexpr double kPeriodS = 0.001;
+// How long before a paced cycle the loop wakes to warm the caches (row paced_warm) [s].
+constexpr double kWarmAheadS = 50e-6;
 
 double microseconds(Clock::time_point start, Clock::time_point end) {
   return std::chrono::duration<double, std::micro>(end - start).count();
@@ -124,13 +126,15 @@ class SpinningWallClock final : public hardware::LoopClock {
 template <typename Command>
 std::vector<double> pacedCycles(pipeline::Wrapper<Command>& wrapper,
                                 const std::vector<double>& home, hardware::LoopClock& clock,
-                                double hz, int cycles, int warmup) {
+                                double hz, int cycles, int warmup, double warm_ahead_s = 0.0) {
   std::vector<double> cycle_us;
   cycle_us.reserve(static_cast<std::size_t>(cycles));
   ReplayHardware replay(home, cycles);
   wrapper.activate(replay.at(0));
   hardware::ControlLoop loop(replay, wrapper, clock,
-                             {.period_s = 1.0 / hz, .cycles = static_cast<std::uint64_t>(cycles)});
+                             {.period_s = 1.0 / hz,
+                              .cycles = static_cast<std::uint64_t>(cycles),
+                              .warm_ahead_s = warm_ahead_s});
   CycleTimer timer(warmup, cycle_us);
   loop.setObserver(&timer);
   loop.run();
@@ -277,6 +281,10 @@ std::vector<BenchRow> benchWrapper(const BenchOptions& options, const std::strin
     std::vector<double> spin_us =
         pacedCycles(wrapper, home, spinning, options.paced_hz, paced, paced_warmup);
     rows.push_back(row("paced_spin", spin_us));
+    // Asleep, but woken early to warm the caches and spin to the start (LoopOptions::warm_ahead_s).
+    std::vector<double> warm_us =
+        pacedCycles(wrapper, home, wall, options.paced_hz, paced, paced_warmup, kWarmAheadS);
+    rows.push_back(row("paced_warm", warm_us));
   }
   return rows;
 }

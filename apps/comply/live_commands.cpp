@@ -64,6 +64,12 @@ LiveCommands addLiveCommands(CLI::App& app) {
   run_command->add_option("--priority", run->priority, "SCHED_FIFO priority (0: normal)")
       ->capture_default_str()
       ->check(CLI::Range(0, 99));
+  run_command
+      ->add_option("--warm-ahead-us", run->warm_ahead_us,
+                   "wake this long before each cycle to warm its caches and spin to the start "
+                   "(0: sleep to the start; docs/timing.md)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 500.0));
   run_command->add_option("--record", run->record_path,
                           "record every cycle, command and outcome to this MCAP file");
 

@@ -41,6 +41,13 @@ bool ControlLoop::runOnce() {
     return false;
   }
   const double scheduled_s = nextCycleTime();
+  if (options_.warm_ahead_s > 0.0 && stats_.cycles > 0 && clock_.passesByItself()) {
+    clock_.waitUntil(scheduled_s - options_.warm_ahead_s);
+    controller_.warm(state_);
+    while (clock_.now() < scheduled_s) {
+      // Spinning, not sleeping: a sleep would hand the core, and the caches just warmed, away.
+    }
+  }
   clock_.waitUntil(scheduled_s);
   const double started_s = clock_.now();
   if (observer_ != nullptr) {

@@ -143,6 +143,27 @@ const CommandBus& Controller::commandInForce() {
   return in_force_.read();
 }
 
+void Controller::warm(const JointState& last_state) noexcept {
+  if (!state_usable_ ||
+      diagnostics_.state.load(std::memory_order_relaxed) != WrapperState::kActive ||
+      last_state.position != state_.position || last_state.velocity != state_.velocity) {
+    return;  // only the state the data were computed from: the same numbers again
+  }
+  const std::span<const double> q(state_.position.data(), static_cast<std::size_t>(dof_));
+  const std::span<const double> dq(state_.velocity.data(), static_cast<std::size_t>(dof_));
+  (void)model::update(*resolved_->model, data_, q, dq, quantities_);
+  const auto touch = [](const void* data, std::size_t bytes) noexcept {
+    const auto* byte = static_cast<const char*>(data);
+    for (std::size_t at = 0; at < bytes; at += 64) {
+      __builtin_prefetch(byte + at);
+    }
+  };
+  touch(&input_, sizeof input_);
+  touch(&output_, sizeof output_);
+  touch(busPointer(active_), sizeof(CommandBus));
+  touch(busPointer(lawBus()), sizeof(CommandBus));
+}
+
 comply_status Controller::stepPluginOnly(comply_output& output) noexcept {
   return plugin_->step(input_, busPointer(lawBus()), output);
 }

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "comply/hardware/loop_clock.hpp"
 
 namespace comply::hardware {
@@ -46,8 +48,14 @@ class SwitchedController final : public CycleController {
     return active;
   }
   [[nodiscard]] bool wantsHold() const noexcept override { return wants_hold; }
+  void warm(const JointState& /*last_state*/) noexcept override {
+    ++warms;
+    warmed_at_s = monotonicSeconds();
+  }
   bool active = false;
   bool wants_hold = false;
+  int warms = 0;
+  double warmed_at_s = 0.0;
 };
 
 TEST(ControlLoop, ACycleWithoutOutputHoldsTheArmInsteadOfLeavingTheLastTorque) {
@@ -90,6 +98,47 @@ TEST(ControlLoop, HardwareWithoutAHoldModeIsNotCountedAsHeld) {
   ASSERT_TRUE(loop.runOnce());
   EXPECT_EQ(hardware.holds, 1) << "asked";
   EXPECT_EQ(loop.stats().held_cycles, 0U) << "but it could not hold";
+}
+
+/// Records when each cycle read the hardware.
+class TimedHardware final : public HardwareInterface {
+ public:
+  [[nodiscard]] int dof() const noexcept override { return 2; }
+  bool read(JointState& state) noexcept override {
+    read_at_s = monotonicSeconds();
+    state = JointState::zero(2);
+    return true;
+  }
+  bool write(std::span<const double> /*torque*/) noexcept override { return true; }
+  double read_at_s = 0.0;
+};
+
+TEST(ControlLoop, WarmAheadWarmsTheControllerBeforeEachCycleOnAWallClockOnly) {
+  constexpr double kAheadS = 200e-6;
+  TimedHardware hardware;
+  SwitchedController controller;
+  controller.active = true;
+  WallClock wall;
+  ControlLoop loop(hardware, controller, wall, {.period_s = 0.002, .warm_ahead_s = kAheadS});
+  double smallest_lead_s = 1.0;
+  for (int cycle = 0; cycle < 20; ++cycle) {
+    ASSERT_TRUE(loop.runOnce());
+    if (cycle > 0) {
+      smallest_lead_s = std::min(smallest_lead_s, hardware.read_at_s - controller.warmed_at_s);
+    }
+  }
+  EXPECT_EQ(controller.warms, 19) << "before every cycle but the first";
+  // Warmed first, then the cycle read the hardware at its start, after spinning there.
+  EXPECT_GT(smallest_lead_s, 0.0);
+
+  SwitchedController simulated;
+  FreeRunningClock free_running;  // its time does not pass by itself: no spinning on it
+  ControlLoop replay(hardware, simulated, free_running,
+                     {.period_s = 0.001, .warm_ahead_s = kAheadS});
+  for (int cycle = 0; cycle < 5; ++cycle) {
+    ASSERT_TRUE(replay.runOnce());
+  }
+  EXPECT_EQ(simulated.warms, 0);
 }
 
 }  // namespace

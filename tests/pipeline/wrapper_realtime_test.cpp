@@ -358,6 +358,48 @@ TEST(WrapperRealtime, PlayingChunksNeitherAllocatesNorLocks) {
   expectTheGuardWorked(diagnostics);
 }
 
+// Warming between cycles (ControlLoop's warm_ahead_s) neither changes a torque, bit for bit,
+// nor allocates or locks.
+TEST(WrapperRealtime, WarmingChangesNoTorqueAndNeitherAllocatesNorLocks) {
+  const std::string lines = realtimeLines("hold") + kGuardedLines;
+  CartesianWrapper cold(fr3Config(kCartesianImpedancePlugin, lines));
+  CartesianWrapper warmed(fr3Config(kCartesianImpedancePlugin, lines));
+  const JointVector home = fr3Home();
+  cold.activate(movingState(home, 0));
+  warmed.activate(movingState(home, 0));
+  RealtimeProbe probe;
+  TorqueBuffer cold_torque;
+  TorqueBuffer warm_torque;
+  JointState last = movingState(home, 0);
+  int differing = 0;
+  for (int cycle = 1; cycle <= 2000; ++cycle) {
+    if (cycle % 500 == 250) {
+      CartesianCommand command = CartesianCommand::zero(kFr3Dof);
+      command.stamp_s = cycle * kPeriod;
+      command.fields = CommandField::kPosition | CommandField::kStiffness;
+      command.position = cold.controller().modelData().tip_position + Eigen::Vector3d(0.01, 0, 0);
+      command.orientation = cold.controller().modelData().tip_orientation;
+      command.stiffness_translational = (300.0 + cycle) * Eigen::Matrix3d::Identity();
+      command.stiffness_rotational = 30.0 * Eigen::Matrix3d::Identity();
+      ASSERT_TRUE(cold.submit(command).accepted);
+      ASSERT_TRUE(warmed.submit(command).accepted);
+    }
+    probe.measure([&] {
+      warmed.warm(last);
+      warmed.warm(movingState(home, cycle + 7));  // not the state it computed: ignored
+      return 0;
+    });
+    const JointState state = movingState(home, cycle);
+    cold.update(state, kPeriod, cold_torque.span());
+    warmed.update(state, kPeriod, warm_torque.span());
+    differing += cold_torque.values != warm_torque.values ? 1 : 0;
+    last = state;
+  }
+  EXPECT_EQ(differing, 0);
+  EXPECT_EQ(probe.allocations, 0U);
+  EXPECT_EQ(probe.locks, 0U);
+}
+
 // ---- FAULT ------------------------------------------------------------------------------------
 
 /// Counted cycles at a moving state; returns how many were not `expected`.

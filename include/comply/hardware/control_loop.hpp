@@ -34,6 +34,10 @@ class CycleController {
   /// frozen sensor stream), so the hardware should hold it as well, with its brakes or its own
   /// position hold (HardwareInterface::hold), where it has them.
   [[nodiscard]] virtual bool wantsHold() const noexcept { return false; }
+  /// Shortly before a cycle that follows a sleep (LoopOptions::warm_ahead_s): bring what the
+  /// cycle reads back into the caches, from `last_state` (the state the last cycle read), without
+  /// changing anything the next cycle computes. Real-time.
+  virtual void warm(const JointState& last_state) noexcept { (void)last_state; }
 };
 
 /// What the observer learns about one cycle.
@@ -63,6 +67,10 @@ class LoopObserver {
 struct LoopOptions {
   double period_s = 0.001;   ///< [s], > 0
   std::uint64_t cycles = 0;  ///< run() stops after this many; 0: until stop()
+  /// > 0: wake this long [s] before each cycle's start, let the controller warm its caches
+  /// (CycleController::warm) and spin to the start. Only on a clock whose time passes by itself
+  /// (LoopClock::passesByItself: a robot's); 0: off.
+  double warm_ahead_s = 0.0;
 };
 
 struct LoopStats {

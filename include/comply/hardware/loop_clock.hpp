@@ -15,6 +15,8 @@ class LoopClock {
   [[nodiscard]] virtual double now() noexcept = 0;
   /// Returns once now() >= `time_s` (at once when that has passed).
   virtual void waitUntil(double time_s) noexcept = 0;
+  /// True when time passes by itself (a wall clock): a loop may then spin until a time.
+  [[nodiscard]] virtual bool passesByItself() const noexcept { return false; }
 };
 
 /// The monotonic wall clock; waitUntil() sleeps with an absolute deadline (no drift).
@@ -23,6 +25,7 @@ class WallClock final : public LoopClock {
   WallClock();
   [[nodiscard]] double now() noexcept override;
   void waitUntil(double time_s) noexcept override;
+  [[nodiscard]] bool passesByItself() const noexcept override { return true; }
 
  private:
   double origin_s_ = 0.0;

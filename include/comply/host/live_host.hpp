@@ -27,6 +27,9 @@ struct LiveHostOptions {
   std::string network = "loopback";
   std::string name = "comply";
   int priority = 80;  ///< SCHED_FIFO priority of the control thread; 0: normal scheduling
+  /// Wake this long [us] before each cycle, warm the caches and spin to its start
+  /// (hardware::LoopOptions::warm_ahead_s); 0: sleep to the start. Only for a sleeping clock.
+  double warm_ahead_us = 0.0;
   std::string
       record_path;  ///< non-empty: record every cycle, command and outcome to this MCAP file
 };

@@ -141,6 +141,11 @@ class Controller {
   /// force, without shaping or any other state change.
   bool measureOnly(const JointState& state) noexcept { return measure(state); }
   comply_status stepPluginOnly(comply_output& output) noexcept;
+  /// Between cycles (ControlLoop's warm_ahead_s): the model update at `last_state` again, into
+  /// the model data it already holds for that state (the same numbers), and a read of the plugin
+  /// input and the buses, so that the next cycle finds them cached. Never calls the plugin (a law
+  /// may keep state between steps). Real-time.
+  void warm(const JointState& last_state) noexcept;
 
  private:
   // Stages, one file each (cycle_*.cpp).

@@ -73,6 +73,7 @@ class Wrapper final : public hardware::CycleController {
     return update(state, period_s, torque) != CycleStatus::kInactive;
   }
   [[nodiscard]] bool wantsHold() const noexcept override { return controller_.holdRequested(); }
+  void warm(const JointState& last_state) noexcept override { controller_.warm(last_state); }
 
   [[nodiscard]] DiagnosticsSnapshot diagnostics() const {
     return controller_.diagnostics().snapshot();

@@ -221,8 +221,9 @@ int runWith(const LiveHostOptions& options,
   pipeline::CommandGate gate(pipeline::gateOptions(resolved->config, resolved->cartesian()));
   LiveObserver<Command> observer(wrapper, gate, robot, hardware::monotonicSeconds());
   const auto cycles = static_cast<std::uint64_t>(std::llround(options.duration_s / period_s));
-  hardware::ControlLoop loop(robot, wrapper, *backend.clock,
-                             {.period_s = period_s, .cycles = cycles});
+  hardware::ControlLoop loop(
+      robot, wrapper, *backend.clock,
+      {.period_s = period_s, .cycles = cycles, .warm_ahead_s = 1e-6 * options.warm_ahead_us});
   loop.setObserver(&observer);
   Intake<Command> intake(wrapper, observer, gate);
   std::unique_ptr<HostRecording> recording;
