@@ -47,7 +47,8 @@ CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options) {
   command
       ->add_option("--paced", options.paced_hz,
                    "also time the full cycle paced at this rate [Hz], sleeping between cycles as "
-                   "a robot runs it (row paced_cycle; at most 3 s per wrapper; 0: not)")
+                   "a robot runs it (row paced_cycle), spinning (paced_spin) and woken 50 us "
+                   "early to warm the caches (paced_warm); at most 3 s each per wrapper; 0: not")
       ->check(CLI::NonNegativeNumber);
   // Internal: one measuring process of the above, JSON rows on stdout.
   command->add_flag("--worker", options.worker)->group("");
