@@ -4,8 +4,10 @@
 // lane of its size, as `comply run --record` does. The lane's writer thread reads every byte of
 // every record (so the lane's cache lines travel to the other core as they do under the real
 // encoder) and keeps up with cycles run back to back, which the real encoder (about 12 us a
-// record) would not: a robot's cycles come 1 ms apart. A push that meets a full lane would time
-// a drop instead of a push, so one ends the benchmark with an error.
+// record) would not: a robot's cycles come 1 ms apart. Should the writer still fall behind (its
+// thread descheduled), the next cycle waits, untimed, for room, as a robot's millisecond between
+// cycles would give it: a push that met a full lane would time a drop instead of a push (one
+// still ends the benchmark with an error).
 
 #include <chrono>
 #include <cstdint>
@@ -14,6 +16,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "comply/hardware/control_loop.hpp"
@@ -51,6 +54,9 @@ class BenchRecording final : public hardware::LoopObserver {
   }
 
   void afterCycle(const hardware::CycleRecord& record) override {
+    while (lane_.freeBytes() < kRoomBytes) {
+      std::this_thread::yield();
+    }
     const Clock::time_point start = Clock::now();
     sampler_.fill(record, *record.state, transport::Stamp::now(), sample_);
     const Clock::time_point filled = Clock::now();
@@ -109,6 +115,9 @@ class BenchRecording final : public hardware::LoopObserver {
   static double microseconds(Clock::time_point from, Clock::time_point to) {
     return std::chrono::duration<double, std::micro>(to - from).count();
   }
+
+  /// Room for a cycle's records (the cycle and a command in force, about 2 KB) with margin.
+  static constexpr std::size_t kRoomBytes = 16 * 1024;
 
   int warmup_;
   const pipeline::Wrapper<Command>& wrapper_;

@@ -128,11 +128,17 @@ TEST(Recorder, AFullLaneDropsWholeRecordsAndCountsThem) {
   std::this_thread::sleep_for(std::chrono::milliseconds(50));  // the writer is now asleep
   std::uint64_t accepted = 0;
   std::uint64_t refused = 0;
+  EXPECT_EQ(control.freeBytes(), control.capacity());
   for (std::uint64_t i = 0; i < 100; ++i) {
     Sample sample;
     sample.index = i;
-    (control.push(samples, static_cast<std::int64_t>(i), sample) ? accepted : refused) += 1;
+    const std::size_t free_before = control.freeBytes();
+    const bool pushed = control.push(samples, static_cast<std::int64_t>(i), sample);
+    (pushed ? accepted : refused) += 1;
+    // A record takes room (its head and bytes, aligned); a refused one takes none.
+    EXPECT_EQ(control.freeBytes() < free_before, pushed) << i;
   }
+  EXPECT_LT(control.freeBytes(), 2 * sizeof(Sample) + 128) << "full: less than a record's room";
   EXPECT_GT(refused, 0U);
   EXPECT_EQ(control.dropped(), refused);
   recorder.stop();

@@ -76,6 +76,11 @@ class RecordLane {
   [[nodiscard]] std::uint64_t dropped() const noexcept {
     return dropped_.load(std::memory_order_relaxed);
   }
+  /// Producer thread: bytes the writer has not yet drained room for (a lower bound for others).
+  [[nodiscard]] std::size_t freeBytes() const noexcept {
+    return capacity() - static_cast<std::size_t>(tail_.load(std::memory_order_relaxed) -
+                                                 head_.load(std::memory_order_acquire));
+  }
 
  private:
   friend class Recorder;
