@@ -4,10 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <string>
+#include <thread>
 
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/schema/schema.hpp"
@@ -175,6 +177,49 @@ TEST_F(CartesianChunks, ChunksFasterThanTheCycleRunOutOfSlotsAndTheNextCycleFree
   EXPECT_NE(full.message.find("chunk slots are taken"), std::string::npos) << full.message;
   cycles(1);  // starts the last, frees the others
   EXPECT_TRUE(wrapper.submitChunk(chunk(3), hostTime()).accepted);
+}
+
+// The intake on its own thread loading chunks and commands as fast as it can while the cycle
+// plays them: the slots pass between the two threads without a lock (under ThreadSanitizer in
+// make test-tsan), every chunk is accepted or refused for want of a slot, and the cycle never
+// leaves normal operation.
+TEST_F(CartesianChunks, ASenderOnAnotherThreadAndTheCycleShareTheSlotsSafely) {
+  std::atomic<bool> done{false};
+  std::atomic<int> accepted{0};
+  std::atomic<int> full{0};
+  std::atomic<double> host_time_s{hostTime()};
+  const Eigen::Vector3d home = home_position;
+  const Eigen::Quaterniond orientation = home_orientation;
+  std::thread sender([&] {
+    for (int k = 0; k < 3000 && !done.load(); ++k) {
+      CartesianChunk c;
+      c.stamp_s = 1.0 + k;
+      c.fields = CommandField::kPosition | CommandField::kStiffness;
+      const double now_s = host_time_s.load();
+      for (int j = 0; j < 8; ++j) {
+        ChunkWaypoint<CartesianCommand> waypoint{now_s + 0.01 * j, CartesianCommand::zero(kFr3Dof)};
+        waypoint.command.position = home + Eigen::Vector3d(0.001 * (k % 5), 0.0005 * j, 0.0);
+        waypoint.command.orientation = orientation;
+        waypoint.command.stiffness_translational = (500.0 + j) * Eigen::Matrix3d::Identity();
+        waypoint.command.stiffness_rotational = 30.0 * Eigen::Matrix3d::Identity();
+        c.waypoints.push_back(waypoint);
+      }
+      const Verdict verdict = wrapper.submitChunk(c, now_s);
+      (verdict.accepted ? accepted : full) += 1;
+      if (!verdict.accepted && verdict.reason != RejectionReason::kQueueFull) {
+        ADD_FAILURE() << verdict.message;
+      }
+    }
+  });
+  for (int i = 0; i < 3000 && accepted.load() + full.load() < 3000; ++i) {
+    ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
+    ++cycle_count;
+    host_time_s.store(hostTime());
+  }
+  done.store(true);
+  sender.join();
+  EXPECT_GT(accepted.load(), 0);
+  EXPECT_EQ(wrapper.diagnostics().faults, 0U);
 }
 
 TEST_F(CartesianChunks, AWaypointAlreadyPastIsSkippedAndNotComparedWithTheArm) {
