@@ -20,6 +20,8 @@ void Controller::takeCommands() noexcept {
         (void)chunks_.play(time_s_, active_);  // the running chunk's reference at this time
       }
       chunks_.start(message->chunk_slot, active_, time_s_);
+      // Taken, whatever happens to it next (FAULT stops it at once): its stamp is in force.
+      std::visit([this](auto& bus) noexcept { bus.stamp_s = chunks_.stamp(); }, active_);
       changed = true;
     } else {
       takeCommand(message->command);

@@ -184,20 +184,22 @@ TEST_F(CartesianChunks, ChunksFasterThanTheCycleRunOutOfSlotsAndTheNextCycleFree
 // make test-tsan), every chunk is accepted or refused for want of a slot, and the cycle never
 // leaves normal operation.
 TEST_F(CartesianChunks, ASenderOnAnotherThreadAndTheCycleShareTheSlotsSafely) {
-  std::atomic<bool> done{false};
+  constexpr int kChunks = 500;
+  std::atomic<bool> sent{false};
   std::atomic<int> accepted{0};
   std::atomic<int> full{0};
   std::atomic<double> host_time_s{hostTime()};
   const Eigen::Vector3d home = home_position;
   const Eigen::Quaterniond orientation = home_orientation;
   std::thread sender([&] {
-    for (int k = 0; k < 3000 && !done.load(); ++k) {
+    for (int k = 0; k < kChunks; ++k) {
       CartesianChunk c;
       c.stamp_s = 1.0 + k;
       c.fields = CommandField::kPosition | CommandField::kStiffness;
       const double now_s = host_time_s.load();
       for (int j = 0; j < 8; ++j) {
-        ChunkWaypoint<CartesianCommand> waypoint{now_s + 0.01 * j, CartesianCommand::zero(kFr3Dof)};
+        ChunkWaypoint<CartesianCommand> waypoint{now_s + 0.01 * (j + 1),
+                                                 CartesianCommand::zero(kFr3Dof)};
         waypoint.command.position = home + Eigen::Vector3d(0.001 * (k % 5), 0.0005 * j, 0.0);
         waypoint.command.orientation = orientation;
         waypoint.command.stiffness_translational = (500.0 + j) * Eigen::Matrix3d::Identity();
@@ -210,14 +212,17 @@ TEST_F(CartesianChunks, ASenderOnAnotherThreadAndTheCycleShareTheSlotsSafely) {
         ADD_FAILURE() << verdict.message;
       }
     }
+    sent.store(true);
   });
-  for (int i = 0; i < 3000 && accepted.load() + full.load() < 3000; ++i) {
+  // The cycle runs until the sender is done (as fast as it can: the sender's chunks meet slots
+  // that are loaded, waiting, playing and freed).
+  while (!sent.load()) {
     ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
     ++cycle_count;
     host_time_s.store(hostTime());
   }
-  done.store(true);
   sender.join();
+  EXPECT_EQ(accepted.load() + full.load(), kChunks);
   EXPECT_GT(accepted.load(), 0);
   EXPECT_EQ(wrapper.diagnostics().faults, 0U);
 }
@@ -259,6 +264,28 @@ TEST_F(CartesianChunks, ACommandOnTheChunksGroupsEndsItAndOneOnOtherGroupsDoesNo
   EXPECT_LT((reference() - stopped).norm(), 1e-12);
   EXPECT_EQ(Eigen::Map<const Vector6d>(law().twist).norm(), 0.0);
   EXPECT_EQ(law().stiffness_translational[0], 600.0);
+}
+
+TEST_F(CartesianChunks, AChunkTakenInFaultIsInForceButDoesNotMove) {
+  JointState bad = state;
+  bad.position[0] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(wrapper.update(bad, kPeriod, torque.span()), CycleStatus::kFault);
+  ++cycle_count;
+  const Eigen::Vector3d held = reference();
+  const CartesianChunk c = chunk(5);
+  ASSERT_TRUE(wrapper.submitChunk(c, hostTime()).accepted);
+  for (int i = 0; i < 100; ++i) {
+    EXPECT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kFault);
+    ++cycle_count;
+  }
+  // Accounted as applied (its stamp in force), but the fault stopped it where the reference was.
+  EXPECT_DOUBLE_EQ(wrapper.controller().stampInForce(), c.stamp_s);
+  EXPECT_LT(
+      (Eigen::Map<const Eigen::Vector3d>(
+           std::get<comply_cartesian_command>(wrapper.controller().activeCommand()).position) -
+       held)
+          .norm(),
+      1e-12);
 }
 
 TEST_F(CartesianChunks, TheWatchdogWaitsForTheChunksEndAndCountsFromThere) {
