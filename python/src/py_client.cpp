@@ -207,15 +207,8 @@ std::int64_t Client::sendChunk(const py::object& chunk, const py::object& relati
   const transport::Stamp stamp = nextStamp();
   double origin_s = 0.0;
   if (relative_to.is_none()) {
-    std::int64_t offset_ns = 0;
-    if (!clock_samples_.empty()) {
-      offset_ns = std::min_element(clock_samples_.begin(), clock_samples_.end(),
-                                   [](const ClockSample& a, const ClockSample& b) {
-                                     return a.delay_ns < b.delay_ns;
-                                   })
-                      ->offset_ns;
-    }
-    origin_s = stampSeconds(stamp.nanoseconds() + offset_ns);
+    const std::optional<ClockSample> best = bestClockSample();
+    origin_s = stampSeconds(stamp.nanoseconds() + (best ? best->offset_ns : 0));
   } else {
     origin_s = relative_to.cast<double>();
   }
@@ -241,17 +234,24 @@ std::int64_t Client::sendChunk(const py::object& chunk, const py::object& relati
   return stamp.nanoseconds();
 }
 
-py::object Client::clock() const {
+std::optional<Client::ClockSample> Client::bestClockSample() const {
   if (clock_samples_.empty()) {
-    return py::none();
+    return std::nullopt;
   }
-  const ClockSample best = *std::min_element(
+  return *std::min_element(
       clock_samples_.begin(), clock_samples_.end(),
       [](const ClockSample& a, const ClockSample& b) { return a.delay_ns < b.delay_ns; });
+}
+
+py::object Client::clock() const {
+  const std::optional<ClockSample> best = bestClockSample();
+  if (!best) {
+    return py::none();
+  }
   py::dict d;
-  d["offset"] = 1e-9 * static_cast<double>(best.offset_ns);
-  d["round_trip"] = 1e-9 * static_cast<double>(best.delay_ns);
-  d["one_way_latency"] = 0.5e-9 * static_cast<double>(best.delay_ns);
+  d["offset"] = 1e-9 * static_cast<double>(best->offset_ns);
+  d["round_trip"] = 1e-9 * static_cast<double>(best->delay_ns);
+  d["one_way_latency"] = 0.5e-9 * static_cast<double>(best->delay_ns);
   d["samples"] = clock_samples_.size();
   return d;
 }

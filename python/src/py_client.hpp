@@ -94,6 +94,8 @@ class Client {
     std::int64_t delay_ns;
     std::int64_t offset_ns;
   };
+  /// The round trip with the least delay among the newest, if any.
+  [[nodiscard]] std::optional<ClockSample> bestClockSample() const;
   std::deque<ClockSample> clock_samples_;  // the newest kClockSamples
   std::deque<std::int64_t> awaiting_;      // stamps of the newest commands sent, not yet back
   transport::Stamp last_stamp_;
