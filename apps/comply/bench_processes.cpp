@@ -111,7 +111,7 @@ std::vector<BenchRow> mergeBenchRuns(const std::vector<std::vector<BenchRow>>& r
   }
   std::vector<BenchRow> merged = runs.front();
   for (std::size_t r = 0; r < merged.size(); ++r) {
-    std::vector<double> mean, sd, p50, p99, max;
+    std::vector<double> mean, sd, p50, p99, max, p999;
     for (const std::vector<BenchRow>& run : runs) {
       const BenchRow& row = run.at(r);
       if (row.wrapper != merged[r].wrapper || row.stage != merged[r].stage) {
@@ -122,8 +122,10 @@ std::vector<BenchRow> mergeBenchRuns(const std::vector<std::vector<BenchRow>>& r
       p50.push_back(row.timing.p50_us);
       p99.push_back(row.timing.p99_us);
       max.push_back(row.timing.max_us);
+      p999.push_back(row.timing.p999_us);
     }
-    merged[r].timing = {median(mean), median(sd), median(p50), median(p99), median(max)};
+    merged[r].timing = {median(mean), median(sd),  median(p50),
+                        median(p99),  median(max), median(p999)};
     merged[r].p50_min_us = *std::min_element(p50.begin(), p50.end());
     merged[r].p50_max_us = *std::max_element(p50.begin(), p50.end());
     merged[r].processes = static_cast<int>(runs.size());

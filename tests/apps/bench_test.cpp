@@ -22,7 +22,7 @@ BenchRow row(const std::string& stage, double p50, double mean) {
   result.wrapper = "cartesian";
   result.plugin = "cartesian_impedance";
   result.stage = stage;
-  result.timing = {mean, 0.1, p50, 2.0 * p50, 10.0 * p50};
+  result.timing = {mean, 0.1, p50, 2.0 * p50, 10.0 * p50, 5.0 * p50};
   return result;
 }
 
@@ -38,7 +38,20 @@ TEST(BenchMerge, ReportsTheMedianOfEachStatisticAndTheSpreadOfTheMedians) {
   EXPECT_DOUBLE_EQ(merged[0].p50_max_us, 1.8);
   EXPECT_DOUBLE_EQ(merged[1].timing.mean_us, 2.5);  // the outlier's mean does not carry
   EXPECT_DOUBLE_EQ(merged[1].timing.p99_us, 2.0 * 2.1);
+  EXPECT_DOUBLE_EQ(merged[1].timing.p999_us, 5.0 * 2.1);
   EXPECT_EQ(merged[1].processes, 3);
+}
+
+TEST(TimingSummary, PercentilesByNearestRankUpToTheTail) {
+  std::vector<double> samples(1000);
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    samples[i] = static_cast<double>(1000 - i);  // 1000 .. 1, unsorted on purpose
+  }
+  const host::TimingSummary summary = host::summarize(samples);
+  EXPECT_DOUBLE_EQ(summary.p50_us, 500.0);
+  EXPECT_DOUBLE_EQ(summary.p99_us, 990.0);
+  EXPECT_DOUBLE_EQ(summary.p999_us, 999.0);
+  EXPECT_DOUBLE_EQ(summary.max_us, 1000.0);
 }
 
 TEST(BenchMerge, RefusesProcessesThatReportDifferentRows) {
@@ -55,6 +68,7 @@ TEST(BenchMerge, RowsSurviveTheJsonBetweenProcesses) {
   EXPECT_EQ(back[0].dof, 7);
   EXPECT_DOUBLE_EQ(back[0].timing.p50_us, 1.25);
   EXPECT_DOUBLE_EQ(back[0].timing.mean_us, 1.5);
+  EXPECT_DOUBLE_EQ(back[0].timing.p999_us, 5.0 * 1.25);
 }
 
 // The reference figures of other implementations were measured on the development machine, not on

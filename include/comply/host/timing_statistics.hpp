@@ -11,6 +11,7 @@ struct TimingSummary {
   double p50_us = 0.0;
   double p99_us = 0.0;
   double max_us = 0.0;
+  double p999_us = 0.0;  ///< the 99.9th percentile: a paced cycle's tail
 };
 
 /// Statistics of `samples_us` (at least one sample). Percentiles by nearest rank.
