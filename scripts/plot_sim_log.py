@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
-"""Plots a `comply sim` log: tracking error, joint torques, tool contact force and, when the
-energy tank was on (its columns are in the log), the tank's energies and gain fraction over time.
+"""Plots a `comply sim` log: tracking error, joint torques, tool contact force (with the
+controller's estimate of it when the momentum observer ran: its columns are in the log) and, when
+the energy tank was on, the tank's energies and gain fraction over time.
 
 usage: plot_sim_log.py log.csv plot.png
 """
@@ -60,7 +61,16 @@ def main():
     axes[1].grid(alpha=0.3)
 
     if in_contact:
-        axes[2].plot(time, force, color="tab:red")
+        axes[2].plot(time, force, color="tab:red", label="contact (simulator)")
+        if "estimated_fx" in data:  # observer.enabled: what the controller sees
+            estimate = [
+                (fx * fx + fy * fy + fz * fz) ** 0.5
+                for fx, fy, fz in zip(data["estimated_fx"], data["estimated_fy"],
+                                      data["estimated_fz"])
+            ]
+            axes[2].plot(time, estimate, color="tab:purple", linewidth=1.0,
+                         label="estimated (momentum observer)")
+            axes[2].legend(fontsize="small", loc="upper right")
         axes[2].set_ylabel("tool contact force [N]")
         axes[2].grid(alpha=0.3)
 

@@ -64,7 +64,10 @@ struct SimLog {
   std::vector<Eigen::Vector3d> tcp_position, reference_position;
   std::vector<Eigen::Quaterniond> tcp_orientation, reference_orientation;
   std::vector<Vector6d> contact_wrench;  ///< on the tool, base frame [N, N m]
-  std::vector<double> cycle_cost_us;     ///< the controller's own time per cycle, plant excluded
+  /// The controller's estimate of the same wrench (observer.enabled; empty when off): what a
+  /// robot without the simulator's truth would see.
+  std::vector<Vector6d> estimated_wrench;
+  std::vector<double> cycle_cost_us;  ///< the controller's own time per cycle, plant excluded
   /// The energy tank's account after each cycle (passivity.* options).
   std::vector<pipeline::PassivitySnapshot> passivity;
 
@@ -79,6 +82,8 @@ struct SimLog {
   [[nodiscard]] bool passivityEnabled() const noexcept {
     return !passivity.empty() && passivity.front().enabled;
   }
+  /// The momentum observer ran (observer.enabled): log.csv then has estimated_* columns.
+  [[nodiscard]] bool estimateLogged() const noexcept { return !estimated_wrench.empty(); }
 };
 
 struct SimSummary {

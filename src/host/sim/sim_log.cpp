@@ -96,6 +96,9 @@ void writeLogHeader(const SimLog& log, std::ostream& out) {
     out << ",joint_error_rad";
   }
   out << ",contact_fx,contact_fy,contact_fz,contact_tx,contact_ty,contact_tz";
+  if (log.estimateLogged()) {
+    out << ",estimated_fx,estimated_fy,estimated_fz,estimated_tx,estimated_ty,estimated_tz";
+  }
   // Only a run with the tank on gets its columns: without it log.csv is what it always was.
   if (log.passivityEnabled()) {
     out << ",tank_energy_j,nullspace_tank_energy_j,energy_injected_j,energy_dissipated_j,"
@@ -131,6 +134,11 @@ void writeLogRow(const SimLog& log, std::size_t row, std::ostream& out) {
   }
   for (int k = 0; k < 6; ++k) {
     out << ',' << log.contact_wrench[row][k];
+  }
+  if (log.estimateLogged()) {
+    for (int k = 0; k < 6; ++k) {
+      out << ',' << log.estimated_wrench[row][k];
+    }
   }
   if (log.passivityEnabled()) {
     const pipeline::PassivitySnapshot& tank = log.passivity[row];

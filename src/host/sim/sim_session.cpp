@@ -104,6 +104,9 @@ class SimRecorder final : public hardware::LoopObserver {
     log.tcp_position.push_back(tcp.translation());
     log.tcp_orientation.push_back(Eigen::Quaterniond(tcp.linear()));
     log.contact_wrench.push_back(plant_.toolContactWrench());
+    if (wrapper_.controller().observer().enabled()) {
+      log.estimated_wrench.push_back(wrapper_.controller().observer().wrench());
+    }
     log.passivity.push_back(wrapper_.controller().diagnostics().passivity());
     log.cycle_cost_us.push_back(record.controller_s * 1e6);
     const Command in_force = wrapper_.lastAccepted();
