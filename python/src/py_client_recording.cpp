@@ -23,26 +23,15 @@ record::RecorderOptions recorderOptions(const std::filesystem::path& path) {
 
 }  // namespace
 
-template <typename Message>
-std::uint16_t ClientRecording::addChannel(const std::string& topic) {
-  const std::string_view type = transport::rosTypeName<Message>();
-  const std::uint16_t schema =
-      recorder_.addSchema(type, "ros2msg", transport::ros2MessageDefinition(type));
-  return recorder_.addChannel(schema, topic);
-}
-
 ClientRecording::ClientRecording(const std::filesystem::path& path, const std::string& name,
                                  int domain, const std::string& network)
     : recorder_(recorderOptions(path)), lane_(recorder_.addLane("client", kLaneBytes)) {
   const std::string prefix = "/" + name + "/";
-  cartesian_channel_ = addChannel<transport::CartesianCommandMessage>(prefix + "cartesian_command");
-  joint_channel_ = addChannel<transport::JointCommandMessage>(prefix + "joint_command");
-  cartesian_chunk_channel_ =
-      addChannel<transport::CartesianChunkMessage>(prefix + "cartesian_chunk");
-  joint_chunk_channel_ = addChannel<transport::JointChunkMessage>(prefix + "joint_chunk");
-  request_channel_ = addChannel<transport::RequestMessage>(prefix + "request");
-  state_channel_ = addChannel<transport::ControllerStateMessage>(prefix + "state");
-  diagnostics_channel_ = addChannel<transport::DiagnosticsMessage>(prefix + "diagnostics");
+  senders_ = host::SenderChannels(recorder_, prefix);
+  state_channel_ =
+      host::addMessageChannel<transport::ControllerStateMessage>(recorder_, prefix + "state");
+  diagnostics_channel_ =
+      host::addMessageChannel<transport::DiagnosticsMessage>(recorder_, prefix + "diagnostics");
   recorder_.addMetadata("comply_client",
                         {{"host", name}, {"domain", std::to_string(domain)}, {"network", network}});
   recorder_.start();
@@ -57,25 +46,16 @@ void ClientRecording::push(std::uint16_t channel, const Message& message, transp
   lane_.push(channel, time.nanoseconds(), bytes_.data(), bytes_.size());
 }
 
-void ClientRecording::sent(const transport::CartesianCommandMessage& message) {
-  push(cartesian_channel_, message, message.header.stamp);
+template <typename Message>
+void ClientRecording::sent(const Message& message) {
+  push(senders_.of<Message>(), message, message.header.stamp);
 }
 
-void ClientRecording::sent(const transport::JointCommandMessage& message) {
-  push(joint_channel_, message, message.header.stamp);
-}
-
-void ClientRecording::sent(const transport::CartesianChunkMessage& message) {
-  push(cartesian_chunk_channel_, message, message.header.stamp);
-}
-
-void ClientRecording::sent(const transport::JointChunkMessage& message) {
-  push(joint_chunk_channel_, message, message.header.stamp);
-}
-
-void ClientRecording::sent(const transport::RequestMessage& message) {
-  push(request_channel_, message, message.header.stamp);
-}
+template void ClientRecording::sent(const transport::CartesianCommandMessage&);
+template void ClientRecording::sent(const transport::JointCommandMessage&);
+template void ClientRecording::sent(const transport::CartesianChunkMessage&);
+template void ClientRecording::sent(const transport::JointChunkMessage&);
+template void ClientRecording::sent(const transport::RequestMessage&);
 
 void ClientRecording::seen(const transport::ControllerStateMessage& message,
                            transport::Stamp taken) {

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "comply/host/host_recording.hpp"
 #include "comply/record/recorder.hpp"
 #include "comply/transport/messages.hpp"
 
@@ -30,11 +31,9 @@ class ClientRecording {
   ClientRecording(const std::filesystem::path& path, const std::string& name, int domain,
                   const std::string& network);
 
-  void sent(const transport::CartesianCommandMessage& message);
-  void sent(const transport::JointCommandMessage& message);
-  void sent(const transport::CartesianChunkMessage& message);
-  void sent(const transport::JointChunkMessage& message);
-  void sent(const transport::RequestMessage& message);
+  /// A command or chunk of either kind, or a request, at its stamp.
+  template <typename Message>
+  void sent(const Message& message);
   void seen(const transport::ControllerStateMessage& message, transport::Stamp taken);
   void seen(const transport::DiagnosticsMessage& message, transport::Stamp taken);
 
@@ -44,17 +43,11 @@ class ClientRecording {
 
  private:
   template <typename Message>
-  std::uint16_t addChannel(const std::string& topic);
-  template <typename Message>
   void push(std::uint16_t channel, const Message& message, transport::Stamp time);
 
   record::Recorder recorder_;
   record::RecordLane& lane_;
-  std::uint16_t cartesian_channel_ = 0;
-  std::uint16_t joint_channel_ = 0;
-  std::uint16_t cartesian_chunk_channel_ = 0;
-  std::uint16_t joint_chunk_channel_ = 0;
-  std::uint16_t request_channel_ = 0;
+  host::SenderChannels senders_;
   std::uint16_t state_channel_ = 0;
   std::uint16_t diagnostics_channel_ = 0;
   bool open_ = true;

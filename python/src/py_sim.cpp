@@ -19,17 +19,6 @@
 namespace comply::python {
 namespace {
 
-/// The command as it would have come over the wire.
-template <typename Command>
-void recordCommand(host::HostRecording& recording, const Command& command,
-                   const transport::Header& header, transport::Stamp received) {
-  if constexpr (std::is_same_v<Command, CartesianCommand>) {
-    recording.command(transport::CartesianCommandMessage{header, command}, received);
-  } else {
-    recording.command(transport::JointCommandMessage{header, command}, received);
-  }
-}
-
 /// The gate's outcome on the recording's clock: the Sim's commands are received at the simulated
 /// time they are stamped with (the gate itself notes the wall clock).
 transport::CommandOutcomeMessage simOutcomeMessage(const pipeline::CommandOutcome& outcome,
@@ -294,8 +283,8 @@ py::tuple Sim::step(const py::object& command) {
                 chunkFromPython<Command>(command, dof(), now_s, e->wrapper.lastAccepted());
             c.stamp_s = stampSeconds(*stamp_ns);
             if (host::HostRecording* to = recording()) {
-              to->command(transport::ChunkMessageOf<Command>{header, c},
-                          e->clockAt(session_->plant.simTime()));
+              to->received(transport::ChunkMessageOf<Command>{header, c},
+                           e->clockAt(session_->plant.simTime()));
             }
             session_->gate.offer(
                 offer, active, [&] { return e->wrapper.submitChunk(c, stampSeconds(*stamp_ns)); });
@@ -310,7 +299,8 @@ py::tuple Sim::step(const py::object& command) {
           }
           c.stamp_s = stampSeconds(*stamp_ns);
           if (host::HostRecording* to = recording()) {
-            recordCommand(*to, c, header, e->clockAt(session_->plant.simTime()));
+            to->received(transport::CommandMessageOf<Command>{header, c},
+                         e->clockAt(session_->plant.simTime()));
           }
           session_->gate.offer(offer, active, [&] { return e->wrapper.submit(c); });
         },

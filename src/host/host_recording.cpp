@@ -53,13 +53,15 @@ void push(record::RecordLane& lane, std::uint16_t channel, const Message& messag
 
 }  // namespace
 
-template <typename Message>
-std::uint16_t HostRecording::addChannel(const std::string& topic, record::RecordEncoder encoder) {
-  const std::string_view type = transport::rosTypeName<Message>();
-  const std::uint16_t schema =
-      recorder_.addSchema(type, "ros2msg", transport::ros2MessageDefinition(type));
-  return recorder_.addChannel(schema, topic, std::move(encoder));
-}
+SenderChannels::SenderChannels(record::Recorder& recorder, const std::string& prefix)
+    : cartesian_(addMessageChannel<transport::CartesianCommandMessage>(
+          recorder, prefix + "cartesian_command")),
+      joint_(addMessageChannel<transport::JointCommandMessage>(recorder, prefix + "joint_command")),
+      cartesian_chunk_(addMessageChannel<transport::CartesianChunkMessage>(
+          recorder, prefix + "cartesian_chunk")),
+      joint_chunk_(
+          addMessageChannel<transport::JointChunkMessage>(recorder, prefix + "joint_chunk")),
+      request_(addMessageChannel<transport::RequestMessage>(recorder, prefix + "request")) {}
 
 HostRecording::HostRecording(const std::string& path,
                              std::shared_ptr<const pipeline::ResolvedController> resolved,
@@ -78,8 +80,9 @@ HostRecording::HostRecording(const std::string& path,
     const std::uint16_t in_force = recorder_.addInternal([this](std::span<const std::uint8_t> raw) {
       std::memcpy(&std::get<Bus>(in_force_), raw.data(), sizeof(Bus));
     });
-    const std::uint16_t cycle = addChannel<transport::CycleRecordMessage>(
-        prefix + "cycle", [this, &controller](std::span<const std::uint8_t> raw, auto& out) {
+    const std::uint16_t cycle = addMessageChannel<transport::CycleRecordMessage>(
+        recorder_, prefix + "cycle",
+        [this, &controller](std::span<const std::uint8_t> raw, auto& out) {
           encodeCycle<Command>(raw, std::get<Bus>(in_force_), controller, out);
         });
     cycles_.emplace<CycleRecorder<Command>>(control_, cycle, in_force);
@@ -89,15 +92,12 @@ HostRecording::HostRecording(const std::string& path,
   } else {
     channels.template operator()<JointCommand>();
   }
-  // Both command topics: a command of the other kind is refused, and recorded as received.
-  cartesian_channel_ = addChannel<transport::CartesianCommandMessage>(prefix + "cartesian_command");
-  joint_channel_ = addChannel<transport::JointCommandMessage>(prefix + "joint_command");
-  cartesian_chunk_channel_ =
-      addChannel<transport::CartesianChunkMessage>(prefix + "cartesian_chunk");
-  joint_chunk_channel_ = addChannel<transport::JointChunkMessage>(prefix + "joint_chunk");
-  request_channel_ = addChannel<transport::RequestMessage>(prefix + "request");
-  outcome_channel_ = addChannel<transport::CommandOutcomeMessage>(prefix + "outcome");
-  diagnostics_channel_ = addChannel<transport::DiagnosticsMessage>(prefix + "diagnostics");
+  // Both kinds' topics: a command of the other kind is refused, and recorded as received.
+  senders_ = SenderChannels(recorder_, prefix);
+  outcome_channel_ =
+      addMessageChannel<transport::CommandOutcomeMessage>(recorder_, prefix + "outcome");
+  diagnostics_channel_ =
+      addMessageChannel<transport::DiagnosticsMessage>(recorder_, prefix + "diagnostics");
   metadata["robot"] = controller.robot.name;
   metadata["plugin"] = controller.config.plugin;
   metadata["dof"] = std::to_string(controller.config.dof);
@@ -110,29 +110,16 @@ HostRecording::~HostRecording() {
   stop();
 }
 
-void HostRecording::command(const transport::CartesianCommandMessage& message,
-                            transport::Stamp received) {
-  push(intake_, cartesian_channel_, message, received, intake_bytes_);
+template <typename Message>
+void HostRecording::received(const Message& message, transport::Stamp received_at) {
+  push(intake_, senders_.of<Message>(), message, received_at, intake_bytes_);
 }
 
-void HostRecording::command(const transport::JointCommandMessage& message,
-                            transport::Stamp received) {
-  push(intake_, joint_channel_, message, received, intake_bytes_);
-}
-
-void HostRecording::command(const transport::CartesianChunkMessage& message,
-                            transport::Stamp received) {
-  push(intake_, cartesian_chunk_channel_, message, received, intake_bytes_);
-}
-
-void HostRecording::command(const transport::JointChunkMessage& message,
-                            transport::Stamp received) {
-  push(intake_, joint_chunk_channel_, message, received, intake_bytes_);
-}
-
-void HostRecording::request(const transport::RequestMessage& message, transport::Stamp received) {
-  push(intake_, request_channel_, message, received, intake_bytes_);
-}
+template void HostRecording::received(const transport::CartesianCommandMessage&, transport::Stamp);
+template void HostRecording::received(const transport::JointCommandMessage&, transport::Stamp);
+template void HostRecording::received(const transport::CartesianChunkMessage&, transport::Stamp);
+template void HostRecording::received(const transport::JointChunkMessage&, transport::Stamp);
+template void HostRecording::received(const transport::RequestMessage&, transport::Stamp);
 
 void HostRecording::outcome(const transport::CommandOutcomeMessage& message) {
   const transport::Stamp time =

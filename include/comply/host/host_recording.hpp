@@ -20,6 +20,8 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -27,9 +29,53 @@
 #include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/record/recorder.hpp"
+#include "comply/transport/cdr.hpp"
 #include "comply/transport/messages.hpp"
 
 namespace comply::host {
+
+/// A channel of `Message` on `topic`, its schema the ROS 2 definition of the message's type (one
+/// schema per type however many channels use it). `encoder` turns a record into the message's
+/// bytes; none: the records are those bytes.
+template <typename Message>
+std::uint16_t addMessageChannel(record::Recorder& recorder, const std::string& topic,
+                                record::RecordEncoder encoder = {}) {
+  const std::string_view type = transport::rosTypeName<Message>();
+  const std::uint16_t schema =
+      recorder.addSchema(type, "ros2msg", transport::ros2MessageDefinition(type));
+  return recorder.addChannel(schema, topic, std::move(encoder));
+}
+
+/// The channels of what a sender writes, under `/<name>/`: the commands and chunks of both kinds
+/// and the requests, one channel each, as the hosts and the Python client record them.
+class SenderChannels {
+ public:
+  SenderChannels() = default;
+  SenderChannels(record::Recorder& recorder, const std::string& prefix);
+  /// The channel of a message of type `Message`.
+  template <typename Message>
+  [[nodiscard]] std::uint16_t of() const noexcept {
+    if constexpr (std::is_same_v<Message, transport::CartesianCommandMessage>) {
+      return cartesian_;
+    } else if constexpr (std::is_same_v<Message, transport::JointCommandMessage>) {
+      return joint_;
+    } else if constexpr (std::is_same_v<Message, transport::CartesianChunkMessage>) {
+      return cartesian_chunk_;
+    } else if constexpr (std::is_same_v<Message, transport::JointChunkMessage>) {
+      return joint_chunk_;
+    } else {
+      static_assert(std::is_same_v<Message, transport::RequestMessage>, "not a sender's message");
+      return request_;
+    }
+  }
+
+ private:
+  std::uint16_t cartesian_ = 0;
+  std::uint16_t joint_ = 0;
+  std::uint16_t cartesian_chunk_ = 0;
+  std::uint16_t joint_chunk_ = 0;
+  std::uint16_t request_ = 0;
+};
 
 /// The control lane's size. A cycle is ~1 KB in it (the command in force travels only when it
 /// changed), so 1 MiB holds about a second of cycles at 1 kHz should the writer stall (a slow
@@ -97,12 +143,9 @@ class HostRecording {
     }
   }
 
-  // The command thread.
-  void command(const transport::CartesianCommandMessage& message, transport::Stamp received);
-  void command(const transport::JointCommandMessage& message, transport::Stamp received);
-  void command(const transport::CartesianChunkMessage& message, transport::Stamp received);
-  void command(const transport::JointChunkMessage& message, transport::Stamp received);
-  void request(const transport::RequestMessage& message, transport::Stamp received);
+  // The command thread: a command or chunk of either kind, or a request, as received.
+  template <typename Message>
+  void received(const Message& message, transport::Stamp received_at);
   // The publishing thread.
   void outcome(const transport::CommandOutcomeMessage& message);
   void diagnostics(const transport::DiagnosticsMessage& message);
@@ -113,17 +156,10 @@ class HostRecording {
   [[nodiscard]] const std::string& path() const noexcept { return recorder_.path(); }
 
  private:
-  template <typename Message>
-  std::uint16_t addChannel(const std::string& topic, record::RecordEncoder encoder = {});
-
   std::shared_ptr<const pipeline::ResolvedController> resolved_;
   record::Recorder recorder_;
   pipeline::CommandBus in_force_;  // the writer thread's: the one cycles are encoded with
-  std::uint16_t cartesian_channel_ = 0;
-  std::uint16_t joint_channel_ = 0;
-  std::uint16_t cartesian_chunk_channel_ = 0;
-  std::uint16_t joint_chunk_channel_ = 0;
-  std::uint16_t request_channel_ = 0;
+  SenderChannels senders_;
   std::uint16_t outcome_channel_ = 0;
   std::uint16_t diagnostics_channel_ = 0;
   record::RecordLane& control_;

@@ -61,7 +61,7 @@ template <typename Command>
 template <typename Message>
 void Intake<Command>::handleCommand(const transport::Sample<Message>& sample) {
   if (recording_ != nullptr && sample.malformed.empty()) {
-    recording_->command(sample.message, transport::Stamp::now());
+    recording_->received(sample.message, transport::Stamp::now());
   }
   constexpr bool kCartesian = std::is_same_v<Message, transport::CartesianCommandMessage> ||
                               std::is_same_v<Message, transport::CartesianChunkMessage>;
@@ -89,7 +89,7 @@ void Intake<Command>::handle(const transport::Sample<transport::JointChunkMessag
 template <typename Command>
 void Intake<Command>::handle(const transport::Sample<transport::RequestMessage>& sample) {
   if (recording_ != nullptr && sample.malformed.empty()) {
-    recording_->request(sample.message, transport::Stamp::now());
+    recording_->received(sample.message, transport::Stamp::now());
   }
   // The publisher rule holds for requests too: while one process commands the arm, another
   // cannot deactivate or reset it. A refusal is the diagnostics' last rejection.

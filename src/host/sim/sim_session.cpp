@@ -170,13 +170,10 @@ class SimRecorder final : public hardware::LoopObserver {
     transport::CommandOutcomeMessage outcome;
     outcome.stamp = header.stamp;
     outcome.received = now;
-    if constexpr (std::is_same_v<Command, CartesianCommand>) {
-      recording_->command(transport::CartesianCommandMessage{header, command}, now);
-      outcome.command_kind = transport::WireCommandKind::kCartesian;
-    } else {
-      recording_->command(transport::JointCommandMessage{header, command}, now);
-      outcome.command_kind = transport::WireCommandKind::kJoint;
-    }
+    recording_->received(transport::CommandMessageOf<Command>{header, command}, now);
+    outcome.command_kind = std::is_same_v<Command, CartesianCommand>
+                               ? transport::WireCommandKind::kCartesian
+                               : transport::WireCommandKind::kJoint;
     if (verdict.accepted) {
       // Submitted before the cycle that takes it: that cycle is the next one.
       outcome.outcome = transport::Outcome::kApplied;
