@@ -221,7 +221,8 @@ void startIn(Engine<Bus>& engine, int slot, const Bus& in_force, double now_s) n
   engine.from = in_force;
   engine.start_s = now_s;
   engine.cursor = 0;
-  engine.offset = offsetAt(in_force, motionAt(engine.tracks[slot], now_s, engine.cursor));
+  const Track<Bus>& track = engine.tracks[slot];
+  engine.offset = offsetAt(in_force, motionAt(track, placeOf(track, now_s, engine.cursor)));
 }
 
 /// Returns whether the chunk still runs after `now_s`.
@@ -229,7 +230,8 @@ template <typename Bus>
 bool playIn(Engine<Bus>& engine, int slot, double blend_time_s, double now_s,
             Bus& active) noexcept {
   const Track<Bus>& track = engine.tracks[slot];
-  auto motion = motionAt(track, now_s, engine.cursor);
+  const Place place = placeOf(track, now_s, engine.cursor);
+  auto motion = motionAt(track, place);
   const double since_start = now_s - engine.start_s;
   const bool blending = blend_time_s > 0.0 && since_start < blend_time_s;
   double fraction = 1.0;
@@ -241,8 +243,7 @@ bool playIn(Engine<Bus>& engine, int slot, double blend_time_s, double now_s,
   writeMotion(motion, active);
   const std::uint32_t settings = track.fields & ~(COMPLY_FIELD_POSITION | COMPLY_FIELD_VELOCITY);
   if (settings != 0) {
-    int cursor = engine.cursor;
-    settingsAt(track, placeOf(track, now_s, cursor), engine.settings);
+    settingsAt(track, place, engine.settings);
     fadeSettings(engine.from, engine.settings, settings, fraction, active);
   }
   active.stamp_s = track.stamp_s;

@@ -120,8 +120,7 @@ void derive(Track<Joint>& track) {
 
 // ---- evaluated in the cycle --------------------------------------------------------------------
 
-CartesianMotion motionAt(const Track<Cartesian>& track, double t_s, int& cursor) noexcept {
-  const Place place = placeOf(track, t_s, cursor);
+CartesianMotion motionAt(const Track<Cartesian>& track, const Place& place) noexcept {
   const Cartesian& a = track.waypoints[place.index];
   CartesianMotion motion;
   if (place.length_s == 0.0) {  // holding an end, at rest
@@ -156,8 +155,7 @@ CartesianMotion motionAt(const Track<Cartesian>& track, double t_s, int& cursor)
   return motion;
 }
 
-JointMotion motionAt(const Track<Joint>& track, double t_s, int& cursor) noexcept {
-  const Place place = placeOf(track, t_s, cursor);
+JointMotion motionAt(const Track<Joint>& track, const Place& place) noexcept {
   const Joint& a = track.waypoints[place.index];
   const int dof = a.dof;
   JointMotion motion;

@@ -83,6 +83,8 @@ struct Place {
   double length_s = 0.0;  ///< the segment's length, 0 when holding an end
 };
 
+/// Where `t_s` falls on `track`; `cursor` is the segment found the last time, where the search
+/// starts (a chunk's time only moves forward), and is moved to this one.
 template <typename Bus>
 Place placeOf(const Track<Bus>& track, double t_s, int& cursor) noexcept {
   const int last = track.count - 1;
@@ -109,9 +111,9 @@ Place placeOf(const Track<Bus>& track, double t_s, int& cursor) noexcept {
 void derive(Track<Cartesian>& track);
 void derive(Track<Joint>& track);
 
-/// The curve at `t_s` (cursor: the segment last used, a hint for the search).
-CartesianMotion motionAt(const Track<Cartesian>& track, double t_s, int& cursor) noexcept;
-JointMotion motionAt(const Track<Joint>& track, double t_s, int& cursor) noexcept;
+/// The curve at a place (placeOf).
+CartesianMotion motionAt(const Track<Cartesian>& track, const Place& place) noexcept;
+JointMotion motionAt(const Track<Joint>& track, const Place& place) noexcept;
 
 /// The chunk's gains, feedforward, task frame and nullspace at a place, written into `to`:
 /// linear between the segment's waypoints, the task frame by spherical interpolation.
