@@ -160,19 +160,19 @@ void expectTheGuardWorked(const DiagnosticsSnapshot& diagnostics) {
   EXPECT_GT(diagnostics.passivity.dissipated_j, 0.0) << "the tank was never refilled";
 }
 
-/// Runs kCycles counted update() calls of an active `wrapper`, submitting `commandAt(cycle)`
-/// (uncounted) every kCyclesPerCommand cycles.
-template <typename WrapperType, typename CommandAt>
-void expectRealtimeCycles(WrapperType& wrapper, CommandAt commandAt) {
+/// kCycles counted update() calls of an active `wrapper` at a moving state, `between(cycle)`
+/// before each, uncounted (submitting is allowed to allocate and lock): none allocates or locks,
+/// every one is kOk.
+template <typename WrapperType, typename Between>
+void expectRealtimeLoop(WrapperType& wrapper, Between&& between) {
   const JointVector home = fr3Home();
-  wrapper.activate(movingState(home, 0));
   RealtimeProbe probe;
   TorqueBuffer torque;
   int not_ok = 0;
   for (int cycle = 1; cycle <= kCycles; ++cycle) {
-    if (cycle % kCyclesPerCommand == kCyclesPerCommand / 2) {
-      const Verdict verdict = wrapper.submit(commandAt(cycle));
-      ASSERT_TRUE(verdict.accepted) << "cycle " << cycle << ": " << verdict.message;
+    between(cycle);
+    if (::testing::Test::HasFatalFailure()) {
+      return;
     }
     const JointState state = movingState(home, cycle);
     const CycleStatus status =
@@ -182,6 +182,19 @@ void expectRealtimeCycles(WrapperType& wrapper, CommandAt commandAt) {
   EXPECT_EQ(probe.allocations, 0U);
   EXPECT_EQ(probe.locks, 0U);
   EXPECT_EQ(not_ok, 0);
+}
+
+/// Runs kCycles counted update() calls of an activated `wrapper`, submitting `commandAt(cycle)`
+/// (uncounted) every kCyclesPerCommand cycles.
+template <typename WrapperType, typename CommandAt>
+void expectRealtimeCycles(WrapperType& wrapper, CommandAt commandAt) {
+  wrapper.activate(movingState(fr3Home(), 0));
+  expectRealtimeLoop(wrapper, [&](int cycle) {
+    if (cycle % kCyclesPerCommand == kCyclesPerCommand / 2) {
+      const Verdict verdict = wrapper.submit(commandAt(cycle));
+      ASSERT_TRUE(verdict.accepted) << "cycle " << cycle << ": " << verdict.message;
+    }
+  });
   const DiagnosticsSnapshot diagnostics = wrapper.diagnostics();
   EXPECT_EQ(diagnostics.commands_accepted, static_cast<std::uint64_t>(kCycles / kCyclesPerCommand));
   EXPECT_GE(diagnostics.watchdog_timeouts, static_cast<std::uint64_t>(kCycles / kCyclesPerCommand))
@@ -322,13 +335,9 @@ CartesianChunk movingChunk(const model::Data& measured, double now_s, double sta
 TEST(WrapperRealtime, PlayingChunksNeitherAllocatesNorLocks) {
   CartesianWrapper wrapper(
       fr3Config(kCartesianImpedancePlugin, realtimeLines("hold") + kGuardedLines));
-  const JointVector home = fr3Home();
-  wrapper.activate(movingState(home, 0));
-  RealtimeProbe probe;
-  TorqueBuffer torque;
-  int not_ok = 0;
+  wrapper.activate(movingState(fr3Home(), 0));
   int chunks = 0;
-  for (int cycle = 1; cycle <= kCycles; ++cycle) {
+  expectRealtimeLoop(wrapper, [&](int cycle) {
     const double now_s = cycle * kPeriod;  // the host's clock: the controller's since activation
     const model::Data& measured = wrapper.controller().modelData();
     if (cycle < kCycles - 1000 && cycle % 150 == 75) {
@@ -344,14 +353,7 @@ TEST(WrapperRealtime, PlayingChunksNeitherAllocatesNorLocks) {
       command.orientation = measured.tip_orientation;
       ASSERT_TRUE(wrapper.submit(command).accepted);
     }
-    const JointState state = movingState(home, cycle);
-    const CycleStatus status =
-        probe.measure([&] { return wrapper.update(state, kPeriod, torque.span()); });
-    not_ok += status != CycleStatus::kOk;
-  }
-  EXPECT_EQ(probe.allocations, 0U);
-  EXPECT_EQ(probe.locks, 0U);
-  EXPECT_EQ(not_ok, 0);
+  });
   const DiagnosticsSnapshot diagnostics = wrapper.diagnostics();
   EXPECT_EQ(diagnostics.commands_accepted, static_cast<std::uint64_t>(chunks + kCycles / 1000));
   EXPECT_GE(diagnostics.watchdog_timeouts, 1U) << "the watchdog never followed a chunk's end";
