@@ -27,8 +27,22 @@ ControlLoop::ControlLoop(HardwareInterface& hardware, CycleController& controlle
     throw std::invalid_argument("control loop: the controller has " + std::to_string(dof) +
                                 " joints, the hardware " + std::to_string(hardware_.dof()));
   }
+  const OutputMode mode = controller_.outputMode();
+  if (!hardware_.accepts(mode)) {
+    std::string accepted;
+    for (const OutputMode candidate : kOutputModes) {
+      if (hardware_.accepts(candidate)) {
+        accepted += (accepted.empty() ? "" : ", ") + std::string(toString(candidate));
+      }
+    }
+    throw std::invalid_argument(
+        "control loop: the controller's output.mode is " + std::string(toString(mode)) +
+        " but the hardware's drives take only " + (accepted.empty() ? "nothing" : accepted) +
+        "; set output.mode to one of them");
+  }
   state_ = JointState::zero(dof);
-  torque_.setZero(dof);
+  command_.resize(dof);
+  command_.mode = mode;
   start_s_ = clock_.now();
 }
 
@@ -61,11 +75,11 @@ bool ControlLoop::runOnce() {
   record.start_lateness_s = started_s - scheduled_s;
   const auto compute_start = SteadyClock::now();
   if (hardware_.read(state_)) {
-    const std::span<double> torque(torque_.data(), static_cast<std::size_t>(torque_.size()));
+    state_.wrench_valid = hardware_.readWrench(state_.wrench);
     const auto controller_start = SteadyClock::now();
-    record.wrote = controller_.cycle(state_, options_.period_s, torque);
+    record.wrote = controller_.cycle(state_, options_.period_s, command_);
     record.controller_s = secondsBetween(controller_start, SteadyClock::now());
-    if (record.wrote && !hardware_.write(torque)) {
+    if (record.wrote && !hardware_.writeCommand(command_)) {
       ++stats_.write_failures;
     }
     if (record.wrote && controller_.wantsHold()) {
@@ -83,7 +97,8 @@ bool ControlLoop::runOnce() {
   record.compute_s = secondsBetween(compute_start, SteadyClock::now());
   record.overrun = record.compute_s > options_.period_s;
   record.state = &state_;
-  record.torque = std::span<const double>(torque_.data(), static_cast<std::size_t>(torque_.size()));
+  record.torque = lastTorque();
+  record.command = &command_;
 
   ++stats_.cycles;
   stats_.overruns += record.overrun ? 1 : 0;

@@ -269,6 +269,54 @@ void addObserverOptions(std::vector<Option>& table) {
                        [](WrapperConfig& c, bool v) { c.observer.measured_torque = v; }));
 }
 
+// What the cycle sends the drives: a torque, a per-joint PD command, or (admittance) a position
+// or velocity (pipeline/output_stage.hpp).
+void addOutputOptions(std::vector<Option>& table) {
+  Option mode{"output.mode", Kind::kChoice, "torque",
+              "torque | joint_pd (onboard PD) | position, velocity (admittance)"};
+  mode.choices = "torque|joint_pd|position|velocity";
+  mode.blank_line_before = true;
+  mode.apply = [](WrapperConfig& c, const Value& v) {
+    for (const OutputMode candidate : kOutputModes) {
+      if (v.text == toString(candidate)) {
+        c.output.mode = candidate;
+      }
+    }
+  };
+  table.push_back(mode);
+  const auto admittance = [](const char* key, const char* default_text, const char* comment,
+                             double max, bool min_exclusive, double AdmittanceConfig::*field) {
+    return number(key, default_text, comment, 0.0, max, min_exclusive,
+                  [field](WrapperConfig& c, double v) { c.output.admittance.*field = v; });
+  };
+  const auto added = [](const char* key, const char* comment,
+                        Eigen::Vector3d AdmittanceConfig::*field) {
+    Option option{key, Kind::kVector3, "[0.0, 0.0, 0.0]", comment, 0.0, 1e4};
+    option.apply = [field](WrapperConfig& c, const Value& v) {
+      c.output.admittance.*field = Eigen::Vector3d(v.numbers[0], v.numbers[1], v.numbers[2]);
+    };
+    return option;
+  };
+  table.push_back(added("output.admittance.added_mass_kg",
+                        "kg added to the arm's own inertia at the TCP, along task x y z",
+                        &AdmittanceConfig::added_mass_kg));
+  table.push_back(added("output.admittance.added_inertia_kg_m2",
+                        "kg m^2 added at the TCP, about task x y z",
+                        &AdmittanceConfig::added_inertia_kg_m2));
+  table.push_back(admittance("output.admittance.velocity_factor", "0.5",
+                             "joint speed bound: this times the URDF velocity limit", 1.0, true,
+                             &AdmittanceConfig::velocity_factor));
+  table.push_back(admittance("output.admittance.max_acceleration_rad_per_s2", "20.0",
+                             "joint acceleration bound", 1e4, true,
+                             &AdmittanceConfig::max_acceleration_rad_per_s2));
+  table.push_back(admittance("output.admittance.max_tracking_error_rad", "0.05",
+                             "the virtual arm stays this close to the measured arm",
+                             10.0, true, &AdmittanceConfig::max_tracking_error_rad));
+  table.push_back(admittance("output.admittance.velocity_correction_per_s", "10.0",
+                             "velocity mode: 1/s x (virtual - measured), added",
+                             1e3, false, &AdmittanceConfig::velocity_correction_per_s));
+}
+
 // The sections are added in the order the YAML file prints them; the order is part of the file.
 std::vector<Option> makeTable() {
   std::vector<Option> table;
@@ -278,6 +326,7 @@ std::vector<Option> makeTable() {
   addGainOptions(table);
   addGuardOptions(table);
   addObserverOptions(table);
+  addOutputOptions(table);
   return table;
 }
 

@@ -51,6 +51,10 @@ Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
   if (parameters_.payload_compensation) {
     quantities_ = quantities_ | Quantity::kPayloadGravity;
   }
+  if (parameters_.output.mode != OutputMode::kTorque) {
+    // The joint-space gains of joint_pd and the virtual arm of admittance (output_stage.hpp).
+    quantities_ = quantities_ | Quantity::kMassMatrix | Quantity::kJacobian;
+  }
   observer_.configure(parameters_.observer, dof_);
   if (observer_.enabled()) {
     quantities_ = quantities_ | Quantity::kMassMatrix | Quantity::kCoriolis | Quantity::kJacobian;

@@ -1,3 +1,4 @@
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -113,6 +114,21 @@ std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig&
   }
   parameters.fault_damping = toJointVector(config.fault_damping, dof);
   parameters.frozen_state_timeout_s = config.frozen_state_timeout_s;
+  parameters.output = config.output;
+  if (isAdmittance(config.output.mode)) {
+    // The law drives a virtual arm (output_stage.hpp): it has no weight or friction to carry (the
+    // arm's own position control carries them), and a torque-rate limit on it would only delay
+    // the virtual arm's answer to a contact. Its state is computed, not measured, so it cannot
+    // go stale; the arm's own drives watch their encoders.
+    parameters.gravity_compensation = false;
+    parameters.payload_compensation = false;
+    parameters.friction.model = FrictionModel::kNone;
+    parameters.torque_rate_limit.setConstant(dof, std::numeric_limits<double>::infinity());
+    parameters.frozen_state_timeout_s = 0.0;
+    // The momentum observer would estimate the virtual arm's wrench; the contact wrench of an
+    // admittance arm is its force/torque sensor's.
+    parameters.observer.enabled = false;
+  }
   return resolved;
 }
 

@@ -38,7 +38,8 @@ std::string commandsWaiting() {
 
 template <typename Command>
 Wrapper<Command>::Wrapper(std::shared_ptr<const ResolvedController> resolved)
-    : controller_(checkedKind(std::move(resolved), kKind<Command>)) {}
+    : controller_(checkedKind(std::move(resolved), kKind<Command>)),
+      output_(controller_.resolved()) {}
 
 template <typename Command>
 Wrapper<Command>::Wrapper(const WrapperConfig& config) : Wrapper(resolveController(config)) {}

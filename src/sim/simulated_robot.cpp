@@ -40,7 +40,8 @@ SimulatedRobot::SimulatedRobot(const model::RobotDescription& robot, const Plant
       substeps_(options.substeps),
       noise_generator_(options.seed),
       position_noise_rad_(options.position_noise_rad),
-      velocity_noise_rad_per_s_(options.velocity_noise_rad_per_s) {
+      velocity_noise_rad_per_s_(options.velocity_noise_rad_per_s),
+      actuation_(options.actuation) {
   if (!(options.control_period_s > 0.0) || options.substeps < 1) {
     throw SimError("control period must be > 0 s and substeps >= 1 (got " +
                    std::to_string(options.control_period_s) + " s, " +
@@ -111,6 +112,28 @@ SimulatedRobot::SimulatedRobot(const model::RobotDescription& robot, const Plant
     throw SimError("MuJoCo could not allocate the simulation data of " + robot.name);
   }
   setJointPositions(robot.home);
+  configureServos(options);
+}
+
+void SimulatedRobot::configureServos(const PlantOptions& options) {
+  if (!(options.servo_bandwidth_hz > 0.0) || !std::isfinite(options.servo_bandwidth_hz)) {
+    throw SimError("the servo bandwidth must be a positive number of Hz (got " +
+                   std::to_string(options.servo_bandwidth_hz) + ")");
+  }
+  const std::size_t dof = qpos_address_.size();
+  drive_command_.resize(static_cast<int>(dof));
+  drive_command_.mode = actuation_;
+  servo_integral_.assign(dof, 0.0);
+  velocity_reference_.assign(dof, 0.0);
+  // A triple pole at the bandwidth for each joint's own inertia at home (armature included):
+  // (s + w)^3 = s^3 + 3w s^2 + 3w^2 s + w^3, times the inertia.
+  const double w = 2.0 * M_PI * options.servo_bandwidth_hz;
+  for (std::size_t i = 0; i < dof; ++i) {
+    const double inertia = data_->qM[model_->dof_Madr[dof_address_[i]]];
+    servo_kd_.push_back(3.0 * w * inertia);
+    servo_kp_.push_back(3.0 * w * w * inertia);
+    servo_ki_.push_back(w * w * w * inertia);
+  }
 }
 
 SimulatedRobot::~SimulatedRobot() = default;
@@ -167,6 +190,20 @@ bool SimulatedRobot::write(std::span<const double> torque) noexcept {
       !std::all_of(torque.begin(), torque.end(), [](double t) { return std::isfinite(t); })) {
     return false;
   }
+  if (actuation_ == OutputMode::kJointPd) {
+    // A PD drive given a torque alone.
+    ActuatorCommand command = drive_command_;
+    command.mode = OutputMode::kJointPd;
+    command.stiffness.setZero();
+    command.damping.setZero();
+    for (std::size_t i = 0; i < torque.size(); ++i) {
+      command.effort[static_cast<Eigen::Index>(i)] = torque[i];
+    }
+    return writeCommand(command);
+  }
+  if (actuation_ != OutputMode::kTorque) {
+    return false;
+  }
   braked_ = false;
   for (std::size_t i = 0; i < torque.size(); ++i) {
     applied_[i] = std::clamp(torque[i], -effort_limit_[i], effort_limit_[i]);
@@ -175,7 +212,72 @@ bool SimulatedRobot::write(std::span<const double> torque) noexcept {
   return true;
 }
 
+bool SimulatedRobot::accepts(OutputMode mode) const noexcept {
+  return mode == actuation_ || (actuation_ == OutputMode::kJointPd && mode == OutputMode::kTorque);
+}
+
+bool SimulatedRobot::writeCommand(const ActuatorCommand& command) noexcept {
+  if (command.mode == OutputMode::kTorque) {
+    return write({command.effort.data(), static_cast<std::size_t>(command.effort.size())});
+  }
+  const auto dof = static_cast<Eigen::Index>(applied_.size());
+  const auto sized_finite = [dof](const JointVector& values) {
+    return values.size() == dof && values.allFinite();
+  };
+  if (command.mode != actuation_ || !sized_finite(command.position) ||
+      !sized_finite(command.velocity) ||
+      (command.mode == OutputMode::kJointPd &&
+       (!sized_finite(command.effort) || !sized_finite(command.stiffness) ||
+        !sized_finite(command.damping)))) {
+    return false;
+  }
+  if (braked_ || !drive_commanded_) {
+    // The servo takes over from rest where the arm is: no wound-up integral, no old reference.
+    std::fill(servo_integral_.begin(), servo_integral_.end(), 0.0);
+    for (std::size_t i = 0; i < velocity_reference_.size(); ++i) {
+      velocity_reference_[i] = data_->qpos[qpos_address_[i]];
+    }
+  }
+  braked_ = false;
+  drive_commanded_ = true;
+  drive_command_ = command;
+  since_write_s_ = 0.0;
+  return true;
+}
+
+void SimulatedRobot::driveJoints(double since_write_s) noexcept {
+  const double dt = model_->opt.timestep;
+  for (std::size_t i = 0; i < applied_.size(); ++i) {
+    const auto row = static_cast<Eigen::Index>(i);
+    const double q = data_->qpos[qpos_address_[i]];
+    const double dq = data_->qvel[dof_address_[i]];
+    double torque = 0.0;
+    if (actuation_ == OutputMode::kJointPd) {
+      torque = drive_command_.stiffness[row] * (drive_command_.position[row] - q) +
+               drive_command_.damping[row] * (drive_command_.velocity[row] - dq) +
+               drive_command_.effort[row];
+    } else {
+      // The reference moves on with its velocity between two commands, as a servo interpolates.
+      double reference = drive_command_.position[row] + drive_command_.velocity[row] * since_write_s;
+      if (actuation_ == OutputMode::kVelocity) {
+        velocity_reference_[i] += drive_command_.velocity[row] * dt;
+        reference = velocity_reference_[i];
+      }
+      const double error = reference - q;
+      torque = data_->qfrc_bias[dof_address_[i]] + servo_kp_[i] * error +
+               servo_ki_[i] * servo_integral_[i] +
+               servo_kd_[i] * (drive_command_.velocity[row] - dq);
+      if (std::abs(torque) < effort_limit_[i]) {
+        servo_integral_[i] += error * dt;  // no wind-up while the drive saturates
+      }
+    }
+    applied_[i] = std::clamp(torque, -effort_limit_[i], effort_limit_[i]);
+    data_->qfrc_applied[dof_address_[i]] = applied_[i];
+  }
+}
+
 bool SimulatedRobot::hold() noexcept {
+  drive_commanded_ = false;
   if (!braked_) {
     braked_ = true;
     for (std::size_t i = 0; i < qpos_address_.size(); ++i) {
@@ -202,6 +304,9 @@ void SimulatedRobot::step() noexcept {
         applied_[j] = data_->qfrc_bias[dof_address_[j]];
         data_->qfrc_applied[dof_address_[j]] = applied_[j];
       }
+    } else if (actuation_ != OutputMode::kTorque && drive_commanded_) {
+      driveJoints(since_write_s_);
+      since_write_s_ += model_->opt.timestep;
     }
     applyExternalWrench();
     mj_step(model_.get(), data_.get());

@@ -42,16 +42,21 @@ class RecordingHardware final : public HardwareInterface {
 class SwitchedController final : public CycleController {
  public:
   [[nodiscard]] int dof() const noexcept override { return 2; }
-  bool cycle(const JointState& /*state*/, double /*period_s*/,
-             std::span<double> torque) noexcept override {
-    torque[0] = torque[1] = 1.0;
+  bool cycle(const JointState& state, double /*period_s*/,
+             ActuatorCommand& command) noexcept override {
+    command.effort[0] = command.effort[1] = 1.0;
+    command.position[0] = command.position[1] = 0.5;
+    saw_wrench = state.wrench_valid ? state.wrench[2] : 0.0;
     return active;
   }
+  [[nodiscard]] OutputMode outputMode() const noexcept override { return mode; }
   [[nodiscard]] bool wantsHold() const noexcept override { return wants_hold; }
   void warm(const JointState& /*last_state*/) noexcept override {
     ++warms;
     warmed_at_s = monotonicSeconds();
   }
+  OutputMode mode = OutputMode::kTorque;
+  double saw_wrench = 0.0;
   bool active = false;
   bool wants_hold = false;
   int warms = 0;
@@ -139,6 +144,64 @@ TEST(ControlLoop, WarmAheadWarmsTheControllerBeforeEachCycleOnAWallClockOnly) {
     ASSERT_TRUE(replay.runOnce());
   }
   EXPECT_EQ(simulated.warms, 0);
+}
+
+/// Position drives with a wrist force/torque sensor: takes position commands only.
+class PositionArm final : public HardwareInterface {
+ public:
+  [[nodiscard]] int dof() const noexcept override { return 2; }
+  bool read(JointState& state) noexcept override {
+    state = JointState::zero(2);
+    return true;
+  }
+  bool write(std::span<const double> /*torque*/) noexcept override { return false; }
+  [[nodiscard]] bool accepts(OutputMode mode) const noexcept override {
+    return mode == OutputMode::kPosition;
+  }
+  bool writeCommand(const ActuatorCommand& command) noexcept override {
+    written_position = command.position[0];
+    return command.mode == OutputMode::kPosition;
+  }
+  bool readWrench(Vector6d& wrench) noexcept override {
+    wrench = Vector6d::Zero();
+    wrench[2] = -7.5;
+    return true;
+  }
+  double written_position = 0.0;
+};
+
+TEST(ControlLoop, RefusesAControllerWhoseOutputModeTheDrivesDoNotTake) {
+  PositionArm position_arm;
+  SwitchedController torque_controller;
+  FreeRunningClock clock;
+  try {
+    ControlLoop loop(position_arm, torque_controller, clock, {.period_s = 0.001});
+    FAIL() << "a torque controller on position drives was accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_STREQ(error.what(),
+                 "control loop: the controller's output.mode is torque but the hardware's drives "
+                 "take only position; set output.mode to one of them");
+  }
+  RecordingHardware torque_arm(true);
+  SwitchedController joint_pd;
+  joint_pd.mode = OutputMode::kJointPd;
+  EXPECT_THROW(ControlLoop(torque_arm, joint_pd, clock, {.period_s = 0.001}),
+               std::invalid_argument)
+      << "the interface's default accepts torque alone";
+}
+
+TEST(ControlLoop, WritesTheCommandInTheControllersModeAndPassesTheWrenchReading) {
+  PositionArm arm;
+  SwitchedController controller;
+  controller.mode = OutputMode::kPosition;
+  controller.active = true;
+  FreeRunningClock clock;
+  ControlLoop loop(arm, controller, clock, {.period_s = 0.001});
+  ASSERT_TRUE(loop.runOnce());
+  EXPECT_EQ(loop.stats().write_failures, 0U);
+  EXPECT_EQ(arm.written_position, 0.5);
+  EXPECT_EQ(loop.lastCommand().mode, OutputMode::kPosition);
+  EXPECT_EQ(controller.saw_wrench, -7.5) << "the sensor's reading reaches the controller";
 }
 
 }  // namespace

@@ -11,6 +11,11 @@ struct JointState {
   JointVector position;  ///< rad | m
   JointVector velocity;  ///< rad/s | m/s
   JointVector effort;    ///< measured torque, N m | N
+  /// A wrist force/torque sensor's reading, where the hardware has one and it was valid this cycle
+  /// (HardwareInterface::readWrench): the wrench the environment exerts on the tool at the TCP,
+  /// base frame, force first [N, N m].
+  Eigen::Matrix<double, 6, 1> wrench = Eigen::Matrix<double, 6, 1>::Zero();
+  bool wrench_valid = false;
 
   static JointState zero(int dof) {
     JointState state;

@@ -27,9 +27,12 @@ class CycleController {
  public:
   virtual ~CycleController() = default;
   [[nodiscard]] virtual int dof() const noexcept = 0;
-  /// One control cycle at `state`; true when `torque` (dof() long) holds a command to write.
+  /// The kind of command cycle() writes (fixed for the controller's life).
+  [[nodiscard]] virtual OutputMode outputMode() const noexcept { return OutputMode::kTorque; }
+  /// One control cycle at `state`; true when `command` (sized for dof(), in outputMode()) holds a
+  /// command to write.
   virtual bool cycle(const JointState& state, double period_s,
-                     std::span<double> torque) noexcept = 0;
+                     ActuatorCommand& command) noexcept = 0;
   /// After a cycle that wrote: the controller cannot trust the state it holds the arm at (a
   /// frozen sensor stream), so the hardware should hold it as well, with its brakes or its own
   /// position hold (HardwareInterface::hold), where it has them.
@@ -52,7 +55,9 @@ struct CycleRecord {
   bool held = false;            ///< no torque: the hardware held the arm (HardwareInterface::hold)
   bool overrun = false;         ///< compute_s exceeded the period
   const JointState* state = nullptr;
+  /// The effort of the cycle's command (ActuatorCommand::effort: the torque in torque mode).
   std::span<const double> torque;
+  const ActuatorCommand* command = nullptr;  ///< the whole command, in the controller's mode
 };
 
 class LoopObserver {
@@ -85,7 +90,8 @@ struct LoopStats {
 class ControlLoop {
  public:
   /// Throws std::invalid_argument when the hardware and the controller disagree on the number of
-  /// joints or the period is not a positive finite number.
+  /// joints, the hardware does not accept the controller's output mode, or the period is not a
+  /// positive finite number.
   ControlLoop(HardwareInterface& hardware, CycleController& controller, LoopClock& clock,
               LoopOptions options);
 
@@ -102,8 +108,10 @@ class ControlLoop {
   [[nodiscard]] double period() const noexcept { return options_.period_s; }
   /// The torque of the last cycle that wrote one [N m | N], dof() long (zeros before the first).
   [[nodiscard]] std::span<const double> lastTorque() const noexcept {
-    return {torque_.data(), static_cast<std::size_t>(torque_.size())};
+    return {command_.effort.data(), static_cast<std::size_t>(command_.effort.size())};
   }
+  /// The last cycle's whole command, in the controller's output mode.
+  [[nodiscard]] const ActuatorCommand& lastCommand() const noexcept { return command_; }
   /// Scheduled time of the next cycle on the loop's clock [s].
   [[nodiscard]] double nextCycleTime() const noexcept;
 
@@ -118,7 +126,7 @@ class ControlLoop {
   std::uint64_t next_index_ = 0;
   double start_s_ = 0.0;
   JointState state_;
-  JointVector torque_;
+  ActuatorCommand command_;
 };
 
 }  // namespace comply::hardware

@@ -5,6 +5,7 @@
 
 #include <span>
 
+#include "comply/core/actuator_command.hpp"
 #include "comply/core/commands.hpp"
 #include "comply/core/state.hpp"
 
@@ -22,6 +23,20 @@ class HardwareInterface {
   /// Joint effort command [N m | N], dof() long. Returns false when the hardware refused it.
   virtual bool write(std::span<const double> torque) noexcept = 0;
 
+  /// Which kinds of command the drives take (actuator_command.hpp). A controller whose
+  /// `output.mode` the hardware does not accept is refused before the first cycle.
+  [[nodiscard]] virtual bool accepts(OutputMode mode) const noexcept {
+    return mode == OutputMode::kTorque;
+  }
+  /// One cycle's command in any accepted mode. The default passes a torque to write() and refuses
+  /// every other mode; a backend with position, velocity or per-joint PD drives overrides it.
+  virtual bool writeCommand(const ActuatorCommand& command) noexcept {
+    if (command.mode != OutputMode::kTorque) {
+      return false;
+    }
+    return write({command.effort.data(), static_cast<std::size_t>(command.effort.size())});
+  }
+
   /// No controller output this cycle (inactive, not yet activated, deactivated): hold the arm
   /// as the robot's own brake or position hold does, instead of leaving the last torque on the
   /// motors. Called each such cycle in place of write(); the next write() releases it. False
@@ -32,8 +47,9 @@ class HardwareInterface {
   /// and UR controllers do): the host then turns the wrapper's off, so it is not added twice.
   [[nodiscard]] virtual bool compensatesGravity() const noexcept { return false; }
   /// A wrist force/torque measurement [N, N m], base frame, force first: the wrench the
-  /// environment exerts on the tool. False when the robot has no such sensor or no valid reading
-  /// this cycle. Called after read(), in the cycle.
+  /// environment exerts on the tool at the TCP, the tool's own weight already removed. False when
+  /// the robot has no such sensor or no valid reading this cycle. The control loop calls it after
+  /// every read() and hands it on in JointState::wrench.
   virtual bool readWrench(Vector6d& wrench) noexcept {
     (void)wrench;
     return false;

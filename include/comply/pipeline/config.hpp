@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "comply/core/actuator_command.hpp"
 #include "comply/core/commands.hpp"
 #include "comply/model/data.hpp"
 #include "comply/model/robot_description.hpp"
@@ -97,6 +98,30 @@ struct StabilityGuardConfig {
   double saturation_time_s = 1.0;  ///< FAULT when a joint sits at its effort limit this long; 0 off
 };
 
+/// Admittance (output.mode position or velocity): the law's torque, with the measured external
+/// wrench, drives a virtual arm (the arm's own inertia plus what is added here, without gravity
+/// or friction) whose motion the arm's position or velocity drives follow.
+struct AdmittanceConfig {
+  /// Mass added at the TCP along the task frame's x, y, z [kg]: a heavier, slower virtual arm.
+  Eigen::Vector3d added_mass_kg = Eigen::Vector3d::Zero();
+  /// Rotational inertia added at the TCP about the task frame's axes [kg m^2].
+  Eigen::Vector3d added_inertia_kg_m2 = Eigen::Vector3d::Zero();
+  double velocity_factor = 0.5;      ///< joint speed bound: this times the URDF velocity limit
+  double max_acceleration_rad_per_s2 = 20.0;  ///< joint acceleration bound [rad/s^2 | m/s^2]
+  /// The virtual arm is kept within this of the measured one per joint [rad | m]: what a blocked
+  /// or lagging arm can wind up.
+  double max_tracking_error_rad = 0.05;
+  /// velocity mode: the command is the virtual velocity plus this times (q_virtual - q) [1/s], so
+  /// the drives' own integration error does not accumulate.
+  double velocity_correction_per_s = 10.0;
+};
+
+/// What the cycle sends the drives (output.*; core/actuator_command.hpp).
+struct OutputConfig {
+  OutputMode mode = OutputMode::kTorque;
+  AdmittanceConfig admittance;
+};
+
 struct WrapperConfig {
   std::string name;    ///< controller name (top-level YAML key)
   std::string source;  ///< where it was read from (file name), for messages
@@ -144,6 +169,7 @@ struct WrapperConfig {
   PassivityConfig passivity;
   StabilityGuardConfig stability_guard;
   ObserverConfig observer;  ///< the external wrench estimate (observer.*)
+  OutputConfig output;      ///< output.*
 
   /// Initial command (gains, task frame); the pose/joint reference is seeded on activation.
   /// Sized by completeForRobot().

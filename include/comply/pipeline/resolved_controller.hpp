@@ -59,7 +59,8 @@ struct CycleParameters {
   PassivityConfig passivity;
   StabilityGuardConfig stability_guard;
   ObserverConfig observer;
-  JointVector velocity_limit;  ///< URDF [rad/s | m/s], for the stability guard
+  OutputConfig output;
+  JointVector velocity_limit;  ///< URDF [rad/s | m/s], for the stability guard and admittance
 };
 
 struct ResolvedController {

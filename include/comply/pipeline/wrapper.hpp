@@ -27,6 +27,7 @@
 #include "comply/pipeline/config.hpp"
 #include "comply/pipeline/controller.hpp"
 #include "comply/pipeline/diagnostics.hpp"
+#include "comply/pipeline/output_stage.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 
 namespace comply::pipeline {
@@ -40,8 +41,12 @@ class Wrapper final : public hardware::CycleController {
   /// configure: resolves `config` first (see resolveController()).
   explicit Wrapper(const WrapperConfig& config);
 
-  /// Non-RT. See Controller::activate(). Reactivation after deactivate() seeds again.
-  void activate(const JointState& state) { controller_.activate(state); }
+  /// Non-RT. See Controller::activate(). Reactivation after deactivate() seeds again (and, in an
+  /// admittance mode, starts the virtual arm at `state`).
+  void activate(const JointState& state) {
+    controller_.activate(state);
+    output_.activate(state);
+  }
   /// Non-RT. update() outputs nothing until the next activate().
   void deactivate() noexcept { controller_.deactivate(); }
   /// Any thread. Asks the cycle to leave FAULT; the law runs again from the next cycle with a
@@ -64,14 +69,19 @@ class Wrapper final : public hardware::CycleController {
   [[nodiscard]] MeasuredPose measuredPose() const;
 
   /// Real-time. One control cycle at measured `state`; writes dof() torques [N m] to `torque`
-  /// unless inactive. Never allocates, locks or throws.
+  /// unless inactive: the cycle of output.mode torque, whatever the mode. Never allocates, locks
+  /// or throws.
   CycleStatus update(const JointState& state, double period_s, std::span<double> torque) noexcept {
     return controller_.update(state, period_s, torque);
   }
-  /// The same for a control loop (hardware/control_loop.hpp): true when a torque was written.
-  bool cycle(const JointState& state, double period_s, std::span<double> torque) noexcept override {
-    return update(state, period_s, torque) != CycleStatus::kInactive;
+  /// One control cycle for a control loop (hardware/control_loop.hpp), in the configured
+  /// output.mode (output_stage.hpp): true when `command` holds a command to write.
+  bool cycle(const JointState& state, double period_s, ActuatorCommand& command) noexcept override {
+    return output_.cycle(controller_, state, period_s, command);
   }
+  [[nodiscard]] OutputMode outputMode() const noexcept override { return output_.mode(); }
+  /// The output stage (the virtual arm of an admittance mode).
+  [[nodiscard]] const OutputStage& output() const noexcept { return output_; }
   [[nodiscard]] bool wantsHold() const noexcept override { return controller_.holdRequested(); }
   void warm(const JointState& last_state) noexcept override { controller_.warm(last_state); }
 
@@ -84,6 +94,7 @@ class Wrapper final : public hardware::CycleController {
 
  private:
   mutable Controller controller_;  // mutable: reading its published values is a reader's update
+  OutputStage output_;
   /// Counts a rejection and returns it; counts an acceptance and moves the stamp floor.
   Verdict account(Verdict verdict, double stamp_s);
 

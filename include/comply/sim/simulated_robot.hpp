@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "comply/core/actuator_command.hpp"
 #include "comply/core/commands.hpp"
 #include "comply/hardware/hardware_interface.hpp"
 #include "comply/model/robot_description.hpp"
@@ -37,6 +38,14 @@ struct PlantOptions {
   /// and armature, which the plant's stability at 1 kHz relies on. For ablations.
   double friction_scale = 1.0;
   std::string tip_frame;  ///< TCP body for pose and tool wrench; default robot.tcp_frame
+  /// What the drives take (core/actuator_command.hpp): torque motors (the default); drives with
+  /// an onboard PD (joint_pd, which take a torque as well: kp = kd = 0); or a position or a
+  /// velocity servo, a position-controlled arm as UR, xArm or Kinova in position mode are.
+  OutputMode actuation = OutputMode::kTorque;
+  /// position, velocity: the servo's bandwidth [Hz]. Each joint runs a PID with a triple pole
+  /// there for its own inertia at home, on top of the plant's own gravity and Coriolis torque
+  /// (the vendor's model), every physics substep.
+  double servo_bandwidth_hz = 20.0;
   SceneOptions scene;
   /// Measurement noise (Gaussian, standard deviation) drawn from a generator seeded with `seed`.
   double position_noise_rad = 0.0;
@@ -57,8 +66,14 @@ class SimulatedRobot final : public hardware::HardwareInterface {
   /// Position, velocity (plus noise, if configured) and the effort applied in the last period.
   bool read(JointState& state) noexcept override;
   /// Applies `torque` [N m | N] from the next step() on, clamped to the URDF effort limit.
-  /// Refuses (returns false, keeps the previous torque) a wrong size or a non-finite entry.
+  /// Refuses (returns false, keeps the previous torque) a wrong size or a non-finite entry, and
+  /// any torque on position or velocity servos.
   bool write(std::span<const double> torque) noexcept override;
+  [[nodiscard]] bool accepts(OutputMode mode) const noexcept override;
+  /// A command in the plant's actuation (PlantOptions::actuation); the drives follow it every
+  /// physics substep until the next one. Refuses another mode, a wrong size or a non-finite
+  /// entry.
+  bool writeCommand(const ActuatorCommand& command) noexcept override;
 
   /// A brake: the controlled joints stay where they are when hold() is first called, at rest,
   /// their drives carrying gravity (the applied effort reads so), until the next write().
@@ -77,15 +92,16 @@ class SimulatedRobot final : public hardware::HardwareInterface {
   /// Sum of the contact wrenches the environment exerts on the tool (the TCP body and everything
   /// attached below it): force [N] and torque about the TCP origin [N m], base frame.
   [[nodiscard]] Vector6d toolContactWrench() const noexcept;
-  /// The tool's contact wrench, as a wrist force/torque sensor on the plant measures it.
+  /// What a wrist force/torque sensor on the plant measures: the tool's contact wrench and the
+  /// applied external wrench (setExternalWrench), the tool's own weight removed.
   bool readWrench(Vector6d& wrench) noexcept override {
-    wrench = toolContactWrench();
+    wrench = toolContactWrench() + external_wrench_;
     return true;
   }
   /// A wrench the environment exerts on the tool at the TCP from the next step() on: base frame,
   /// force first, torque about the TCP origin [N, N m] (a push by hand, a known load; the tests'
   /// ground truth for the external-wrench estimate). Zero removes it. Not a contact: it is not in
-  /// toolContactWrench().
+  /// toolContactWrench(), but the wrist sensor (readWrench) feels it.
   void setExternalWrench(const Vector6d& wrench) noexcept { external_wrench_ = wrench; }
   /// Effort the plant applied in the last period [N m | N], after clamping.
   [[nodiscard]] std::span<const double> appliedEffort() const noexcept { return applied_; }
@@ -98,8 +114,11 @@ class SimulatedRobot final : public hardware::HardwareInterface {
   void forward() noexcept;
 
  private:
+  void configureServos(const PlantOptions& options);
   void pinHeldJoints() noexcept;
   void applyExternalWrench() noexcept;
+  /// The drives' torque for this substep (joint_pd, position, velocity), into applied_.
+  void driveJoints(double since_write_s) noexcept;
 
   struct MujocoDeleter {
     void operator()(mjModel* model) const noexcept { mj_deleteModel(model); }
@@ -124,6 +143,15 @@ class SimulatedRobot final : public hardware::HardwareInterface {
   double position_noise_rad_ = 0.0;
   double velocity_noise_rad_per_s_ = 0.0;
   Vector6d external_wrench_ = Vector6d::Zero();
+
+  // Drives other than torque motors (PlantOptions::actuation).
+  OutputMode actuation_ = OutputMode::kTorque;
+  ActuatorCommand drive_command_;  ///< the last command written
+  bool drive_commanded_ = false;   ///< a command since the start or the last hold
+  double since_write_s_ = 0.0;     ///< time since that command [s]
+  std::vector<double> servo_kp_, servo_ki_, servo_kd_;  ///< per joint, from the bandwidth
+  std::vector<double> servo_integral_;                  ///< of the position error [rad s]
+  std::vector<double> velocity_reference_;              ///< velocity servo: integrated command
 };
 
 }  // namespace comply::sim

@@ -1,0 +1,144 @@
+// Output modes position and velocity: admittance. The law runs on a virtual arm (q_v, dq_v)
+// instead of the measured one; its torque, plus the measured external wrench mapped to the joints,
+// accelerates the virtual arm,
+//   (M(q_v) + J^T A J) ddq_v = tau_law(q_v, dq_v) + J(q_v)^T w_ext,
+// where A is the inertia added at the TCP (output.admittance.added_*, task frame). The virtual arm
+// has no gravity, friction or Coriolis force; the arm's own position or velocity control carries
+// those. At rest the law's spring balances the external wrench, so the arm renders the commanded
+// stiffness, whatever the inertia. Semi-implicit Euler, one step per cycle, then the bounds:
+// joint acceleration, joint speed (a share of the URDF limit), the URDF position limits.
+//
+// Drift: the virtual arm is kept within max_tracking_error_rad of the measured one per joint (an
+// arm blocked by a wall or lagging its command cannot wind the virtual arm up); in velocity mode
+// the command adds velocity_correction_per_s (q_v - q), so the drives' own integration error does
+// not accumulate. FAULT holds the measured position of the fault's first cycle (the virtual arm
+// waits there); a non-finite state passes to the controller, which faults on it.
+
+#include <algorithm>
+#include <cmath>
+
+#include "comply/pipeline/output_stage.hpp"
+
+namespace comply::pipeline {
+namespace {
+
+bool finiteState(const JointState& state, int dof) noexcept {
+  return state.position.size() == dof && state.velocity.size() == dof &&
+         state.position.allFinite() && state.velocity.allFinite();
+}
+
+}  // namespace
+
+bool OutputStage::admittance(Controller& controller, const JointState& state, double period_s,
+                             ActuatorCommand& command) noexcept {
+  const bool measured = finiteState(state, dof_);
+  if (measured) {
+    last_measured_ = state.position;
+    keepNearMeasured(state);
+  }
+  virtual_.wrench = state.wrench;
+  virtual_.wrench_valid = state.wrench_valid;
+  const std::span<double> torque(command.effort.data(),
+                                 static_cast<std::size_t>(command.effort.size()));
+  const CycleStatus status = controller.update(measured ? virtual_ : state, period_s, torque);
+  if (status == CycleStatus::kInactive) {
+    return false;
+  }
+  if (status == CycleStatus::kFault) {
+    holdMeasured(state, command);
+    return true;
+  }
+  holding_ = false;
+  integrate(controller, period_s, command);
+  writeMotion(state, command);
+  return true;
+}
+
+void OutputStage::keepNearMeasured(const JointState& state) noexcept {
+  const double bound = parameters_.output.admittance.max_tracking_error_rad;
+  for (int i = 0; i < dof_; ++i) {
+    const double error = virtual_.position[i] - state.position[i];
+    if (std::abs(error) > bound) {
+      virtual_.position[i] = state.position[i] + std::copysign(bound, error);
+      if (virtual_.velocity[i] * error > 0.0) {
+        virtual_.velocity[i] = 0.0;  // moving further away: stop winding up
+      }
+    }
+  }
+}
+
+void OutputStage::integrate(const Controller& controller, double period_s,
+                            const ActuatorCommand& command) noexcept {
+  const AdmittanceConfig& admittance = parameters_.output.admittance;
+  const model::Data& data = controller.modelData();
+  const auto n = static_cast<Eigen::Index>(dof_);
+  virtual_torque_ = command.effort.head(n);
+  if (virtual_.wrench_valid && virtual_.wrench.allFinite()) {
+    virtual_torque_.noalias() += data.jacobian.leftCols(n).transpose() * virtual_.wrench;
+  }
+  inertia_ = data.mass_matrix.topLeftCorner(n, n);
+  Eigen::Matrix3d task_to_base = Eigen::Matrix3d::Identity();
+  if (cartesian_) {
+    const auto& bus = std::get<comply_cartesian_command>(controller.lawBus());
+    task_to_base = Eigen::Quaterniond(bus.task_frame[3], bus.task_frame[0], bus.task_frame[1],
+                                      bus.task_frame[2])
+                       .normalized()
+                       .toRotationMatrix();
+  }
+  // J^T A J with A = R diag(a) R^T: (diag(sqrt a) R^T J)^T (diag(sqrt a) R^T J).
+  Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::ColMajor, 3, kMaxDof> weighted(3, n);
+  weighted.noalias() = admittance.added_mass_kg.cwiseSqrt().asDiagonal() *
+                       task_to_base.transpose() * data.jacobian.topLeftCorner(3, n);
+  inertia_.noalias() += weighted.transpose() * weighted;
+  weighted.noalias() = admittance.added_inertia_kg_m2.cwiseSqrt().asDiagonal() *
+                       task_to_base.transpose() * data.jacobian.bottomLeftCorner(3, n);
+  inertia_.noalias() += weighted.transpose() * weighted;
+  inertia_solver_.compute(inertia_);
+  acceleration_ = inertia_solver_.solve(virtual_torque_);
+
+  const SoftLimitParameters& limits = parameters_.soft_limits;
+  for (int i = 0; i < dof_; ++i) {
+    const double max_speed = admittance.velocity_factor * parameters_.velocity_limit[i];
+    const double ddq = std::clamp(std::isfinite(acceleration_[i]) ? acceleration_[i] : 0.0,
+                                  -admittance.max_acceleration_rad_per_s2,
+                                  admittance.max_acceleration_rad_per_s2);
+    double& dq = virtual_.velocity[i];
+    double& q = virtual_.position[i];
+    dq = std::clamp(dq + ddq * period_s, -max_speed, max_speed);
+    q += dq * period_s;
+    if (q < limits.lower[i] || q > limits.upper[i]) {
+      q = std::clamp(q, limits.lower[i], limits.upper[i]);
+      dq = 0.0;
+    }
+  }
+}
+
+void OutputStage::writeMotion(const JointState& state, ActuatorCommand& command) const noexcept {
+  const double correction = parameters_.output.admittance.velocity_correction_per_s;
+  for (int i = 0; i < dof_; ++i) {
+    command.position[i] = virtual_.position[i];
+    command.velocity[i] =
+        mode() == OutputMode::kVelocity
+            ? virtual_.velocity[i] + correction * (virtual_.position[i] - state.position[i])
+            : virtual_.velocity[i];
+  }
+}
+
+void OutputStage::holdMeasured(const JointState& state, ActuatorCommand& command) noexcept {
+  if (!holding_) {
+    holding_ = true;
+    hold_position_ = last_measured_;
+  }
+  virtual_.position = hold_position_;
+  virtual_.velocity.setZero(dof_);
+  const bool measured = finiteState(state, dof_);
+  const double correction = parameters_.output.admittance.velocity_correction_per_s;
+  for (int i = 0; i < dof_; ++i) {
+    command.position[i] = hold_position_[i];
+    command.velocity[i] = mode() == OutputMode::kVelocity && measured
+                              ? correction * (hold_position_[i] - state.position[i])
+                              : 0.0;
+  }
+}
+
+}  // namespace comply::pipeline
