@@ -306,8 +306,8 @@ void addOutputOptions(std::vector<Option>& table) {
   table.push_back(admittance("output.admittance.velocity_factor", "0.5",
                              "joint speed bound: this times the URDF velocity limit", 1.0, true,
                              &AdmittanceConfig::velocity_factor));
-  table.push_back(admittance("output.admittance.max_acceleration_rad_per_s2", "20.0",
-                             "joint acceleration bound", 1e4, true,
+  table.push_back(admittance("output.admittance.max_acceleration_rad_per_s2", "100.0",
+                             "joint acceleration bound: a net, far above the law's", 1e5, true,
                              &AdmittanceConfig::max_acceleration_rad_per_s2));
   table.push_back(admittance("output.admittance.max_tracking_error_rad", "0.05",
                              "the virtual arm stays this close to the measured arm",

@@ -73,10 +73,13 @@ void OutputStage::integrate(const Controller& controller, double period_s,
   const model::Data& data = controller.modelData();
   const auto n = static_cast<Eigen::Index>(dof_);
   virtual_torque_ = command.effort.head(n);
+  inertia_ = data.mass_matrix.topLeftCorner(n, n);
+  if (parameters_.payload_beyond_sensor && parameters_.payload.mass_kg > 0.0) {
+    addPayload(data);
+  }
   if (virtual_.wrench_valid && virtual_.wrench.allFinite()) {
     virtual_torque_.noalias() += data.jacobian.leftCols(n).transpose() * virtual_.wrench;
   }
-  inertia_ = data.mass_matrix.topLeftCorner(n, n);
   Eigen::Matrix3d task_to_base = Eigen::Matrix3d::Identity();
   if (cartesian_) {
     const auto& bus = std::get<comply_cartesian_command>(controller.lawBus());
@@ -96,20 +99,48 @@ void OutputStage::integrate(const Controller& controller, double period_s,
   inertia_solver_.compute(inertia_);
   acceleration_ = inertia_solver_.solve(virtual_torque_);
 
-  const SoftLimitParameters& limits = parameters_.soft_limits;
+  if (!acceleration_.allFinite()) {
+    acceleration_.setZero(dof_);
+  }
   for (int i = 0; i < dof_; ++i) {
     const double max_speed = admittance.velocity_factor * parameters_.velocity_limit[i];
-    const double ddq = std::clamp(std::isfinite(acceleration_[i]) ? acceleration_[i] : 0.0,
-                                  -admittance.max_acceleration_rad_per_s2,
+    acceleration_[i] = std::clamp(acceleration_[i], -admittance.max_acceleration_rad_per_s2,
                                   admittance.max_acceleration_rad_per_s2);
-    double& dq = virtual_.velocity[i];
+    virtual_.velocity[i] =
+        std::clamp(virtual_.velocity[i] + acceleration_[i] * period_s, -max_speed, max_speed);
+  }
+  const SoftLimitParameters& limits = parameters_.soft_limits;
+  for (int i = 0; i < dof_; ++i) {
     double& q = virtual_.position[i];
-    dq = std::clamp(dq + ddq * period_s, -max_speed, max_speed);
-    q += dq * period_s;
+    q += virtual_.velocity[i] * period_s;
     if (q < limits.lower[i] || q > limits.upper[i]) {
       q = std::clamp(q, limits.lower[i], limits.upper[i]);
-      dq = 0.0;
+      virtual_.velocity[i] = 0.0;
     }
+  }
+}
+
+void OutputStage::addPayload(const model::Data& data) noexcept {
+  // The sensor's reading carries the payload's inertial force -m a_com; it is given that force
+  // back from the virtual arm's last acceleration (what the drives follow), with the centre of
+  // mass moving by J_com = J_linear - [r]x J_angular. The payload's mass joins the virtual arm:
+  // without it, that return of force is a positive feedback of the acceleration with gain
+  // m / (the arm's own inertia along the motion), which diverges for a payload heavier than the
+  // wrist. (A law with damping ratios still damps against the arm's own inertia, so a declared
+  // payload lowers the ratio by sqrt(arm / (arm + payload)) along each direction.)
+  const auto n = static_cast<Eigen::Index>(dof_);
+  const double mass = parameters_.payload.mass_kg;
+  const Eigen::Vector3d arm = data.tip_rotation * parameters_.payload.com_in_tip;
+  Eigen::Matrix3d cross;
+  cross << 0.0, -arm.z(), arm.y(), arm.z(), 0.0, -arm.x(), -arm.y(), arm.x(), 0.0;
+  Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::ColMajor, 3, kMaxDof> com_jacobian(3, n);
+  com_jacobian.noalias() = data.jacobian.topLeftCorner(3, n);
+  com_jacobian.noalias() -= cross * data.jacobian.bottomLeftCorner(3, n);
+  inertia_.noalias() += mass * com_jacobian.transpose() * com_jacobian;
+  if (virtual_.wrench_valid) {
+    const Eigen::Vector3d inertial_force = mass * (com_jacobian * acceleration_.head(n));
+    virtual_.wrench.head<3>() += inertial_force;
+    virtual_.wrench.tail<3>() += arm.cross(inertial_force);
   }
 }
 

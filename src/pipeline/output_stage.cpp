@@ -19,6 +19,7 @@ void OutputStage::activate(const JointState& state) noexcept {
   virtual_.velocity = state.velocity;
   virtual_.effort.setZero(dof_);
   last_measured_ = state.position;
+  acceleration_.setZero(dof_);
   holding_ = false;
 }
 

@@ -121,6 +121,7 @@ std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig&
     // the virtual arm's answer to a contact. Its state is computed, not measured, so it cannot
     // go stale; the arm's own drives watch their encoders.
     parameters.gravity_compensation = false;
+    parameters.payload_beyond_sensor = config.payload_compensation;
     parameters.payload_compensation = false;
     parameters.friction.model = FrictionModel::kNone;
     parameters.torque_rate_limit.setConstant(dof, std::numeric_limits<double>::infinity());

@@ -347,6 +347,32 @@ Eigen::Isometry3d SimulatedRobot::tcpPose() const noexcept {
   return pose(base_body_).inverse() * pose(tip_body_);
 }
 
+bool SimulatedRobot::readWrench(Vector6d& wrench) noexcept {
+  mj_rnePostConstraint(model_.get(), data_.get());
+  // cfrc_int: torque then force, world axes, about the centre of mass of the robot's tree.
+  const mjtNum* spatial = data_->cfrc_int + 6 * static_cast<std::ptrdiff_t>(tip_body_);
+  const Eigen::Vector3d parent_torque(spatial[0], spatial[1], spatial[2]);
+  const Eigen::Vector3d parent_force(spatial[3], spatial[4], spatial[5]);
+  const auto point = [](const mjtNum* xyz, int body) {
+    return Eigen::Vector3d(Eigen::Map<const Eigen::Vector3d>(xyz + 3 * static_cast<std::ptrdiff_t>(body)));
+  };
+  const Eigen::Vector3d tree_com = point(data_->subtree_com, model_->body_rootid[tip_body_]);
+  const Eigen::Vector3d tcp = point(data_->xpos, tip_body_);
+  const Eigen::Vector3d tool_com = point(data_->subtree_com, tip_body_);
+  const Eigen::Vector3d weight = model_->body_subtreemass[tip_body_] *
+                                 Eigen::Map<const Eigen::Vector3d>(model_->opt.gravity);
+  // Parent + environment + weight = m a on the tool: the sensor, knowing the weight alone,
+  // reads environment - m a.
+  const Eigen::Vector3d force_world = -parent_force - weight;
+  const Eigen::Vector3d torque_world = -(parent_torque + (tree_com - tcp).cross(parent_force)) -
+                                       (tool_com - tcp).cross(weight);
+  const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> base_rotation(
+      data_->xmat + 9 * static_cast<std::ptrdiff_t>(base_body_));
+  wrench.head<3>() = base_rotation.transpose() * force_world;
+  wrench.tail<3>() = base_rotation.transpose() * torque_world;
+  return wrench.allFinite();
+}
+
 Vector6d SimulatedRobot::toolContactWrench() const noexcept {
   Vector6d wrench_world = Vector6d::Zero();
   const Eigen::Vector3d tcp_world(data_->xpos[3 * tip_body_], data_->xpos[3 * tip_body_ + 1],

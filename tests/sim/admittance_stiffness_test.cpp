@@ -44,7 +44,7 @@ Vector6d displacement(const Eigen::Isometry3d& reference, const Eigen::Isometry3
 Identified identify(OutputMode mode, OutputMode actuation) {
   sim::PlantOptions plant = plantOf(actuation);
   plant.friction_scale = actuation == OutputMode::kTorque ? 0.0 : 1.0;
-  OutputModeRig rig(outputModeConfig("ur5e", mode, kTranslational, kRotational), plant);
+  OutputModeRig<> rig(outputModeConfig("ur5e", mode, kTranslational, kRotational), plant);
   for (int cycle = 0; cycle < kSettleCycles; ++cycle) {
     EXPECT_TRUE(rig.cycle()) << "settling, cycle " << cycle << ": "
                              << rig.wrapper.diagnostics().last_fault;

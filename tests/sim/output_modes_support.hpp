@@ -34,7 +34,16 @@ inline pipeline::WrapperConfig outputModeConfig(const std::string& robot, Output
   return config;
 }
 
-/// A plant of `actuation` and a Cartesian wrapper on it, activated at home.
+/// config/sim/joint_impedance.yaml on `robot` with output.mode `mode`.
+inline pipeline::WrapperConfig jointOutputModeConfig(const std::string& robot, OutputMode mode) {
+  pipeline::WrapperConfig config = host::simControllerConfig(
+      robot, "", (kSourceDir / "config" / "sim" / "joint_impedance.yaml").string());
+  config.output.mode = mode;
+  return config;
+}
+
+/// A plant of `actuation` and a wrapper on it, activated at home.
+template <typename Command = CartesianCommand>
 struct OutputModeRig {
   OutputModeRig(const pipeline::WrapperConfig& config, const sim::PlantOptions& options)
       : plant(*config.robot_description, options), wrapper(config) {
@@ -59,7 +68,7 @@ struct OutputModeRig {
   }
 
   sim::SimulatedRobot plant;
-  pipeline::CartesianWrapper wrapper;
+  pipeline::Wrapper<Command> wrapper;
   JointState state;
   ActuatorCommand command;
 };

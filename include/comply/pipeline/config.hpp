@@ -107,7 +107,9 @@ struct AdmittanceConfig {
   /// Rotational inertia added at the TCP about the task frame's axes [kg m^2].
   Eigen::Vector3d added_inertia_kg_m2 = Eigen::Vector3d::Zero();
   double velocity_factor = 0.5;      ///< joint speed bound: this times the URDF velocity limit
-  double max_acceleration_rad_per_s2 = 20.0;  ///< joint acceleration bound [rad/s^2 | m/s^2]
+  /// Joint acceleration bound [rad/s^2 | m/s^2]: a net for a wild sensor reading, to be kept
+  /// well above what the law asks (a bound in the loop makes the virtual arm overshoot).
+  double max_acceleration_rad_per_s2 = 100.0;
   /// The virtual arm is kept within this of the measured one per joint [rad | m]: what a blocked
   /// or lagging arm can wind up.
   double max_tracking_error_rad = 0.05;

@@ -49,6 +49,7 @@ class OutputStage {
   void keepNearMeasured(const JointState& state) noexcept;
   void integrate(const Controller& controller, double period_s,
                  const ActuatorCommand& command) noexcept;
+  void addPayload(const model::Data& data) noexcept;
   void holdMeasured(const JointState& state, ActuatorCommand& command) noexcept;
   void writeMotion(const JointState& state, ActuatorCommand& command) const noexcept;
 

@@ -60,6 +60,9 @@ struct CycleParameters {
   StabilityGuardConfig stability_guard;
   ObserverConfig observer;
   OutputConfig output;
+  /// Admittance with compensation.payload: the payload hangs beyond the wrist sensor, whose
+  /// reading carries its inertial force (output_admittance.cpp).
+  bool payload_beyond_sensor = false;
   JointVector velocity_limit;  ///< URDF [rad/s | m/s], for the stability guard and admittance
 };
 

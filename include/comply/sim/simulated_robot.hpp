@@ -92,12 +92,13 @@ class SimulatedRobot final : public hardware::HardwareInterface {
   /// Sum of the contact wrenches the environment exerts on the tool (the TCP body and everything
   /// attached below it): force [N] and torque about the TCP origin [N m], base frame.
   [[nodiscard]] Vector6d toolContactWrench() const noexcept;
-  /// What a wrist force/torque sensor on the plant measures: the tool's contact wrench and the
-  /// applied external wrench (setExternalWrench), the tool's own weight removed.
-  bool readWrench(Vector6d& wrench) noexcept override {
-    wrench = toolContactWrench() + external_wrench_;
-    return true;
-  }
+  /// A wrist force/torque sensor between the TCP body and its parent, its tool's weight
+  /// compensated: the wrench the parent exerts on the tool subtree (MuJoCo's interaction force,
+  /// cfrc_int), turned into the wrench on the tool, less the tool's static weight at its centre of
+  /// mass. At rest that is the contact wrench plus the applied one (setExternalWrench); while the
+  /// tool accelerates it carries the tool's inertial force -m a, as a real sensor's reading does.
+  /// Base frame, about the TCP, force first. Real-time.
+  bool readWrench(Vector6d& wrench) noexcept override;
   /// A wrench the environment exerts on the tool at the TCP from the next step() on: base frame,
   /// force first, torque about the TCP origin [N, N m] (a push by hand, a known load; the tests'
   /// ground truth for the external-wrench estimate). Zero removes it. Not a contact: it is not in
