@@ -120,6 +120,7 @@ struct Sim::Session {
   static sim::PlantOptions plantOptions(const pipeline::ResolvedController& resolved) {
     sim::PlantOptions options;
     options.tip_frame = resolved.config.tip_frame;
+    options.actuation = resolved.parameters.output.mode;  // the drives the controller drives
     return options;
   }
 

@@ -18,10 +18,12 @@ HardwareBackend simulatedArm(const pipeline::WrapperConfig& config,
   sim::PlantOptions options;
   options.control_period_s = context.period_s;
   options.tip_frame = config.tip_frame;
+  options.actuation = config.output.mode;  // the arm has the drives the controller drives
   auto plant = std::make_shared<sim::SimulatedRobot>(*config.robot_description, options);
   HardwareBackend backend;
   backend.clock = std::make_unique<sim::SimulatedClock>(*plant, true);
-  backend.description = "a simulated " + config.robot_description->name + " (MuJoCo)";
+  backend.description = "a simulated " + config.robot_description->name + " (MuJoCo, " +
+                        std::string(toString(config.output.mode)) + " drives)";
   backend.hardware = std::move(plant);
   return backend;
 }

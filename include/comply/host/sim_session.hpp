@@ -89,6 +89,7 @@ struct SimLog {
 struct SimSummary {
   std::string robot;
   std::string plugin;
+  OutputMode output_mode = OutputMode::kTorque;  ///< what the drives took (output.mode)
   int dof = 0;
   bool cartesian = true;
   double simulated_s = 0.0;

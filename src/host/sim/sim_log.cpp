@@ -157,8 +157,12 @@ int simExitCode(const SimSummary& summary) {
 
 void printSummary(const SimSummary& summary, std::ostream& out) {
   out << std::fixed;
-  out << "robot " << summary.robot << " (" << summary.dof << " DOF), plugin " << summary.plugin
-      << ": " << std::setprecision(2) << summary.simulated_s << " s simulated in " << summary.wall_s
+  out << "robot " << summary.robot << " (" << summary.dof << " DOF), plugin " << summary.plugin;
+  if (summary.output_mode != OutputMode::kTorque) {
+    out << ", " << toString(summary.output_mode) << " drives"
+        << (isAdmittance(summary.output_mode) ? " (admittance: torques are the virtual arm's)" : "");
+  }
+  out << ": " << std::setprecision(2) << summary.simulated_s << " s simulated in " << summary.wall_s
       << " s (" << std::setprecision(1)
       << (summary.wall_s > 0 ? summary.simulated_s / summary.wall_s : 0.0) << "x real time)\n";
   if (summary.cartesian) {

@@ -25,6 +25,7 @@ using WallClock = std::chrono::steady_clock;
 
 sim::PlantOptions plantOptions(const SimRunOptions& options, const std::string& tip_frame) {
   sim::PlantOptions plant;
+  plant.actuation = options.config.output.mode;  // the arm has the drives the controller drives
   plant.substeps = options.task.substeps;
   plant.seed = options.task.seed;
   plant.scene = options.task.scene;
@@ -237,6 +238,7 @@ SimResult runWith(const SimRunOptions& options,
   SimSummary& summary = result.summary;
   summary.robot = resolved->robot.name;
   summary.plugin = resolved->config.plugin;
+  summary.output_mode = resolved->parameters.output.mode;
   sim::SimulatedRobot plant(resolved->robot, plantOptions(options, resolved->config.tip_frame));
   pipeline::Wrapper<Command> wrapper(resolved);
   const int dof = wrapper.dof();
