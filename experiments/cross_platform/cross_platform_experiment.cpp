@@ -22,15 +22,19 @@ bool reached(const CrossPlatformRow& row) {
 }
 
 /// One robot's run into <out>/<robot>/, with its plot when pictures are on.
-host::SimResult runRobot(const std::string& robot, const CrossPlatformOptions& options,
+host::SimResult runRobot(const std::string& robot, OutputMode mode,
+                         const CrossPlatformOptions& options,
                          const std::filesystem::path& config_file,
                          const std::filesystem::path& task_file) {
   host::SimRunOptions run;
   run.config = host::simControllerConfig(robot, "", config_file.string());
+  run.config.output.mode = mode;
   run.task = host::loadTaskFile(task_file, true, run.config.dof,
                                 run.config.validation.quaternion_tolerance);
   run.duration_s = options.duration_s;
-  run.out_dir = options.out_dir / robot;
+  run.out_dir = options.out_dir / (mode == OutputMode::kTorque
+                                       ? robot
+                                       : robot + "-" + std::string(toString(mode)));
   run.snapshots = options.pictures;
   run.progress = options.progress;
   host::SimResult result = host::runSimulation(run);
@@ -44,6 +48,7 @@ host::SimResult runRobot(const std::string& robot, const CrossPlatformOptions& o
 
 CrossPlatformRow rowOf(const host::SimSummary& summary) {
   return CrossPlatformRow{summary.robot,
+                          summary.output_mode,
                           summary.dof,
                           summary.final_position_error_mm,
                           summary.final_orientation_error_deg,
@@ -65,12 +70,19 @@ std::vector<CrossPlatformRow> runCrossPlatform(const CrossPlatformOptions& optio
   std::vector<CrossPlatformRow> rows;
   std::vector<sim::Image> pictures;
   for (const std::string& robot : options.robots) {
-    const host::SimResult result = runRobot(robot, options, config_file, task_file);
+    const host::SimResult result =
+        runRobot(robot, OutputMode::kTorque, options, config_file, task_file);
     const std::filesystem::path end_picture = options.out_dir / robot / "end.png";
     if (options.pictures && std::filesystem::exists(end_picture)) {
       pictures.push_back(sim::readPng(end_picture));
     }
     rows.push_back(rowOf(result.summary));
+  }
+  if (!options.modes_robot.empty()) {
+    for (const OutputMode mode : options.other_modes) {
+      rows.push_back(rowOf(
+          runRobot(options.modes_robot, mode, options, config_file, task_file).summary));
+    }
   }
   writeResults(crossPlatformTable(rows), options.out_dir);
   if (!pictures.empty()) {
@@ -83,6 +95,7 @@ ResultsTable crossPlatformTable(const std::vector<CrossPlatformRow>& rows) {
   ResultsTable table;
   table.columns = {
       Column("robot", "robot"),
+      Column("output", "drives"),
       Column("dof", "DOF"),
       Column("position_error_mm", "position error", "mm", 3),
       Column("orientation_error_deg", "orientation error", "deg", 3),
@@ -92,7 +105,8 @@ ResultsTable crossPlatformTable(const std::vector<CrossPlatformRow>& rows) {
       Column("faults", "faults").jsonOnly(),
   };
   for (const CrossPlatformRow& row : rows) {
-    table.rows.push_back({row.robot, std::int64_t{row.dof}, row.position_error_mm,
+    table.rows.push_back({row.robot, std::string(toString(row.output)), std::int64_t{row.dof},
+                          row.position_error_mm,
                           row.orientation_error_deg, row.settle_time_s, row.peak_torque_nm,
                           static_cast<std::int64_t>(row.rejections),
                           static_cast<std::int64_t>(row.faults)});
@@ -109,7 +123,8 @@ int crossPlatformCommand(const CrossPlatformOptions& options, std::ostream& out,
   bool all_reached = true;
   for (const CrossPlatformRow& row : rows) {
     if (!reached(row)) {
-      err << "comply experiment cross-platform: " << row.robot << " did not reach the target "
+      err << "comply experiment cross-platform: " << row.robot << " (" << toString(row.output)
+          << " drives) did not reach the target "
           << "within " << kReachedPositionMm << " mm / " << kReachedOrientationDeg << " deg\n";
       all_reached = false;
     }

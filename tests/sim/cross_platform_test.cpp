@@ -25,11 +25,18 @@ TEST(CrossPlatform, EveryRobotReachesTheCommonTargetAndThePicturesShowThem) {
   // Every robot on the search path (the four of the paper, and any added as a folder), in order.
   const std::vector<std::string> robots = model::availableRobots();
   ASSERT_GE(robots.size(), 4U);
-  ASSERT_EQ(rows.size(), robots.size());
+  // Then the UR5e again with each other kind of drive.
+  ASSERT_EQ(rows.size(), robots.size() + options.other_modes.size());
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const experiments::CrossPlatformRow& row = rows[i];
-    SCOPED_TRACE(row.robot);
-    EXPECT_EQ(row.robot, robots[i]);
+    SCOPED_TRACE(row.robot + " " + std::string(toString(row.output)));
+    if (i < robots.size()) {
+      EXPECT_EQ(row.robot, robots[i]);
+      EXPECT_EQ(row.output, OutputMode::kTorque);
+    } else {
+      EXPECT_EQ(row.robot, "ur5e");
+      EXPECT_EQ(row.output, options.other_modes[i - robots.size()]);
+    }
     EXPECT_EQ(row.dof, static_cast<int>(model::loadRobotDescription(row.robot).joints.size()));
     EXPECT_LT(row.position_error_mm, 2.0);
     EXPECT_LT(row.orientation_error_deg, 1.0);
@@ -45,13 +52,14 @@ TEST(CrossPlatform, EveryRobotReachesTheCommonTargetAndThePicturesShowThem) {
   ASSERT_TRUE(results.is_array());
   ASSERT_EQ(results.size(), rows.size());
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    EXPECT_EQ(results[i]["robot"], robots[i]);
+    EXPECT_EQ(results[i]["robot"], rows[i].robot);
+    EXPECT_EQ(results[i]["output"], toString(rows[i].output));
     EXPECT_DOUBLE_EQ(results[i]["position_error_mm"].get<double>(), rows[i].position_error_mm);
   }
 
-  // Side by side: one 640 x 480 frame per robot with 8 px gaps.
+  // Side by side: one 640 x 480 frame per robot (torque-driven) with 8 px gaps.
   const sim::Image combined = sim::readPng(options.out_dir / "cross_platform.png");
-  const auto frames = static_cast<int>(rows.size());
+  const auto frames = static_cast<int>(robots.size());
   EXPECT_EQ(combined.width, frames * 640 + (frames - 1) * 8);
   EXPECT_EQ(combined.height, 480);
   // Each robot's frame is mostly not sky, and the robot moved between start and end.
