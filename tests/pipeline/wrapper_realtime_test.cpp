@@ -402,6 +402,61 @@ TEST(WrapperRealtime, WarmingChangesNoTorqueAndNeitherAllocatesNorLocks) {
   EXPECT_EQ(probe.locks, 0U);
 }
 
+// ---- output modes -----------------------------------------------------------------------------
+
+// joint_pd and admittance (position, velocity) for both kinds of law: the split for a PD drive,
+// the virtual arm with a wrist wrench and a declared payload, its bounds, and FAULT on a NaN state
+// (the position hold) and back after a reset, all in counted cycles.
+TEST(WrapperRealtime, EveryOutputModeNeitherAllocatesNorLocks) {
+  for (const std::string mode : {"joint_pd", "position", "velocity"}) {
+    for (const bool cartesian : {false, true}) {
+      SCOPED_TRACE(mode + (cartesian ? " Cartesian" : " joint"));
+      const std::string lines =
+          realtimeLines("hold") +
+          "  payload:\n    enabled: true\n    mass_kg: 1.5\n    com_m: [0.0, 0.0, 0.05]\n"
+          "output:\n  mode: " +
+          mode + "\n  admittance:\n    added_mass_kg: [1.0, 2.0, 3.0]\n";
+      const auto run = [&](auto& wrapper) {
+        const JointVector home = fr3Home();
+        wrapper.activate(movingState(home, 0));
+        RealtimeProbe probe;
+        ActuatorCommand command;
+        command.resize(kFr3Dof);
+        int wrote = 0;
+        int faults = 0;
+        for (int cycle = 1; cycle <= kCycles; ++cycle) {
+          JointState state = movingState(home, cycle);
+          state.wrench_valid = true;
+          state.wrench << 3.0 * std::sin(cycle * 1e-3), 1.0, -2.0, 0.1, 0.0, 0.2;
+          if (cycle % 2500 == 1000) {
+            state.position[cycle % kFr3Dof] = std::numeric_limits<double>::quiet_NaN();
+          }
+          if (cycle % 2500 == 1100) {
+            wrapper.reset();  // uncounted: the intake's side
+          }
+          wrote += probe.measure([&] { return wrapper.cycle(state, kPeriod, command); }) ? 1 : 0;
+          faults += wrapper.diagnostics().state == WrapperState::kFault ? 1 : 0;
+          EXPECT_TRUE(command.position.allFinite() && command.velocity.allFinite() &&
+                      command.effort.allFinite())
+              << "cycle " << cycle;
+        }
+        EXPECT_EQ(wrote, kCycles) << "an active wrapper writes in every mode, FAULT included";
+        EXPECT_GT(faults, 0) << "the FAULT path did not run";
+        EXPECT_EQ(wrapper.diagnostics().state, WrapperState::kActive) << "no way back";
+        EXPECT_EQ(probe.allocations, 0U);
+        EXPECT_EQ(probe.locks, 0U);
+      };
+      if (cartesian) {
+        CartesianWrapper wrapper(fr3Config(kCartesianImpedancePlugin, lines));
+        run(wrapper);
+      } else {
+        JointWrapper wrapper(fr3Config(kJointImpedancePlugin, lines));
+        run(wrapper);
+      }
+    }
+  }
+}
+
 // ---- FAULT ------------------------------------------------------------------------------------
 
 /// Counted cycles at a moving state; returns how many were not `expected`.
