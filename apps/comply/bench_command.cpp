@@ -80,6 +80,8 @@ class ReplayHardware final : public hardware::HardwareInterface {
     return true;
   }
   bool write(std::span<const double> /*torque*/) noexcept override { return true; }
+  [[nodiscard]] bool accepts(OutputMode /*mode*/) const noexcept override { return true; }
+  bool writeCommand(const ActuatorCommand& /*command*/) noexcept override { return true; }
   [[nodiscard]] const JointState& at(int cycle) const {
     return states_[static_cast<std::size_t>(cycle)];
   }
@@ -148,6 +150,7 @@ struct Variant {
   bool recorded = false;    ///< the cycle pushed into a recording's lane
   bool observer = false;    ///< the momentum observer
   bool chunked = false;     ///< a timed chunk plays through every cycle
+  OutputMode output = OutputMode::kTorque;  ///< what the drives take (output.mode)
 };
 
 /// A chunk that lasts the whole run: 64 waypoints around the measured TCP, the stiffness and the
@@ -177,6 +180,7 @@ std::vector<BenchRow> benchWrapper(const BenchOptions& options, const std::strin
   pipeline::WrapperConfig config = host::controllerConfig(options.robot, plugin_name);
   config.initial_cartesian.damping_mode = variant.damping_mode;
   config.observer.enabled = variant.observer;
+  config.output.mode = variant.output;
   if (variant.gain_stage) {
     // Ramps and tank on, the tank far from full so that it refills (and, with ratios, bounds the
     // damping from the mass matrix) every window: the stage's dearest steady state.
@@ -340,6 +344,12 @@ std::vector<BenchRow> runBench(const BenchOptions& options, std::ostream& log) {
   // The ratio cycle with a timed chunk playing: its curve, gains and task frame every cycle.
   add(benchWrapper<CartesianCommand>(options, "cartesian_chunk", "cartesian_impedance", robot.home,
                                      log, {.chunked = true}));
+  // The ratio cycle for drives with an onboard PD (the split into kp, kd, q_d, dq_d, tau_ff), and
+  // in admittance for position drives (the virtual arm: its inertia factorised, one step).
+  add(benchWrapper<CartesianCommand>(options, "cartesian_joint_pd", "cartesian_impedance",
+                                     robot.home, log, {.output = OutputMode::kJointPd}));
+  add(benchWrapper<CartesianCommand>(options, "cartesian_admittance", "cartesian_impedance",
+                                     robot.home, log, {.output = OutputMode::kPosition}));
   return rows;
 }
 
@@ -404,14 +414,14 @@ void printBench(const BenchOptions& options, const std::vector<BenchRow>& rows, 
          "the processes;\nspread: smallest and largest p50 of one process, relative to the "
          "median\n\n";
   out << std::left << std::setw(9) << "robot" << std::right << std::setw(4) << "dof"
-      << "  " << std::left << std::setw(20) << "wrapper" << std::setw(18) << "stage" << std::right
+      << "  " << std::left << std::setw(22) << "wrapper" << std::setw(18) << "stage" << std::right
       << std::setw(9) << "mean" << std::setw(9) << "p50" << std::setw(9) << "p99" << std::setw(9)
       << "p99.9" << std::setw(9) << "max" << std::setw(17) << "p50 spread"
       << "\n";
   for (const BenchRow& row : rows) {
     const double median = row.timing.p50_us;
     out << std::left << std::setw(9) << row.robot << std::right << std::setw(4) << row.dof << "  "
-        << std::left << std::setw(20) << row.wrapper << std::setw(18) << row.stage << std::right
+        << std::left << std::setw(22) << row.wrapper << std::setw(18) << row.stage << std::right
         << std::fixed << std::setprecision(3) << std::setw(9) << row.timing.mean_us << std::setw(9)
         << row.timing.p50_us << std::setw(9) << row.timing.p99_us << std::setw(9)
         << row.timing.p999_us << std::setw(9) << row.timing.max_us << std::setprecision(1)
