@@ -7,6 +7,7 @@
 #include "chunks/chunk_experiment.hpp"
 #include "connector_mating/connector_mating_experiment.hpp"
 #include "cross_platform/cross_platform_experiment.hpp"
+#include "output_modes/output_modes_experiment.hpp"
 #include "passivity/passivity_experiment.hpp"
 #include "surface_following/surface_following_experiment.hpp"
 
@@ -18,11 +19,13 @@ struct Commands::State {
   ConnectorMatingOptions mating;
   PassivityOptions passivity;
   ChunkOptions chunks;
+  OutputModesOptions output_modes;
   CLI::App* cross_platform_command = nullptr;
   CLI::App* surface_command = nullptr;
   CLI::App* mating_command = nullptr;
   CLI::App* passivity_command = nullptr;
   CLI::App* chunks_command = nullptr;
+  CLI::App* output_modes_command = nullptr;
 };
 
 namespace {
@@ -114,6 +117,13 @@ CLI::App* addPassivity(CLI::App& experiment, PassivityOptions& options) {
   return command;
 }
 
+CLI::App* addOutputModes(CLI::App& experiment, OutputModesOptions& options) {
+  CLI::App* command = experiment.add_subcommand(
+      "output-modes", "one law on torque, position and velocity drives: stiffness, contact, tool");
+  command->add_option("--out", options.out_dir, "output folder")->capture_default_str();
+  return command;
+}
+
 CLI::App* addChunks(CLI::App& experiment, ChunkOptions& options) {
   CLI::App* command = experiment.add_subcommand(
       "chunks", "a circle from a policy's actions: stepped setpoints vs timed chunks");
@@ -151,7 +161,7 @@ Commands::~Commands() = default;
 bool Commands::parsed() const {
   return state_->cross_platform_command->parsed() || state_->surface_command->parsed() ||
          state_->mating_command->parsed() || state_->passivity_command->parsed() ||
-         state_->chunks_command->parsed();
+         state_->chunks_command->parsed() || state_->output_modes_command->parsed();
 }
 
 int Commands::run(std::ostream& out, std::ostream& err) const {
@@ -163,6 +173,9 @@ int Commands::run(std::ostream& out, std::ostream& err) const {
   }
   if (state_->chunks_command->parsed()) {
     return chunksCommand(state_->chunks, out, err);
+  }
+  if (state_->output_modes_command->parsed()) {
+    return outputModesCommand(state_->output_modes, out, err);
   }
   if (state_->surface_command->parsed()) {
     return surfaceFollowingCommand(state_->surface, out, err);
@@ -180,6 +193,7 @@ Commands addCommands(CLI::App& app) {
   state->mating_command = addConnectorMating(*experiment, state->mating);
   state->passivity_command = addPassivity(*experiment, state->passivity);
   state->chunks_command = addChunks(*experiment, state->chunks);
+  state->output_modes_command = addOutputModes(*experiment, state->output_modes);
   return Commands(std::move(state));
 }
 

@@ -10,10 +10,16 @@
 #include <cstdio>
 #include <string>
 
-#include "output_modes_support.hpp"
+#include "output_modes/output_mode_rig.hpp"
+#include "output_modes/output_modes_experiment.hpp"
 
 namespace comply::testing {
 namespace {
+
+using experiments::kRigPeriodS;
+using experiments::OutputModeRig;
+using experiments::outputModeConfig;
+using experiments::plantOf;
 
 constexpr int kCycles = 3000;
 constexpr double kRadiusM = 0.05;
@@ -23,7 +29,7 @@ constexpr double kFrequencyHz = 0.5;
 /// reference swinging about `home`.
 CartesianCommand targetAt(int cycle, const Eigen::Vector3d& centre,
                           const Eigen::Quaterniond& orientation, int dof) {
-  const double t = cycle * kOutputPeriodS;
+  const double t = cycle * kRigPeriodS;
   const double phase = 2.0 * M_PI * kFrequencyHz * t;
   CartesianCommand target = CartesianCommand::zero(dof);
   target.fields = CommandField::kPosition;
@@ -34,7 +40,7 @@ CartesianCommand targetAt(int cycle, const Eigen::Vector3d& centre,
 }
 
 JointCommand targetAt(int cycle, const JointVector& home) {
-  const double t = cycle * kOutputPeriodS;
+  const double t = cycle * kRigPeriodS;
   JointCommand target = JointCommand::zero(static_cast<int>(home.size()));
   target.fields = CommandField::kPosition;
   target.stamp_s = t;
@@ -73,8 +79,8 @@ void expectSplitIsExact(const pipeline::WrapperConfig& pd_config) {
     ASSERT_TRUE(rig.wrapper.submit(target).accepted);
     ASSERT_TRUE(torque_mode.submit(target).accepted);
     rig.read();
-    ASSERT_TRUE(rig.wrapper.cycle(rig.state, kOutputPeriodS, rig.command));
-    ASSERT_EQ(torque_mode.update(rig.state, kOutputPeriodS, {torque.data(), std::size_t(dof)}),
+    ASSERT_TRUE(rig.wrapper.cycle(rig.state, kRigPeriodS, rig.command));
+    ASSERT_EQ(torque_mode.update(rig.state, kRigPeriodS, {torque.data(), std::size_t(dof)}),
               pipeline::CycleStatus::kOk);
     ASSERT_TRUE(rig.plant.writeCommand(rig.command));
     rig.plant.step();
@@ -87,20 +93,18 @@ void expectSplitIsExact(const pipeline::WrapperConfig& pd_config) {
 }
 
 TEST(JointPd, TheDrivesLawAtTheSampleIsTheJointLawsTorque) {
-  expectSplitIsExact<JointCommand>(jointOutputModeConfig("ur5e", OutputMode::kJointPd));
+  expectSplitIsExact<JointCommand>(outputModeConfig("ur5e", OutputMode::kJointPd, false));
 }
 
 TEST(JointPd, TheDrivesLawAtTheSampleIsTheCartesianLawsTorque) {
-  pipeline::WrapperConfig config = simCartesianConfig("ur5e");
-  config.output.mode = OutputMode::kJointPd;
-  config.initial_cartesian.task_frame = turnedTaskFrame();
+  pipeline::WrapperConfig config = outputModeConfig("ur5e", OutputMode::kJointPd);
+  config.initial_cartesian.task_frame = experiments::identificationTaskFrame();
   expectSplitIsExact<CartesianCommand>(config);
 }
 
 /// RMS distance [m] of the plant's TCP from the circle's target over the run's last two periods.
 double trackingRmsM(OutputMode mode) {
-  pipeline::WrapperConfig config = simCartesianConfig("ur5e");
-  config.output.mode = mode;
+  const pipeline::WrapperConfig config = outputModeConfig("ur5e", mode);
   sim::PlantOptions options = plantOf(mode);
   options.substeps = 4;
   OutputModeRig<> rig(config, options);
