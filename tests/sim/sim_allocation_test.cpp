@@ -1,8 +1,12 @@
 // The simulated hardware's cycle (read, write, step) allocates no heap memory, with contact in the
-// scene and measurement noise on: a control loop on the simulator is as allocation-free as on a
-// real arm. Counted by the interposed allocator of tests/support.
+// scene and measurement noise on, for torque motors and for every other kind of drive with the
+// wrist sensor read: a control loop on the simulator is as allocation-free as on a real arm.
+// Counted by the interposed allocator of tests/support.
 
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
 
 #include "allocation_counter.hpp"
 #include "comply/model/robot_description.hpp"
@@ -33,6 +37,36 @@ TEST(SimulatedRobotAllocation, ReadWriteStepAllocateNothing) {
   }
   EXPECT_EQ(counter.stop(), 0U);
   EXPECT_GT(robot.simTime(), 1.99);  // the loop did run
+}
+
+TEST(SimulatedRobotAllocation, EveryKindOfDriveAndTheWristSensorAllocateNothing) {
+  for (const OutputMode mode : {OutputMode::kJointPd, OutputMode::kPosition,
+                                OutputMode::kVelocity}) {
+    SCOPED_TRACE(std::string(toString(mode)));
+    sim::PlantOptions options;
+    options.actuation = mode;
+    options.substeps = 2;
+    sim::SimulatedRobot robot(model::loadRobotDescription("ur5e"), options);
+    JointState state = JointState::zero(robot.dof());
+    robot.read(state);
+    ActuatorCommand command;
+    command.resize(robot.dof());
+    command.mode = mode;
+    command.position = state.position;
+    command.stiffness.setConstant(50.0);
+    Vector6d wrench;
+    AllocationCounter counter;
+    counter.start();
+    for (int cycle = 0; cycle < 1000; ++cycle) {
+      robot.read(state);
+      (void)robot.readWrench(wrench);
+      command.velocity[0] = 0.1 * std::sin(cycle * 1e-2);
+      robot.writeCommand(command);
+      robot.step();
+    }
+    EXPECT_EQ(counter.stop(), 0U);
+    EXPECT_TRUE(wrench.allFinite());
+  }
 }
 
 }  // namespace

@@ -187,6 +187,105 @@ TEST(SimulatedRobot, ProbeForceEqualsStiffnessTimesPenetration) {
   EXPECT_FALSE(result.log.passivityEnabled());
 }
 
+// The drives a plant's actuation gives it: a position servo settles on a step of its command, a
+// velocity servo moves at its command, a PD drive applies kp (q_d - q) + kd (dq_d - dq) + tau_ff;
+// each refuses the other modes (and torque, except the PD drive).
+TEST(SimulatedRobot, PositionVelocityAndPdDrivesFollowTheirCommands) {
+  const model::RobotDescription ur5e = model::loadRobotDescription("ur5e");
+  const auto command_for = [](sim::SimulatedRobot& robot, OutputMode mode) {
+    JointState state = JointState::zero(robot.dof());
+    robot.read(state);
+    ActuatorCommand command;
+    command.resize(robot.dof());
+    command.mode = mode;
+    command.position = state.position;
+    return std::make_pair(command, state);
+  };
+  for (const OutputMode mode : {OutputMode::kPosition, OutputMode::kVelocity}) {
+    SCOPED_TRACE(std::string(toString(mode)));
+    sim::PlantOptions options;
+    options.actuation = mode;
+    sim::SimulatedRobot robot(ur5e, options);
+    EXPECT_TRUE(robot.accepts(mode));
+    EXPECT_FALSE(robot.accepts(OutputMode::kTorque));
+    EXPECT_FALSE(robot.accepts(OutputMode::kJointPd));
+    auto [command, start] = command_for(robot, mode);
+    const std::vector<double> torque(static_cast<std::size_t>(robot.dof()), 0.0);
+    EXPECT_FALSE(robot.write(torque)) << "servos take no torque";
+    command.mode = OutputMode::kJointPd;
+    EXPECT_FALSE(robot.writeCommand(command)) << "nor another mode";
+    command.mode = mode;
+    if (mode == OutputMode::kPosition) {
+      command.position[1] += 0.1;  // a step of 0.1 rad on the shoulder
+    } else {
+      command.velocity[1] = 0.1;  // 0.1 rad/s for 1 s
+    }
+    JointState state = start;
+    for (int cycle = 0; cycle < 1000; ++cycle) {
+      ASSERT_TRUE(robot.writeCommand(command));
+      robot.step();
+    }
+    robot.read(state);
+    EXPECT_NEAR(state.position[1] - start.position[1], 0.1, 2e-3);
+    EXPECT_NEAR(state.position[0], start.position[0], 1e-3) << "the other joints held";
+  }
+  sim::PlantOptions options;
+  options.actuation = OutputMode::kJointPd;
+  sim::SimulatedRobot robot(ur5e, options);
+  EXPECT_TRUE(robot.accepts(OutputMode::kJointPd));
+  EXPECT_TRUE(robot.accepts(OutputMode::kTorque)) << "a PD drive given a torque alone";
+  auto [command, start] = command_for(robot, OutputMode::kJointPd);
+  command.position[2] += 0.05;
+  command.stiffness.setConstant(400.0);
+  command.damping.setConstant(20.0);
+  command.effort.setConstant(1.5);
+  ASSERT_TRUE(robot.writeCommand(command));
+  robot.step();
+  // One substep: the applied effort is the drive's law at the state it started from.
+  const std::span<const double> applied = robot.appliedEffort();
+  EXPECT_NEAR(applied[2], 400.0 * 0.05 + 1.5, 1e-9);
+  EXPECT_NEAR(applied[0], 1.5, 1e-9);
+  command.position[0] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(robot.writeCommand(command)) << "a non-finite command is refused";
+}
+
+// The wrist sensor: at rest it reads the applied wrench (the tool's weight compensated); while
+// the tool accelerates it reads its inertial force too, as a real sensor does.
+TEST(SimulatedRobot, TheWristSensorReadsTheAppliedWrenchAndTheToolsInertia) {
+  sim::PlantOptions options;
+  options.actuation = OutputMode::kPosition;
+  options.scene.tool = kSourceDir / "examples" / "sim" / "payload_3kg.xml";
+  sim::SimulatedRobot robot(model::loadRobotDescription("ur5e"), options);
+  JointState state = JointState::zero(robot.dof());
+  robot.read(state);
+  ActuatorCommand hold;
+  hold.resize(robot.dof());
+  hold.mode = OutputMode::kPosition;
+  hold.position = state.position;
+  Vector6d applied;
+  applied << 5.0, -3.0, 8.0, 0.4, 0.2, -0.3;
+  robot.setExternalWrench(applied);
+  for (int cycle = 0; cycle < 2000; ++cycle) {
+    ASSERT_TRUE(robot.writeCommand(hold));
+    robot.step();
+  }
+  Vector6d reading;
+  ASSERT_TRUE(robot.readWrench(reading));
+  EXPECT_LT((reading - applied).head<3>().norm(), 0.05) << reading.transpose();
+  EXPECT_LT((reading - applied).tail<3>().norm(), 0.01) << reading.transpose();
+  // Swing the shoulder: the 3 kg tool accelerates and the reading leaves the applied wrench.
+  ActuatorCommand swing = hold;
+  swing.position[0] += 0.3;
+  double largest_inertial_n = 0.0;
+  for (int cycle = 0; cycle < 200; ++cycle) {
+    ASSERT_TRUE(robot.writeCommand(swing));
+    robot.step();
+    ASSERT_TRUE(robot.readWrench(reading));
+    largest_inertial_n = std::max(largest_inertial_n, (reading - applied).head<3>().norm());
+  }
+  EXPECT_GT(largest_inertial_n, 1.0);
+}
+
 TEST(SimulatedRobot, ToolFragmentWithoutMujocoincludeRootIsRefused) {
   const std::filesystem::path file =
       std::filesystem::temp_directory_path() / "comply_bad_tool_fragment.xml";
