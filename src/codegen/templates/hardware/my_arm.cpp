@@ -124,7 +124,11 @@ class MyArm final : public comply::hardware::HardwareInterface {
 
   // A robot with a wrist force/torque sensor also overrides
   //   bool readWrench(comply::Vector6d& wrench) noexcept
-  // to report it (base frame, force first); the default says there is none.
+  // to report it (base frame, force first); the default says there is none. Drives that take a
+  // position, a velocity or a per-joint PD command instead of a torque override
+  //   bool accepts(comply::OutputMode mode) const noexcept
+  //   bool writeCommand(const comply::ActuatorCommand& command) noexcept
+  // (controllers then set output.mode: joint_pd, position or velocity).
 
  private:
   int dof_;
