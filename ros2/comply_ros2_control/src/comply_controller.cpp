@@ -39,6 +39,31 @@ std::size_t indexOf(const std::vector<Loaned>& interfaces, const std::string& jo
   throw std::runtime_error("no interface " + joint + "/" + kind + " was loaned");
 }
 
+/// The command interfaces an output mode claims per joint, and the command field each carries.
+struct CommandInterface {
+  const char* kind;
+  comply::JointVector comply::ActuatorCommand::*field;
+};
+
+std::vector<CommandInterface> commandInterfacesOf(comply::OutputMode mode) {
+  using comply::ActuatorCommand;
+  switch (mode) {
+    case comply::OutputMode::kJointPd:
+      return {{"position", &ActuatorCommand::position},
+              {"velocity", &ActuatorCommand::velocity},
+              {"effort", &ActuatorCommand::effort},
+              {"stiffness", &ActuatorCommand::stiffness},
+              {"damping", &ActuatorCommand::damping}};
+    case comply::OutputMode::kPosition:
+      return {{"position", &ActuatorCommand::position}};
+    case comply::OutputMode::kVelocity:
+      return {{"velocity", &ActuatorCommand::velocity}};
+    case comply::OutputMode::kTorque:
+      break;
+  }
+  return {{"effort", &ActuatorCommand::effort}};
+}
+
 /// A publisher's GID folded into the gate's 64-bit writer identity (FNV-1a).
 template <typename Gid>
 std::uint64_t publisherId(const Gid& gid) {
@@ -64,8 +89,11 @@ CallbackReturn ComplyController<Command>::on_init() {
 template <typename Command>
 InterfaceConfiguration ComplyController<Command>::command_interface_configuration() const {
   InterfaceConfiguration configuration{interface_configuration_type::INDIVIDUAL, {}};
+  const comply::OutputMode mode = wrapper_ ? wrapper_->outputMode() : comply::OutputMode::kTorque;
   for (const auto& joint : joints_) {
-    configuration.names.push_back(joint + "/effort");
+    for (const CommandInterface& interface : commandInterfacesOf(mode)) {
+      configuration.names.push_back(joint + "/" + interface.kind);
+    }
   }
   return configuration;
 }
@@ -159,6 +187,7 @@ CallbackReturn ComplyController<Command>::on_configure(const rclcpp_lifecycle::S
   }
   const int dof = wrapper_->dof();
   torque_.assign(static_cast<std::size_t>(dof), 0.0);
+  command_.resize(dof);
   RCLCPP_INFO(get_node()->get_logger(), "configured: plugin %s on %d joints (%s)",
               wrapper_->controller().resolved().plugin->path().c_str(), dof,
               wrapper_->controller().resolved().robot.name.c_str());
@@ -168,15 +197,22 @@ CallbackReturn ComplyController<Command>::on_configure(const rclcpp_lifecycle::S
 template <typename Command>
 bool ComplyController<Command>::mapInterfaces() {
   const std::size_t dof = joints_.size();
+  const std::vector<CommandInterface> claimed = commandInterfacesOf(wrapper_->outputMode());
   position_index_.resize(dof);
   velocity_index_.resize(dof);
   effort_index_.resize(dof);
-  command_index_.resize(dof);
+  command_index_.clear();
+  command_fields_.clear();
+  for (const CommandInterface& interface : claimed) {
+    command_fields_.push_back(interface.field);
+  }
   for (std::size_t i = 0; i < dof; ++i) {
     position_index_[i] = indexOf(state_interfaces_, joints_[i], "position");
     velocity_index_[i] = indexOf(state_interfaces_, joints_[i], "velocity");
     effort_index_[i] = indexOf(state_interfaces_, joints_[i], "effort");
-    command_index_[i] = indexOf(command_interfaces_, joints_[i], "effort");
+    for (const CommandInterface& interface : claimed) {
+      command_index_.push_back(indexOf(command_interfaces_, joints_[i], interface.kind));
+    }
   }
   return true;
 }
@@ -234,11 +270,18 @@ controller_interface::return_type ComplyController<Command>::update(
   const double start_s = comply::hardware::monotonicSeconds();
   readState();
   const double period_s = period.seconds() > 0.0 ? period.seconds() : nominal_period_s_;
-  const auto status = wrapper_->update(state_, period_s, torque_);
-  if (status != comply::pipeline::CycleStatus::kInactive) {
-    for (std::size_t i = 0; i < torque_.size(); ++i) {
-      command_interfaces_[command_index_[i]].set_value(torque_[i]);
+  // The cycle in the file's output.mode: a torque, a per-joint PD split or an admittance step.
+  if (wrapper_->cycle(state_, period_s, command_)) {
+    const std::size_t fields = command_fields_.size();
+    for (std::size_t i = 0; i < joints_.size(); ++i) {
+      for (std::size_t k = 0; k < fields; ++k) {
+        command_interfaces_[command_index_[i * fields + k]].set_value(
+            (command_.*command_fields_[k])[static_cast<Eigen::Index>(i)]);
+      }
     }
+  }
+  for (std::size_t i = 0; i < torque_.size(); ++i) {
+    torque_[i] = command_.effort[static_cast<Eigen::Index>(i)];
   }
   gate_->noteCycle(cycle_, wrapper_->controller().stampInForce(),
                    [&time] { return time.nanoseconds(); });

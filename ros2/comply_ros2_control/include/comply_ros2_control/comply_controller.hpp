@@ -5,8 +5,12 @@
 //                  robot, plugin, model, gains and limits are resolved once; errors name the
 //                  parameter and the controller stays unconfigured
 //   on_activate    the reference is seeded from the measured state (comply's activation)
-//   update         one comply cycle: state interfaces -> wrapper -> effort command interfaces;
-//                  no allocation, no lock, no exception (the state publisher is a try-lock)
+//   update         one comply cycle: state interfaces -> wrapper -> command interfaces; no
+//                  allocation, no lock, no exception (the state publisher is a try-lock)
+//
+// The command interfaces claimed follow the file's output.mode (docs/output-modes.md): torque
+// <joint>/effort; position <joint>/position; velocity <joint>/velocity; joint_pd <joint>/position,
+// /velocity, /effort (tau_ff), /stiffness (kp) and /damping (kd).
 //   on_deactivate  the wrapper stops; the last torque stays on the interfaces until the
 //                  hardware or the next controller takes them
 //
@@ -36,6 +40,7 @@
 #include <string>
 #include <vector>
 
+#include "comply/core/actuator_command.hpp"
 #include "comply/core/commands.hpp"
 #include "comply/core/state.hpp"
 #include "comply/pipeline/command_gate.hpp"
@@ -101,8 +106,12 @@ class ComplyController : public controller_interface::ControllerInterface {
   std::vector<std::string> joints_;
   // Index of each joint's interface in state_interfaces_ / command_interfaces_, in joints_ order:
   // ros2_control loans them in its own order.
-  std::vector<std::size_t> position_index_, velocity_index_, effort_index_, command_index_;
+  std::vector<std::size_t> position_index_, velocity_index_, effort_index_;
+  // The command interfaces of joint i, field k at i * command_fields_.size() + k.
+  std::vector<std::size_t> command_index_;
+  std::vector<comply::JointVector comply::ActuatorCommand::*> command_fields_;
   comply::JointState state_;
+  comply::ActuatorCommand command_;
   std::vector<double> torque_;
   std::uint64_t cycle_ = 0;
   std::uint64_t state_every_cycles_ = 10;
