@@ -32,9 +32,8 @@ host::SimResult runRobot(const std::string& robot, OutputMode mode,
   run.task = host::loadTaskFile(task_file, true, run.config.dof,
                                 run.config.validation.quaternion_tolerance);
   run.duration_s = options.duration_s;
-  run.out_dir = options.out_dir / (mode == OutputMode::kTorque
-                                       ? robot
-                                       : robot + "-" + std::string(toString(mode)));
+  run.out_dir = options.out_dir /
+                (mode == OutputMode::kTorque ? robot : robot + "-" + std::string(toString(mode)));
   run.snapshots = options.pictures;
   run.progress = options.progress;
   host::SimResult result = host::runSimulation(run);
@@ -80,8 +79,8 @@ std::vector<CrossPlatformRow> runCrossPlatform(const CrossPlatformOptions& optio
   }
   if (!options.modes_robot.empty()) {
     for (const OutputMode mode : options.other_modes) {
-      rows.push_back(rowOf(
-          runRobot(options.modes_robot, mode, options, config_file, task_file).summary));
+      rows.push_back(
+          rowOf(runRobot(options.modes_robot, mode, options, config_file, task_file).summary));
     }
   }
   writeResults(crossPlatformTable(rows), options.out_dir);
@@ -106,9 +105,8 @@ ResultsTable crossPlatformTable(const std::vector<CrossPlatformRow>& rows) {
   };
   for (const CrossPlatformRow& row : rows) {
     table.rows.push_back({row.robot, std::string(toString(row.output)), std::int64_t{row.dof},
-                          row.position_error_mm,
-                          row.orientation_error_deg, row.settle_time_s, row.peak_torque_nm,
-                          static_cast<std::int64_t>(row.rejections),
+                          row.position_error_mm, row.orientation_error_deg, row.settle_time_s,
+                          row.peak_torque_nm, static_cast<std::int64_t>(row.rejections),
                           static_cast<std::int64_t>(row.faults)});
   }
   return table;

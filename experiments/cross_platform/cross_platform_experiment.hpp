@@ -37,7 +37,7 @@ struct CrossPlatformRow {
   int dof = 0;
   double position_error_mm = 0.0;  ///< at the end, vs the common target
   double orientation_error_deg = 0.0;
-  double settle_time_s = 0.0;  ///< after the reference stops, to 1 mm / 0.5 deg; NaN: never
+  double settle_time_s = 0.0;   ///< after the reference stops, to 1 mm / 0.5 deg; NaN: never
   double peak_torque_nm = 0.0;  ///< admittance: the virtual arm's
   std::uint64_t rejections = 0;
   std::uint64_t faults = 0;

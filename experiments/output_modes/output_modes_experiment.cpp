@@ -68,8 +68,7 @@ CartesianCommand along(int cycle, int start, int end, const Eigen::Vector3d& fro
   return target;
 }
 
-void writeTrace(const TimeTrace& trace, const char* value_name,
-                const std::filesystem::path& file) {
+void writeTrace(const TimeTrace& trace, const char* value_name, const std::filesystem::path& file) {
   std::ofstream out(file);
   require(static_cast<bool>(out), "cannot write " + file.string());
   out << "time_s," << value_name << "\n";
@@ -82,11 +81,11 @@ void writeTrace(const TimeTrace& trace, const char* value_name,
 
 pipeline::WrapperConfig outputModeConfig(const std::string& robot, OutputMode mode,
                                          bool cartesian) {
-  pipeline::WrapperConfig config = host::simControllerConfig(
-      robot, "",
-      sourcePath(cartesian ? "config/sim/cartesian_impedance.yaml"
-                           : "config/sim/joint_impedance.yaml")
-          .string());
+  pipeline::WrapperConfig config =
+      host::simControllerConfig(robot, "",
+                                sourcePath(cartesian ? "config/sim/cartesian_impedance.yaml"
+                                                     : "config/sim/joint_impedance.yaml")
+                                    .string());
   config.output.mode = mode;
   return config;
 }
@@ -170,9 +169,9 @@ ContactResult pressOnTable(OutputMode mode) {
   result.expected_n = kPressStiffness * kPenetrationM;
   int first_touch = -1;
   for (int cycle = 0; cycle < kPressCycles; ++cycle) {
-    const CartesianCommand target =
-        cycle < 3000 ? along(cycle, 0, 2500, home.tcp_position, above, down, dof)
-                     : along(cycle, 3000, 4000, above, pressed, down, dof);
+    const CartesianCommand target = cycle < 3000
+                                        ? along(cycle, 0, 2500, home.tcp_position, above, down, dof)
+                                        : along(cycle, 3000, 4000, above, pressed, down, dof);
     const pipeline::Verdict verdict = rig.wrapper.submit(target);
     require(verdict.accepted, "contact, " + std::string(toString(mode)) + ": " + verdict.message);
     require(rig.cycle(), "contact, " + std::string(toString(mode)) + ": " +
@@ -291,10 +290,9 @@ ResultsTable outputModesTable(const std::vector<OutputModesRow>& rows) {
     for (const double k : row.stiffness.rendered) {
       values.emplace_back(k);
     }
-    values.insert(values.end(),
-                  {row.stiffness.worstErrorPercent(), row.contact.peak_n, row.contact.final_n,
-                   row.contact.expected_n, row.contact.settling_s,
-                   std::int64_t{row.contact.contact_losses}});
+    values.insert(values.end(), {row.stiffness.worstErrorPercent(), row.contact.peak_n,
+                                 row.contact.final_n, row.contact.expected_n,
+                                 row.contact.settling_s, std::int64_t{row.contact.contact_losses}});
     table.rows.push_back(values);
   }
   return table;

@@ -56,7 +56,7 @@ struct ContactResult {
 
 struct ToolStepResult {
   double overshoot_mm = 0.0;
-  int crossings = 0;  ///< of the target, after the step
+  int crossings = 0;                     ///< of the target, after the step
   double residual_speed_mm_per_s = 0.0;  ///< largest TCP speed in the last 0.5 s
   TimeTrace position;                    ///< TCP along the step minus the target [mm] from it [s]
 };

@@ -310,11 +310,11 @@ void addOutputOptions(std::vector<Option>& table) {
                              "joint acceleration bound: a net, far above the law's", 1e5, true,
                              &AdmittanceConfig::max_acceleration_rad_per_s2));
   table.push_back(admittance("output.admittance.max_tracking_error_rad", "0.05",
-                             "the virtual arm stays this close to the measured arm",
-                             10.0, true, &AdmittanceConfig::max_tracking_error_rad));
+                             "the virtual arm stays this close to the measured arm", 10.0, true,
+                             &AdmittanceConfig::max_tracking_error_rad));
   table.push_back(admittance("output.admittance.velocity_correction_per_s", "10.0",
-                             "velocity mode: 1/s x (virtual - measured), added",
-                             1e3, false, &AdmittanceConfig::velocity_correction_per_s));
+                             "velocity mode: 1/s x (virtual - measured), added", 1e3, false,
+                             &AdmittanceConfig::velocity_correction_per_s));
 }
 
 // The sections are added in the order the YAML file prints them; the order is part of the file.

@@ -34,8 +34,7 @@ void OutputStage::cartesianJointGains(const Controller& controller, const JointS
   const auto& bus = std::get<comply_cartesian_command>(controller.lawBus());
   const model::Data& data = controller.modelData();
   const Eigen::Matrix3d task_to_base =
-      Eigen::Quaterniond(bus.task_frame[3], bus.task_frame[0], bus.task_frame[1],
-                         bus.task_frame[2])
+      Eigen::Quaterniond(bus.task_frame[3], bus.task_frame[0], bus.task_frame[1], bus.task_frame[2])
           .normalized()
           .toRotationMatrix();
   double mean_ratio = 0.0;
@@ -59,8 +58,7 @@ void OutputStage::cartesianJointGains(const Controller& controller, const JointS
   }
 }
 
-void OutputStage::splitForJointPd(const Controller& controller, bool fault,
-                                  const JointState& state,
+void OutputStage::splitForJointPd(const Controller& controller, bool fault, const JointState& state,
                                   ActuatorCommand& command) const noexcept {
   const bool finite = state.position.size() == dof_ && state.velocity.size() == dof_ &&
                       state.position.allFinite() && state.velocity.allFinite();

@@ -258,7 +258,8 @@ void SimulatedRobot::driveJoints(double since_write_s) noexcept {
                drive_command_.effort[row];
     } else {
       // The reference moves on with its velocity between two commands, as a servo interpolates.
-      double reference = drive_command_.position[row] + drive_command_.velocity[row] * since_write_s;
+      double reference =
+          drive_command_.position[row] + drive_command_.velocity[row] * since_write_s;
       if (actuation_ == OutputMode::kVelocity) {
         velocity_reference_[i] += drive_command_.velocity[row] * dt;
         reference = velocity_reference_[i];
@@ -354,18 +355,19 @@ bool SimulatedRobot::readWrench(Vector6d& wrench) noexcept {
   const Eigen::Vector3d parent_torque(spatial[0], spatial[1], spatial[2]);
   const Eigen::Vector3d parent_force(spatial[3], spatial[4], spatial[5]);
   const auto point = [](const mjtNum* xyz, int body) {
-    return Eigen::Vector3d(Eigen::Map<const Eigen::Vector3d>(xyz + 3 * static_cast<std::ptrdiff_t>(body)));
+    return Eigen::Vector3d(
+        Eigen::Map<const Eigen::Vector3d>(xyz + 3 * static_cast<std::ptrdiff_t>(body)));
   };
   const Eigen::Vector3d tree_com = point(data_->subtree_com, model_->body_rootid[tip_body_]);
   const Eigen::Vector3d tcp = point(data_->xpos, tip_body_);
   const Eigen::Vector3d tool_com = point(data_->subtree_com, tip_body_);
-  const Eigen::Vector3d weight = model_->body_subtreemass[tip_body_] *
-                                 Eigen::Map<const Eigen::Vector3d>(model_->opt.gravity);
+  const Eigen::Vector3d weight =
+      model_->body_subtreemass[tip_body_] * Eigen::Map<const Eigen::Vector3d>(model_->opt.gravity);
   // Parent + environment + weight = m a on the tool: the sensor, knowing the weight alone,
   // reads environment - m a.
   const Eigen::Vector3d force_world = -parent_force - weight;
-  const Eigen::Vector3d torque_world = -(parent_torque + (tree_com - tcp).cross(parent_force)) -
-                                       (tool_com - tcp).cross(weight);
+  const Eigen::Vector3d torque_world =
+      -(parent_torque + (tree_com - tcp).cross(parent_force)) - (tool_com - tcp).cross(weight);
   const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> base_rotation(
       data_->xmat + 9 * static_cast<std::ptrdiff_t>(base_body_));
   wrench.head<3>() = base_rotation.transpose() * force_world;

@@ -185,8 +185,7 @@ TEST(ControlLoop, RefusesAControllerWhoseOutputModeTheDrivesDoNotTake) {
   RecordingHardware torque_arm(true);
   SwitchedController joint_pd;
   joint_pd.mode = OutputMode::kJointPd;
-  EXPECT_THROW(ControlLoop(torque_arm, joint_pd, clock, {.period_s = 0.001}),
-               std::invalid_argument)
+  EXPECT_THROW(ControlLoop(torque_arm, joint_pd, clock, {.period_s = 0.001}), std::invalid_argument)
       << "the interface's default accepts torque alone";
 }
 

@@ -21,8 +21,7 @@ void expectRendered(OutputMode mode) {
     EXPECT_NEAR(found.rendered[axis], found.commanded[axis], 0.1 * found.commanded[axis])
         << toString(mode) << " drives, task axis " << axes[axis];
   }
-  ::testing::Test::RecordProperty("worst_error_percent",
-                                  std::to_string(found.worstErrorPercent()));
+  ::testing::Test::RecordProperty("worst_error_percent", std::to_string(found.worstErrorPercent()));
 }
 
 TEST(RenderedStiffness, AdmittanceOnPositionServosRendersTheCommandedStiffness) {

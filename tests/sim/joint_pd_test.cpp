@@ -17,8 +17,8 @@ namespace comply::testing {
 namespace {
 
 using experiments::kRigPeriodS;
-using experiments::OutputModeRig;
 using experiments::outputModeConfig;
+using experiments::OutputModeRig;
 using experiments::plantOf;
 
 constexpr int kCycles = 3000;
@@ -34,7 +34,8 @@ CartesianCommand targetAt(int cycle, const Eigen::Vector3d& centre,
   CartesianCommand target = CartesianCommand::zero(dof);
   target.fields = CommandField::kPosition;
   target.stamp_s = t;
-  target.position = centre + kRadiusM * Eigen::Vector3d(0.0, std::sin(phase), 1.0 - std::cos(phase));
+  target.position =
+      centre + kRadiusM * Eigen::Vector3d(0.0, std::sin(phase), 1.0 - std::cos(phase));
   target.orientation = orientation;
   return target;
 }

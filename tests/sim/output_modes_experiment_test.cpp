@@ -1,13 +1,14 @@
 // `comply experiment output-modes` leaves what docs/output-modes.md quotes: results.json with a
 // row per kind of drive, the heavy tool's table and the traces the plot is drawn from.
 
+#include "output_modes/output_modes_experiment.hpp"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "output_modes/output_modes_experiment.hpp"
 #include "sim_support.hpp"
 
 namespace comply::testing {
@@ -35,8 +36,8 @@ TEST(OutputModesExperiment, WritesARowPerDriveTheToolTableAndTheTraces) {
   std::stringstream tool_text;
   tool_text << tool_table.rdbuf();
   EXPECT_NE(tool_text.str().find("not declared"), std::string::npos) << tool_text.str();
-  for (const char* trace : {"contact_torque.csv", "contact_velocity.csv", "tool_declared.csv",
-                            "tool_undeclared.csv"}) {
+  for (const char* trace :
+       {"contact_torque.csv", "contact_velocity.csv", "tool_declared.csv", "tool_undeclared.csv"}) {
     std::ifstream file(options.out_dir / trace);
     std::string header;
     EXPECT_TRUE(std::getline(file, header)) << trace;

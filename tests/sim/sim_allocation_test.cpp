@@ -40,8 +40,8 @@ TEST(SimulatedRobotAllocation, ReadWriteStepAllocateNothing) {
 }
 
 TEST(SimulatedRobotAllocation, EveryKindOfDriveAndTheWristSensorAllocateNothing) {
-  for (const OutputMode mode : {OutputMode::kJointPd, OutputMode::kPosition,
-                                OutputMode::kVelocity}) {
+  for (const OutputMode mode :
+       {OutputMode::kJointPd, OutputMode::kPosition, OutputMode::kVelocity}) {
     SCOPED_TRACE(std::string(toString(mode)));
     sim::PlantOptions options;
     options.actuation = mode;

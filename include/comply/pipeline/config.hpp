@@ -106,7 +106,7 @@ struct AdmittanceConfig {
   Eigen::Vector3d added_mass_kg = Eigen::Vector3d::Zero();
   /// Rotational inertia added at the TCP about the task frame's axes [kg m^2].
   Eigen::Vector3d added_inertia_kg_m2 = Eigen::Vector3d::Zero();
-  double velocity_factor = 0.5;      ///< joint speed bound: this times the URDF velocity limit
+  double velocity_factor = 0.5;  ///< joint speed bound: this times the URDF velocity limit
   /// Joint acceleration bound [rad/s^2 | m/s^2]: a net for a wild sensor reading, to be kept
   /// well above what the law asks (a bound in the loop makes the virtual arm overshoot).
   double max_acceleration_rad_per_s2 = 100.0;

@@ -160,7 +160,8 @@ void printSummary(const SimSummary& summary, std::ostream& out) {
   out << "robot " << summary.robot << " (" << summary.dof << " DOF), plugin " << summary.plugin;
   if (summary.output_mode != OutputMode::kTorque) {
     out << ", " << toString(summary.output_mode) << " drives"
-        << (isAdmittance(summary.output_mode) ? " (admittance: torques are the virtual arm's)" : "");
+        << (isAdmittance(summary.output_mode) ? " (admittance: torques are the virtual arm's)"
+                                              : "");
   }
   out << ": " << std::setprecision(2) << summary.simulated_s << " s simulated in " << summary.wall_s
       << " s (" << std::setprecision(1)
