@@ -276,15 +276,16 @@ ResultsTable outputModesTable(const std::vector<OutputModesRow>& rows) {
   const char* axes[] = {"x", "y", "z", "rx", "ry", "rz"};
   for (int axis = 0; axis < 6; ++axis) {
     const bool force = axis < 3;
-    table.columns.push_back(Column(std::string("k_") + axes[axis], std::string("K ") + axes[axis],
-                                   force ? "N/m" : "N m/rad", force ? 0 : 1));
+    table.columns.emplace_back(Column(std::string("k_") + axes[axis],
+                                      std::string("K ") + axes[axis], force ? "N/m" : "N m/rad",
+                                      force ? 0 : 1));
   }
-  table.columns.push_back(Column("worst_k_error_percent", "worst K error", "%", 2));
-  table.columns.push_back(Column("peak_force_n", "peak force", "N", 1));
-  table.columns.push_back(Column("final_force_n", "settled force", "N", 1));
-  table.columns.push_back(Column("expected_force_n", "K x depth", "N", 1).jsonOnly());
-  table.columns.push_back(Column("settling_s", "settling", "s", 3));
-  table.columns.push_back(Column("contact_losses", "cycles off the table"));
+  table.columns.emplace_back(Column("worst_k_error_percent", "worst K error", "%", 2));
+  table.columns.emplace_back(Column("peak_force_n", "peak force", "N", 1));
+  table.columns.emplace_back(Column("final_force_n", "settled force", "N", 1));
+  table.columns.emplace_back(Column("expected_force_n", "K x depth", "N", 1).jsonOnly());
+  table.columns.emplace_back(Column("settling_s", "settling", "s", 3));
+  table.columns.emplace_back(Column("contact_losses", "cycles off the table"));
   for (const OutputModesRow& row : rows) {
     std::vector<Value> values{std::string(toString(row.mode))};
     for (const double k : row.stiffness.rendered) {

@@ -81,12 +81,8 @@ void OutputStage::integrate(const Controller& controller, double period_s,
     virtual_torque_.noalias() += data.jacobian.leftCols(n).transpose() * virtual_.wrench;
   }
   Eigen::Matrix3d task_to_base = Eigen::Matrix3d::Identity();
-  if (cartesian_) {
-    const auto& bus = std::get<comply_cartesian_command>(controller.lawBus());
-    task_to_base = Eigen::Quaterniond(bus.task_frame[3], bus.task_frame[0], bus.task_frame[1],
-                                      bus.task_frame[2])
-                       .normalized()
-                       .toRotationMatrix();
+  if (const auto* bus = std::get_if<comply_cartesian_command>(&controller.lawBus())) {
+    task_to_base = taskToBase(*bus);
   }
   // J^T A J with A = R diag(a) R^T: (diag(sqrt a) R^T J)^T (diag(sqrt a) R^T J).
   Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::ColMajor, 3, kMaxDof> weighted(3, n);

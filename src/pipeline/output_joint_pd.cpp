@@ -31,12 +31,13 @@ double along(const Eigen::Vector3d& u, const Eigen::Matrix3d& task_to_base, cons
 
 void OutputStage::cartesianJointGains(const Controller& controller, const JointState& state,
                                       ActuatorCommand& command) const noexcept {
-  const auto& bus = std::get<comply_cartesian_command>(controller.lawBus());
+  const auto* law = std::get_if<comply_cartesian_command>(&controller.lawBus());
+  if (law == nullptr) {
+    return;  // cannot happen: a Cartesian controller's bus is Cartesian
+  }
+  const comply_cartesian_command& bus = *law;
   const model::Data& data = controller.modelData();
-  const Eigen::Matrix3d task_to_base =
-      Eigen::Quaterniond(bus.task_frame[3], bus.task_frame[0], bus.task_frame[1], bus.task_frame[2])
-          .normalized()
-          .toRotationMatrix();
+  const Eigen::Matrix3d task_to_base = taskToBase(bus);
   double mean_ratio = 0.0;
   for (const double ratio : bus.damping_ratio) {
     mean_ratio += ratio / 6.0;
@@ -74,12 +75,12 @@ void OutputStage::splitForJointPd(const Controller& controller, bool fault, cons
   if (cartesian_) {
     cartesianJointGains(controller, state, command);
   } else {
-    const auto& bus = std::get<comply_joint_command>(controller.lawBus());
-    for (int i = 0; i < dof_; ++i) {
-      command.stiffness[i] = bus.stiffness[i];
-      command.damping[i] = bus.damping[i];
-      command.position[i] = bus.position[i];
-      command.velocity[i] = bus.velocity[i];
+    const auto* bus = std::get_if<comply_joint_command>(&controller.lawBus());
+    for (int i = 0; i < dof_ && bus != nullptr; ++i) {
+      command.stiffness[i] = bus->stiffness[i];
+      command.damping[i] = bus->damping[i];
+      command.position[i] = bus->position[i];
+      command.velocity[i] = bus->velocity[i];
     }
   }
   for (int i = 0; i < dof_; ++i) {

@@ -14,6 +14,7 @@
 // Real-time: no allocation, no locks, no throw.
 
 #include <Eigen/Cholesky>
+#include <Eigen/Geometry>
 
 #include "comply/core/actuator_command.hpp"
 #include "comply/core/capacity.hpp"
@@ -22,6 +23,14 @@
 #include "comply/pipeline/resolved_controller.hpp"
 
 namespace comply::pipeline {
+
+/// The task frame of a Cartesian bus as a rotation into the base frame.
+inline Eigen::Matrix3d taskToBase(const comply_cartesian_command& bus) noexcept {
+  return Eigen::Quaterniond(bus.task_frame[3], bus.task_frame[0], bus.task_frame[1],
+                            bus.task_frame[2])
+      .normalized()
+      .toRotationMatrix();
+}
 
 class OutputStage {
  public:
