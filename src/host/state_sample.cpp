@@ -125,12 +125,13 @@ void StateSampler<Command>::fill(const hardware::CycleRecord& record, const Join
   s.tcp_orientation = data.tip_orientation;
   s.tcp_twist =
       data.jacobian.cols() == dof ? Vector6d(data.jacobian * s.joints.velocity) : Vector6d::Zero();
-  // The observer's estimate when it runs (observer.enabled); else the hardware's own sensor, read
-  // here because the control thread is the one that reads the hardware.
+  // The observer's estimate when it runs (observer.enabled); else the wrist sensor's reading as
+  // the cycle compensated it.
   if (controller.observer().enabled()) {
     s.contact_wrench = controller.observer().wrench();
     s.contact_wrench_source = transport::WrenchSource::kObserver;
-  } else if (robot_ != nullptr && robot_->readWrench(s.contact_wrench)) {
+  } else if (controller.sensorWrenchValid()) {
+    s.contact_wrench = controller.sensorWrench();  // the tool's weight and the tare off
     s.contact_wrench_source = transport::WrenchSource::kSensor;
   } else {
     s.contact_wrench.setZero();

@@ -1,7 +1,7 @@
 // Stages "commands" and "watchdog": every message the intake queued since the last cycle is taken
-// in order (commands merged by their field mask into the command in force, reset requests noted),
-// and the watchdog applies the timeout policy to the same command in force, so the reference rules
-// live in one place: here, on the bus the law reads.
+// in order (commands merged by their field mask into the command in force, reset requests noted, a
+// tare taken), and the watchdog applies the timeout policy to the same command in force, so the
+// reference rules live in one place: here, on the bus the law reads.
 
 #include "comply/pipeline/controller.hpp"
 
@@ -11,7 +11,9 @@ void Controller::takeCommands() noexcept {
   bool changed = false;
   for (const IntakeMessage* message = intake_.front(); message != nullptr;
        message = intake_.front()) {
-    if (message->type == IntakeMessage::Type::kReset) {
+    if (message->type == IntakeMessage::Type::kTare) {
+      tare();
+    } else if (message->type == IntakeMessage::Type::kReset) {
       // Only a fault present when the request arrives can be reset: a request must not stay armed
       // and clear a later fault unasked.
       reset_pending_ = diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kFault;

@@ -31,6 +31,7 @@ bool Controller::measure(const JointState& state) noexcept {
   }
   state_ = state;
   observe();
+  senseWrench(state);
   keepHoldingGravity();
   fillPluginInput(state_, data_, quantities_, time_s_, period_s_, input_);
   measured_.publishFromSoleWriter(currentPose());

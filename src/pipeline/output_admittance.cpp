@@ -1,6 +1,6 @@
 // Output modes position and velocity: admittance. The law runs on a virtual arm (q_v, dq_v)
-// instead of the measured one; its torque, plus the measured external wrench mapped to the joints,
-// accelerates the virtual arm,
+// instead of the measured one; its torque, plus the wrist sensor's wrench (Controller::sensorWrench:
+// the declared tool's weight and the tare off) mapped to the joints, accelerates the virtual arm,
 //   (M(q_v) + J^T A J) ddq_v = tau_law(q_v, dq_v) + J(q_v)^T w_ext,
 // where A is the inertia added at the TCP (output.admittance.added_*, task frame). The virtual arm
 // has no gravity, friction or Coriolis force; the arm's own position or velocity control carries
@@ -36,7 +36,7 @@ bool OutputStage::admittance(Controller& controller, const JointState& state, do
     last_measured_ = state.position;
     keepNearMeasured(state);
   }
-  virtual_.wrench = state.wrench;
+  virtual_.wrench = state.wrench;  // the raw reading: the controller takes the tool and tare off
   virtual_.wrench_valid = state.wrench_valid;
   const std::span<double> torque(command.effort.data(),
                                  static_cast<std::size_t>(command.effort.size()));
@@ -74,12 +74,11 @@ void OutputStage::integrate(const Controller& controller, double period_s,
   const auto n = static_cast<Eigen::Index>(dof_);
   virtual_torque_ = command.effort.head(n);
   inertia_ = data.mass_matrix.topLeftCorner(n, n);
-  if (parameters_.payload_beyond_sensor && parameters_.payload.mass_kg > 0.0) {
-    addPayload(data);
+  external_ = controller.sensorWrenchValid() ? controller.sensorWrench() : Vector6d::Zero();
+  if (parameters_.payload_on_sensor && parameters_.payload.mass_kg > 0.0) {
+    addPayload(data, controller.sensorWrenchValid());
   }
-  if (virtual_.wrench_valid && virtual_.wrench.allFinite()) {
-    virtual_torque_.noalias() += data.jacobian.leftCols(n).transpose() * virtual_.wrench;
-  }
+  virtual_torque_.noalias() += data.jacobian.leftCols(n).transpose() * external_;
   Eigen::Matrix3d task_to_base = Eigen::Matrix3d::Identity();
   if (const auto* bus = std::get_if<comply_cartesian_command>(&controller.lawBus())) {
     task_to_base = taskToBase(*bus);
@@ -116,7 +115,7 @@ void OutputStage::integrate(const Controller& controller, double period_s,
   }
 }
 
-void OutputStage::addPayload(const model::Data& data) noexcept {
+void OutputStage::addPayload(const model::Data& data, bool sensed) noexcept {
   // The sensor's reading carries the payload's inertial force -m a_com; it is given that force
   // back from the virtual arm's last acceleration (what the drives follow), with the centre of
   // mass moving by J_com = J_linear - [r]x J_angular. The payload's mass joins the virtual arm:
@@ -133,10 +132,10 @@ void OutputStage::addPayload(const model::Data& data) noexcept {
   com_jacobian.noalias() = data.jacobian.topLeftCorner(3, n);
   com_jacobian.noalias() -= cross * data.jacobian.bottomLeftCorner(3, n);
   inertia_.noalias() += mass * com_jacobian.transpose() * com_jacobian;
-  if (virtual_.wrench_valid) {
+  if (sensed) {
     const Eigen::Vector3d inertial_force = mass * (com_jacobian * acceleration_.head(n));
-    virtual_.wrench.head<3>() += inertial_force;
-    virtual_.wrench.tail<3>() += arm.cross(inertial_force);
+    external_.head<3>() += inertial_force;
+    external_.tail<3>() += arm.cross(inertial_force);
   }
 }
 

@@ -115,13 +115,13 @@ std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig&
   parameters.fault_damping = toJointVector(config.fault_damping, dof);
   parameters.frozen_state_timeout_s = config.frozen_state_timeout_s;
   parameters.output = config.output;
+  parameters.payload_on_sensor = config.payload_compensation;
   if (isAdmittance(config.output.mode)) {
     // The law drives a virtual arm (output_stage.hpp): it has no weight or friction to carry (the
     // arm's own position control carries them), and a torque-rate limit on it would only delay
     // the virtual arm's answer to a contact. Its state is computed, not measured, so it cannot
     // go stale; the arm's own drives watch their encoders.
     parameters.gravity_compensation = false;
-    parameters.payload_beyond_sensor = config.payload_compensation;
     parameters.payload_compensation = false;
     parameters.friction.model = FrictionModel::kNone;
     parameters.torque_rate_limit.setConstant(dof, std::numeric_limits<double>::infinity());

@@ -55,6 +55,21 @@ void Wrapper<Command>::reset() {
 }
 
 template <typename Command>
+std::string Wrapper<Command>::tare() {
+  const std::lock_guard<std::mutex> lock(intake_mutex_);
+  if (!controller_.sensorSeen()) {
+    return "the hardware has given no wrist force/torque reading: nothing to tare";
+  }
+  IntakeMessage message;
+  message.type = IntakeMessage::Type::kTare;
+  message.command = emptyBus(kKind<Command>);
+  if (!controller_.enqueue(message)) {
+    return commandsWaiting() + "; send the tare again";
+  }
+  return {};
+}
+
+template <typename Command>
 Verdict Wrapper<Command>::account(Verdict verdict, double stamp_s) {
   Diagnostics& diagnostics = controller_.diagnostics();
   if (!verdict.accepted) {

@@ -41,6 +41,7 @@ SimulatedRobot::SimulatedRobot(const model::RobotDescription& robot, const Plant
       noise_generator_(options.seed),
       position_noise_rad_(options.position_noise_rad),
       velocity_noise_rad_per_s_(options.velocity_noise_rad_per_s),
+      wrench_sensor_offset_(options.wrench_sensor_offset),
       actuation_(options.actuation) {
   if (!(options.control_period_s > 0.0) || options.substeps < 1) {
     throw SimError("control period must be > 0 s and substeps >= 1 (got " +
@@ -360,18 +361,17 @@ bool SimulatedRobot::readWrench(Vector6d& wrench) noexcept {
   };
   const Eigen::Vector3d tree_com = point(data_->subtree_com, model_->body_rootid[tip_body_]);
   const Eigen::Vector3d tcp = point(data_->xpos, tip_body_);
-  const Eigen::Vector3d tool_com = point(data_->subtree_com, tip_body_);
-  const Eigen::Vector3d weight =
-      model_->body_subtreemass[tip_body_] * Eigen::Map<const Eigen::Vector3d>(model_->opt.gravity);
-  // Parent + environment + weight = m a on the tool: the sensor, knowing the weight alone,
-  // reads environment - m a.
-  const Eigen::Vector3d force_world = -parent_force - weight;
-  const Eigen::Vector3d torque_world =
-      -(parent_torque + (tree_com - tcp).cross(parent_force)) - (tool_com - tcp).cross(weight);
+  // Parent + environment + weight = m a on the tool: the sensor reads the parent's share with
+  // its sign turned, environment + weight - m a.
+  const Eigen::Vector3d force_world = -parent_force;
+  const Eigen::Vector3d torque_world = -(parent_torque + (tree_com - tcp).cross(parent_force));
   const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> base_rotation(
       data_->xmat + 9 * static_cast<std::ptrdiff_t>(base_body_));
-  wrench.head<3>() = base_rotation.transpose() * force_world;
-  wrench.tail<3>() = base_rotation.transpose() * torque_world;
+  const Eigen::Matrix3d tcp_in_base = tcpPose().linear();
+  wrench.head<3>() =
+      base_rotation.transpose() * force_world + tcp_in_base * wrench_sensor_offset_.head<3>();
+  wrench.tail<3>() =
+      base_rotation.transpose() * torque_world + tcp_in_base * wrench_sensor_offset_.tail<3>();
   return wrench.allFinite();
 }
 

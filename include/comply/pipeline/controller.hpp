@@ -2,8 +2,9 @@
 // The control cycle. One function, update(), is the whole cycle as a table of contents over
 // stages that live in their own files (cycle_*.cpp):
 //
-//   measure      state check (finite; not frozen), model update, plugin input, publish the
-//                measured pose                                  -> FAULT on a bad state
+//   measure      state check (finite; not frozen), model update, the wrist sensor's reading
+//                (tool weight and tare off), plugin input, publish the measured pose
+//                                                               -> FAULT on a bad state
 //   guard        overspeed, a joint past its limit              -> FAULT (stability_guard.*)
 //   commands     take every command the intake queued, merged by field mask; a timed chunk
 //                starts, and the running one writes its reference at this cycle's time
@@ -18,12 +19,13 @@
 // Threads. update() runs on the real-time thread. The lifecycle (activate, deactivate) runs
 // between cycles, never concurrently with update(), as in ros2_control. Exactly two things cross
 // between the real-time thread and the others, both without a lock on the real-time side:
-//   - the intake queue (commands and operator requests such as reset), pushed by the wrapper's
+//   - the intake queue (commands and operator requests: reset, tare), pushed by the wrapper's
 //     intake under its own mutex, drained by the cycle;
 //   - the published measurement (measured pose every cycle, the command in force when it
 //     changes), written by the cycle and read by the intake.
 // Diagnostics counters are atomics the cycle writes and anyone reads.
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -60,7 +62,7 @@ enum class CycleStatus {
 
 /// One entry of the intake queue.
 struct IntakeMessage {
-  enum class Type : std::uint8_t { kCommand, kReset, kChunk };
+  enum class Type : std::uint8_t { kCommand, kReset, kChunk, kTare };
   Type type = Type::kCommand;
   CommandBus command;   ///< kCommand: a validated command with its field mask
   int chunk_slot = -1;  ///< kChunk: the ChunkPlayer slot the intake loaded it into
@@ -126,6 +128,16 @@ class Controller {
   /// The external wrench estimate (observer.enabled): at the TCP, base frame, force first
   /// [N, N m], and per joint [N m | N]. Real-time thread, or between cycles.
   [[nodiscard]] const MomentumObserver& observer() const noexcept { return observer_; }
+  /// The wrist force/torque sensor's reading as the law's side sees it (cycle_wrench.cpp): the
+  /// declared tool's weight and the tare taken off; at the TCP, base frame, force first [N, N m].
+  /// Valid when the hardware gave a finite reading this cycle. Real-time thread, or between
+  /// cycles.
+  [[nodiscard]] const Vector6d& sensorWrench() const noexcept { return sensor_wrench_; }
+  [[nodiscard]] bool sensorWrenchValid() const noexcept { return sensor_valid_; }
+  /// Any thread: the hardware has given a wrist force/torque reading since construction.
+  [[nodiscard]] bool sensorSeen() const noexcept {
+    return sensor_seen_.load(std::memory_order_relaxed);
+  }
   /// In FAULT on a frozen sensor stream: the hold's gravity is that of a pose the arm may have
   /// left, so the hardware's own hold (brakes) is asked for as well (CycleController::wantsHold).
   [[nodiscard]] bool holdRequested() const noexcept {
@@ -169,6 +181,8 @@ class Controller {
   /// only after a successful model update, which a failed one may leave half-written.
   void keepHoldingGravity() noexcept;
   void observe() noexcept;  // cycle_measure.cpp: the momentum observer's update
+  void senseWrench(const JointState& state) noexcept;  // cycle_wrench.cpp
+  void tare() noexcept;                                // cycle_wrench.cpp
   /// Whether `state` repeats the last one bit for bit for frozen_state_timeout_s while the torque
   /// moved kFrozenStateTorqueChangeNm: a stale sensor stream.
   bool stateFrozen(const JointState& state) noexcept;
@@ -201,6 +215,13 @@ class Controller {
   JointVector overspeed_s_;        // per joint: how long it has been over its speed limit
   JointVector saturated_s_;        // per joint: how long it has sat at its effort limit
   bool reset_pending_ = false;
+  // The wrist sensor (cycle_wrench.cpp): this cycle's reading less the tool's weight, then less
+  // the tare, which is kept in the TCP frame (the sensor turns with the tool).
+  Vector6d sensor_untared_ = Vector6d::Zero();
+  Vector6d sensor_wrench_ = Vector6d::Zero();
+  Vector6d tare_in_tcp_ = Vector6d::Zero();
+  bool sensor_valid_ = false;
+  std::atomic<bool> sensor_seen_{false};
   JointState state_;
   bool state_usable_ = false;  // this cycle's state passed measure(), so input_ is current
   comply_input input_{};

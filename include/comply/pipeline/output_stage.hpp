@@ -58,7 +58,7 @@ class OutputStage {
   void keepNearMeasured(const JointState& state) noexcept;
   void integrate(const Controller& controller, double period_s,
                  const ActuatorCommand& command) noexcept;
-  void addPayload(const model::Data& data) noexcept;
+  void addPayload(const model::Data& data, bool sensed) noexcept;
   void holdMeasured(const JointState& state, ActuatorCommand& command) noexcept;
   void writeMotion(const JointState& state, ActuatorCommand& command) const noexcept;
 
@@ -74,6 +74,7 @@ class OutputStage {
   JointMatrix inertia_;
   Eigen::LDLT<JointMatrix> inertia_solver_;
   JointVector virtual_torque_;
+  Vector6d external_ = Vector6d::Zero();  ///< the sensed wrench the virtual arm answers
   JointVector acceleration_;
 };
 

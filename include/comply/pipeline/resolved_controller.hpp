@@ -60,9 +60,11 @@ struct CycleParameters {
   StabilityGuardConfig stability_guard;
   ObserverConfig observer;
   OutputConfig output;
-  /// Admittance with compensation.payload: the payload hangs beyond the wrist sensor, whose
-  /// reading carries its inertial force (output_admittance.cpp).
-  bool payload_beyond_sensor = false;
+  /// compensation.payload.enabled as written: the declared payload is the tool beyond the wrist
+  /// sensor, whose weight comes off the sensor's reading in every mode (cycle_wrench.cpp) and whose
+  /// inertial force comes off it in admittance (output_admittance.cpp). payload_compensation
+  /// (its weight in the torque) is off in admittance, this is not.
+  bool payload_on_sensor = false;
   JointVector velocity_limit;  ///< URDF [rad/s | m/s], for the stability guard and admittance
 };
 

@@ -18,6 +18,7 @@
 #include <memory>
 #include <mutex>
 #include <span>
+#include <string>
 
 #include "comply/core/chunk.hpp"
 #include "comply/core/commands.hpp"
@@ -53,6 +54,10 @@ class Wrapper final : public hardware::CycleController {
   /// usable state (ignored outside FAULT). Clears the stamp floor either way: the next command
   /// may carry any stamp.
   void reset();
+  /// Any thread. The next cycle takes the wrist sensor's reading, less the declared tool's
+  /// weight, as its zero (Controller::sensorWrench; cycle_wrench.cpp). Returns why not, empty
+  /// when queued: the hardware has never given a reading, or the intake queue is full.
+  [[nodiscard]] std::string tare();
 
   /// Any non-RT thread. Validates `command` (the field groups it sets) against the measured pose
   /// and the last accepted stamp and queues it for the next cycle. A rejected command changes

@@ -46,6 +46,9 @@ struct PlantOptions {
   /// there for its own inertia at home, on top of the plant's own gravity and Coriolis torque
   /// (the vendor's model), every physics substep.
   double servo_bandwidth_hz = 20.0;
+  /// The wrist sensor's offset, fixed in the sensor (TCP frame), force first [N, N m]: what a
+  /// tare removes.
+  Vector6d wrench_sensor_offset = Vector6d::Zero();
   SceneOptions scene;
   /// Measurement noise (Gaussian, standard deviation) drawn from a generator seeded with `seed`.
   double position_noise_rad = 0.0;
@@ -92,12 +95,13 @@ class SimulatedRobot final : public hardware::HardwareInterface {
   /// Sum of the contact wrenches the environment exerts on the tool (the TCP body and everything
   /// attached below it): force [N] and torque about the TCP origin [N m], base frame.
   [[nodiscard]] Vector6d toolContactWrench() const noexcept;
-  /// A wrist force/torque sensor between the TCP body and its parent, its tool's weight
-  /// compensated: the wrench the parent exerts on the tool subtree (MuJoCo's interaction force,
-  /// cfrc_int), turned into the wrench on the tool, less the tool's static weight at its centre of
-  /// mass. At rest that is the contact wrench plus the applied one (setExternalWrench); while the
-  /// tool accelerates it carries the tool's inertial force -m a, as a real sensor's reading does.
-  /// Base frame, about the TCP, force first. Real-time.
+  /// A wrist force/torque sensor between the TCP body and its parent, as a real one reads: the
+  /// wrench the tool subtree takes from its parent (MuJoCo's interaction force, cfrc_int), turned
+  /// into the wrench on the tool from everything else, plus the sensor's offset
+  /// (PlantOptions::wrench_sensor_offset). At rest without contact that is the tool's weight and
+  /// the offset; the contact and the applied wrench (setExternalWrench) add to it, and while the
+  /// tool accelerates its inertial force -m a does. The controller takes the declared tool's
+  /// weight and a tare off. Base frame, about the TCP, force first. Real-time.
   bool readWrench(Vector6d& wrench) noexcept override;
   /// A wrench the environment exerts on the tool at the TCP from the next step() on: base frame,
   /// force first, torque about the TCP origin [N, N m] (a push by hand, a known load; the tests'
@@ -144,6 +148,7 @@ class SimulatedRobot final : public hardware::HardwareInterface {
   double position_noise_rad_ = 0.0;
   double velocity_noise_rad_per_s_ = 0.0;
   Vector6d external_wrench_ = Vector6d::Zero();
+  Vector6d wrench_sensor_offset_ = Vector6d::Zero();  ///< TCP frame
 
   // Drives other than torque motors (PlantOptions::actuation).
   OutputMode actuation_ = OutputMode::kTorque;
