@@ -83,8 +83,10 @@ LiveCommands addLiveCommands(CLI::App& app) {
       ->check(CLI::IsMember({"cartesian", "joint"}));
   send_command->add_option("--rate", send->rate_hz, "stream rate [Hz] (default 100)")
       ->check(CLI::PositiveNumber);
-  send_command->add_option("--request", send->request, "activate, deactivate or reset")
-      ->check(CLI::IsMember({"activate", "deactivate", "reset"}));
+  send_command
+      ->add_option("--request", send->request,
+                   "activate, deactivate, reset (leave FAULT) or tare (the wrist sensor's zero)")
+      ->check(CLI::IsMember({"activate", "deactivate", "reset", "tare"}));
   send_command->add_flag("--no-wait", send->no_wait, "do not wait for the outcomes");
 
   auto echo = std::make_shared<EchoOptions>();

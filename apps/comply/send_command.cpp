@@ -268,6 +268,7 @@ int sendRequest(Participant& participant, const SendOptions& options, std::ostre
   message.header.stamp = transport::Stamp::now();
   message.request = options.request == "activate"     ? transport::RequestType::kActivate
                     : options.request == "deactivate" ? transport::RequestType::kDeactivate
+                    : options.request == "tare"       ? transport::RequestType::kTare
                                                       : transport::RequestType::kReset;
   writer.write(message);
   writer.flush(options.client.timeout_s);

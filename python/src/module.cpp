@@ -90,6 +90,10 @@ PYBIND11_MODULE(_comply, m) {
       .def("activate", [](Client& c) { c.request(comply::transport::RequestType::kActivate); })
       .def("deactivate", [](Client& c) { c.request(comply::transport::RequestType::kDeactivate); })
       .def("reset", [](Client& c) { c.request(comply::transport::RequestType::kReset); })
+      .def(
+          "tare", [](Client& c) { c.request(comply::transport::RequestType::kTare); },
+          "Take the wrist force/torque sensor's reading (less the declared tool's weight) as its "
+          "zero, from the host's next cycle")
       .def("close", &Client::close, kCloseDoc)
       .def("recording_stats", &Client::recordingStats, kStatsDoc)
       .def_property_readonly("dof", &Client::dof)
@@ -101,6 +105,9 @@ PYBIND11_MODULE(_comply, m) {
            py::arg("config"), py::arg("robot") = "", py::arg("steps_per_action") = 50,
            py::arg("max_time") = 0.0, py::kw_only(), py::arg("record") = py::none())
       .def("reset", &Sim::reset)
+      .def("tare", &Sim::tare,
+           "Take the wrist force/torque sensor's reading (less the declared tool's weight) as its "
+           "zero, from the next cycle")
       .def("step", &Sim::step, py::arg("command") = py::none(),
            "Hold `command` (a dict of schema keywords, or a timed chunk: a list of such dicts "
            "each with a 'time' [s] after this observation, see docs/chunks.md) for "

@@ -157,6 +157,11 @@ struct Sim::Session {
           const auto& bus =
               std::get<pipeline::BusOf<std::remove_cvref_t<decltype(e->wrapper.lastAccepted())>>>(
                   e->wrapper.controller().lawBus());
+          // The wrist sensor as the cycle compensated it (the declared tool's weight and the
+          // tare off), beside the simulator's own contact wrench.
+          const pipeline::Controller& controller = e->wrapper.controller();
+          obs["sensor_wrench"] =
+              array(controller.sensorWrenchValid() ? controller.sensorWrench() : Vector6d::Zero());
           if constexpr (requires { bus.orientation; }) {
             obs["reference_position"] = array(bus.position, 3);
             obs["reference_orientation"] = array(bus.orientation, 4);
@@ -252,6 +257,17 @@ py::dict Sim::reset() {
   }
   session_ = std::make_unique<Session>(resolved_, start_ns, recording());
   return session_->observation();
+}
+
+void Sim::tare() {
+  if (!session_) {
+    throw std::runtime_error("call reset() before tare()");
+  }
+  const std::string why =
+      std::visit([](auto& episode) { return episode->wrapper.tare(); }, session_->episode);
+  if (!why.empty()) {
+    throw std::runtime_error("tare: " + why);
+  }
 }
 
 py::tuple Sim::step(const py::object& command) {

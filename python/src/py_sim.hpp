@@ -37,6 +37,8 @@ class Sim {
 
   /// A fresh plant at the robot's home pose and a freshly activated controller.
   py::dict reset();
+  /// The wrist sensor's zero from the next cycle; raises when there is no episode.
+  void tare();
   /// `command`: a dict of schema keywords, or a timed chunk (a list of such dicts, each with a
   /// "time" [s] after this step's observation), or None: no new command. Never raises on a
   /// rejected command: info["accepted"] is False and info["reason"] says why.

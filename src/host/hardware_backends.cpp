@@ -3,6 +3,8 @@
 #include "comply/host/hardware_backends.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 
 #include "comply/core/named_registry.hpp"
 #include "comply/plugin/loader.hpp"
@@ -12,10 +14,38 @@
 namespace comply::host {
 namespace {
 
-/// The MuJoCo plant, paced to the wall clock: what `comply run --sim` drives.
+/// `fx,fy,fz,tx,ty,tz` as a wrench.
+Vector6d wrenchOption(const std::string& key, const std::string& text) {
+  Vector6d wrench;
+  std::istringstream in(text);
+  for (int i = 0; i < 6; ++i) {
+    char comma = ',';
+    if (!(in >> wrench[i]) || !std::isfinite(wrench[i]) || (i < 5 && !(in >> comma)) ||
+        comma != ',') {
+      throw hardware::BackendError("--hardware-option " + key + "='" + text +
+                                   "': expected six numbers fx,fy,fz,tx,ty,tz [N, N m]");
+    }
+  }
+  if (in >> std::ws; !in.eof()) {
+    throw hardware::BackendError("--hardware-option " + key + "='" + text +
+                                 "': more than six numbers");
+  }
+  return wrench;
+}
+
+/// The MuJoCo plant, paced to the wall clock: what `comply run --sim` drives. Takes
+/// `--hardware-option wrench_offset=fx,fy,fz,tx,ty,tz`: its wrist sensor's offset in the sensor
+/// (TCP) frame, what a tare removes.
 HardwareBackend simulatedArm(const pipeline::WrapperConfig& config,
                              const hardware::BackendContext& context) {
   sim::PlantOptions options;
+  for (const auto& [key, value] : context.options) {
+    if (key != "wrench_offset") {
+      throw hardware::BackendError("the simulated arm has no hardware option '" + key +
+                                   "'; it takes wrench_offset=fx,fy,fz,tx,ty,tz [N, N m]");
+    }
+    options.wrench_sensor_offset = wrenchOption(key, value);
+  }
   options.control_period_s = context.period_s;
   options.tip_frame = config.tip_frame;
   options.actuation = config.output.mode;  // the arm has the drives the controller drives

@@ -97,6 +97,8 @@ std::string_view toString(RequestType request) {
       return "deactivate";
     case RequestType::kReset:
       return "reset";
+    case RequestType::kTare:
+      return "tare";
   }
   return "unknown";
 }

@@ -252,10 +252,14 @@ dds_return_t Wire<RequestMessage>::write(dds_entity_t writer, const RequestMessa
 
 template <>
 void Wire<RequestMessage>::read(const void* sample, RequestMessage& message,
-                                std::string& /*malformed*/) {
+                                std::string& malformed) {
   const auto& in = *static_cast<const comply_msgs_msg_dds__Request_*>(sample);
   headerFromWire(in.header, message.header);
   message.request = static_cast<RequestType>(in.request);
+  if (in.request < static_cast<std::uint8_t>(RequestType::kActivate) ||
+      in.request > static_cast<std::uint8_t>(RequestType::kTare)) {
+    malformed = "request " + std::to_string(in.request) + " is none of REQUEST_* (1 to 4)";
+  }
 }
 
 }  // namespace comply::transport::wire

@@ -295,5 +295,39 @@ TEST(LiveHostInProcess, RequestsObeyThePublisherRule) {
   EXPECT_EQ(host->stop(), 0);
 }
 
+/// A tare request reaches the cycle: the simulated arm's wrist sensor, started with an offset,
+/// then reads zero at rest, reported as the sensor's, and nothing is refused.
+TEST(LiveHostInProcess, ATareRequestZeroesTheWristSensor) {
+  const std::unique_ptr<HostHarness> host = makeHarness("in_process");
+  host->setHardwareOptions({"wrench_offset=3,-2,4,0.1,0.2,-0.1"});  // the sensor's own offset
+  host->start("tare");
+  const auto before = host->state(20s);
+  ASSERT_TRUE(before) << "no state from the host";
+  EXPECT_EQ(before->contact_wrench_source, transport::WrenchSource::kSensor);
+  EXPECT_GT(Eigen::Vector3d(before->contact_wrench[0], before->contact_wrench[1],
+                            before->contact_wrench[2])
+                .norm(),
+            5.0)
+      << "the offset shows before the tare";
+  ASSERT_TRUE(host->request(transport::RequestType::kTare, 1));
+  std::optional<transport::ControllerStateMessage> after;
+  const auto deadline = std::chrono::steady_clock::now() + 10s;
+  while (std::chrono::steady_clock::now() < deadline) {
+    after = host->state(100ms);
+    if (after && after->cycle > before->cycle + 200) {
+      break;
+    }
+    std::this_thread::sleep_for(20ms);
+  }
+  ASSERT_TRUE(after);
+  const Eigen::Vector3d force(after->contact_wrench[0], after->contact_wrench[1],
+                              after->contact_wrench[2]);
+  EXPECT_LT(force.norm(), 0.2) << "the tare did not reach the cycle";
+  EXPECT_FALSE(host->poll(500ms, [](const transport::DiagnosticsMessage& d) {
+    return d.last_rejection.find("tare") != std::string::npos;
+  })) << "the tare was refused";
+  EXPECT_EQ(host->stop(), 0);
+}
+
 }  // namespace
 }  // namespace comply::live_test

@@ -34,6 +34,9 @@ class DdsHarness final : public HostHarness {
     if (duration_s_ > 0.0) {
       args.insert(args.end(), {"--duration", std::to_string(duration_s_)});
     }
+    for (const std::string& option : hardware_options_) {
+      args.insert(args.end(), {"--hardware-option", option});
+    }
     process_ = std::make_unique<Process>(args);
     client_ = std::make_unique<Client>(domain, name);
   }
@@ -120,6 +123,7 @@ class InProcessHarness final : public HostHarness {
     options.name = name;
     options.priority = 0;
     options.record_path = record_path_;
+    options.hardware_options = hardware_options_;
     options.duration_s = duration_s_;
     const pipeline::WrapperConfig config =
         host::simControllerConfig(options.robot, "", options.config_file);

@@ -32,6 +32,10 @@ class HostHarness {
   virtual void start(const std::string& name) = 0;
   /// Before start(): the host records to `path` (--record) and, with `duration_s` > 0, stops by
   /// itself after that long (--duration): exactly duration_s x 1 kHz cycles.
+  /// `--hardware-option` pairs for the simulated arm (e.g. wrench_offset=...), before start().
+  void setHardwareOptions(std::vector<std::string> options) {
+    hardware_options_ = std::move(options);
+  }
   void setRecording(std::string path, double duration_s) {
     record_path_ = std::move(path);
     duration_s_ = duration_s;
@@ -72,6 +76,7 @@ class HostHarness {
 
  protected:
   std::string record_path_;
+  std::vector<std::string> hardware_options_;
   double duration_s_ = 0.0;
   /// Makes `publisher`'s writers and waits until they matched the host; false on timeout.
   virtual bool open(int publisher) = 0;

@@ -45,6 +45,11 @@ def main():
         raise AssertionError("a misspelt keyword was accepted")
     except ValueError as error:
         assert "positon" in str(error)
+    # The wrist sensor, compensated by the cycle: zero after a tare while the arm holds still.
+    assert obs["sensor_wrench"].shape == (6,), obs["sensor_wrench"]
+    sim.tare()
+    obs, _, _, _, _ = sim.step({"position": target})
+    assert np.linalg.norm(obs["sensor_wrench"][:3]) < 0.2, obs["sensor_wrench"]
     frame = comply.darboux_frame([1, 0, 0], [0, 0, 1])
     assert np.allclose(np.linalg.norm(frame), 1.0)
     assert sim.reset()["position"].shape == (sim.dof,)

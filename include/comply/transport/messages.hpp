@@ -191,7 +191,8 @@ struct DiagnosticsMessage {
 };
 
 /// Request.REQUEST_*.
-enum class RequestType : std::uint8_t { kActivate = 1, kDeactivate = 2, kReset = 3 };
+/// kTare: the wrist force/torque sensor's reading becomes its zero (pipeline::Wrapper::tare).
+enum class RequestType : std::uint8_t { kActivate = 1, kDeactivate = 2, kReset = 3, kTare = 4 };
 std::string_view toString(RequestType request);
 
 /// comply_msgs/Request.

@@ -107,6 +107,11 @@ void Intake<Command>::handle(const transport::Sample<transport::RequestMessage>&
       wrapper_.reset();
       gate_.clearStampFloor();
       break;
+    case transport::RequestType::kTare:
+      if (const std::string why = wrapper_.tare(); !why.empty()) {
+        wrapper_.controller().diagnostics().setRejection("tare: ", why.c_str());
+      }
+      break;
   }
 }
 
