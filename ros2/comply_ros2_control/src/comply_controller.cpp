@@ -170,6 +170,19 @@ void ComplyController<Command>::createEndpoints() {
                               std::shared_ptr<std_srvs::srv::Trigger::Response> response) {
         onResetFault(*response);
       });
+  tare_service_ = node->create_service<std_srvs::srv::Trigger>(
+      "~/tare", [this](const std::shared_ptr<std_srvs::srv::Trigger::Request>,
+                       std::shared_ptr<std_srvs::srv::Trigger::Response> response) {
+        if (!wrapper_) {
+          response->success = false;
+          response->message = "not configured";
+          return;
+        }
+        const std::string why = wrapper_->tare();
+        response->success = why.empty();
+        response->message = why.empty() ? "tare requested: the next cycle's reading is the zero"
+                                        : why;
+      });
   diagnostics_timer_ = node->create_wall_timer(
       std::chrono::duration<double>(1.0 / diagnostics_rate_hz), [this] { publishDiagnostics(); });
 }
@@ -254,6 +267,7 @@ template <typename Command>
 CallbackReturn ComplyController<Command>::on_cleanup(const rclcpp_lifecycle::State&) {
   diagnostics_timer_.reset();
   reset_service_.reset();
+  tare_service_.reset();
   command_subscription_.reset();
   chunk_subscription_.reset();
   diagnostics_publisher_.reset();

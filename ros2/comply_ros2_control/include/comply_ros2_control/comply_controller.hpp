@@ -25,6 +25,8 @@
 //                  the compute time of update() as a histogram (1 us bins), its overruns, and
 //                  the outcome of every command received since the previous message
 //   ~/reset_fault  std_srvs/Trigger: leave FAULT
+//   ~/tare         std_srvs/Trigger: the wrist force/torque reading becomes its zero (no force-torque
+//                  state interface is read yet, so it is refused: no reading)
 // The command and state topics and types are those of `comply run`, so comply's Python client
 // and `comply send` / `comply echo` talk to either host.
 
@@ -129,6 +131,7 @@ class ComplyController : public controller_interface::ControllerInterface {
   typename rclcpp::Subscription<CommandMessage>::SharedPtr command_subscription_;
   typename rclcpp::Subscription<ChunkMessage>::SharedPtr chunk_subscription_;
   rclcpp::Service<std_srvs::srv::Trigger>::SharedPtr reset_service_;
+  rclcpp::Service<std_srvs::srv::Trigger>::SharedPtr tare_service_;
   rclcpp::TimerBase::SharedPtr diagnostics_timer_;
   std::unique_ptr<realtime_tools::RealtimePublisher<comply_msgs::msg::ControllerState>>
       state_publisher_;
