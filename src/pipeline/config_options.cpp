@@ -269,6 +269,14 @@ void addObserverOptions(std::vector<Option>& table) {
                        [](WrapperConfig& c, bool v) { c.observer.measured_torque = v; }));
 }
 
+// The wrist force/torque sensor's reading (pipeline/cycle_wrench.cpp).
+void addWrenchSensorOptions(std::vector<Option>& table) {
+  table.push_back(spaced(number(
+      "wrench_sensor.filter_hz", "0.0",
+      "Hz: first-order low-pass on the wrist sensor's reading (tool weight off); 0: off", 0.0,
+      1e4, false, [](WrapperConfig& c, double v) { c.wrench_sensor.filter_hz = v; })));
+}
+
 // What the cycle sends the drives: a torque, a per-joint PD command, or (admittance) a position
 // or velocity (pipeline/output_stage.hpp).
 void addOutputOptions(std::vector<Option>& table) {
@@ -326,6 +334,7 @@ std::vector<Option> makeTable() {
   addGainOptions(table);
   addGuardOptions(table);
   addObserverOptions(table);
+  addWrenchSensorOptions(table);
   addOutputOptions(table);
   return table;
 }

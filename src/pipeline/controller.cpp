@@ -120,6 +120,7 @@ void Controller::activate(const JointState& state) {
   }
   shaper_.reset(torque_);
   observer_.reset();  // the torque before activation is not known
+  sensor_filtered_ = false;  // the wrist sensor's low-pass starts from the next reading
   repeated_cycles_ = 0;
   state_frozen_ = false;
   overspeed_s_.setZero(dof_);

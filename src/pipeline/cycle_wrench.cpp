@@ -4,12 +4,16 @@
 //   tool     the declared payload (compensation.payload) is the tool beyond the sensor: its weight
 //            at its centre of mass, m g and r x m g about the TCP, comes off every cycle, turned
 //            with the tool, so a turning tool reads no change of weight;
+//   filter   wrench_sensor.filter_hz: a first-order low-pass on what is left, started from the
+//            first reading (a cycle without one holds it);
 //   tare     a request (Wrapper::tare) takes what remains, at rest and without contact that is the
 //            sensor's own offset, as the zero. The offset is fixed in the sensor, which turns with
 //            the TCP: it is kept in the TCP frame and turned into the base frame every cycle.
 //
 // What is left is the environment's wrench (plus the tool's inertial force while it accelerates,
 // which admittance gives back: output_admittance.cpp).
+
+#include <cmath>
 
 #include "comply/pipeline/controller.hpp"
 
@@ -21,12 +25,20 @@ void Controller::senseWrench(const JointState& state) noexcept {
     return;
   }
   sensor_seen_.store(true, std::memory_order_relaxed);
-  sensor_untared_ = state.wrench;
+  Vector6d reading = state.wrench;
   if (parameters_.payload_on_sensor && parameters_.payload.mass_kg > 0.0) {
     const Eigen::Vector3d weight = parameters_.payload.mass_kg * resolved_->model->gravity();
     const Eigen::Vector3d arm = data_.tip_rotation * parameters_.payload.com_in_tip;
-    sensor_untared_.head<3>() -= weight;
-    sensor_untared_.tail<3>() -= arm.cross(weight);
+    reading.head<3>() -= weight;
+    reading.tail<3>() -= arm.cross(weight);
+  }
+  const double filter_hz = parameters_.wrench_sensor.filter_hz;
+  if (filter_hz > 0.0 && sensor_filtered_) {
+    const double alpha = 1.0 - std::exp(-2.0 * M_PI * filter_hz * period_s_);
+    sensor_untared_ += alpha * (reading - sensor_untared_);
+  } else {
+    sensor_untared_ = reading;
+    sensor_filtered_ = true;
   }
   sensor_wrench_ = sensor_untared_;
   sensor_wrench_.head<3>() -= data_.tip_rotation * tare_in_tcp_.head<3>();

@@ -116,6 +116,7 @@ std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig&
   parameters.frozen_state_timeout_s = config.frozen_state_timeout_s;
   parameters.output = config.output;
   parameters.payload_on_sensor = config.payload_compensation;
+  parameters.wrench_sensor = config.wrench_sensor;
   if (isAdmittance(config.output.mode)) {
     // The law drives a virtual arm (output_stage.hpp): it has no weight or friction to carry (the
     // arm's own position control carries them), and a torque-rate limit on it would only delay

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "comply/pipeline/wrapper.hpp"
 #include "wrapper_support.hpp"
 
@@ -76,6 +78,31 @@ TEST(WrapperTare, TheToolsWeightAndTheTareComeOffInEveryPose) {
   moved.wrench_valid = true;
   ASSERT_EQ(wrapper.update(moved, kPeriod, torque.span()), CycleStatus::kOk);
   EXPECT_LT((core.sensorWrench() - push).norm(), 1e-9);
+}
+
+TEST(WrapperTare, TheLowPassFollowsAStepWithItsTimeConstant) {
+  CartesianWrapper wrapper(
+      fr3Config(kCartesianImpedancePlugin, "wrench_sensor:\n  filter_hz: 10.0\n"));
+  const Controller& core = wrapper.controller();
+  JointState state = restingAt(core, fr3Home());
+  state.wrench.setZero();
+  state.wrench_valid = true;
+  wrapper.activate(state);
+  TorqueBuffer torque;
+  ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
+  EXPECT_LT(core.sensorWrench().norm(), 1e-12);
+  state.wrench[2] = -10.0;  // a step of 10 N down
+  const double time_constant_s = 1.0 / (2.0 * M_PI * 10.0);
+  int cycles = 0;
+  while (core.sensorWrench()[2] > -10.0 * (1.0 - std::exp(-1.0)) && cycles < 1000) {
+    ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
+    ++cycles;
+  }
+  EXPECT_NEAR(cycles * kPeriod, time_constant_s, 0.1 * time_constant_s);
+  for (int i = 0; i < 200; ++i) {
+    ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
+  }
+  EXPECT_NEAR(core.sensorWrench()[2], -10.0, 1e-3) << "settled on the reading";
 }
 
 }  // namespace

@@ -98,6 +98,13 @@ struct StabilityGuardConfig {
   double saturation_time_s = 1.0;  ///< FAULT when a joint sits at its effort limit this long; 0 off
 };
 
+/// The wrist force/torque sensor's reading as the cycle uses it (wrench_sensor.*;
+/// cycle_wrench.cpp).
+struct WrenchSensorConfig {
+  /// First-order low-pass on the reading (the tool's weight off, before the tare) [Hz]; 0: off.
+  double filter_hz = 0.0;
+};
+
 /// Admittance (output.mode position or velocity): the law's torque, with the measured external
 /// wrench, drives a virtual arm (the arm's own inertia plus what is added here, without gravity
 /// or friction) whose motion the arm's position or velocity drives follow.
@@ -171,6 +178,7 @@ struct WrapperConfig {
   PassivityConfig passivity;
   StabilityGuardConfig stability_guard;
   ObserverConfig observer;  ///< the external wrench estimate (observer.*)
+  WrenchSensorConfig wrench_sensor;  ///< wrench_sensor.*
   OutputConfig output;      ///< output.*
 
   /// Initial command (gains, task frame); the pose/joint reference is seeded on activation.

@@ -221,6 +221,7 @@ class Controller {
   Vector6d sensor_wrench_ = Vector6d::Zero();
   Vector6d tare_in_tcp_ = Vector6d::Zero();
   bool sensor_valid_ = false;
+  bool sensor_filtered_ = false;  // the low-pass has a reading to start from
   std::atomic<bool> sensor_seen_{false};
   JointState state_;
   bool state_usable_ = false;  // this cycle's state passed measure(), so input_ is current
