@@ -6,7 +6,6 @@ dotted. Every condition whose trace is in OUT_DIR is drawn.
 
 usage: plot_chunks.py OUT_DIR   (writes OUT_DIR/chunks.png)
 """
-import csv
 import glob
 import os
 import sys
@@ -16,14 +15,10 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from csv_columns import read_columns  # noqa: E402
+
 WINDOW_S = (2.0, 3.0)  # a second of steady tracking
 TORQUE_RATE_LIMIT = 1000.0  # N m/s, torque_rate_limit_nm_per_s of the controller file
-
-
-def read(path):
-    with open(path, newline="") as handle:
-        rows = list(csv.DictReader(handle))
-    return {key: [float(row[key]) for row in rows] for key in rows[0]}
 
 
 def window(trace, key):
@@ -48,7 +43,7 @@ def main():
                                 squeeze=False)
     for column, path in enumerate(traces):
         name = os.path.splitext(os.path.basename(path))[0]
-        trace = read(path)
+        trace = read_columns(path)
         top, middle, bottom = axes[0][column], axes[1][column], axes[2][column]
         for key, label, style in [("target_y", "circle", ":"), ("reference_y", "reference", "-"),
                                   ("tcp_y", "TCP", "-")]:

@@ -6,7 +6,6 @@ distance from that axis over the insertion, one line per angular offset.
 usage: plot_connector_mating.py OUT_DIR   (reads OUT_DIR/results.json and each trial's trace.csv,
                                            writes OUT_DIR/connector_mating.png)
 """
-import csv
 import json
 import os
 import sys
@@ -15,6 +14,8 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+from csv_columns import read_columns  # noqa: E402
 
 INSERTION_START_S = 3.0
 QUANTITIES = [
@@ -26,9 +27,7 @@ QUANTITIES = [
 
 
 def read(path):
-    with open(path, newline="") as handle:
-        rows = [row for row in csv.DictReader(handle) if float(row["time_s"]) >= INSERTION_START_S]
-    return {key: [float(row[key]) for row in rows] for key in rows[0]}
+    return read_columns(path, lambda row: float(row["time_s"]) >= INSERTION_START_S)
 
 
 def label(offset):

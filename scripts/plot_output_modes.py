@@ -5,7 +5,6 @@ not (right).
 
 usage: plot_output_modes.py OUT_DIR   (writes OUT_DIR/output_modes.png)
 """
-import csv
 import glob
 import os
 import sys
@@ -15,11 +14,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-
-def read(path):
-    with open(path, newline="") as handle:
-        rows = list(csv.DictReader(handle))
-    return {key: [float(row[key]) for row in rows] for key in rows[0]}
+from csv_columns import read_columns  # noqa: E402
 
 
 def main():
@@ -32,7 +27,7 @@ def main():
     figure, (force_axis, tool_axis) = plt.subplots(1, 2, figsize=(11, 4))
     for path in contacts:
         mode = os.path.splitext(os.path.basename(path))[0].removeprefix("contact_")
-        trace = read(path)
+        trace = read_columns(path)
         force_axis.plot(trace["time_s"], trace["force_n"], linewidth=1, label=f"{mode} drives")
     force_axis.axhline(30.0, color="grey", linestyle=":", linewidth=1, label="K x 3 cm")
     force_axis.set_xlabel("time after the first touch [s]")
@@ -42,7 +37,7 @@ def main():
     for name, label in [("tool_declared", "declared"), ("tool_undeclared", "not declared")]:
         path = os.path.join(out, name + ".csv")
         if os.path.exists(path):
-            trace = read(path)
+            trace = read_columns(path)
             tool_axis.plot(trace["time_s"], trace["error_mm"], linewidth=1, label=label)
     tool_axis.axhline(0.0, color="grey", linestyle=":", linewidth=1)
     tool_axis.set_xlabel("time after the step [s]")

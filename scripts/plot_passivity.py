@@ -7,7 +7,6 @@ tank's initial energy, the most the arm can hold with the tank on while the refe
 
 usage: plot_passivity.py OUT_DIR   (writes OUT_DIR/passivity.png)
 """
-import csv
 import os
 import sys
 
@@ -15,6 +14,8 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+from csv_columns import read_columns  # noqa: E402
 
 # (folder, title, log scale): the adversarial runs span four decades, the normal task starts at 0.
 SCENARIOS = [
@@ -32,12 +33,6 @@ CONDITIONS = [
 TANK_INITIAL_J = 1.0  # passivity.tank_initial_j, its default
 
 
-def read(path):
-    with open(path, newline="") as handle:
-        rows = list(csv.DictReader(handle))
-    return {key: [float(row[key]) for row in rows] for key in rows[0]}
-
-
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__.strip())
@@ -50,7 +45,7 @@ def main():
             trace_file = os.path.join(out, scenario, name + ".csv")
             if not os.path.exists(trace_file):
                 continue
-            trace = read(trace_file)
+            trace = read_columns(trace_file)
             start_j = trace["energy_j"][0] if start_j is None else start_j
             energy_axis.plot(trace["time_s"], trace["energy_j"], color=colour, linewidth=1,
                              label=label)

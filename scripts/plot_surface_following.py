@@ -4,7 +4,6 @@ lateral error, tangential error and contact force over time for each condition.
 
 usage: plot_surface_following.py OUT_DIR   (writes OUT_DIR/surface_following.png)
 """
-import csv
 import os
 import sys
 
@@ -13,6 +12,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from csv_columns import read_columns  # noqa: E402
+
 CONDITIONS = [
     ("fixed_frame", "fixed-frame gains", "tab:red"),
     ("task_aligned", "task-aligned gains", "tab:blue"),
@@ -20,17 +21,11 @@ CONDITIONS = [
 ]
 
 
-def read(path):
-    with open(path, newline="") as handle:
-        rows = list(csv.DictReader(handle))
-    return {key: [float(row[key]) for row in rows] for key in rows[0]}
-
-
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__.strip())
     out = sys.argv[1]
-    fixture = read(os.path.join(out, "fixture.csv"))
+    fixture = read_columns(os.path.join(out, "fixture.csv"))
     figure = plt.figure(figsize=(11, 8))
     top = figure.add_subplot(2, 1, 1)
     mm = lambda values: [1e3 * v for v in values]  # noqa: E731
@@ -42,7 +37,7 @@ def main():
         trace_file = os.path.join(out, name, "trace.csv")
         if not os.path.exists(trace_file):
             continue
-        trace = read(trace_file)
+        trace = read_columns(trace_file)
         top.plot(mm(trace["tip_x"]), mm(trace["tip_y"]), color=colour, linewidth=1, label=label)
         axes[0].plot(trace["time_s"], trace["lateral_mm"], color=colour, linewidth=1)
         axes[1].plot(trace["time_s"], trace["tangential_mm"], color=colour, linewidth=1)
