@@ -12,7 +12,7 @@ struct JointState {
   JointVector velocity;  ///< rad/s | m/s
   JointVector effort;    ///< measured torque, N m | N
   /// A wrist force/torque sensor's reading, where the hardware has one and it was valid this cycle
-  /// (HardwareInterface::readWrench): the wrench the environment exerts on the tool at the TCP,
+  /// (HardwareInterface::readWrench): the wrench on the tool at the TCP as the sensor reads it,
   /// base frame, force first [N, N m].
   Eigen::Matrix<double, 6, 1> wrench = Eigen::Matrix<double, 6, 1>::Zero();
   bool wrench_valid = false;

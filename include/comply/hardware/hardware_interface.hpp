@@ -46,10 +46,11 @@ class HardwareInterface {
   /// True when the robot adds its own gravity compensation to the torque it is sent (Franka, KUKA
   /// and UR controllers do): the host then turns the wrapper's off, so it is not added twice.
   [[nodiscard]] virtual bool compensatesGravity() const noexcept { return false; }
-  /// A wrist force/torque measurement [N, N m], base frame, force first: the wrench the
-  /// environment exerts on the tool at the TCP, the tool's own weight already removed. False when
-  /// the robot has no such sensor or no valid reading this cycle. The control loop calls it after
-  /// every read() and hands it on in JointState::wrench.
+  /// A wrist force/torque measurement [N, N m], base frame, force first, about the TCP: the
+  /// wrench on the tool from all but the arm, as the sensor reads it (the tool's weight and the
+  /// sensor's offset in it; the cycle takes off the declared tool's weight and a tare). False
+  /// when the robot has no such sensor or no valid reading this cycle. The control loop calls it
+  /// after every read() and hands it on in JointState::wrench.
   virtual bool readWrench(Vector6d& wrench) noexcept {
     (void)wrench;
     return false;
