@@ -54,6 +54,8 @@ void MomentumObserver::configure(const ObserverConfig& config, int dof) noexcept
   scratch_.setZero(dof);
   previous_mass_.setZero(dof, dof);
   wrench_.setZero();
+  wrench_due_ = false;
+  last_data_ = nullptr;
   started_ = false;
 }
 
@@ -70,6 +72,7 @@ void MomentumObserver::update(const JointVector& velocity, const JointVector& ta
     residual_.setZero(n);
     previous_mass_.topLeftCorner(n, n) = mass;
     wrench_.setZero();
+    wrench_due_ = false;
     started_ = true;
     return;
   }
@@ -82,19 +85,28 @@ void MomentumObserver::update(const JointVector& velocity, const JointVector& ta
   residual_.head(n) =
       config_.gain_per_s * (momentum - initial_momentum_.head(n) - integral_.head(n));
   previous_mass_.topLeftCorner(n, n) = mass;
+  last_data_ = &data;
+  wrench_due_ = true;
+}
 
+const Vector6d& MomentumObserver::wrench() const noexcept {
+  if (!wrench_due_ || last_data_ == nullptr) {
+    return wrench_;
+  }
   // F = (J J^T + lambda^2 I)^-1 J r: the damped least-squares solution of J^T F = r. Column by
   // column, so that every product is of fixed-size 6-vectors (a third of the time of Eigen's
   // product of the dynamic-width Jacobian).
   Eigen::Matrix<double, 6, 6> normal =
       (config_.damping * config_.damping) * Eigen::Matrix<double, 6, 6>::Identity();
   Vector6d projected = Vector6d::Zero();
-  for (int j = 0; j < n; ++j) {
-    const Vector6d column = data.jacobian.col(j);
+  for (int j = 0; j < dof_; ++j) {
+    const Vector6d column = last_data_->jacobian.col(j);
     normal.noalias() += column * column.transpose();
     projected += residual_[j] * column;
   }
   wrench_ = solvePositiveDefinite(normal, projected);
+  wrench_due_ = false;
+  return wrench_;
 }
 
 }  // namespace comply::pipeline

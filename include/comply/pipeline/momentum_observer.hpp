@@ -10,7 +10,9 @@
 // dM/dt = C + C^T as dM/dt dq - C dq, dM/dt from the mass matrices of two cycles. The wrench at the
 // TCP is the damped least-squares solution of J^T F = r.
 //
-// Runs in the cycle's measure stage when observer.enabled: no allocation, no lock, no throw.
+// Runs in the cycle's measure stage when observer.enabled: no allocation, no lock, no throw. The
+// residual is updated every cycle; the wrench is solved when it is first asked for after a cycle
+// (a host reads it at its state rate, a recording every cycle), from that cycle's Jacobian.
 
 #include "comply/core/capacity.hpp"
 #include "comply/core/commands.hpp"
@@ -44,8 +46,10 @@ class MomentumObserver {
 
   /// The external joint torque estimate r [N m | N]; zero until two updates.
   [[nodiscard]] const JointVector& jointTorque() const noexcept { return residual_; }
-  /// The external wrench on the tool at the TCP, base frame, force first [N, N m].
-  [[nodiscard]] const Vector6d& wrench() const noexcept { return wrench_; }
+  /// The external wrench on the tool at the TCP, base frame, force first [N, N m], from the last
+  /// update's residual and Jacobian. The thread that runs the cycle, between two cycles (the
+  /// Jacobian is the controller's model data of the last cycle).
+  [[nodiscard]] const Vector6d& wrench() const noexcept;
 
  private:
   ObserverConfig config_;
@@ -57,7 +61,10 @@ class MomentumObserver {
   JointVector residual_;
   JointMatrix previous_mass_;
   JointVector scratch_;
-  Vector6d wrench_ = Vector6d::Zero();
+  // The wrench of the last update, solved on demand: the data it needs, and whether it is due.
+  const model::Data* last_data_ = nullptr;
+  mutable bool wrench_due_ = false;
+  mutable Vector6d wrench_ = Vector6d::Zero();
 };
 
 }  // namespace comply::pipeline
