@@ -382,5 +382,37 @@ TEST(SimLog, TankColumnsOnlyWhenTheTankIsOn) {
   EXPECT_NE(on.find(",0.75,0.25,1.5,2.125,0.0625,0.4\n"), std::string::npos) << on;
 }
 
+// A run on drives that take positions logs their command beside the joints, and in admittance the
+// wrist sensor's wrench the virtual arm answered; a torque run's log stays as it was.
+TEST(SimLog, PositionDrivesLogTheirCommandAndAdmittanceItsWrench) {
+  const auto run = [](OutputMode mode) {
+    host::SimRunOptions options = fr3ExampleRun("step_response.yaml");
+    options.config.output.mode = mode;
+    options.duration_s = 0.05;
+    options.snapshots = false;
+    return host::runSimulation(options);
+  };
+  const host::SimResult torque = run(OutputMode::kTorque);
+  EXPECT_FALSE(torque.log.commandLogged());
+  EXPECT_EQ(csvOf(torque.log).find("qcmd"), std::string::npos);
+  const host::SimResult pd = run(OutputMode::kJointPd);
+  EXPECT_TRUE(pd.log.commandLogged());
+  EXPECT_FALSE(pd.log.sensorLogged());
+  const host::SimResult admittance = run(OutputMode::kPosition);
+  ASSERT_TRUE(admittance.log.commandLogged() && admittance.log.sensorLogged());
+  EXPECT_EQ(admittance.log.position_command.size(), admittance.log.size());
+  const std::string csv = csvOf(admittance.log);
+  EXPECT_NE(csv.find(",qcmd0,qcmd1,qcmd2,qcmd3,qcmd4,qcmd5,qcmd6,sensor_fx,sensor_fy,sensor_fz,"
+                     "sensor_tx,sensor_ty,sensor_tz\n"),
+            std::string::npos)
+      << csv.substr(0, 600);
+  // The command is the virtual arm, near the measured joints.
+  const std::size_t last = admittance.log.size() - 1;
+  EXPECT_LT((admittance.log.position_command[last] - admittance.log.position[last])
+                .cwiseAbs()
+                .maxCoeff(),
+            0.05);
+}
+
 }  // namespace
 }  // namespace comply::testing

@@ -67,6 +67,11 @@ struct SimLog {
   /// The controller's estimate of the same wrench (observer.enabled; empty when off): what a
   /// robot without the simulator's truth would see.
   std::vector<Vector6d> estimated_wrench;
+  /// output.mode other than torque: the drives' position command (joint_pd's q_d, admittance's
+  /// virtual arm), and in admittance the wrist sensor's wrench the virtual arm answered (the
+  /// declared tool's weight and the tare off). Empty otherwise.
+  std::vector<JointVector> position_command;
+  std::vector<Vector6d> sensor_wrench;
   std::vector<double> cycle_cost_us;  ///< the controller's own time per cycle, plant excluded
   /// The energy tank's account after each cycle (passivity.* options).
   std::vector<pipeline::PassivitySnapshot> passivity;
@@ -84,6 +89,10 @@ struct SimLog {
   }
   /// The momentum observer ran (observer.enabled): log.csv then has estimated_* columns.
   [[nodiscard]] bool estimateLogged() const noexcept { return !estimated_wrench.empty(); }
+  /// The drives took positions (output.mode joint_pd, position, velocity): qcmd* columns.
+  [[nodiscard]] bool commandLogged() const noexcept { return !position_command.empty(); }
+  /// Admittance: sensor_* columns.
+  [[nodiscard]] bool sensorLogged() const noexcept { return !sensor_wrench.empty(); }
 };
 
 struct SimSummary {

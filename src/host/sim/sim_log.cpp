@@ -99,6 +99,14 @@ void writeLogHeader(const SimLog& log, std::ostream& out) {
   if (log.estimateLogged()) {
     out << ",estimated_fx,estimated_fy,estimated_fz,estimated_tx,estimated_ty,estimated_tz";
   }
+  if (log.commandLogged()) {
+    for (int j = 0; j < log.dof; ++j) {
+      out << ",qcmd" << j;
+    }
+  }
+  if (log.sensorLogged()) {
+    out << ",sensor_fx,sensor_fy,sensor_fz,sensor_tx,sensor_ty,sensor_tz";
+  }
   // Only a run with the tank on gets its columns: without it log.csv is what it always was.
   if (log.passivityEnabled()) {
     out << ",tank_energy_j,nullspace_tank_energy_j,energy_injected_j,energy_dissipated_j,"
@@ -138,6 +146,16 @@ void writeLogRow(const SimLog& log, std::size_t row, std::ostream& out) {
   if (log.estimateLogged()) {
     for (int k = 0; k < 6; ++k) {
       out << ',' << log.estimated_wrench[row][k];
+    }
+  }
+  if (log.commandLogged()) {
+    for (int j = 0; j < log.dof; ++j) {
+      out << ',' << log.position_command[row][j];
+    }
+  }
+  if (log.sensorLogged()) {
+    for (int k = 0; k < 6; ++k) {
+      out << ',' << log.sensor_wrench[row][k];
     }
   }
   if (log.passivityEnabled()) {

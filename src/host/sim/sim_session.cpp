@@ -105,8 +105,16 @@ class SimRecorder final : public hardware::LoopObserver {
     log.tcp_position.push_back(tcp.translation());
     log.tcp_orientation.push_back(Eigen::Quaterniond(tcp.linear()));
     log.contact_wrench.push_back(plant_.toolContactWrench());
-    if (wrapper_.controller().observer().enabled()) {
-      log.estimated_wrench.push_back(wrapper_.controller().observer().wrench());
+    const pipeline::Controller& controller = wrapper_.controller();
+    if (controller.observer().enabled()) {
+      log.estimated_wrench.push_back(controller.observer().wrench());
+    }
+    if (record.command != nullptr && record.command->mode != OutputMode::kTorque) {
+      log.position_command.push_back(record.command->position);
+      if (isAdmittance(record.command->mode)) {
+        log.sensor_wrench.push_back(controller.sensorWrenchValid() ? controller.sensorWrench()
+                                                                   : Vector6d::Zero());
+      }
     }
     log.passivity.push_back(wrapper_.controller().diagnostics().passivity());
     log.cycle_cost_us.push_back(record.controller_s * 1e6);
