@@ -7,12 +7,12 @@
 //   on_activate    the reference is seeded from the measured state (comply's activation)
 //   update         one comply cycle: state interfaces -> wrapper -> command interfaces; no
 //                  allocation, no lock, no exception (the state publisher is a try-lock)
+//   on_deactivate  the wrapper stops; the last torque stays on the interfaces until the
+//                  hardware or the next controller takes them
 //
 // The command interfaces claimed follow the file's output.mode (docs/output-modes.md): torque
 // <joint>/effort; position <joint>/position; velocity <joint>/velocity; joint_pd <joint>/position,
 // /velocity, /effort (tau_ff), /stiffness (kp) and /damping (kd).
-//   on_deactivate  the wrapper stops; the last torque stays on the interfaces until the
-//                  hardware or the next controller takes them
 //
 // Topics (relative to the controller's node, /<controller name>/...):
 //   ~/cartesian_command or ~/joint_command   comply_msgs command, through comply's command gate as
