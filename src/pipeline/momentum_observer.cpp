@@ -42,6 +42,33 @@ Vector6d solvePositiveDefinite(const Eigen::Matrix<double, 6, 6>& a, const Vecto
   return x;
 }
 
+/// The residual's step for N joints (fixed for the common arms, Eigen::Dynamic otherwise): the
+/// matrix-vector products of fixed size vectorise, those of the capacity-sized JointMatrix do not.
+/// Arrays are column-major n x n and n long; `momentum` holds M dq on entry.
+template <int N>
+void residualStep(int n, const double* mass, double* previous_mass, const double* dq,
+                  const double* tau, const double* coriolis, const double* gravity,
+                  const double* initial_momentum, const double* momentum, double period_s,
+                  double gain, double* integral, double* residual) noexcept {
+  using Square = Eigen::Matrix<double, N, N>;
+  using Column = Eigen::Matrix<double, N, 1>;
+  const Eigen::Map<const Square> m(mass, n, n);
+  Eigen::Map<Square> m_previous(previous_mass, n, n);
+  const Eigen::Map<const Column> v(dq, n);
+  const Eigen::Map<const Column> p(momentum, n);
+  Eigen::Map<Column> r(residual, n);
+  Eigen::Map<Column> integrated(integral, n);
+  // T C^T dq = T (dM/dt dq - C dq) = M dq - M_prev dq - T C dq: dM/dt over the period that
+  // ended. Explicit Euler with the residual of the previous cycle, as the continuous law reads.
+  Column step = p;
+  step.noalias() -= m_previous * v;
+  step += period_s * (Eigen::Map<const Column>(tau, n) - Eigen::Map<const Column>(coriolis, n) -
+                      Eigen::Map<const Column>(gravity, n) + r);
+  integrated += step;
+  r = gain * (p - Eigen::Map<const Column>(initial_momentum, n) - integrated);
+  m_previous = m;
+}
+
 }  // namespace
 
 void MomentumObserver::configure(const ObserverConfig& config, int dof) noexcept {
@@ -51,7 +78,6 @@ void MomentumObserver::configure(const ObserverConfig& config, int dof) noexcept
   momentum_.setZero(dof);
   integral_.setZero(dof);
   residual_.setZero(dof);
-  scratch_.setZero(dof);
   previous_mass_.setZero(dof, dof);
   wrench_.setZero();
   wrench_due_ = false;
@@ -76,15 +102,12 @@ void MomentumObserver::update(const JointVector& velocity, const JointVector& ta
     started_ = true;
     return;
   }
-  // C^T dq = dM/dt dq - C dq, with dM/dt over the period that ended: (M dq - M_prev dq) / T.
-  auto rate = scratch_.head(n);
-  rate.noalias() = previous_mass_.topLeftCorner(n, n) * dq;
-  rate = (momentum - rate) / period_s - data.coriolis.head(n);
-  // Explicit Euler with the residual of the previous cycle, as the continuous law reads.
-  integral_.head(n) += period_s * (tau.head(n) + rate - data.gravity.head(n) + residual_.head(n));
-  residual_.head(n) =
-      config_.gain_per_s * (momentum - initial_momentum_.head(n) - integral_.head(n));
-  previous_mass_.topLeftCorner(n, n) = mass;
+  const auto step = n == 7   ? &residualStep<7>
+                    : n == 6 ? &residualStep<6>
+                             : &residualStep<Eigen::Dynamic>;
+  step(n, data.mass_matrix.data(), previous_mass_.data(), velocity.data(), tau.data(),
+       data.coriolis.data(), data.gravity.data(), initial_momentum_.data(), momentum_.data(),
+       period_s, config_.gain_per_s, integral_.data(), residual_.data());
   last_data_ = &data;
   wrench_due_ = true;
 }

@@ -60,7 +60,6 @@ class MomentumObserver {
   JointVector integral_;
   JointVector residual_;
   JointMatrix previous_mass_;
-  JointVector scratch_;
   // The wrench of the last update, solved on demand: the data it needs, and whether it is due.
   const model::Data* last_data_ = nullptr;
   mutable bool wrench_due_ = false;

@@ -108,8 +108,8 @@ void Intake<Command>::handle(const transport::Sample<transport::RequestMessage>&
       gate_.clearStampFloor();
       break;
     case transport::RequestType::kTare:
-      if (const std::string why = wrapper_.tare(); !why.empty()) {
-        wrapper_.controller().diagnostics().setRejection("tare: ", why.c_str());
+      if (const std::string refused = wrapper_.tare(); !refused.empty()) {
+        wrapper_.controller().diagnostics().setRejection("tare: ", refused.c_str());
       }
       break;
   }
