@@ -218,7 +218,7 @@ std::vector<BenchRow> benchWrapper(const BenchOptions& options, const std::strin
   std::unique_ptr<BenchRecording<Command>> recording;
   if (variant.recorded) {
     recording = std::make_unique<BenchRecording<Command>>(
-        options.warmup, wrapper, replay,
+        options.warmup, wrapper,
         std::filesystem::temp_directory_path() /
             ("comply_bench_" + std::to_string(getpid()) + "_" + wrapper_name + ".mcap"));
     loop.setObserver(recording.get());

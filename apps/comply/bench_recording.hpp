@@ -34,10 +34,10 @@ class BenchRecording final : public hardware::LoopObserver {
   using Clock = std::chrono::steady_clock;
 
   BenchRecording(int warmup, const pipeline::Wrapper<Command>& wrapper,
-                 hardware::HardwareInterface& hardware, const std::filesystem::path& file)
+                 const std::filesystem::path& file)
       : warmup_(warmup),
         wrapper_(wrapper),
-        sampler_(wrapper, hardware),
+        sampler_(wrapper),
         recorder_({.path = file.string(), .mcap = {}, .writer_period_s = 1e-4}),
         lane_(recorder_.addLane("control", host::kControlLaneBytes)) {
     const auto schema = recorder_.addSchema("bench", "ros2msg", "");

@@ -50,10 +50,10 @@ struct Episode final : hardware::LoopObserver {
     }
   }
 
-  void attach(host::HostRecording* to, hardware::HardwareInterface& plant) {
+  void attach(host::HostRecording* to) {
     recording = to;
     if (to != nullptr && !sampler) {
-      sampler.emplace(wrapper, plant);
+      sampler.emplace(wrapper);
     }
   }
 
@@ -99,7 +99,7 @@ struct Sim::Session {
     std::visit(
         [&](auto& e) {
           e->gate = &gate;
-          e->attach(recording, plant);
+          e->attach(recording);
           e->wrapper.activate(state);
           loop = std::make_unique<hardware::ControlLoop>(
               plant, e->wrapper, clock, hardware::LoopOptions{.period_s = plant.controlPeriod()});
@@ -109,7 +109,7 @@ struct Sim::Session {
   }
 
   void detachRecording() {
-    std::visit([&](auto& e) { e->attach(nullptr, plant); }, episode);
+    std::visit([](auto& e) { e->attach(nullptr); }, episode);
   }
 
   /// The recording's clock now: where the next episode starts.

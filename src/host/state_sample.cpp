@@ -91,9 +91,8 @@ transport::CommandOutcomeMessage outcomeMessage(const pipeline::CommandOutcome& 
 }
 
 template <typename Command>
-StateSampler<Command>::StateSampler(const pipeline::Wrapper<Command>& wrapper,
-                                    hardware::HardwareInterface& robot)
-    : wrapper_(wrapper), robot_(&robot), inactive_pose_(wrapper.controller().model()) {}
+StateSampler<Command>::StateSampler(const pipeline::Wrapper<Command>& wrapper)
+    : wrapper_(wrapper), inactive_pose_(wrapper.controller().model()) {}
 
 template <typename Command>
 void StateSampler<Command>::fill(const hardware::CycleRecord& record, const JointState& measured,

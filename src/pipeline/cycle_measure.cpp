@@ -11,6 +11,7 @@
 namespace comply::pipeline {
 
 bool Controller::measure(const JointState& state) noexcept {
+  sensor_valid_ = false;  // until senseWrench() reads this cycle's state: a tare needs its reading
   const bool sized =
       state.position.size() == dof_ && state.velocity.size() == dof_ && state.effort.size() == dof_;
   if (!sized || !state.position.allFinite() || !state.velocity.allFinite()) {

@@ -80,7 +80,7 @@ void runWithWrench(const std::string& robot, const Vector6d& applied, Logged& lo
     log.residual.push_back(wrapper.controller().observer().jointTorque());
     log.wrench.push_back(wrapper.controller().observer().wrench());
   }
-  host::StateSampler<CartesianCommand> sampler(wrapper, plant);
+  host::StateSampler<CartesianCommand> sampler(wrapper);
   hardware::CycleRecord record;
   record.index = kCycles - 1;
   record.wrote = true;

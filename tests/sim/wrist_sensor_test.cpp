@@ -91,7 +91,7 @@ TEST_P(WristSensor, ReadsAKnownWrenchAfterATare) {
   RecordProperty("force_error_n", std::to_string((read - applied).head<3>().norm()));
 
   // What a host reports: the sensor's wrench, named as such.
-  host::StateSampler<CartesianCommand> sampler(rig.wrapper, rig.plant);
+  host::StateSampler<CartesianCommand> sampler(rig.wrapper);
   hardware::CycleRecord record;
   record.wrote = true;
   record.state = &rig.state;
@@ -117,8 +117,8 @@ double turnedToolReading(bool declared) {
   rig.cycles(500);
   rig.tare();
   const MeasuredPose home = rig.wrapper.measuredPose();
-  const Eigen::Quaterniond turned =
-      home.tcp_orientation * Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()));
+  const Eigen::Quaterniond turned = home.tcp_orientation * Eigen::Quaterniond(Eigen::AngleAxisd(
+                                                               M_PI / 2, Eigen::Vector3d::UnitX()));
   for (int cycle = 0; cycle < 3000; ++cycle) {
     CartesianCommand target = CartesianCommand::zero(rig.wrapper.dof());
     target.fields = CommandField::kPosition;

@@ -35,12 +35,12 @@ struct StateSample {
   JointVector reference_joint_position;
 };
 
-/// Fills StateSamples from a wrapper and its hardware; the control thread's scratch lives here.
+/// Fills StateSamples from a wrapper (the wrist sensor's reading as its cycle compensated it
+/// included); the control thread's scratch lives here.
 template <typename Command>
 class StateSampler {
  public:
-  /// `robot`: the hardware, for its measured wrench (if it has a sensor).
-  StateSampler(const pipeline::Wrapper<Command>& wrapper, hardware::HardwareInterface& robot);
+  explicit StateSampler(const pipeline::Wrapper<Command>& wrapper);
 
   /// The cycle `record` reported, the joint state it measured (`measured`) and `stamp`; on the
   /// control thread, after the cycle. No allocation.
@@ -49,7 +49,6 @@ class StateSampler {
 
  private:
   const pipeline::Wrapper<Command>& wrapper_;
-  hardware::HardwareInterface* robot_;
   /// The pose of the measured joints while the controller is inactive (its own model data then
   /// stays where the last active cycle left it).
   model::Data inactive_pose_;

@@ -219,7 +219,7 @@ int runWith(const LiveHostOptions& options,
 
   const double period_s = 1.0 / options.rate_hz;
   pipeline::CommandGate gate(pipeline::gateOptions(resolved->config, resolved->cartesian()));
-  LiveObserver<Command> observer(wrapper, gate, robot, hardware::monotonicSeconds());
+  LiveObserver<Command> observer(wrapper, gate, hardware::monotonicSeconds());
   const auto cycles = static_cast<std::uint64_t>(std::llround(options.duration_s / period_s));
   hardware::ControlLoop loop(
       robot, wrapper, *backend.clock,

@@ -45,9 +45,8 @@ double histogramQuantile(const std::array<std::atomic<std::uint64_t>, LoopCounte
 
 template <typename Command>
 LiveObserver<Command>::LiveObserver(pipeline::Wrapper<Command>& wrapper,
-                                    pipeline::CommandGate& gate, hardware::HardwareInterface& robot,
-                                    double wall_origin_s)
-    : wrapper_(wrapper), wall_origin_s_(wall_origin_s), gate_(gate), sampler_(wrapper, robot) {
+                                    pipeline::CommandGate& gate, double wall_origin_s)
+    : wrapper_(wrapper), wall_origin_s_(wall_origin_s), gate_(gate), sampler_(wrapper) {
   const int dof = wrapper.dof();
   sample_.joints = JointState::zero(dof);
   sample_.torque.setZero(dof);

@@ -41,10 +41,9 @@ double histogramQuantile(const std::array<std::atomic<std::uint64_t>, LoopCounte
 template <typename Command>
 class LiveObserver final : public hardware::LoopObserver {
  public:
-  /// `robot`: the hardware, for its measured wrench (if it has a sensor). `wall_origin_s`: the
-  /// CLOCK_MONOTONIC time [s] at which the loop's clock reads 0.
+  /// `wall_origin_s`: the CLOCK_MONOTONIC time [s] at which the loop's clock reads 0.
   LiveObserver(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gate,
-               hardware::HardwareInterface& robot, double wall_origin_s);
+               double wall_origin_s);
 
   void beforeCycle(std::uint64_t index, double time_s) override;
   void afterCycle(const hardware::CycleRecord& record) override;

@@ -23,15 +23,16 @@ namespace {
 
 using WallClock = std::chrono::steady_clock;
 
-sim::PlantOptions plantOptions(const SimRunOptions& options, const std::string& tip_frame) {
+sim::PlantOptions plantOptions(const SimRunOptions& options,
+                               const pipeline::ResolvedController& resolved) {
   sim::PlantOptions plant;
-  plant.actuation = options.config.output.mode;  // the arm has the drives the controller drives
+  plant.actuation = resolved.parameters.output.mode;  // the drives the controller drives
   plant.substeps = options.task.substeps;
   plant.seed = options.task.seed;
   plant.scene = options.task.scene;
   plant.scene.offscreen_width = std::max(options.image_width, 1280);
   plant.scene.offscreen_height = std::max(options.image_height, 960);
-  plant.tip_frame = tip_frame;
+  plant.tip_frame = resolved.config.tip_frame;
   plant.joint_dynamics = options.plant_joint_dynamics;
   plant.friction_scale = options.plant_friction_scale;
   return plant;
@@ -64,7 +65,7 @@ class SimRecorder final : public hardware::LoopObserver {
     recording_ = recording;
     base_frame_ = base_frame;
     if (recording != nullptr) {
-      sampler_.emplace(wrapper_, plant_);
+      sampler_.emplace(wrapper_);
     }
   }
 
@@ -247,7 +248,7 @@ SimResult runWith(const SimRunOptions& options,
   summary.robot = resolved->robot.name;
   summary.plugin = resolved->config.plugin;
   summary.output_mode = resolved->parameters.output.mode;
-  sim::SimulatedRobot plant(resolved->robot, plantOptions(options, resolved->config.tip_frame));
+  sim::SimulatedRobot plant(resolved->robot, plantOptions(options, *resolved));
   pipeline::Wrapper<Command> wrapper(resolved);
   const int dof = wrapper.dof();
   summary.dof = result.log.dof = dof;
