@@ -6,10 +6,15 @@
 //     50 % + 50 ms);
 //   - a 3 kg tool, its inertial force in the wrist sensor's reading as on a real arm: declared
 //     (compensation.payload), a 5 cm step ends at rest without ringing; undeclared it rings (the
-//     reason to declare it, shown in the docs).
+//     reason to declare it, shown in the docs);
+//   - FAULT (a bad state) holds the measured position against a push, and a reset lets it yield.
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
+#include "output_modes/output_mode_rig.hpp"
 #include "output_modes/output_modes_experiment.hpp"
 
 namespace comply::testing {
@@ -34,6 +39,41 @@ TEST(AdmittanceContact, ADeclaredHeavyToolDoesNotRing) {
   const experiments::ToolStepResult undeclared = experiments::heavyToolStep(false);
   EXPECT_GT(undeclared.residual_speed_mm_per_s, 10.0 * declared.residual_speed_mm_per_s + 1.0)
       << "the undeclared tool settles too: the inertial force in the reading changed nothing?";
+}
+
+// FAULT in admittance holds the measured position: a push that the compliant arm yields to moves it
+// no further once a bad state has faulted the controller, and after a reset the arm yields again.
+TEST(AdmittanceFault, HoldsTheMeasuredPositionUntilAReset) {
+  experiments::OutputModeRig<> rig(experiments::outputModeConfig("ur5e", OutputMode::kPosition),
+                                   experiments::plantOf(OutputMode::kPosition));
+  const auto cycles = [&](int count) {
+    for (int cycle = 0; cycle < count; ++cycle) {
+      rig.cycle();
+    }
+  };
+  const auto tcp_y = [&] { return rig.plant.tcpPose().translation().y(); };
+  Vector6d push = Vector6d::Zero();
+  push[1] = 30.0;  // N along base y: 1 cm on the file's 3000 N/m
+  rig.plant.setExternalWrench(push);
+  cycles(1000);
+  const double yielded = tcp_y();
+  rig.read();
+  rig.state.position[2] = std::numeric_limits<double>::quiet_NaN();
+  ASSERT_TRUE(rig.wrapper.cycle(rig.state, experiments::kRigPeriodS, rig.command))
+      << "FAULT still writes: the hold";
+  ASSERT_EQ(rig.wrapper.diagnostics().state, pipeline::WrapperState::kFault);
+  ASSERT_TRUE(rig.plant.writeCommand(rig.command));
+  rig.plant.step();
+  push[1] = 60.0;  // twice the push: 1 cm more, if anything yielded
+  rig.plant.setExternalWrench(push);
+  cycles(1000);
+  EXPECT_EQ(rig.wrapper.diagnostics().state, pipeline::WrapperState::kFault);
+  const double held = tcp_y();
+  EXPECT_LT(std::abs(held - yielded), 1e-3) << "the arm kept yielding in FAULT";
+  rig.wrapper.reset();
+  cycles(1000);
+  EXPECT_EQ(rig.wrapper.diagnostics().state, pipeline::WrapperState::kActive);
+  EXPECT_NEAR(tcp_y() - held, 0.01, 2e-3) << "after the reset the arm yields to the push again";
 }
 
 }  // namespace
