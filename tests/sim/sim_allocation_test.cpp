@@ -11,6 +11,7 @@
 #include "allocation_counter.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/sim/simulated_robot.hpp"
+#include "plant_commands.hpp"
 
 namespace comply::testing {
 namespace {
@@ -48,11 +49,7 @@ TEST(SimulatedRobotAllocation, EveryKindOfDriveAndTheWristSensorAllocateNothing)
     options.substeps = 2;
     sim::SimulatedRobot robot(model::loadRobotDescription("ur5e"), options);
     JointState state = JointState::zero(robot.dof());
-    robot.read(state);
-    ActuatorCommand command;
-    command.resize(robot.dof());
-    command.mode = mode;
-    command.position = state.position;
+    ActuatorCommand command = holdWhereItIs(robot, mode);
     command.stiffness.setConstant(50.0);
     Vector6d wrench;
     AllocationCounter counter;

@@ -15,6 +15,7 @@
 #include "comply/model/robot_description.hpp"
 #include "comply/model/update.hpp"
 #include "comply/sim/sim_error.hpp"
+#include "plant_commands.hpp"
 #include "sim_support.hpp"
 
 namespace comply::testing {
@@ -192,15 +193,6 @@ TEST(SimulatedRobot, ProbeForceEqualsStiffnessTimesPenetration) {
 // each refuses the other modes (and torque, except the PD drive).
 TEST(SimulatedRobot, PositionVelocityAndPdDrivesFollowTheirCommands) {
   const model::RobotDescription ur5e = model::loadRobotDescription("ur5e");
-  const auto command_for = [](sim::SimulatedRobot& robot, OutputMode mode) {
-    JointState state = JointState::zero(robot.dof());
-    robot.read(state);
-    ActuatorCommand command;
-    command.resize(robot.dof());
-    command.mode = mode;
-    command.position = state.position;
-    return std::make_pair(command, state);
-  };
   for (const OutputMode mode : {OutputMode::kPosition, OutputMode::kVelocity}) {
     SCOPED_TRACE(std::string(toString(mode)));
     sim::PlantOptions options;
@@ -209,7 +201,8 @@ TEST(SimulatedRobot, PositionVelocityAndPdDrivesFollowTheirCommands) {
     EXPECT_TRUE(robot.accepts(mode));
     EXPECT_FALSE(robot.accepts(OutputMode::kTorque));
     EXPECT_FALSE(robot.accepts(OutputMode::kJointPd));
-    auto [command, start] = command_for(robot, mode);
+    ActuatorCommand command = holdWhereItIs(robot, mode);
+    const JointVector start = command.position;
     const std::vector<double> torque(static_cast<std::size_t>(robot.dof()), 0.0);
     EXPECT_FALSE(robot.write(torque)) << "servos take no torque";
     command.mode = OutputMode::kJointPd;
@@ -220,21 +213,21 @@ TEST(SimulatedRobot, PositionVelocityAndPdDrivesFollowTheirCommands) {
     } else {
       command.velocity[1] = 0.1;  // 0.1 rad/s for 1 s
     }
-    JointState state = start;
+    JointState state = JointState::zero(robot.dof());
     for (int cycle = 0; cycle < 1000; ++cycle) {
       ASSERT_TRUE(robot.writeCommand(command));
       robot.step();
     }
     robot.read(state);
-    EXPECT_NEAR(state.position[1] - start.position[1], 0.1, 2e-3);
-    EXPECT_NEAR(state.position[0], start.position[0], 1e-3) << "the other joints held";
+    EXPECT_NEAR(state.position[1] - start[1], 0.1, 2e-3);
+    EXPECT_NEAR(state.position[0], start[0], 1e-3) << "the other joints held";
   }
   sim::PlantOptions options;
   options.actuation = OutputMode::kJointPd;
   sim::SimulatedRobot robot(ur5e, options);
   EXPECT_TRUE(robot.accepts(OutputMode::kJointPd));
   EXPECT_TRUE(robot.accepts(OutputMode::kTorque)) << "a PD drive given a torque alone";
-  auto [command, start] = command_for(robot, OutputMode::kJointPd);
+  ActuatorCommand command = holdWhereItIs(robot, OutputMode::kJointPd);
   command.position[2] += 0.05;
   command.stiffness.setConstant(400.0);
   command.damping.setConstant(20.0);
@@ -258,12 +251,7 @@ TEST(SimulatedRobot, TheWristSensorReadsWeightOffsetAppliedWrenchAndTheToolsIner
   options.scene.tool = kSourceDir / "examples" / "sim" / "payload_3kg.xml";
   options.wrench_sensor_offset << 2.0, -1.0, 3.0, 0.2, -0.1, 0.05;
   sim::SimulatedRobot robot(model::loadRobotDescription("ur5e"), options);
-  JointState state = JointState::zero(robot.dof());
-  robot.read(state);
-  ActuatorCommand hold;
-  hold.resize(robot.dof());
-  hold.mode = OutputMode::kPosition;
-  hold.position = state.position;
+  const ActuatorCommand hold = holdWhereItIs(robot, OutputMode::kPosition);
   const auto settle = [&](const ActuatorCommand& command, int cycles) {
     for (int cycle = 0; cycle < cycles; ++cycle) {
       ASSERT_TRUE(robot.writeCommand(command));
@@ -290,8 +278,7 @@ TEST(SimulatedRobot, TheWristSensorReadsWeightOffsetAppliedWrenchAndTheToolsIner
   settle(hold, 2000);
   ASSERT_TRUE(robot.readWrench(reading));
   const Eigen::Isometry3d held = robot.tcpPose();  // the servo yields a little to the push
-  const Eigen::Vector3d held_arm =
-      held.linear() * Eigen::Vector3d(0.0, 0.0, (0.15 + 0.001) / mass);
+  const Eigen::Vector3d held_arm = held.linear() * Eigen::Vector3d(0.0, 0.0, (0.15 + 0.001) / mass);
   expected << weight + held.linear() * options.wrench_sensor_offset.head<3>(),
       held_arm.cross(weight) + held.linear() * options.wrench_sensor_offset.tail<3>();
   EXPECT_LT((reading - expected - applied).head<3>().norm(), 0.05) << reading.transpose();
@@ -408,10 +395,9 @@ TEST(SimLog, PositionDrivesLogTheirCommandAndAdmittanceItsWrench) {
       << csv.substr(0, 600);
   // The command is the virtual arm, near the measured joints.
   const std::size_t last = admittance.log.size() - 1;
-  EXPECT_LT((admittance.log.position_command[last] - admittance.log.position[last])
-                .cwiseAbs()
-                .maxCoeff(),
-            0.05);
+  EXPECT_LT(
+      (admittance.log.position_command[last] - admittance.log.position[last]).cwiseAbs().maxCoeff(),
+      0.05);
 }
 
 }  // namespace
