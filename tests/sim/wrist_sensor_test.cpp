@@ -14,12 +14,11 @@
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/sim/simulated_robot.hpp"
+#include "output_modes/output_mode_rig.hpp"
 #include "sim_support.hpp"
 
 namespace comply::testing {
 namespace {
-
-constexpr double kPeriodS = 0.001;
 
 Vector6d sensorOffset() {
   Vector6d offset;
@@ -28,39 +27,22 @@ Vector6d sensorOffset() {
 }
 
 /// A Cartesian impedance holding the arm on a plant with the wrist sensor's offset.
-struct SensorRig {
-  SensorRig(const pipeline::WrapperConfig& config, const sim::PlantOptions& options)
-      : plant(*config.robot_description, options), wrapper(config) {
-    state = JointState::zero(wrapper.dof());
-    torque.setZero(wrapper.dof());
-    read();
-    wrapper.activate(state);
-  }
-  void read() {
-    plant.read(state);
-    state.wrench_valid = plant.readWrench(state.wrench);
-  }
-  void cycles(int count) {
-    for (int cycle = 0; cycle < count; ++cycle) {
-      read();
-      ASSERT_EQ(wrapper.update(state, kPeriodS, {torque.data(), std::size_t(wrapper.dof())}),
-                pipeline::CycleStatus::kOk)
-          << wrapper.diagnostics().last_fault;
-      plant.write({torque.data(), std::size_t(wrapper.dof())});
-      plant.step();
-    }
-  }
-  void tare() {
-    ASSERT_EQ(wrapper.tare(), "");
-    cycles(1);
-  }
-  [[nodiscard]] const Vector6d& wrench() const { return wrapper.controller().sensorWrench(); }
+using SensorRig = experiments::OutputModeRig<CartesianCommand>;
 
-  sim::SimulatedRobot plant;
-  pipeline::CartesianWrapper wrapper;
-  JointState state;
-  JointVector torque;
-};
+void cycles(SensorRig& rig, int count) {
+  for (int cycle = 0; cycle < count; ++cycle) {
+    ASSERT_TRUE(rig.cycle()) << rig.wrapper.diagnostics().last_fault;
+  }
+}
+
+void tare(SensorRig& rig) {
+  ASSERT_EQ(rig.wrapper.tare(), "");
+  cycles(rig, 1);
+}
+
+const Vector6d& sensed(const SensorRig& rig) {
+  return rig.wrapper.controller().sensorWrench();
+}
 
 sim::PlantOptions plantWithOffset() {
   sim::PlantOptions options;
@@ -73,17 +55,17 @@ class WristSensor : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(WristSensor, ReadsAKnownWrenchAfterATare) {
   SensorRig rig(simCartesianConfig(GetParam()), plantWithOffset());
-  rig.cycles(300);
+  cycles(rig, 300);
   ASSERT_TRUE(rig.wrapper.controller().sensorWrenchValid());
-  EXPECT_GT(rig.wrench().head<3>().norm(), 0.9 * sensorOffset().head<3>().norm())
+  EXPECT_GT(sensed(rig).head<3>().norm(), 0.9 * sensorOffset().head<3>().norm())
       << "before the tare the offset shows";
-  rig.tare();
-  EXPECT_LT(rig.wrench().norm(), 1e-9) << "the tare's own cycle reads zero";
+  tare(rig);
+  EXPECT_LT(sensed(rig).norm(), 1e-9) << "the tare's own cycle reads zero";
   Vector6d applied;
   applied << 12.0, -8.0, 15.0, 0.6, -0.4, 0.5;  // base frame, about the TCP
   rig.plant.setExternalWrench(applied);
-  rig.cycles(1200);
-  const Vector6d read = rig.wrench();
+  cycles(rig, 1200);
+  const Vector6d read = sensed(rig);
   EXPECT_LT((read - applied).head<3>().norm(), 0.05 * applied.head<3>().norm() + 0.5)
       << read.transpose();
   EXPECT_LT((read - applied).tail<3>().norm(), 0.05 * applied.tail<3>().norm() + 0.05)
@@ -95,7 +77,7 @@ TEST_P(WristSensor, ReadsAKnownWrenchAfterATare) {
   hardware::CycleRecord record;
   record.wrote = true;
   record.state = &rig.state;
-  record.torque = {rig.torque.data(), std::size_t(rig.wrapper.dof())};
+  record.torque = {rig.command.effort.data(), std::size_t(rig.wrapper.dof())};
   host::StateSample sample;
   sampler.fill(record, rig.state, transport::Stamp{}, sample);
   EXPECT_EQ(sample.contact_wrench_source, transport::WrenchSource::kSensor);
@@ -114,23 +96,23 @@ double turnedToolReading(bool declared) {
   sim::PlantOptions options = plantWithOffset();
   options.scene.tool = kSourceDir / "examples" / "sim" / "tool_1kg.xml";
   SensorRig rig(config, options);
-  rig.cycles(500);
-  rig.tare();
+  cycles(rig, 500);
+  tare(rig);
   const MeasuredPose home = rig.wrapper.measuredPose();
   const Eigen::Quaterniond turned = home.tcp_orientation * Eigen::Quaterniond(Eigen::AngleAxisd(
                                                                M_PI / 2, Eigen::Vector3d::UnitX()));
   for (int cycle = 0; cycle < 3000; ++cycle) {
     CartesianCommand target = CartesianCommand::zero(rig.wrapper.dof());
     target.fields = CommandField::kPosition;
-    target.stamp_s = (cycle + 1) * kPeriodS;
+    target.stamp_s = (cycle + 1) * experiments::kRigPeriodS;
     target.position = home.tcp_position;
     target.orientation = home.tcp_orientation.slerp(std::min(1.0, cycle / 2000.0), turned);
     EXPECT_TRUE(rig.wrapper.submit(target).accepted);
-    rig.cycles(1);
+    cycles(rig, 1);
   }
   const Eigen::Quaterniond reached = rig.wrapper.measuredPose().tcp_orientation;
   EXPECT_LT(reached.angularDistance(turned), 0.05) << "the tool did not turn";
-  return rig.wrench().head<3>().norm();
+  return sensed(rig).head<3>().norm();
 }
 
 TEST(WristSensorTare, ADeclaredToolTaredAndTurnedNinetyDegreesReadsZero) {
