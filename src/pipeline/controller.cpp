@@ -22,11 +22,6 @@ CommandBus initialBus(const ResolvedController& resolved) {
   return bus;
 }
 
-bool usable(const JointState& state, int dof) {
-  return state.position.size() == dof && state.velocity.size() == dof &&
-         state.effort.size() == dof && state.position.allFinite() && state.velocity.allFinite();
-}
-
 }  // namespace
 
 Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
@@ -51,8 +46,11 @@ Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
   if (parameters_.payload_compensation) {
     quantities_ = quantities_ | Quantity::kPayloadGravity;
   }
-  if (parameters_.output.mode != OutputMode::kTorque) {
-    // The joint-space gains of joint_pd and the virtual arm of admittance (output_stage.hpp).
+  // What the output stage reads (output_stage.hpp): the virtual arm's inertia and Jacobian in
+  // admittance; the joint-space gains of a Cartesian law for a PD drive (the joint law's are the
+  // command's own).
+  const OutputMode mode = parameters_.output.mode;
+  if (isAdmittance(mode) || (mode == OutputMode::kJointPd && resolved_->cartesian())) {
     quantities_ = quantities_ | Quantity::kMassMatrix | Quantity::kJacobian;
   }
   observer_.configure(parameters_.observer, dof_);
@@ -73,7 +71,7 @@ Controller::~Controller() = default;
 
 void Controller::activate(const JointState& state) {
   deactivate();
-  if (!usable(state, dof_)) {
+  if (!state.usable(dof_)) {
     throw std::runtime_error(resolved_->config.name +
                              ": activation needs a finite joint state with " +
                              std::to_string(dof_) + " positions, velocities and efforts");
@@ -119,7 +117,7 @@ void Controller::activate(const JointState& state) {
     torque_ -= data_.gravity.head(dof_);
   }
   shaper_.reset(torque_);
-  observer_.reset();  // the torque before activation is not known
+  observer_.reset();         // the torque before activation is not known
   sensor_filtered_ = false;  // the wrist sensor's low-pass starts from the next reading
   repeated_cycles_ = 0;
   state_frozen_ = false;

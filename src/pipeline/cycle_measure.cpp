@@ -12,9 +12,7 @@ namespace comply::pipeline {
 
 bool Controller::measure(const JointState& state) noexcept {
   sensor_valid_ = false;  // until senseWrench() reads this cycle's state: a tare needs its reading
-  const bool sized =
-      state.position.size() == dof_ && state.velocity.size() == dof_ && state.effort.size() == dof_;
-  if (!sized || !state.position.allFinite() || !state.velocity.allFinite()) {
+  if (!state.usable(dof_)) {
     enterFault("state: ", "joint state of the wrong size or with NaN/inf position or velocity");
     return false;
   }

@@ -1,6 +1,7 @@
 // Output modes position and velocity: admittance. The law runs on a virtual arm (q_v, dq_v)
-// instead of the measured one; its torque, plus the wrist sensor's wrench (Controller::sensorWrench:
-// the declared tool's weight and the tare off) mapped to the joints, accelerates the virtual arm,
+// instead of the measured one; its torque, plus the wrist sensor's wrench
+// (Controller::sensorWrench: the declared tool's weight and the tare off) mapped to the joints,
+// accelerates the virtual arm,
 //   (M(q_v) + J^T A J) ddq_v = tau_law(q_v, dq_v) + J(q_v)^T w_ext,
 // where A is the inertia added at the TCP (output.admittance.added_*, task frame). The virtual arm
 // has no gravity, friction or Coriolis force; the arm's own position or velocity control carries
@@ -20,18 +21,10 @@
 #include "comply/pipeline/output_stage.hpp"
 
 namespace comply::pipeline {
-namespace {
-
-bool finiteState(const JointState& state, int dof) noexcept {
-  return state.position.size() == dof && state.velocity.size() == dof &&
-         state.position.allFinite() && state.velocity.allFinite();
-}
-
-}  // namespace
 
 bool OutputStage::admittance(Controller& controller, const JointState& state, double period_s,
                              ActuatorCommand& command) noexcept {
-  const bool measured = finiteState(state, dof_);
+  const bool measured = state.usable(dof_);
   if (measured) {
     last_measured_ = state.position;
     keepNearMeasured(state);
@@ -79,18 +72,9 @@ void OutputStage::integrate(const Controller& controller, double period_s,
     addPayload(data, controller.sensorWrenchValid());
   }
   virtual_torque_.noalias() += data.jacobian.leftCols(n).transpose() * external_;
-  Eigen::Matrix3d task_to_base = Eigen::Matrix3d::Identity();
-  if (const auto* bus = std::get_if<comply_cartesian_command>(&controller.lawBus())) {
-    task_to_base = taskToBase(*bus);
+  if (added_inertia_) {
+    addInertia(controller);
   }
-  // J^T A J with A = R diag(a) R^T: (diag(sqrt a) R^T J)^T (diag(sqrt a) R^T J).
-  Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::ColMajor, 3, kMaxDof> weighted(3, n);
-  weighted.noalias() = admittance.added_mass_kg.cwiseSqrt().asDiagonal() *
-                       task_to_base.transpose() * data.jacobian.topLeftCorner(3, n);
-  inertia_.noalias() += weighted.transpose() * weighted;
-  weighted.noalias() = admittance.added_inertia_kg_m2.cwiseSqrt().asDiagonal() *
-                       task_to_base.transpose() * data.jacobian.bottomLeftCorner(3, n);
-  inertia_.noalias() += weighted.transpose() * weighted;
   inertia_solver_.compute(inertia_);
   acceleration_ = inertia_solver_.solve(virtual_torque_);
 
@@ -113,6 +97,24 @@ void OutputStage::integrate(const Controller& controller, double period_s,
       virtual_.velocity[i] = 0.0;
     }
   }
+}
+
+void OutputStage::addInertia(const Controller& controller) noexcept {
+  const AdmittanceConfig& admittance = parameters_.output.admittance;
+  const model::Data& data = controller.modelData();
+  const auto n = static_cast<Eigen::Index>(dof_);
+  Eigen::Matrix3d task_to_base = Eigen::Matrix3d::Identity();
+  if (const auto* bus = std::get_if<comply_cartesian_command>(&controller.lawBus())) {
+    task_to_base = taskToBase(*bus);
+  }
+  // J^T A J with A = R diag(a) R^T: (diag(sqrt a) R^T J)^T (diag(sqrt a) R^T J).
+  Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::ColMajor, 3, kMaxDof> weighted(3, n);
+  weighted.noalias() = admittance.added_mass_kg.cwiseSqrt().asDiagonal() *
+                       task_to_base.transpose() * data.jacobian.topLeftCorner(3, n);
+  inertia_.noalias() += weighted.transpose() * weighted;
+  weighted.noalias() = admittance.added_inertia_kg_m2.cwiseSqrt().asDiagonal() *
+                       task_to_base.transpose() * data.jacobian.bottomLeftCorner(3, n);
+  inertia_.noalias() += weighted.transpose() * weighted;
 }
 
 void OutputStage::addPayload(const model::Data& data, bool sensed) noexcept {
@@ -157,7 +159,7 @@ void OutputStage::holdMeasured(const JointState& state, ActuatorCommand& command
   }
   virtual_.position = hold_position_;
   virtual_.velocity.setZero(dof_);
-  const bool measured = finiteState(state, dof_);
+  const bool measured = state.usable(dof_);
   const double correction = parameters_.output.admittance.velocity_correction_per_s;
   for (int i = 0; i < dof_; ++i) {
     command.position[i] = hold_position_[i];

@@ -61,8 +61,7 @@ void OutputStage::cartesianJointGains(const Controller& controller, const JointS
 
 void OutputStage::splitForJointPd(const Controller& controller, bool fault, const JointState& state,
                                   ActuatorCommand& command) const noexcept {
-  const bool finite = state.position.size() == dof_ && state.velocity.size() == dof_ &&
-                      state.position.allFinite() && state.velocity.allFinite();
+  const bool finite = state.usable(dof_);
   if (fault || !finite) {
     for (int i = 0; i < dof_; ++i) {
       command.stiffness[i] = 0.0;

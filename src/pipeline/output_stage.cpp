@@ -5,7 +5,12 @@
 namespace comply::pipeline {
 
 OutputStage::OutputStage(const ResolvedController& resolved)
-    : parameters_(resolved.parameters), dof_(resolved.dof), cartesian_(resolved.cartesian()) {
+    : parameters_(resolved.parameters),
+      dof_(resolved.dof),
+      cartesian_(resolved.cartesian()),
+      added_inertia_(
+          (resolved.parameters.output.admittance.added_mass_kg.array() > 0.0).any() ||
+          (resolved.parameters.output.admittance.added_inertia_kg_m2.array() > 0.0).any()) {
   virtual_ = JointState::zero(dof_);
   last_measured_.setZero(dof_);
   hold_position_.setZero(dof_);

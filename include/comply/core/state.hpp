@@ -17,6 +17,13 @@ struct JointState {
   Eigen::Matrix<double, 6, 1> wrench = Eigen::Matrix<double, 6, 1>::Zero();
   bool wrench_valid = false;
 
+  /// `dof` entries each, position and velocity finite: a state a cycle can run on (the effort
+  /// may be NaN: an arm without torque sensing).
+  [[nodiscard]] bool usable(int dof) const noexcept {
+    return position.size() == dof && velocity.size() == dof && effort.size() == dof &&
+           position.allFinite() && velocity.allFinite();
+  }
+
   static JointState zero(int dof) {
     JointState state;
     state.position.setZero(dof);

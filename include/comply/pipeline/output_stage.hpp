@@ -21,15 +21,13 @@
 #include "comply/core/state.hpp"
 #include "comply/pipeline/controller.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
+#include "comply/schema/schema.hpp"
 
 namespace comply::pipeline {
 
 /// The task frame of a Cartesian bus as a rotation into the base frame.
 inline Eigen::Matrix3d taskToBase(const comply_cartesian_command& bus) noexcept {
-  return Eigen::Quaterniond(bus.task_frame[3], bus.task_frame[0], bus.task_frame[1],
-                            bus.task_frame[2])
-      .normalized()
-      .toRotationMatrix();
+  return schema::fromXyzw(bus.task_frame).normalized().toRotationMatrix();
 }
 
 class OutputStage {
@@ -58,6 +56,7 @@ class OutputStage {
   void keepNearMeasured(const JointState& state) noexcept;
   void integrate(const Controller& controller, double period_s,
                  const ActuatorCommand& command) noexcept;
+  void addInertia(const Controller& controller) noexcept;
   void addPayload(const model::Data& data, bool sensed) noexcept;
   void holdMeasured(const JointState& state, ActuatorCommand& command) noexcept;
   void writeMotion(const JointState& state, ActuatorCommand& command) const noexcept;
@@ -73,6 +72,7 @@ class OutputStage {
   bool holding_ = false;
   JointMatrix inertia_;
   Eigen::LDLT<JointMatrix> inertia_solver_;
+  bool added_inertia_ = false;  ///< output.admittance.added_*: any entry above zero
   JointVector virtual_torque_;
   Vector6d external_ = Vector6d::Zero();  ///< the sensed wrench the virtual arm answers
   JointVector acceleration_;
