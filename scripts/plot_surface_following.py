@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Plots `comply experiment surface-following`: a top view of the probe paths over the fixture, and
-lateral error, tangential error and contact force over time for each condition.
+lateral error, tangential error and the normal contact force over time for each condition (the
+impedance conditions solid, the force-controlled ones dashed).
 
 usage: plot_surface_following.py OUT_DIR   (writes OUT_DIR/surface_following.png)
 """
@@ -15,10 +16,14 @@ import matplotlib.pyplot as plt  # noqa: E402
 from csv_columns import read_columns  # noqa: E402
 
 CONDITIONS = [
-    ("fixed_frame", "fixed-frame gains", "tab:red"),
-    ("task_aligned", "task-aligned gains", "tab:blue"),
-    ("task_aligned_displaced", "task-aligned, fixture displaced", "tab:green"),
+    ("fixed_frame", "fixed-frame gains", "tab:red", "-"),
+    ("task_aligned", "task-aligned gains", "tab:blue", "-"),
+    ("task_aligned_displaced", "task-aligned, fixture displaced", "tab:green", "-"),
+    ("force_sensor", "force 5 N, wrist sensor", "tab:purple", "--"),
+    ("force_observer", "force 5 N, observer", "tab:orange", "--"),
+    ("force_sensor_displaced", "force 5 N, sensor, fixture displaced", "tab:olive", "--"),
 ]
+TARGET_N = 5.0
 
 
 def main():
@@ -33,15 +38,18 @@ def main():
     top.plot(mm(fixture["x"]), mm(fixture["face_y_displaced"]), color="0.6", linewidth=3,
              linestyle="--", label="displaced fixture face")
     axes = [figure.add_subplot(2, 3, 4 + i) for i in range(3)]
-    for name, label, colour in CONDITIONS:
+    for name, label, colour, style in CONDITIONS:
         trace_file = os.path.join(out, name, "trace.csv")
         if not os.path.exists(trace_file):
             continue
         trace = read_columns(trace_file)
-        top.plot(mm(trace["tip_x"]), mm(trace["tip_y"]), color=colour, linewidth=1, label=label)
-        axes[0].plot(trace["time_s"], trace["lateral_mm"], color=colour, linewidth=1)
-        axes[1].plot(trace["time_s"], trace["tangential_mm"], color=colour, linewidth=1)
-        axes[2].plot(trace["time_s"], trace["force_n"], color=colour, linewidth=1)
+        line = dict(color=colour, linewidth=1, linestyle=style)
+        top.plot(mm(trace["tip_x"]), mm(trace["tip_y"]), label=label, **line)
+        axes[0].plot(trace["time_s"], trace["lateral_mm"], **line)
+        axes[1].plot(trace["time_s"], trace["tangential_mm"], **line)
+        axes[2].plot(trace["time_s"], trace["normal_n"], **line)
+    axes[2].axhline(TARGET_N, color="0.3", linewidth=0.8, linestyle=":")
+    axes[2].set_ylim(0.0, 3.0 * TARGET_N)
     top.set_xlabel("x [mm]")
     top.set_ylabel("y [mm]")
     top.set_title("top view: probe tip (ball centre) over the fixture face")
@@ -49,7 +57,7 @@ def main():
     top.legend(fontsize="small", loc="lower right")
     top.grid(alpha=0.3)
     for axis, title in zip(axes, ["lateral error [mm]", "tangential error [mm]",
-                                  "contact force [N] (20 ms mean)"]):
+                                  "normal force [N] (20 ms mean; target dotted)"]):
         axis.set_title(title, fontsize="medium")
         axis.set_xlabel("time [s]")
         axis.grid(alpha=0.3)

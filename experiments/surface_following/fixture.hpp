@@ -19,6 +19,10 @@ inline constexpr double kTipZ = 0.25;   // height of the probe ball's centre
 // The probe ball's centre lies this far below the TCP (examples/sim/probe_tool.xml).
 inline constexpr double kProbeLength = 0.10;
 inline constexpr double kTipRadius = 0.01;
+// The probe's mass and centre of mass along the TCP's z (examples/sim/probe_tool.xml: a 50 g rod
+// to 90 mm, a 10 g ball at 100 mm).
+inline constexpr double kProbeMassKg = 0.06;
+inline constexpr double kProbeComM = (0.05 * 0.045 + 0.01 * 0.1) / 0.06;
 // The displaced run: the fixture moved 8 mm towards the probe and turned 2 deg about z.
 inline constexpr double kDisplacementY = 0.008;
 inline constexpr double kDisplacementYawRad = 2.0 * M_PI / 180.0;

@@ -6,7 +6,9 @@
 // vertically, the task frame (Darboux: tangent, normal, vertical) updated with every command
 // from the fixture geometry. Both get the same position command: the nominal contact path pushed
 // 100 mm into the surface along its normal (5 N at 50 N/m). A third run displaces the fixture
-// (controller and command unchanged) and must keep contact.
+// (controller and command unchanged) and must keep contact. Three more replace the spring along
+// the normal by force control with a 5 N target (pipeline/force_axes.hpp): reading the wrist
+// sensor, reading the momentum observer, and the sensor on the displaced fixture.
 
 #include <filesystem>
 #include <iosfwd>
@@ -35,6 +37,9 @@ struct SurfaceFollowingRow {
   double force_mean_n = 0.0;     ///< contact force magnitude during the traverse
   double force_sd_n = 0.0;
   double contact_fraction = 0.0;  ///< share of traverse cycles with contact force > 0.5 N
+  /// The normal component (along the face's normal) against kNormalForceN, during the traverse.
+  double normal_force_rmse_n = 0.0;
+  double normal_force_rms_percent = 0.0;
 };
 
 /// Runs the three conditions; writes <out>/<condition>/ (log, snapshots, trace), <out>/fixture.csv,

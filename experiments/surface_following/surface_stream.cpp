@@ -84,6 +84,14 @@ std::optional<CartesianCommand> SurfaceStream::next(double t_s, const MeasuredPo
   if (!condition_.task_aligned) {
     command.task_frame = Eigen::Quaterniond::Identity();  // 50 N/m stays along base y
   }
+  if (condition_.force) {
+    // The normal (task y, out of the face) is a force axis: the probe presses into the face,
+    // along -y. Its stiffness then only sets the damping along it (ratio mode).
+    command.fields = command.fields | CommandField::kForce;
+    command.force_axes[1] = 1.0;
+    command.wrench_target[1] = -kNormalForceN;
+    command.stiffness_translational(1, 1) = kStiffNPerM;
+  }
   return command;
 }
 

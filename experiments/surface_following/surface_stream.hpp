@@ -12,10 +12,18 @@
 
 namespace comply::experiments::surface_following {
 
+/// The normal force every condition aims at: the impedance conditions' spring (50 N/m pushed
+/// 100 mm into the face), the force conditions' target [N].
+inline constexpr double kNormalForceN = 5.0;
+
 struct SurfaceCondition {
   std::string name;
   bool task_aligned = true;  ///< false: the gains stay in the base frame
   bool displaced = false;    ///< the fixture moved and turned; the command does not know
+  /// Force control along the task frame's normal axis (target kNormalForceN) from the press on,
+  /// instead of the 50 N/m spring; which wrench estimate it reads.
+  bool force = false;
+  std::string source = "sensor";  ///< force: sensor | observer
 };
 
 class SurfaceStream final : public task::CartesianSource {

@@ -21,6 +21,7 @@ struct Sample {
   double lateral_m = 0.0;
   double tangential_m = 0.0;
   double contact_n = 0.0;
+  double normal_n = 0.0;  // along the face's outward normal: the face pushing the probe out
   bool traversing = false;
 };
 
@@ -37,6 +38,9 @@ Sample sampleAt(const host::SimLog& log, std::size_t row, const Eigen::Vector3d&
   sample.nominal = tip_path.position(s);
   sample.error = sample.tip - sample.nominal;
   sample.lateral_m = sample.error.dot(outwardNormal(sample.nominal.x()));
+  // The face under the probe: near the nominal point, and the displaced fixture turns by 2 deg
+  // only, so its normal there differs by cos(2 deg) at most.
+  sample.normal_n = averaged_force.dot(outwardNormal(sample.tip.x()));
   sample.tangential_m = sample.error.dot(tip_path.tangent(s));
   return sample;
 }
@@ -44,7 +48,8 @@ Sample sampleAt(const host::SimLog& log, std::size_t row, const Eigen::Vector3d&
 void writeTraceLine(const Sample& sample, std::ostream& trace) {
   trace << sample.t << ',' << sample.tip.x() << ',' << sample.tip.y() << ',' << sample.tip.z()
         << ',' << sample.nominal.x() << ',' << sample.nominal.y() << ',' << 1e3 * sample.lateral_m
-        << ',' << 1e3 * sample.tangential_m << ',' << sample.contact_n << '\n';
+        << ',' << 1e3 * sample.tangential_m << ',' << sample.contact_n << ',' << sample.normal_n
+        << '\n';
 }
 
 /// Distance from `tip` to the closest point of `path`, searched every 0.5 mm of arc length.
@@ -84,12 +89,13 @@ SurfaceFollowingRow measureTracking(const std::string& condition, const host::Si
                                     const std::filesystem::path& trace_file) {
   SurfaceFollowingRow metrics;
   metrics.condition = condition;
-  std::vector<double> lateral, tangential, total, force;
+  std::vector<double> lateral, tangential, total, force, normal_error;
   std::size_t in_contact = 0;
   // A force sensor's view: a 20 ms moving average (see host::averagedContactForce()).
   const std::vector<Eigen::Vector3d> averaged_force = host::averagedContactForce(log, 20);
   std::ofstream trace(trace_file);
-  trace << "time_s,tip_x,tip_y,tip_z,nominal_x,nominal_y,lateral_mm,tangential_mm,force_n\n";
+  trace << "time_s,tip_x,tip_y,tip_z,nominal_x,nominal_y,lateral_mm,tangential_mm,force_n,"
+           "normal_n\n";
   for (std::size_t row = 0; row < log.size(); ++row) {
     const Sample sample = sampleAt(log, row, averaged_force[row], stream, tip_path);
     writeTraceLine(sample, trace);
@@ -100,6 +106,7 @@ SurfaceFollowingRow measureTracking(const std::string& condition, const host::Si
     tangential.push_back(sample.tangential_m);
     total.push_back(sample.error.norm());
     force.push_back(sample.contact_n);
+    normal_error.push_back(sample.normal_n - kNormalForceN);
     in_contact += sample.contact_n > kContactForceN ? 1 : 0;
     metrics.max_distance_mm =
         std::max(metrics.max_distance_mm, 1e3 * distanceToPath(sample.tip, tip_path));
@@ -109,6 +116,8 @@ SurfaceFollowingRow measureTracking(const std::string& condition, const host::Si
   metrics.tangential_rms_mm = 1e3 * rms(tangential);
   metrics.total_rmse_mm = 1e3 * rms(total);
   std::tie(metrics.force_mean_n, metrics.force_sd_n) = meanAndSd(force);
+  metrics.normal_force_rmse_n = rms(normal_error);
+  metrics.normal_force_rms_percent = 100.0 * metrics.normal_force_rmse_n / kNormalForceN;
   metrics.contact_fraction =
       force.empty() ? 0.0 : static_cast<double>(in_contact) / static_cast<double>(force.size());
   return metrics;

@@ -55,9 +55,12 @@ Verdict checkShape(const Chunk<Command>& chunk, double host_time_s) {
   const auto outside = static_cast<CommandField>(static_cast<std::uint32_t>(chunk.fields) &
                                                  ~static_cast<std::uint32_t>(kChunkFields));
   if (outside != CommandField::kNone) {
+    // The acceleration follows from the curve through the waypoints; force axes are a mode,
+    // not a quantity to interpolate: a command sets them.
     return reject(RejectionReason::kInvalidChunk,
                   "a chunk cannot set " + groupNames(outside) +
-                      " (the acceleration follows from the curve through the waypoints)");
+                      " (the acceleration follows from the curve through the waypoints; force "
+                      "axes come with a command)");
   }
   for (std::size_t k = 0; k < count; ++k) {
     const double t = chunk.waypoints[k].time_s;

@@ -24,6 +24,7 @@ RejectionReason reasonFor(schema::Violation violation) {
     case schema::Violation::kGainTooLarge:
       return RejectionReason::kInvalidGains;
     case schema::Violation::kValueTooLarge:
+    case schema::Violation::kNotSelection:
       return RejectionReason::kOutOfRange;
     case schema::Violation::kNone:
     case schema::Violation::kNonFinite:

@@ -277,6 +277,62 @@ void addWrenchSensorOptions(std::vector<Option>& table) {
       1e4, false, [](WrapperConfig& c, double v) { c.wrench_sensor.filter_hz = v; })));
 }
 
+// Force along task axes and the contact-force limit (pipeline/force_axes.hpp).
+void addForceControlOptions(std::vector<Option>& table) {
+  Option source{"force_control.source", Kind::kChoice, "auto",
+                "wrench the force loop reads: auto (observer when it runs, else the wrist "
+                "sensor) | observer | sensor"};
+  source.choices = "auto|observer|sensor";
+  source.blank_line_before = true;
+  source.apply = [](WrapperConfig& c, const Value& v) {
+    c.force_control.source = v.text == "observer" ? ForceSource::kObserver
+                             : v.text == "sensor" ? ForceSource::kSensor
+                                                  : ForceSource::kAuto;
+  };
+  table.push_back(source);
+  const auto force = [](const char* key, const char* default_text, const char* comment,
+                        double max, bool min_exclusive, double ForceControlConfig::*field) {
+    return sectionNumber(key, default_text, comment, &WrapperConfig::force_control, field, max,
+                         min_exclusive);
+  };
+  table.push_back(force("force_control.proportional_gain", "0.2",
+                        "k_p: N of push per N of force error on a force axis", 100.0, false,
+                        &ForceControlConfig::proportional_gain));
+  table.push_back(force("force_control.integral_gain_per_s", "10.0",
+                        "k_i [1/s]: the integral of the force error", 1e3, false,
+                        &ForceControlConfig::integral_gain_per_s));
+  table.push_back(force("force_control.integral_limit_n", "20.0",
+                        "N: bound of the integral term on a force axis (anti-windup)", 1e4, false,
+                        &ForceControlConfig::integral_limit_n));
+  table.push_back(force("force_control.integral_limit_n_m", "2.0",
+                        "N m: ... on a torque axis", 1e3, false,
+                        &ForceControlConfig::integral_limit_n_m));
+  table.push_back(force("force_control.max_speed_m_per_s", "0.1",
+                        "m/s: faster along a force axis, the push fades out (gone at twice this)",
+                        10.0, true, &ForceControlConfig::max_speed_m_per_s));
+  table.push_back(force("force_control.max_angular_speed_rad_per_s", "0.5",
+                        "rad/s: ... about a torque axis", 20.0, true,
+                        &ForceControlConfig::max_angular_speed_rad_per_s));
+  const auto limit = [](const char* key, const char* comment,
+                        Eigen::Vector3d ForceControlConfig::*field) {
+    Option option{key, Kind::kVector3, "[0.0, 0.0, 0.0]", comment, 0.0, 1e4};
+    option.apply = [field](WrapperConfig& c, const Value& v) {
+      c.force_control.*field = Eigen::Vector3d(v.numbers[0], v.numbers[1], v.numbers[2]);
+    };
+    return option;
+  };
+  table.push_back(limit("force_control.contact_force_limit_n",
+                        "N along task x y z the TCP may exert: the reference is pulled back "
+                        "above it; 0: none",
+                        &ForceControlConfig::contact_force_limit_n));
+  table.push_back(limit("force_control.contact_torque_limit_n_m",
+                        "N m about task x y z; 0: none",
+                        &ForceControlConfig::contact_torque_limit_n_m));
+  table.push_back(force("force_control.limit_bandwidth_hz", "2.0",
+                        "Hz: how fast the pull-back settles the force at its limit", 100.0, true,
+                        &ForceControlConfig::limit_bandwidth_hz));
+}
+
 // What the cycle sends the drives: a torque, a per-joint PD command, or (admittance) a position
 // or velocity (pipeline/output_stage.hpp).
 void addOutputOptions(std::vector<Option>& table) {
@@ -335,6 +391,7 @@ std::vector<Option> makeTable() {
   addGuardOptions(table);
   addObserverOptions(table);
   addWrenchSensorOptions(table);
+  addForceControlOptions(table);
   addOutputOptions(table);
   return table;
 }

@@ -35,6 +35,7 @@ Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
       in_force_(emptyBus(resolved_->command_kind)),
       active_(initialBus(*resolved_)),
       gains_(parameters_.gain_ramps, parameters_.passivity),
+      force_bus_(emptyBus(resolved_->command_kind)),
       chunks_(resolved_->command_kind, dof_, parameters_.chunk_blend_time_s) {
   data_.payload = parameters_.payload;
   plugin_ = std::make_unique<plugin::PluginInstance>(resolved_->plugin, dof_,
@@ -52,6 +53,11 @@ Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
   const OutputMode mode = parameters_.output.mode;
   if (isAdmittance(mode) || (mode == OutputMode::kJointPd && resolved_->cartesian())) {
     quantities_ = quantities_ | Quantity::kMassMatrix | Quantity::kJacobian;
+  }
+  // The force stage measures the TCP's speed along its axes.
+  force_.configure(parameters_.force_control);
+  if (resolved_->cartesian()) {
+    quantities_ = quantities_ | Quantity::kJacobian;
   }
   observer_.configure(parameters_.observer, dof_);
   if (observer_.enabled()) {
@@ -118,6 +124,8 @@ void Controller::activate(const JointState& state) {
   }
   shaper_.reset(torque_);
   observer_.reset();         // the torque before activation is not known
+  force_.reset();
+  force_active_ = false;
   sensor_filtered_ = false;  // the wrist sensor's low-pass starts from the next reading
   repeated_cycles_ = 0;
   state_frozen_ = false;

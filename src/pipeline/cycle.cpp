@@ -32,6 +32,7 @@ CycleStatus Controller::update(const JointState& state, double period_s,
   }
   reset_pending_ = false;
   guardGains();     // cycle_gains.cpp
+  applyForce();     // cycle_force.cpp
   if (!runLaw()) {  // cycle_law.cpp
     return hold(torque);
   }

@@ -91,6 +91,11 @@ void Controller::observe() noexcept {
       scratch_ += data_.gravity.head(dof_);
     }
   }
+  // A declared payload is part of the arm, not of its environment: the torque holding it up is
+  // not pushing anything (its inertia stays unmodelled).
+  if (parameters_.payload_compensation) {
+    scratch_ -= data_.payload_gravity.head(dof_);
+  }
   observer_.update(state_.velocity, scratch_, data_, period_s_);
 }
 

@@ -117,6 +117,7 @@ std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig&
   parameters.output = config.output;
   parameters.payload_on_sensor = config.payload_compensation;
   parameters.wrench_sensor = config.wrench_sensor;
+  parameters.force_control = config.force_control;
   if (isAdmittance(config.output.mode)) {
     // The law drives a virtual arm (output_stage.hpp): it has no weight or friction to carry (the
     // arm's own position control carries them), and a torque-rate limit on it would only delay
@@ -130,6 +131,14 @@ std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig&
     // The momentum observer would estimate the virtual arm's wrench; the contact wrench of an
     // admittance arm is its force/torque sensor's.
     parameters.observer.enabled = false;
+  }
+  if (parameters.force_control.source == ForceSource::kObserver && !parameters.observer.enabled) {
+    throw InputError(InputErrc::kInconsistent, config.name, "force_control.source",
+                     isAdmittance(config.output.mode)
+                         ? "observer, but admittance (output.mode " +
+                               std::string(toString(config.output.mode)) +
+                               ") runs no observer; use sensor"
+                         : "observer, but observer.enabled is false");
   }
   return resolved;
 }

@@ -77,6 +77,8 @@ std::string constraintText(Constraint constraint, std::string_view unit) {
       return "symmetric PSD" + limit;
     case Constraint::kUnitQuaternion:
       return "unit norm";
+    case Constraint::kSelection:
+      return "entries 0 or 1";
   }
   return "?";
 }

@@ -79,6 +79,8 @@ std::string_view toString(Constraint constraint) {
       return "symmetric_psd";
     case Constraint::kUnitQuaternion:
       return "unit_quaternion";
+    case Constraint::kSelection:
+      return "selection";
   }
   return "unknown";
 }

@@ -149,10 +149,12 @@ std::string realtimeLines(const std::string& behavior) {
 }
 
 /// The gain stage on, its tank started low so that it both refuses and refills (the ratio-mode
-/// damping bound factorises the mass matrix) in the counted cycles; and the momentum observer.
+/// damping bound factorises the mass matrix) in the counted cycles; the momentum observer; the
+/// force stage's contact limits (the force axes come with the commands).
 const std::string kGuardedLines =
     "gain_ramps:\n  enabled: true\npassivity:\n  enabled: true\n  tank_initial_j: 0.02\n"
-    "observer:\n  enabled: true\n";
+    "observer:\n  enabled: true\nforce_control:\n  contact_force_limit_n: [0.0, 2.0, 0.0]\n"
+    "  contact_torque_limit_n_m: [0.0, 0.0, 0.2]\n";
 
 void expectTheGuardWorked(const DiagnosticsSnapshot& diagnostics) {
   EXPECT_TRUE(diagnostics.passivity.enabled);
@@ -291,10 +293,18 @@ TEST(WrapperRealtime, CartesianUpdateNeitherAllocatesNorLocks) {
       command.damping_translational = 45.0 * Eigen::Matrix3d::Identity();
       command.damping_rotational = 3.0 * Eigen::Matrix3d::Identity();
       ratio = !ratio;
+      if (guarded) {
+        // Force along task z throughout, about task x every other command.
+        command.fields = command.fields | CommandField::kForce;
+        command.force_axes << 0.0, 0.0, 1.0, ratio ? 1.0 : 0.0, 0.0, 0.0;
+        command.wrench_target << 0.0, 0.0, 3.0, 0.2, 0.0, 0.0;
+      }
       return command;
     });
     if (guarded) {
       expectTheGuardWorked(wrapper.diagnostics());
+      // The force stage ran in the counted cycles.
+      EXPECT_NE(wrapper.controller().forceAxes().forceCommand()[2], 0.0);
       // The observer ran in the counted cycles (the replayed state moves with no torque behind
       // it: all of it is "external").
       const auto& observer = wrapper.controller().observer();

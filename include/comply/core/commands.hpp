@@ -52,7 +52,8 @@ enum class CommandField : std::uint32_t {
   kWrenchFeedforward = 1U << 6,
   kTorqueFeedforward = 1U << 7,
   kNullspace = 1U << 8,  ///< nullspace target, stiffness and damping
-  kAll = (1U << 9) - 1,
+  kForce = 1U << 9,      ///< Cartesian force axes and wrench target
+  kAll = (1U << 10) - 1,
 };
 
 constexpr CommandField operator|(CommandField a, CommandField b) {

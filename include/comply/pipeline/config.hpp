@@ -26,6 +26,7 @@
 #include "comply/core/commands.hpp"
 #include "comply/model/data.hpp"
 #include "comply/model/robot_description.hpp"
+#include "comply/pipeline/force_axes.hpp"
 #include "comply/pipeline/momentum_observer.hpp"
 #include "comply/plugin/loader.hpp"
 
@@ -179,7 +180,8 @@ struct WrapperConfig {
   StabilityGuardConfig stability_guard;
   ObserverConfig observer;  ///< the external wrench estimate (observer.*)
   WrenchSensorConfig wrench_sensor;  ///< wrench_sensor.*
-  OutputConfig output;      ///< output.*
+  ForceControlConfig force_control;  ///< force_control.*: force along task axes
+  OutputConfig output;               ///< output.*
 
   /// Initial command (gains, task frame); the pose/joint reference is seeded on activation.
   /// Sized by completeForRobot().

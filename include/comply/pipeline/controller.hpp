@@ -10,6 +10,8 @@
 //                starts, and the running one writes its reference at this cycle's time
 //   watchdog     no command for command_timeout_s: hold (stop the motion) or re-anchor
 //   gains        ramps and the energy tank between the commanded gains and the law's (optional)
+//   force        force along the task axes a command selects, the contact-force limit
+//                (force_axes.hpp; Cartesian laws)
 //   law          plugin step, finite check                      -> FAULT on failure
 //   compensate   gravity, payload, friction, soft joint limits
 //   shape        low-pass, finite check, torque-rate limit, effort limit; a joint held at its
@@ -38,6 +40,7 @@
 #include "comply/pipeline/chunk_player.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/diagnostics.hpp"
+#include "comply/pipeline/force_axes.hpp"
 #include "comply/pipeline/gain_guard.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/pipeline/torque_shaper.hpp"
@@ -121,10 +124,17 @@ class Controller {
   [[nodiscard]] const comply_input& input() const noexcept { return input_; }
   [[nodiscard]] const CommandBus& activeCommand() const noexcept { return active_; }
   /// What the law reads: the command in force with the gains the gain stage let through (the
-  /// command in force itself when the stage is off). Real-time thread, or between cycles.
+  /// command in force itself when the stage is off), and force axes turned into reference and
+  /// feedforward by the force stage. Real-time thread, or between cycles.
   [[nodiscard]] const CommandBus& lawBus() const noexcept {
-    return gains_.enabled() ? gains_.lawBus() : active_;
+    return force_active_ ? force_bus_ : guardedBus();
   }
+  /// The force stage (force_axes.hpp): its loop's output and pull-back of the last cycle.
+  [[nodiscard]] const ForceAxes& forceAxes() const noexcept { return force_; }
+  /// The external wrench on the tool the force stage reads (force_control.source): at the TCP,
+  /// base frame, force first [N, N m]; nullptr when none this cycle. Real-time thread, or between
+  /// cycles.
+  [[nodiscard]] const Vector6d* forceWrench() const noexcept;
   /// The external wrench estimate (observer.enabled): at the TCP, base frame, force first
   /// [N, N m], and per joint [N m | N]. Real-time thread, or between cycles.
   [[nodiscard]] const MomentumObserver& observer() const noexcept { return observer_; }
@@ -171,6 +181,10 @@ class Controller {
   void playChunk() noexcept;  // cycle_commands.cpp
   void watchdog() noexcept;
   void guardGains() noexcept;
+  void applyForce() noexcept;  // cycle_force.cpp
+  [[nodiscard]] const CommandBus& guardedBus() const noexcept {
+    return gains_.enabled() ? gains_.lawBus() : active_;
+  }
   bool runLaw() noexcept;
   void compensate() noexcept;
   bool shape() noexcept;
@@ -209,6 +223,9 @@ class Controller {
   CommandBus active_;
   GainGuard gains_;
   MomentumObserver observer_;
+  ForceAxes force_;
+  CommandBus force_bus_;       // the law's command when the force stage acts (Cartesian)
+  bool force_active_ = false;  // the force stage wrote force_bus_ this cycle
   ChunkPlayer chunks_;
   bool in_force_changed_ = false;  // active_ changed since the gain stage last saw it
   bool torque_clipped_ = false;    // the last cycle's torque was rate or effort limited

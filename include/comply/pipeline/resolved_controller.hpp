@@ -61,6 +61,7 @@ struct CycleParameters {
   ObserverConfig observer;
   OutputConfig output;
   WrenchSensorConfig wrench_sensor;
+  ForceControlConfig force_control;
   /// compensation.payload.enabled as written: the declared payload is the tool beyond the wrist
   /// sensor, whose weight comes off the sensor's reading in every mode (cycle_wrench.cpp) and whose
   /// inertial force comes off it in admittance (output_admittance.cpp). payload_compensation

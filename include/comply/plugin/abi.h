@@ -28,7 +28,7 @@ extern "C" {
 #endif
 
 /* Bumped on any change of the structs or the function table below. */
-#define COMPLY_ABI_VERSION 1
+#define COMPLY_ABI_VERSION 2
 #define COMPLY_MAX_DOF 12
 #define COMPLY_MESSAGE_CAPACITY 128
 #define COMPLY_ENTRY_SYMBOL "comply_plugin_entry"
@@ -57,7 +57,8 @@ enum {
   COMPLY_FIELD_TASK_FRAME = 1u << 5,   /* Cartesian only */
   COMPLY_FIELD_WRENCH_FEEDFORWARD = 1u << 6, /* Cartesian only */
   COMPLY_FIELD_TORQUE_FEEDFORWARD = 1u << 7,
-  COMPLY_FIELD_NULLSPACE = 1u << 8     /* Cartesian only: target, stiffness, damping */
+  COMPLY_FIELD_NULLSPACE = 1u << 8,    /* Cartesian only: target, stiffness, damping */
+  COMPLY_FIELD_FORCE = 1u << 9         /* Cartesian only: force axes, wrench target */
 };
 
 /* How a Cartesian command specifies damping. */
@@ -98,6 +99,11 @@ typedef struct comply_cartesian_command {
   double nullspace_position[COMPLY_MAX_DOF];     /* rad */
   double nullspace_stiffness[COMPLY_MAX_DOF];    /* N m/rad */
   double nullspace_damping[COMPLY_MAX_DOF];      /* N m s/rad */
+  /* Force along task axes. The wrapper's force stage has already turned them into the position,
+   * twist and wrench_feedforward above, and hands the law force_axes all zero: a law reads them
+   * for information only. */
+  double force_axes[6];                          /* 1: force-controlled task axis, 0: impedance */
+  double wrench_target[6];                       /* task frame [N, N m], exerted by the TCP */
 } comply_cartesian_command;
 
 /* What the wrapper hands the law each cycle: measured state + requested model quantities. */

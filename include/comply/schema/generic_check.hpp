@@ -76,6 +76,16 @@ CheckResult checkConstraint(typename F::ValueType& value, std::string_view name,
               field + " must be symmetric positive semi-definite"};
     }
     return checkGainLimit(value, field, unit);
+  } else if constexpr (F::kConstraint == Constraint::kSelection) {
+    static_assert(F::kKind == FieldKind::kVector6, "selections are over the six task axes");
+    for (Eigen::Index i = 0; i < value.size(); ++i) {
+      if (value[i] != 0.0 && value[i] != 1.0) {
+        std::ostringstream text;
+        text << field << " entries must be 0 or 1 (x y z rx ry rz), entry " << i << " is "
+             << value[i];
+        return {Violation::kNotSelection, field, text.str()};
+      }
+    }
   } else if constexpr (F::kConstraint == Constraint::kNonNegative) {
     if (!(value.array() >= 0.0).all()) {
       return {Violation::kNegative, field, field + " must be >= 0"};

@@ -27,7 +27,13 @@ enum class FieldKind : std::uint8_t {
   kEnum,         ///< a name in JSON, an int32 on the bus
 };
 
-enum class Constraint : std::uint8_t { kNone, kNonNegative, kSymmetricPsd, kUnitQuaternion };
+enum class Constraint : std::uint8_t {
+  kNone,
+  kNonNegative,
+  kSymmetricPsd,
+  kUnitQuaternion,
+  kSelection,  ///< every entry 0 or 1 (a selection of axes)
+};
 
 /// What the reference rules do with a field.
 enum class Role : std::uint8_t {
@@ -146,7 +152,8 @@ enum class Violation : std::uint8_t {
   kNegative,         ///< a non-negative field with a negative entry
   kNotSymmetricPsd,  ///< a gain block that is not symmetric positive semi-definite
   kGainTooLarge,     ///< a gain entry above gainLimit() of its unit
-  kValueTooLarge     ///< a rate or feedforward entry above valueLimit() of its unit
+  kValueTooLarge,    ///< a rate or feedforward entry above valueLimit() of its unit
+  kNotSelection      ///< a selection with an entry other than 0 or 1
 };
 
 struct CheckResult {

@@ -15,7 +15,8 @@
 //   type        C++ member type (no top-level comma)
 //   unit        SI unit, "" for none
 //   constraint  schema::Constraint checked on every command that sets the group: kNone,
-//               kNonNegative, kSymmetricPsd, kUnitQuaternion (drift renormalised)
+//               kNonNegative, kSymmetricPsd, kUnitQuaternion (drift renormalised), kSelection
+//               (every entry 0 or 1)
 //   role        schema::Role in the reference rules: kSeedTcpPosition, kSeedTcpOrientation,
 //               kSeedJointPosition (set from the measured state when a reference is seeded),
 //               kZeroOnStop (zeroed when seeding and when motion stops), kNone
@@ -32,7 +33,8 @@
   X(kTaskFrame, "task_frame", "Cartesian task-frame orientation")                  \
   X(kWrenchFeedforward, "wrench_feedforward", "Cartesian wrench feedforward")      \
   X(kTorqueFeedforward, "torque_feedforward", "joint torque feedforward")          \
-  X(kNullspace, "nullspace", "nullspace target, stiffness and damping")
+  X(kNullspace, "nullspace", "nullspace target, stiffness and damping")                    \
+  X(kForce, "force", "force-controlled task axes and their wrench target")
 
 #define COMPLY_CARTESIAN_COMMAND_FIELDS(X)                                                       \
   X(position, kPosition, kVector3, Eigen::Vector3d, "m", kNone, kSeedTcpPosition,                \
@@ -66,7 +68,11 @@
   X(nullspace_stiffness, kNullspace, kJointVector, JointVector, "N m/rad", kNonNegative, kNone,  \
     JointVector(), "nullspace stiffness per joint")                                              \
   X(nullspace_damping, kNullspace, kJointVector, JointVector, "N m s/rad", kNonNegative, kNone,  \
-    JointVector(), "nullspace damping per joint")
+    JointVector(), "nullspace damping per joint")                                               \
+  X(force_axes, kForce, kVector6, Vector6d, "", kSelection, kZeroOnStop, Vector6d::Zero(),       \
+    "1: a force-controlled task axis (x y z rx ry rz), 0: impedance")                            \
+  X(wrench_target, kForce, kVector6, Vector6d, "N, N m", kNone, kNone, Vector6d::Zero(),         \
+    "wrench the TCP exerts along the force axes, task frame, force first")
 
 #define COMPLY_JOINT_COMMAND_FIELDS(X)                                                             \
   X(position, kPosition, kJointVector, JointVector, "rad | m", kNone, kSeedJointPosition,          \

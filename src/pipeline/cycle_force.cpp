@@ -1,0 +1,40 @@
+// Stage "force": force along the task axes a command selects, and the contact-force limit
+// (force_axes.hpp), on what the gain stage let through. Only a Cartesian law has task axes; a
+// command that selects none, without a limit configured, costs one branch and a scan of six
+// numbers, and the law reads the gain stage's command itself.
+
+#include "comply/pipeline/controller.hpp"
+
+namespace comply::pipeline {
+
+void Controller::applyForce() noexcept {
+  force_active_ = false;
+  const auto* in = std::get_if<comply_cartesian_command>(&guardedBus());
+  auto* out = std::get_if<comply_cartesian_command>(&force_bus_);
+  if (in == nullptr || out == nullptr) {
+    return;
+  }
+  if (!force_.acts(*in)) {
+    force_.reset();
+    return;
+  }
+  const auto n = static_cast<Eigen::Index>(dof_);
+  Vector6d tcp_twist;
+  tcp_twist.noalias() = data_.jacobian.leftCols(n) * state_.velocity.head(n);
+  force_.apply(*in, data_, tcp_twist, forceWrench(), period_s_, *out);
+  force_active_ = true;
+}
+
+const Vector6d* Controller::forceWrench() const noexcept {
+  const ForceSource source = parameters_.force_control.source;
+  const bool observer = observer_.enabled() && source != ForceSource::kSensor;
+  if (observer) {
+    return &observer_.wrench();
+  }
+  if (source != ForceSource::kObserver && sensor_valid_) {
+    return &sensor_wrench_;
+  }
+  return nullptr;
+}
+
+}  // namespace comply::pipeline
