@@ -47,6 +47,8 @@ inline CartesianCommand distinctCartesian() {
   c.nullspace_position = ramp(20);
   c.nullspace_stiffness = ramp(30);
   c.nullspace_damping = ramp(40);
+  c.force_axes << 1, 0, 1, 0, 0, 1;
+  c.wrench_target << 7, -8, 9, -0.7, 0.8, -0.9;
   return c;
 }
 

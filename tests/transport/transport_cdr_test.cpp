@@ -84,8 +84,9 @@ TEST(TransportCdr, CartesianCommandSizeFollowsTheTable) {
   // 4 header + stamp 8 + string 4 + 1 -> 17, pad to 20, fields 4 -> 24; then 3 + 4 + 6 + 6 + 9 *
   // 4 doubles (55 doubles, 440 bytes) -> 464; damping_mode octet -> 465, pad to 472 for
   // damping_ratio 6 + task_frame 4 + wrench 6 doubles (128) -> 600; four sequences of 7 doubles:
-  // count 4 + pad 4 + 56 each (64) -> 856. Body 856, plus the 4-byte encapsulation header.
-  ASSERT_EQ(bytes.size(), 860U);
+  // count 4 + pad 4 + 56 each (64) -> 856; force_axes and wrench_target 12 doubles (96) -> 952.
+  // Body 952, plus the 4-byte encapsulation header.
+  ASSERT_EQ(bytes.size(), 956U);
   EXPECT_EQ(bytes[1], 0x01);        // CDR_LE
   EXPECT_EQ(bytes[4 + 464], 0x00);  // damping_mode absolute
   EXPECT_EQ(bytes[4 + 600], 7);     // torque_feedforward count
