@@ -52,6 +52,13 @@ SurfaceFollowingRow runCondition(const SurfaceCondition& condition,
                                           ? pipeline::ForceSource::kObserver
                                           : pipeline::ForceSource::kSensor;
     run.config.observer.enabled = condition.source == "observer";
+    // The sensor's reading chatters with MuJoCo's rigid contact at the physics step.
+    run.config.wrench_sensor.filter_hz = 50.0;
+    // On the commanded torque the observer would count the joints' friction as contact (several
+    // newtons at the TCP once the joints move); the FR3 measures its joint torques on the link
+    // side of the friction, and so does the plant here.
+    run.config.observer.measured_torque = true;
+    run.plant_link_side_torque = true;
     // The probe is the tool beyond the wrist sensor: declared, its weight is compensated and comes
     // off the sensor's reading.
     run.config.payload_compensation = true;

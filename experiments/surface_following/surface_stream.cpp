@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "comply/task/frames.hpp"
 #include "surface_following/fixture.hpp"
 
 namespace comply::experiments::surface_following {
@@ -64,7 +65,7 @@ double SurfaceStream::duration() const {
   return traverseEnd() + kHoldS;
 }
 
-std::optional<CartesianCommand> SurfaceStream::next(double t_s, const MeasuredPose& /*measured*/) {
+std::optional<CartesianCommand> SurfaceStream::next(double t_s, const MeasuredPose& measured) {
   CartesianCommand command = stream_.commandAt(std::max(t_s, traverseStart()), dof_);
   command.stamp_s = t_s;
   if (t_s < kApproachS) {
@@ -86,7 +87,19 @@ std::optional<CartesianCommand> SurfaceStream::next(double t_s, const MeasuredPo
   }
   if (condition_.force) {
     // The normal (task y, out of the face) is a force axis: the probe presses into the face,
-    // along -y. Its stiffness then only sets the damping along it (ratio mode).
+    // along -y. Its stiffness then only sets the damping along it (ratio mode). The frame turns
+    // with the face where the probe touches it (which lags the reference by millimetres on a
+    // face whose normal turns by up to 0.15 rad per 8 mm), so that the axis pushes along the
+    // normal there.
+    if (measured.valid) {
+      const Eigen::Vector3d tip =
+          measured.tcp_position + measured.tcp_orientation * Eigen::Vector3d(0, 0, kProbeLength);
+      const Eigen::Vector3d normal = outwardNormal(tip.x());
+      const Eigen::Vector3d tangent(normal.y(), -normal.x(), 0.0);  // along +x
+      if (const auto frame = task::darbouxFrame(tangent, normal)) {
+        command.task_frame = Eigen::Quaterniond(*frame);
+      }
+    }
     command.fields = command.fields | CommandField::kForce;
     command.force_axes[1] = 1.0;
     command.wrench_target[1] = -kNormalForceN;

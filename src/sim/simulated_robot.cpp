@@ -78,6 +78,9 @@ SimulatedRobot::SimulatedRobot(const model::RobotDescription& robot, const Plant
   }
   applied_.assign(dof, 0.0);
   held_position_.assign(dof, 0.0);
+  link_side_torque_ = options.link_side_torque;
+  link_torque_.assign(dof, 0.0);
+  dof_friction_.assign(static_cast<std::size_t>(model_->nv), 0.0);
 
   if (options.joint_dynamics && robot.joint_dynamics) {
     const model::JointDynamics& dynamics = *robot.joint_dynamics;
@@ -175,7 +178,9 @@ bool SimulatedRobot::read(JointState& state) noexcept {
     const auto row = static_cast<Eigen::Index>(i);
     state.position[row] = data_->qpos[qpos_address_[i]];
     state.velocity[row] = data_->qvel[dof_address_[i]];
-    state.effort[row] = applied_[i];
+    // Before the first step the arm rests: the sensor reads what the drive holds.
+    state.effort[row] = link_side_torque_ && link_torque_sensed_ ? link_torque_[i] / substeps_
+                                                                 : applied_[i];
     if (position_noise_rad_ > 0.0) {
       state.position[row] += position_noise_rad_ * unit_normal_(noise_generator_);
     }
@@ -296,7 +301,25 @@ void SimulatedRobot::pinHeldJoints() noexcept {
   }
 }
 
+void SimulatedRobot::senseLinkTorque() noexcept {
+  // mj_step's forward pass left this substep's constraint forces, passive forces and
+  // accelerations in data_: the joint's Coulomb friction is the force of its dof-friction row.
+  std::fill(dof_friction_.begin(), dof_friction_.end(), 0.0);
+  for (int row = 0; row < data_->nefc; ++row) {
+    if (data_->efc_type[row] == mjCNSTR_FRICTION_DOF) {
+      dof_friction_[static_cast<std::size_t>(data_->efc_id[row])] += data_->efc_force[row];
+    }
+  }
+  for (std::size_t j = 0; j < dof_address_.size(); ++j) {
+    const int dof = dof_address_[j];
+    link_torque_[j] += data_->qfrc_applied[dof] + data_->qfrc_passive[dof] +
+                       dof_friction_[static_cast<std::size_t>(dof)] -
+                       model_->dof_armature[dof] * data_->qacc[dof];
+  }
+}
+
 void SimulatedRobot::step() noexcept {
+  std::fill(link_torque_.begin(), link_torque_.end(), 0.0);
   for (int i = 0; i < substeps_; ++i) {
     if (braked_) {
       // The brake: the joints pinned at rest, the drives carrying exactly what holds them there.
@@ -312,7 +335,11 @@ void SimulatedRobot::step() noexcept {
     }
     applyExternalWrench();
     mj_step(model_.get(), data_.get());
+    if (link_side_torque_) {
+      senseLinkTorque();
+    }
   }
+  link_torque_sensed_ = true;
   if (braked_) {
     pinHeldJoints();
     mj_forward(model_.get(), data_.get());

@@ -4,9 +4,10 @@
 // settles and slides 10 cm along the table in 5 s while pressing. After the first contact
 // transient the normal force the table feels (MuJoCo's contact, the ground truth) holds the target
 // within 10 % RMS, and the tangential reference is tracked meanwhile:
-//   - from the wrist sensor, on the plant with its joint friction;
-//   - from the momentum observer on the commanded torque, on a plant without joint friction (the
-//     observer counts joint friction as contact: docs/contact-wrench.md gives its bias).
+//   - from the wrist sensor;
+//   - from the momentum observer on the joint torques measured on the link side of the joints'
+//     friction (the plant's joint-torque sensors; on the commanded torque the observer would
+//     count that friction as contact).
 
 #include <gtest/gtest.h>
 
@@ -64,6 +65,7 @@ PressResult pressAndSlide(const std::string& robot, const std::string& source) {
   config.force_control.source =
       source == "observer" ? pipeline::ForceSource::kObserver : pipeline::ForceSource::kSensor;
   config.observer.enabled = source == "observer";
+  config.observer.measured_torque = true;
   config.wrench_sensor.filter_hz = 50.0;  // the sensor's reading chatters with the contact
   // The probe (60 g) is the tool beyond the sensor: declared, its weight is compensated and comes
   // off the sensor's reading.
@@ -73,7 +75,7 @@ PressResult pressAndSlide(const std::string& robot, const std::string& source) {
   config.initial_cartesian.stiffness_translational = 1500.0 * Eigen::Matrix3d::Identity();
   sim::PlantOptions options;
   options.substeps = 2;
-  options.friction_scale = source == "observer" ? 0.0 : 1.0;
+  options.link_side_torque = true;
   options.scene.tool = kSourceDir / "examples" / "sim" / "probe_tool.xml";
   options.scene.objects = {lowTable()};
   Rig rig(config, options);

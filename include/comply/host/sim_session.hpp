@@ -35,6 +35,8 @@ struct SimRunOptions {
   int image_height = 480;
   bool plant_joint_dynamics = true;   ///< robot.yaml joint_dynamics in the plant
   double plant_friction_scale = 1.0;  ///< multiplies the plant's Coulomb friction
+  /// The plant's effort reads as a joint-torque sensor on the link side (sim::PlantOptions).
+  bool plant_link_side_torque = false;
   std::ostream* progress = nullptr;   ///< progress bar and warnings; nullptr: silent
   /// Cartesian controllers only: when set, the command source (e.g. a task::PathCommand or an
   /// experiment's stream) asked before every cycle, in place of the task's waypoints.

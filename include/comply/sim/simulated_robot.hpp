@@ -37,6 +37,10 @@ struct PlantOptions {
   /// Multiplies robot.yaml's Coulomb friction (frictionloss); 0 removes it while keeping damping
   /// and armature, which the plant's stability at 1 kHz relies on. For ablations.
   double friction_scale = 1.0;
+  /// The effort read back is what a joint-torque sensor between gear and link measures (FR3,
+  /// iiwa and Rizon have one): the drive's torque less the joint's friction, damping and rotor
+  /// inertia, averaged over the period. False: the drive's torque itself.
+  bool link_side_torque = false;
   std::string tip_frame;  ///< TCP body for pose and tool wrench; default robot.tcp_frame
   /// What the drives take (core/actuator_command.hpp): torque motors (the default); drives with
   /// an onboard PD (joint_pd, which take a torque as well: kp = kd = 0); or a position or a
@@ -122,6 +126,8 @@ class SimulatedRobot final : public hardware::HardwareInterface {
   void configureServos(const PlantOptions& options);
   void pinHeldJoints() noexcept;
   void applyExternalWrench() noexcept;
+  /// link_side_torque: adds this substep's joint-torque sensor reading to link_torque_.
+  void senseLinkTorque() noexcept;
   /// The drives' torque for this substep (joint_pd, position, velocity), into applied_.
   void driveJoints(double since_write_s) noexcept;
 
@@ -138,6 +144,12 @@ class SimulatedRobot final : public hardware::HardwareInterface {
   std::vector<int> dof_address_;
   std::vector<double> effort_limit_;
   std::vector<double> applied_;
+  /// link_side_torque: the joint-torque sensors' reading summed over this period's substeps, and
+  /// the joints' friction forces of one substep (by MuJoCo dof).
+  bool link_side_torque_ = false;
+  bool link_torque_sensed_ = false;  ///< a step has filled link_torque_
+  std::vector<double> link_torque_;
+  std::vector<double> dof_friction_;
   bool braked_ = false;
   std::vector<double> held_position_;  ///< per controlled joint, while braked
   std::vector<bool> tool_body_;        ///< per MuJoCo body: part of the tool (TCP subtree)

@@ -35,6 +35,7 @@ sim::PlantOptions plantOptions(const SimRunOptions& options,
   plant.tip_frame = resolved.config.tip_frame;
   plant.joint_dynamics = options.plant_joint_dynamics;
   plant.friction_scale = options.plant_friction_scale;
+  plant.link_side_torque = options.plant_link_side_torque;
   return plant;
 }
 
