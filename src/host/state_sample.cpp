@@ -66,6 +66,7 @@ transport::ControllerStateMessage stateMessage(const StateSample& sample,
     message.contact_wrench_task[i] = sample.contact_wrench_task[i];
   }
   message.contact_wrench_source = sample.contact_wrench_source;
+  message.contact_wrench_bandwidth_hz = sample.contact_wrench_bandwidth_hz;
   message.reference_stamp = transport::Stamp::fromSeconds(sample.reference_stamp_s);
   message.reference_fields = sample.reference_fields;
   if (!resolved.cartesian()) {
@@ -129,12 +130,16 @@ void StateSampler<Command>::fill(const hardware::CycleRecord& record, const Join
   if (controller.observer().enabled()) {
     s.contact_wrench = controller.observer().wrench();
     s.contact_wrench_source = transport::WrenchSource::kObserver;
+    s.contact_wrench_bandwidth_hz = controller.resolved().parameters.observer.gain_per_s /
+                                    (2.0 * M_PI);
   } else if (controller.sensorWrenchValid()) {
     s.contact_wrench = controller.sensorWrench();  // the tool's weight and the tare off
     s.contact_wrench_source = transport::WrenchSource::kSensor;
+    s.contact_wrench_bandwidth_hz = controller.resolved().parameters.wrench_sensor.filter_hz;
   } else {
     s.contact_wrench.setZero();
     s.contact_wrench_source = transport::WrenchSource::kNone;
+    s.contact_wrench_bandwidth_hz = 0.0;
   }
   // The same wrench about the same point, in the TCP frame and in the task frame in force (the
   // frame a contact task's axes are named in, which turns with the task).

@@ -1,5 +1,6 @@
 // Stage "measure", the wrist sensor: the hardware's force/torque reading (JointState::wrench, the
-// wrench on the tool at the TCP, base frame) as the law's side uses it.
+// wrench on the tool at the TCP, base frame, or TCP frame with wrench_in_tcp) as the law's side
+// uses it.
 //
 //   tool     the declared payload (compensation.payload) is the tool beyond the sensor: its weight
 //            at its centre of mass, m g and r x m g about the TCP, comes off every cycle, turned
@@ -26,6 +27,10 @@ void Controller::senseWrench(const JointState& state) noexcept {
   }
   sensor_seen_.store(true, std::memory_order_relaxed);
   Vector6d reading = state.wrench;
+  if (state.wrench_in_tcp) {
+    reading.head<3>() = data_.tip_rotation * state.wrench.head<3>();
+    reading.tail<3>() = data_.tip_rotation * state.wrench.tail<3>();
+  }
   if (parameters_.payload_on_sensor && parameters_.payload.mass_kg > 0.0) {
     const Eigen::Vector3d weight = parameters_.payload.mass_kg * resolved_->model->gravity();
     const Eigen::Vector3d arm = data_.tip_rotation * parameters_.payload.com_in_tip;

@@ -84,6 +84,7 @@ void putState(Writer& w, const ControllerStateMessage& message) {
   w.put(static_cast<std::uint8_t>(message.contact_wrench_source));
   putArray(w, message.contact_wrench_tcp);
   putArray(w, message.contact_wrench_task);
+  w.put(message.contact_wrench_bandwidth_hz);
   w.putBool(message.passivity);
   w.put(message.tank_energy_j);
   w.put(message.nullspace_tank_energy_j);

@@ -88,6 +88,7 @@ dds_return_t Wire<ControllerStateMessage>::write(dds_entity_t writer,
   out.contact_wrench_source = static_cast<std::uint8_t>(message.contact_wrench_source);
   copyArray(message.contact_wrench_tcp, out.contact_wrench_tcp);
   copyArray(message.contact_wrench_task, out.contact_wrench_task);
+  out.contact_wrench_bandwidth = message.contact_wrench_bandwidth_hz;
   out.passivity = message.passivity;
   out.tank_energy = message.tank_energy_j;
   out.nullspace_tank_energy = message.nullspace_tank_energy_j;
@@ -126,6 +127,7 @@ void Wire<ControllerStateMessage>::read(const void* sample, ControllerStateMessa
   message.contact_wrench_source = static_cast<WrenchSource>(in.contact_wrench_source);
   copyArray(in.contact_wrench_tcp, message.contact_wrench_tcp);
   copyArray(in.contact_wrench_task, message.contact_wrench_task);
+  message.contact_wrench_bandwidth_hz = in.contact_wrench_bandwidth;
   message.passivity = in.passivity;
   message.tank_energy_j = in.tank_energy;
   message.nullspace_tank_energy_j = in.nullspace_tank_energy;

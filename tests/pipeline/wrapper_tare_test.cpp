@@ -105,5 +105,22 @@ TEST(WrapperTare, TheLowPassFollowsAStepWithItsTimeConstant) {
   EXPECT_NEAR(core.sensorWrench()[2], -10.0, 1e-3) << "settled on the reading";
 }
 
+TEST(WrapperTare, AReadingInTheTcpFrameIsTurnedIntoTheBase) {
+  CartesianWrapper wrapper(fr3Config(kCartesianImpedancePlugin));
+  const Controller& core = wrapper.controller();
+  JointState state = restingAt(core, offset(fr3Home(), 6, 0.7));
+  Vector6d in_base;
+  in_base << 4.0, -2.0, 7.0, 0.3, -0.1, 0.2;
+  state.wrench_valid = true;
+  wrapper.activate(state);
+  const Eigen::Matrix3d tcp = core.modelData().tip_rotation;
+  ASSERT_FALSE(tcp.isApprox(Eigen::Matrix3d::Identity(), 1e-3)) << "a turned TCP shows the turn";
+  state.wrench << tcp.transpose() * in_base.head<3>(), tcp.transpose() * in_base.tail<3>();
+  state.wrench_in_tcp = true;  // as a ros2_control force-torque sensor reports it
+  TorqueBuffer torque;
+  ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
+  EXPECT_LT((core.sensorWrench() - in_base).norm(), 1e-12) << core.sensorWrench().transpose();
+}
+
 }  // namespace
 }  // namespace comply::pipeline::test

@@ -16,6 +16,9 @@ struct JointState {
   /// base frame, force first [N, N m].
   Eigen::Matrix<double, 6, 1> wrench = Eigen::Matrix<double, 6, 1>::Zero();
   bool wrench_valid = false;
+  /// `wrench` is in the TCP frame (the sensor's own axes, as a ros2_control force-torque sensor
+  /// reports it) instead of the base frame; the cycle turns it with the measured TCP.
+  bool wrench_in_tcp = false;
 
   /// `dof` entries each, position and velocity finite: a state a cycle can run on (the effort
   /// may be NaN: an arm without torque sensing).

@@ -27,6 +27,8 @@ struct StateSample {
   transport::WrenchSource contact_wrench_source = transport::WrenchSource::kNone;
   Vector6d contact_wrench_tcp = Vector6d::Zero();   ///< the same in the TCP frame
   Vector6d contact_wrench_task = Vector6d::Zero();  ///< ... in the task frame in force
+  /// [Hz] the estimate's first-order bandwidth (observer K_O / 2 pi, sensor filter_hz); 0: raw.
+  double contact_wrench_bandwidth_hz = 0.0;
   pipeline::PassivitySnapshot passivity;            ///< the energy tank's account after the cycle
   double reference_stamp_s = 0.0;
   std::uint32_t reference_fields = 0;

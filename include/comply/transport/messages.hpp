@@ -106,6 +106,9 @@ struct ControllerStateMessage {
   WrenchSource contact_wrench_source = WrenchSource::kNone;
   std::array<double, 6> contact_wrench_tcp{};   ///< the same wrench in the TCP frame
   std::array<double, 6> contact_wrench_task{};  ///< ... in the task frame in force
+  /// [Hz] the estimate's first-order bandwidth: the observer's K_O / 2 pi, the wrist sensor's
+  /// filter_hz; 0: unfiltered (or no estimate).
+  double contact_wrench_bandwidth_hz = 0.0;
   /// The energy tank's account (pipeline::PassivitySnapshot): all 0, gain_fraction 1, when off.
   bool passivity = false;
   double tank_energy_j = 0.0;

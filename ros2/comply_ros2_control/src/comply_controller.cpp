@@ -25,6 +25,12 @@ using controller_interface::InterfaceConfiguration;
 constexpr const char* kStateRate = "state_publish_rate_hz";
 constexpr const char* kDiagnosticsRate = "diagnostics_publish_rate_hz";
 constexpr const char* kRobotDescription = "robot_description";
+// The wrist force/torque sensor's state interfaces: "<name>/force.x" ... "<name>/torque.z" (the
+// ros2_control ForceTorqueSensor names), or six full names; its frame: tcp (the sensor's axes,
+// aligned with the TCP) or base.
+constexpr const char* kSensorName = "force_torque_sensor.name";
+constexpr const char* kSensorInterfaces = "force_torque_sensor.interface_names";
+constexpr const char* kSensorFrame = "force_torque_sensor.frame";
 constexpr std::size_t kCommandDepth = 1000;  ///< commands waiting for the executor, at most
 
 // The index in `interfaces` of "<joint>/<kind>"; throws naming the missing one.
@@ -37,6 +43,17 @@ std::size_t indexOf(const std::vector<Loaned>& interfaces, const std::string& jo
     }
   }
   throw std::runtime_error("no interface " + joint + "/" + kind + " was loaned");
+}
+
+// The index in `interfaces` of the interface named `name` ("<prefix>/<interface>").
+template <typename Loaned>
+std::size_t indexOfName(const std::vector<Loaned>& interfaces, const std::string& name) {
+  for (std::size_t i = 0; i < interfaces.size(); ++i) {
+    if (interfaces[i].get_name() == name) {
+      return i;
+    }
+  }
+  throw std::runtime_error("no interface " + name + " was loaned (" + kSensorName + ")");
 }
 
 /// The command interfaces an output mode claims per joint, and the command field each carries.
@@ -83,6 +100,9 @@ CallbackReturn ComplyController<Command>::on_init() {
   auto_declare<double>(kStateRate, 100.0);
   auto_declare<double>(kDiagnosticsRate, 10.0);
   auto_declare<std::string>(kRobotDescription, "");
+  auto_declare<std::string>(kSensorName, "");
+  auto_declare<std::vector<std::string>>(kSensorInterfaces, {});
+  auto_declare<std::string>(kSensorFrame, "tcp");
   return CallbackReturn::SUCCESS;
 }
 
@@ -106,6 +126,8 @@ InterfaceConfiguration ComplyController<Command>::state_interface_configuration(
       configuration.names.push_back(joint + kind);
     }
   }
+  configuration.names.insert(configuration.names.end(), sensor_interfaces_.begin(),
+                             sensor_interfaces_.end());
   return configuration;
 }
 
@@ -128,6 +150,7 @@ void ComplyController<Command>::resolve() {
   gate_ = std::make_unique<comply::pipeline::CommandGate>(
       comply::pipeline::gateOptions(config, std::is_same_v<Command, comply::CartesianCommand>));
   joints_ = config.joints;
+  resolveSensor();
 }
 
 template <typename Command>
@@ -208,6 +231,30 @@ CallbackReturn ComplyController<Command>::on_configure(const rclcpp_lifecycle::S
 }
 
 template <typename Command>
+void ComplyController<Command>::resolveSensor() {
+  const auto node = get_node();
+  const std::string name = node->get_parameter(kSensorName).as_string();
+  const std::vector<std::string> names = node->get_parameter(kSensorInterfaces).as_string_array();
+  const std::string frame = node->get_parameter(kSensorFrame).as_string();
+  if (frame != "tcp" && frame != "base") {
+    throw std::runtime_error(std::string(kSensorFrame) + " must be tcp or base, not '" + frame +
+                             "'");
+  }
+  if (!names.empty() && names.size() != 6) {
+    throw std::runtime_error(std::string(kSensorInterfaces) +
+                             " names six interfaces (force x y z, torque x y z), not " +
+                             std::to_string(names.size()));
+  }
+  sensor_interfaces_ = names;
+  if (names.empty() && !name.empty()) {
+    for (const char* axis : {"force.x", "force.y", "force.z", "torque.x", "torque.y", "torque.z"}) {
+      sensor_interfaces_.push_back(name + "/" + axis);
+    }
+  }
+  sensor_in_tcp_ = frame == "tcp";
+}
+
+template <typename Command>
 bool ComplyController<Command>::mapInterfaces() {
   const std::size_t dof = joints_.size();
   const std::vector<CommandInterface> claimed = commandInterfacesOf(wrapper_->outputMode());
@@ -227,6 +274,10 @@ bool ComplyController<Command>::mapInterfaces() {
       command_index_.push_back(indexOf(command_interfaces_, joints_[i], interface.kind));
     }
   }
+  sensor_index_.clear();
+  for (const std::string& name : sensor_interfaces_) {
+    sensor_index_.push_back(indexOfName(state_interfaces_, name));
+  }
   return true;
 }
 
@@ -237,6 +288,13 @@ void ComplyController<Command>::readState() noexcept {
     state_.position[joint] = state_interfaces_[position_index_[i]].get_value();
     state_.velocity[joint] = state_interfaces_[velocity_index_[i]].get_value();
     state_.effort[joint] = state_interfaces_[effort_index_[i]].get_value();
+  }
+  if (sensor_index_.size() == 6) {
+    for (std::size_t k = 0; k < 6; ++k) {
+      state_.wrench[static_cast<Eigen::Index>(k)] = state_interfaces_[sensor_index_[k]].get_value();
+    }
+    state_.wrench_valid = state_.wrench.allFinite();
+    state_.wrench_in_tcp = sensor_in_tcp_;
   }
 }
 

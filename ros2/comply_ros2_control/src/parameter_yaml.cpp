@@ -103,7 +103,7 @@ bool isRosSideParameter(const std::string& name) {
       return true;
     }
   }
-  return name.rfind("qos_overrides.", 0) == 0;
+  return name.rfind("qos_overrides.", 0) == 0 || name.rfind("force_torque_sensor.", 0) == 0;
 }
 
 std::string controllerFileText(const std::string& controller_name,

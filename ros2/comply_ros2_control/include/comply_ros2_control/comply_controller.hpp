@@ -25,8 +25,14 @@
 //                  the compute time of update() as a histogram (1 us bins), its overruns, and
 //                  the outcome of every command received since the previous message
 //   ~/reset_fault  std_srvs/Trigger: leave FAULT
-//   ~/tare         std_srvs/Trigger: the wrist force/torque reading becomes its zero (no force-torque
-//                  state interface is read yet, so it is refused: no reading)
+//   ~/tare         std_srvs/Trigger: the wrist force/torque reading becomes its zero (refused
+//                  while no force-torque state interface has given a reading)
+//
+// A wrist force/torque sensor (docs/contact-wrench.md), by parameters outside comply's file:
+//   force_torque_sensor.name             its state interfaces are <name>/force.x ... /torque.z
+//   force_torque_sensor.interface_names  or six full names (force x y z, torque x y z)
+//   force_torque_sensor.frame            tcp (default: the sensor's axes, aligned with the TCP,
+//                                        turned with it every cycle) or base
 // The command and state topics and types are those of `comply run`, so comply's Python client
 // and `comply send` / `comply echo` talk to either host.
 
@@ -94,6 +100,8 @@ class ComplyController : public controller_interface::ControllerInterface {
   void resolve();
   void createEndpoints();
   bool mapInterfaces();
+  /// The force_torque_sensor.* parameters into sensor_interfaces_; throws on a bad one.
+  void resolveSensor();
   void readState() noexcept;
   void onCommand(const CommandMessage& message, const rclcpp::MessageInfo& info);
   void onChunk(const ChunkMessage& message, const rclcpp::MessageInfo& info);
@@ -112,6 +120,10 @@ class ComplyController : public controller_interface::ControllerInterface {
   // The command interfaces of joint i, field k at i * command_fields_.size() + k.
   std::vector<std::size_t> command_index_;
   std::vector<comply::JointVector comply::ActuatorCommand::*> command_fields_;
+  // The wrist sensor's six state interfaces (empty: none) and their index in state_interfaces_.
+  std::vector<std::string> sensor_interfaces_;
+  std::vector<std::size_t> sensor_index_;
+  bool sensor_in_tcp_ = true;
   comply::JointState state_;
   comply::ActuatorCommand command_;
   std::vector<double> torque_;
