@@ -54,7 +54,7 @@ def main():
     top.set_ylabel("y [mm]")
     top.set_title("top view: probe tip (ball centre) over the fixture face")
     top.set_aspect("equal", adjustable="datalim")
-    top.legend(fontsize="small", loc="lower right")
+    top.legend(fontsize="small", loc="upper left", ncol=2)
     top.grid(alpha=0.3)
     for axis, title in zip(axes, ["lateral error [mm]", "tangential error [mm]",
                                   "normal force [N] (20 ms mean; target dotted)"]):

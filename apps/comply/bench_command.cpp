@@ -150,6 +150,7 @@ struct Variant {
   bool recorded = false;                    ///< the cycle pushed into a recording's lane
   bool observer = false;                    ///< the momentum observer
   bool chunked = false;                     ///< a timed chunk plays through every cycle
+  bool force = false;  ///< a force axis and contact-force limits (with the observer)
   OutputMode output = OutputMode::kTorque;  ///< what the drives take (output.mode)
 };
 
@@ -179,7 +180,10 @@ std::vector<BenchRow> benchWrapper(const BenchOptions& options, const std::strin
                                    std::ostream& log, const Variant& variant = {}) {
   pipeline::WrapperConfig config = host::controllerConfig(options.robot, plugin_name);
   config.initial_cartesian.damping_mode = variant.damping_mode;
-  config.observer.enabled = variant.observer;
+  config.observer.enabled = variant.observer || variant.force;
+  if (variant.force) {
+    config.force_control.contact_force_limit_n = Eigen::Vector3d(30.0, 30.0, 0.0);
+  }
   config.output.mode = variant.output;
   if (variant.gain_stage) {
     // Ramps and tank on, the tank far from full so that it refills (and, with ratios, bounds the
@@ -195,6 +199,20 @@ std::vector<BenchRow> benchWrapper(const BenchOptions& options, const std::strin
   ReplayHardware replay(home, total);
   wrapper.activate(replay.at(0));
   if constexpr (std::is_same_v<Command, CartesianCommand>) {
+    if (variant.force) {
+      // Force along a turned task frame's z; its x and y under the contact-force limit.
+      CartesianCommand command = CartesianCommand::zero(wrapper.dof());
+      command.fields = CommandField::kForce | CommandField::kTaskFrame;
+      command.task_frame =
+          Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()) * Eigen::Quaterniond::Identity();
+      command.force_axes[2] = 1.0;
+      command.wrench_target[2] = 5.0;
+      const pipeline::Verdict verdict = wrapper.submit(command);
+      if (!verdict.accepted) {
+        throw std::runtime_error(wrapper_name +
+                                 ": the benchmark's force command was refused: " + verdict.message);
+      }
+    }
     if (variant.chunked) {
       // The host's clock is the controller's here: 0 at activation.
       const pipeline::Verdict verdict = wrapper.submitChunk(
@@ -341,6 +359,10 @@ std::vector<BenchRow> runBench(const BenchOptions& options, std::ostream& log) {
   // The ratio cycle with the momentum observer estimating the external wrench.
   add(benchWrapper<CartesianCommand>(options, "cartesian_observer", "cartesian_impedance",
                                      robot.home, log, {.observer = true}));
+  // The observer's cycle with force along a task axis and contact-force limits on the others
+  // (the force stage: the command in the task frame, the PI, the pull-back).
+  add(benchWrapper<CartesianCommand>(options, "cartesian_force", "cartesian_impedance", robot.home,
+                                     log, {.force = true}));
   // The ratio cycle with a timed chunk playing: its curve, gains and task frame every cycle.
   add(benchWrapper<CartesianCommand>(options, "cartesian_chunk", "cartesian_impedance", robot.home,
                                      log, {.chunked = true}));

@@ -25,7 +25,9 @@ task::Path tcpPath(double fraction) {
   return task::Path(points);
 }
 
-task::PathCommandOptions streamOptions(const Eigen::Quaterniond& orientation, double speed) {
+/// `press_depth_m`: how far the reference lies inside the face along its normal.
+task::PathCommandOptions streamOptions(const Eigen::Quaterniond& orientation, double speed,
+                                       double press_depth_m) {
   task::PathCommandOptions options;
   options.speed_m_per_s = speed;
   options.start_time_s = SurfaceStream::traverseStart();
@@ -34,7 +36,7 @@ task::PathCommandOptions streamOptions(const Eigen::Quaterniond& orientation, do
   options.surface_normal = [](const Eigen::Vector3d& point) { return outwardNormal(point.x()); };
   options.stiffness_translational = Eigen::Vector3d(kStiffNPerM, kCompliantNPerM, kStiffNPerM);
   options.stiffness_rotational = Eigen::Vector3d::Constant(100.0);
-  options.offset_in_task_frame = Eigen::Vector3d(0.0, -kPressDepth, 0.0);
+  options.offset_in_task_frame = Eigen::Vector3d(0.0, -press_depth_m, 0.0);
   options.orientation = orientation;
   return options;
 }
@@ -48,7 +50,11 @@ SurfaceStream::SurfaceStream(const SurfaceCondition& condition, const Eigen::Vec
       home_tcp_(home_tcp),
       dof_(dof),
       speed_(speed_m_per_s),
-      stream_(tcpPath(fraction), streamOptions(orientation, speed_m_per_s)) {
+      // Under force control the reference stays on the contact path: a reference pushed into the
+      // face along the nominal normal would leak into the tangent wherever the probe's normal
+      // differs from the reference's, and hold the probe back on the slope.
+      stream_(tcpPath(fraction),
+              streamOptions(orientation, speed_m_per_s, condition.force ? 0.0 : kPressDepth)) {
   start_tcp_ = stream_.commandAt(traverseStart(), dof).position;
   approach_tcp_ = stream_.path().position(0.0) + kApproachClearance * outwardNormal(kPathStartX);
 }

@@ -125,10 +125,10 @@ TEST(SyntheticChain, TwelveJointsLoadAndRunEveryWrapperWithoutAFault) {
   options.warmup = 10;
   std::ostringstream log;
   const std::vector<BenchRow> rows = runBench(options, log);  // throws on a fault
-  // joint, cartesian, cartesian_abs, cartesian_tank, cartesian_observer, cartesian_chunk,
-  // cartesian_joint_pd, cartesian_admittance: step and cycle; cartesian_recorded also the push,
-  // the push into a full lane and the state sample.
-  ASSERT_EQ(rows.size(), 21U);
+  // joint, cartesian, cartesian_abs, cartesian_tank, cartesian_observer, cartesian_force,
+  // cartesian_chunk, cartesian_joint_pd, cartesian_admittance: step and cycle; cartesian_recorded
+  // also the push, the push into a full lane and the state sample.
+  ASSERT_EQ(rows.size(), 23U);
   int recording_stages = 0;
   for (const BenchRow& bench_row : rows) {
     EXPECT_EQ(bench_row.dof, 12);
