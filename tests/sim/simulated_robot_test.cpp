@@ -158,6 +158,71 @@ TEST(SimulatedRobot, FrictionScaleMultipliesTheCoulombFrictionOnly) {
   }
 }
 
+// The joint-torque sensors (link_side_torque): what reaches the link, the drive's torque less the
+// joint's friction, damping and rotor inertia. Checked against comply's own dynamics of the links
+// alone (M(q) ddq + C(q, dq) dq + g(q), no armature) at MuJoCo's acceleration of each step, while
+// the arm moves under a torque pattern with its friction on; at rest, a torque below the static
+// friction reaches the drive's reading but not the link's.
+TEST(SimulatedRobot, TheLinkSideTorqueSensorsReadWhatReachesTheLinks) {
+  const model::RobotDescription fr3 = model::loadRobotDescription("fr3");
+  const model::Model chain = fr3.loadModel();
+  model::Data data(chain);
+  sim::PlantOptions options;
+  options.link_side_torque = true;
+  sim::SimulatedRobot robot(fr3, options);
+  const int dof = robot.dof();
+  const std::vector<double> gravity(robot.appliedEffort().begin(), robot.appliedEffort().end());
+  JointState before = JointState::zero(dof);
+  JointState after = JointState::zero(dof);
+  std::vector<double> torque(static_cast<std::size_t>(dof), 0.0);
+  double largest_error = 0.0;
+  double largest_friction = 0.0;
+  for (int cycle = 0; cycle < 300; ++cycle) {
+    robot.read(before);
+    for (int j = 0; j < dof; ++j) {
+      torque[j] = gravity[j] + 4.0 * std::sin(0.02 * cycle + j);
+    }
+    robot.write(torque);
+    robot.step();
+    robot.read(after);
+    const std::span<const double> q(before.position.data(), std::size_t(dof));
+    const std::span<const double> dq(before.velocity.data(), std::size_t(dof));
+    ASSERT_EQ(model::update(chain, data, q, dq,
+                            model::Quantity::kMassMatrix | model::Quantity::kCoriolis |
+                                model::Quantity::kGravity),
+              model::UpdateStatus::kOk);
+    const mjData& mujoco = robot.mujocoData();
+    const mjModel& plant = robot.mujocoModel();
+    JointVector acceleration(dof);
+    for (int j = 0; j < dof; ++j) {
+      acceleration[j] =
+          mujoco.qacc[plant.jnt_dofadr[mj_name2id(&plant, mjOBJ_JOINT, fr3.joints[j].c_str())]];
+    }
+    const JointVector links = data.mass_matrix.topLeftCorner(dof, dof) * acceleration +
+                              data.coriolis.head(dof) + data.gravity.head(dof);
+    for (int j = 0; j < dof; ++j) {
+      largest_error = std::max(largest_error, std::abs(after.effort[j] - links[j]));
+      largest_friction = std::max(largest_friction, std::abs(torque[j] - after.effort[j]));
+    }
+  }
+  EXPECT_LT(largest_error, 1e-4);  // measured 1.2e-5 N m: two dynamics implementations
+  EXPECT_GT(largest_friction, 0.5) << "the drive's torque and the link's must differ";
+
+  // At rest: 0.5 N m on joint 4, below its 1.137 N m of friction, is the drive's and not the
+  // link's.
+  sim::SimulatedRobot resting(fr3, options);
+  std::vector<double> hold(resting.appliedEffort().begin(), resting.appliedEffort().end());
+  hold[3] += 0.5;
+  JointState state = JointState::zero(dof);
+  for (int cycle = 0; cycle < 200; ++cycle) {
+    resting.write(hold);
+    resting.step();
+  }
+  resting.read(state);
+  EXPECT_NEAR(state.effort[3], hold[3] - 0.5, 0.05);
+  EXPECT_DOUBLE_EQ(resting.appliedEffort()[3], hold[3]);
+}
+
 TEST(SimulatedRobot, HomePoseMatchesTheControllerModel) {
   const model::RobotDescription description = model::loadRobotDescription("iiwa14");
   sim::SimulatedRobot robot(description, sim::PlantOptions{});
