@@ -35,16 +35,21 @@ Vector6d wrenchOption(const std::string& key, const std::string& text) {
 
 /// The MuJoCo plant, paced to the wall clock: what `comply run --sim` drives. Takes
 /// `--hardware-option wrench_offset=fx,fy,fz,tx,ty,tz`: its wrist sensor's offset in the sensor
-/// (TCP) frame, what a tare removes.
+/// (TCP) frame, what a tare removes; and `torque_sensing=link`: the effort reads as joint-torque
+/// sensors on the link side of the joints' friction (`drive`, the default: the drive's torque).
 HardwareBackend simulatedArm(const pipeline::WrapperConfig& config,
                              const hardware::BackendContext& context) {
   sim::PlantOptions options;
   for (const auto& [key, value] : context.options) {
-    if (key != "wrench_offset") {
-      throw hardware::BackendError("the simulated arm has no hardware option '" + key +
-                                   "'; it takes wrench_offset=fx,fy,fz,tx,ty,tz [N, N m]");
+    if (key == "torque_sensing" && (value == "link" || value == "drive")) {
+      options.link_side_torque = value == "link";
+    } else if (key == "wrench_offset") {
+      options.wrench_sensor_offset = wrenchOption(key, value);
+    } else {
+      throw hardware::BackendError(
+          "the simulated arm has no hardware option '" + key + "=" + value +
+          "'; it takes wrench_offset=fx,fy,fz,tx,ty,tz [N, N m] and torque_sensing=link|drive");
     }
-    options.wrench_sensor_offset = wrenchOption(key, value);
   }
   options.control_period_s = context.period_s;
   options.tip_frame = config.tip_frame;
