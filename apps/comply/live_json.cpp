@@ -32,7 +32,7 @@ nlohmann::json toJson(const transport::ControllerStateMessage& s) {
           {"contact_wrench_source", toString(s.contact_wrench_source)},
           {"contact_wrench_tcp", s.contact_wrench_tcp},
           {"contact_wrench_task", s.contact_wrench_task},
-          {"contact_wrench_bandwidth_hz", s.contact_wrench_bandwidth_hz},
+          {"contact_wrench_bandwidth", s.contact_wrench_bandwidth_hz},
           {"passivity", s.passivity},
           {"tank_energy", s.tank_energy_j},
           {"nullspace_tank_energy", s.nullspace_tank_energy_j},

@@ -142,7 +142,7 @@ py::dict toDict(const transport::ControllerStateMessage& s) {
   d["contact_wrench_source"] = std::string(toString(s.contact_wrench_source));
   d["contact_wrench_tcp"] = array(s.contact_wrench_tcp);
   d["contact_wrench_task"] = array(s.contact_wrench_task);
-  d["contact_wrench_bandwidth_hz"] = s.contact_wrench_bandwidth_hz;
+  d["contact_wrench_bandwidth"] = s.contact_wrench_bandwidth_hz;
   addPassivity({.enabled = s.passivity,
                 .tank_energy_j = s.tank_energy_j,
                 .nullspace_tank_energy_j = s.nullspace_tank_energy_j,

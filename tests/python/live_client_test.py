@@ -81,9 +81,24 @@ def main():
         diagnostics = client.diagnostics()
         for name in ("pose_jump", "out_of_range"):  # one tenth of the commands, in seven ways
             assert diagnostics["rejections"][name] >= COMMANDS // 70 - 1, diagnostics
+        force_axes(client)
         assert client.wait_until(lambda s: s["state"] == "active", timeout=2.0)
     dead_host(cli, source)
     print("ok")
+
+
+def force_axes(client):
+    """Force along a task axis from Python: a selection other than 0/1 is refused, a valid one
+    applied; the state says how filtered its contact wrench is."""
+    half = client.send_cartesian(force_axes=[0, 0, 0.5, 0, 0, 0], wrench_target=np.zeros(6))
+    outcome = client.outcome(half, timeout=10.0)
+    assert outcome["reason"] == "out_of_range", outcome
+    axis = client.send_cartesian(force_axes=[0, 0, 1, 0, 0, 0], wrench_target=np.zeros(6))
+    assert client.outcome(axis, timeout=10.0)["applied"]
+    released = client.send_cartesian(force_axes=np.zeros(6), wrench_target=np.zeros(6))
+    assert client.outcome(released, timeout=10.0)["applied"]
+    state = client.state()
+    assert state["contact_wrench_bandwidth"] >= 0.0, state
 
 
 def dead_host(cli, source):
