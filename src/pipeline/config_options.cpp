@@ -328,7 +328,7 @@ void addForceControlOptions(std::vector<Option>& table) {
   table.push_back(limit("force_control.contact_torque_limit_n_m",
                         "N m about task x y z; 0: none",
                         &ForceControlConfig::contact_torque_limit_n_m));
-  table.push_back(force("force_control.limit_bandwidth_hz", "2.0",
+  table.push_back(force("force_control.limit_bandwidth_hz", "10.0",
                         "Hz: how fast the pull-back settles the force at its limit", 100.0, true,
                         &ForceControlConfig::limit_bandwidth_hz));
 }

@@ -60,7 +60,8 @@ std::filesystem::path lowTable() {
   return file;
 }
 
-PressResult pressAndSlide(const std::string& robot, const std::string& source) {
+/// `robot`'s controller for the table: the force loop reading `source` (sensor | observer).
+pipeline::WrapperConfig pressConfig(const std::string& robot, const std::string& source) {
   pipeline::WrapperConfig config = simCartesianConfig(robot);
   config.force_control.source =
       source == "observer" ? pipeline::ForceSource::kObserver : pipeline::ForceSource::kSensor;
@@ -73,23 +74,49 @@ PressResult pressAndSlide(const std::string& robot, const std::string& source) {
   config.payload.mass_kg = 0.06;
   config.payload.com_in_tip = Eigen::Vector3d(0.0, 0.0, (0.05 * 0.045 + 0.01 * 0.1) / 0.06);
   config.initial_cartesian.stiffness_translational = 1500.0 * Eigen::Matrix3d::Identity();
+  return config;
+}
+
+/// The plant: the probe over the low table, joint-torque sensors on the link side.
+sim::PlantOptions pressPlant() {
   sim::PlantOptions options;
   options.substeps = 2;
   options.link_side_torque = true;
   options.scene.tool = kSourceDir / "examples" / "sim" / "probe_tool.xml";
   options.scene.objects = {lowTable()};
-  Rig rig(config, options);
+  return options;
+}
+
+/// Home's orientation turned the least so that the TCP's z (the probe) points down.
+Eigen::Quaterniond pointingDown(const MeasuredPose& home) {
+  return Eigen::Quaterniond::FromTwoVectors(home.tcp_orientation * Eigen::Vector3d::UnitZ(),
+                                            -Eigen::Vector3d::UnitZ()) *
+         home.tcp_orientation;
+}
+
+/// The table's push on the probe, as a force sensor's 20 ms mean reads it (MuJoCo's rigid
+/// contact chatters at the physics step: on or off in a single cycle, micrometres in amplitude).
+class NormalForce {
+ public:
+  double operator()(const Rig& rig, int cycle) {
+    window_[static_cast<std::size_t>(cycle) % window_.size()] = rig.plant.toolContactWrench()[2];
+    return std::accumulate(window_.begin(), window_.end(), 0.0) / window_.size();
+  }
+
+ private:
+  std::array<double, 20> window_{};
+};
+
+PressResult pressAndSlide(const std::string& robot, const std::string& source) {
+  Rig rig(pressConfig(robot, source), pressPlant());
   const int dof = rig.wrapper.dof();
   const MeasuredPose home = rig.wrapper.measuredPose();
-  const Eigen::Quaterniond down =
-      Eigen::Quaterniond::FromTwoVectors(home.tcp_orientation * Eigen::Vector3d::UnitZ(),
-                                         -Eigen::Vector3d::UnitZ()) *
-      home.tcp_orientation;
+  const Eigen::Quaterniond down = pointingDown(home);
   const Eigen::Vector3d above(0.45, 0.0, kContactZ + 0.02);
   const Eigen::Vector3d slide_end = above + Eigen::Vector3d(0.10, 0.0, 0.0);
 
   PressResult result;
-  std::array<double, 20> window{};
+  NormalForce table_force;
   double sum_squared = 0.0;
   double sum = 0.0;
   int samples = 0;
@@ -129,10 +156,7 @@ PressResult pressAndSlide(const std::string& robot, const std::string& source) {
       ADD_FAILURE() << robot << ": " << rig.wrapper.diagnostics().last_fault;
       return result;
     }
-    // The table pushes up. MuJoCo's rigid contact chatters at the physics step (on or off in a
-    // single cycle, micrometres in amplitude): a force sensor's 20 ms mean is the force.
-    window[static_cast<std::size_t>(cycle) % window.size()] = rig.plant.toolContactWrench()[2];
-    const double normal = std::accumulate(window.begin(), window.end(), 0.0) / window.size();
+    const double normal = table_force(rig, cycle);
     const Eigen::Isometry3d tcp = rig.plant.tcpPose();
     if (result.first_touch < 0) {
       if (normal > 0.5) {
@@ -188,6 +212,61 @@ INSTANTIATE_TEST_SUITE_P(
     [](const auto& info) {
       return std::get<0>(info.param) + "_" + std::get<1>(info.param);
     });
+
+// The contact-force limit on an impedance axis (FR3, UR5e; wrist sensor, observer): the reference
+// 5 cm inside the table at 1500 N/m would press 75 N; with a 20 N limit along task z the
+// reference is pulled back until the force sits at the limit.
+TEST(ContactForceLimit, PullsTheReferenceBackToTheLimit) {
+  for (const auto& [robot, source] : {std::pair{"fr3", "sensor"}, std::pair{"fr3", "observer"},
+                                      std::pair{"ur5e", "sensor"}, std::pair{"ur5e", "observer"}}) {
+    SCOPED_TRACE(std::string(robot) + " " + source);
+    pipeline::WrapperConfig config = pressConfig(robot, source);
+    config.force_control.contact_force_limit_n = Eigen::Vector3d(0.0, 0.0, 20.0);
+    Rig rig(config, pressPlant());
+    const MeasuredPose home = rig.wrapper.measuredPose();
+    const Eigen::Quaterniond down = pointingDown(home);
+    const Eigen::Vector3d above(0.45, 0.0, kContactZ + 0.02);
+    const Eigen::Vector3d inside(0.45, 0.0, kContactZ - 0.05);
+    NormalForce table_force;
+    double settled_sum = 0.0;
+    int settled = 0;
+    double peak_after_touch = 0.0;
+    int touch = -1;
+    for (int cycle = 0; cycle < 6000; ++cycle) {
+      const double s = std::clamp((cycle - 2500.0) / 1000.0, 0.0, 1.0);
+      CartesianCommand command = CartesianCommand::zero(rig.wrapper.dof());
+      command.stamp_s = cycle * kPeriodS;
+      command.fields = CommandField::kPosition | CommandField::kTaskFrame;
+      command.orientation = down;
+      command.task_frame = down;
+      command.position = cycle < 2500 ? home.tcp_position + (cycle / 2500.0) * (above - home.tcp_position)
+                                      : above + s * (inside - above);
+      ASSERT_TRUE(rig.wrapper.submit(command).accepted);
+      ASSERT_TRUE(rig.cycle()) << rig.wrapper.diagnostics().last_fault;
+      const double normal = table_force(rig, cycle);
+      if (touch < 0 && normal > 0.5) {
+        touch = cycle;
+      }
+      if (touch >= 0 && cycle > touch + 500) {
+        peak_after_touch = std::max(peak_after_touch, normal);
+      }
+      if (cycle >= 5000) {
+        settled_sum += normal;
+        ++settled;
+      }
+    }
+    ASSERT_GT(touch, 2500);
+    const double settled_n = settled_sum / settled;
+    EXPECT_NEAR(settled_n, 20.0, 0.5);
+    // The spring's force rises at 75 N/s while the reference goes in; the pull-back (10 Hz) lags
+    // that by 75 / (2 pi 10) = 1.2 N.
+    EXPECT_LT(peak_after_touch, 22.5);
+    EXPECT_GT(rig.wrapper.controller().forceAxes().pullBack()[2], 0.03)
+        << "the reference was pulled back by most of its 5 cm";
+    std::cout << robot << " " << source << ": settled at " << settled_n << " N (limit 20 N, spring alone 75 N), peak "
+              << peak_after_touch << " N after the first 0.5 s\n";
+  }
+}
 
 }  // namespace
 }  // namespace comply::testing

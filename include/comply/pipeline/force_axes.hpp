@@ -56,7 +56,7 @@ struct ForceControlConfig {
   /// Contact-force limit per task axis [N], [N m]; 0: none.
   Eigen::Vector3d contact_force_limit_n = Eigen::Vector3d::Zero();
   Eigen::Vector3d contact_torque_limit_n_m = Eigen::Vector3d::Zero();
-  double limit_bandwidth_hz = 2.0;  ///< how fast the pull-back settles the force at its limit
+  double limit_bandwidth_hz = 10.0;  ///< how fast the pull-back settles the force at its limit
 };
 
 class ForceAxes {
