@@ -146,11 +146,11 @@ std::vector<double> pacedCycles(pipeline::Wrapper<Command>& wrapper,
 /// What a benchmarked wrapper has on besides its law.
 struct Variant {
   DampingMode damping_mode = DampingMode::kRatio;
-  bool gain_stage = false;                  ///< ramps and energy tank
-  bool recorded = false;                    ///< the cycle pushed into a recording's lane
-  bool observer = false;                    ///< the momentum observer
-  bool chunked = false;                     ///< a timed chunk plays through every cycle
-  bool force = false;  ///< a force axis and contact-force limits (with the observer)
+  bool gain_stage = false;  ///< ramps and energy tank
+  bool recorded = false;    ///< the cycle pushed into a recording's lane
+  bool observer = false;    ///< the momentum observer
+  bool chunked = false;     ///< a timed chunk plays through every cycle
+  bool force = false;       ///< a force axis and contact-force limits (with the observer)
   OutputMode output = OutputMode::kTorque;  ///< what the drives take (output.mode)
 };
 

@@ -130,8 +130,8 @@ void StateSampler<Command>::fill(const hardware::CycleRecord& record, const Join
   if (controller.observer().enabled()) {
     s.contact_wrench = controller.observer().wrench();
     s.contact_wrench_source = transport::WrenchSource::kObserver;
-    s.contact_wrench_bandwidth_hz = controller.resolved().parameters.observer.gain_per_s /
-                                    (2.0 * M_PI);
+    s.contact_wrench_bandwidth_hz =
+        controller.resolved().parameters.observer.gain_per_s / (2.0 * M_PI);
   } else if (controller.sensorWrenchValid()) {
     s.contact_wrench = controller.sensorWrench();  // the tool's weight and the tare off
     s.contact_wrench_source = transport::WrenchSource::kSensor;

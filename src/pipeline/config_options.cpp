@@ -271,10 +271,10 @@ void addObserverOptions(std::vector<Option>& table) {
 
 // The wrist force/torque sensor's reading (pipeline/cycle_wrench.cpp).
 void addWrenchSensorOptions(std::vector<Option>& table) {
-  table.push_back(spaced(number(
-      "wrench_sensor.filter_hz", "0.0",
-      "Hz: first-order low-pass on the wrist sensor's reading (tool weight off); 0: off", 0.0,
-      1e4, false, [](WrapperConfig& c, double v) { c.wrench_sensor.filter_hz = v; })));
+  table.push_back(spaced(
+      number("wrench_sensor.filter_hz", "0.0",
+             "Hz: first-order low-pass on the wrist sensor's reading (tool weight off); 0: off",
+             0.0, 1e4, false, [](WrapperConfig& c, double v) { c.wrench_sensor.filter_hz = v; })));
 }
 
 // Force along task axes and the contact-force limit (pipeline/force_axes.hpp).
@@ -290,8 +290,8 @@ void addForceControlOptions(std::vector<Option>& table) {
                                                   : ForceSource::kAuto;
   };
   table.push_back(source);
-  const auto force = [](const char* key, const char* default_text, const char* comment,
-                        double max, bool min_exclusive, double ForceControlConfig::*field) {
+  const auto force = [](const char* key, const char* default_text, const char* comment, double max,
+                        bool min_exclusive, double ForceControlConfig::*field) {
     return sectionNumber(key, default_text, comment, &WrapperConfig::force_control, field, max,
                          min_exclusive);
   };
@@ -304,9 +304,8 @@ void addForceControlOptions(std::vector<Option>& table) {
   table.push_back(force("force_control.integral_limit_n", "20.0",
                         "N: bound of the integral term on a force axis (anti-windup)", 1e4, false,
                         &ForceControlConfig::integral_limit_n));
-  table.push_back(force("force_control.integral_limit_n_m", "2.0",
-                        "N m: ... on a torque axis", 1e3, false,
-                        &ForceControlConfig::integral_limit_n_m));
+  table.push_back(force("force_control.integral_limit_n_m", "2.0", "N m: ... on a torque axis", 1e3,
+                        false, &ForceControlConfig::integral_limit_n_m));
   table.push_back(force("force_control.max_speed_m_per_s", "0.1",
                         "m/s: faster along a force axis, the push fades out (gone at twice this)",
                         10.0, true, &ForceControlConfig::max_speed_m_per_s));
@@ -325,8 +324,7 @@ void addForceControlOptions(std::vector<Option>& table) {
                         "N along task x y z the TCP may exert: the reference is pulled back "
                         "above it; 0: none",
                         &ForceControlConfig::contact_force_limit_n));
-  table.push_back(limit("force_control.contact_torque_limit_n_m",
-                        "N m about task x y z; 0: none",
+  table.push_back(limit("force_control.contact_torque_limit_n_m", "N m about task x y z; 0: none",
                         &ForceControlConfig::contact_torque_limit_n_m));
   table.push_back(force("force_control.limit_bandwidth_hz", "10.0",
                         "Hz: how fast the pull-back settles the force at its limit", 100.0, true,

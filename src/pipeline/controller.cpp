@@ -123,7 +123,7 @@ void Controller::activate(const JointState& state) {
     torque_ -= data_.gravity.head(dof_);
   }
   shaper_.reset(torque_);
-  observer_.reset();         // the torque before activation is not known
+  observer_.reset();  // the torque before activation is not known
   force_.reset();
   force_active_ = false;
   sensor_filtered_ = false;  // the wrist sensor's low-pass starts from the next reading

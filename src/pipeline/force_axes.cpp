@@ -84,8 +84,8 @@ void ForceAxes::apply(const comply_cartesian_command& in, const model::Data& dat
       twist[axis] = 0.0;
       acceleration[axis] = 0.0;
       pull_back_[axis] = 0.0;
-      feedforward[axis] += forceLoop(axis, in.wrench_target[axis], exerted[axis], estimated,
-                                     speed[axis], period_s);
+      feedforward[axis] +=
+          forceLoop(axis, in.wrench_target[axis], exerted[axis], estimated, speed[axis], period_s);
       continue;
     }
     integral_[axis] = 0.0;
@@ -105,9 +105,9 @@ void ForceAxes::apply(const comply_cartesian_command& in, const model::Data& dat
     const Vector3d rotation = task * error.tail<3>();
     const double angle = rotation.norm();
     const Eigen::Quaterniond moved =
-        angle > 0.0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, rotation / angle)) *
-                          data.tip_orientation
-                    : data.tip_orientation;
+        angle > 0.0
+            ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, rotation / angle)) * data.tip_orientation
+            : data.tip_orientation;
     schema::toXyzw(moved, out.orientation);
   }
   toBase(task, twist, out.twist);
@@ -116,24 +116,23 @@ void ForceAxes::apply(const comply_cartesian_command& in, const model::Data& dat
   Map<Vector6d>(out.force_axes).setZero();
 }
 
-double ForceAxes::forceLoop(int axis, double target, double exerted, bool estimated,
-                            double speed, double period_s) noexcept {
+double ForceAxes::forceLoop(int axis, double target, double exerted, bool estimated, double speed,
+                            double period_s) noexcept {
   const double error = estimated ? target - exerted : 0.0;
   const double held = integral_[axis];
   if (config_.integral_gain_per_s > 0.0) {
     const double bound = integral_limit_[axis] / config_.integral_gain_per_s;
     integral_[axis] = std::clamp(held + error * period_s, -bound, bound);
   }
-  double push = target + config_.proportional_gain * error +
-                config_.integral_gain_per_s * integral_[axis];
+  double push =
+      target + config_.proportional_gain * error + config_.integral_gain_per_s * integral_[axis];
   // Moving faster than max_speed in the direction it pushes: no contact holds the arm. The push
   // fades to nothing at twice that speed, and the integral keeps what it held (anti-windup).
   const double pushing_speed = push >= 0.0 ? speed : -speed;
   const double fade = std::clamp(2.0 - pushing_speed / max_speed_[axis], 0.0, 1.0);
   if (fade < 1.0) {
     integral_[axis] = held;
-    push = fade * (target + config_.proportional_gain * error +
-                   config_.integral_gain_per_s * held);
+    push = fade * (target + config_.proportional_gain * error + config_.integral_gain_per_s * held);
   }
   if (limit_[axis] > 0.0) {
     push = std::clamp(push, -limit_[axis], limit_[axis]);
@@ -150,9 +149,8 @@ double ForceAxes::limitAxis(int axis, double error, double exerted, bool estimat
   }
   // The force in the direction the spring pushes, above (> 0) or below the limit.
   const double excess = (error >= 0.0 ? exerted : -exerted) - limit_[axis];
-  const double rate =
-      std::clamp(2.0 * M_PI * config_.limit_bandwidth_hz * excess / stiffness, -max_speed_[axis],
-                 max_speed_[axis]);
+  const double rate = std::clamp(2.0 * M_PI * config_.limit_bandwidth_hz * excess / stiffness,
+                                 -max_speed_[axis], max_speed_[axis]);
   pull_back_[axis] = std::clamp(pull_back_[axis] + rate * period_s, 0.0, std::abs(error));
   return error >= 0.0 ? error - pull_back_[axis] : error + pull_back_[axis];
 }

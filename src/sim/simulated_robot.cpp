@@ -179,8 +179,8 @@ bool SimulatedRobot::read(JointState& state) noexcept {
     state.position[row] = data_->qpos[qpos_address_[i]];
     state.velocity[row] = data_->qvel[dof_address_[i]];
     // Before the first step the arm rests: the sensor reads what the drive holds.
-    state.effort[row] = link_side_torque_ && link_torque_sensed_ ? link_torque_[i] / substeps_
-                                                                 : applied_[i];
+    state.effort[row] =
+        link_side_torque_ && link_torque_sensed_ ? link_torque_[i] / substeps_ : applied_[i];
     if (position_noise_rad_ > 0.0) {
       state.position[row] += position_noise_rad_ * unit_normal_(noise_generator_);
     }

@@ -4,12 +4,13 @@
 // bound acts; the contact-force limit pulls an impedance axis's reference back at the stated rate
 // and returns it; rotational axes behave the same way.
 
+#include "comply/pipeline/force_axes.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "comply/core/rotation.hpp"
-#include "comply/pipeline/force_axes.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/schema/schema.hpp"
 #include "wrapper_support.hpp"
@@ -35,8 +36,8 @@ class ForceAxesTest : public ::testing::Test {
     CartesianCommand command = CartesianCommand::zero(kFr3Dof);
     // Reference 2 cm and 0.1 rad away from the measured pose along base axes.
     command.position = data_.tip_position + Vector3d(0.02, -0.01, 0.015);
-    command.orientation = Eigen::AngleAxisd(0.1, Vector3d(1, 2, 3).normalized()) *
-                          data_.tip_orientation;
+    command.orientation =
+        Eigen::AngleAxisd(0.1, Vector3d(1, 2, 3).normalized()) * data_.tip_orientation;
     command.twist << 0.1, 0.2, 0.3, 0.4, 0.5, 0.6;
     command.acceleration << 1, 2, 3, 4, 5, 6;
     command.wrench_feedforward << 1.0, 2.0, 3.0, 0.1, 0.2, 0.3;
@@ -50,7 +51,8 @@ class ForceAxesTest : public ::testing::Test {
   [[nodiscard]] Vector6d inTask(const double* base) const {
     const Eigen::Matrix3d r = task_.toRotationMatrix();
     Vector6d task;
-    task << r.transpose() * Map<const Vector3d>(base), r.transpose() * Map<const Vector3d>(base + 3);
+    task << r.transpose() * Map<const Vector3d>(base),
+        r.transpose() * Map<const Vector3d>(base + 3);
     return task;
   }
   /// The pose error (reference - measured) of a bus, in the task frame.
@@ -129,7 +131,8 @@ TEST_F(ForceAxesTest, AForceAxisLosesItsSpringAndPushesTheTarget) {
     EXPECT_EQ(axis, 0.0) << "the law reads no force axes: the stage has done them";
   }
   // The orientation reference is untouched (no rotational axis selected).
-  EXPECT_EQ(schema::fromXyzw(out_.orientation).coeffs(), schema::fromXyzw(in_.orientation).coeffs());
+  EXPECT_EQ(schema::fromXyzw(out_.orientation).coeffs(),
+            schema::fromXyzw(in_.orientation).coeffs());
 }
 
 TEST_F(ForceAxesTest, TheIntegralIsBoundedAndHoldsWithoutAnEstimate) {
@@ -139,7 +142,7 @@ TEST_F(ForceAxesTest, TheIntegralIsBoundedAndHoldsWithoutAnEstimate) {
   config.integral_limit_n = 3.0;
   stage_.configure(config);
   in_.force_axes[1] = 1.0;
-  in_.wrench_target[1] = -8.0;  // pull along -y of the task frame
+  in_.wrench_target[1] = -8.0;                       // pull along -y of the task frame
   const Vector6d wrench = onTool(Vector6d::Zero());  // no contact: error -8 N
   for (int cycle = 0; cycle < 20; ++cycle) {
     stage_.apply(in_, data_, Vector6d::Zero(), &wrench, kPeriod, out_);

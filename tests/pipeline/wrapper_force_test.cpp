@@ -37,8 +37,7 @@ class WrapperForce : public ::testing::Test {
   void start(const std::string& lines) {
     wrapper_ = std::make_unique<CartesianWrapper>(
         // The state repeats bit for bit here, which is no stale stream.
-        fr3Config(kCartesianImpedancePlugin,
-                  "frozen_state_timeout_s: 0.0\n" + lines));
+        fr3Config(kCartesianImpedancePlugin, "frozen_state_timeout_s: 0.0\n" + lines));
     state_ = restingAt(wrapper_->controller(), fr3Home());
     wrapper_->activate(state_);
     cycle();
@@ -76,8 +75,8 @@ TEST_F(WrapperForce, TheLawReadsAForceSourceAlongTheSelectedAxis) {
   Vector6d push = Vector6d::Zero();
   push[2] = -12.0;
   const JointVector expected = data.jacobian.leftCols(kFr3Dof).transpose() * push;
-  COMPLY_EXPECT_JOINTS_NEAR(JointVector(torque_.values - gravityAt(wrapper_->controller(), fr3Home())),
-                            expected, 1e-6);
+  COMPLY_EXPECT_JOINTS_NEAR(
+      JointVector(torque_.values - gravityAt(wrapper_->controller(), fr3Home())), expected, 1e-6);
 }
 
 TEST_F(WrapperForce, ASelectionOtherThanZeroOrOneIsRefused) {

@@ -189,7 +189,8 @@ void expectRealtimeLoop(WrapperType& wrapper, Between&& between) {
 /// Runs kCycles counted update() calls of an activated `wrapper`, submitting `commandAt(cycle)`
 /// (uncounted) every kCyclesPerCommand cycles; `look()` (uncounted) before every cycle.
 template <typename WrapperType, typename CommandAt, typename Look = void (*)()>
-void expectRealtimeCycles(WrapperType& wrapper, CommandAt commandAt, Look look = [] {}) {
+void expectRealtimeCycles(
+    WrapperType& wrapper, CommandAt commandAt, Look look = [] {}) {
   wrapper.activate(movingState(fr3Home(), 0));
   expectRealtimeLoop(wrapper, [&](int cycle) {
     look();
@@ -274,39 +275,42 @@ TEST(WrapperRealtime, CartesianUpdateNeitherAllocatesNorLocks) {
     bool ratio = true;
     double largest_push = 0.0;  // of the force stage, seen between the counted cycles
     const auto look = [&] {
-      largest_push = std::max(largest_push,
-                              std::abs(wrapper.controller().forceAxes().forceCommand()[2]));
+      largest_push =
+          std::max(largest_push, std::abs(wrapper.controller().forceAxes().forceCommand()[2]));
     };
-    expectRealtimeCycles(wrapper, [&](int cycle) {
-      // Pose and twist near the measured TCP; damping alternates between the ratio mode (mass
-      // matrix and double diagonalisation) and absolute blocks.
-      const model::Data& measured = wrapper.controller().modelData();
-      CartesianCommand command = CartesianCommand::zero(kFr3Dof);
-      command.stamp_s = cycle * kPeriod;
-      command.fields = CommandField::kPosition | CommandField::kVelocity | CommandField::kDamping |
-                       CommandField::kStiffness;
-      command.position = measured.tip_position + Eigen::Vector3d(0.01, 0.0, -0.01);
-      command.orientation = measured.tip_orientation;
-      command.twist[1] = 0.02;
-      command.stiffness_translational =
-          (cycle % 2000 < 1000 ? 400.0 : 1200.0) * Eigen::Matrix3d::Identity();
-      command.task_frame =
-          Eigen::AngleAxisd(cycle % 3000 < 1500 ? 0.0 : 0.5, Eigen::Vector3d::UnitZ()) *
-          Eigen::Quaterniond::Identity();
-      command.fields = command.fields | CommandField::kTaskFrame;
-      command.stiffness_rotational = 30.0 * Eigen::Matrix3d::Identity();
-      command.damping_mode = ratio ? DampingMode::kRatio : DampingMode::kAbsolute;
-      command.damping_translational = 45.0 * Eigen::Matrix3d::Identity();
-      command.damping_rotational = 3.0 * Eigen::Matrix3d::Identity();
-      ratio = !ratio;
-      if (guarded) {
-        // Force along task z throughout, about task x every other command.
-        command.fields = command.fields | CommandField::kForce;
-        command.force_axes << 0.0, 0.0, 1.0, ratio ? 1.0 : 0.0, 0.0, 0.0;
-        command.wrench_target << 0.0, 0.0, 3.0, 0.2, 0.0, 0.0;
-      }
-      return command;
-    }, look);
+    expectRealtimeCycles(
+        wrapper,
+        [&](int cycle) {
+          // Pose and twist near the measured TCP; damping alternates between the ratio mode (mass
+          // matrix and double diagonalisation) and absolute blocks.
+          const model::Data& measured = wrapper.controller().modelData();
+          CartesianCommand command = CartesianCommand::zero(kFr3Dof);
+          command.stamp_s = cycle * kPeriod;
+          command.fields = CommandField::kPosition | CommandField::kVelocity |
+                           CommandField::kDamping | CommandField::kStiffness;
+          command.position = measured.tip_position + Eigen::Vector3d(0.01, 0.0, -0.01);
+          command.orientation = measured.tip_orientation;
+          command.twist[1] = 0.02;
+          command.stiffness_translational =
+              (cycle % 2000 < 1000 ? 400.0 : 1200.0) * Eigen::Matrix3d::Identity();
+          command.task_frame =
+              Eigen::AngleAxisd(cycle % 3000 < 1500 ? 0.0 : 0.5, Eigen::Vector3d::UnitZ()) *
+              Eigen::Quaterniond::Identity();
+          command.fields = command.fields | CommandField::kTaskFrame;
+          command.stiffness_rotational = 30.0 * Eigen::Matrix3d::Identity();
+          command.damping_mode = ratio ? DampingMode::kRatio : DampingMode::kAbsolute;
+          command.damping_translational = 45.0 * Eigen::Matrix3d::Identity();
+          command.damping_rotational = 3.0 * Eigen::Matrix3d::Identity();
+          ratio = !ratio;
+          if (guarded) {
+            // Force along task z throughout, about task x every other command.
+            command.fields = command.fields | CommandField::kForce;
+            command.force_axes << 0.0, 0.0, 1.0, ratio ? 1.0 : 0.0, 0.0, 0.0;
+            command.wrench_target << 0.0, 0.0, 3.0, 0.2, 0.0, 0.0;
+          }
+          return command;
+        },
+        look);
     if (guarded) {
       expectTheGuardWorked(wrapper.diagnostics());
       // The force stage ran in the counted cycles.

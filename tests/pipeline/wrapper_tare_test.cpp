@@ -35,7 +35,8 @@ TEST(WrapperTare, TheToolsWeightAndTheTareComeOffInEveryPose) {
   CartesianWrapper wrapper(fr3Config(kCartesianImpedancePlugin,
                                      "compensation:\n  payload:\n    enabled: true\n"
                                      "    mass_kg: 1.2\n    com_m: [0.01, -0.02, 0.07]\n"));
-  EXPECT_EQ(wrapper.tare(), "the hardware has given no wrist force/torque reading: nothing to tare");
+  EXPECT_EQ(wrapper.tare(),
+            "the hardware has given no wrist force/torque reading: nothing to tare");
   const Controller& core = wrapper.controller();
   Vector6d sensor_offset;
   sensor_offset << 1.0, -2.0, 3.0, 0.1, 0.2, -0.3;

@@ -51,7 +51,8 @@ struct PressResult {
 /// A rigid table whose top is at kTableTopZ, under every robot's reach pointing down (the iiwa's
 /// home pose is lower than examples/sim/table.xml's top).
 std::filesystem::path lowTable() {
-  const std::filesystem::path file = std::filesystem::temp_directory_path() / "comply_low_table.xml";
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / "comply_low_table.xml";
   std::ofstream(file) << "<mujocoinclude>\n  <body name=\"table\" pos=\"0.5 0 " << kTableTopZ / 2.0
                       << "\">\n    <geom name=\"table_top\" type=\"box\" size=\"0.2 0.3 "
                       << kTableTopZ / 2.0
@@ -162,15 +163,15 @@ PressResult pressAndSlide(const std::string& robot, const std::string& source) {
       if (normal > 0.5) {
         result.first_touch = cycle;
       } else if (cycle >= kForceStart) {
-        const Eigen::Vector3d speed = rig.wrapper.controller().modelData().jacobian.topRows<3>() *
-                                      rig.state.velocity;
+        const Eigen::Vector3d speed =
+            rig.wrapper.controller().modelData().jacobian.topRows<3>() * rig.state.velocity;
         result.approach_speed_m_per_s = std::max(result.approach_speed_m_per_s, -speed.z());
       }
       continue;
     }
     if (cycle >= kSlideStart) {
-      result.max_tangential_error_m =
-          std::max(result.max_tangential_error_m, std::abs(tcp.translation().x() - command.position.x()));
+      result.max_tangential_error_m = std::max(
+          result.max_tangential_error_m, std::abs(tcp.translation().x() - command.position.x()));
     }
     if ((cycle - result.first_touch) * kPeriodS < kSettleS) {
       continue;
@@ -186,8 +187,7 @@ PressResult pressAndSlide(const std::string& robot, const std::string& source) {
   return result;
 }
 
-class ForceControl
-    : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
+class ForceControl : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
 
 TEST_P(ForceControl, HoldsTheNormalForceOnAFlatSurfaceWhileSliding) {
   const auto& [robot, source] = GetParam();
@@ -205,13 +205,12 @@ TEST_P(ForceControl, HoldsTheNormalForceOnAFlatSurfaceWhileSliding) {
             << " mm, approach speed " << result.approach_speed_m_per_s << " m/s\n";
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    FourRobots, ForceControl,
-    ::testing::Combine(::testing::Values("fr3", "iiwa14", "rizon4s", "ur5e"),
-                       ::testing::Values("sensor", "observer")),
-    [](const auto& info) {
-      return std::get<0>(info.param) + "_" + std::get<1>(info.param);
-    });
+INSTANTIATE_TEST_SUITE_P(FourRobots, ForceControl,
+                         ::testing::Combine(::testing::Values("fr3", "iiwa14", "rizon4s", "ur5e"),
+                                            ::testing::Values("sensor", "observer")),
+                         [](const auto& info) {
+                           return std::get<0>(info.param) + "_" + std::get<1>(info.param);
+                         });
 
 // The contact-force limit on an impedance axis (FR3, UR5e; wrist sensor, observer): the reference
 // 5 cm inside the table at 1500 N/m would press 75 N; with a 20 N limit along task z the
@@ -239,8 +238,9 @@ TEST(ContactForceLimit, PullsTheReferenceBackToTheLimit) {
       command.fields = CommandField::kPosition | CommandField::kTaskFrame;
       command.orientation = down;
       command.task_frame = down;
-      command.position = cycle < 2500 ? home.tcp_position + (cycle / 2500.0) * (above - home.tcp_position)
-                                      : above + s * (inside - above);
+      command.position = cycle < 2500
+                             ? home.tcp_position + (cycle / 2500.0) * (above - home.tcp_position)
+                             : above + s * (inside - above);
       ASSERT_TRUE(rig.wrapper.submit(command).accepted);
       ASSERT_TRUE(rig.cycle()) << rig.wrapper.diagnostics().last_fault;
       const double normal = table_force(rig, cycle);
@@ -263,8 +263,9 @@ TEST(ContactForceLimit, PullsTheReferenceBackToTheLimit) {
     EXPECT_LT(peak_after_touch, 22.5);
     EXPECT_GT(rig.wrapper.controller().forceAxes().pullBack()[2], 0.03)
         << "the reference was pulled back by most of its 5 cm";
-    std::cout << robot << " " << source << ": settled at " << settled_n << " N (limit 20 N, spring alone 75 N), peak "
-              << peak_after_touch << " N after the first 0.5 s\n";
+    std::cout << robot << " " << source << ": settled at " << settled_n
+              << " N (limit 20 N, spring alone 75 N), peak " << peak_after_touch
+              << " N after the first 0.5 s\n";
   }
 }
 

@@ -37,7 +37,7 @@ struct SimRunOptions {
   double plant_friction_scale = 1.0;  ///< multiplies the plant's Coulomb friction
   /// The plant's effort reads as a joint-torque sensor on the link side (sim::PlantOptions).
   bool plant_link_side_torque = false;
-  std::ostream* progress = nullptr;   ///< progress bar and warnings; nullptr: silent
+  std::ostream* progress = nullptr;  ///< progress bar and warnings; nullptr: silent
   /// Cartesian controllers only: when set, the command source (e.g. a task::PathCommand or an
   /// experiment's stream) asked before every cycle, in place of the task's waypoints.
   task::CartesianSource* cartesian_source = nullptr;  ///< not owned; outlives the run

@@ -29,7 +29,7 @@ struct StateSample {
   Vector6d contact_wrench_task = Vector6d::Zero();  ///< ... in the task frame in force
   /// [Hz] the estimate's first-order bandwidth (observer K_O / 2 pi, sensor filter_hz); 0: raw.
   double contact_wrench_bandwidth_hz = 0.0;
-  pipeline::PassivitySnapshot passivity;            ///< the energy tank's account after the cycle
+  pipeline::PassivitySnapshot passivity;  ///< the energy tank's account after the cycle
   double reference_stamp_s = 0.0;
   std::uint32_t reference_fields = 0;
   Eigen::Vector3d reference_position = Eigen::Vector3d::Zero();

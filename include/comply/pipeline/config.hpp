@@ -178,7 +178,7 @@ struct WrapperConfig {
   GainRampConfig gain_ramps;
   PassivityConfig passivity;
   StabilityGuardConfig stability_guard;
-  ObserverConfig observer;  ///< the external wrench estimate (observer.*)
+  ObserverConfig observer;           ///< the external wrench estimate (observer.*)
   WrenchSensorConfig wrench_sensor;  ///< wrench_sensor.*
   ForceControlConfig force_control;  ///< force_control.*: force along task axes
   OutputConfig output;               ///< output.*

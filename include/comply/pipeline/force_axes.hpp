@@ -47,11 +47,11 @@ enum class ForceSource : std::uint8_t {
 /// force_control.* in the controller file.
 struct ForceControlConfig {
   ForceSource source = ForceSource::kAuto;
-  double proportional_gain = 0.2;    ///< k_p [1]: N of push per N of force error
+  double proportional_gain = 0.2;     ///< k_p [1]: N of push per N of force error
   double integral_gain_per_s = 10.0;  ///< k_i [1/s]
-  double integral_limit_n = 20.0;    ///< bound of k_i * integral on a force axis [N]
-  double integral_limit_n_m = 2.0;   ///< ... on a torque axis [N m]
-  double max_speed_m_per_s = 0.1;    ///< speed bound along a force axis, and of the pull-back
+  double integral_limit_n = 20.0;     ///< bound of k_i * integral on a force axis [N]
+  double integral_limit_n_m = 2.0;    ///< ... on a torque axis [N m]
+  double max_speed_m_per_s = 0.1;     ///< speed bound along a force axis, and of the pull-back
   double max_angular_speed_rad_per_s = 0.5;
   /// Contact-force limit per task axis [N], [N m]; 0: none.
   Eigen::Vector3d contact_force_limit_n = Eigen::Vector3d::Zero();
@@ -71,12 +71,13 @@ class ForceAxes {
   /// the law reads `in` itself (and the caller resets the stage).
   [[nodiscard]] bool acts(const comply_cartesian_command& in) const noexcept;
 
-  /// One cycle on a command the stage acts on. `in`: the command the law would read; `data`: this cycle's pose; `tcp_twist`:
-  /// J dq, base frame; `wrench_on_tool`: the estimate of what the environment exerts on the tool
-  /// at the TCP (base frame, force first), or nullptr when there is none this cycle (the loop
-  /// then pushes F_d alone and its integral holds). Writes the law's command to `out`.
-  void apply(const comply_cartesian_command& in, const model::Data& data,
-             const Vector6d& tcp_twist, const Vector6d* wrench_on_tool, double period_s,
+  /// One cycle on a command the stage acts on. `in`: the command the law would read; `data`: this
+  /// cycle's pose; `tcp_twist`: J dq, base frame; `wrench_on_tool`: the estimate of what the
+  /// environment exerts on the tool at the TCP (base frame, force first), or nullptr when there is
+  /// none this cycle (the loop then pushes F_d alone and its integral holds). Writes the law's
+  /// command to `out`.
+  void apply(const comply_cartesian_command& in, const model::Data& data, const Vector6d& tcp_twist,
+             const Vector6d* wrench_on_tool, double period_s,
              comply_cartesian_command& out) noexcept;
 
   /// Last cycle, task frame, force first: the force loop's output on the force axes (zero on the
@@ -94,7 +95,7 @@ class ForceAxes {
                    double period_s) noexcept;
 
   ForceControlConfig config_;
-  Vector6d limit_ = Vector6d::Zero();          // per task axis; 0: none
+  Vector6d limit_ = Vector6d::Zero();           // per task axis; 0: none
   Vector6d integral_limit_ = Vector6d::Zero();  // per task axis
   Vector6d max_speed_ = Vector6d::Zero();       // per task axis
   bool limited_ = false;

@@ -33,7 +33,7 @@
   X(kTaskFrame, "task_frame", "Cartesian task-frame orientation")                  \
   X(kWrenchFeedforward, "wrench_feedforward", "Cartesian wrench feedforward")      \
   X(kTorqueFeedforward, "torque_feedforward", "joint torque feedforward")          \
-  X(kNullspace, "nullspace", "nullspace target, stiffness and damping")                    \
+  X(kNullspace, "nullspace", "nullspace target, stiffness and damping")            \
   X(kForce, "force", "force-controlled task axes and their wrench target")
 
 #define COMPLY_CARTESIAN_COMMAND_FIELDS(X)                                                       \
@@ -68,7 +68,7 @@
   X(nullspace_stiffness, kNullspace, kJointVector, JointVector, "N m/rad", kNonNegative, kNone,  \
     JointVector(), "nullspace stiffness per joint")                                              \
   X(nullspace_damping, kNullspace, kJointVector, JointVector, "N m s/rad", kNonNegative, kNone,  \
-    JointVector(), "nullspace damping per joint")                                               \
+    JointVector(), "nullspace damping per joint")                                                \
   X(force_axes, kForce, kVector6, Vector6d, "", kSelection, kZeroOnStop, Vector6d::Zero(),       \
     "1: a force-controlled task axis (x y z rx ry rz), 0: impedance")                            \
   X(wrench_target, kForce, kVector6, Vector6d, "N, N m", kNone, kNone, Vector6d::Zero(),         \

@@ -203,8 +203,8 @@ void ComplyController<Command>::createEndpoints() {
         }
         const std::string why = wrapper_->tare();
         response->success = why.empty();
-        response->message = why.empty() ? "tare requested: the next cycle's reading is the zero"
-                                        : why;
+        response->message =
+            why.empty() ? "tare requested: the next cycle's reading is the zero" : why;
       });
   diagnostics_timer_ = node->create_wall_timer(
       std::chrono::duration<double>(1.0 / diagnostics_rate_hz), [this] { publishDiagnostics(); });
