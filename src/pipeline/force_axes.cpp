@@ -93,7 +93,8 @@ void ForceAxes::apply(const comply_cartesian_command& in, const model::Data& dat
     force_command_[axis] = 0.0;
     if (limit_[axis] > 0.0) {
       const double* block = axis < 3 ? in.stiffness_translational : in.stiffness_rotational;
-      const double stiffness = block[static_cast<std::ptrdiff_t>(axis % 3) * 4];  // the diagonal entry, row-major 3x3
+      const double stiffness =
+          block[static_cast<std::ptrdiff_t>(axis % 3) * 4];  // the diagonal entry, row-major 3x3
       error[axis] = limitAxis(axis, error[axis], exerted[axis], estimated, stiffness, period_s);
       feedforward[axis] = std::clamp(feedforward[axis], -limit_[axis], limit_[axis]);
     }
