@@ -7,7 +7,8 @@
 //   - from the wrist sensor;
 //   - from the momentum observer on the joint torques measured on the link side of the joints'
 //     friction (the plant's joint-torque sensors; on the commanded torque the observer would
-//     count that friction as contact).
+//     count that friction as contact);
+//   - on position drives (FR3, UR5e), the same law in admittance, from the wrist sensor.
 
 #include <gtest/gtest.h>
 
@@ -109,7 +110,16 @@ class NormalForce {
 };
 
 PressResult pressAndSlide(const std::string& robot, const std::string& source) {
-  Rig rig(pressConfig(robot, source), pressPlant());
+  // "position": position drives, the same law in admittance (docs/output-modes.md), reading the
+  // wrist sensor.
+  const bool admittance = source == "position";
+  pipeline::WrapperConfig config = pressConfig(robot, admittance ? "sensor" : source);
+  sim::PlantOptions plant = pressPlant();
+  if (admittance) {
+    config.output.mode = OutputMode::kPosition;
+    plant.actuation = OutputMode::kPosition;
+  }
+  Rig rig(config, plant);
   const int dof = rig.wrapper.dof();
   const MeasuredPose home = rig.wrapper.measuredPose();
   const Eigen::Quaterniond down = pointingDown(home);
@@ -208,6 +218,13 @@ TEST_P(ForceControl, HoldsTheNormalForceOnAFlatSurfaceWhileSliding) {
 INSTANTIATE_TEST_SUITE_P(FourRobots, ForceControl,
                          ::testing::Combine(::testing::Values("fr3", "iiwa14", "rizon4s", "ur5e"),
                                             ::testing::Values("sensor", "observer")),
+                         [](const auto& info) {
+                           return std::get<0>(info.param) + "_" + std::get<1>(info.param);
+                         });
+// Position drives: the law in admittance pushes its force through a virtual arm.
+INSTANTIATE_TEST_SUITE_P(PositionDrives, ForceControl,
+                         ::testing::Combine(::testing::Values("fr3", "ur5e"),
+                                            ::testing::Values("position")),
                          [](const auto& info) {
                            return std::get<0>(info.param) + "_" + std::get<1>(info.param);
                          });
