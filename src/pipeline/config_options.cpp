@@ -43,6 +43,16 @@ Option perJointIn(const char* key, const char* default_text, const char* comment
   return option;
 }
 
+/// Three numbers into the vector `member` returns; zero by default.
+Option vector3(const char* key, const char* comment, double min, double max,
+               std::function<Eigen::Vector3d&(WrapperConfig&)> member) {
+  Option option{key, Kind::kVector3, "[0.0, 0.0, 0.0]", comment, min, max};
+  option.apply = [member = std::move(member)](WrapperConfig& config, const Value& value) {
+    member(config) = Eigen::Vector3d(value.numbers[0], value.numbers[1], value.numbers[2]);
+  };
+  return option;
+}
+
 Option spaced(Option option) {
   option.blank_line_before = true;
   return option;
@@ -90,12 +100,9 @@ void addCompensationOptions(std::vector<Option>& table) {
                        [](WrapperConfig& c, bool v) { c.payload_compensation = v; }));
   table.push_back(number("compensation.payload.mass_kg", "0.0", "kg", 0.0, 1e3, false,
                          [](WrapperConfig& c, double v) { c.payload.mass_kg = v; }));
-  Option com{"compensation.payload.com_m", Kind::kVector3, "[0.0, 0.0, 0.0]",
-             "in the tip frame",           -10.0,          10.0};
-  com.apply = [](WrapperConfig& c, const Value& v) {
-    c.payload.com_in_tip = Eigen::Vector3d(v.numbers[0], v.numbers[1], v.numbers[2]);
-  };
-  table.push_back(com);
+  table.push_back(
+      vector3("compensation.payload.com_m", "in the tip frame", -10.0, 10.0,
+              [](WrapperConfig& c) -> Eigen::Vector3d& { return c.payload.com_in_tip; }));
   Option friction{"compensation.friction.model", Kind::kChoice, "none",
                   "none | sigmoid (phi1..3, default robot.yaml) | viscous_coulomb"};
   friction.choices = "none|sigmoid|viscous_coulomb";
@@ -312,20 +319,16 @@ void addForceControlOptions(std::vector<Option>& table) {
   table.push_back(force("force_control.max_angular_speed_rad_per_s", "0.5",
                         "rad/s: ... about a torque axis", 20.0, true,
                         &ForceControlConfig::max_angular_speed_rad_per_s));
-  const auto limit = [](const char* key, const char* comment,
-                        Eigen::Vector3d ForceControlConfig::*field) {
-    Option option{key, Kind::kVector3, "[0.0, 0.0, 0.0]", comment, 0.0, 1e4};
-    option.apply = [field](WrapperConfig& c, const Value& v) {
-      c.force_control.*field = Eigen::Vector3d(v.numbers[0], v.numbers[1], v.numbers[2]);
-    };
-    return option;
-  };
-  table.push_back(limit("force_control.contact_force_limit_n",
-                        "N along task x y z the TCP may exert: the reference is pulled back "
-                        "above it; 0: none",
-                        &ForceControlConfig::contact_force_limit_n));
-  table.push_back(limit("force_control.contact_torque_limit_n_m", "N m about task x y z; 0: none",
-                        &ForceControlConfig::contact_torque_limit_n_m));
+  table.push_back(vector3("force_control.contact_force_limit_n",
+                          "N along task x y z the TCP may exert: the reference is pulled back "
+                          "above it; 0: none",
+                          0.0, 1e4, [](WrapperConfig& c) -> Eigen::Vector3d& {
+                            return c.force_control.contact_force_limit_n;
+                          }));
+  table.push_back(vector3("force_control.contact_torque_limit_n_m", "N m about task x y z; 0: none",
+                          0.0, 1e4, [](WrapperConfig& c) -> Eigen::Vector3d& {
+                            return c.force_control.contact_torque_limit_n_m;
+                          }));
   table.push_back(force("force_control.limit_bandwidth_hz", "10.0",
                         "Hz: how fast the pull-back settles the force at its limit", 100.0, true,
                         &ForceControlConfig::limit_bandwidth_hz));
@@ -351,20 +354,15 @@ void addOutputOptions(std::vector<Option>& table) {
     return number(key, default_text, comment, 0.0, max, min_exclusive,
                   [field](WrapperConfig& c, double v) { c.output.admittance.*field = v; });
   };
-  const auto added = [](const char* key, const char* comment,
-                        Eigen::Vector3d AdmittanceConfig::*field) {
-    Option option{key, Kind::kVector3, "[0.0, 0.0, 0.0]", comment, 0.0, 1e4};
-    option.apply = [field](WrapperConfig& c, const Value& v) {
-      c.output.admittance.*field = Eigen::Vector3d(v.numbers[0], v.numbers[1], v.numbers[2]);
-    };
-    return option;
-  };
-  table.push_back(added("output.admittance.added_mass_kg",
-                        "kg added to the arm's own inertia at the TCP, along task x y z",
-                        &AdmittanceConfig::added_mass_kg));
-  table.push_back(added("output.admittance.added_inertia_kg_m2",
-                        "kg m^2 added at the TCP, about task x y z",
-                        &AdmittanceConfig::added_inertia_kg_m2));
+  table.push_back(vector3(
+      "output.admittance.added_mass_kg",
+      "kg added to the arm's own inertia at the TCP, along task x y z", 0.0, 1e4,
+      [](WrapperConfig& c) -> Eigen::Vector3d& { return c.output.admittance.added_mass_kg; }));
+  table.push_back(vector3("output.admittance.added_inertia_kg_m2",
+                          "kg m^2 added at the TCP, about task x y z", 0.0, 1e4,
+                          [](WrapperConfig& c) -> Eigen::Vector3d& {
+                            return c.output.admittance.added_inertia_kg_m2;
+                          }));
   table.push_back(admittance("output.admittance.velocity_factor", "0.5",
                              "joint speed bound: this times the URDF velocity limit", 1.0, true,
                              &AdmittanceConfig::velocity_factor));
