@@ -163,6 +163,7 @@ void SimulatedRobot::setJointPositions(std::span<const double> position) {
         std::clamp(data_->qfrc_bias[dof_address_[i]], -effort_limit_[i], effort_limit_[i]);
     data_->qfrc_applied[dof_address_[i]] = applied_[i];
   }
+  link_torque_sensed_ = false;  // at rest again: the sensors read the drives' hold
 }
 
 void SimulatedRobot::forward() noexcept {
