@@ -286,5 +286,23 @@ TEST(ContactForceLimit, PullsTheReferenceBackToTheLimit) {
   }
 }
 
+// examples/sim/force_on_table.yaml through `comply sim`'s host: the table feels the 15 N target
+// plus the probe's own weight (0.59 N), which the sensor's reading holds (the example declares no
+// payload and does not tare), wherever the reference lies.
+TEST(ForceOnTableExample, PressesItsTargetPlusTheProbesWeight) {
+  host::SimRunOptions run = fr3ExampleRun("force_on_table.yaml");
+  run.out_dir = std::filesystem::temp_directory_path() / "comply_force_on_table";
+  run.snapshots = false;
+  const host::SimResult result = host::runSimulation(run);
+  ASSERT_EQ(result.summary.faults, 0U);
+  ASSERT_EQ(result.summary.rejections, 0U);
+  double sum = 0.0;
+  const std::size_t rows = 1000;  // the last second
+  for (std::size_t i = result.log.size() - rows; i < result.log.size(); ++i) {
+    sum += result.log.contact_wrench[i][2];
+  }
+  EXPECT_NEAR(sum / rows, 15.0 + 0.06 * 9.81, 0.2);
+}
+
 }  // namespace
 }  // namespace comply::testing
