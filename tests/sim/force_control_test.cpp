@@ -11,6 +11,7 @@
 //   - on position drives (FR3, UR5e), the same law in admittance, from the wrist sensor.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -52,8 +53,9 @@ struct PressResult {
 /// A rigid table whose top is at kTableTopZ, under every robot's reach pointing down (the iiwa's
 /// home pose is lower than examples/sim/table.xml's top).
 std::filesystem::path lowTable() {
-  const std::filesystem::path file =
-      std::filesystem::temp_directory_path() / "comply_low_table.xml";
+  // One file per process: ctest runs the cases of this file side by side.
+  const std::filesystem::path file = std::filesystem::temp_directory_path() /
+                                     ("comply_low_table_" + std::to_string(::getpid()) + ".xml");
   std::ofstream(file) << "<mujocoinclude>\n  <body name=\"table\" pos=\"0.5 0 " << kTableTopZ / 2.0
                       << "\">\n    <geom name=\"table_top\" type=\"box\" size=\"0.2 0.3 "
                       << kTableTopZ / 2.0
