@@ -129,6 +129,7 @@ void Controller::activate(const JointState& state) {
   sensor_filtered_ = false;  // the wrist sensor's low-pass starts from the next reading
   repeated_cycles_ = 0;
   state_frozen_ = false;
+  sequence_seen_ = false;
   overspeed_s_.setZero(dof_);
   saturated_s_.setZero(dof_);
   last_command_time_s_ = 0.0;

@@ -18,8 +18,12 @@ bool Controller::measure(const JointState& state) noexcept {
   }
   if (stateFrozen(state)) {
     enterFault("state: ",
-               "joint state unchanged bit for bit for frozen_state_timeout_s while the torque "
-               "changed or its own velocity should have moved it: a stale sensor stream");
+               state.sequence_valid
+                   ? "the driver's sample counter has not advanced for frozen_state_timeout_s: a "
+                     "stale sensor stream"
+                   : "joint state unchanged bit for bit for frozen_state_timeout_s while the "
+                     "torque changed or its own velocity should have moved it: a stale sensor "
+                     "stream");
     return false;
   }
   const std::span<const double> q(state.position.data(), static_cast<std::size_t>(dof_));
@@ -48,6 +52,9 @@ bool sameBits(const JointVector& a, const JointVector& b) noexcept {
 }  // namespace
 
 bool Controller::stateFrozen(const JointState& state) noexcept {
+  if (state.sequence_valid) {
+    return sequenceStale(state);
+  }
   const bool repeated = sameBits(state.position, state_.position) &&
                         sameBits(state.velocity, state_.velocity) &&
                         sameBits(state.effort, state_.effort);
@@ -74,6 +81,21 @@ bool Controller::stateFrozen(const JointState& state) noexcept {
   state_frozen_ =
       (torque_ - torque_when_repeated_).cwiseAbs().maxCoeff() > kFrozenStateTorqueChangeNm ||
       state.velocity.cwiseAbs().maxCoeff() * unmoved_s > kFrozenStateMotionRad;
+  return state_frozen_;
+}
+
+bool Controller::sequenceStale(const JointState& state) noexcept {
+  // The driver's counter decides: a new sample is fresh however alike it is (an arm at rest, or
+  // pressing on a wall, repeats its encoders), an old one is stale however the torque moves.
+  if (parameters_.frozen_state_timeout_s <= 0.0 || !sequence_seen_ ||
+      state.sequence != last_sequence_) {
+    last_sequence_ = state.sequence;
+    sequence_seen_ = true;
+    sequence_since_s_ = time_s_;
+    state_frozen_ = false;
+    return false;
+  }
+  state_frozen_ = time_s_ - sequence_since_s_ >= parameters_.frozen_state_timeout_s;
   return state_frozen_;
 }
 

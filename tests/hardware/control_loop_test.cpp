@@ -47,6 +47,7 @@ class SwitchedController final : public CycleController {
     command.effort[0] = command.effort[1] = 1.0;
     command.position[0] = command.position[1] = 0.5;
     saw_wrench = state.wrench_valid ? state.wrench[2] : 0.0;
+    saw_sequence = state.sequence_valid ? state.sequence : 0;
     return active;
   }
   [[nodiscard]] OutputMode outputMode() const noexcept override { return mode; }
@@ -57,6 +58,7 @@ class SwitchedController final : public CycleController {
   }
   OutputMode mode = OutputMode::kTorque;
   double saw_wrench = 0.0;
+  std::uint64_t saw_sequence = 0;
   bool active = false;
   bool wants_hold = false;
   int warms = 0;
@@ -167,7 +169,12 @@ class PositionArm final : public HardwareInterface {
     wrench[2] = -7.5;
     return true;
   }
+  bool readSequence(std::uint64_t& sequence) noexcept override {
+    sequence = ++samples;
+    return true;
+  }
   double written_position = 0.0;
+  std::uint64_t samples = 40;
 };
 
 TEST(ControlLoop, RefusesAControllerWhoseOutputModeTheDrivesDoNotTake) {
@@ -201,6 +208,7 @@ TEST(ControlLoop, WritesTheCommandInTheControllersModeAndPassesTheWrenchReading)
   EXPECT_EQ(arm.written_position, 0.5);
   EXPECT_EQ(loop.lastCommand().mode, OutputMode::kPosition);
   EXPECT_EQ(controller.saw_wrench, -7.5) << "the sensor's reading reaches the controller";
+  EXPECT_EQ(controller.saw_sequence, 41U) << "and so does the driver's sample counter";
 }
 
 }  // namespace

@@ -97,6 +97,39 @@ TEST_F(FrozenState, ResetNeedsAStateThatMovesAgain) {
   EXPECT_EQ(cycle(fresh), CycleStatus::kOk);
 }
 
+// A driver with a sample counter (HardwareInterface::readSequence): the counter decides. One that
+// stands still is a stale stream even where the samples alone could not tell (an arm at rest
+// repeats its state and its torque; pushed, it moves while the stream repeats the old pose).
+TEST_F(FrozenState, ADriverCounterThatStandsStillIsStaleWhateverTheSamples) {
+  state.velocity.setZero();
+  state.sequence_valid = true;
+  state.sequence = 1234;
+  const int faulted_at = cyclesUntilFault(1000);
+  EXPECT_GE(faulted_at, 99);
+  EXPECT_LE(faulted_at, 102);
+  EXPECT_NE(wrapper.diagnostics().last_error.find("sample counter has not advanced"),
+            std::string::npos)
+      << wrapper.diagnostics().last_error;
+  EXPECT_TRUE(wrapper.controller().holdRequested()) << "the brakes are asked for";
+  // The counter moving again makes the state usable: a reset takes.
+  wrapper.reset();
+  ++state.sequence;
+  EXPECT_EQ(cycle(state), CycleStatus::kOk);
+}
+
+// ... and one that advances keeps a bit-identical state fresh while the torque moves (an arm
+// pressing on a wall: its encoders repeat), where the samples alone would have faulted.
+TEST_F(FrozenState, ADriverCounterThatAdvancesKeepsARepeatedStateFresh) {
+  state.velocity.setZero();
+  state.sequence_valid = true;
+  sendStep();
+  for (int i = 0; i < 1000; ++i) {
+    ++state.sequence;
+    ASSERT_EQ(cycle(state), CycleStatus::kOk) << "cycle " << i;
+  }
+  EXPECT_EQ(wrapper.diagnostics().faults, 0U);
+}
+
 TEST_F(FrozenState, RepeatedStateWithASteadyTorqueIsNotAFault) {
   // An arm (or a simulator) at rest repeats its state, and the law its torque: 2 s of it.
   state.velocity.setZero();

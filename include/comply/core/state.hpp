@@ -2,6 +2,7 @@
 // Measured joint state as read from hardware (real or simulated).
 
 #include <Eigen/Geometry>
+#include <cstdint>
 
 #include "comply/core/capacity.hpp"
 
@@ -19,6 +20,10 @@ struct JointState {
   /// `wrench` is in the TCP frame (the sensor's own axes, as a ros2_control force-torque sensor
   /// reports it) instead of the base frame; the cycle turns it with the measured TCP.
   bool wrench_in_tcp = false;
+  /// The driver's sample counter, where it has one (HardwareInterface::readSequence): it advances
+  /// with every new sample, so a stream that repeats itself is caught whatever the arm does.
+  std::uint64_t sequence = 0;
+  bool sequence_valid = false;
 
   /// `dof` entries each, position and velocity finite: a state a cycle can run on (the effort
   /// may be NaN: an arm without torque sensing).

@@ -55,6 +55,15 @@ class HardwareInterface {
     (void)wrench;
     return false;
   }
+  /// The driver's counter of the sample read() returned, advancing with every new sample (a
+  /// sequence number or the robot's own sample time in ticks, as libfranka, RTDE and FRI give
+  /// one). With it the controller knows a stale stream at once, even one that repeats a pose the
+  /// arm has left while it is pushed; without it (false) it judges from the samples themselves.
+  /// The control loop calls it after every read() and hands it on in JointState::sequence.
+  virtual bool readSequence(std::uint64_t& sequence) noexcept {
+    (void)sequence;
+    return false;
+  }
 };
 
 }  // namespace comply::hardware

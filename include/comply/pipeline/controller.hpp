@@ -200,6 +200,8 @@ class Controller {
   /// Whether `state` repeats the last one bit for bit for frozen_state_timeout_s while the torque
   /// moved kFrozenStateTorqueChangeNm: a stale sensor stream.
   bool stateFrozen(const JointState& state) noexcept;
+  /// With the driver's sample counter: whether it has stood still for frozen_state_timeout_s.
+  bool sequenceStale(const JointState& state) noexcept;
 
   void advanceClock(double period_s) noexcept;
   void enterFault(const char* prefix, const char* detail) noexcept;
@@ -253,6 +255,10 @@ class Controller {
   double repeated_since_s_ = 0.0;
   JointVector torque_when_repeated_;
   bool state_frozen_ = false;  // the hold then damps nothing: its velocity is stale
+  // The driver's sample counter (JointState::sequence): its last value and since when.
+  bool sequence_seen_ = false;
+  std::uint64_t last_sequence_ = 0;
+  double sequence_since_s_ = 0.0;
   double period_s_ = 0.001;
   double time_s_ = 0.0;
   double last_command_time_s_ = 0.0;

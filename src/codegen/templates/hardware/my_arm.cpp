@@ -124,7 +124,10 @@ class MyArm final : public comply::hardware::HardwareInterface {
 
   // A robot with a wrist force/torque sensor also overrides
   //   bool readWrench(comply::Vector6d& wrench) noexcept
-  // to report it (base frame, force first); the default says there is none. Drives that take a
+  // to report it (base frame, force first); the default says there is none. A driver whose robot
+  // numbers its samples (a sequence counter, or the robot's own sample time in ticks) overrides
+  //   bool readSequence(std::uint64_t& sequence) noexcept
+  // so that a stale stream is caught at once, whatever the arm does. Drives that take a
   // position, a velocity or a per-joint PD command instead of a torque override
   //   bool accepts(comply::OutputMode mode) const noexcept
   //   bool writeCommand(const comply::ActuatorCommand& command) noexcept
