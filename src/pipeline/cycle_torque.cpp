@@ -76,6 +76,7 @@ CycleStatus Controller::write(std::span<double> torque) noexcept {
 }
 
 CycleStatus Controller::hold(std::span<double> torque) noexcept {
+  force_active_ = false;  // no law runs: what it would read is the command in force
   // Hold the arm against gravity (and the payload) and damp every joint: the arm comes to rest
   // where it is, without a reference that may be the cause of the fault. The state is the last
   // usable one when this cycle's was not.

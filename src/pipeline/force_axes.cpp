@@ -87,6 +87,9 @@ void ForceAxes::apply(const comply_cartesian_command& in, const model::Data& dat
       pull_back_[axis] = 0.0;
       feedforward[axis] +=
           forceLoop(axis, in.wrench_target[axis], exerted[axis], estimated, speed[axis], period_s);
+      if (limit_[axis] > 0.0) {  // the command's own feedforward along the axis included
+        feedforward[axis] = std::clamp(feedforward[axis], -limit_[axis], limit_[axis]);
+      }
       continue;
     }
     integral_[axis] = 0.0;
@@ -145,9 +148,15 @@ double ForceAxes::forceLoop(int axis, double target, double exerted, bool estima
 
 double ForceAxes::limitAxis(int axis, double error, double exerted, bool estimated,
                             double stiffness, double period_s) noexcept {
-  if (!estimated || !(stiffness > 0.0)) {
-    pull_back_[axis] = 0.0;  // nothing to measure against, or no spring to pull back
+  if (!(stiffness > 0.0)) {
+    pull_back_[axis] = 0.0;  // no spring to pull back
     return error;
+  }
+  if (!estimated) {
+    // A cycle without a reading: the pull-back holds (letting it go would put the spring's whole
+    // force back on the contact at once).
+    pull_back_[axis] = std::min(pull_back_[axis], std::abs(error));
+    return error >= 0.0 ? error - pull_back_[axis] : error + pull_back_[axis];
   }
   // The force in the direction the spring pushes, above (> 0) or below the limit.
   const double excess = (error >= 0.0 ? exerted : -exerted) - limit_[axis];

@@ -235,6 +235,10 @@ TEST_F(ForceAxesTest, TheContactLimitPullsTheReferenceBackAndReturnsIt) {
     stage_.apply(in_, data_, Vector6d::Zero(), &over, kPeriod, out_);
   }
   EXPECT_NEAR(stage_.pullBack()[2], std::abs(error_z), 1e-12);
+  // A cycle without a reading holds the pull-back (the spring's force stays off the contact).
+  stage_.apply(in_, data_, Vector6d::Zero(), nullptr, kPeriod, out_);
+  EXPECT_NEAR(stage_.pullBack()[2], std::abs(error_z), 1e-12);
+  EXPECT_NEAR(errorInTask(out_)[2], 0.0, 1e-12);
   // Below the limit the reference comes back, at most at the speed bound.
   exerted[2] = 0.0;
   const Vector6d free = onTool(exerted);
@@ -260,6 +264,11 @@ TEST_F(ForceAxesTest, TheLimitClipsTheForceLoopToo) {
   const Vector6d wrench = onTool(Vector6d::Zero());
   stage_.apply(in_, data_, Vector6d::Zero(), &wrench, kPeriod, out_);
   EXPECT_EQ(stage_.forceCommand()[2], 12.0);
+  // The command's own feedforward along the axis counts toward the limit too.
+  in_.wrench_target[2] = 10.0;
+  Map<Vector3d>(in_.wrench_feedforward) = task_.toRotationMatrix() * Vector3d(0.0, 0.0, 5.0);
+  stage_.apply(in_, data_, Vector6d::Zero(), &wrench, kPeriod, out_);
+  EXPECT_NEAR(inTask(out_.wrench_feedforward)[2], 12.0, 1e-9);
 }
 
 }  // namespace

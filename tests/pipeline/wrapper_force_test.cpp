@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <string>
 
 #include "comply/core/input_error.hpp"
@@ -108,6 +109,19 @@ TEST_F(WrapperForce, TheWatchdogsHoldReleasesTheForceAxes) {
   ASSERT_GE(wrapper_->diagnostics().watchdog_timeouts, 1U);
   EXPECT_EQ(lawCommand(*wrapper_).wrench_feedforward[2], 0.0)
       << "an arm whose sender went quiet stops pressing";
+}
+
+// In FAULT no law runs: what the law would read is the command in force again, not the force
+// stage's last cycle (state samples and recordings read it).
+TEST_F(WrapperForce, InFaultTheLawsCommandIsTheCommandInForce) {
+  start("");
+  ASSERT_TRUE(wrapper_->submit(pressDown(wrapper_->measuredPose(), 1.0)).accepted);
+  cycle();
+  EXPECT_EQ(lawCommand(*wrapper_).force_axes[2], 0.0) << "the stage acted";
+  JointState broken = state_;
+  broken.position[3] = std::numeric_limits<double>::quiet_NaN();
+  ASSERT_EQ(wrapper_->update(broken, kPeriod, torque_.span()), CycleStatus::kFault);
+  EXPECT_EQ(lawCommand(*wrapper_).force_axes[2], 1.0);
 }
 
 TEST_F(WrapperForce, AChunkCannotCarryForceAxes) {

@@ -26,7 +26,9 @@
 //   d pull / dt = 2 pi limit_bandwidth_hz (|F| - limit) / K_axis   (at most max_speed),
 // which settles the force at the limit against any surface stiffer than the spring, and returns
 // the reference as the force falls below it; the feedforward along the axis is clipped to the
-// limit. On a force axis the force loop's output is clipped to the limit.
+// limit. On a force axis the feedforward along it (the command's and the force loop's) is
+// clipped to the limit. A cycle without a wrench estimate holds the pull-back where it is. The
+// damping of a commanded velocity into the contact is not limited.
 //
 // The law then reads force_axes all zero: the stage has already done what they ask. Real-time: no
 // allocation, no lock, no exception.
@@ -74,8 +76,8 @@ class ForceAxes {
   /// One cycle on a command the stage acts on. `in`: the command the law would read; `data`: this
   /// cycle's pose; `tcp_twist`: J dq, base frame; `wrench_on_tool`: the estimate of what the
   /// environment exerts on the tool at the TCP (base frame, force first), or nullptr when there is
-  /// none this cycle (the loop then pushes F_d alone and its integral holds). Writes the law's
-  /// command to `out`.
+  /// none this cycle (the loop then pushes F_d plus the integral term it holds, and a pull-back
+  /// holds). Writes the law's command to `out`.
   void apply(const comply_cartesian_command& in, const model::Data& data, const Vector6d& tcp_twist,
              const Vector6d* wrench_on_tool, double period_s,
              comply_cartesian_command& out) noexcept;
