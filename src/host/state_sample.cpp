@@ -126,16 +126,15 @@ void StateSampler<Command>::fill(const hardware::CycleRecord& record, const Join
   s.tcp_twist =
       data.jacobian.cols() == dof ? Vector6d(data.jacobian * s.joints.velocity) : Vector6d::Zero();
   // The observer's estimate when it runs (observer.enabled); else the wrist sensor's reading as
-  // the cycle compensated it.
-  if (controller.observer().enabled()) {
-    s.contact_wrench = controller.observer().wrench();
-    s.contact_wrench_source = transport::WrenchSource::kObserver;
-    s.contact_wrench_bandwidth_hz =
-        controller.resolved().parameters.observer.gain_per_s / (2.0 * M_PI);
-  } else if (controller.sensorWrenchValid()) {
-    s.contact_wrench = controller.sensorWrench();  // the tool's weight and the tare off
-    s.contact_wrench_source = transport::WrenchSource::kSensor;
-    s.contact_wrench_bandwidth_hz = controller.resolved().parameters.wrench_sensor.filter_hz;
+  // the cycle compensated it (the tool's weight and the tare off).
+  if (const Vector6d* wrench = controller.contactWrench()) {
+    const bool observer = wrench == &controller.observer().wrench();
+    const pipeline::CycleParameters& parameters = controller.resolved().parameters;
+    s.contact_wrench = *wrench;
+    s.contact_wrench_source =
+        observer ? transport::WrenchSource::kObserver : transport::WrenchSource::kSensor;
+    s.contact_wrench_bandwidth_hz = observer ? parameters.observer.gain_per_s / (2.0 * M_PI)
+                                             : parameters.wrench_sensor.filter_hz;
   } else {
     s.contact_wrench.setZero();
     s.contact_wrench_source = transport::WrenchSource::kNone;

@@ -21,12 +21,12 @@ void Controller::applyForce() noexcept {
   const auto n = static_cast<Eigen::Index>(dof_);
   Vector6d tcp_twist;
   tcp_twist.noalias() = data_.jacobian.leftCols(n) * state_.velocity.head(n);
-  force_.apply(*in, data_, tcp_twist, forceWrench(), period_s_, *out);
+  force_.apply(*in, data_, tcp_twist, contactWrench(parameters_.force_control.source), period_s_,
+               *out);
   force_active_ = true;
 }
 
-const Vector6d* Controller::forceWrench() const noexcept {
-  const ForceSource source = parameters_.force_control.source;
+const Vector6d* Controller::contactWrench(ForceSource source) const noexcept {
   const bool observer = observer_.enabled() && source != ForceSource::kSensor;
   if (observer) {
     return &observer_.wrench();

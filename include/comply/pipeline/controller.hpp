@@ -131,10 +131,12 @@ class Controller {
   }
   /// The force stage (force_axes.hpp): its loop's output and pull-back of the last cycle.
   [[nodiscard]] const ForceAxes& forceAxes() const noexcept { return force_; }
-  /// The external wrench on the tool the force stage reads (force_control.source): at the TCP,
-  /// base frame, force first [N, N m]; nullptr when none this cycle. Real-time thread, or between
-  /// cycles.
-  [[nodiscard]] const Vector6d* forceWrench() const noexcept;
+  /// The external wrench on the tool from `source`: at the TCP, base frame, force first [N, N m];
+  /// nullptr when none this cycle. kAuto is the rule the state reports by: the observer's estimate
+  /// when it runs, else the wrist sensor's reading; the force stage reads force_control.source.
+  /// Real-time thread, or between cycles.
+  [[nodiscard]] const Vector6d* contactWrench(
+      ForceSource source = ForceSource::kAuto) const noexcept;
   /// The external wrench estimate (observer.enabled): at the TCP, base frame, force first
   /// [N, N m], and per joint [N m | N]. Real-time thread, or between cycles.
   [[nodiscard]] const MomentumObserver& observer() const noexcept { return observer_; }
