@@ -25,6 +25,7 @@
 #include "comply/pipeline/wrapper.hpp"
 #include "output_modes/output_mode_rig.hpp"
 #include "sim_support.hpp"
+#include "surface_following/fixture.hpp"
 
 namespace comply::testing {
 namespace {
@@ -75,8 +76,8 @@ pipeline::WrapperConfig pressConfig(const std::string& robot, const std::string&
   // The probe (60 g) is the tool beyond the sensor: declared, its weight is compensated and comes
   // off the sensor's reading.
   config.payload_compensation = true;
-  config.payload.mass_kg = 0.06;
-  config.payload.com_in_tip = Eigen::Vector3d(0.0, 0.0, (0.05 * 0.045 + 0.01 * 0.1) / 0.06);
+  config.payload.mass_kg = experiments::surface_following::kProbeMassKg;
+  config.payload.com_in_tip = Eigen::Vector3d(0.0, 0.0, experiments::surface_following::kProbeComM);
   config.initial_cartesian.stiffness_translational = 1500.0 * Eigen::Matrix3d::Identity();
   return config;
 }
@@ -303,7 +304,7 @@ TEST(ForceOnTableExample, PressesItsTargetPlusTheProbesWeight) {
   for (std::size_t i = result.log.size() - rows; i < result.log.size(); ++i) {
     sum += result.log.contact_wrench[i][2];
   }
-  EXPECT_NEAR(sum / rows, 15.0 + 0.06 * 9.81, 0.2);
+  EXPECT_NEAR(sum / rows, 15.0 + experiments::surface_following::kProbeMassKg * 9.81, 0.2);
 }
 
 }  // namespace
