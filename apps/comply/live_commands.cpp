@@ -41,7 +41,10 @@ LiveCommands addLiveCommands(CLI::App& app) {
       ->capture_default_str();
   run_command->add_option("--hardware-option", run->hardware_options,
                           "key=value for the hardware backend (repeatable)");
-  run_command->add_option("--transport", run->transport, "dds (ROS 2 wire) or in_process")
+  run_command
+      ->add_option("--transport", run->transport,
+                   "dds (ROS 2 wire, in a process of its own), dds_inline (in this process) or "
+                   "in_process")
       ->capture_default_str();
   run_command->add_flag("--view", run->view, "interactive window (not yet)");
   run_command->add_option("--rate", run->rate_hz, "control rate [Hz]")

@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -71,15 +72,15 @@ void decode(const std::uint8_t* data, std::size_t size) {
     default:
       return;  // CycloneDDS drops a sample in an encoding it does not read
   }
-  // The body is normalised in place and read with aligned loads: an 8-aligned copy. CycloneDDS
-  // 0.10 (fixed in 11.0) checks only 4 of the 8 bytes of each 64-bit value of an XCDR2 sample, so
-  // it byte-swaps and reads up to twice the sample's size: in a comply process that is CycloneDDS
-  // corrupting its own receive buffer (README, "Known limits"). The copy leaves that much zeroed
-  // room after the body, so the fuzzer goes on checking what comply makes of the result.
+  // The body is normalised in place and read with aligned loads: a copy of exactly its bytes, on
+  // the heap (aligned to 16), so that AddressSanitizer sees any access past them. (An earlier
+  // harness left zeroed room after the copy and so hid CycloneDDS 0.10's own over-read and
+  // byte-swap past a malformed XCDR2 sample: tests/fuzz/upstream/dds_sample/ keeps that input,
+  // and `comply run` survives it by running DDS in a process of its own.)
   const auto body_size = static_cast<std::uint32_t>(size - 4);
-  std::vector<std::uint64_t> body(2 * (body_size / 8 + 1));
-  std::memcpy(body.data(), data + 4, body_size);
-  auto* bytes = reinterpret_cast<char*>(body.data());
+  const std::unique_ptr<char[]> body(new char[body_size]);
+  std::memcpy(body.get(), data + 4, body_size);
+  char* bytes = body.get();
 
   const dds_topic_descriptor_t* descriptor = comply::transport::wire::Wire<Message>::descriptor();
   std::uint32_t offset = 0;

@@ -76,6 +76,7 @@ class Process {
   Process& operator=(const Process&) = delete;
 
   void signal(int number) const { kill(pid_, number); }
+  [[nodiscard]] pid_t pid() const noexcept { return pid_; }
   /// Waits for the exit; its status code, or -1 (and SIGKILL) after `timeout`.
   int wait(std::chrono::milliseconds timeout) {
     const auto deadline = Clock::now() + timeout;

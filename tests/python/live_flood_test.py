@@ -4,9 +4,11 @@ every command has exactly one outcome, applied or queue_full (what the 64-entry 
 between two cycles), and the controller stays active without a fault. A host that is stopped takes
 nothing: the writer keeps what fits its history (at most 1000 commands, fewer when DDS's byte limit
 for unacknowledged data comes first), then refuses with a clear error rather than block the
-sender, and the host accounts for every command held once it runs again.
+sender, and the host accounts for every command held once it runs again. (Stopped means the host's
+process group: the host and its transport process, as a machine that stalls.)
 Usage: live_flood_test.py COMPLY SOURCE_DIR."""
 
+import os
 import signal
 import sys
 import time
@@ -52,7 +54,7 @@ def main():
         assert diagnostics["rejections"]["queue_full"] == counts.get("queue_full", 0), diagnostics
         assert client.wait_until(lambda s: s["state"] == "active", timeout=2.0)
 
-        host.send_signal(signal.SIGSTOP)
+        os.killpg(host.pid, signal.SIGSTOP)
         held, refusal = [], None
         try:
             for _ in range(WRITER_KEEPS + 100):
@@ -62,7 +64,7 @@ def main():
                     refusal = str(error)
                     break
         finally:
-            host.send_signal(signal.SIGCONT)
+            os.killpg(host.pid, signal.SIGCONT)
         print(f"stopped host: {len(held)} commands held, then: {refusal}")
         assert 0 < len(held) <= WRITER_KEEPS, f"{len(held)} sent to a stopped host"
         assert refusal is not None and "stopped or stalled" in refusal, refusal

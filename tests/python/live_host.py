@@ -13,7 +13,8 @@ def running_host(cli, source, name):
     domain = random.randint(1, 230)
     config = f"{source}/config/sim/cartesian_impedance.yaml"
     host = subprocess.Popen([cli, "run", "--config", config, "--robot", "fr3", "--sim",
-                             "--domain", str(domain), "--name", name])
+                             "--domain", str(domain), "--name", name],
+                            start_new_session=True)  # a group of its own: it and its transport
     try:
         yield host, domain
     finally:

@@ -8,7 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstring>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "comply/transport/cdr.hpp"
@@ -137,6 +139,25 @@ std::vector<double> values(std::mt19937& random, std::size_t n) {
   return out;
 }
 
+/// What the host and its transport process hand each other decodes back to the same bytes, and
+/// every cut of it short of its last field is refused.
+template <typename Message>
+void expectDecoderReadsTheWire(const std::vector<std::uint8_t>& wire) {
+  Message decoded;
+  ASSERT_TRUE(decodeCdr(wire, decoded));
+  std::vector<std::uint8_t> again;
+  encodeCdr(decoded, again);
+  EXPECT_EQ(again, wire);
+  if constexpr (requires { decoded.command.stamp_s; }) {
+    EXPECT_EQ(decoded.command.stamp_s, decoded.header.stamp.seconds());
+  }
+  const std::size_t padding = wire[3] & 3U;
+  for (std::size_t cut = 0; cut + padding < wire.size(); ++cut) {
+    Message part;
+    EXPECT_FALSE(decodeCdr(std::span(wire.data(), cut), part)) << cut << " of " << wire.size();
+  }
+}
+
 template <typename Message>
 void expectEncoderMatchesTheWire(const Message& message) {
   std::vector<std::uint8_t> encoded;
@@ -144,6 +165,9 @@ void expectEncoderMatchesTheWire(const Message& message) {
   const std::vector<std::uint8_t> wire = wireBytes(message);
   ASSERT_EQ(encoded.size(), wire.size());
   EXPECT_EQ(encoded, wire);
+  if constexpr (requires(Message decoded) { decodeCdr(wire, decoded); }) {
+    expectDecoderReadsTheWire<Message>(wire);
+  }
 }
 
 TEST(TransportCdrEncoder, CommandsMatchTheWire) {
@@ -267,6 +291,40 @@ TEST(TransportCdrEncoder, StateDiagnosticsAndRequestsMatchTheWire) {
   request.header = {{9, 10}, "client"};
   request.request = RequestType::kDeactivate;
   expectEncoderMatchesTheWire(request);
+}
+
+TEST(TransportCdrDecoder, RefusesWhatEncodeCdrDoesNotWrite) {
+  JointCommandMessage joint;
+  joint.header = {{1, 2}, "x"};
+  joint.command = JointCommand::zero(3);
+  std::vector<std::uint8_t> bytes;
+  encodeCdr(joint, bytes);
+  JointCommandMessage decoded;
+  ASSERT_TRUE(decodeCdr(bytes, decoded));
+  EXPECT_EQ(decoded.command.position.size(), 3);
+
+  std::vector<std::uint8_t> big_endian = bytes;
+  big_endian[1] = 0x00;  // CDR_BE
+  EXPECT_FALSE(decodeCdr(big_endian, decoded));
+
+  // A joint vector longer than any controller's: the count is the first after the header and
+  // the fields (4 + 8 + 4 + 2 for "x", aligned to 4, + 4).
+  std::vector<std::uint8_t> long_vector = bytes;
+  const std::uint32_t count = kMaxDof + 1;
+  std::memcpy(long_vector.data() + 4 + 16 + 4, &count, sizeof(count));
+  EXPECT_FALSE(decodeCdr(long_vector, decoded));
+
+  // A string without its NUL.
+  std::vector<std::uint8_t> unterminated = bytes;
+  unterminated[4 + 8 + 4 + 1] = 'y';
+  EXPECT_FALSE(decodeCdr(unterminated, decoded));
+
+  // A count larger than the bytes left could hold is refused before anything is allocated.
+  ControllerStateMessage state;
+  encodeCdr(state, bytes);
+  const std::uint32_t names = 0xFFFFFFF0U;
+  std::memcpy(bytes.data() + 4 + 8 + 4 + 1 + 1 + 1 + 1 + 8, &names, sizeof(names));
+  EXPECT_FALSE(decodeCdr(bytes, state));
 }
 
 TEST(TransportCdrEncoder, DefinitionsCarryTheirDependencies) {

@@ -6,6 +6,7 @@
 // stores them in a file (the .msg text with its dependencies appended).
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,6 +25,18 @@ void encodeCdr(const CartesianChunkMessage& message, std::vector<std::uint8_t>& 
 void encodeCdr(const JointChunkMessage& message, std::vector<std::uint8_t>& out);
 void encodeCdr(const RequestMessage& message, std::vector<std::uint8_t>& out);
 void encodeCdr(const CycleRecordMessage& message, std::vector<std::uint8_t>& out);
+
+/// The message `bytes` hold, as encodeCdr writes it, into `message`. False when they hold none:
+/// another encoding, cut short, a count past the end, a joint vector longer than kMaxDof, a chunk
+/// longer than kMaxChunkWaypoints; `message` is then not to be used. (A DDS reader decodes with
+/// CycloneDDS; these read what comply's own processes hand each other.)
+bool decodeCdr(std::span<const std::uint8_t> bytes, ControllerStateMessage& message);
+bool decodeCdr(std::span<const std::uint8_t> bytes, DiagnosticsMessage& message);
+bool decodeCdr(std::span<const std::uint8_t> bytes, CartesianCommandMessage& message);
+bool decodeCdr(std::span<const std::uint8_t> bytes, JointCommandMessage& message);
+bool decodeCdr(std::span<const std::uint8_t> bytes, CartesianChunkMessage& message);
+bool decodeCdr(std::span<const std::uint8_t> bytes, JointChunkMessage& message);
+bool decodeCdr(std::span<const std::uint8_t> bytes, RequestMessage& message);
 
 /// The ROS 2 type name of each message ("comply_msgs/msg/ControllerState").
 template <typename Message>

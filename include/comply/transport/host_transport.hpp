@@ -72,6 +72,9 @@ class HostTransport {
   /// topic's name) since the transport started: they never reach the host, and the run's summary
   /// counts them. 0 where the middleware cannot tell.
   [[nodiscard]] virtual std::uint64_t malformedSamples() const { return 0; }
+  /// Times the middleware ended (crashed, hung) and was started again since the transport
+  /// started; 0 where it cannot end apart from the host (process_transport.hpp).
+  [[nodiscard]] virtual std::uint64_t restarts() const { return 0; }
 };
 
 using HostTransportFactory =

@@ -170,7 +170,7 @@ void publisherThread(PublisherContext<Command> c, const std::atomic<bool>& runni
 }
 
 void printSummary(const LoopCounters& counters, const pipeline::GateCounts& counts,
-                  const hardware::LoopStats& stats, std::uint64_t malformed_samples,
+                  const hardware::LoopStats& stats, const transport::HostTransport& transport,
                   std::ostream& out) {
   const auto us = [](double seconds) { return std::lround(seconds * 1e6); };
   out << "comply run: " << counters.cycles.load() << " cycles, " << counters.overruns.load()
@@ -182,7 +182,7 @@ void printSummary(const LoopCounters& counters, const pipeline::GateCounts& coun
       << us(histogramQuantile(counters.compute, 0.99)) << " us (10 us bins)\n"
       << "comply run: commands received " << counts.received << ", applied " << counts.applied
       << ", rejected " << counts.rejected << "; malformed samples dropped by the transport "
-      << malformed_samples << "\n";
+      << transport.malformedSamples() << "; transport restarts " << transport.restarts() << "\n";
 }
 
 void printRecording(const HostRecording& recording, std::ostream& out) {
@@ -273,8 +273,7 @@ int runWith(const LiveHostOptions& options,
   gate.abandonPending("the host shut down before a cycle took it");
   publishDiagnostics(context, outcomeMessages(gate.takeOutcomes()));
   transport->flush(1.0);
-  printSummary(observer.counters(), gate.counts(), loop.stats(), transport->malformedSamples(),
-               out);
+  printSummary(observer.counters(), gate.counts(), loop.stats(), *transport, out);
   if (recording != nullptr) {
     recording->stop();
     printRecording(*recording, out);

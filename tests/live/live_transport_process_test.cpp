@@ -1,0 +1,265 @@
+// comply run when its middleware dies. DDS runs in a process of its own (comply-transport): a
+// peer's sample that crashes CycloneDDS itself, a transport process killed or hung, must leave
+// the control loop running, the arm held by the watchdog, and commands applied again once the
+// transport is back.
+//
+// The sample is the one `make fuzz` found (tests/fuzz/upstream/dds_sample/): a malformed XCDR2
+// big-endian CartesianCommand that CycloneDDS 0.10.2 byte-swaps past the end of. It is sent as
+// the next sample of a live, matched writer, in a hand-built RTPS packet, because no DDS writer
+// would serialise it.
+
+#include <arpa/inet.h>
+#include <dds/dds.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+
+#include <cstring>
+#include <optional>
+#include <regex>
+#include <sstream>
+
+#include "live_support.hpp"
+
+namespace comply::live_test {
+namespace {
+
+const std::string kUpstreamCrash =
+    kSourceDir + "/tests/fuzz/upstream/dds_sample/xcdr2-big-endian-overrun";
+/// Until the transport is back and a command is applied again: the restart delay (0.5 s), the
+/// process's start and DDS discovery, with room for a loaded machine.
+constexpr auto kBackWithin = 5s;
+
+std::vector<std::uint8_t> readBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+template <typename T>
+void appendLe(std::vector<std::uint8_t>& out, T value) {
+  const std::size_t at = out.size();
+  out.resize(at + sizeof(T));
+  std::memcpy(out.data() + at, &value, sizeof(T));
+}
+
+/// An RTPS message (DDSI-RTPS 2.1, sections 8.3.3 and 8.3.7.2): one DATA submessage carrying
+/// `payload` (encapsulation header included) as sample `sequence` of writer `writer`, to every
+/// reader matched with it.
+std::vector<std::uint8_t> dataPacket(const dds_guid_t& writer, std::int64_t sequence,
+                                     const std::vector<std::uint8_t>& payload) {
+  std::vector<std::uint8_t> packet = {'R', 'T', 'P', 'S', 2, 1, 0x01, 0x10};
+  packet.insert(packet.end(), writer.v, writer.v + 12);  // GUID prefix
+  packet.push_back(0x15);                                // DATA
+  packet.push_back(0x01 | 0x04);                         // little endian, data present
+  appendLe<std::uint16_t>(packet, static_cast<std::uint16_t>(20 + payload.size()));
+  appendLe<std::uint16_t>(packet, 0);   // extra flags
+  appendLe<std::uint16_t>(packet, 16);  // octets to the inline QoS: none, so to the payload
+  appendLe<std::uint32_t>(packet, 0);   // reader: unknown, i.e. every matched reader
+  packet.insert(packet.end(), writer.v + 12, writer.v + 16);  // writer entity id
+  appendLe<std::int32_t>(packet, static_cast<std::int32_t>(sequence >> 32));
+  appendLe<std::uint32_t>(packet, static_cast<std::uint32_t>(sequence & 0xFFFFFFFF));
+  packet.insert(packet.end(), payload.begin(), payload.end());
+  return packet;
+}
+
+/// Sends `packet` to every user-data unicast port a loopback participant of `domain` can have
+/// (DDSI-RTPS 9.6.1.1: 7400 + 250 domain + 11 + 2 index, comply's loopback indices 0..31).
+void sendToDomain(int domain, const std::vector<std::uint8_t>& packet) {
+  const int socket = ::socket(AF_INET, SOCK_DGRAM, 0);
+  ASSERT_GE(socket, 0);
+  for (int index = 0; index < 32; ++index) {
+    sockaddr_in to{};
+    to.sin_family = AF_INET;
+    to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    to.sin_port = htons(static_cast<std::uint16_t>(7400 + 250 * domain + 11 + 2 * index));
+    ::sendto(socket, packet.data(), packet.size(), 0, reinterpret_cast<const sockaddr*>(&to),
+             sizeof(to));
+  }
+  ::close(socket);
+}
+
+/// The transport processes `host` started: its children running comply-transport.
+std::vector<pid_t> transportProcesses(pid_t host) {
+  std::vector<pid_t> found;
+  for (const auto& entry : std::filesystem::directory_iterator("/proc")) {
+    const std::string pid = entry.path().filename().string();
+    if (pid.find_first_not_of("0123456789") != std::string::npos) {
+      continue;
+    }
+    const std::string stat = readText(entry.path() / "stat");
+    const std::size_t name_end = stat.rfind(')');
+    if (name_end == std::string::npos ||
+        readText(entry.path() / "cmdline").find("comply-transport") == std::string::npos) {
+      continue;
+    }
+    std::istringstream fields(stat.substr(name_end + 1));
+    std::string state;
+    pid_t parent = 0;
+    fields >> state >> parent;
+    if (parent == host) {
+      found.push_back(std::stoi(pid));
+    }
+  }
+  return found;
+}
+
+/// The host as a process, a client, and one sender whose written samples are counted (the
+/// injected sample must carry the next sequence number).
+class TransportProcessTest : public ::testing::Test {
+ protected:
+  virtual std::vector<std::string> hostArguments() { return hostArgs(domain_, "crash"); }
+  void SetUp() override {
+    host_ = std::make_unique<Process>(hostArguments(), log_);
+    client_ = std::make_unique<Client>(domain_, "crash");
+    connect();
+  }
+  void TearDown() override { std::filesystem::remove(log_); }
+
+  /// A new sender (a fresh participant); true once the host accounted one of its commands.
+  bool connect() {
+    writer_.reset();
+    sender_.reset();
+    sender_ = std::make_unique<transport::Participant>(
+        transport::ParticipantOptions{domain_, transport::Network::kLoopback});
+    writer_ =
+        std::make_unique<transport::Writer<transport::CartesianCommandMessage>>(*sender_, "crash");
+    written_ = 0;
+    return writer_->waitForMatch(1, 10.0) && applyOne(0.0).has_value();
+  }
+
+  /// Sends the sample as the connected writer's next one.
+  void inject() {
+    std::vector<std::uint8_t> sample = readBytes(kUpstreamCrash);
+    ASSERT_GT(sample.size(), 8U);
+    ASSERT_EQ(sample[0] % 5, 0) << "a CartesianCommand (fuzz_dds_sample's topic byte)";
+    sample.erase(sample.begin());
+    ASSERT_EQ(sample[1], 0x06) << "XCDR2 big endian";
+    dds_guid_t guid{};
+    ASSERT_EQ(dds_get_guid(writer_->handle(), &guid), DDS_RETCODE_OK);
+    sendToDomain(domain_, dataPacket(guid, written_ + 1, sample));
+  }
+
+  /// Sends a command holding the arm `dz` [m] above its pose until one is applied; the time it
+  /// took, or nullopt when none was applied within kBackWithin.
+  std::optional<double> applyOne(double dz) {
+    const auto start = Clock::now();
+    while (Clock::now() - start < kBackWithin) {
+      const auto state = client_->state(200ms);
+      if (!state) {
+        continue;
+      }
+      const transport::CartesianCommandMessage command =
+          poseCommand(*state, {0.0, 0.0, dz}, transport::Stamp::now());
+      writer_->write(command);
+      ++written_;
+      const std::int64_t stamp = command.header.stamp.nanoseconds();
+      const bool applied = client_->poll(300ms, [&](const auto&) {
+        const auto it = client_->outcomes().find(stamp);
+        return it != client_->outcomes().end() &&
+               it->second.front().outcome == transport::Outcome::kApplied;
+      });
+      if (applied) {
+        return std::chrono::duration<double>(Clock::now() - start).count();
+      }
+    }
+    return std::nullopt;
+  }
+
+  /// The lines of the host's log naming a transport process's end.
+  int endsReported() {
+    const std::string log = readText(log_);
+    const std::regex ended("the transport process \\(dds, pid [0-9]+\\)");
+    return static_cast<int>(
+        std::distance(std::sregex_iterator(log.begin(), log.end(), ended), std::sregex_iterator()));
+  }
+
+  int domain_ = randomDomain();
+  std::string log_ = (std::filesystem::temp_directory_path() /
+                      ("comply_transport_process_" + std::to_string(::getpid()) + ".log"))
+                         .string();
+  std::unique_ptr<Process> host_;
+  std::unique_ptr<Client> client_;
+  std::unique_ptr<transport::Participant> sender_;
+  std::unique_ptr<transport::Writer<transport::CartesianCommandMessage>> writer_;
+  std::int64_t written_ = 0;
+};
+
+TEST_F(TransportProcessTest, ASampleThatCrashesDdsEndsTheTransportProcessNotTheHost) {
+  const auto before = client_->state(2s);
+  ASSERT_TRUE(before.has_value());
+
+  const auto injected = Clock::now();
+  inject();
+
+  // The transport process dies of it; the host reports that and goes on.
+  const auto deadline = Clock::now() + 5s;
+  while (endsReported() == 0 && Clock::now() < deadline) {
+    std::this_thread::sleep_for(20ms);
+  }
+  ASSERT_EQ(endsReported(), 1) << readText(log_);
+  EXPECT_NE(readText(log_).find("ended on signal"), std::string::npos) << readText(log_);
+  EXPECT_EQ(host_->wait(0ms), -1) << "the host must still run";
+
+  // Commands flow again once the transport is back: a sender that connects anew, and the one
+  // that was connected when it died.
+  ASSERT_TRUE(connect());
+  const double back_s = std::chrono::duration<double>(Clock::now() - injected).count();
+  EXPECT_LT(back_s, std::chrono::duration<double>(kBackWithin).count());
+  std::printf("applied again %.2f s after the sample\n", back_s);
+
+  // The arm was held meanwhile: where it was, active, no fault.
+  const auto after = client_->state(2s);
+  ASSERT_TRUE(after.has_value());
+  EXPECT_EQ(after->state, transport::HostState::kActive);
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_NEAR(after->tcp_position[axis], before->tcp_position[axis], 0.005);
+  }
+  host_->signal(SIGTERM);
+  EXPECT_EQ(host_->wait(10s), 0);
+  EXPECT_NE(readText(log_).find("transport restarts 1"), std::string::npos) << readText(log_);
+}
+
+/// The same host with DDS in the host's own process (`--transport dds_inline`).
+class TransportInlineTest : public TransportProcessTest {
+ protected:
+  std::vector<std::string> hostArguments() override {
+    std::vector<std::string> args = TransportProcessTest::hostArguments();
+    args.insert(args.end(), {"--transport", "dds_inline"});
+    return args;
+  }
+};
+
+// What the sample does to a host that deserialises in its own process (the transport the host
+// had before): it dies with CycloneDDS, and the arm with it. Should a CycloneDDS release stop
+// crashing on it, this fails, and the sample is then a regression input of fuzz_dds_sample.
+TEST_F(TransportInlineTest, TheSameSampleKillsAHostThatRunsDdsInItsOwnProcess) {
+  inject();
+  const int code = host_->wait(5s);
+  EXPECT_GT(code, 128) << "a host with DDS inline survived the sample: " << readText(log_);
+}
+
+TEST_F(TransportProcessTest, AKilledOrHungTransportProcessIsStartedAgain) {
+  for (const int signal : {SIGKILL, SIGSTOP}) {
+    const std::vector<pid_t> transports = transportProcesses(host_->pid());
+    ASSERT_EQ(transports.size(), 1U);
+    const int ends = endsReported();
+    ::kill(transports.front(), signal);
+    // A hung process is found by its missing heartbeat (1 s), a dead one at once.
+    const auto deadline = Clock::now() + 5s;
+    while (endsReported() == ends && Clock::now() < deadline) {
+      std::this_thread::sleep_for(20ms);
+    }
+    ASSERT_EQ(endsReported(), ends + 1) << readText(log_);
+    ASSERT_TRUE(applyOne(0.0).has_value() || connect()) << readText(log_);
+    EXPECT_EQ(host_->wait(0ms), -1);
+  }
+  EXPECT_NE(readText(log_).find("stopped answering"), std::string::npos) << readText(log_);
+}
+
+}  // namespace
+}  // namespace comply::live_test

@@ -1,0 +1,89 @@
+// The frames between a host and its transport process (src/transport/process/frames.hpp): cut
+// anywhere by the socket, they come out whole and in order; a sample keeps its writer, its
+// participant and what did not fit; a length no frame can have stops the stream.
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "frames.hpp"
+
+namespace comply::transport::process {
+namespace {
+
+Sample<CartesianCommandMessage> someSample() {
+  Sample<CartesianCommandMessage> sample;
+  sample.message.header = {{1700000000, 123456789}, "fr3_link0"};
+  sample.message.command = CartesianCommand::zero(7);
+  sample.message.command.fields = CommandField::kPosition | CommandField::kNullspace;
+  sample.message.command.position = Eigen::Vector3d(0.4, -0.1, 0.5);
+  sample.message.command.nullspace_stiffness.setConstant(12.5);
+  sample.publisher = 0x1122334455667788ULL;
+  sample.participant = 42;
+  sample.malformed = "torque_feedforward has 13 entries";
+  return sample;
+}
+
+TEST(TransportProcessFrames, ComeOutWholeHoweverTheStreamIsCut) {
+  std::vector<std::uint8_t> stream;
+  std::vector<std::uint8_t> scratch;
+  appendFrame(FrameKind::kReady, std::string_view("topics rt/comply/*"), stream);
+  appendSampleFrame(FrameKind::kCartesian, someSample(), scratch, stream);
+  appendFrame(FrameKind::kDeparted, std::uint64_t{77}, stream);
+
+  for (const std::size_t piece : {std::size_t{1}, std::size_t{7}, stream.size()}) {
+    FrameReader reader;
+    std::vector<Frame> frames;
+    for (std::size_t at = 0; at < stream.size(); at += piece) {
+      reader.append({stream.data() + at, std::min(piece, stream.size() - at)});
+      while (auto frame = reader.next()) {
+        frames.push_back(std::move(*frame));
+      }
+    }
+    ASSERT_EQ(frames.size(), 3U) << "pieces of " << piece;
+    EXPECT_FALSE(reader.broken());
+    EXPECT_EQ(frames[0].kind, FrameKind::kReady);
+    EXPECT_EQ(readText(frames[0].payload), "topics rt/comply/*");
+    ASSERT_EQ(frames[1].kind, FrameKind::kCartesian);
+    Sample<CartesianCommandMessage> sample;
+    ASSERT_TRUE(readSampleFrame(frames[1].payload, sample));
+    const Sample<CartesianCommandMessage> sent = someSample();
+    EXPECT_EQ(sample.publisher, sent.publisher);
+    EXPECT_EQ(sample.participant, sent.participant);
+    EXPECT_EQ(sample.malformed, sent.malformed);
+    EXPECT_EQ(sample.message.header.stamp, sent.message.header.stamp);
+    EXPECT_EQ(sample.message.header.frame_id, sent.message.header.frame_id);
+    EXPECT_EQ(sample.message.command.fields, sent.message.command.fields);
+    EXPECT_EQ(sample.message.command.position, sent.message.command.position);
+    EXPECT_EQ(sample.message.command.nullspace_stiffness, sent.message.command.nullspace_stiffness);
+    EXPECT_EQ(readU64(frames[2].payload), 77U);
+  }
+}
+
+TEST(TransportProcessFrames, ASampleFrameCutShortIsRefused) {
+  std::vector<std::uint8_t> frame;
+  std::vector<std::uint8_t> scratch;
+  appendSampleFrame(FrameKind::kCartesian, someSample(), scratch, frame);
+  const std::span<const std::uint8_t> payload(frame.data() + 5, frame.size() - 5);
+  for (std::size_t cut = 0; cut + 3 < payload.size(); cut += 5) {
+    Sample<CartesianCommandMessage> sample;
+    EXPECT_FALSE(readSampleFrame(payload.first(cut), sample)) << cut;
+  }
+  EXPECT_FALSE(readU64(payload.first(7)).has_value());
+}
+
+TEST(TransportProcessFrames, ALengthNoFrameCanHaveStopsTheStream) {
+  for (const std::uint32_t length : {std::uint32_t{0}, std::uint32_t(kMaxFrameBytes + 1)}) {
+    FrameReader reader;
+    std::vector<std::uint8_t> bytes(4);
+    std::memcpy(bytes.data(), &length, sizeof(length));
+    bytes.push_back(static_cast<std::uint8_t>(FrameKind::kHeartbeat));
+    reader.append(bytes);
+    EXPECT_FALSE(reader.next().has_value());
+    EXPECT_TRUE(reader.broken()) << length;
+  }
+}
+
+}  // namespace
+}  // namespace comply::transport::process
