@@ -6,7 +6,7 @@
 // all from CLOCK_REALTIME on one machine, and the cycle-start lateness of the host's control loop
 // over the same span (its diagnostics histogram, 10 us bins).
 //
-//   build/bench/live_latency [--seconds 10] [--rate 1000] [--priority 80]
+//   build/bench/live_latency [--seconds 10] [--rate 1000] [--priority 80] [--transport dds]
 
 #include <signal.h>
 #include <sys/wait.h>
@@ -34,6 +34,7 @@ struct Options {
   double seconds = 10.0;
   double rate_hz = 1000.0;
   int priority = 80;
+  std::string transport = "dds";  ///< the host's --transport: dds or dds_inline
 };
 
 Options parse(int argc, char** argv) {
@@ -47,6 +48,8 @@ Options parse(int argc, char** argv) {
       options.rate_hz = value;
     } else if (key == "--priority") {
       options.priority = static_cast<int>(value);
+    } else if (key == "--transport") {
+      options.transport = argv[i + 1];
     }
   }
   return options;
@@ -61,7 +64,7 @@ pid_t startHost(int domain, const Options& options) {
     const std::string priority = std::to_string(options.priority);
     execl(COMPLY_CLI, COMPLY_CLI, "run", "--config", config.c_str(), "--robot", "fr3", "--sim",
           "--domain", domain_text.c_str(), "--name", "bench", "--priority", priority.c_str(),
-          static_cast<char*>(nullptr));
+          "--transport", options.transport.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
   return pid;

@@ -2,6 +2,11 @@
 
 #include "comply/transport/dds_host_transport.hpp"
 
+#include <dds/dds.h>
+
+#include <array>
+#include <functional>
+
 #include "comply/transport/endpoints.hpp"
 #include "comply/transport/participant.hpp"
 #include "malformed_log.hpp"
@@ -36,6 +41,29 @@ class DdsHostTransport final : public HostTransport {
     waitset_.attach(request_);
   }
 
+  ~DdsHostTransport() override {
+    // The listeners first: no callback may run into a transport being taken apart.
+    for (const Endpoint* reader : readers()) {
+      dds_set_listener(reader->handle(), nullptr);
+    }
+  }
+  DdsHostTransport(const DdsHostTransport&) = delete;
+  DdsHostTransport& operator=(const DdsHostTransport&) = delete;
+
+  bool notifyOnInput(std::function<void()> on_input) override {
+    on_input_ = std::move(on_input);
+    dds_listener_t* listener = dds_create_listener(this);
+    dds_lset_data_available(listener, [](dds_entity_t /*reader*/, void* self) {
+      static_cast<DdsHostTransport*>(self)->on_input_();
+    });
+    bool set = true;
+    for (const Endpoint* reader : readers()) {
+      set = set && dds_set_listener(reader->handle(), listener) == DDS_RETCODE_OK;
+    }
+    dds_delete_listener(listener);
+    return set;
+  }
+
   void receive(Inbox& inbox, double timeout_s) override {
     // Malformed samples never wake the wait set: a count owed is printed from here.
     malformed_log_.tick();
@@ -57,6 +85,10 @@ class DdsHostTransport final : public HostTransport {
   [[nodiscard]] std::uint64_t malformedSamples() const override { return malformed_log_.total(); }
 
  private:
+  [[nodiscard]] std::array<const Endpoint*, 5> readers() const {
+    return {&cartesian_, &joint_, &cartesian_chunks_, &joint_chunks_, &request_};
+  }
+
   // First: in place before the participant sees a packet, and gone after it.
   MalformedSampleLog malformed_log_;
   HostTransportOptions options_;
@@ -69,6 +101,7 @@ class DdsHostTransport final : public HostTransport {
   Writer<ControllerStateMessage> state_;
   Writer<DiagnosticsMessage> diagnostics_;
   WaitSet waitset_;
+  std::function<void()> on_input_;
 };
 
 }  // namespace

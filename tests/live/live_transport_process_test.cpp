@@ -11,14 +11,18 @@
 #include <arpa/inet.h>
 #include <dds/dds.h>
 #include <gtest/gtest.h>
+#include <ifaddrs.h>
+#include <net/if.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
 
 #include <cstring>
 #include <optional>
 #include <regex>
+#include <set>
 #include <sstream>
 
+#include "comply/transport/cdr.hpp"
 #include "live_support.hpp"
 
 namespace comply::live_test {
@@ -67,15 +71,17 @@ std::vector<std::uint8_t> dataPacket(const dds_guid_t& writer, std::int64_t sequ
   return packet;
 }
 
-/// Sends `packet` to every user-data unicast port a loopback participant of `domain` can have
-/// (DDSI-RTPS 9.6.1.1: 7400 + 250 domain + 11 + 2 index, comply's loopback indices 0..31).
-void sendToDomain(int domain, const std::vector<std::uint8_t>& packet) {
+/// Sends `packet` to `address`, on every user-data unicast port a loopback participant of
+/// `domain` can have (DDSI-RTPS 9.6.1.1: 7400 + 250 domain + 11 + 2 index, comply's loopback
+/// indices 0..31).
+void sendToDomain(int domain, const std::vector<std::uint8_t>& packet,
+                  in_addr_t address = htonl(INADDR_LOOPBACK)) {
   const int socket = ::socket(AF_INET, SOCK_DGRAM, 0);
   ASSERT_GE(socket, 0);
   for (int index = 0; index < 32; ++index) {
     sockaddr_in to{};
     to.sin_family = AF_INET;
-    to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    to.sin_addr.s_addr = address;
     to.sin_port = htons(static_cast<std::uint16_t>(7400 + 250 * domain + 11 + 2 * index));
     ::sendto(socket, packet.data(), packet.size(), 0, reinterpret_cast<const sockaddr*>(&to),
              sizeof(to));
@@ -108,6 +114,52 @@ std::vector<pid_t> transportProcesses(pid_t host) {
   return found;
 }
 
+/// This machine's first IPv4 address other than loopback, if it has one.
+std::optional<in_addr_t> externalAddress() {
+  ifaddrs* interfaces = nullptr;
+  if (::getifaddrs(&interfaces) != 0) {
+    return std::nullopt;
+  }
+  std::optional<in_addr_t> found;
+  for (const ifaddrs* it = interfaces; it != nullptr && !found; it = it->ifa_next) {
+    if (it->ifa_addr != nullptr && it->ifa_addr->sa_family == AF_INET &&
+        (it->ifa_flags & IFF_LOOPBACK) == 0) {
+      found = reinterpret_cast<const sockaddr_in*>(it->ifa_addr)->sin_addr.s_addr;
+    }
+  }
+  ::freeifaddrs(interfaces);
+  return found;
+}
+
+/// The local address of every IPv4 and IPv6 socket process `pid` holds, as the kernel's tables
+/// (/proc/net/udp, tcp, udp6, tcp6, which `ss` prints) give it: hex address ":" hex port.
+std::vector<std::string> socketAddresses(pid_t pid) {
+  std::set<std::string> inodes;
+  for (const auto& fd : std::filesystem::directory_iterator("/proc/" + std::to_string(pid) + "/fd")) {
+    std::error_code error;
+    const std::string target = std::filesystem::read_symlink(fd.path(), error).string();
+    if (!error && target.rfind("socket:[", 0) == 0) {
+      inodes.insert(target.substr(8, target.size() - 9));
+    }
+  }
+  std::vector<std::string> addresses;
+  for (const char* table : {"udp", "tcp", "udp6", "tcp6"}) {
+    std::istringstream lines(readText(std::string("/proc/net/") + table));
+    std::string line;
+    std::getline(lines, line);  // the column names
+    while (std::getline(lines, line)) {
+      std::istringstream fields(line);
+      std::string slot, local, remote, state, queues, timer, retransmits, uid, timeout, inode;
+      fields >> slot >> local >> remote >> state >> queues >> timer >> retransmits >> uid >>
+          timeout >> inode;
+      if (inodes.count(inode) != 0) {
+        addresses.push_back(local);
+      }
+    }
+  }
+  return addresses;
+}
+
 /// The host as a process, a client, and one sender whose written samples are counted (the
 /// injected sample must carry the next sequence number).
 class TransportProcessTest : public ::testing::Test {
@@ -130,6 +182,33 @@ class TransportProcessTest : public ::testing::Test {
         std::make_unique<transport::Writer<transport::CartesianCommandMessage>>(*sender_, "crash");
     written_ = 0;
     return writer_->waitForMatch(1, 10.0) && applyOne(0.0).has_value();
+  }
+
+  /// Sends a valid command holding the arm where it is as the connected writer's next sample, in
+  /// a hand-built packet to `address` (as a spoofing peer would); true when the host applied it.
+  bool packetApplied(in_addr_t address) {
+    const auto state = client_->state(2s);
+    if (!state) {
+      ADD_FAILURE() << "no state";
+      return false;
+    }
+    const transport::CartesianCommandMessage command =
+        poseCommand(*state, {0.0, 0.0, 0.0}, transport::Stamp::now());
+    std::vector<std::uint8_t> bytes;
+    transport::encodeCdr(command, bytes);
+    dds_guid_t guid{};
+    EXPECT_EQ(dds_get_guid(writer_->handle(), &guid), DDS_RETCODE_OK);
+    sendToDomain(domain_, dataPacket(guid, written_ + 1, bytes), address);
+    const std::int64_t stamp = command.header.stamp.nanoseconds();
+    const bool applied = client_->poll(1500ms, [&](const auto&) {
+      const auto it = client_->outcomes().find(stamp);
+      return it != client_->outcomes().end() &&
+             it->second.front().outcome == transport::Outcome::kApplied;
+    });
+    if (applied) {
+      ++written_;
+    }
+    return applied;
   }
 
   /// Sends the sample as the connected writer's next one.
@@ -241,6 +320,43 @@ TEST_F(TransportInlineTest, TheSameSampleKillsAHostThatRunsDdsInItsOwnProcess) {
   inject();
   const int code = host_->wait(5s);
   EXPECT_GT(code, 128) << "a host with DDS inline survived the sample: " << readText(log_);
+}
+
+// Loopback means loopback: no socket of the host or its transport process listens on another
+// address, and a command sent to the machine's external address does not arrive, while the same
+// packet to 127.0.0.1 is applied (so the packet itself is good).
+TEST_F(TransportProcessTest, TheDefaultHostListensOnLoopbackOnly) {
+  const std::vector<pid_t> transports = transportProcesses(host_->pid());
+  ASSERT_EQ(transports.size(), 1U);
+  std::vector<std::string> addresses = socketAddresses(transports.front());
+  ASSERT_GE(addresses.size(), 2U) << "the transport process's DDS sockets";
+  for (const std::string& address : socketAddresses(host_->pid())) {
+    addresses.push_back(address);
+  }
+  for (const std::string& address : addresses) {
+    EXPECT_EQ(address.substr(0, 9), "0100007F:") << address << ": not 127.0.0.1";
+  }
+  const auto external = externalAddress();
+  if (!external) {
+    GTEST_SKIP() << "this machine has no address other than loopback to spoof";
+  }
+  EXPECT_FALSE(packetApplied(*external)) << "a packet to the external address was applied";
+  EXPECT_TRUE(packetApplied(htonl(INADDR_LOOPBACK)));
+}
+
+// Before: CycloneDDS in the host bound every socket to every address, and the packet to the
+// external address was applied.
+TEST_F(TransportInlineTest, TheHostListensOnEveryAddressWhenDdsRunsInIt) {
+  const auto external = externalAddress();
+  if (!external) {
+    GTEST_SKIP() << "this machine has no address other than loopback to spoof";
+  }
+  bool any_address = false;
+  for (const std::string& address : socketAddresses(host_->pid())) {
+    any_address = any_address || address.substr(0, 9) == "00000000:";
+  }
+  EXPECT_TRUE(any_address);
+  EXPECT_TRUE(packetApplied(*external));
 }
 
 TEST_F(TransportProcessTest, AKilledOrHungTransportProcessIsStartedAgain) {

@@ -62,6 +62,14 @@ class HostTransport {
   virtual void receive(Inbox& inbox, double timeout_s) = 0;
   /// Any thread: makes a receive() in progress return.
   virtual void wake() = 0;
+  /// Asks the middleware to call `on_input` from its own receiving thread as soon as input waits;
+  /// the caller then takes it with receive(inbox, 0). This saves the wake-up of a thread blocked
+  /// in receive() (a relay such as the transport process uses it). Call once, before input is
+  /// expected; false where the middleware cannot (receive() alone then).
+  virtual bool notifyOnInput(std::function<void()> on_input) {
+    (void)on_input;
+    return false;
+  }
   virtual void publish(const ControllerStateMessage& state) = 0;
   virtual void publish(const DiagnosticsMessage& diagnostics) = 0;
   /// Waits until the diagnostics written so far were delivered to every reader; false on timeout.

@@ -6,6 +6,8 @@
 //   comply-transport --fd N --transport dds --name NAME --domain ID --network loopback|all
 //                    --priority P
 
+#include <pthread.h>
+#include <sched.h>
 #include <sys/prctl.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -28,6 +30,7 @@
 #include "comply/transport/cdr.hpp"
 #include "comply/transport/dds_host_transport.hpp"
 #include "frames.hpp"
+#include "loopback_bind.hpp"
 
 namespace {
 
@@ -112,37 +115,69 @@ void serveHost(HostLink& link, HostTransport& transport) {
   }
 }
 
-template <typename Message>
-void appendSamples(FrameKind kind, const std::vector<comply::transport::Sample<Message>>& samples,
-                   std::vector<std::uint8_t>& scratch, std::vector<std::uint8_t>& out) {
-  for (const auto& sample : samples) {
-    appendSampleFrame(kind, sample, scratch, out);
-  }
-}
+/// What the transport receives, to the host: taken and sent at once from the middleware's own
+/// thread where it can call us (one wake-up less on a command's way), else by the loop below.
+class Forwarder {
+ public:
+  Forwarder(HostLink& link, HostTransport& transport) : link_(link), transport_(transport) {}
 
-/// What the transport receives, to the host, until `running` is cleared or the host is gone.
-void forwardToHost(HostLink& link, HostTransport& transport, const std::atomic<bool>& running) {
-  Inbox inbox;
-  std::vector<std::uint8_t> scratch;
-  std::vector<std::uint8_t> out;
-  auto last_heartbeat = Clock::now() - kHeartbeatPeriod;
-  while (running.load()) {
-    inbox.clear();
-    out.clear();
-    transport.receive(inbox, 0.05);
-    appendSamples(FrameKind::kCartesian, inbox.cartesian, scratch, out);
-    appendSamples(FrameKind::kJoint, inbox.joint, scratch, out);
-    appendSamples(FrameKind::kCartesianChunk, inbox.cartesian_chunks, scratch, out);
-    appendSamples(FrameKind::kJointChunk, inbox.joint_chunks, scratch, out);
-    appendSamples(FrameKind::kRequest, inbox.requests, scratch, out);
+  /// Takes what waits (waiting up to `timeout_s` for it) and sends it, with a heartbeat when one
+  /// is due; false once the host is gone.
+  bool forward(double timeout_s) {
+    if (timeout_s > 0.0) {
+      transport_.receive(waiting_, timeout_s);  // alone: the middleware calls back only when told
+    }
+    const std::lock_guard<std::mutex> lock(mutex_);
+    inbox_.clear();
+    out_.clear();
+    transport_.receive(inbox_, 0.0);
+    appendInbox(waiting_);
+    appendInbox(inbox_);
+    waiting_.clear();
+    if (Clock::now() - last_heartbeat_ >= kHeartbeatPeriod) {
+      appendFrame(FrameKind::kHeartbeat, transport_.malformedSamples(), out_);
+      last_heartbeat_ = Clock::now();
+    }
+    return out_.empty() || link_.send(out_);
+  }
+
+ private:
+  void appendInbox(const Inbox& inbox) {
+    appendSamples(FrameKind::kCartesian, inbox.cartesian);
+    appendSamples(FrameKind::kJoint, inbox.joint);
+    appendSamples(FrameKind::kCartesianChunk, inbox.cartesian_chunks);
+    appendSamples(FrameKind::kJointChunk, inbox.joint_chunks);
+    appendSamples(FrameKind::kRequest, inbox.requests);
     for (const std::uint64_t writer : inbox.departed) {
-      appendFrame(FrameKind::kDeparted, writer, out);
+      appendFrame(FrameKind::kDeparted, writer, out_);
     }
-    if (Clock::now() - last_heartbeat >= kHeartbeatPeriod) {
-      appendFrame(FrameKind::kHeartbeat, transport.malformedSamples(), out);
-      last_heartbeat = Clock::now();
+  }
+  template <typename Message>
+  void appendSamples(FrameKind kind,
+                     const std::vector<comply::transport::Sample<Message>>& samples) {
+    for (const auto& sample : samples) {
+      appendSampleFrame(kind, sample, scratch_, out_);
     }
-    if (!out.empty() && !link.send(out)) {
+  }
+
+  HostLink& link_;
+  HostTransport& transport_;
+  std::mutex mutex_;  // the middleware's thread and the loop take turns
+  Inbox waiting_;     // only the loop's thread
+  Inbox inbox_;
+  std::vector<std::uint8_t> scratch_;
+  std::vector<std::uint8_t> out_;
+  Clock::time_point last_heartbeat_ = Clock::now() - kHeartbeatPeriod;
+};
+
+/// Forwards until `running` is cleared or the host is gone. With the middleware calling back,
+/// the loop only keeps the heartbeat and the departures going.
+void forwardToHost(Forwarder& forwarder, bool called_back, const std::atomic<bool>& running) {
+  while (running.load()) {
+    if (called_back) {
+      std::this_thread::sleep_for(kHeartbeatPeriod);
+    }
+    if (!forwarder.forward(called_back ? 0.0 : 0.05)) {
       return;
     }
   }
@@ -181,6 +216,9 @@ int main(int argc, char** argv) {
   options.network = args.count("--network") != 0 ? args["--network"] : options.network;
   options.receive_priority = std::atoi(args["--priority"].c_str());
 
+  if (options.network == "loopback") {
+    comply::transport::process::bindLoopbackOnly();
+  }
   std::unique_ptr<HostTransport> transport;
   std::vector<std::uint8_t> frame;
   try {
@@ -196,10 +234,21 @@ int main(int argc, char** argv) {
   }
 
   std::atomic<bool> running{true};
-  std::thread forwarder([&] { forwardToHost(link, *transport, running); });
+  Forwarder forwarder(link, *transport);
+  const bool called_back = transport->notifyOnInput([&forwarder] { forwarder.forward(0.0); });
+  std::thread forwarding([&] {
+    // At the priority of DDS's receive threads: a command waits for neither on its way.
+    if (options.receive_priority > 0) {
+      sched_param parameters{};
+      parameters.sched_priority = options.receive_priority;
+      pthread_setschedparam(pthread_self(), SCHED_FIFO, &parameters);
+    }
+    forwardToHost(forwarder, called_back, running);
+  });
   serveHost(link, *transport);
   running = false;
   transport->wake();
-  forwarder.join();
+  forwarding.join();
+  transport.reset();  // its callbacks end before the forwarder they call goes
   return 0;
 }
