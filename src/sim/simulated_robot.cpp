@@ -171,6 +171,7 @@ void SimulatedRobot::forward() noexcept {
 }
 
 bool SimulatedRobot::read(JointState& state) noexcept {
+  read_sequence_ = steps_;
   const auto n = static_cast<Eigen::Index>(qpos_address_.size());
   state.position.resize(n);
   state.velocity.resize(n);
@@ -320,6 +321,7 @@ void SimulatedRobot::senseLinkTorque() noexcept {
 }
 
 void SimulatedRobot::step() noexcept {
+  ++steps_;
   std::fill(link_torque_.begin(), link_torque_.end(), 0.0);
   for (int i = 0; i < substeps_; ++i) {
     if (braked_) {

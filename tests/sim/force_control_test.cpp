@@ -105,7 +105,8 @@ class NormalForce {
  public:
   double operator()(const Rig& rig, int cycle) {
     window_[static_cast<std::size_t>(cycle) % window_.size()] = rig.plant.toolContactWrench()[2];
-    return std::accumulate(window_.begin(), window_.end(), 0.0) / window_.size();
+    return std::accumulate(window_.begin(), window_.end(), 0.0) /
+           static_cast<double>(window_.size());
   }
 
  private:
@@ -221,15 +222,15 @@ TEST_P(ForceControl, HoldsTheNormalForceOnAFlatSurfaceWhileSliding) {
 INSTANTIATE_TEST_SUITE_P(FourRobots, ForceControl,
                          ::testing::Combine(::testing::Values("fr3", "iiwa14", "rizon4s", "ur5e"),
                                             ::testing::Values("sensor", "observer")),
-                         [](const auto& info) {
-                           return std::get<0>(info.param) + "_" + std::get<1>(info.param);
+                         [](const auto& test) {
+                           return std::get<0>(test.param) + "_" + std::get<1>(test.param);
                          });
 // Position drives: the law in admittance pushes its force through a virtual arm.
 INSTANTIATE_TEST_SUITE_P(PositionDrives, ForceControl,
                          ::testing::Combine(::testing::Values("fr3", "ur5e"),
                                             ::testing::Values("position")),
-                         [](const auto& info) {
-                           return std::get<0>(info.param) + "_" + std::get<1>(info.param);
+                         [](const auto& test) {
+                           return std::get<0>(test.param) + "_" + std::get<1>(test.param);
                          });
 
 // The contact-force limit on an impedance axis (FR3, UR5e; wrist sensor, observer): the reference

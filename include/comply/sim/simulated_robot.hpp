@@ -72,6 +72,12 @@ class SimulatedRobot final : public hardware::HardwareInterface {
   [[nodiscard]] int dof() const noexcept override { return static_cast<int>(qpos_address_.size()); }
   /// Position, velocity (plus noise, if configured) and the effort applied in the last period.
   bool read(JointState& state) noexcept override;
+  /// The sample counter a driver has: the control periods stepped when read() took its sample
+  /// (one per step(), whatever the arm does), so a stream that stops is told from an arm at rest.
+  bool readSequence(std::uint64_t& sequence) noexcept override {
+    sequence = read_sequence_;
+    return true;
+  }
   /// Applies `torque` [N m | N] from the next step() on, clamped to the URDF effort limit.
   /// Refuses (returns false, keeps the previous torque) a wrong size or a non-finite entry, and
   /// any torque on position or velocity servos.
@@ -148,6 +154,8 @@ class SimulatedRobot final : public hardware::HardwareInterface {
   /// the joints' friction forces of one substep (by MuJoCo dof).
   bool link_side_torque_ = false;
   bool link_torque_sensed_ = false;  ///< a step has filled link_torque_
+  std::uint64_t steps_ = 0;          ///< control periods stepped
+  std::uint64_t read_sequence_ = 0;  ///< steps_ at the last read()
   std::vector<double> link_torque_;
   std::vector<double> dof_friction_;
   bool braked_ = false;
