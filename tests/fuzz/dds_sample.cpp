@@ -75,7 +75,7 @@ void decode(const std::uint8_t* data, std::size_t size) {
   // The body is normalised in place and read with aligned loads: a copy of exactly its bytes, on
   // the heap (aligned to 16), so that AddressSanitizer sees any access past them. (An earlier
   // harness left zeroed room after the copy and so hid CycloneDDS 0.10's own over-read and
-  // byte-swap past a malformed XCDR2 sample: tests/fuzz/upstream/dds_sample/ keeps that input,
+  // byte-swap past a malformed XCDR2 sample: tests/fuzz/upstream/dds_sample/ keeps those inputs,
   // and `comply run` survives it by running DDS in a process of its own.)
   const auto body_size = static_cast<std::uint32_t>(size - 4);
   const std::unique_ptr<char[]> body(new char[body_size]);
