@@ -54,11 +54,11 @@ void getSequence(Reader& r, std::vector<T>& values) {
 template <FieldKind K, typename Value>
 void getField(Reader& r, Value& value) {
   if constexpr (K == FieldKind::kQuaternion) {
-    double xyzw[4];
+    double xyzw[4] = {};
     r.getArray(xyzw, 4);
     value = schema::fromXyzw(xyzw);
   } else if constexpr (K == FieldKind::kBlock3) {
-    double row_major[9];
+    double row_major[9] = {};
     r.getArray(row_major, 9);
     for (int k = 0; k < 9; ++k) {
       value(k / 3, k % 3) = row_major[k];

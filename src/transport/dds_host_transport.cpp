@@ -50,8 +50,8 @@ class DdsHostTransport final : public HostTransport {
   DdsHostTransport(const DdsHostTransport&) = delete;
   DdsHostTransport& operator=(const DdsHostTransport&) = delete;
 
-  bool notifyOnInput(std::function<void()> on_input) override {
-    on_input_ = std::move(on_input);
+  bool notifyOnInput(const std::function<void()>& on_input) override {
+    on_input_ = on_input;
     dds_listener_t* listener = dds_create_listener(this);
     dds_lset_data_available(listener, [](dds_entity_t /*reader*/, void* self) {
       static_cast<DdsHostTransport*>(self)->on_input_();

@@ -66,7 +66,7 @@ class HostTransport {
   /// the caller then takes it with receive(inbox, 0). This saves the wake-up of a thread blocked
   /// in receive() (a relay such as the transport process uses it). Call once, before input is
   /// expected; false where the middleware cannot (receive() alone then).
-  virtual bool notifyOnInput(std::function<void()> on_input) {
+  virtual bool notifyOnInput(const std::function<void()>& on_input) {
     (void)on_input;
     return false;
   }

@@ -2,6 +2,9 @@
 
 #include "frames.hpp"
 
+#include <sys/socket.h>
+
+#include <cerrno>
 #include <cstring>
 
 #include "comply/transport/cdr.hpp"
@@ -101,6 +104,20 @@ bool readSampleFrame(std::span<const std::uint8_t> payload, Sample<Message>& sam
   }
   sample.malformed.assign(payload.begin(), payload.begin() + malformed_bytes);
   return decodeCdr(payload.subspan(malformed_bytes), sample.message);
+}
+
+bool sendAll(int fd, std::span<const std::uint8_t> bytes) {
+  while (!bytes.empty()) {
+    const ssize_t n = ::send(fd, bytes.data(), bytes.size(), MSG_NOSIGNAL);
+    if (n > 0) {
+      bytes = bytes.subspan(static_cast<std::size_t>(n));
+    } else if (n < 0 && errno == EINTR) {
+      continue;
+    } else {
+      return false;
+    }
+  }
+  return true;
 }
 
 std::optional<std::uint64_t> readU64(std::span<const std::uint8_t> payload) {

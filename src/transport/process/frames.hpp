@@ -71,6 +71,10 @@ void appendSampleFrame(FrameKind kind, const Sample<Message>& sample,
 template <typename Message>
 bool readSampleFrame(std::span<const std::uint8_t> payload, Sample<Message>& sample);
 
+/// Writes `bytes` whole to the socket `fd` (retrying a send cut short or interrupted); false when
+/// the socket refused (its peer gone, or its send timeout passed).
+bool sendAll(int fd, std::span<const std::uint8_t> bytes);
+
 /// A u64 payload (kDeparted, kHeartbeat); nullopt when the payload is not 8 bytes.
 std::optional<std::uint64_t> readU64(std::span<const std::uint8_t> payload);
 std::string readText(std::span<const std::uint8_t> payload);

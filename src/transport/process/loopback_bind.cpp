@@ -17,7 +17,9 @@ std::atomic<bool> loopback_only{false};
 
 }  // namespace
 
-void bindLoopbackOnly() { loopback_only = true; }
+void bindLoopbackOnly() {
+  loopback_only = true;
+}
 
 }  // namespace comply::transport::process
 

@@ -66,8 +66,8 @@ std::string describeEnd(int status) {
 
 class ProcessHostTransport final : public HostTransport {
  public:
-  ProcessHostTransport(const HostTransportOptions& options, ProcessTransportOptions process)
-      : options_(options), process_(std::move(process)) {
+  ProcessHostTransport(HostTransportOptions options, ProcessTransportOptions process)
+      : options_(std::move(options)), process_(std::move(process)) {
     if (process_.program.empty()) {
       process_.program = transportProgram();
     }
@@ -195,6 +195,7 @@ class ProcessHostTransport final : public HostTransport {
                                            "--priority",
                                            std::to_string(options_.receive_priority)};
     std::vector<char*> argv;
+    argv.reserve(args.size() + 1);
     for (const std::string& arg : args) {
       argv.push_back(const_cast<char*>(arg.c_str()));
     }
@@ -458,18 +459,10 @@ class ProcessHostTransport final : public HostTransport {
     if (child_fd_ < 0 || stuck_.load()) {
       return false;
     }
-    std::size_t sent = 0;
-    while (sent < bytes.size()) {
-      const ssize_t n = ::send(child_fd_, bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL);
-      if (n > 0) {
-        sent += static_cast<std::size_t>(n);
-      } else if (n < 0 && errno == EINTR) {
-        continue;
-      } else {
-        stuck_ = true;
-        wake();
-        return false;
-      }
+    if (!process::sendAll(child_fd_, bytes)) {
+      stuck_ = true;
+      wake();
+      return false;
     }
     return true;
   }
@@ -520,7 +513,7 @@ std::filesystem::path transportProgram() {
     return env;
   }
   if (const auto installed = installedFolder(COMPLY_TRANSPORT_RELDIR)) {
-    const auto program = *installed / "comply-transport";
+    auto program = *installed / "comply-transport";
     std::error_code error;
     if (std::filesystem::is_regular_file(program, error)) {
       return program;

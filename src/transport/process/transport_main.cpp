@@ -53,18 +53,7 @@ class HostLink {
   /// False once the host is gone.
   bool send(const std::vector<std::uint8_t>& bytes) {
     const std::lock_guard<std::mutex> lock(mutex_);
-    std::size_t sent = 0;
-    while (sent < bytes.size()) {
-      const ssize_t n = ::send(fd_, bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL);
-      if (n > 0) {
-        sent += static_cast<std::size_t>(n);
-      } else if (n < 0 && errno == EINTR) {
-        continue;
-      } else {
-        return false;
-      }
-    }
-    return true;
+    return comply::transport::process::sendAll(fd_, bytes);
   }
   [[nodiscard]] int fd() const noexcept { return fd_; }
 
