@@ -39,4 +39,9 @@ if ! grep -q 'the hardware compensates gravity itself; comply adds none' ../run.
   echo "FAIL: the host did not take the backend's own gravity compensation into account:"
   cat ../run.log; exit 1
 fi
+# DDS in its own process: the installed transport program, not the build tree's.
+if ! grep -Eq "in its own process \($prefix/.*comply-transport\)" ../run.log; then
+  echo "FAIL: the installed comply run did not start the installed comply-transport:"
+  cat ../run.log; exit 1
+fi
 echo "plugin new --kind hardware: built, comply run drove it for $cycles cycles"

@@ -161,7 +161,7 @@ class ProcessHostTransport final : public HostTransport {
 
   [[nodiscard]] std::string describe() const override {
     const std::lock_guard<std::mutex> lock(describe_mutex_);
-    return description_ + " in its own process (" + process_.program.filename().string() + ")";
+    return description_ + " in its own process (" + process_.program.string() + ")";
   }
 
   [[nodiscard]] std::uint64_t malformedSamples() const override {
