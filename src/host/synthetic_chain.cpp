@@ -68,6 +68,20 @@ std::string robotYaml(int dof) {
   for (int i = 0; i < dof; ++i) {
     out << (i > 0 ? ", " : "") << (i % 2 == 0 ? 0.2 : 0.5 - 0.05 * i);
   }
+  // Rotors as a real arm has them (0.1 kg m^2 reflected, as an arm of this size): without them
+  // its light links could not render the default gains at 1 kHz (pipeline/gain_bound.hpp).
+  out << "]\njoint_dynamics:\n  damping: [";
+  for (int i = 0; i < dof; ++i) {
+    out << (i > 0 ? ", " : "") << 0.0;
+  }
+  out << "]\n  armature: [";
+  for (int i = 0; i < dof; ++i) {
+    out << (i > 0 ? ", " : "") << 0.1;
+  }
+  out << "]\n  frictionloss: [";
+  for (int i = 0; i < dof; ++i) {
+    out << (i > 0 ? ", " : "") << 0.0;
+  }
   out << "]\n";
   return out.str();
 }

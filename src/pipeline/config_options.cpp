@@ -86,6 +86,10 @@ void addCommandOptions(std::vector<Option>& table) {
   table.push_back(number("validation.max_joint_jump_rad", "0.50",
                          "joint target vs measured position (joint commands)", 0.0, kInfinity, true,
                          [](WrapperConfig& c, double v) { c.validation.max_joint_jump_rad = v; }));
+  table.push_back(number(
+      "validation.max_wn_period", "0.35",
+      "largest w_n T a stiffness or damping may give on the arm's lightest inertia (0: no bound)",
+      0.0, 0.43, false, [](WrapperConfig& c, double v) { c.validation.max_wn_period = v; }));
   table.push_back(number("validation.max_stamp_lead_s", "1.0",
                          "s a command's stamp may be ahead of the host's clock (clock skew)", 0.0,
                          kInfinity, true,

@@ -199,6 +199,7 @@ void Controller::enterFault(const char* prefix, const char* detail) noexcept {
 MeasuredPose Controller::currentPose() const noexcept {
   MeasuredPose pose = measuredPoseFrom(state_.position, data_);
   pose.time_s = time_s_;
+  pose.period_s = period_s_;
   return pose;
 }
 

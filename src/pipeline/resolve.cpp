@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -59,6 +60,22 @@ SoftLimitParameters compileSoftLimits(const SoftLimitConfig& soft_limits, const 
   compiled.stiffness = toJointVector(soft_limits.stiffness, dof);
   compiled.damping = toJointVector(soft_limits.damping, dof);
   return compiled;
+}
+
+/// The rotor inertias the robot declares, in the model's joint order (empty when it declares
+/// none): what a drive's torque accelerates besides the links.
+JointVector declaredArmature(const model::RobotDescription& robot, const model::Model& model) {
+  if (!robot.joint_dynamics || robot.joint_dynamics->armature.size() != robot.joints.size()) {
+    return {};
+  }
+  JointVector armature = JointVector::Zero(model.dof());
+  for (int i = 0; i < model.dof(); ++i) {
+    const auto it = std::find(robot.joints.begin(), robot.joints.end(), model.jointNames()[i]);
+    if (it != robot.joints.end()) {
+      armature[i] = robot.joint_dynamics->armature[it - robot.joints.begin()];
+    }
+  }
+  return armature;
 }
 
 std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig& input) {
@@ -131,6 +148,20 @@ std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig&
     // The momentum observer would estimate the virtual arm's wrench; the contact wrench of an
     // admittance arm is its force/torque sensor's.
     parameters.observer.enabled = false;
+  }
+  if (config.output.mode == OutputMode::kTorque && config.validation.max_wn_period > 0.0) {
+    resolved->gain_bound = lightestInertias(model, declaredArmature(resolved->robot, model));
+    resolved->gain_bound.max_wn_period = config.validation.max_wn_period;
+    resolved->gain_bound.robot = resolved->robot.name;
+    // The initial command is checked at 1 kHz: the period is the host's, known at the first cycle.
+    const Verdict verdict =
+        resolved->cartesian()
+            ? checkRenderable(config.initial_cartesian, resolved->gain_bound, 1e-3)
+            : checkRenderable(config.initial_joint, resolved->gain_bound, 1e-3);
+    if (!verdict.accepted) {
+      throw InputError(InputErrc::kOutOfRange, config.name, "initial",
+                       verdict.message + " at 1 kHz; lower it, or set validation.max_wn_period");
+    }
   }
   if (parameters.force_control.source == ForceSource::kObserver && !parameters.observer.enabled) {
     throw InputError(InputErrc::kInconsistent, config.name, "force_control.source",

@@ -92,6 +92,9 @@ Verdict Wrapper<Command>::submit(const Command& command) {
   Verdict verdict =
       validateAndMerge(command, controller_.resolved().config.validation, dof, measured, checked);
   if (verdict.accepted) {
+    verdict = checkRenderable(command, controller_.resolved().gain_bound, measured.period_s);
+  }
+  if (verdict.accepted) {
     IntakeMessage message;
     message.command = toBus(checked, dof);
     std::get<BusOf<Command>>(message.command).fields = static_cast<std::uint32_t>(command.fields);
@@ -110,6 +113,14 @@ Verdict Wrapper<Command>::submitChunk(const Chunk<Command>& chunk, double host_t
   Chunk<Command> checked = chunk;
   Verdict verdict = validateChunk(checked, controller_.resolved().config.validation, dof, measured,
                                   last_stamp_s_, host_time_s);
+  for (const ChunkWaypoint<Command>& waypoint : checked.waypoints) {
+    if (!verdict.accepted) {
+      break;
+    }
+    Command gains = waypoint.command;
+    gains.fields = checked.fields;
+    verdict = checkRenderable(gains, controller_.resolved().gain_bound, measured.period_s);
+  }
   if (verdict.accepted) {
     // The last cycle ran at controller time measured.time_s; the host's clock reads host_time_s
     // somewhat later (less than a period when the cycle runs): the chunk then runs that early.

@@ -16,6 +16,9 @@ step "$work/huge.yaml" 1.0e300 0.5
 step "$work/step.yaml" 0.02 1.5
 sed 's/stiffness_translational: 3000.0/stiffness_translational: 9.0e5/' \
   "$source/config/sim/cartesian_impedance.yaml" >"$work/stiff.yaml"
+# The same with the gain bound off: what stops such gains then is the stability guard.
+sed 's/command_timeout_s: 0.5/command_timeout_s: 0.5\n    validation: {max_wn_period: 0.0}/' \
+  "$work/stiff.yaml" >"$work/stiff_unbounded.yaml"
 sed 's/stiffness_translational: 3000.0/stiffness_translational: 1.0e9/' \
   "$source/config/sim/cartesian_impedance.yaml" >"$work/absurd.yaml"
 failures=0
@@ -35,11 +38,14 @@ run 1 "TARGET NOT REACHED: the task's last command was refused (pose_jump" \
   --robot fr3 --task "$work/far.yaml" --out "$work/far"
 run 1 "TARGET NOT REACHED: the task's last command was refused (pose_jump: target is 1e+300 m" \
   --robot fr3 --task "$work/huge.yaml" --out "$work/huge"
-run 1 "FAULT: stability guard: " --config "$work/stiff.yaml" --task "$work/step.yaml" --out "$work/stiff"
+run 2 "stiffness_translational 9e+05 N/m is above what the arm renders stably, 3.18e+05 N/m" \
+  --config "$work/stiff.yaml" --task "$work/step.yaml" --out "$work/stiff"
+run 1 "FAULT: stability guard: " --config "$work/stiff_unbounded.yaml" --task "$work/step.yaml" \
+  --out "$work/stiff_unbounded"
 run 2 "stiffness_translational has an entry of 1000000000 N/m, above the limit of 1000000 N/m" \
   --config "$work/absurd.yaml" --task "$work/step.yaml" --out "$work/absurd"
 run 0 "faults                0" --robot fr3 --task "$work/step.yaml" --out "$work/normal"
 if [ "$failures" -ne 0 ]; then
   exit 1
 fi
-echo "ok: refused targets and a runaway fail the run; absurd gains do not run"
+echo "ok: refused targets and a runaway fail the run; absurd or unrenderable gains do not run"

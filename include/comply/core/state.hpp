@@ -51,6 +51,8 @@ struct MeasuredPose {
   /// The controller's clock at that cycle [s since activation]: where the intake places a
   /// chunk's waypoints on the cycle's time.
   double time_s = 0.0;
+  /// [s] the period that cycle ran at (1 ms until one ran): what gains are checked against.
+  double period_s = 0.001;
 };
 
 }  // namespace comply

@@ -61,6 +61,8 @@ struct ValidationConfig {
   double max_joint_jump_rad = 0.50;        ///< joint target vs measured position
   double gain_tolerance = 1e-9;            ///< symmetry / PSD tolerance, relative
   double max_stamp_lead_s = 1.0;           ///< a command stamp ahead of the host's clock [s]
+  /// The largest w_n T a gain may give on the arm's lightest inertia (gain_bound.hpp); 0: none.
+  double max_wn_period = 0.35;
 };
 
 /// Rate limits on the gains the law sees (gain_ramps.*): a step in a command becomes a ramp. Each

@@ -17,6 +17,7 @@
 #include "comply/model/model.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/config.hpp"
+#include "comply/pipeline/gain_bound.hpp"
 #include "comply/plugin/loader.hpp"
 
 namespace comply::pipeline {
@@ -78,6 +79,8 @@ struct ResolvedController {
   int command_kind = 0;  ///< COMPLY_COMMAND_JOINT or COMPLY_COMMAND_CARTESIAN (the plugin's)
   int dof = 0;
   CycleParameters parameters;
+  /// The gains the arm renders stably (gain_bound.hpp): the intake refuses commands above them.
+  GainBound gain_bound;
 
   [[nodiscard]] bool cartesian() const noexcept;
 };

@@ -1,0 +1,56 @@
+#pragma once
+// The gains an arm renders stably at its control period. A spring K with damping D on an inertia
+// m, sampled every T with one period between the sample and the torque (a real driver's delay),
+// is stable only while w_n T stays below 0.43 when critically damped (w_n = sqrt(K/m); the
+// z-domain poles of the sampled loop, docs/safety.md) and D T / m below 1. Beyond that a command
+// inside every fixed limit (1e6 N/m) rings up until the joints saturate.
+//
+// comply bounds each gain by the arm's lightest inertia along it, found once per controller over
+// the workspace (the rotor inertias the robot declares included), with w_n T <= c, c =
+// validation.max_wn_period (0.35, a 20 % margin):
+//
+//   stiffness               K <= m (c / T)^2          (its stiffest axis, the largest eigenvalue)
+//   damping (absolute)      D <= 2 c m / T            (what critical damping needs at that K)
+//   damping (ratio)         zeta sqrt(K / m) T <= c
+//
+// with m the lightest apparent mass at the TCP for the translational blocks, the lightest
+// apparent rotational inertia for the rotational ones, and each joint's lightest inertia for
+// joint gains and the nullspace's. A command above a bound is refused (invalid_gains) with the
+// numbers. Torque output only: a joint_pd drive renders its gains at its own rate, and an
+// admittance law drives a virtual arm of its own inertia.
+
+#include <string>
+
+#include "comply/core/capacity.hpp"
+#include "comply/core/commands.hpp"
+#include "comply/model/model.hpp"
+#include "comply/pipeline/command_validation.hpp"
+
+namespace comply::pipeline {
+
+struct GainBound {
+  /// [kg] lightest apparent mass at the TCP over the workspace; 0: no bound.
+  double translational_mass_kg = 0.0;
+  /// [kg m^2] lightest apparent rotational inertia at the TCP; 0: no bound.
+  double rotational_inertia_kg_m2 = 0.0;
+  /// [kg m^2 | kg] each joint's lightest inertia (the others free to move); empty: no bound.
+  JointVector joint_inertia;
+  double max_wn_period = 0.35;  ///< c above
+  std::string robot;            ///< named in the messages
+
+  [[nodiscard]] bool enabled() const noexcept { return joint_inertia.size() > 0; }
+};
+
+/// The lightest inertias of `model` (plus the diagonal `armature`, in the model's joint order;
+/// empty for none) over `samples` configurations drawn uniformly within the joint limits (fixed
+/// seed) and the middle of the limits.
+GainBound lightestInertias(const model::Model& model, const JointVector& armature,
+                           int samples = 2000);
+
+/// The command's gains against `bound` at control period `period_s`: accepted, or invalid_gains
+/// naming the field, the value, the bound and what it comes from. Only the groups the command
+/// sets are checked; a ratio is checked against the stiffness the command sets with it.
+Verdict checkRenderable(const CartesianCommand& command, const GainBound& bound, double period_s);
+Verdict checkRenderable(const JointCommand& command, const GainBound& bound, double period_s);
+
+}  // namespace comply::pipeline
