@@ -16,7 +16,7 @@ packages=(
   libegl-dev libegl1 libegl-mesa0 libgl1-mesa-dri libpng-dev libglfw3-dev
   python3-matplotlib
   nlohmann-json3-dev libcli11-dev
-  cyclonedds-dev cyclonedds-tools
+  cyclonedds-dev cyclonedds-tools openssl
   pybind11-dev python3-numpy
   libzstd-dev python3-zstandard
   octave

@@ -46,9 +46,7 @@ void printDiagnostics(const transport::DiagnosticsMessage& d, bool json, std::os
 }  // namespace
 
 int echoCommand(const EchoOptions& options, std::ostream& out, std::ostream& /*err*/) {
-  transport::Participant participant(
-      {options.client.domain_id,
-       options.client.network == "all" ? transport::Network::kAll : transport::Network::kLoopback});
+  transport::Participant participant(participantOptions(options.client));
   transport::Reader<transport::ControllerStateMessage> state(participant, options.client.name);
   transport::Reader<transport::DiagnosticsMessage> diagnostics(participant, options.client.name);
   transport::WaitSet waitset(participant);

@@ -23,6 +23,9 @@ void addClientOptions(CLI::App* command, ClientOptions& client) {
   command->add_option("--timeout", client.timeout_s, "seconds to find the host / an outcome")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  command->add_option("--security", client.security,
+                      "DDS Security: this client's enclave folder of a keystore "
+                      "(scripts/create-keystore.sh; docs/live-control.md)");
 }
 
 }  // namespace
@@ -64,6 +67,9 @@ LiveCommands addLiveCommands(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"loopback", "all"}));
   run_command->add_option("--name", run->name, "topics /<name>/...")->capture_default_str();
+  run_command->add_option("--security", run->security,
+                          "DDS Security: the host's enclave folder of a keystore "
+                          "(scripts/create-keystore.sh; docs/live-control.md)");
   run_command->add_option("--priority", run->priority, "SCHED_FIFO priority (0: normal)")
       ->capture_default_str()
       ->check(CLI::Range(0, 99));

@@ -25,11 +25,6 @@ namespace {
 
 using transport::Participant;
 
-transport::ParticipantOptions participantOptions(const ClientOptions& client) {
-  return {client.domain_id,
-          client.network == "all" ? transport::Network::kAll : transport::Network::kLoopback};
-}
-
 /// The host's first state message: its command kind and joints. Throws when none arrives.
 transport::ControllerStateMessage hostState(Participant& participant, const ClientOptions& client) {
   transport::Reader<transport::ControllerStateMessage> reader(participant, client.name);
@@ -277,6 +272,13 @@ int sendRequest(Participant& participant, const SendOptions& options, std::ostre
 }
 
 }  // namespace
+
+transport::ParticipantOptions participantOptions(const ClientOptions& client) {
+  return {
+      .domain_id = client.domain_id,
+      .network = client.network == "all" ? transport::Network::kAll : transport::Network::kLoopback,
+      .security = client.security};
+}
 
 int sendCommand(const SendOptions& options, std::ostream& out, std::ostream& err) {
   const int given = (options.json.empty() ? 0 : 1) + (options.file.empty() ? 0 : 1) +

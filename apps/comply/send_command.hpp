@@ -5,6 +5,8 @@
 #include <iosfwd>
 #include <string>
 
+#include "comply/transport/participant.hpp"
+
 namespace comply::app {
 
 struct ClientOptions {
@@ -12,7 +14,11 @@ struct ClientOptions {
   std::string network = "loopback";
   std::string name = "comply";
   double timeout_s = 5.0;  ///< to find the host, and for each outcome
+  std::string security;    ///< DDS Security's enclave folder (transport/participant.hpp)
 };
+
+/// The DDS participant a client (send, echo) uses.
+transport::ParticipantOptions participantOptions(const ClientOptions& client);
 
 struct SendOptions {
   ClientOptions client;

@@ -24,8 +24,12 @@ Eigen::Vector4d quaternionOf(const Eigen::Matrix3d& rotation) {
 }
 
 constexpr const char* kClientDoc =
-    "Client(name='comply', domain=0, network='loopback', timeout=10.0, record=None): a "
-    "connection to the `comply run` host `name` on DDS `domain`.\n\n"
+    "Client(name='comply', domain=0, network='loopback', timeout=10.0, record=None, "
+    "security=None): a connection to the `comply run` host `name` on DDS `domain`.\n\n"
+    "security='keystore/enclaves/comply/client' turns DDS Security on with that enclave of a "
+    "keystore (scripts/create-keystore.sh, SROS2's layout): the host must run with "
+    "--security and a keystore of the same CA. A process's participants on one domain are all "
+    "secure or all not.\n\n"
     "record='path.mcap' records what the client sends (commands, requests and the discovery "
     "probe, a command with no field group, logged at their stamps) and every state and "
     "diagnostics message it takes (logged when taken) on /<name>/cartesian_command, "
@@ -67,9 +71,11 @@ PYBIND11_MODULE(_comply, m) {
 
   py::class_<Client>(m, "Client", kClientDoc)
       .def(py::init<const std::string&, int, const std::string&, double,
+                    const std::optional<std::filesystem::path>&,
                     const std::optional<std::filesystem::path>&>(),
            py::arg("name") = "comply", py::arg("domain") = 0, py::arg("network") = "loopback",
-           py::arg("timeout") = 10.0, py::kw_only(), py::arg("record") = py::none())
+           py::arg("timeout") = 10.0, py::kw_only(), py::arg("record") = py::none(),
+           py::arg("security") = py::none())
       .def("send_cartesian", &Client::sendCartesian,
            "Send a Cartesian command by schema keywords; returns its stamp [ns]. Waits while "
            "the host is behind; RuntimeError when it acknowledged nothing for 0.1 s")

@@ -45,10 +45,13 @@ void recordTaken(ClientRecording& recording,
 }  // namespace
 
 Client::Client(const std::string& name, int domain, const std::string& network, double timeout_s,
-               const std::optional<std::filesystem::path>& record)
+               const std::optional<std::filesystem::path>& record,
+               const std::optional<std::filesystem::path>& security)
     : name_(name),
-      participant_(
-          {domain, network == "all" ? transport::Network::kAll : transport::Network::kLoopback}),
+      participant_({.domain_id = domain,
+                    .network = network == "all" ? transport::Network::kAll
+                                                : transport::Network::kLoopback,
+                    .security = security.value_or(std::filesystem::path())}),
       // A sender faster than the host waits for room instead of losing its oldest command.
       cartesian_writer_(participant_, name, transport::kKeepAll),
       joint_writer_(participant_, name, transport::kKeepAll),

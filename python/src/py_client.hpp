@@ -30,8 +30,10 @@ namespace py = pybind11;
 class Client {
  public:
   /// `record`: the MCAP file of what the client sends and sees (none: not recorded).
+  /// `security`: DDS Security's enclave folder (transport/participant.hpp; none: off).
   Client(const std::string& name, int domain, const std::string& network, double timeout_s,
-         const std::optional<std::filesystem::path>& record);
+         const std::optional<std::filesystem::path>& record,
+         const std::optional<std::filesystem::path>& security);
 
   /// Schema keywords (position=..., stiffness_translational=..., task_frame=...); the stamp [ns]
   /// that identifies the command in outcome().

@@ -25,7 +25,7 @@ class DdsHostTransport final : public HostTransport {
       : options_(options),
         participant_({options.domain_id,
                       options.network == "all" ? Network::kAll : Network::kLoopback,
-                      options.receive_priority}),
+                      options.receive_priority, options.security}),
         cartesian_(participant_, options.name, kCommandDepth),
         joint_(participant_, options.name, kCommandDepth),
         cartesian_chunks_(participant_, options.name, kCommandDepth),
@@ -80,7 +80,9 @@ class DdsHostTransport final : public HostTransport {
   bool flush(double timeout_s) override { return diagnostics_.flush(timeout_s); }
   [[nodiscard]] std::string describe() const override {
     return "topics rt/" + options_.name + "/* on domain " + std::to_string(options_.domain_id) +
-           " (" + options_.network + ")";
+           " (" + options_.network +
+           (options_.security.empty() ? "" : ", DDS Security as " + options_.security.string()) +
+           ")";
   }
   [[nodiscard]] std::uint64_t malformedSamples() const override { return malformed_log_.total(); }
 

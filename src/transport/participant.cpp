@@ -3,7 +3,10 @@
 #include "comply/transport/participant.hpp"
 
 #include <dds/dds.h>
+#include <dlfcn.h>
 
+#include <array>
+#include <filesystem>
 #include <map>
 #include <mutex>
 
@@ -46,6 +49,66 @@ void releaseDomain(int domain_id) {
   }
 }
 
+/// A security plug-in of CycloneDDS: Debian installs them beside libddsc, in libddsc0debian/;
+/// elsewhere CycloneDDS finds them by name on the library path.
+std::string securityLibrary(const std::string& name) {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&dds_create_participant), &info) != 0 &&
+      info.dli_fname != nullptr) {
+    const std::filesystem::path folder = std::filesystem::path(info.dli_fname).parent_path();
+    for (const auto& candidate :
+         {folder / "libddsc0debian" / ("lib" + name + ".so"), folder / ("lib" + name + ".so")}) {
+      std::error_code error;
+      if (std::filesystem::is_regular_file(candidate, error)) {
+        return candidate.string();
+      }
+    }
+  }
+  return name;
+}
+
+/// The participant QoS that turns DDS Security on with the enclave `folder`'s files. Throws
+/// TransportError naming a file that is not there.
+dds_qos_t* securityQos(const std::filesystem::path& folder) {
+  constexpr std::array<const char*, 6> kFiles = {
+      "identity_ca.cert.pem",    "cert.pem",       "key.pem",
+      "permissions_ca.cert.pem", "governance.p7s", "permissions.p7s"};
+  for (const char* file : kFiles) {
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(folder / file, error)) {
+      throw TransportError("DDS Security: " + (folder / file).string() +
+                           " is not there: --security takes an enclave folder of a keystore "
+                           "(scripts/create-keystore.sh KEYSTORE /comply/host makes "
+                           "KEYSTORE/enclaves/comply/host)");
+    }
+  }
+  const auto uri = [&folder](const char* file) {
+    return "file:" + std::filesystem::absolute(folder / file).string();
+  };
+  dds_qos_t* qos = dds_create_qos();
+  const std::array<std::pair<const char*, std::string>, 15> properties = {{
+      {"dds.sec.auth.library.path", securityLibrary("dds_security_auth")},
+      {"dds.sec.auth.library.init", "init_authentication"},
+      {"dds.sec.auth.library.finalize", "finalize_authentication"},
+      {"dds.sec.crypto.library.path", securityLibrary("dds_security_crypto")},
+      {"dds.sec.crypto.library.init", "init_crypto"},
+      {"dds.sec.crypto.library.finalize", "finalize_crypto"},
+      {"dds.sec.access.library.path", securityLibrary("dds_security_ac")},
+      {"dds.sec.access.library.init", "init_access_control"},
+      {"dds.sec.access.library.finalize", "finalize_access_control"},
+      {"dds.sec.auth.identity_ca", uri("identity_ca.cert.pem")},
+      {"dds.sec.auth.identity_certificate", uri("cert.pem")},
+      {"dds.sec.auth.private_key", uri("key.pem")},
+      {"dds.sec.access.permissions_ca", uri("permissions_ca.cert.pem")},
+      {"dds.sec.access.governance", uri("governance.p7s")},
+      {"dds.sec.access.permissions", uri("permissions.p7s")},
+  }};
+  for (const auto& [name, value] : properties) {
+    dds_qset_prop(qos, name, value.c_str());
+  }
+  return qos;
+}
+
 }  // namespace
 
 std::string cycloneConfig(const ParticipantOptions& options) {
@@ -79,13 +142,21 @@ Participant::Participant(const ParticipantOptions& options) : options_(options) 
     throw TransportError("DDS domain id " + std::to_string(options.domain_id) +
                          " out of range 0..232");
   }
+  dds_qos_t* qos = options.security.empty() ? nullptr : securityQos(options.security);
   acquireDomain(options);
   participant_ =
-      dds_create_participant(static_cast<dds_domainid_t>(options.domain_id), nullptr, nullptr);
+      dds_create_participant(static_cast<dds_domainid_t>(options.domain_id), qos, nullptr);
+  if (qos != nullptr) {
+    dds_delete_qos(qos);
+  }
   if (participant_ < 0) {
     releaseDomain(options.domain_id);
     throw TransportError(std::string("DDS: cannot create a participant on domain ") +
-                         std::to_string(options.domain_id) + ": " + dds_strretcode(participant_));
+                         std::to_string(options.domain_id) + ": " + dds_strretcode(participant_) +
+                         (options.security.empty()
+                              ? ""
+                              : " (DDS Security with " + options.security.string() +
+                                    ": CycloneDDS's log above says which file it refused)"));
   }
 }
 

@@ -132,8 +132,9 @@ inline SendResult sendFile(int domain, const std::string& name, const std::strin
 /// The client side: state and diagnostics readers and the outcome of every command by stamp.
 class Client {
  public:
-  Client(int domain, const std::string& name)
-      : participant_({.domain_id = domain}),
+  /// `security`: an enclave folder (DDS Security), empty for none.
+  Client(int domain, const std::string& name, const std::filesystem::path& security = {})
+      : participant_({.domain_id = domain, .security = security}),
         state_(participant_, name),
         diagnostics_(participant_, name, 10000) {}
 

@@ -8,12 +8,12 @@ import subprocess
 
 
 @contextlib.contextmanager
-def running_host(cli, source, name):
-    """Yields (host process, domain)."""
+def running_host(cli, source, name, extra=()):
+    """Yields (host process, domain); `extra`: more arguments for `comply run`."""
     domain = random.randint(1, 230)
     config = f"{source}/config/sim/cartesian_impedance.yaml"
     host = subprocess.Popen([cli, "run", "--config", config, "--robot", "fr3", "--sim",
-                             "--domain", str(domain), "--name", name],
+                             "--domain", str(domain), "--name", name, *extra],
                             start_new_session=True)  # a group of its own: it and its transport
     try:
         yield host, domain

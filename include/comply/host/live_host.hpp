@@ -25,6 +25,8 @@ struct LiveHostOptions {
   std::string transport = "dds";  ///< a registered transport (transport/host_transport.hpp)
   int domain_id = 0;
   std::string network = "loopback";
+  /// DDS Security: an enclave folder (transport/participant.hpp); empty: off.
+  std::string security;
   std::string name = "comply";
   int priority = 80;  ///< SCHED_FIFO priority of the control thread; 0: normal scheduling
   /// Wake this long [us] before each cycle, warm the caches and spin to its start

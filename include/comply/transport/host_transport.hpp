@@ -6,6 +6,7 @@
 // the host's list of transports (src/host/live/transports.cpp).
 
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <stdexcept>
@@ -51,6 +52,8 @@ struct HostTransportOptions {
   int domain_id = 0;                 ///< DDS domain (ROS_DOMAIN_ID); others may ignore it
   std::string network = "loopback";  ///< loopback | all
   int receive_priority = 0;          ///< > 0: SCHED_FIFO priority of the receiving threads
+  /// DDS Security's enclave folder (transport/participant.hpp); empty: off. Others may ignore it.
+  std::filesystem::path security{};
 };
 
 class HostTransport {

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <stdexcept>
+#include <filesystem>
 #include <string>
 
 #include "comply/transport/host_transport.hpp"
@@ -27,6 +28,11 @@ struct ParticipantOptions {
   /// > 0: CycloneDDS's receive threads (which deliver samples to readers) run SCHED_FIFO at this
   /// priority, so a real-time host hears commands without waiting for the scheduler.
   int receive_priority = 0;
+  /// DDS Security: an enclave folder of a keystore laid out as ROS 2's SROS2 lays it out
+  /// (cert.pem, key.pem, identity_ca.cert.pem, permissions_ca.cert.pem, governance.p7s,
+  /// permissions.p7s; scripts/create-keystore.sh makes one). The participant then authenticates,
+  /// and talks only to participants its governance and permissions admit. Empty: off.
+  std::filesystem::path security{};
 };
 
 /// The CycloneDDS configuration (XML) for `options`; empty for Network::kAll.

@@ -215,7 +215,8 @@ int runWith(const LiveHostOptions& options,
       options.transport, {.name = options.name,
                           .domain_id = options.domain_id,
                           .network = options.network,
-                          .receive_priority = options.priority > 1 ? options.priority - 1 : 0});
+                          .receive_priority = options.priority > 1 ? options.priority - 1 : 0,
+                          .security = options.security});
 
   const double period_s = 1.0 / options.rate_hz;
   pipeline::CommandGate gate(pipeline::gateOptions(resolved->config, resolved->cartesian()));

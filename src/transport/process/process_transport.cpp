@@ -193,7 +193,9 @@ class ProcessHostTransport final : public HostTransport {
                                            "--network",
                                            options_.network,
                                            "--priority",
-                                           std::to_string(options_.receive_priority)};
+                                           std::to_string(options_.receive_priority),
+                                           "--security",
+                                           options_.security.string()};
     std::vector<char*> argv;
     argv.reserve(args.size() + 1);
     for (const std::string& arg : args) {

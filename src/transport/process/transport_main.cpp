@@ -4,7 +4,7 @@
 // It ends when the host closes the socket (or dies: the kernel then signals it).
 //
 //   comply-transport --fd N --transport dds --name NAME --domain ID --network loopback|all
-//                    --priority P
+//                    --priority P --security ENCLAVE_FOLDER (empty: none)
 
 #include <pthread.h>
 #include <sched.h>
@@ -204,6 +204,7 @@ int main(int argc, char** argv) {
   options.domain_id = std::atoi(args["--domain"].c_str());
   options.network = args.count("--network") != 0 ? args["--network"] : options.network;
   options.receive_priority = std::atoi(args["--priority"].c_str());
+  options.security = args["--security"];
 
   if (options.network == "loopback") {
     comply::transport::process::bindLoopbackOnly();
