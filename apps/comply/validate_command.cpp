@@ -35,12 +35,13 @@ const std::set<std::string> kOutputKeys{"tcp_position", "tcp_orientation", "jaco
 json readJsonFile(const std::string& path) {
   const TextFile file = readTextFile(path);
   if (!file.ok()) {
-    throw ValidateInputError(file.error);
+    throw InputError(InputErrc::kCannotRead, "", "", file.error);
   }
   try {
     return schema::parseJson(file.text, path);
   } catch (const json::parse_error& error) {
-    throw ValidateInputError("'" + path + "' is not valid JSON: " + error.what());
+    throw InputError(InputErrc::kSyntax, "", "",
+                     "'" + path + "' is not valid JSON: " + error.what());
   }
 }
 
@@ -49,12 +50,14 @@ const json& samplesOf(const json& document, const std::string& path) {
   const json& samples =
       document.is_object() && document.contains("samples") ? document.at("samples") : document;
   if (!samples.is_array()) {
-    throw ValidateInputError("'" + path + "' must hold a list of samples or {\"samples\": [...]}");
+    throw InputError(InputErrc::kWrongType, "", "",
+                     "'" + path + "' must hold a list of samples or {\"samples\": [...]}");
   }
   if (samples.size() > kMaxValidateSamples) {
-    throw ValidateInputError("'" + path + "' holds " + std::to_string(samples.size()) +
-                             " samples, more than " + std::to_string(kMaxValidateSamples) +
-                             " (split it)");
+    throw InputError(InputErrc::kWrongSize, "", "",
+                     "'" + path + "' holds " + std::to_string(samples.size()) +
+                         " samples, more than " + std::to_string(kMaxValidateSamples) +
+                         " (split it)");
   }
   return samples;
 }
@@ -65,11 +68,13 @@ JointVector jointVector(const json& sample, const std::string& key, int dof,
   try {
     values = sample.at(key).get<std::vector<double>>();
   } catch (const json::exception&) {
-    throw ValidateInputError(where + ": '" + key + "' must be a list of numbers");
+    throw InputError(InputErrc::kWrongType, "", "",
+                     where + ": '" + key + "' must be a list of numbers");
   }
   if (static_cast<int>(values.size()) != dof) {
-    throw ValidateInputError(where + ": '" + key + "' has " + std::to_string(values.size()) +
-                             " entries, the robot has " + std::to_string(dof) + " joints");
+    throw InputError(InputErrc::kWrongSize, "", "",
+                     where + ": '" + key + "' has " + std::to_string(values.size()) +
+                         " entries, the robot has " + std::to_string(dof) + " joints");
   }
   JointVector result(dof);
   for (int i = 0; i < dof; ++i) {
@@ -85,17 +90,18 @@ std::vector<ValidateSample> readSamples(const std::string& path, int dof) {
   for (const json& entry : samplesOf(document, path)) {
     const std::string where = path + ": sample " + std::to_string(index++);
     if (!entry.is_object()) {
-      throw ValidateInputError(where + " must be an object");
+      throw InputError(InputErrc::kWrongType, "", "", where + " must be an object");
     }
     for (const auto& [key, value] : entry.items()) {
       if (key != "q" && key != "dq" && key != "effort" && key != "command") {
-        throw ValidateInputError(where + ": unknown field '" + key +
-                                 "' (known: q, dq, effort, command)");
+        throw InputError(InputErrc::kUnknownKey, "", "",
+                         where + ": unknown field '" + key + "' (known: q, dq, effort, command)");
       }
     }
     for (const char* required : {"q", "dq"}) {
       if (!entry.contains(required)) {
-        throw ValidateInputError(where + ": missing field '" + std::string(required) + "'");
+        throw InputError(InputErrc::kMissingKey, "", "",
+                         where + ": missing field '" + std::string(required) + "'");
       }
     }
     ValidateSample sample;
@@ -110,7 +116,7 @@ std::vector<ValidateSample> readSamples(const std::string& path, int dof) {
     samples.push_back(std::move(sample));
   }
   if (samples.empty()) {
-    throw ValidateInputError("'" + path + "' holds no samples");
+    throw InputError(InputErrc::kWrongSize, "", "", "'" + path + "' holds no samples");
   }
   return samples;
 }
@@ -162,7 +168,7 @@ void runLaw(const pipeline::ResolvedController& resolved,
     const auto q = std::span<const double>(sample.state.position.data(), dof);
     const auto dq = std::span<const double>(sample.state.velocity.data(), dof);
     if (model::update(model, data, q, dq, kAllModelQuantities) != model::UpdateStatus::kOk) {
-      throw ValidateInputError(where + ": q or dq holds NaN or infinity");
+      throw InputError(InputErrc::kOutOfRange, "", "", where + ": q or dq holds NaN or infinity");
     }
     out["tcp_position"] = {data.tip_position.x(), data.tip_position.y(), data.tip_position.z()};
     out["tcp_orientation"] = {data.tip_orientation.x(), data.tip_orientation.y(),
@@ -200,7 +206,7 @@ std::vector<double> flatten(const json& value, const std::string& where) {
     return {value.get<double>()};
   }
   if (!value.is_array()) {
-    throw ValidateInputError(where + " must be a number or a list");
+    throw InputError(InputErrc::kWrongType, "", "", where + " must be a number or a list");
   }
   for (const json& entry : value) {
     const std::vector<double> inner = flatten(entry, where);
@@ -244,8 +250,9 @@ std::map<std::string, double> compareOutputs(const json& actual, const json& exp
   const json& actual_samples = samplesOf(actual, "output");
   const json& expected_samples = samplesOf(expected, "expected");
   if (actual_samples.size() != expected_samples.size()) {
-    throw ValidateInputError("expected file has " + std::to_string(expected_samples.size()) +
-                             " samples, the inputs " + std::to_string(actual_samples.size()));
+    throw InputError(InputErrc::kInconsistent, "", "",
+                     "expected file has " + std::to_string(expected_samples.size()) +
+                         " samples, the inputs " + std::to_string(actual_samples.size()));
   }
   std::map<std::string, double> max_error;
   for (std::size_t i = 0; i < expected_samples.size(); ++i) {
@@ -259,17 +266,20 @@ std::map<std::string, double> compareOutputs(const json& actual, const json& exp
         for (const std::string& name : kOutputKeys) {
           known += (known.empty() ? "" : ", ") + name;
         }
-        throw ValidateInputError(where + ": unknown output '" + key + "' (known: " + known + ")");
+        throw InputError(InputErrc::kUnknownKey, "", "",
+                         where + ": unknown output '" + key + "' (known: " + known + ")");
       }
       if (!actual_samples[i].contains(key)) {
-        throw ValidateInputError(where + ": '" + key + "' was not produced for this sample" +
-                                 (key == "wrapper_torque" ? " (run with --wrapper)" : ""));
+        throw InputError(InputErrc::kInconsistent, "", "",
+                         where + ": '" + key + "' was not produced for this sample" +
+                             (key == "wrapper_torque" ? " (run with --wrapper)" : ""));
       }
       const std::vector<double> want = flatten(value, where + "." + key);
       const std::vector<double> got = flatten(actual_samples[i].at(key), key);
       if (want.size() != got.size()) {
-        throw ValidateInputError(where + ": '" + key + "' has " + std::to_string(want.size()) +
-                                 " numbers, the output " + std::to_string(got.size()));
+        throw InputError(InputErrc::kInconsistent, "", "",
+                         where + ": '" + key + "' has " + std::to_string(want.size()) +
+                             " numbers, the output " + std::to_string(got.size()));
       }
       double error = 0.0;
       double error_flipped = 0.0;  // q and -q are the same orientation

@@ -10,6 +10,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "comply/core/input_error.hpp"
+
 namespace comply::app {
 
 /// Most samples one validate run takes: each becomes a few kilobytes of output in memory.
@@ -27,17 +29,12 @@ struct ValidateOptions {
   bool wrapper = false;
 };
 
-/// Thrown for unusable input files; the message names the file, sample and field.
-class ValidateInputError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-/// Runs every sample and returns the output document.
+/// Runs every sample and returns the output document. Throws InputError for an unusable input
+/// file, the message naming the file, sample and field.
 nlohmann::json runValidation(const ValidateOptions& options);
 
 /// Max absolute error per output key between `actual` and `expected` documents (only keys the
-/// expected samples hold). Throws ValidateInputError on a mismatch in shape or an unknown key.
+/// expected samples hold). Throws InputError on a mismatch in shape or an unknown key.
 std::map<std::string, double> compareOutputs(const nlohmann::json& actual,
                                              const nlohmann::json& expected);
 

@@ -23,18 +23,14 @@ struct ValidateSample {
   nlohmann::json command = nlohmann::json::object();
 };
 
-/// Parses a sample's command on top of `base`; a malformed command is an input error.
+/// Parses a sample's command on top of `base`; a malformed command throws InputError.
 template <typename Command>
 Command parseSampleCommand(const nlohmann::json& object, int dof, const Command& base,
                            const std::string& where) {
-  try {
-    schema::ReadOptions<Command> options;
-    options.base = base;
-    options.source = where + ": command";
-    return schema::fromJson(object, dof, options).command;
-  } catch (const InputError& error) {
-    throw ValidateInputError(error.what());
-  }
+  schema::ReadOptions<Command> options;
+  options.base = base;
+  options.source = where + ": command";
+  return schema::fromJson(object, dof, options).command;
 }
 
 /// The samples as consecutive cycles of one wrapper, activated at the first sample, run by the

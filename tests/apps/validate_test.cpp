@@ -161,7 +161,7 @@ TEST_F(ValidateTest, UnknownOutputInExpectedIsAnError) {
       options("cartesian_impedance", writeJson("u.json", json::array({homeSample()}))));
   json expected = output;
   expected["samples"][0]["torques"] = {1.0};
-  EXPECT_THROW(compareOutputs(output, expected), ValidateInputError);
+  EXPECT_THROW(compareOutputs(output, expected), InputError);
 }
 
 void expectInputError(const ValidateOptions& validate, const std::string& needle) {
