@@ -97,8 +97,11 @@ GainBound lightestInertias(const model::Model& model, const JointVector& armatur
   JointVector lower(dof);
   JointVector upper(dof);
   for (int i = 0; i < dof; ++i) {
-    lower[i] = model.limits(i).lower;
-    upper[i] = model.limits(i).upper;
+    // A continuous joint (no limits) turns once: its configurations are all within a turn.
+    const bool bounded =
+        std::isfinite(model.limits(i).lower) && std::isfinite(model.limits(i).upper);
+    lower[i] = bounded ? model.limits(i).lower : -M_PI;
+    upper[i] = bounded ? model.limits(i).upper : M_PI;
   }
   model::Data data(model);
   std::mt19937 random(20261126);
@@ -159,22 +162,24 @@ Verdict checkRenderable(const CartesianCommand& command, const GainBound& bound,
     verdicts.push_back(checkStiffness("stiffness_rotational", k_rotational, "N m/rad", inertia,
                                       kTcpInertia, bound, period_s));
   }
-  if (has(command.fields, CommandField::kDamping)) {
-    if (command.damping_mode == DampingMode::kAbsolute) {
-      verdicts.push_back(checkDamping("damping_translational",
-                                      largestEigenvalue(command.damping_translational), "N s/m", m,
-                                      kTcpMass, bound, period_s));
-      verdicts.push_back(checkDamping("damping_rotational",
-                                      largestEigenvalue(command.damping_rotational), "N m s/rad",
-                                      inertia, kTcpInertia, bound, period_s));
-    } else if (stiffness) {
-      verdicts.push_back(checkRatio("damping_ratio (translational)",
-                                    command.damping_ratio.head<3>().maxCoeff(), k_translational, m,
-                                    bound, period_s));
-      verdicts.push_back(checkRatio("damping_ratio (rotational)",
-                                    command.damping_ratio.tail<3>().maxCoeff(), k_rotational,
-                                    inertia, bound, period_s));
-    }
+  const bool damping = has(command.fields, CommandField::kDamping);
+  if (damping && command.damping_mode == DampingMode::kAbsolute) {
+    verdicts.push_back(checkDamping("damping_translational",
+                                    largestEigenvalue(command.damping_translational), "N s/m", m,
+                                    kTcpMass, bound, period_s));
+    verdicts.push_back(checkDamping("damping_rotational",
+                                    largestEigenvalue(command.damping_rotational), "N m s/rad",
+                                    inertia, kTcpInertia, bound, period_s));
+  }
+  // A ratio acts with the stiffness in force: checked when either of them changes (the caller
+  // merges the command into the gains in force).
+  if ((stiffness || damping) && command.damping_mode == DampingMode::kRatio) {
+    verdicts.push_back(checkRatio("damping_ratio (translational)",
+                                  command.damping_ratio.head<3>().maxCoeff(), k_translational, m,
+                                  bound, period_s));
+    verdicts.push_back(checkRatio("damping_ratio (rotational)",
+                                  command.damping_ratio.tail<3>().maxCoeff(), k_rotational, inertia,
+                                  bound, period_s));
   }
   if (has(command.fields, CommandField::kNullspace)) {
     for (Eigen::Index i = 0; i < command.nullspace_stiffness.size(); ++i) {

@@ -91,8 +91,9 @@ Verdict Wrapper<Command>::submit(const Command& command) {
   checked.stamp_s = last_stamp_s_;
   Verdict verdict =
       validateAndMerge(command, controller_.resolved().config.validation, dof, measured, checked);
+  Command gains = Command::zero(dof);
   if (verdict.accepted) {
-    verdict = checkRenderable(command, controller_.resolved().gain_bound, measured.period_s);
+    verdict = checkGains(command, command.fields, intakeGains(), gains);
   }
   if (verdict.accepted) {
     IntakeMessage message;
@@ -100,9 +101,32 @@ Verdict Wrapper<Command>::submit(const Command& command) {
     std::get<BusOf<Command>>(message.command).fields = static_cast<std::uint32_t>(command.fields);
     if (!controller_.enqueue(message)) {
       verdict = queueFull(commandsWaiting());
+    } else {
+      intake_gains_ = gains;
     }
   }
   return account(std::move(verdict), command.stamp_s);
+}
+
+template <typename Command>
+Command Wrapper<Command>::intakeGains() {
+  if (!intake_gains_) {
+    intake_gains_ = schema::fromBus(std::get<BusOf<Command>>(controller_.commandInForce()));
+  }
+  return *intake_gains_;
+}
+
+template <typename Command>
+Verdict Wrapper<Command>::checkGains(const Command& command, CommandField fields,
+                                     const Command& base, Command& candidate) {
+  candidate = base;
+  Command incoming = command;
+  incoming.fields = fields;
+  schema::merge(candidate, incoming);
+  Command checked = candidate;
+  checked.fields = fields;
+  return checkRenderable(checked, controller_.resolved().gain_bound,
+                         controller_.measuredPose().period_s);
 }
 
 template <typename Command>
@@ -113,13 +137,14 @@ Verdict Wrapper<Command>::submitChunk(const Chunk<Command>& chunk, double host_t
   Chunk<Command> checked = chunk;
   Verdict verdict = validateChunk(checked, controller_.resolved().config.validation, dof, measured,
                                   last_stamp_s_, host_time_s);
+  // Each waypoint's gains as the chunk reaches them, merged into what is in force before it.
+  Command gains = intakeGains();
   for (const ChunkWaypoint<Command>& waypoint : checked.waypoints) {
     if (!verdict.accepted) {
       break;
     }
-    Command gains = waypoint.command;
-    gains.fields = checked.fields;
-    verdict = checkRenderable(gains, controller_.resolved().gain_bound, measured.period_s);
+    const Command before = gains;
+    verdict = checkGains(waypoint.command, checked.fields, before, gains);
   }
   if (verdict.accepted) {
     // The last cycle ran at controller time measured.time_s; the host's clock reads host_time_s
@@ -137,6 +162,8 @@ Verdict Wrapper<Command>::submitChunk(const Chunk<Command>& chunk, double host_t
     } else if (!controller_.enqueue(message)) {
       chunks.release(message.chunk_slot);
       verdict = queueFull(commandsWaiting());
+    } else {
+      intake_gains_ = gains;
     }
   }
   return account(std::move(verdict), chunk.stamp_s);

@@ -61,6 +61,13 @@ class DdsHostTransport final : public HostTransport {
       set = set && dds_set_listener(reader->handle(), listener) == DDS_RETCODE_OK;
     }
     dds_delete_listener(listener);
+    if (!set) {
+      // All or none: a caller told "no" goes on with receive() alone, which must not race a
+      // listener left on some of the readers.
+      for (const Endpoint* reader : readers()) {
+        dds_set_listener(reader->handle(), nullptr);
+      }
+    }
     return set;
   }
 

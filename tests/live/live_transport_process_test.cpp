@@ -375,6 +375,13 @@ TEST_F(TransportProcessTest, AKilledOrHungTransportProcessIsStartedAgain) {
     EXPECT_EQ(host_->wait(0ms), -1);
   }
   EXPECT_NE(readText(log_).find("stopped answering"), std::string::npos) << readText(log_);
+  // A process started again by the host's reader thread outlives that thread: the shutdown
+  // flushes through it, with no end reported, and the summary counts both restarts.
+  const int ends = endsReported();
+  host_->signal(SIGTERM);
+  EXPECT_EQ(host_->wait(10s), 0);
+  EXPECT_EQ(endsReported(), ends) << readText(log_);
+  EXPECT_NE(readText(log_).find("transport restarts 2"), std::string::npos) << readText(log_);
 }
 
 }  // namespace

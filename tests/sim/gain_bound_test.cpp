@@ -105,6 +105,28 @@ TEST_P(GainBoundOn, AStiffnessAboveTheBoundIsRefusedWithItsNumbers) {
   EXPECT_FALSE(rig.wrapper.submit(heavily_damped).accepted);
 }
 
+TEST_P(GainBoundOn, ARatioIsCheckedWithTheStiffnessItActsWith) {
+  Rig rig(simCartesianConfig(GetParam()));
+  rig.cycle();
+  const double bound = translationalBound(rig.wrapper.controller().resolved().gain_bound);
+  ASSERT_TRUE(rig.wrapper.submit(rig.stiffness(0.25 * bound)).accepted);
+  // A damping ratio sent alone meets the stiffness in force: zeta sqrt(K/m) T = 10 x 0.175.
+  CartesianCommand ratio_alone = CartesianCommand::zero(rig.wrapper.dof());
+  ratio_alone.stamp_s = ++rig.stamp_s;
+  ratio_alone.fields = CommandField::kDamping;
+  ratio_alone.damping_mode = DampingMode::kRatio;
+  ratio_alone.damping_ratio.setConstant(10.0);
+  const pipeline::Verdict refused = rig.wrapper.submit(ratio_alone);
+  EXPECT_FALSE(refused.accepted);
+  EXPECT_NE(refused.message.find("damping_ratio"), std::string::npos) << refused.message;
+  ratio_alone.damping_ratio.setConstant(1.5);  // 1.5 x 0.175 = 0.26: renderable
+  EXPECT_TRUE(rig.wrapper.submit(ratio_alone).accepted);
+  // And a stiffness sent alone meets the ratio in force: at the bound, a ratio of 1.5 is too much.
+  CartesianCommand stiffness_alone = rig.stiffness(0.99 * bound);
+  stiffness_alone.fields = CommandField::kStiffness;
+  EXPECT_FALSE(rig.wrapper.submit(stiffness_alone).accepted);
+}
+
 TEST_P(GainBoundOn, AConfigurationsInitialStiffnessAboveTheBoundIsRefused) {
   pipeline::WrapperConfig config = simCartesianConfig(GetParam());
   config.initial_cartesian.stiffness_translational = 1e6 * Eigen::Matrix3d::Identity();

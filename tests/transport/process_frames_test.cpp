@@ -73,6 +73,29 @@ TEST(TransportProcessFrames, ASampleFrameCutShortIsRefused) {
   EXPECT_FALSE(readU64(payload.first(7)).has_value());
 }
 
+TEST(TransportProcessFrames, AMessageTooLargeForAFrameTravelsAsMalformed) {
+  // A chunk whose frame_id every waypoint repeats: 64 x 300 kB, more than a frame may hold.
+  Sample<CartesianChunkMessage> sample;
+  sample.message.header = {{1700000000, 5}, std::string(300'000, 'x')};
+  sample.message.chunk.fields = CommandField::kPosition;
+  sample.message.chunk.waypoints.assign(64, {0.1, CartesianCommand::zero(7)});
+  sample.publisher = 9;
+  std::vector<std::uint8_t> scratch;
+  std::vector<std::uint8_t> frame;
+  appendSampleFrame(FrameKind::kCartesianChunk, sample, scratch, frame);
+  ASSERT_LT(frame.size(), 4096U);
+  FrameReader reader;
+  reader.append(frame);
+  const auto read = reader.next();
+  ASSERT_TRUE(read.has_value());
+  Sample<CartesianChunkMessage> received;
+  ASSERT_TRUE(readSampleFrame(read->payload, received));
+  EXPECT_EQ(received.publisher, 9U);
+  EXPECT_EQ(received.message.header.stamp, sample.message.header.stamp);  // still accounted
+  EXPECT_NE(received.malformed.find("more than a comply message can be"), std::string::npos)
+      << received.malformed;
+}
+
 TEST(TransportProcessFrames, ALengthNoFrameCanHaveStopsTheStream) {
   for (const std::uint32_t length : {std::uint32_t{0}, std::uint32_t(kMaxFrameBytes + 1)}) {
     FrameReader reader;

@@ -17,6 +17,7 @@
 
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -103,8 +104,18 @@ class Wrapper final : public hardware::CycleController {
   /// Counts a rejection and returns it; counts an acceptance and moves the stamp floor.
   Verdict account(Verdict verdict, double stamp_s);
 
+  /// The command the intake has let through (the one in force when first asked, then every
+  /// accepted command and chunk merged in): a damping ratio sent alone is checked against the
+  /// stiffness it will act with (gain_bound.hpp). Under intake_mutex_.
+  Command intakeGains();
+  /// Checks the gains of `command` (its groups `fields`) merged into `base`; `candidate`
+  /// receives the merge.
+  Verdict checkGains(const Command& command, CommandField fields, const Command& base,
+                     Command& candidate);
+
   mutable std::mutex intake_mutex_;  // senders and lifecycle calls only, never the cycle
   double last_stamp_s_ = 0.0;
+  std::optional<Command> intake_gains_;
 };
 
 using JointWrapper = Wrapper<JointCommand>;

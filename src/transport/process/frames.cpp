@@ -86,6 +86,20 @@ template <typename Message>
 void appendSampleFrame(FrameKind kind, const Sample<Message>& sample,
                        std::vector<std::uint8_t>& scratch, std::vector<std::uint8_t>& out) {
   encodeCdr(sample.message, scratch);
+  if (scratch.size() + sample.malformed.size() + 64 > kMaxFrameBytes) {
+    // A peer's message too large for a frame (a chunk with a megabyte frame_id in every
+    // waypoint): handed on as malformed, its stamp kept so that it is accounted, rather than
+    // cutting the stream.
+    Sample<Message> refused;
+    refused.publisher = sample.publisher;
+    refused.participant = sample.participant;
+    refused.message.header.stamp = sample.message.header.stamp;
+    refused.malformed = "the message is " + std::to_string(scratch.size() >> 20U) +
+                        " MB, more than a comply message can be (" +
+                        std::to_string(kMaxFrameBytes >> 20U) + " MB)";
+    appendSampleFrame(kind, refused, scratch, out);
+    return;
+  }
   const std::size_t payload = 8 + 8 + 4 + sample.malformed.size() + scratch.size();
   appendHead(kind, payload, out);
   appendRaw(sample.publisher, out);

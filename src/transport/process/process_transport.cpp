@@ -5,6 +5,8 @@
 #include "comply/transport/process_transport.hpp"
 
 #include <poll.h>
+#include <sched.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/eventfd.h>
 #include <sys/socket.h>
@@ -53,7 +55,9 @@ double secondsSince(Clock::time_point then) {
 
 std::string describeEnd(int status) {
   std::ostringstream text;
-  if (WIFSIGNALED(status)) {
+  if (status == -1) {
+    text << "ended (its exit status could not be read)";
+  } else if (WIFSIGNALED(status)) {
     const char* name = strsignal(WTERMSIG(status));
     text << "ended on signal " << WTERMSIG(status) << " (" << (name != nullptr ? name : "?") << ")";
   } else if (WIFEXITED(status)) {
@@ -75,17 +79,22 @@ class ProcessHostTransport final : public HostTransport {
     if (wake_fd_ < 0) {
       throw TransportError(std::string("transport process: eventfd: ") + std::strerror(errno));
     }
-    spawn();
+    try {
+      spawn();
+    } catch (...) {
+      ::close(wake_fd_);
+      throw;
+    }
     // The first start is waited for: an error of the inner transport is the host's start-up error.
     Inbox held;
-    const auto deadline = Clock::now() + std::chrono::duration<double>(process_.start_timeout_s);
-    while (!ready_ && child_pid_ > 0 && Clock::now() < deadline) {
+    while (!ready_ && child_pid_ > 0) {
       readFromChild(held, 0.05, /*report=*/false);
     }
     if (!ready_) {
-      const std::string why = failure_.empty() ? "did not start within " +
-                                                     std::to_string(process_.start_timeout_s) + " s"
-                                               : failure_;
+      const std::string why = !failure_.empty() ? failure_
+                              : !last_end_.empty()
+                                  ? "the transport process " + last_end_ + " before it was ready"
+                                  : "the transport process did not start";
       stopChild();
       ::close(wake_fd_);
       throw TransportError(why);
@@ -208,9 +217,29 @@ class ProcessHostTransport final : public HostTransport {
     // dup2 onto the fixed number clears close-on-exec there (and glibc clears it when the numbers
     // are equal too); every other descriptor of the host stays closed in the child.
     posix_spawn_file_actions_adddup2(&actions, pair[1], kChildSocketFd);
+    // Normal scheduling and signals whatever the spawning thread has (a restart comes from the
+    // host's reader thread, which may run SCHED_FIFO): the process raises its own receiving
+    // threads to options_.receive_priority, and a hung one cannot starve the host that watches it.
+    posix_spawnattr_t attributes;
+    posix_spawnattr_init(&attributes);
+    sigset_t no_signals;
+    sigemptyset(&no_signals);
+    sigset_t default_signals;  // what the host may ignore that the process must not
+    sigemptyset(&default_signals);
+    for (const int signal : {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE, SIGCHLD, SIGALRM}) {
+      sigaddset(&default_signals, signal);
+    }
+    sched_param normal{};
+    posix_spawnattr_setsigmask(&attributes, &no_signals);
+    posix_spawnattr_setsigdefault(&attributes, &default_signals);
+    posix_spawnattr_setschedpolicy(&attributes, SCHED_OTHER);
+    posix_spawnattr_setschedparam(&attributes, &normal);
+    posix_spawnattr_setflags(
+        &attributes, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETSCHEDULER);
     pid_t pid = -1;
     const int error =
-        posix_spawn(&pid, process_.program.c_str(), &actions, nullptr, argv.data(), environ);
+        posix_spawn(&pid, process_.program.c_str(), &actions, &attributes, argv.data(), environ);
+    posix_spawnattr_destroy(&attributes);
     posix_spawn_file_actions_destroy(&actions);
     ::close(pair[1]);
     if (error != 0) {
@@ -276,7 +305,14 @@ class ProcessHostTransport final : public HostTransport {
       endChild("sent a frame comply cannot read", /*kill=*/true, report);
     } else if (ended) {
       endChild("", /*kill=*/false, report);
-    } else if (stuck_.load() || secondsSince(last_heard_) > process_.heartbeat_timeout_s) {
+    } else if (!ready_ && secondsSince(started_) > process_.start_timeout_s) {
+      // Before it is ready it sends nothing (its participant may take a while, DDS Security's
+      // handshake more): the start has its own, longer deadline.
+      std::ostringstream why;
+      why << "was not ready " << process_.start_timeout_s << " s after its start and was killed";
+      endChild(why.str(), /*kill=*/true, report);
+    } else if (ready_ &&
+               (stuck_.load() || secondsSince(last_heard_) > process_.heartbeat_timeout_s)) {
       std::ostringstream why;
       why << "stopped answering for " << std::fixed << std::setprecision(1)
           << secondsSince(last_heard_) << " s and was killed";
@@ -366,7 +402,7 @@ class ProcessHostTransport final : public HostTransport {
 
   /// The process is gone or is to go: reaps it, reports why, and lets go of every writer it had
   /// seen (a restarted process sees them anew, under other handles).
-  void endChild(const std::string& why, bool kill, bool report) {
+  void endChild(std::string why, bool kill, bool report) {
     const pid_t pid = child_pid_;
     const int status = reap(kill);
     {
@@ -383,9 +419,13 @@ class ProcessHostTransport final : public HostTransport {
       restart_delay_s_ = process_.restart_delay_s;
     }
     scheduleRestart();
+    last_end_ = describeEnd(status);
+    if (!failure_.empty()) {
+      why = why.empty() ? failure_ : why + "; " + failure_;
+    }
     if (report) {
       log() << "comply: the transport process (" << process_.inner << ", pid " << pid << ") "
-            << (why.empty() ? describeEnd(status) : why + "; " + describeEnd(status))
+            << (why.empty() ? last_end_ : why + "; " + last_end_)
             << ": no commands arrive until it is back (the watchdog holds the arm); starting it "
                "again\n"
             << std::flush;
@@ -403,10 +443,21 @@ class ProcessHostTransport final : public HostTransport {
       ::kill(child_pid_, SIGKILL);
     }
     const auto deadline = Clock::now() + std::chrono::seconds(1);
-    while (::waitpid(child_pid_, &status, WNOHANG) == 0) {
+    for (;;) {
+      const pid_t reaped = ::waitpid(child_pid_, &status, WNOHANG);
+      if (reaped == child_pid_) {
+        break;
+      }
+      if (reaped < 0 && errno != EINTR) {
+        // Not ours to reap (SIGCHLD ignored by the program embedding the host): gone, cause
+        // unknown.
+        status = -1;
+        break;
+      }
       if (Clock::now() > deadline) {
         ::kill(child_pid_, SIGKILL);
-        ::waitpid(child_pid_, &status, 0);
+        while (::waitpid(child_pid_, &status, 0) < 0 && errno == EINTR) {
+        }
         break;
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -485,6 +536,7 @@ class ProcessHostTransport final : public HostTransport {
   bool frames_broken_ = false;
   bool ready_ = false;
   std::string failure_;
+  std::string last_end_;  ///< how the last process ended ("ended on signal 6 (Aborted)")
   std::optional<bool> flushed_;
   std::set<std::uint64_t> publishers_;  ///< writers seen from the current process
   Inbox pending_;  ///< taken outside receive() (start-up, flush, an ended process's writers)

@@ -8,7 +8,6 @@
 
 #include <pthread.h>
 #include <sched.h>
-#include <sys/prctl.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -16,13 +15,16 @@
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <condition_variable>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <deque>
 #include <exception>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -62,13 +64,74 @@ class HostLink {
   std::mutex mutex_;
 };
 
-/// The host's frames: state and diagnostics to publish, flush requests. Returns at the end of
-/// the socket.
-void serveHost(HostLink& link, HostTransport& transport) {
+/// What the host asked to publish, in order, for the publishing thread. The socket is always
+/// drained (serveHost never waits on DDS), so a subscriber that holds a reliable writer back
+/// cannot make the host's sends time out: the newest state replaces one not yet published, and
+/// beyond kMaxWaiting the oldest waiting diagnostics are dropped (counted, and said once).
+class Outbox {
+ public:
+  static constexpr std::size_t kMaxWaiting = 1000;
+
+  struct Job {
+    FrameKind kind{};
+    std::vector<std::uint8_t> payload;
+  };
+
+  void push(Frame frame) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (frame.kind == FrameKind::kState) {
+      for (Job& job : jobs_) {
+        if (job.kind == FrameKind::kState) {
+          job.payload = std::move(frame.payload);
+          return;
+        }
+      }
+    }
+    if (jobs_.size() >= kMaxWaiting) {
+      for (auto it = jobs_.begin(); it != jobs_.end(); ++it) {
+        if (it->kind != FrameKind::kFlush) {
+          jobs_.erase(it);
+          if (dropped_++ == 0) {
+            std::fprintf(stderr,
+                         "comply-transport: DDS takes the host's diagnostics slower than they "
+                         "come (a subscriber holds the writer back); the oldest are dropped\n");
+          }
+          break;
+        }
+      }
+    }
+    jobs_.push_back({frame.kind, std::move(frame.payload)});
+    ready_.notify_one();
+  }
+  /// The next job; nullopt once closed and empty.
+  std::optional<Job> take() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    ready_.wait(lock, [this] { return !jobs_.empty() || closed_; });
+    if (jobs_.empty()) {
+      return std::nullopt;
+    }
+    Job job = std::move(jobs_.front());
+    jobs_.pop_front();
+    return job;
+  }
+  void close() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    closed_ = true;
+    ready_.notify_all();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable ready_;
+  std::deque<Job> jobs_;
+  std::uint64_t dropped_ = 0;
+  bool closed_ = false;
+};
+
+/// The host's frames into `outbox`, until the end of the socket.
+void serveHost(HostLink& link, Outbox& outbox) {
   FrameReader frames;
   std::array<std::uint8_t, 1U << 16U> buffer{};
-  comply::transport::ControllerStateMessage state;
-  comply::transport::DiagnosticsMessage diagnostics;
   for (;;) {
     const ssize_t n = ::recv(link.fd(), buffer.data(), buffer.size(), 0);
     if (n < 0 && errno == EINTR) {
@@ -79,27 +142,36 @@ void serveHost(HostLink& link, HostTransport& transport) {
     }
     frames.append({buffer.data(), static_cast<std::size_t>(n)});
     while (auto frame = frames.next()) {
-      if (frame->kind == FrameKind::kState && comply::transport::decodeCdr(frame->payload, state)) {
-        transport.publish(state);
-      } else if (frame->kind == FrameKind::kDiagnostics &&
-                 comply::transport::decodeCdr(frame->payload, diagnostics)) {
-        transport.publish(diagnostics);
-      } else if (frame->kind == FrameKind::kFlush && frame->payload.size() == sizeof(double)) {
-        double timeout_s = 0.0;
-        std::memcpy(&timeout_s, frame->payload.data(), sizeof(double));
-        const std::uint8_t delivered = transport.flush(timeout_s) ? 1 : 0;
-        // The count first: the host's summary, printed after the flush, is then exact.
-        std::vector<std::uint8_t> reply;
-        appendFrame(FrameKind::kHeartbeat, transport.malformedSamples(), reply);
-        appendFrame(FrameKind::kFlushed, std::span<const std::uint8_t>(&delivered, 1), reply);
-        link.send(reply);
-      } else {
-        std::fprintf(stderr, "comply-transport: a frame from the host it cannot read (kind %d)\n",
-                     static_cast<int>(frame->kind));
-      }
+      outbox.push(std::move(*frame));
     }
     if (frames.broken()) {
       return;
+    }
+  }
+}
+
+/// Publishes what the host sent, in order, until `outbox` is closed and empty.
+void publishForHost(HostLink& link, HostTransport& transport, Outbox& outbox) {
+  comply::transport::ControllerStateMessage state;
+  comply::transport::DiagnosticsMessage diagnostics;
+  while (auto job = outbox.take()) {
+    if (job->kind == FrameKind::kState && comply::transport::decodeCdr(job->payload, state)) {
+      transport.publish(state);
+    } else if (job->kind == FrameKind::kDiagnostics &&
+               comply::transport::decodeCdr(job->payload, diagnostics)) {
+      transport.publish(diagnostics);
+    } else if (job->kind == FrameKind::kFlush && job->payload.size() == sizeof(double)) {
+      double timeout_s = 0.0;
+      std::memcpy(&timeout_s, job->payload.data(), sizeof(double));
+      const std::uint8_t delivered = transport.flush(timeout_s) ? 1 : 0;
+      // The count first: the host's summary, printed after the flush, is then exact.
+      std::vector<std::uint8_t> reply;
+      appendFrame(FrameKind::kHeartbeat, transport.malformedSamples(), reply);
+      appendFrame(FrameKind::kFlushed, std::span<const std::uint8_t>(&delivered, 1), reply);
+      link.send(reply);
+    } else {
+      std::fprintf(stderr, "comply-transport: a frame from the host it cannot read (kind %d)\n",
+                   static_cast<int>(job->kind));
     }
   }
 }
@@ -183,8 +255,9 @@ std::unique_ptr<HostTransport> makeInner(const std::string& name,
 }  // namespace
 
 int main(int argc, char** argv) {
-  // The host's death closes the socket; this makes sure of it even while DDS is stuck.
-  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  // The host's end (or death) closes the socket, which ends this process (serveHost returns).
+  // Not PR_SET_PDEATHSIG: it follows the host's thread that started this process, and a restart
+  // comes from the host's reader thread, which ends before the host has flushed.
   // Ctrl-C reaches the whole process group: the host decides when its transport ends.
   std::signal(SIGINT, SIG_IGN);
   std::signal(SIGPIPE, SIG_IGN);
@@ -235,7 +308,13 @@ int main(int argc, char** argv) {
     }
     forwardToHost(forwarder, called_back, running);
   });
-  serveHost(link, *transport);
+  Outbox outbox;
+  std::thread publishing([&] { publishForHost(link, *transport, outbox); });
+  serveHost(link, outbox);
+  // The host is gone: whatever DDS's teardown does, this process ends within 5 s.
+  ::alarm(5);
+  outbox.close();
+  publishing.join();
   running = false;
   transport->wake();
   forwarding.join();
