@@ -11,16 +11,21 @@
 #       permissions.xml, permissions.p7s
 #
 # The governance admits only authenticated participants and encrypts discovery, liveliness and
-# every topic's data; each enclave may publish and subscribe every topic on domains 0-230 (the
-# range DDS Security admits).
+# every topic's data, on domains 0-230 (the range DDS Security admits). An enclave may name its
+# role after '=': what its permissions let it publish and subscribe.
+#   host      publishes state and diagnostics; subscribes the command, chunk and request topics
+#   client    the reverse: commands the host and reads what it publishes
+#   monitor   reads state and diagnostics only (a dashboard, a recorder): cannot command
+#   all       every topic (the default; also what a ROS 2 node of the keystore may need)
 # Keys are ECDSA P-256, certificates valid for 10 years. Needs the openssl command line.
 #
-# Usage: scripts/create-keystore.sh KEYSTORE ENCLAVE...     e.g. ks /comply/host /comply/client
+# Usage: scripts/create-keystore.sh KEYSTORE ENCLAVE[=ROLE]...
+#   e.g.  scripts/create-keystore.sh ks /comply/host=host /comply/policy=client /comply/ui=monitor
 # An existing CA in KEYSTORE is reused, so enclaves can be added later.
 set -euo pipefail
 
 if [ $# -lt 2 ]; then
-  echo "usage: $0 KEYSTORE ENCLAVE... (e.g. $0 keystore /comply/host /comply/client)" >&2
+  echo "usage: $0 KEYSTORE ENCLAVE[=ROLE]... (e.g. $0 keystore /comply/host=host /comply/client=client)" >&2
   exit 2
 fi
 command -v openssl >/dev/null || { echo "$0: needs openssl (apt-get install openssl)" >&2; exit 2; }
@@ -76,7 +81,26 @@ XML
   sign "$governance" "$keystore/enclaves/governance.p7s"
 fi
 
-for enclave in "$@"; do
+# The topics a role publishes and subscribes, as <topic> elements (DDS names: rt/<host>/<topic>).
+topics() {
+  for topic in "$@"; do printf '<topic>rt/*/%s</topic>' "$topic"; done
+}
+commands=(cartesian_command joint_command cartesian_chunk joint_chunk request)
+published=(state diagnostics)
+
+for argument in "$@"; do
+  enclave=${argument%%=*}
+  role=all
+  [ "$argument" != "$enclave" ] && role=${argument#*=}
+  case $role in
+    host) publish=$(topics "${published[@]}"); subscribe=$(topics "${commands[@]}") ;;
+    client) publish=$(topics "${commands[@]}"); subscribe=$(topics "${published[@]}") ;;
+    monitor) publish=""; subscribe=$(topics "${published[@]}") ;;
+    all) publish="<topic>*</topic>"; subscribe="<topic>*</topic>" ;;
+    *) echo "$0: role '$role' of $enclave is not one of host, client, monitor, all" >&2; exit 2 ;;
+  esac
+  publish_rule=""
+  [ -n "$publish" ] && publish_rule="<publish><topics>$publish</topics></publish>"
   case $enclave in
     /*) ;;
     *) echo "$0: an enclave is a path from the root, such as /comply/host, not '$enclave'" >&2
@@ -108,8 +132,8 @@ for enclave in "$@"; do
       <validity><not_before>$not_before</not_before><not_after>$not_after</not_after></validity>
       <allow_rule>
         <domains><id_range><min>0</min><max>230</max></id_range></domains>
-        <publish><topics><topic>*</topic></topics></publish>
-        <subscribe><topics><topic>*</topic></topics></subscribe>
+        $publish_rule
+        <subscribe><topics>$subscribe</topics></subscribe>
       </allow_rule>
       <default>DENY</default>
     </grant>

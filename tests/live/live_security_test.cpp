@@ -1,7 +1,8 @@
 // comply run with DDS Security: a keystore made by scripts/create-keystore.sh (SROS2's layout),
 // the host on its enclave. A participant without credentials never matches the host, so its
-// commands never arrive; one with the client enclave's credentials is applied. Before, any
-// process that could reach the host's ports could command the arm.
+// commands never arrive; one with a monitor's credentials may not write a command; one with the
+// client enclave's credentials is applied. Before, any process that could reach the host's ports
+// could command the arm.
 
 #include <gtest/gtest.h>
 
@@ -17,7 +18,8 @@ class LiveSecurity : public ::testing::Test {
   static void SetUpTestSuite() {
     std::filesystem::remove_all(keystore());
     const std::string command = kSourceDir + "/scripts/create-keystore.sh " + keystore().string() +
-                                " /comply/host /comply/client > /dev/null";
+                                " /comply/host=host /comply/client=client /comply/ui=monitor"
+                                " > /dev/null";
     ASSERT_EQ(std::system(command.c_str()), 0) << command << " (needs openssl)";
   }
   static void TearDownTestSuite() { std::filesystem::remove_all(keystore()); }
@@ -85,6 +87,18 @@ TEST_F(LiveSecurity, AnUnauthenticatedWriterNeverArrivesAnAuthenticatedOneIsAppl
   EXPECT_LE(client_->last().commands_received, 101U);  // the handshake sends at most 100
   EXPECT_EQ(client_->last().commands_rejected, 0U);
 
+  // A monitor's credentials (a dashboard's): it may read, not command. Its command topic is
+  // refused by access control, so `comply send` fails before sending anything.
+  Process monitor_send({"send", "--domain", std::to_string(domain_), "--name", "secure",
+                        "--security", enclave("ui").string(), "--json", json},
+                       log_ + ".monitor");
+  EXPECT_NE(monitor_send.wait(20s), 0);
+  {
+    std::ifstream in(log_ + ".monitor");
+    const std::string said((std::istreambuf_iterator<char>(in)), {});
+    EXPECT_NE(said.find("Not Allowed By Security"), std::string::npos) << said;
+  }
+  std::filesystem::remove(log_ + ".monitor");
   // `comply send` with the client's credentials: applied (exit 0).
   Process member_send({"send", "--domain", std::to_string(domain_), "--name", "secure",
                        "--security", enclave("client").string(), "--json", json});
