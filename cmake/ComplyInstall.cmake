@@ -53,6 +53,9 @@ function(comply_install_package)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/config/ DESTINATION ${COMPLY_INSTALL_DATADIR}/config)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/profiles/ DESTINATION ${COMPLY_INSTALL_DATADIR}/profiles)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/ DESTINATION ${COMPLY_INSTALL_DATADIR}/examples)
+  # The DDS Security keystore helper (docs/live-control.md), on the PATH of an installed comply.
+  install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/create-keystore.sh
+          DESTINATION ${CMAKE_INSTALL_BINDIR} RENAME comply-create-keystore)
   install(EXPORT complyTargets NAMESPACE comply:: DESTINATION ${COMPLY_INSTALL_CMAKEDIR})
   install(EXPORT complyHostTargets NAMESPACE comply:: DESTINATION ${COMPLY_INSTALL_CMAKEDIR})
   configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/complyConfig.cmake.in
