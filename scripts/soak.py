@@ -1,8 +1,9 @@
 """make soak: `comply run --sim` under a random stream of valid and invalid commands from two
 sender processes for SOAK_MINUTES (default 30). Every command must be accounted exactly once
 (applied, or rejected with the expected reason; the second sender's commands are refused as
-`other_publisher` while the first holds the topics), no FAULT may appear (none is injected), and
-the host's memory must stay flat. Writes report.md, rss.csv and rss.png to the output folder.
+`other_publisher` while the first holds the topics), no FAULT may appear (none is injected), the
+transport process (comply-transport, DDS) may not end, and the memory of the host and its
+transport process must stay flat. Writes report.md, rss.csv and rss.png to the output folder.
 
 Usage: soak.py COMPLY_CLI PYTHON_MODULE_DIR CONFIG_FILE OUT_DIR MINUTES
 """
@@ -31,6 +32,24 @@ def rss_kb(pid):
             if line.startswith('VmRSS:'):
                 return int(line.split()[1])
     return 0
+
+
+def transport_rss_kb(host_pid):
+    """The RSS of the host's transport process (its child running comply-transport), 0 if none."""
+    total = 0
+    for entry in os.listdir('/proc'):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f'/proc/{entry}/stat') as f:
+                parent = int(f.read().rsplit(')', 1)[1].split()[1])
+            with open(f'/proc/{entry}/cmdline', 'rb') as f:
+                program = f.read()
+        except (OSError, IndexError, ValueError):
+            continue
+        if parent == host_pid and b'comply-transport' in program:
+            total += rss_kb(int(entry))
+    return total
 
 
 def command(client, start, rng):
@@ -96,6 +115,9 @@ def settle(client, pending, counts, reasons, older_than, wait=0.0):
         acceptable = {expected or 'applied', 'other_publisher', 'stale_stamp', 'queue_full'}
         if reason not in acceptable:
             counts['wrong'] += 1
+            if len(counts.setdefault('wrong_examples', [])) < 5:
+                counts['wrong_examples'].append(
+                    f"expected {expected or 'applied'}, got {reason}: {outcome.get('message', '')}")
 
 
 def main():
@@ -112,14 +134,16 @@ def main():
     rss = []
     t0 = time.monotonic()
     with open(f'{OUT}/rss.csv', 'w') as f:
-        f.write('time_s,rss_kb\n')
+        f.write('time_s,rss_kb,host_kb,transport_kb\n')
         while any(p.is_alive() for p in senders):
-            sample = (time.monotonic() - t0, rss_kb(host.pid))
+            host_kb, transport_kb = rss_kb(host.pid), transport_rss_kb(host.pid)
+            sample = (time.monotonic() - t0, host_kb + transport_kb)
             rss.append(sample)
-            f.write(f'{sample[0]:.1f},{sample[1]}\n')
+            f.write(f'{sample[0]:.1f},{sample[1]},{host_kb},{transport_kb}\n')
             f.flush()
-            print(f'\rsoak: {sample[0] / 60:5.1f} of {float(MINUTES):.1f} min, '
-                  f'host RSS {sample[1] / 1024:.1f} MB', end='', flush=True)
+            print(f'\rsoak: {sample[0] / 60:5.1f} of {float(MINUTES):.1f} min, RSS host '
+                  f'{host_kb / 1024:.1f} MB + transport {transport_kb / 1024:.1f} MB', end='',
+                  flush=True)
             time.sleep(10)
     print()
     for process in senders:
@@ -127,10 +151,13 @@ def main():
     diagnostics = comply.Client(name=NAME, domain=DOMAIN, timeout=30.0).diagnostics(timeout=5)
     host.send_signal(2)
     host.wait(timeout=30)
-    report(rss, dict(results), diagnostics)
+    with open(f'{OUT}/host.log') as f:
+        summary = [line for line in f if 'transport restarts' in line]
+    restarts = int(summary[-1].rsplit('transport restarts', 1)[1]) if summary else -1
+    report(rss, dict(results), diagnostics, restarts)
 
 
-def report(rss, results, diagnostics):
+def report(rss, results, diagnostics, restarts):
     warm = [kb for t, kb in rss if t > 60] or [kb for _, kb in rss]
     lines = [f'# Soak: {MINUTES} min, 2 senders at {RATE_HZ:.0f} Hz each', '',
              '| sender | sent | applied | missing | wrong outcome | outcomes by reason |',
@@ -140,14 +167,18 @@ def report(rss, results, diagnostics):
         lines.append(f"| {index} | {counts['sent']} | {counts['applied']} | {counts['missing']} | "
                      f"{counts['wrong']} | {dict(sorted(reasons.items()))} |")
         failed |= counts['missing'] > 0 or counts['wrong'] > 0
+        for example in counts.get('wrong_examples', []):
+            lines.append(f'|   | sender {index}: {example} | | | | |')
     faults = diagnostics['faults'] if diagnostics else -1
     overruns = diagnostics.get('overruns', -1) if diagnostics else -1
     growth = (warm[-1] - warm[0]) / 1024 if warm else 0.0
     lines += ['', f'host: faults {faults}, overruns {overruns}, cycles '
                   f"{diagnostics.get('cycles', '?') if diagnostics else '?'}",
-              f'host RSS after the first minute: {warm[0] / 1024:.1f} MB -> {warm[-1] / 1024:.1f} MB '
-              f'(max {max(warm) / 1024:.1f} MB, growth {growth:.2f} MB); curve: rss.csv, rss.png']
-    failed |= faults != 0 or growth > 5.0
+              f'transport restarts {restarts}',
+              f'RSS of the host and its transport process after the first minute: '
+              f'{warm[0] / 1024:.1f} MB -> {warm[-1] / 1024:.1f} MB (max {max(warm) / 1024:.1f} MB, '
+              f'growth {growth:.2f} MB); curve: rss.csv, rss.png']
+    failed |= faults != 0 or growth > 5.0 or restarts != 0
     lines.append('')
     lines.append('FAILED' if failed else 'ok')
     with open(f'{OUT}/report.md', 'w') as f:
@@ -160,7 +191,7 @@ def report(rss, results, diagnostics):
         figure, axes = plt.subplots(figsize=(7, 3))
         axes.plot([t / 60 for t, _ in rss], [kb / 1024 for _, kb in rss])
         axes.set_xlabel('time [min]')
-        axes.set_ylabel('host RSS [MB]')
+        axes.set_ylabel('RSS, host + transport [MB]')
         axes.set_title('comply run --sim under two senders')
         figure.tight_layout()
         figure.savefig(f'{OUT}/rss.png', dpi=120)
