@@ -19,13 +19,14 @@ namespace comply::transport {
 struct ProcessTransportOptions {
   std::string inner = "dds";      ///< the transport the process runs (comply-transport --transport)
   std::filesystem::path program;  ///< empty: transportProgram()
-  /// A process that sends nothing for this long is hung: it is killed and started again. It
-  /// sends a heartbeat at least every 0.1 s.
+  /// A ready process that sends nothing for this long is hung: it is killed and started again.
+  /// It sends a heartbeat every 50 ms.
   double heartbeat_timeout_s = 1.0;
   /// The wait before a restart; it doubles, up to 8 s, while restarted processes keep ending
   /// within 2 s (a process that cannot start is not restarted in a tight loop).
   double restart_delay_s = 0.5;
-  /// How long the first start may take before it is an error.
+  /// How long a start may take until the process is ready (its DDS participant made; DDS
+  /// Security's checks can take a while): the first start's error, a restart's kill.
   double start_timeout_s = 10.0;
   std::ostream* log = nullptr;  ///< where the ends and restarts are reported; nullptr: std::cerr
 };
