@@ -48,8 +48,9 @@ GainBound lightestInertias(const model::Model& model, const JointVector& armatur
                            int samples = 2000);
 
 /// The command's gains against `bound` at control period `period_s`: accepted, or invalid_gains
-/// naming the field, the value, the bound and what it comes from. Only the groups the command
-/// sets are checked; a ratio is checked against the stiffness the command sets with it.
+/// naming the field, the value, the bound and what it comes from. Only the groups
+/// `command.fields` names are checked; a damping ratio with the stiffness `command` holds, so the
+/// caller passes the command merged into the gains in force (Wrapper::submit does).
 Verdict checkRenderable(const CartesianCommand& command, const GainBound& bound, double period_s);
 Verdict checkRenderable(const JointCommand& command, const GainBound& bound, double period_s);
 
