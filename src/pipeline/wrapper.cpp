@@ -93,7 +93,7 @@ Verdict Wrapper<Command>::submit(const Command& command) {
       validateAndMerge(command, controller_.resolved().config.validation, dof, measured, checked);
   Command gains = Command::zero(dof);
   if (verdict.accepted) {
-    verdict = checkGains(command, command.fields, intakeGains(), gains);
+    verdict = checkGains(command, command.fields, intakeGains(), measured.period_s, gains);
   }
   if (verdict.accepted) {
     IntakeMessage message;
@@ -118,15 +118,14 @@ Command Wrapper<Command>::intakeGains() {
 
 template <typename Command>
 Verdict Wrapper<Command>::checkGains(const Command& command, CommandField fields,
-                                     const Command& base, Command& candidate) {
+                                     const Command& base, double period_s, Command& candidate) {
   candidate = base;
   Command incoming = command;
   incoming.fields = fields;
   schema::merge(candidate, incoming);
   Command checked = candidate;
   checked.fields = fields;
-  return checkRenderable(checked, controller_.resolved().gain_bound,
-                         controller_.measuredPose().period_s);
+  return checkRenderable(checked, controller_.resolved().gain_bound, period_s);
 }
 
 template <typename Command>
@@ -144,7 +143,7 @@ Verdict Wrapper<Command>::submitChunk(const Chunk<Command>& chunk, double host_t
       break;
     }
     const Command before = gains;
-    verdict = checkGains(waypoint.command, checked.fields, before, gains);
+    verdict = checkGains(waypoint.command, checked.fields, before, measured.period_s, gains);
   }
   if (verdict.accepted) {
     // The last cycle ran at controller time measured.time_s; the host's clock reads host_time_s

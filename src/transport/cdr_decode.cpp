@@ -118,6 +118,14 @@ void getOutcome(Reader& r, CommandOutcomeMessage& message) {
   message.message = r.getString();
 }
 
+/// `get` reads the message from the bytes; whether they held one, to their end or not.
+template <typename Message, typename Get>
+bool decodeWith(std::span<const std::uint8_t> bytes, Message& message, Get get) {
+  Reader r(bytes);
+  get(r, message);
+  return r.ok();
+}
+
 }  // namespace
 
 bool decodeCdr(std::span<const std::uint8_t> bytes, ControllerStateMessage& message) {
@@ -188,27 +196,19 @@ bool decodeCdr(std::span<const std::uint8_t> bytes, DiagnosticsMessage& message)
 }
 
 bool decodeCdr(std::span<const std::uint8_t> bytes, CartesianCommandMessage& message) {
-  Reader r(bytes);
-  getCommandMessage(r, message);
-  return r.ok();
+  return decodeWith(bytes, message, getCommandMessage<CartesianCommandMessage>);
 }
 
 bool decodeCdr(std::span<const std::uint8_t> bytes, JointCommandMessage& message) {
-  Reader r(bytes);
-  getCommandMessage(r, message);
-  return r.ok();
+  return decodeWith(bytes, message, getCommandMessage<JointCommandMessage>);
 }
 
 bool decodeCdr(std::span<const std::uint8_t> bytes, CartesianChunkMessage& message) {
-  Reader r(bytes);
-  getChunk(r, message);
-  return r.ok();
+  return decodeWith(bytes, message, getChunk<CartesianChunkMessage>);
 }
 
 bool decodeCdr(std::span<const std::uint8_t> bytes, JointChunkMessage& message) {
-  Reader r(bytes);
-  getChunk(r, message);
-  return r.ok();
+  return decodeWith(bytes, message, getChunk<JointChunkMessage>);
 }
 
 bool decodeCdr(std::span<const std::uint8_t> bytes, RequestMessage& message) {

@@ -9,6 +9,7 @@
 #include <cstdlib>
 
 #include "live_support.hpp"
+#include "text_file.hpp"
 
 namespace comply::live_test {
 namespace {
@@ -38,10 +39,6 @@ class LiveSecurity : public ::testing::Test {
     client_ = std::make_unique<Client>(domain_, "secure", enclave("client"));
   }
   void TearDown() override { std::filesystem::remove(log_); }
-  std::string readLog() const {
-    std::ifstream in(log_);
-    return {std::istreambuf_iterator<char>(in), {}};
-  }
 
   // DDS Security admits domains 0..230; randomDomain() draws from 1..230.
   int domain_ = randomDomain();
@@ -93,11 +90,8 @@ TEST_F(LiveSecurity, AnUnauthenticatedWriterNeverArrivesAnAuthenticatedOneIsAppl
                         "--security", enclave("ui").string(), "--json", json},
                        log_ + ".monitor");
   EXPECT_NE(monitor_send.wait(20s), 0);
-  {
-    std::ifstream in(log_ + ".monitor");
-    const std::string said((std::istreambuf_iterator<char>(in)), {});
-    EXPECT_NE(said.find("Not Allowed By Security"), std::string::npos) << said;
-  }
+  const std::string said = testing::textOf(log_ + ".monitor");
+  EXPECT_NE(said.find("Not Allowed By Security"), std::string::npos) << said;
   std::filesystem::remove(log_ + ".monitor");
   // `comply send` with the client's credentials: applied (exit 0).
   Process member_send({"send", "--domain", std::to_string(domain_), "--name", "secure",
@@ -105,8 +99,9 @@ TEST_F(LiveSecurity, AnUnauthenticatedWriterNeverArrivesAnAuthenticatedOneIsAppl
   EXPECT_EQ(member_send.wait(30s), 0);
   host_->signal(SIGTERM);
   EXPECT_EQ(host_->wait(10s), 0);
-  EXPECT_NE(readLog().find("DDS Security as " + enclave("host").string()), std::string::npos)
-      << readLog();
+  EXPECT_NE(testing::textOf(log_).find("DDS Security as " + enclave("host").string()),
+            std::string::npos)
+      << testing::textOf(log_);
 }
 
 TEST_F(LiveSecurity, AHostWithoutItsFilesSaysWhichIsMissing) {
@@ -117,8 +112,9 @@ TEST_F(LiveSecurity, AHostWithoutItsFilesSaysWhichIsMissing) {
   args.insert(args.end(), {"--security", missing, "--duration", "1"});
   Process host(args, log_);
   EXPECT_GT(host.wait(20s), 0);
-  EXPECT_NE(readLog().find(missing + "/identity_ca.cert.pem is not there"), std::string::npos)
-      << readLog();
+  EXPECT_NE(testing::textOf(log_).find(missing + "/identity_ca.cert.pem is not there"),
+            std::string::npos)
+      << testing::textOf(log_);
 }
 
 }  // namespace

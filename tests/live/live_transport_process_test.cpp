@@ -24,6 +24,7 @@
 
 #include "comply/transport/cdr.hpp"
 #include "live_support.hpp"
+#include "text_file.hpp"
 
 namespace comply::live_test {
 namespace {
@@ -39,7 +40,8 @@ std::vector<std::uint8_t> readBytes(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), {}};
 }
 
-std::string readText(const std::string& path) {
+/// A /proc file's text; empty when the process is gone (textOf would flag that as a failure).
+std::string procText(const std::filesystem::path& path) {
   std::ifstream in(path);
   return {std::istreambuf_iterator<char>(in), {}};
 }
@@ -97,10 +99,10 @@ std::vector<pid_t> transportProcesses(pid_t host) {
     if (pid.find_first_not_of("0123456789") != std::string::npos) {
       continue;
     }
-    const std::string stat = readText(entry.path() / "stat");
+    const std::string stat = procText(entry.path() / "stat");
     const std::size_t name_end = stat.rfind(')');
     if (name_end == std::string::npos ||
-        readText(entry.path() / "cmdline").find("comply-transport") == std::string::npos) {
+        procText(entry.path() / "cmdline").find("comply-transport") == std::string::npos) {
       continue;
     }
     std::istringstream fields(stat.substr(name_end + 1));
@@ -135,7 +137,8 @@ std::optional<in_addr_t> externalAddress() {
 /// (/proc/net/udp, tcp, udp6, tcp6, which `ss` prints) give it: hex address ":" hex port.
 std::vector<std::string> socketAddresses(pid_t pid) {
   std::set<std::string> inodes;
-  for (const auto& fd : std::filesystem::directory_iterator("/proc/" + std::to_string(pid) + "/fd")) {
+  for (const auto& fd :
+       std::filesystem::directory_iterator("/proc/" + std::to_string(pid) + "/fd")) {
     std::error_code error;
     const std::string target = std::filesystem::read_symlink(fd.path(), error).string();
     if (!error && target.rfind("socket:[", 0) == 0) {
@@ -144,7 +147,7 @@ std::vector<std::string> socketAddresses(pid_t pid) {
   }
   std::vector<std::string> addresses;
   for (const char* table : {"udp", "tcp", "udp6", "tcp6"}) {
-    std::istringstream lines(readText(std::string("/proc/net/") + table));
+    std::istringstream lines(procText(std::string("/proc/net/") + table));
     std::string line;
     std::getline(lines, line);  // the column names
     while (std::getline(lines, line)) {
@@ -251,7 +254,7 @@ class TransportProcessTest : public ::testing::Test {
 
   /// The lines of the host's log naming a transport process's end.
   int endsReported() {
-    const std::string log = readText(log_);
+    const std::string log = testing::textOf(log_);
     const std::regex ended("the transport process \\(dds, pid [0-9]+\\)");
     return static_cast<int>(
         std::distance(std::sregex_iterator(log.begin(), log.end(), ended), std::sregex_iterator()));
@@ -280,8 +283,9 @@ TEST_F(TransportProcessTest, ASampleThatCrashesDdsEndsTheTransportProcessNotTheH
   while (endsReported() == 0 && Clock::now() < deadline) {
     std::this_thread::sleep_for(20ms);
   }
-  ASSERT_EQ(endsReported(), 1) << readText(log_);
-  EXPECT_NE(readText(log_).find("ended on signal"), std::string::npos) << readText(log_);
+  ASSERT_EQ(endsReported(), 1) << testing::textOf(log_);
+  EXPECT_NE(testing::textOf(log_).find("ended on signal"), std::string::npos)
+      << testing::textOf(log_);
   EXPECT_EQ(host_->wait(0ms), -1) << "the host must still run";
 
   // Commands flow again once the transport is back: a sender that connects anew, and the one
@@ -300,7 +304,8 @@ TEST_F(TransportProcessTest, ASampleThatCrashesDdsEndsTheTransportProcessNotTheH
   }
   host_->signal(SIGTERM);
   EXPECT_EQ(host_->wait(10s), 0);
-  EXPECT_NE(readText(log_).find("transport restarts 1"), std::string::npos) << readText(log_);
+  EXPECT_NE(testing::textOf(log_).find("transport restarts 1"), std::string::npos)
+      << testing::textOf(log_);
 }
 
 /// The same host with DDS in the host's own process (`--transport dds_inline`).
@@ -319,7 +324,7 @@ class TransportInlineTest : public TransportProcessTest {
 TEST_F(TransportInlineTest, TheSameSampleKillsAHostThatRunsDdsInItsOwnProcess) {
   inject();
   const int code = host_->wait(5s);
-  EXPECT_GT(code, 128) << "a host with DDS inline survived the sample: " << readText(log_);
+  EXPECT_GT(code, 128) << "a host with DDS inline survived the sample: " << testing::textOf(log_);
 }
 
 // Loopback means loopback: no socket of the host or its transport process listens on another
@@ -370,18 +375,20 @@ TEST_F(TransportProcessTest, AKilledOrHungTransportProcessIsStartedAgain) {
     while (endsReported() == ends && Clock::now() < deadline) {
       std::this_thread::sleep_for(20ms);
     }
-    ASSERT_EQ(endsReported(), ends + 1) << readText(log_);
-    ASSERT_TRUE(applyOne(0.0).has_value() || connect()) << readText(log_);
+    ASSERT_EQ(endsReported(), ends + 1) << testing::textOf(log_);
+    ASSERT_TRUE(applyOne(0.0).has_value() || connect()) << testing::textOf(log_);
     EXPECT_EQ(host_->wait(0ms), -1);
   }
-  EXPECT_NE(readText(log_).find("stopped answering"), std::string::npos) << readText(log_);
+  EXPECT_NE(testing::textOf(log_).find("stopped answering"), std::string::npos)
+      << testing::textOf(log_);
   // A process started again by the host's reader thread outlives that thread: the shutdown
   // flushes through it, with no end reported, and the summary counts both restarts.
   const int ends = endsReported();
   host_->signal(SIGTERM);
   EXPECT_EQ(host_->wait(10s), 0);
-  EXPECT_EQ(endsReported(), ends) << readText(log_);
-  EXPECT_NE(readText(log_).find("transport restarts 2"), std::string::npos) << readText(log_);
+  EXPECT_EQ(endsReported(), ends) << testing::textOf(log_);
+  EXPECT_NE(testing::textOf(log_).find("transport restarts 2"), std::string::npos)
+      << testing::textOf(log_);
 }
 
 }  // namespace

@@ -108,10 +108,10 @@ class Wrapper final : public hardware::CycleController {
   /// accepted command and chunk merged in): a damping ratio sent alone is checked against the
   /// stiffness it will act with (gain_bound.hpp). Under intake_mutex_.
   Command intakeGains();
-  /// Checks the gains of `command` (its groups `fields`) merged into `base`; `candidate`
-  /// receives the merge.
+  /// Checks the gains of `command` (its groups `fields`) merged into `base` at the control
+  /// period `period_s`; `candidate` receives the merge.
   Verdict checkGains(const Command& command, CommandField fields, const Command& base,
-                     Command& candidate);
+                     double period_s, Command& candidate);
 
   mutable std::mutex intake_mutex_;  // senders and lifecycle calls only, never the cycle
   double last_stamp_s_ = 0.0;
