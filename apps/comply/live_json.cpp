@@ -50,7 +50,8 @@ nlohmann::json toJson(const transport::CommandOutcomeMessage& o) {
           {"cycle", o.cycle},
           {"received", toJson(o.received)},
           {"applied", toJson(o.applied)},
-          {"message", o.message}};
+          {"message", o.message},
+          {"sender", transport::toHex(o.sender)}};
 }
 
 nlohmann::json toJson(const transport::DiagnosticsMessage& d) {

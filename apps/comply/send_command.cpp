@@ -87,8 +87,9 @@ transport::Stamp nextStamp(transport::Stamp& last) {
 /// reported commands as lost that had been applied.
 class OutcomeCollector {
  public:
-  explicit OutcomeCollector(transport::Reader<transport::DiagnosticsMessage>& diagnostics)
-      : diagnostics_(diagnostics) {}
+  OutcomeCollector(transport::Reader<transport::DiagnosticsMessage>& diagnostics,
+                   const transport::Gid& sender)
+      : diagnostics_(diagnostics), sender_(sender) {}
 
   void expect(std::int64_t stamp_ns) { sent_.emplace(stamp_ns, false); }
   /// Takes what has arrived; prints the outcomes of commands sent.
@@ -98,7 +99,7 @@ class OutcomeCollector {
     for (const auto& sample : samples_) {
       for (const auto& outcome : sample.message.outcomes) {
         const auto it = sent_.find(outcome.stamp.nanoseconds());
-        if (it == sent_.end() || it->second) {
+        if (it == sent_.end() || it->second || !transport::sentBy(outcome, sender_)) {
           continue;
         }
         it->second = true;
@@ -126,6 +127,7 @@ class OutcomeCollector {
 
  private:
   transport::Reader<transport::DiagnosticsMessage>& diagnostics_;
+  transport::Gid sender_;
   std::map<std::int64_t, bool> sent_;
   std::vector<transport::Sample<transport::DiagnosticsMessage>> samples_;
   std::size_t settled_ = 0;
@@ -138,7 +140,7 @@ class OutcomeCollector {
 template <typename Message>
 bool handshake(transport::Writer<Message>& writer,
                transport::Reader<transport::DiagnosticsMessage>& diagnostics, int dof,
-               transport::Stamp& last, double timeout_s) {
+               const transport::Gid& sender, transport::Stamp& last, double timeout_s) {
   std::vector<transport::Sample<transport::DiagnosticsMessage>> samples;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   while (std::chrono::steady_clock::now() < deadline) {
@@ -154,7 +156,7 @@ bool handshake(transport::Writer<Message>& writer,
       diagnostics.take(samples);
       for (const auto& sample : samples) {
         for (const auto& outcome : sample.message.outcomes) {
-          if (outcome.stamp == probe.header.stamp) {
+          if (outcome.stamp == probe.header.stamp && transport::sentBy(outcome, sender)) {
             return true;
           }
         }
@@ -198,13 +200,13 @@ int sendAll(Participant& participant, const SendOptions& options,
   }
   diagnostics.waitForMatch(1, options.client.timeout_s);
   transport::Stamp last;
-  if (!handshake(writer, diagnostics, dof, last, options.client.timeout_s)) {
+  if (!handshake(writer, diagnostics, dof, participant.gid(), last, options.client.timeout_s)) {
     throw transport::TransportError("the host did not account a probe command");
   }
   const double rate_hz = options.rate_hz > 0.0 ? options.rate_hz : 100.0;
   const auto period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
       std::chrono::duration<double>(1.0 / rate_hz));
-  OutcomeCollector outcomes(diagnostics);
+  OutcomeCollector outcomes(diagnostics, participant.gid());
   auto next = std::chrono::steady_clock::now();
   for (std::size_t i = 0; i < objects.size(); ++i) {
     schema::ReadOptions<Command> read;

@@ -48,10 +48,11 @@ Client::Client(const std::string& name, int domain, const std::string& network, 
                const std::optional<std::filesystem::path>& record,
                const std::optional<std::filesystem::path>& security)
     : name_(name),
-      participant_({.domain_id = domain,
-                    .network = network == "all" ? transport::Network::kAll
-                                                : transport::Network::kLoopback,
-                    .security = security.value_or(std::filesystem::path())}),
+      participant_(
+          {.domain_id = domain,
+           .network = network == "all" ? transport::Network::kAll : transport::Network::kLoopback,
+           .security = security.value_or(std::filesystem::path())}),
+      sender_(participant_.gid()),
       // A sender faster than the host waits for room instead of losing its oldest command.
       cartesian_writer_(participant_, name, transport::kKeepAll),
       joint_writer_(participant_, name, transport::kKeepAll),
@@ -151,6 +152,9 @@ bool Client::poll(double wait_s) {
   for (auto& sample : diagnostics) {
     const std::int64_t published_ns = sample.message.header.stamp.nanoseconds();
     for (const auto& outcome : sample.message.outcomes) {
+      if (!transport::sentBy(outcome, sender_)) {
+        continue;  // another sender's command, which may carry one of this client's stamps
+      }
       const std::int64_t stamp = outcome.stamp.nanoseconds();
       if (outcomes_.emplace(stamp, outcome).second) {
         outcome_order_.push_back(stamp);

@@ -78,6 +78,7 @@ class Client {
 
   std::string name_;
   transport::Participant participant_;
+  transport::Gid sender_;  ///< participant_'s GUID: the outcomes of this client's commands name it
   transport::Writer<transport::CartesianCommandMessage> cartesian_writer_;
   transport::Writer<transport::JointCommandMessage> joint_writer_;
   transport::Writer<transport::CartesianChunkMessage> cartesian_chunk_writer_;

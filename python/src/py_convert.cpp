@@ -161,6 +161,7 @@ py::dict toDict(const transport::CommandOutcomeMessage& o) {
   d["reason"] = std::string(toString(o.reason));
   d["cycle"] = o.cycle;
   d["message"] = o.message;
+  d["sender"] = transport::toHex(o.sender);
   // Send (the stamp) to the end of the cycle that applied it; one clock only on one machine.
   d["latency_s"] = o.outcome == transport::Outcome::kApplied
                        ? py::object(py::float_(1e-9 * static_cast<double>(o.applied.nanoseconds() -

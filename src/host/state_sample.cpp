@@ -88,6 +88,7 @@ transport::CommandOutcomeMessage outcomeMessage(const pipeline::CommandOutcome& 
   message.received = transport::Stamp::fromNanoseconds(outcome.received_ns);
   message.applied = transport::Stamp::fromNanoseconds(outcome.applied_ns);
   message.message = outcome.message;
+  message.sender = outcome.sender;
   return message;
 }
 

@@ -50,6 +50,7 @@ CommandReason CommandGate::admitLocked(const Offer& offer, bool active, CommandO
   ++counts_.received;
   outcome.stamp_ns = offer.stamp_ns;
   outcome.kind = offer.kind;
+  outcome.sender = offer.sender;
   outcome.received_ns = wallClockNanoseconds();
   if (!offer.malformed.empty()) {
     return rejectLocked(outcome, commandReason(RejectionReason::kDofMismatch),

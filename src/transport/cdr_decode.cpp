@@ -19,7 +19,7 @@ using schema::FieldKind;
 // The fewest bytes one element of each sequence takes: a bound on a count before reading it.
 constexpr std::size_t kStringBytes = 5;  // length and NUL
 constexpr std::size_t kHeaderBytes = 8 + kStringBytes;
-constexpr std::size_t kOutcomeBytes = 8 + 3 + 8 + 16 + kStringBytes;
+constexpr std::size_t kOutcomeBytes = 8 + 3 + 8 + 16 + kStringBytes + 16;
 
 Stamp getStamp(Reader& r) {
   Stamp stamp;
@@ -116,6 +116,7 @@ void getOutcome(Reader& r, CommandOutcomeMessage& message) {
   message.received = getStamp(r);
   message.applied = getStamp(r);
   message.message = r.getString();
+  r.getArray(message.sender.data(), message.sender.size());
 }
 
 /// `get` reads the message from the bytes; whether they held one, to their end or not.

@@ -103,6 +103,7 @@ void putOutcome(Writer& w, const CommandOutcomeMessage& message) {
   putStamp(w, message.received);
   putStamp(w, message.applied);
   w.putString(message.message);
+  w.putArray(message.sender.data(), message.sender.size());
 }
 
 void putCartesian(Writer& w, const CartesianCommandMessage& message) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstring>
 #include <iterator>
 #include <span>
 #include <thread>
@@ -196,7 +197,9 @@ std::size_t Reader<Message>::take(std::vector<Sample<Message>>& out,
       }
       Sample<Message>& sample = out.emplace_back();
       sample.publisher = infos[i].publication_handle;
-      sample.participant = participantOf(infos[i].publication_handle);
+      const Sender& sender = senderOf(infos[i].publication_handle);
+      sample.participant = sender.participant;
+      sample.sender = sender.gid;
       wire::Wire<Message>::read(samples[i], sample.message, sample.malformed);
       ++taken;
     }
@@ -212,22 +215,22 @@ std::size_t Reader<Message>::take(std::vector<Sample<Message>>& out,
 }
 
 template <typename Message>
-std::uint64_t Reader<Message>::participantOf(std::uint64_t publication) {
-  const auto known = participants_.find(publication);
-  if (known != participants_.end()) {
+const typename Reader<Message>::Sender& Reader<Message>::senderOf(std::uint64_t publication) {
+  const auto known = senders_.find(publication);
+  if (known != senders_.end()) {
     return known->second;
   }
-  std::uint64_t participant = 0;
+  Sender sender;
   if (dds_builtintopic_endpoint_t* endpoint =
           dds_get_matched_publication_data(entity_, publication)) {
-    participant = endpoint->participant_instance_handle;
+    sender.participant = endpoint->participant_instance_handle;
+    std::memcpy(sender.gid.data(), endpoint->participant_key.v, sender.gid.size());
     dds_builtintopic_free_endpoint(endpoint);
   }
-  if (participants_.size() > 4096) {
-    participants_.clear();  // writers come and go; a long-lived host must not grow without bound
+  if (senders_.size() > 4096) {
+    senders_.clear();  // writers come and go; a long-lived host must not grow without bound
   }
-  participants_.emplace(publication, participant);
-  return participant;
+  return senders_.emplace(publication, sender).first->second;
 }
 
 template <typename Message>

@@ -3,6 +3,7 @@
 #include "comply/transport/in_process.hpp"
 
 #include <chrono>
+#include <cstring>
 #include <map>
 
 namespace comply::transport {
@@ -50,7 +51,10 @@ void InProcessBus::post(std::vector<Sample<Message>>& list, const Message& messa
                         std::uint64_t publisher) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    list.push_back({message, publisher, {}, publisher});
+    // One publisher is one process here: its number is its participant and names it as a sender.
+    Gid sender{};
+    std::memcpy(sender.data(), &publisher, sizeof(publisher));
+    list.push_back({message, publisher, {}, publisher, sender});
   }
   host_wakeup_.notify_all();
 }

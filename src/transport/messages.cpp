@@ -51,6 +51,31 @@ std::string_view toString(WireCommandKind kind) {
   return kind == WireCommandKind::kJoint ? "joint" : "cartesian";
 }
 
+Gid participantGid(const Gid& endpoint) noexcept {
+  Gid participant = endpoint;
+  // The RTPS entity id of a participant (ENTITYID_PARTICIPANT).
+  participant[12] = 0x00;
+  participant[13] = 0x00;
+  participant[14] = 0x01;
+  participant[15] = 0xc1;
+  return participant;
+}
+
+bool sentBy(const CommandOutcomeMessage& outcome, const Gid& sender) noexcept {
+  return outcome.sender == sender || outcome.sender == Gid{};
+}
+
+std::string toHex(const Gid& gid) {
+  static constexpr char kDigits[] = "0123456789abcdef";
+  std::string text;
+  text.reserve(2 * gid.size());
+  for (const std::uint8_t byte : gid) {
+    text += kDigits[byte >> 4U];
+    text += kDigits[byte & 0x0fU];
+  }
+  return text;
+}
+
 std::string_view toString(Reason reason) {
   switch (reason) {
     case Reason::kNonFinite:

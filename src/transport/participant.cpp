@@ -6,6 +6,7 @@
 #include <dlfcn.h>
 
 #include <array>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <mutex>
@@ -158,6 +159,15 @@ Participant::Participant(const ParticipantOptions& options) : options_(options) 
                               : " (DDS Security with " + options.security.string() +
                                     ": CycloneDDS's log above says which file it refused)"));
   }
+}
+
+Gid Participant::gid() const {
+  dds_guid_t guid{};
+  Gid gid{};
+  if (dds_get_guid(participant_, &guid) == DDS_RETCODE_OK) {
+    std::memcpy(gid.data(), guid.v, gid.size());
+  }
+  return gid;
 }
 
 Participant::~Participant() {

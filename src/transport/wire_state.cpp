@@ -154,6 +154,7 @@ comply_msgs_msg_dds__CommandOutcome_ outcomeToWire(const CommandOutcomeMessage& 
   toWireStamp(outcome.received, out.received);
   toWireStamp(outcome.applied, out.applied);
   out.message = const_cast<char*>(outcome.message.c_str());
+  std::copy(outcome.sender.begin(), outcome.sender.end(), std::begin(out.sender));
   return out;
 }
 
@@ -167,6 +168,7 @@ CommandOutcomeMessage outcomeFromWire(const comply_msgs_msg_dds__CommandOutcome_
   outcome.received = fromWireStamp(in.received.sec, in.received.nanosec);
   outcome.applied = fromWireStamp(in.applied.sec, in.applied.nanosec);
   outcome.message = text(in.message);
+  std::copy(std::begin(in.sender), std::end(in.sender), outcome.sender.begin());
   return outcome;
 }
 

@@ -4,6 +4,7 @@
 #include "live_harness.hpp"
 
 #include <atomic>
+#include <cstring>
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
@@ -48,6 +49,9 @@ class DdsHarness final : public HostHarness {
   }
   bool send(const transport::CartesianChunkMessage& message, int publisher) override {
     return writers_.at(publisher)->chunk.write(message);
+  }
+  transport::Gid sender(int publisher) override {
+    return writers_.at(publisher)->participant.gid();
   }
   bool request(transport::RequestType /*request*/, int /*publisher*/) override {
     return false;  // `comply send --request` is the DDS side's requester (tests/apps)
@@ -149,6 +153,12 @@ class InProcessHarness final : public HostHarness {
     return true;
   }
   void close(int publisher) override { bus_->depart(static_cast<std::uint64_t>(publisher)); }
+  transport::Gid sender(int publisher) override {
+    transport::Gid gid{};  // as the bus names a publisher (in_process.cpp)
+    const auto number = static_cast<std::uint64_t>(publisher);
+    std::memcpy(gid.data(), &number, sizeof(number));
+    return gid;
+  }
   bool request(transport::RequestType request, int publisher) override {
     transport::RequestMessage message;
     message.header.stamp = transport::Stamp::now();

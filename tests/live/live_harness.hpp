@@ -53,6 +53,8 @@ class HostHarness {
   /// After connect(): waits until the host has accounted a chunk from `publisher` (a late one,
   /// refused as late_chunk), so that no chunk it sends later is lost to discovery.
   bool connectChunks(int publisher);
+  /// How the host's outcomes name `publisher` (connected first) as a command's sender.
+  virtual transport::Gid sender(int publisher) = 0;
   /// Deletes `publisher`'s writers, as a sender process that exits cleanly does.
   virtual void close(int publisher) = 0;
   /// An operator request (activate, deactivate, reset) from `publisher`; false where the harness

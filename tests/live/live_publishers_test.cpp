@@ -171,6 +171,46 @@ TEST_P(LiveHostOn, SecondPublisherIsRefusedUntilTheFirstGoesSilent) {
   EXPECT_EQ(host.stop(), 0);
 }
 
+/// The soak saw one sender given another's outcome: two senders' commands carried the same
+/// stamp, and a client matched outcomes by stamp alone. An outcome names its sender.
+TEST_P(LiveHostOn, TwoSendersOfOneStampEachGetTheirOwnOutcome) {
+  HostHarness& host = *host_;
+  host.start("same_stamp");
+  const auto state = host.state(20s);
+  ASSERT_TRUE(state);
+  const int dof = static_cast<int>(state->position.size());
+  ASSERT_TRUE(host.connect(1, dof));  // holds the command topics
+  ASSERT_TRUE(host.connect(2, dof));
+  const transport::Gid holder = host.sender(1);
+  const transport::Gid other = host.sender(2);
+  ASSERT_NE(holder, other);
+  ASSERT_NE(holder, transport::Gid{});
+
+  const transport::Stamp stamp = transport::Stamp::now();
+  ASSERT_TRUE(host.send(poseCommand(*state, {0.0, 0.01, 0.0}, stamp), 1));
+  ASSERT_TRUE(host.send(poseCommand(*state, {0.0, -0.01, 0.0}, stamp), 2));
+  ASSERT_TRUE(
+      host.poll(5s, [&](const auto&) { return host.outcomes()[stamp.nanoseconds()].size() >= 2; }));
+  const auto& outcomes = host.outcomes()[stamp.nanoseconds()];
+  ASSERT_EQ(outcomes.size(), 2U);
+  int checked = 0;
+  for (const transport::CommandOutcomeMessage& outcome : outcomes) {
+    if (outcome.sender == holder) {
+      EXPECT_EQ(outcome.outcome, transport::Outcome::kApplied) << outcome.message;
+      EXPECT_TRUE(transport::sentBy(outcome, holder));
+      EXPECT_FALSE(transport::sentBy(outcome, other));
+      ++checked;
+    } else if (outcome.sender == other) {
+      EXPECT_EQ(outcome.reason, transport::Reason::kOtherPublisher);
+      EXPECT_TRUE(transport::sentBy(outcome, other));
+      EXPECT_FALSE(transport::sentBy(outcome, holder));
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 2) << "an outcome named neither sender";
+  EXPECT_EQ(host.stop(), 0);
+}
+
 TEST(LiveHost, ClientCarriesOnAcrossAHostRestart) {
   const int domain = randomDomain();
   Client client(domain, "restart");

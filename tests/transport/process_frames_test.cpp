@@ -21,6 +21,7 @@ Sample<CartesianCommandMessage> someSample() {
   sample.message.command.nullspace_stiffness.setConstant(12.5);
   sample.publisher = 0x1122334455667788ULL;
   sample.participant = 42;
+  sample.sender = {0x01, 0x10, 0xaa, 0x55, 1, 2, 3, 4, 5, 6, 7, 8, 0, 0, 1, 0xc1};
   sample.malformed = "torque_feedforward has 13 entries";
   return sample;
 }
@@ -51,6 +52,7 @@ TEST(TransportProcessFrames, ComeOutWholeHoweverTheStreamIsCut) {
     const Sample<CartesianCommandMessage> sent = someSample();
     EXPECT_EQ(sample.publisher, sent.publisher);
     EXPECT_EQ(sample.participant, sent.participant);
+    EXPECT_EQ(sample.sender, sent.sender);
     EXPECT_EQ(sample.malformed, sent.malformed);
     EXPECT_EQ(sample.message.header.stamp, sent.message.header.stamp);
     EXPECT_EQ(sample.message.header.frame_id, sent.message.header.frame_id);

@@ -56,6 +56,12 @@ std::string_view toString(CommandReason reason);
 
 enum class CommandKind : std::uint8_t { kCartesian = 0, kJoint = 1 };
 
+/// Who sent a command, as every reader of the outcomes can tell: the sending participant's DDS
+/// GUID (the writer's GUID prefix with the participant's entity id 0x000001c1). All zero when the
+/// transport does not name it. Two senders may stamp two commands alike; the stamp and the sender
+/// together name one command.
+using SenderId = std::array<std::uint8_t, 16>;
+
 /// What became of one command.
 struct CommandOutcome {
   std::int64_t stamp_ns = 0;  ///< the command's stamp (header.stamp), exact
@@ -66,6 +72,7 @@ struct CommandOutcome {
   std::int64_t received_ns = 0;  ///< wall clock (CLOCK_REALTIME) when the gate was offered it
   std::int64_t applied_ns = 0;   ///< applied: wall clock at the end of that cycle
   std::string message;           ///< rejected: why, naming the field or the rule
+  SenderId sender{};             ///< who sent it (Offer::sender)
 };
 
 struct GateCounts {
@@ -91,8 +98,9 @@ struct Offer {
   CommandKind kind = CommandKind::kCartesian;
   std::uint64_t publisher = 0;    ///< the writer's identity (a DDS instance handle, a ROS GID hash)
   std::uint64_t participant = 0;  ///< the sending process (0: unknown), for the request rule
-  std::string_view malformed;     ///< non-empty: what the wire held that the type cannot
-  std::int64_t now_ns = 0;        ///< the intake's steady clock [ns], for the publisher rule
+  SenderId sender{};           ///< the sending process as the outcome names it (all zero: unknown)
+  std::string_view malformed;  ///< non-empty: what the wire held that the type cannot
+  std::int64_t now_ns = 0;     ///< the intake's steady clock [ns], for the publisher rule
   /// The host's clock in the stamps' timebase [ns] (wall clock for `comply run`, simulated time
   /// for Python's Sim, the node's clock under ROS 2); 0: none, no lead rule.
   std::int64_t clock_ns = 0;

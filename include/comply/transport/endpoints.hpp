@@ -137,14 +137,18 @@ class Reader final : public Endpoint {
 
  private:
   void noteDepartures(std::vector<std::uint64_t>& departed);
+  struct Sender {
+    std::uint64_t participant = 0;  ///< its instance handle here
+    Gid gid{};                      ///< its GUID, as every peer knows it
+  };
   /// The participant (process) of a matched writer, asked of DDS once per writer.
-  std::uint64_t participantOf(std::uint64_t publication);
+  const Sender& senderOf(std::uint64_t publication);
 
   std::int32_t waitset_ = 0;
   std::int32_t condition_ = 0;
-  std::vector<std::uint64_t> matched_;  ///< the writers matched when last asked
-  std::uint32_t matches_seen_ = 0;      ///< the status's total match count then
-  std::unordered_map<std::uint64_t, std::uint64_t> participants_;  ///< writer -> participant
+  std::vector<std::uint64_t> matched_;                 ///< the writers matched when last asked
+  std::uint32_t matches_seen_ = 0;                     ///< the status's total match count then
+  std::unordered_map<std::uint64_t, Sender> senders_;  ///< writer -> its participant
 };
 
 /// Waits on several readers at once (the host's reader thread).

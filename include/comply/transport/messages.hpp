@@ -155,6 +155,13 @@ enum class Reason : std::uint8_t {
 inline constexpr std::size_t kReasonCount = 15;
 std::string_view toString(Reason reason);
 
+/// A DDS GUID: 12 bytes of prefix (one per participant) and 4 of entity id.
+using Gid = std::array<std::uint8_t, 16>;
+/// The participant's GUID of an endpoint's GUID: the same prefix, entity id 0x000001c1.
+Gid participantGid(const Gid& endpoint) noexcept;
+/// 32 lower-case hex digits, as `ros2 topic echo` prints nothing better and logs can compare.
+std::string toHex(const Gid& gid);
+
 /// comply_msgs/CommandOutcome.
 struct CommandOutcomeMessage {
   Stamp stamp;  ///< the command's header.stamp
@@ -165,7 +172,12 @@ struct CommandOutcomeMessage {
   Stamp received;
   Stamp applied;
   std::string message;
+  Gid sender{};  ///< the sending participant's GUID; all zero: the host could not tell
 };
+
+/// Whether `outcome` is of a command `sender` (a participant's GUID) sent: it names that sender,
+/// or none (a host that cannot tell). Two senders' commands may carry the same stamp.
+bool sentBy(const CommandOutcomeMessage& outcome, const Gid& sender) noexcept;
 
 /// comply_msgs/Diagnostics (units in msg/Diagnostics.msg).
 struct DiagnosticsMessage {
@@ -223,6 +235,8 @@ struct Sample {
   /// The sending process's participant (0: unknown): one client's command and request writers
   /// share it, so requests can be held to the publisher rule.
   std::uint64_t participant = 0;
+  /// The sending participant's GUID (all zero: unknown): what the outcome names the sender by.
+  Gid sender{};
 };
 
 }  // namespace comply::transport

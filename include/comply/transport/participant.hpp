@@ -8,8 +8,8 @@
 //   transport::Writer<transport::CartesianCommandMessage> writer(participant, "comply");
 
 #include <cstdint>
-#include <stdexcept>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 
 #include "comply/transport/host_transport.hpp"
@@ -49,6 +49,8 @@ class Participant {
 
   [[nodiscard]] std::int32_t handle() const noexcept { return participant_; }
   [[nodiscard]] const ParticipantOptions& options() const noexcept { return options_; }
+  /// Its DDS GUID: how a host's CommandOutcome names this process as a command's sender.
+  [[nodiscard]] Gid gid() const;
 
  private:
   ParticipantOptions options_;

@@ -1,5 +1,6 @@
 #include "comply_ros2_control/message_conversion.hpp"
 
+#include <algorithm>
 #include <sstream>
 #include <type_traits>
 #include <variant>
@@ -226,6 +227,7 @@ comply_msgs::msg::CommandOutcome toMessage(const comply::pipeline::CommandOutcom
   message.received = timeOf(outcome.received_ns);
   message.applied = timeOf(outcome.applied_ns);
   message.message = outcome.message;
+  std::copy(outcome.sender.begin(), outcome.sender.end(), message.sender.begin());
   return message;
 }
 

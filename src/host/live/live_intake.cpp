@@ -36,6 +36,7 @@ void offerSample(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gat
   offer.kind = kind;
   offer.publisher = sample.publisher;
   offer.participant = sample.participant;
+  offer.sender = sample.sender;
   offer.malformed = sample.malformed;
   offer.now_ns = monotonicNanoseconds();
   offer.clock_ns = wallClockNanoseconds();  // senders stamp with their wall clock (ROS 2 time)
