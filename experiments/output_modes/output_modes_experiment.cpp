@@ -45,6 +45,15 @@ void require(bool ok, const std::string& what) {
   }
 }
 
+/// One cycle of `rig`, which must leave the controller active; the FAULT's reason read after the
+/// cycle (as an argument beside the cycle, it could be read before it).
+template <typename Rig>
+void requireCycle(Rig& rig, const std::string& what) {
+  if (!rig.cycle()) {
+    require(false, what + ": " + rig.wrapper.diagnostics().last_fault);
+  }
+}
+
 /// How far the TCP moved from `reference` to `now`, in the task frame: position [m], rotation
 /// vector [rad].
 Vector6d displacementInTask(const Eigen::Isometry3d& reference, const Eigen::Isometry3d& now) {
@@ -123,8 +132,7 @@ IdentifiedStiffness identifyStiffness(OutputMode mode) {
   OutputModeRig<> rig(config, plant);
   const auto cycles = [&](int count, const char* phase) {
     for (int cycle = 0; cycle < count; ++cycle) {
-      require(rig.cycle(), std::string(toString(mode)) + ", " + phase + ": " +
-                               rig.wrapper.diagnostics().last_fault);
+      requireCycle(rig, std::string(toString(mode)) + ", " + phase);
     }
   };
   cycles(kSettleCycles, "settling");
@@ -174,8 +182,7 @@ ContactResult pressOnTable(OutputMode mode) {
                                         : along(cycle, 3000, 4000, above, pressed, down, dof);
     const pipeline::Verdict verdict = rig.wrapper.submit(target);
     require(verdict.accepted, "contact, " + std::string(toString(mode)) + ": " + verdict.message);
-    require(rig.cycle(), "contact, " + std::string(toString(mode)) + ": " +
-                             rig.wrapper.diagnostics().last_fault);
+    requireCycle(rig, "contact, " + std::string(toString(mode)));
     const double normal = rig.plant.toolContactWrench()[2];  // the table pushes up
     if (first_touch < 0 && normal > 0.0) {
       first_touch = cycle;
@@ -223,7 +230,7 @@ ToolStepResult heavyToolStep(bool declared) {
       const pipeline::Verdict verdict = rig.wrapper.submit(step);
       require(verdict.accepted, "heavy tool: " + verdict.message);
     }
-    require(rig.cycle(), "heavy tool: " + rig.wrapper.diagnostics().last_fault);
+    requireCycle(rig, "heavy tool");
     const Eigen::Vector3d position = rig.plant.tcpPose().translation();
     if (cycle >= kStepCycle) {
       const double error = position.y() - step.position.y();  // negative until it arrives

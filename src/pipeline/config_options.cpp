@@ -244,10 +244,10 @@ Option guard(const char* key, const char* default_text, const char* comment,
 
 // What a running arm must never do, whatever the law and the gains ask.
 void addGuardOptions(std::vector<Option>& table) {
-  table.push_back(
-      spaced(flag("stability_guard.enabled", "true",
-                  "FAULT on a runaway: overspeed, a joint past its limit, sustained saturation",
-                  [](WrapperConfig& c, bool v) { c.stability_guard.enabled = v; })));
+  table.push_back(spaced(
+      flag("stability_guard.enabled", "true",
+           "FAULT on a runaway: overspeed, past a limit, sustained saturation, growing energy",
+           [](WrapperConfig& c, bool v) { c.stability_guard.enabled = v; })));
   table.push_back(guard("stability_guard.velocity_factor", "1.0",
                         "FAULT above this times a joint's URDF velocity limit",
                         &StabilityGuardConfig::velocity_factor));
@@ -259,6 +259,16 @@ void addGuardOptions(std::vector<Option>& table) {
   table.push_back(guard("stability_guard.saturation_time_s", "1.0",
                         "s a joint may sit at its effort limit before FAULT; 0: never",
                         &StabilityGuardConfig::saturation_time_s, true));
+  table.push_back(guard("stability_guard.energy_window_s", "0.25",
+                        "s per window of the energy rule (an oscillation growing without a "
+                        "command that grows with it); 0: off",
+                        &StabilityGuardConfig::energy_window_s, true));
+  table.push_back(guard("stability_guard.energy_growth", "4.0",
+                        "times the oscillation's energy grows, window over window, before FAULT",
+                        &StabilityGuardConfig::energy_growth));
+  table.push_back(guard("stability_guard.energy_floor_j", "0.05",
+                        "J (joint-inertia weighted) the grown energy must exceed",
+                        &StabilityGuardConfig::energy_floor_j, true));
 }
 
 // The external wrench, estimated from the joints' momentum (pipeline/momentum_observer.hpp).

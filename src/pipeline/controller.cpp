@@ -70,6 +70,12 @@ Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
   hold_gravity_.setZero(dof_);
   overspeed_s_.setZero(dof_);
   saturated_s_.setZero(dof_);
+  const StabilityGuardConfig& guard = parameters_.stability_guard;
+  energy_watch_.configure({.window_s = guard.enabled ? guard.energy_window_s : 0.0,
+                           .growth = guard.energy_growth,
+                           .floor_j = guard.energy_floor_j},
+                          {parameters_.guard_inertia.data(),
+                           static_cast<std::size_t>(parameters_.guard_inertia.size())});
   input_.dof = dof_;
 }
 
@@ -132,6 +138,7 @@ void Controller::activate(const JointState& state) {
   sequence_seen_ = false;
   overspeed_s_.setZero(dof_);
   saturated_s_.setZero(dof_);
+  energy_watch_.reset();
   last_command_time_s_ = 0.0;
   watchdog_expired_ = false;
   reset_pending_ = false;

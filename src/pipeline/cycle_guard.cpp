@@ -4,8 +4,10 @@
 // joint and the number named:
 //   a joint faster than velocity_factor x its URDF limit for velocity_time_s,
 //   a joint more than position_margin_rad past a URDF position limit (the soft limits failed),
-//   a joint at its effort limit for saturation_time_s (the law asks for more than the arm has).
+//   a joint at its effort limit for saturation_time_s (the law asks for more than the arm has),
+//   an oscillation whose energy grows without a command that grows with it (energy_watch.hpp).
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -43,7 +45,60 @@ bool Controller::guardMotion() noexcept {
       return false;
     }
   }
-  return true;
+  return guardEnergy();
+}
+
+namespace {
+
+/// What the sender commands, as the energy rule compares it from cycle to cycle: the reference and
+/// its rates, the feedforward, the stiffness. Returns how many values it wrote.
+int commandInput(const CommandBus& bus, int dof, std::span<double, EnergyWatch::kMaxInput> out) {
+  int n = 0;
+  const auto put = [&](const double* values, int count) {
+    const int room = std::min(count, static_cast<int>(out.size()) - n);
+    std::copy_n(values, room, out.begin() + n);
+    n += room;
+  };
+  if (const auto* cartesian = std::get_if<comply_cartesian_command>(&bus)) {
+    put(cartesian->position, 3);
+    put(cartesian->orientation, 4);
+    put(cartesian->twist, 6);
+    put(cartesian->wrench_feedforward, 6);
+    put(cartesian->stiffness_translational, 9);
+    put(cartesian->stiffness_rotational, 9);
+    put(cartesian->torque_feedforward, dof);
+    put(cartesian->nullspace_position, dof);
+  } else if (const auto* joint = std::get_if<comply_joint_command>(&bus)) {
+    put(joint->position, dof);
+    put(joint->velocity, dof);
+    put(joint->torque_feedforward, dof);
+    put(joint->stiffness, dof);
+  }
+  return n;
+}
+
+}  // namespace
+
+bool Controller::guardEnergy() noexcept {
+  if (!energy_watch_.enabled() ||
+      diagnostics_.state.load(std::memory_order_relaxed) != WrapperState::kActive) {
+    return true;
+  }
+  std::array<double, EnergyWatch::kMaxInput> input{};
+  const int size = commandInput(lawBus(), dof_, input);
+  if (!energy_watch_.update({state_.velocity.data(), static_cast<std::size_t>(dof_)},
+                            {input.data(), static_cast<std::size_t>(size)}, period_s_)) {
+    return true;
+  }
+  const EnergyWatch::Run& run = energy_watch_.run();
+  char detail[224];
+  std::snprintf(detail, sizeof(detail),
+                "an oscillation of %s gained energy from %.3g J to %.3g J in %.2g s, window over "
+                "window, while the command did not grow (energy_growth %g)",
+                resolved_->config.joints[static_cast<std::size_t>(run.joint)].c_str(), run.from_j,
+                run.to_j, run.duration_s, parameters_.stability_guard.energy_growth);
+  enterFault("stability guard: ", detail);
+  return false;
 }
 
 bool Controller::guardSaturation() noexcept {

@@ -163,6 +163,13 @@ std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig&
                        verdict.message + " at 1 kHz; lower it, or set validation.max_wn_period");
     }
   }
+  const StabilityGuardConfig& guard = config.stability_guard;
+  if (guard.enabled && guard.energy_window_s > 0.0) {
+    parameters.guard_inertia =
+        resolved->gain_bound.joint_inertia.size() == dof
+            ? resolved->gain_bound.joint_inertia
+            : lightestInertias(model, declaredArmature(resolved->robot, model)).joint_inertia;
+  }
   if (parameters.force_control.source == ForceSource::kObserver && !parameters.observer.enabled) {
     throw InputError(InputErrc::kInconsistent, config.name, "force_control.source",
                      isAdmittance(config.output.mode)

@@ -1,7 +1,8 @@
-// The stability guard's three conditions one at a time, on the FR3 with synthetic states: a joint
+// The stability guard's four conditions one at a time, on the FR3 with synthetic states: a joint
 // over its URDF speed limit for longer than velocity_time_s (one noisy sample is not enough), a
 // joint past its URDF position limit by more than the margin, a joint held at its effort limit for
-// longer than saturation_time_s. Each ends in FAULT naming the joint; off, none does.
+// longer than saturation_time_s, an oscillation that gains energy while the command stays. Each
+// ends in FAULT naming the joint; off, none does.
 
 #include <gtest/gtest.h>
 
@@ -47,6 +48,60 @@ TEST_F(Guard, AJointOverItsSpeedLimitForFiveMillisecondsIsAFault) {
   EXPECT_NE(fault.find("stability guard: fr3_joint4 at 2.88 rad/s, over 2.62 rad/s"),
             std::string::npos)
       << fault;
+}
+
+/// fr3_joint4 swinging at 8 Hz about home, its energy growing e^t from a small start: what a loop
+/// that generates energy looks like, well inside the speed limit.
+void swing(JointState& state, double t_s) {
+  state.velocity[kJoint] = 0.3 * std::exp(0.5 * t_s) * std::sin(2.0 * M_PI * 8.0 * t_s);
+}
+
+TEST_F(Guard, AnOscillationThatGainsEnergyUnderASteadyCommandIsAFault) {
+  start();
+  int cycles = 0;
+  while (cycles < 5000) {
+    swing(state_, cycles * kPeriod);
+    if (cycle() != CycleStatus::kOk) {
+      break;
+    }
+    ++cycles;
+  }
+  ASSERT_LT(cycles, 5000) << "no FAULT in 5 s";
+  // fr3_joint4's lightest inertia is about 0.7 kg m^2 (with its rotor): 0.03 J at the start,
+  // 0.05 J after 0.5 s, 4x the run's start (0.25 s windows) after about 1.5 s.
+  EXPECT_GT(cycles * kPeriod, 1.0);
+  EXPECT_LT(cycles * kPeriod, 2.5);
+  EXPECT_LT(std::abs(state_.velocity[kJoint]), speedLimit()) << "the speed rule would have tripped";
+  const std::string fault = wrapper_->diagnostics().last_fault;
+  EXPECT_NE(fault.find("stability guard: an oscillation of fr3_joint4 gained energy from"),
+            std::string::npos)
+      << fault;
+}
+
+TEST_F(Guard, TheSameSwingCommandedBySwingingTheReferenceIsNoFault) {
+  start();
+  const JointVector home = fr3Home();
+  for (int k = 0; k < 4000; ++k) {  // 4 s: the energy x55; at 4.4 s the speed rule trips
+    const double t_s = k * kPeriod;
+    swing(state_, t_s);
+    JointCommand reference = JointCommand::zero(kFr3Dof);
+    reference.stamp_s = 1.0 + t_s;
+    reference.fields = CommandField::kPosition;
+    reference.position = home;
+    // The reference swings with the arm, ever wider: the sender drives the growth.
+    reference.position[kJoint] += 0.006 * std::exp(0.5 * t_s) * std::sin(2.0 * M_PI * 8.0 * t_s);
+    ASSERT_TRUE(wrapper_->submit(reference).accepted) << "at " << t_s << " s";
+    ASSERT_EQ(cycle(), CycleStatus::kOk)
+        << "at " << t_s << " s: " << wrapper_->diagnostics().last_fault;
+  }
+}
+
+TEST_F(Guard, TheEnergyRuleOffLetsTheSwingGrow) {
+  start("stability_guard:\n  energy_window_s: 0\n");
+  for (int k = 0; k < 3000; ++k) {
+    swing(state_, k * kPeriod);
+    ASSERT_EQ(cycle(), CycleStatus::kOk) << wrapper_->diagnostics().last_fault;
+  }
 }
 
 TEST_F(Guard, AJointPastItsLimitByMoreThanTheMarginIsAFault) {

@@ -5,7 +5,8 @@
 //   measure      state check (finite; not frozen), model update, the wrist sensor's reading
 //                (tool weight and tare off), plugin input, publish the measured pose
 //                                                               -> FAULT on a bad state
-//   guard        overspeed, a joint past its limit              -> FAULT (stability_guard.*)
+//   guard        overspeed, a joint past its limit, an oscillation whose energy grows
+//                without a command that grows with it           -> FAULT (stability_guard.*)
 //   commands     take every command the intake queued, merged by field mask; a timed chunk
 //                starts, and the running one writes its reference at this cycle's time
 //   watchdog     no command for command_timeout_s: hold (stop the motion) or re-anchor
@@ -40,6 +41,7 @@
 #include "comply/pipeline/chunk_player.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/diagnostics.hpp"
+#include "comply/pipeline/energy_watch.hpp"
 #include "comply/pipeline/force_axes.hpp"
 #include "comply/pipeline/gain_guard.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
@@ -174,7 +176,9 @@ class Controller {
  private:
   // Stages, one file each (cycle_*.cpp).
   bool measure(const JointState& state) noexcept;
-  bool guardMotion() noexcept;      // cycle_guard.cpp
+  bool guardMotion() noexcept;
+  /// The energy rule of guardMotion(): the law's command of the last cycle as the watch's input.
+  bool guardEnergy() noexcept;
   bool guardSaturation() noexcept;  // cycle_guard.cpp
   void takeCommands() noexcept;
   /// A queued command that sets a group the running chunk drives ends the chunk (its reference
@@ -235,6 +239,7 @@ class Controller {
   bool torque_clipped_ = false;    // the last cycle's torque was rate or effort limited
   JointVector overspeed_s_;        // per joint: how long it has been over its speed limit
   JointVector saturated_s_;        // per joint: how long it has sat at its effort limit
+  EnergyWatch energy_watch_;       // the guard's energy rule (energy_watch.hpp)
   bool reset_pending_ = false;
   // The wrist sensor (cycle_wrench.cpp): this cycle's reading less the tool's weight, then less
   // the tare, which is kept in the TCP frame (the sensor turns with the tool).

@@ -69,6 +69,8 @@ struct CycleParameters {
   /// (its weight in the torque) is off in admittance, this is not.
   bool payload_on_sensor = false;
   JointVector velocity_limit;  ///< URDF [rad/s | m/s], for the stability guard and admittance
+  /// Each joint's lightest inertia [kg m^2 | kg]: the energy rule's weights (empty when off).
+  JointVector guard_inertia;
 };
 
 struct ResolvedController {
