@@ -26,7 +26,8 @@ build: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
 
 # The files generated from the tables (docs, ROS 2 messages, DDS IDL), committed and compared by
-# tests/schema and tests/transport: run after a change to a table.
+# tests/schema and tests/transport: run after a change to a table (the command schema's,
+# include/comply/schema/table.hpp, or the host messages', include/comply/transport/message_tables.hpp).
 COMPLY_CLI = $(BUILD_DIR)/apps/comply/comply
 IDL_DIR = src/transport/idl/comply_msgs/msg
 generated: build
@@ -35,7 +36,11 @@ generated: build
 	@$(COMPLY_CLI) schema --format msg --kind joint > msg/JointCommand.msg
 	@$(COMPLY_CLI) schema --format idl --kind cartesian > $(IDL_DIR)/CartesianCommand.idl
 	@$(COMPLY_CLI) schema --format idl --kind joint > $(IDL_DIR)/JointCommand.idl
-	@echo "generated: docs/command-schema.md msg/*Command.msg $(IDL_DIR)/*Command.idl"
+	@for m in ControllerState CommandOutcome Diagnostics; do \
+	  $(COMPLY_CLI) schema --format msg --message $$m > msg/$$m.msg; \
+	  $(COMPLY_CLI) schema --format idl --message $$m > $(IDL_DIR)/$$m.idl; \
+	done
+	@echo "generated: docs/command-schema.md msg/*.msg $(IDL_DIR)/*.idl (commands and host messages)"
 
 # Libraries, headers, the CLI, the reference plugins, robots and the CMake package `comply` under
 # PREFIX; the installed comply finds its plugins and robots relative to its own location.

@@ -122,6 +122,10 @@ CLI::App* addSchemaCommand(CLI::App& app, SchemaOptions& options) {
       ->check(CLI::IsMember({"markdown", "json", "msg", "idl"}));
   command->add_option("--kind", options.kind, "cartesian or joint (default: both)")
       ->check(CLI::IsMember({"cartesian", "joint"}));
+  command
+      ->add_option("--message", options.message,
+                   "a host message instead of a command (--format msg or idl)")
+      ->check(CLI::IsMember({"ControllerState", "CommandOutcome", "Diagnostics"}));
   return command;
 }
 

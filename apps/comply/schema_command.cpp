@@ -3,10 +3,21 @@
 #include <ostream>
 
 #include "comply/schema/describe.hpp"
+#include "comply/transport/message_text.hpp"
 
 namespace comply::app {
 
 int schemaCommand(const SchemaOptions& options, std::ostream& out, std::ostream& err) {
+  if (!options.message.empty()) {
+    if (options.format != "msg" && options.format != "idl") {
+      err << "comply schema: --message takes --format msg or idl\n";
+      return 2;
+    }
+    const transport::MessageText message = transport::hostMessageText(options.message);
+    out << (options.format == "msg" ? transport::rosMessageText(message)
+                                    : transport::ddsIdlText(message));
+    return 0;
+  }
   const bool both = options.kind.empty();
   const schema::CommandKind kind =
       options.kind == "joint" ? schema::CommandKind::kJoint : schema::CommandKind::kCartesian;

@@ -121,36 +121,56 @@ void addPassivity(const pipeline::PassivitySnapshot& passivity, py::dict& d) {
   d["gain_fraction"] = passivity.gain_fraction;
 }
 
-py::dict toDict(const transport::ControllerStateMessage& s) {
+namespace {
+
+template <typename T>
+concept DoubleArray = requires {
+  typename T::value_type;
+}
+&&std::is_same_v<typename T::value_type, double>;
+
+/// A field of a table's message as Python has it: enums by name, stamps in seconds, a header as
+/// {"stamp", "frame_id"}, numbers in arrays as numpy arrays, a GUID as hex.
+template <typename T>
+py::object fieldObject(const T& value) {
+  if constexpr (std::is_enum_v<T>) {
+    return py::str(std::string(toString(value)));
+  } else if constexpr (std::is_same_v<T, transport::Stamp>) {
+    return py::float_(value.seconds());
+  } else if constexpr (std::is_same_v<T, transport::Header>) {
+    py::dict header;
+    header["stamp"] = value.stamp.seconds();
+    header["frame_id"] = value.frame_id;
+    return std::move(header);
+  } else if constexpr (std::is_same_v<T, transport::Gid>) {
+    return py::str(transport::toHex(value));
+  } else if constexpr (std::is_same_v<T, transport::Outcomes>) {
+    py::list outcomes;
+    for (const auto& outcome : value) {
+      outcomes.append(toDict(outcome));
+    }
+    return std::move(outcomes);
+  } else if constexpr (DoubleArray<T>) {
+    return array(value.data(), value.size());
+  } else {
+    return py::cast(value);
+  }
+}
+
+py::dict messageDict(const transport::TableMessage auto& message) {
   py::dict d;
-  d["stamp"] = s.header.stamp.seconds();
-  d["state"] = std::string(toString(s.state));
-  d["cycle"] = s.cycle;
-  d["joint_names"] = s.joint_names;
-  d["position"] = array(s.position);
-  d["velocity"] = array(s.velocity);
-  d["effort"] = array(s.effort);
-  d["torque_command"] = array(s.torque_command);
-  d["tcp_position"] = array(s.tcp_position);
-  d["tcp_orientation"] = array(s.tcp_orientation);
-  d["tcp_twist"] = array(s.tcp_twist);
-  d["reference_stamp"] = s.reference_stamp.seconds();
-  d["reference_position"] = array(s.reference_position);
-  d["reference_orientation"] = array(s.reference_orientation);
-  d["reference_joint_position"] = array(s.reference_joint_position);
-  d["contact_wrench"] = array(s.contact_wrench);
-  d["contact_wrench_source"] = std::string(toString(s.contact_wrench_source));
-  d["contact_wrench_tcp"] = array(s.contact_wrench_tcp);
-  d["contact_wrench_task"] = array(s.contact_wrench_task);
-  d["contact_wrench_bandwidth"] = s.contact_wrench_bandwidth_hz;
-  addPassivity({.enabled = s.passivity,
-                .tank_energy_j = s.tank_energy_j,
-                .nullspace_tank_energy_j = s.nullspace_tank_energy_j,
-                .injected_j = s.energy_injected_j,
-                .dissipated_j = s.energy_dissipated_j,
-                .refused_j = s.energy_refused_j,
-                .gain_fraction = s.gain_fraction},
-               d);
+  std::remove_cvref_t<decltype(message)>::visit(
+      message, [&](transport::FieldName name, const auto& value) {
+        d[py::str(std::string(name.wire))] = fieldObject(value);
+      });
+  return d;
+}
+
+}  // namespace
+
+py::dict toDict(const transport::ControllerStateMessage& s) {
+  py::dict d = messageDict(s);
+  d["stamp"] = s.header.stamp.seconds();  // the header's stamp, as every state dict has it
   return d;
 }
 
@@ -171,29 +191,13 @@ py::dict toDict(const transport::CommandOutcomeMessage& o) {
 }
 
 py::dict toDict(const transport::DiagnosticsMessage& m) {
-  py::dict d;
+  py::dict d = messageDict(m);
   d["stamp"] = stampDict(m.header.stamp);
-  d["state"] = std::string(toString(m.state));
-  d["cycles"] = m.cycles;
-  d["overruns"] = m.overruns;
-  d["commands_received"] = m.commands_received;
-  d["commands_applied"] = m.commands_applied;
-  d["commands_rejected"] = m.commands_rejected;
-  py::dict rejections;
+  py::dict rejections;  // by the reason's name, not its number
   for (std::size_t i = 0; i < m.rejections.size(); ++i) {
     rejections[py::str(std::string(toString(static_cast<transport::Reason>(i))))] = m.rejections[i];
   }
   d["rejections"] = rejections;
-  d["watchdog_timeouts"] = m.watchdog_timeouts;
-  d["faults"] = m.faults;
-  d["rate_limit_hits"] = m.rate_limit_hits;
-  d["effort_limit_hits"] = m.effort_limit_hits;
-  d["period"] = m.period_s;
-  d["last_fault"] = m.last_fault;
-  d["last_rejection"] = m.last_rejection;
-  d["publisher"] = m.publisher;
-  d["records_dropped"] = m.records_dropped;
-  d["recording"] = m.recording;
   return d;
 }
 

@@ -1,10 +1,11 @@
 // The live messages back from their CDR bytes, field by field in the order cdr_messages.cpp
-// writes them (the commands from the schema tables). What the transport process and the host
-// hand each other (process_transport.cpp); tests/transport holds every decoder against its
-// encoder and against the bytes CycloneDDS puts on the wire.
+// writes them (the commands from the schema tables, the host's messages from theirs). What the
+// transport process and the host hand each other (process_transport.cpp); tests/transport holds
+// every decoder against its encoder and against the bytes CycloneDDS puts on the wire.
 
 #include <Eigen/Core>
 
+#include "cdr_fields.hpp"
 #include "cdr_reader.hpp"
 #include "comply/schema/schema.hpp"
 #include "comply/schema/table.hpp"
@@ -19,7 +20,6 @@ using schema::FieldKind;
 // The fewest bytes one element of each sequence takes: a bound on a count before reading it.
 constexpr std::size_t kStringBytes = 5;  // length and NUL
 constexpr std::size_t kHeaderBytes = 8 + kStringBytes;
-constexpr std::size_t kOutcomeBytes = 8 + 3 + 8 + 16 + kStringBytes + 16;
 
 Stamp getStamp(Reader& r) {
   Stamp stamp;
@@ -38,17 +38,6 @@ Header getHeader(Reader& r) {
 template <typename Enum>
 Enum getEnum(Reader& r) {
   return static_cast<Enum>(r.get<std::uint8_t>());
-}
-
-template <std::size_t N>
-void getArray(Reader& r, std::array<double, N>& values) {
-  r.getArray(values.data(), N);
-}
-
-template <typename T>
-void getSequence(Reader& r, std::vector<T>& values) {
-  values.resize(r.getCount(sizeof(T)));
-  r.getArray(values.data(), values.size());
 }
 
 template <FieldKind K, typename Value>
@@ -107,18 +96,6 @@ void getChunk(Reader& r, Message& message) {
   }
 }
 
-void getOutcome(Reader& r, CommandOutcomeMessage& message) {
-  message.stamp = getStamp(r);
-  message.command_kind = getEnum<WireCommandKind>(r);
-  message.outcome = getEnum<Outcome>(r);
-  message.reason = getEnum<Reason>(r);
-  message.cycle = r.get<std::uint64_t>();
-  message.received = getStamp(r);
-  message.applied = getStamp(r);
-  message.message = r.getString();
-  r.getArray(message.sender.data(), message.sender.size());
-}
-
 /// `get` reads the message from the bytes; whether they held one, to their end or not.
 template <typename Message, typename Get>
 bool decodeWith(std::span<const std::uint8_t> bytes, Message& message, Get get) {
@@ -130,70 +107,11 @@ bool decodeWith(std::span<const std::uint8_t> bytes, Message& message, Get get) 
 }  // namespace
 
 bool decodeCdr(std::span<const std::uint8_t> bytes, ControllerStateMessage& message) {
-  Reader r(bytes);
-  message.header = getHeader(r);
-  message.state = getEnum<HostState>(r);
-  message.command_kind = getEnum<WireCommandKind>(r);
-  message.cycle = r.get<std::uint64_t>();
-  message.joint_names.resize(r.getCount(kStringBytes));
-  for (std::string& name : message.joint_names) {
-    name = r.getString();
-  }
-  getSequence(r, message.position);
-  getSequence(r, message.velocity);
-  getSequence(r, message.effort);
-  getSequence(r, message.torque_command);
-  getArray(r, message.tcp_position);
-  getArray(r, message.tcp_orientation);
-  getArray(r, message.tcp_twist);
-  message.reference_stamp = getStamp(r);
-  message.reference_fields = r.get<std::uint32_t>();
-  getArray(r, message.reference_position);
-  getArray(r, message.reference_orientation);
-  getSequence(r, message.reference_joint_position);
-  getArray(r, message.contact_wrench);
-  message.contact_wrench_source = getEnum<WrenchSource>(r);
-  getArray(r, message.contact_wrench_tcp);
-  getArray(r, message.contact_wrench_task);
-  message.contact_wrench_bandwidth_hz = r.get<double>();
-  message.passivity = r.getBool();
-  message.tank_energy_j = r.get<double>();
-  message.nullspace_tank_energy_j = r.get<double>();
-  message.energy_injected_j = r.get<double>();
-  message.energy_dissipated_j = r.get<double>();
-  message.energy_refused_j = r.get<double>();
-  message.gain_fraction = r.get<double>();
-  return r.ok();
+  return decodeWith(bytes, message, cdr::getFields<ControllerStateMessage>);
 }
 
 bool decodeCdr(std::span<const std::uint8_t> bytes, DiagnosticsMessage& message) {
-  Reader r(bytes);
-  message.header = getHeader(r);
-  message.state = getEnum<HostState>(r);
-  message.cycles = r.get<std::uint64_t>();
-  message.overruns = r.get<std::uint64_t>();
-  message.period_s = r.get<double>();
-  message.commands_received = r.get<std::uint64_t>();
-  message.commands_applied = r.get<std::uint64_t>();
-  message.commands_rejected = r.get<std::uint64_t>();
-  getSequence(r, message.rejections);
-  message.watchdog_timeouts = r.get<std::uint64_t>();
-  message.faults = r.get<std::uint64_t>();
-  message.rate_limit_hits = r.get<std::uint64_t>();
-  message.effort_limit_hits = r.get<std::uint64_t>();
-  message.histogram_bin_s = r.get<double>();
-  getSequence(r, message.compute_time_histogram);
-  getSequence(r, message.start_lateness_histogram);
-  message.last_fault = r.getString();
-  message.last_rejection = r.getString();
-  message.publisher = r.getString();
-  message.records_dropped = r.get<std::uint64_t>();
-  message.recording = r.getString();
-  message.outcomes.resize(r.getCount(kOutcomeBytes));
-  for (CommandOutcomeMessage& outcome : message.outcomes) {
-    getOutcome(r, outcome);
-  }
-  return r.ok();
+  return decodeWith(bytes, message, cdr::getFields<DiagnosticsMessage>);
 }
 
 bool decodeCdr(std::span<const std::uint8_t> bytes, CartesianCommandMessage& message) {

@@ -61,6 +61,10 @@ Gid participantGid(const Gid& endpoint) noexcept {
   return participant;
 }
 
+std::string_view toString(Outcome outcome) {
+  return outcome == Outcome::kApplied ? "applied" : "rejected";
+}
+
 bool sentBy(const CommandOutcomeMessage& outcome, const Gid& sender) noexcept {
   return outcome.sender == sender || outcome.sender == Gid{};
 }

@@ -13,6 +13,7 @@
 
 #include "comply/schema/describe.hpp"
 #include "comply/transport/endpoints.hpp"
+#include "comply/transport/message_text.hpp"
 #include "loopback.hpp"
 #include "text_file.hpp"
 
@@ -107,6 +108,17 @@ TEST(TransportMessages, CommandIdlIsGeneratedFromTheSchema) {
   EXPECT_EQ(contents(kIdlDir / "comply_msgs" / "msg" / "JointCommand.idl"),
             schema::ddsIdl(schema::CommandKind::kJoint))
       << "regenerate with: comply schema --format idl --kind joint";
+}
+
+TEST(TransportMessages, HostMessagesAreGeneratedFromTheirTables) {
+  for (const std::string_view name : hostMessageNames()) {
+    const MessageText message = hostMessageText(name);
+    const std::string file(name);
+    EXPECT_EQ(contents(kSourceDir / "msg" / (file + ".msg")), rosMessageText(message))
+        << "regenerate with: make generated";
+    EXPECT_EQ(contents(kIdlDir / "comply_msgs" / "msg" / (file + ".idl")), ddsIdlText(message))
+        << "regenerate with: make generated";
+  }
 }
 
 TEST(TransportMessages, EveryIdlStructMatchesItsMsg) {

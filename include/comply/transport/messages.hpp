@@ -14,6 +14,7 @@
 
 #include "comply/core/chunk.hpp"
 #include "comply/core/commands.hpp"
+#include "comply/transport/message_tables.hpp"
 
 namespace comply::transport {
 
@@ -86,37 +87,19 @@ enum class WireCommandKind : std::uint8_t { kCartesian = 0, kJoint = 1 };
 std::string_view toString(HostState state);
 std::string_view toString(WireCommandKind kind);
 
-/// comply_msgs/ControllerState (units in msg/ControllerState.msg).
+/// The field types of the message tables (message_tables.hpp).
+using Vector3 = std::array<double, 3>;
+using Quaternion = std::array<double, 4>;  ///< x y z w
+using Vector6 = std::array<double, 6>;
+using Doubles = std::vector<double>;
+using Strings = std::vector<std::string>;
+using Counts = std::vector<std::uint64_t>;
+inline constexpr Quaternion kIdentityXyzw{0.0, 0.0, 0.0, 1.0};
+
+/// comply_msgs/ControllerState (message_tables.hpp; units in msg/ControllerState.msg). The
+/// energy tank's account mirrors pipeline::PassivitySnapshot: all 0, gain_fraction 1, when off.
 struct ControllerStateMessage {
-  Header header;
-  HostState state = HostState::kInactive;
-  WireCommandKind command_kind = WireCommandKind::kCartesian;
-  std::uint64_t cycle = 0;
-  std::vector<std::string> joint_names;
-  std::vector<double> position, velocity, effort, torque_command;
-  std::array<double, 3> tcp_position{};
-  std::array<double, 4> tcp_orientation{0.0, 0.0, 0.0, 1.0};  ///< x y z w
-  std::array<double, 6> tcp_twist{};
-  Stamp reference_stamp;
-  std::uint32_t reference_fields = 0;
-  std::array<double, 3> reference_position{};
-  std::array<double, 4> reference_orientation{0.0, 0.0, 0.0, 1.0};  ///< x y z w
-  std::vector<double> reference_joint_position;
-  std::array<double, 6> contact_wrench{};
-  WrenchSource contact_wrench_source = WrenchSource::kNone;
-  std::array<double, 6> contact_wrench_tcp{};   ///< the same wrench in the TCP frame
-  std::array<double, 6> contact_wrench_task{};  ///< ... in the task frame in force
-  /// [Hz] the estimate's first-order bandwidth: the observer's K_O / 2 pi, the wrist sensor's
-  /// filter_hz; 0: unfiltered (or no estimate).
-  double contact_wrench_bandwidth_hz = 0.0;
-  /// The energy tank's account (pipeline::PassivitySnapshot): all 0, gain_fraction 1, when off.
-  bool passivity = false;
-  double tank_energy_j = 0.0;
-  double nullspace_tank_energy_j = 0.0;
-  double energy_injected_j = 0.0;
-  double energy_dissipated_j = 0.0;
-  double energy_refused_j = 0.0;
-  double gain_fraction = 1.0;
+  COMPLY_MESSAGE_BODY(COMPLY_CONTROLLER_STATE_FIELDS)
 };
 
 /// comply_msgs/CycleRecord: one cycle as a recording keeps it (units in msg/CycleRecord.msg).
@@ -131,6 +114,7 @@ struct CycleRecordMessage {
 
 /// CommandOutcome.OUTCOME_*.
 enum class Outcome : std::uint8_t { kApplied = 0, kRejected = 1 };
+std::string_view toString(Outcome outcome);
 
 /// CommandOutcome.REASON_*: the wrapper's rejection reasons (pipeline::RejectionReason, same
 /// numbers) followed by the host's own.
@@ -162,47 +146,19 @@ Gid participantGid(const Gid& endpoint) noexcept;
 /// 32 lower-case hex digits, as `ros2 topic echo` prints nothing better and logs can compare.
 std::string toHex(const Gid& gid);
 
-/// comply_msgs/CommandOutcome.
+/// comply_msgs/CommandOutcome (message_tables.hpp).
 struct CommandOutcomeMessage {
-  Stamp stamp;  ///< the command's header.stamp
-  WireCommandKind command_kind = WireCommandKind::kCartesian;
-  Outcome outcome = Outcome::kApplied;
-  Reason reason = Reason::kNone;
-  std::uint64_t cycle = 0;
-  Stamp received;
-  Stamp applied;
-  std::string message;
-  Gid sender{};  ///< the sending participant's GUID; all zero: the host could not tell
+  COMPLY_MESSAGE_BODY(COMPLY_COMMAND_OUTCOME_FIELDS)
 };
+using Outcomes = std::vector<CommandOutcomeMessage>;
 
 /// Whether `outcome` is of a command `sender` (a participant's GUID) sent: it names that sender,
 /// or none (a host that cannot tell). Two senders' commands may carry the same stamp.
 bool sentBy(const CommandOutcomeMessage& outcome, const Gid& sender) noexcept;
 
-/// comply_msgs/Diagnostics (units in msg/Diagnostics.msg).
+/// comply_msgs/Diagnostics (message_tables.hpp; units in msg/Diagnostics.msg).
 struct DiagnosticsMessage {
-  Header header;
-  HostState state = HostState::kInactive;
-  std::uint64_t cycles = 0;
-  std::uint64_t overruns = 0;
-  double period_s = 0.0;
-  std::uint64_t commands_received = 0;
-  std::uint64_t commands_applied = 0;
-  std::uint64_t commands_rejected = 0;
-  std::vector<std::uint64_t> rejections;  ///< per Reason
-  std::uint64_t watchdog_timeouts = 0;
-  std::uint64_t faults = 0;
-  std::uint64_t rate_limit_hits = 0;
-  std::uint64_t effort_limit_hits = 0;
-  double histogram_bin_s = 0.0;
-  std::vector<std::uint64_t> compute_time_histogram;
-  std::vector<std::uint64_t> start_lateness_histogram;
-  std::string last_fault;
-  std::string last_rejection;
-  std::string publisher;
-  std::uint64_t records_dropped = 0;  ///< the recording's lanes full (--record)
-  std::string recording;  ///< the file recorded to, or why the recording stopped; "" when none
-  std::vector<CommandOutcomeMessage> outcomes;
+  COMPLY_MESSAGE_BODY(COMPLY_DIAGNOSTICS_FIELDS)
 };
 
 /// Request.REQUEST_*.

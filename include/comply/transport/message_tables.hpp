@@ -1,0 +1,154 @@
+#pragma once
+// The host's messages declared once: ControllerState, CommandOutcome and Diagnostics, a row per
+// field in wire order. Everything else follows from these rows:
+//   the C++ structs (messages.hpp)                    COMPLY_MESSAGE_BODY
+//   CDR both ways (cdr_messages.cpp, cdr_decode.cpp)   Message::visit + cdr_fields.hpp
+//   the DDS types idlc builds (wire_state.cpp)         the rows, member by member
+//   msg/*.msg and their IDL (`make generated`)        message_text.hpp
+//   JSON (`comply echo --json`), Python dicts          Message::visit
+// A new field is one row here (and `make generated`); tests/transport/message_tables_test.cpp adds
+// one to a copy of a table and shows each spelling follow.
+//
+// A row: X(Type, member, wire, init, doc)
+//   Type    the C++ type (an alias without commas); it decides the wire type: double float64,
+//           bool, std::uint8_t or an enum uint8, std::uint32_t, std::uint64_t, std::string, Stamp
+//           builtin_interfaces/Time, Header std_msgs/Header, std::array<T, N> T[N],
+//           std::vector<T> T[], a message of these tables by its name
+//   member  the C++ member
+//   wire    the field's name on the wire (ROS 2, DDS, JSON, Python)
+//   init    the C++ default
+//   doc     the .msg comment: [unit] first where there is one
+
+// clang-format off
+#define COMPLY_CONTROLLER_STATE_FIELDS(X) \
+  X(Header, header, header, {}, "stamp: host wall-clock time of the cycle; frame_id: the base frame") \
+  X(HostState, state, state, HostState::kInactive, "STATE_*: the wrapper's state") \
+  X(WireCommandKind, command_kind, command_kind, WireCommandKind::kCartesian, \
+    "COMMAND_KIND_*: the command topic the controller takes") \
+  X(std::uint64_t, cycle, cycle, 0, "[-] index of the control cycle, 0 for the first") \
+  X(Strings, joint_names, joint_names, {}, "the controlled joints, base to tip") \
+  X(Doubles, position, position, {}, "[rad | m] measured joint position") \
+  X(Doubles, velocity, velocity, {}, "[rad/s | m/s] measured joint velocity") \
+  X(Doubles, effort, effort, {}, "[N m | N] measured joint effort") \
+  X(Doubles, torque_command, torque_command, {}, "[N m | N] torque the cycle commanded") \
+  X(Vector3, tcp_position, tcp_position, {}, "[m] measured TCP position") \
+  X(Quaternion, tcp_orientation, tcp_orientation, kIdentityXyzw, \
+    "x y z w; [-] measured TCP orientation") \
+  X(Vector6, tcp_twist, tcp_twist, {}, "[m/s, rad/s] measured TCP twist, linear first (J dq)") \
+  X(Stamp, reference_stamp, reference_stamp, {}, "header.stamp of the newest command in force") \
+  X(std::uint32_t, reference_fields, reference_fields, 0, "FIELD_* groups any command has set so far") \
+  X(Vector3, reference_position, reference_position, {}, \
+    "[m] TCP reference in force (Cartesian control)") \
+  X(Quaternion, reference_orientation, reference_orientation, kIdentityXyzw, \
+    "x y z w; [-] TCP reference orientation (Cartesian control)") \
+  X(Doubles, reference_joint_position, reference_joint_position, {}, \
+    "[rad | m] joint reference in force (joint control)") \
+  X(Vector6, contact_wrench, contact_wrench, {}, \
+    "[N, N m] environment on the tool about the TCP, base frame: the momentum observer's " \
+    "estimate (observer.enabled), else the hardware's sensor or the simulator's contacts, else 0") \
+  X(WrenchSource, contact_wrench_source, contact_wrench_source, WrenchSource::kNone, \
+    "WRENCH_SOURCE_*: where contact_wrench comes from (SENSOR: the hardware's, or the " \
+    "simulator's contacts)") \
+  X(Vector6, contact_wrench_tcp, contact_wrench_tcp, {}, \
+    "[N, N m] the same wrench in the TCP frame, force first") \
+  X(Vector6, contact_wrench_task, contact_wrench_task, {}, \
+    "[N, N m] the same wrench in the task frame in force (Cartesian control; the base frame " \
+    "under joint control)") \
+  X(double, contact_wrench_bandwidth_hz, contact_wrench_bandwidth, 0.0, \
+    "[Hz] first-order bandwidth of the estimate: the observer's gain / 2 pi, the wrist " \
+    "sensor's filter; 0: unfiltered or none") \
+  X(bool, passivity, passivity, false, \
+    "the energy tank is on (controller option passivity.enabled); while it is off, the tank's " \
+    "fields below are 0 and gain_fraction 1") \
+  X(double, tank_energy_j, tank_energy, 0.0, \
+    "[J] energy the tank holds to pay for stiffness and task-frame changes") \
+  X(double, nullspace_tank_energy_j, nullspace_tank_energy, 0.0, \
+    "[J] the nullspace's own account (Cartesian control)") \
+  X(double, energy_injected_j, energy_injected, 0.0, \
+    "[J] total paid for stiffness and task-frame changes since activation") \
+  X(double, energy_dissipated_j, energy_dissipated, 0.0, \
+    "[J] total credited to the tanks from the damping (a lower bound)") \
+  X(double, energy_refused_j, energy_refused, 0.0, \
+    "[J] what the change the tanks held back this cycle would have injected") \
+  X(double, gain_fraction, gain_fraction, 1.0, \
+    "[-] fraction of the commanded stiffness change in force (1: all of it)")
+
+#define COMPLY_COMMAND_OUTCOME_FIELDS(X) \
+  X(Stamp, stamp, stamp, {}, "the command's header.stamp: with the sender, what identifies it") \
+  X(WireCommandKind, command_kind, command_kind, WireCommandKind::kCartesian, \
+    "ControllerState.COMMAND_KIND_*: the topic it came on") \
+  X(Outcome, outcome, outcome, Outcome::kApplied, "OUTCOME_*") \
+  X(Reason, reason, reason, Reason::kNone, "REASON_*; REASON_NONE when applied") \
+  X(std::uint64_t, cycle, cycle, 0, "[-] index of the control cycle that took it (applied)") \
+  X(Stamp, received, received, {}, "host wall clock when the host's reader took it") \
+  X(Stamp, applied, applied, {}, "host wall clock at the end of that cycle (applied)") \
+  X(std::string, message, message, {}, "why, naming the field (rejected)") \
+  X(Gid, sender, sender, {}, \
+    "the sending participant's DDS GUID (the command writer's GUID prefix, entity id " \
+    "0x000001c1); with the stamp it names the command; all zero: not known")
+
+#define COMPLY_DIAGNOSTICS_FIELDS(X) \
+  X(Header, header, header, {}, "stamp: host wall-clock time; frame_id: the host's name") \
+  X(HostState, state, state, HostState::kInactive, "ControllerState.STATE_*") \
+  X(std::uint64_t, cycles, cycles, 0, "[-] control cycles run") \
+  X(std::uint64_t, overruns, overruns, 0, "[-] cycles whose compute time exceeded the period") \
+  X(double, period_s, period, 0.0, "[s] control period") \
+  X(std::uint64_t, commands_received, commands_received, 0, \
+    "[-] commands taken from both command topics") \
+  X(std::uint64_t, commands_applied, commands_applied, 0, "[-] commands a cycle took") \
+  X(std::uint64_t, commands_rejected, commands_rejected, 0, "[-] commands refused, all reasons") \
+  X(Counts, rejections, rejections, {}, \
+    "[-] refused commands per CommandOutcome.REASON_* (index = reason)") \
+  X(std::uint64_t, watchdog_timeouts, watchdog_timeouts, 0, \
+    "[-] times no command arrived within the command timeout") \
+  X(std::uint64_t, faults, faults, 0, "[-] times the controller entered FAULT") \
+  X(std::uint64_t, rate_limit_hits, rate_limit_hits, 0, \
+    "[-] joint-cycles clipped by the torque-rate limit") \
+  X(std::uint64_t, effort_limit_hits, effort_limit_hits, 0, \
+    "[-] joint-cycles clipped by the effort limit") \
+  X(double, histogram_bin_s, histogram_bin, 0.0, "[s] width of one bin of the two histograms") \
+  X(Counts, compute_time_histogram, compute_time_histogram, {}, \
+    "[-] cycles per bin of compute time; last bin: all above") \
+  X(Counts, start_lateness_histogram, start_lateness_histogram, {}, \
+    "[-] cycles per bin of cycle-start lateness (wall clock)") \
+  X(std::string, last_fault, last_fault, {}, "why the controller last entered FAULT (\"\" if never)") \
+  X(std::string, last_rejection, last_rejection, {}, \
+    "why the last refused command was refused (\"\" if none)") \
+  X(std::string, publisher, publisher, {}, "the writer holding the command topics (\"\" when none)") \
+  X(std::uint64_t, records_dropped, records_dropped, 0, \
+    "[-] records the recording refused, its lanes full (--record; 0 without)") \
+  X(std::string, recording, recording, {}, \
+    "the file being recorded to, or why its recording stopped (\"\" when none)") \
+  X(Outcomes, outcomes, outcomes, {}, \
+    "every command accounted since the previous message, in arrival order")
+// clang-format on
+
+/// The members of a message struct from its table, and `visit(self, f)`, which calls
+/// f(FieldName, member) for each in wire order (self const or not).
+#define COMPLY_MESSAGE_MEMBER(Type, member, wire, init, doc) Type member = init;
+#define COMPLY_MESSAGE_VISIT(Type, member, wire, init, doc) \
+  f(::comply::transport::FieldName{#wire, doc}, self.member);
+#define COMPLY_MESSAGE_BODY(TABLE)       \
+  TABLE(COMPLY_MESSAGE_MEMBER)           \
+  template <typename Self, typename F>   \
+  static void visit(Self& self, F&& f) { \
+    TABLE(COMPLY_MESSAGE_VISIT)          \
+  }
+
+#include <string_view>
+
+namespace comply::transport {
+
+/// A field as visit() names it.
+struct FieldName {
+  std::string_view wire;  ///< its name on the wire
+  std::string_view doc;   ///< its .msg comment
+};
+
+/// A message declared by a table (COMPLY_MESSAGE_BODY).
+template <typename T>
+concept TableMessage = requires(T& message) {
+  T::visit(message, [](FieldName, auto&) {});
+};
+
+}  // namespace comply::transport

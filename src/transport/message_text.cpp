@@ -1,0 +1,156 @@
+// The host's messages as .msg and IDL text, from their tables (see message_text.hpp).
+
+#include "comply/transport/message_text.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <sstream>
+#include <stdexcept>
+
+namespace comply::transport {
+namespace {
+
+std::string upper(std::string_view text) {
+  std::string out(text);
+  for (char& c : out) {
+    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  }
+  return out;
+}
+
+/// PREFIX_NAME=value for each value of an enum with toString().
+template <typename Enum>
+void addConstants(std::vector<ConstantText>& constants, std::string_view prefix,
+                  std::initializer_list<Enum> values) {
+  for (const Enum value : values) {
+    constants.push_back({std::string(prefix) + upper(toString(value)), static_cast<int>(value)});
+  }
+}
+
+MessageText controllerState() {
+  MessageText message{"ControllerState",
+                      "comply_msgs/ControllerState: what the controller host measured and "
+                      "commanded, published at the\nhost's state rate on /<name>/state with the "
+                      "sensor-data QoS (best effort, volatile, keep last 5).\nPoses and twists in "
+                      "the robot's base frame.",
+                      {},
+                      fieldTexts<ControllerStateMessage>()};
+  addConstants(message.constants, "STATE_",
+               {HostState::kInactive, HostState::kActive, HostState::kFault});
+  addConstants(message.constants, "COMMAND_KIND_",
+               {WireCommandKind::kCartesian, WireCommandKind::kJoint});
+  addConstants(message.constants, "WRENCH_SOURCE_",
+               {WrenchSource::kNone, WrenchSource::kObserver, WrenchSource::kSensor});
+  return message;
+}
+
+MessageText commandOutcome() {
+  MessageText message{"CommandOutcome",
+                      "comply_msgs/CommandOutcome: what became of one command (an entry of "
+                      "Diagnostics.outcomes).\nEvery command the host receives gets exactly one: "
+                      "applied by a control cycle, or rejected with\na reason.",
+                      {{"OUTCOME_APPLIED", static_cast<int>(Outcome::kApplied)},
+                       {"OUTCOME_REJECTED", static_cast<int>(Outcome::kRejected)},
+                       {"REASON_NONE", static_cast<int>(Reason::kNone)}},
+                      fieldTexts<CommandOutcomeMessage>()};
+  for (std::size_t i = 0; i < kReasonCount; ++i) {
+    const auto reason = static_cast<Reason>(i);
+    message.constants.push_back({"REASON_" + upper(toString(reason)), static_cast<int>(i)});
+  }
+  return message;
+}
+
+MessageText diagnostics() {
+  return {"Diagnostics",
+          "comply_msgs/Diagnostics: the host's counters and the outcome of every command, on\n"
+          "/<name>/diagnostics (reliable, volatile, keep last 100), whenever outcomes are waiting "
+          "(at most\nevery 10 ms) and once a second otherwise. Counters run from the host's "
+          "start.",
+          {},
+          fieldTexts<DiagnosticsMessage>()};
+}
+
+void comment(std::ostringstream& out, std::string_view text) {
+  std::istringstream lines{std::string(text)};
+  std::string line;
+  while (std::getline(lines, line)) {
+    out << "# " << line << "\n";
+  }
+}
+
+}  // namespace
+
+std::string rosMessageText(const MessageText& message) {
+  std::ostringstream out;
+  comment(out, message.about);
+  comment(out,
+          "Generated from include/comply/transport/message_tables.hpp by `make generated`;\n"
+          "src/transport/idl/comply_msgs/msg/" +
+              message.name + ".idl is its wire form.");
+  out << "\n";
+  for (const ConstantText& constant : message.constants) {
+    out << "uint8 " << constant.name << "=" << constant.value << "\n";
+  }
+  if (!message.constants.empty()) {
+    out << "\n";
+  }
+  for (const FieldText& field : message.fields) {
+    out << field.msg_type << " " << field.name << "  # " << field.doc << "\n";
+  }
+  return out.str();
+}
+
+std::string ddsIdlText(const MessageText& message) {
+  const std::string guard = "COMPLY_MSGS__MSG__" + upper(message.name) + "_IDL";
+  std::vector<std::string> includes;
+  for (const FieldText& field : message.fields) {
+    if (!field.idl_include.empty() &&
+        std::find(includes.begin(), includes.end(), field.idl_include) == includes.end()) {
+      includes.push_back(field.idl_include);
+    }
+  }
+  std::sort(includes.begin(), includes.end());
+  std::ostringstream out;
+  out << "// comply_msgs/" << message.name << " (msg/" << message.name
+      << ".msg) as ROS 2 (rosidl) puts it on the wire.\n"
+      << "// Generated from include/comply/transport/message_tables.hpp by `make generated`.\n\n"
+      << "#ifndef " << guard << "\n#define " << guard << "\n\n";
+  for (const std::string& include : includes) {
+    out << "#include \"" << include << "\"\n";
+  }
+  out << "\nmodule comply_msgs {\nmodule msg {\nmodule dds_ {\n\n";
+  if (!message.constants.empty()) {
+    out << "module " << message.name << "_Constants {\n";
+    for (const ConstantText& constant : message.constants) {
+      out << "const octet " << constant.name << " = " << constant.value << ";\n";
+    }
+    out << "};\n\n";
+  }
+  out << "struct " << message.name << "_ {\n";
+  for (const FieldText& field : message.fields) {
+    out << "  " << field.idl_type << " " << field.name << field.idl_suffix << ";\n";
+  }
+  out << "};\n\n};  // module dds_\n};  // module msg\n};  // module comply_msgs\n\n#endif  // "
+      << guard << "\n";
+  return out.str();
+}
+
+MessageText hostMessageText(std::string_view name) {
+  if (name == "ControllerState") {
+    return controllerState();
+  }
+  if (name == "CommandOutcome") {
+    return commandOutcome();
+  }
+  if (name == "Diagnostics") {
+    return diagnostics();
+  }
+  throw std::out_of_range("no host message named " + std::string(name) +
+                          " (ControllerState, CommandOutcome, Diagnostics)");
+}
+
+std::vector<std::string_view> hostMessageNames() {
+  return {"ControllerState", "CommandOutcome", "Diagnostics"};
+}
+
+}  // namespace comply::transport
