@@ -19,23 +19,7 @@ std::string stampText(std::int64_t stamp_ns) {
 }  // namespace
 
 std::string_view toString(CommandReason reason) {
-  switch (reason) {
-    case CommandReason::kOtherPublisher:
-      return "other_publisher";
-    case CommandReason::kWrongKind:
-      return "wrong_kind";
-    case CommandReason::kInactive:
-      return "inactive";
-    case CommandReason::kFutureStamp:
-      return "future_stamp";
-    case CommandReason::kInvalidStamp:
-      return "invalid_stamp";
-    case CommandReason::kNone:
-      return "none";
-  }
-  const auto number = static_cast<std::uint8_t>(reason);
-  return number < kRejectionReasonCount ? toString(static_cast<RejectionReason>(number))
-                                        : std::string_view("unknown");
+  return rejectionReasonName(static_cast<std::size_t>(reason));
 }
 
 GateOptions gateOptions(const WrapperConfig& config, bool cartesian) {

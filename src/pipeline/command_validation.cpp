@@ -77,31 +77,8 @@ MeasuredPose measuredPoseFrom(const JointVector& position, const model::Data& da
 }
 
 std::string_view toString(RejectionReason reason) {
-  switch (reason) {
-    case RejectionReason::kNonFinite:
-      return "non_finite";
-    case RejectionReason::kInvalidQuaternion:
-      return "invalid_quaternion";
-    case RejectionReason::kInvalidGains:
-      return "invalid_gains";
-    case RejectionReason::kDofMismatch:
-      return "dof_mismatch";
-    case RejectionReason::kStaleStamp:
-      return "stale_stamp";
-    case RejectionReason::kPoseJump:
-      return "pose_jump";
-    case RejectionReason::kQueueFull:
-      return "queue_full";
-    case RejectionReason::kOutOfRange:
-      return "out_of_range";
-    case RejectionReason::kLateChunk:
-      return "late_chunk";
-    case RejectionReason::kInvalidChunk:
-      return "invalid_chunk";
-    case RejectionReason::kCount:
-      break;
-  }
-  return "unknown";
+  return reason == RejectionReason::kCount ? "unknown"
+                                           : rejectionReasonName(static_cast<std::size_t>(reason));
 }
 
 Verdict validateCommand(CartesianCommand& incoming, const ValidationConfig& limits, int dof,

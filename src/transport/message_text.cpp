@@ -55,7 +55,8 @@ MessageText commandOutcome() {
                       fieldTexts<CommandOutcomeMessage>()};
   for (std::size_t i = 0; i < kReasonCount; ++i) {
     const auto reason = static_cast<Reason>(i);
-    message.constants.push_back({"REASON_" + upper(toString(reason)), static_cast<int>(i)});
+    message.constants.push_back({"REASON_" + upper(toString(reason)), static_cast<int>(i),
+                                 std::string(kRejectionReasonDocs[i])});
   }
   return message;
 }
@@ -89,7 +90,8 @@ std::string rosMessageText(const MessageText& message) {
               message.name + ".idl is its wire form.");
   out << "\n";
   for (const ConstantText& constant : message.constants) {
-    out << "uint8 " << constant.name << "=" << constant.value << "\n";
+    out << "uint8 " << constant.name << "=" << constant.value
+        << (constant.doc.empty() ? "" : "  # " + constant.doc) << "\n";
   }
   if (!message.constants.empty()) {
     out << "\n";

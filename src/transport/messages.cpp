@@ -81,41 +81,7 @@ std::string toHex(const Gid& gid) {
 }
 
 std::string_view toString(Reason reason) {
-  switch (reason) {
-    case Reason::kNonFinite:
-      return "non_finite";
-    case Reason::kInvalidQuaternion:
-      return "invalid_quaternion";
-    case Reason::kInvalidGains:
-      return "invalid_gains";
-    case Reason::kDofMismatch:
-      return "dof_mismatch";
-    case Reason::kStaleStamp:
-      return "stale_stamp";
-    case Reason::kPoseJump:
-      return "pose_jump";
-    case Reason::kQueueFull:
-      return "queue_full";
-    case Reason::kOutOfRange:
-      return "out_of_range";
-    case Reason::kLateChunk:
-      return "late_chunk";
-    case Reason::kInvalidChunk:
-      return "invalid_chunk";
-    case Reason::kOtherPublisher:
-      return "other_publisher";
-    case Reason::kWrongKind:
-      return "wrong_kind";
-    case Reason::kInactive:
-      return "inactive";
-    case Reason::kFutureStamp:
-      return "future_stamp";
-    case Reason::kInvalidStamp:
-      return "invalid_stamp";
-    case Reason::kNone:
-      return "none";
-  }
-  return "unknown";
+  return rejectionReasonName(static_cast<std::size_t>(reason));
 }
 
 std::string_view toString(RequestType request) {

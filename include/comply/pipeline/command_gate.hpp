@@ -38,16 +38,12 @@
 namespace comply::pipeline {
 
 /// Why a command was refused: the wrapper's reasons (RejectionReason, same numbers) followed by the
-/// gate's own. The wire's CommandOutcome.REASON_* carry these numbers.
+/// gate's own (core/command_reasons.hpp). The wire's CommandOutcome.REASON_* carry these numbers.
 enum class CommandReason : std::uint8_t {
-  kOtherPublisher = static_cast<std::uint8_t>(RejectionReason::kCount),  ///< another writer holds
-  kWrongKind,     ///< a joint command to a Cartesian controller, or the reverse
-  kInactive,      ///< the controller is not active (or the host stopped before a cycle took it)
-  kFutureStamp,   ///< stamped more than max_stamp_lead_s ahead of the host's clock
-  kInvalidStamp,  ///< header.stamp.nanosec not below 1e9
+  COMPLY_REJECTION_REASONS(COMPLY_REASON_ENUMERATOR)  //
   kNone = 255,
 };
-inline constexpr std::size_t kCommandReasonCount = kRejectionReasonCount + 5;
+inline constexpr std::size_t kCommandReasonCount = kAllRejectionReasonCount;
 /// The wrapper's reason as a gate reason (same number).
 constexpr CommandReason commandReason(RejectionReason reason) noexcept {
   return static_cast<CommandReason>(reason);

@@ -9,23 +9,16 @@
 #include <string_view>
 
 #include "comply/core/chunk.hpp"
+#include "comply/core/command_reasons.hpp"
 #include "comply/core/commands.hpp"
 #include "comply/core/state.hpp"
 #include "comply/pipeline/config.hpp"
 
 namespace comply::pipeline {
 
+/// The wrapper's reasons (core/command_reasons.hpp has each one's meaning).
 enum class RejectionReason : std::uint8_t {
-  kNonFinite,          ///< NaN or infinity in a field that was set
-  kInvalidQuaternion,  ///< orientation or task frame too far from unit norm
-  kInvalidGains,       ///< stiffness/damping not symmetric positive semi-definite, or negative
-  kDofMismatch,        ///< joint vectors of the wrong size
-  kStaleStamp,         ///< stamp older than the last accepted command
-  kPoseJump,           ///< target too far from the measured pose / joint position
-  kQueueFull,          ///< the cycle has not taken the commands queued before (sender too fast)
-  kOutOfRange,         ///< a rate or feedforward entry above the limit of its unit for any arm
-  kLateChunk,          ///< a chunk whose last waypoint is already past on the host's clock
-  kInvalidChunk,       ///< a chunk's shape: waypoint count, times, field groups, damping modes
+  COMPLY_WRAPPER_REJECTION_REASONS(COMPLY_REASON_ENUMERATOR)  //
   kCount,
 };
 inline constexpr std::size_t kRejectionReasonCount =

@@ -29,6 +29,7 @@ struct FieldText {
 struct ConstantText {
   std::string name;
   int value = 0;
+  std::string doc;  ///< "" for none
 };
 
 struct MessageText {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "comply/core/chunk.hpp"
+#include "comply/core/command_reasons.hpp"
 #include "comply/core/commands.hpp"
 #include "comply/transport/message_tables.hpp"
 
@@ -119,24 +120,10 @@ std::string_view toString(Outcome outcome);
 /// CommandOutcome.REASON_*: the wrapper's rejection reasons (pipeline::RejectionReason, same
 /// numbers) followed by the host's own.
 enum class Reason : std::uint8_t {
-  kNonFinite = 0,
-  kInvalidQuaternion = 1,
-  kInvalidGains = 2,
-  kDofMismatch = 3,
-  kStaleStamp = 4,
-  kPoseJump = 5,
-  kQueueFull = 6,
-  kOutOfRange = 7,
-  kLateChunk = 8,        ///< a chunk whose last waypoint is already past
-  kInvalidChunk = 9,     ///< a chunk's shape: waypoint count, times, groups, damping modes
-  kOtherPublisher = 10,  ///< another writer holds the command topics
-  kWrongKind = 11,       ///< a joint command to a Cartesian controller, or the reverse
-  kInactive = 12,        ///< the controller is not active
-  kFutureStamp = 13,     ///< stamped too far ahead of the host's clock
-  kInvalidStamp = 14,    ///< header.stamp.nanosec not below 1e9
+  COMPLY_REJECTION_REASONS(COMPLY_REASON_ENUMERATOR)  //
   kNone = 255,
 };
-inline constexpr std::size_t kReasonCount = 15;
+inline constexpr std::size_t kReasonCount = kAllRejectionReasonCount;
 std::string_view toString(Reason reason);
 
 /// A DDS GUID: 12 bytes of prefix (one per participant) and 4 of entity id.
