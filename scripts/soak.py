@@ -172,8 +172,10 @@ def report(rss, results, diagnostics, restarts):
     faults = diagnostics['faults'] if diagnostics else -1
     overruns = diagnostics.get('overruns', -1) if diagnostics else -1
     growth = (warm[-1] - warm[0]) / 1024 if warm else 0.0
+    last_fault = diagnostics.get('last_fault', '') if diagnostics else ''
     lines += ['', f'host: faults {faults}, overruns {overruns}, cycles '
-                  f"{diagnostics.get('cycles', '?') if diagnostics else '?'}",
+                  f"{diagnostics.get('cycles', '?') if diagnostics else '?'}"
+                  + (f', last fault: {last_fault}' if last_fault else ''),
               f'transport restarts {restarts}',
               f'RSS of the host and its transport process after the first minute: '
               f'{warm[0] / 1024:.1f} MB -> {warm[-1] / 1024:.1f} MB (max {max(warm) / 1024:.1f} MB, '

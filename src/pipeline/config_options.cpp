@@ -260,8 +260,8 @@ void addGuardOptions(std::vector<Option>& table) {
                         "s a joint may sit at its effort limit before FAULT; 0: never",
                         &StabilityGuardConfig::saturation_time_s, true));
   table.push_back(guard("stability_guard.energy_window_s", "0.25",
-                        "s per window of the energy rule (an oscillation growing without a "
-                        "command that grows with it); 0: off",
+                        "s per window of the energy rule (an oscillation growing while the "
+                        "command holds still); 0: off",
                         &StabilityGuardConfig::energy_window_s, true));
   table.push_back(guard("stability_guard.energy_growth", "4.0",
                         "times the oscillation's energy grows, window over window, before FAULT",

@@ -5,7 +5,7 @@
 //   a joint faster than velocity_factor x its URDF limit for velocity_time_s,
 //   a joint more than position_margin_rad past a URDF position limit (the soft limits failed),
 //   a joint at its effort limit for saturation_time_s (the law asks for more than the arm has),
-//   an oscillation whose energy grows without a command that grows with it (energy_watch.hpp).
+//   an oscillation whose energy grows while the command holds still (energy_watch.hpp).
 
 #include <algorithm>
 #include <cmath>
@@ -94,7 +94,7 @@ bool Controller::guardEnergy() noexcept {
   char detail[224];
   std::snprintf(detail, sizeof(detail),
                 "an oscillation of %s gained energy from %.3g J to %.3g J in %.2g s, window over "
-                "window, while the command did not grow (energy_growth %g)",
+                "window, while the command held still (energy_growth %g)",
                 resolved_->config.joints[static_cast<std::size_t>(run.joint)].c_str(), run.from_j,
                 run.to_j, run.duration_s, parameters_.stability_guard.energy_growth);
   enterFault("stability guard: ", detail);

@@ -22,7 +22,7 @@ void EnergyWatch::configure(const Options& options, std::span<const double> iner
 void EnergyWatch::reset() noexcept {
   elapsed_s_ = 0.0;
   kinetic_peak_j_ = 0.0;
-  input_peak_ = 0.0;
+  input_changed_ = false;
   joint_peak_j_.setZero(dof_);
   reversals_.setZero(dof_);
   last_sign_.setZero(dof_);
@@ -31,7 +31,6 @@ void EnergyWatch::reset() noexcept {
   input_size_ = -1;
   have_previous_ = false;
   previous_kinetic_j_ = 0.0;
-  previous_input_ = 0.0;
   run_from_j_ = 0.0;
   run_to_j_ = 0.0;
   run_windows_ = 0;
@@ -64,13 +63,8 @@ bool EnergyWatch::update(std::span<const double> velocity, std::span<const doubl
   kinetic_peak_j_ = std::max(kinetic_peak_j_, kinetic_j);
 
   const int size = static_cast<int>(std::min<std::size_t>(input.size(), kMaxInput));
-  if (input_size_ == size) {
-    double change_squared = 0.0;
-    for (int k = 0; k < size; ++k) {
-      const double change = input[static_cast<std::size_t>(k)] - last_input_[k];
-      change_squared += change * change;
-    }
-    input_peak_ = std::max(input_peak_, std::sqrt(change_squared));
+  if (input_size_ != size || !std::equal(input.begin(), input.begin() + size, last_input_)) {
+    input_changed_ = true;
   }
   std::copy_n(input.begin(), size, last_input_);
   input_size_ = size;
@@ -92,10 +86,8 @@ void EnergyWatch::closeWindow() noexcept {
   }
   const bool rose = have_previous_ && kinetic_peak_j_ >= kStepGrowth * previous_kinetic_j_ &&
                     kinetic_peak_j_ > 0.0;
-  const bool driven =
-      have_previous_ && input_peak_ > 0.0 && input_peak_ >= kStepGrowth * previous_input_;
   const bool swung = reversals_[dominant] >= 2.0;
-  if (rose && !driven && swung) {
+  if (rose && !input_changed_ && swung) {
     if (run_windows_ == 0) {
       run_from_j_ = previous_kinetic_j_;
       run_joint_ = dominant;
@@ -107,14 +99,13 @@ void EnergyWatch::closeWindow() noexcept {
   }
   have_previous_ = true;
   previous_kinetic_j_ = kinetic_peak_j_;
-  previous_input_ = input_peak_;
   swing_speed_ = speed_peak_;
   if (tripped()) {
     tripped_ = {run_from_j_, run_to_j_, run_windows_ * elapsed_s_, run_joint_};
   }
   elapsed_s_ = 0.0;
   kinetic_peak_j_ = 0.0;
-  input_peak_ = 0.0;
+  input_changed_ = false;
   joint_peak_j_.setZero(dof_);
   reversals_.setZero(dof_);
   speed_peak_.setZero(dof_);

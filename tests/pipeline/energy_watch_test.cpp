@@ -1,7 +1,8 @@
 // The stability guard's energy rule on synthetic velocity signals (energy_watch.hpp): an
-// oscillation that grows while the command stays trips it, with the numbers of its run; the same
-// growth driven by a command that grows with it, a decaying or steady oscillation, a single push,
-// an arm sped up without swinging, and noise at rest do not.
+// oscillation that grows while the command holds still trips it, with the numbers of its run; the
+// same growth under a command that moves, swings whose size wanders under a stream of commands, a
+// decaying or steady oscillation, a single push, an arm sped up without swinging, and noise at
+// rest do not.
 
 #include "comply/pipeline/energy_watch.hpp"
 
@@ -9,6 +10,7 @@
 
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -85,11 +87,41 @@ TEST(EnergyWatch, APushThatSwingsUpWithinOneWindowDoesNotTrip) {
             0.0);
 }
 
-TEST(EnergyWatch, TheSameGrowthDrivenByACommandThatGrowsWithItDoesNotTrip) {
+TEST(EnergyWatch, TheSameGrowthUnderACommandThatMovesDoesNotTrip) {
   EnergyWatch watch;
   const auto grow = oscillation(0.02, 1.0);
   // A reference swinging with the arm: what a sender commanding ever larger swings does.
   EXPECT_LT(tripTime(watch, 5.0, grow, [&](double t) { return 0.1 * grow(t); }), 0.0);
+}
+
+/// Swings whose size jumps at random every window, as an arm under a random stream of poses swings
+/// (the soak's stream, where a rule that judged the stream by how it varied tripped).
+std::function<double(double)> wanderingSwing(unsigned seed) {
+  auto random = std::make_shared<std::mt19937>(seed);
+  auto amplitude = std::make_shared<double>(0.5);
+  auto window = std::make_shared<int>(-1);
+  return [=](double t) {
+    if (const int now = static_cast<int>(t / 0.25); now != *window) {
+      *window = now;
+      *amplitude = std::uniform_real_distribution<double>(0.05, 2.0)(*random);
+    }
+    return *amplitude * std::sin(2.0 * M_PI * 8.0 * t);
+  };
+}
+
+TEST(EnergyWatch, SwingsOfRandomSizeUnderAStreamOfCommandsDoNotTrip) {
+  EnergyWatch watch;
+  // 30 minutes of a new command every 5 ms.
+  EXPECT_LT(
+      tripTime(watch, 1800.0, wanderingSwing(3), [](double t) { return std::floor(t / 0.005); }),
+      0.0);
+}
+
+TEST(EnergyWatch, TheSameSwingsUnderACommandThatHoldsStillTrip) {
+  EnergyWatch watch;
+  // Without the stream, a run of three rising windows (energy x4 and more) among the random
+  // sizes is the loop's own: the rule is what stands between the two cases.
+  EXPECT_GT(tripTime(watch, 1800.0, wanderingSwing(3)), 0.0);
 }
 
 TEST(EnergyWatch, DecayingAndSteadyOscillationsDoNotTrip) {

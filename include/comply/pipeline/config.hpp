@@ -100,8 +100,8 @@ struct StabilityGuardConfig {
   double position_margin_rad = 0.05;  ///< FAULT this far past a URDF position limit [rad | m]
   double saturation_time_s = 1.0;  ///< FAULT when a joint sits at its effort limit this long; 0 off
   /// The energy rule (energy_watch.hpp): FAULT on an oscillation whose energy grows `energy_growth`
-  /// times over windows of energy_window_s, each higher than the last, while the command does not
-  /// grow with it. 0: off.
+  /// times over windows of energy_window_s, each higher than the last, while the command holds
+  /// still. 0: off.
   double energy_window_s = 0.25;
   double energy_growth = 4.0;    ///< [-] over a run of growing windows
   double energy_floor_j = 0.05;  ///< [J] the energy must exceed this (weighted by joint inertia)

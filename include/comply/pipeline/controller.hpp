@@ -6,7 +6,7 @@
 //                (tool weight and tare off), plugin input, publish the measured pose
 //                                                               -> FAULT on a bad state
 //   guard        overspeed, a joint past its limit, an oscillation whose energy grows
-//                without a command that grows with it           -> FAULT (stability_guard.*)
+//                while the command holds still                  -> FAULT (stability_guard.*)
 //   commands     take every command the intake queued, merged by field mask; a timed chunk
 //                starts, and the running one writes its reference at this cycle's time
 //   watchdog     no command for command_timeout_s: hold (stop the motion) or re-anchor

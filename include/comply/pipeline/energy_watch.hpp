@@ -1,28 +1,31 @@
 #pragma once
-// The stability guard's energy rule: an oscillation whose energy keeps growing while nothing the
-// sender commands grows with it. This is what a loop that generates energy looks like (a law with
-// too little damping for the control period and the drives' delay, a plugin with a sign error, a
-// stiffness schedule that pumps): the others rules (overspeed, past a limit, saturation) see it
-// only once it is large.
+// The stability guard's energy rule: an oscillation whose energy keeps growing while the command
+// in force holds still. This is what a loop that generates energy looks like (a law with too
+// little damping for the control period and the drives' delay, a plugin with a sign error): the
+// other rules (overspeed, past a limit, saturation) see it only once it is large.
 //
 // Per window of window_s:
 //   kinetic  the peak of  1/2 sum_i m_i dq_i^2  (m_i each joint's lightest inertia: a weighting
 //            that needs no mass matrix in the cycle; only its growth counts)
-//   input    the peak of |u(t) - u(t - T)|, u the command in force the cycle acts on (reference,
-//            its rates, feedforward, stiffness): how much the sender moved the target
+//   input    whether the command in force the cycle acts on (reference, its rates, feedforward,
+//            stiffness) changed at all
 //   swing    sign reversals of the velocity of the joint that held most of the peak (a reversal
 //            counts once the speed exceeds a tenth of that joint's previous peak: not noise)
-// A window grows when its kinetic peak is at least kStepGrowth x the previous one, its input peak
-// is not (the sender did not drive the rise), and its dominant joint swung at least twice. A run
-// of at least kMinRunWindows growing windows whose kinetic peak rose `growth` times from where the
-// run started, above floor_j, is a FAULT: within kMinRunWindows windows of the growth's onset, or
-// of its passing floor_j, whichever is later (plus one window). A push or a commanded step (the
-// arm rises for a window or two, then settles), a decaying oscillation or an arm moved faster by
-// hand (no swing) never makes such a run.
+// A window grows when its kinetic peak is at least kStepGrowth x the previous one, the command held
+// still through it, and its dominant joint swung at least twice. A run of at least kMinRunWindows
+// growing windows whose kinetic peak rose `growth` times from where the run started, above
+// floor_j, is a FAULT: within kMinRunWindows windows of the growth's onset, or of its passing
+// floor_j, whichever is later (plus one window).
+//
+// Only a command that holds still makes the arm's energy the loop's own: a stream of commands
+// (a policy at 10 Hz and up, a chunk playing, the force stage acting) feeds energy in at will, and
+// a rule that judged it by how the stream varies tripped on a random stream of valid poses (twice
+// in 30 simulated minutes). While a stream flows, the rule waits; the other rules stand.
+// A push or a commanded step (the arm rises for a window or two, then settles), a decaying
+// oscillation or an arm moved faster by hand (no swing) never makes a run.
 //
 // Limits (docs/safety.md): a growth slower than kStepGrowth per window is left to the other rules;
-// an arm shaken by hand with ever larger swings, or a lightly damped resonance built up by a
-// steady periodic reference, looks the same as a loop that generates energy.
+// an arm shaken by hand with ever larger swings looks the same as a loop that generates energy.
 //
 // Real-time: update() allocates nothing, takes no lock, never throws.
 
@@ -54,7 +57,8 @@ class EnergyWatch {
   [[nodiscard]] bool enabled() const noexcept { return options_.window_s > 0.0; }
 
   /// One cycle: the measured joint velocities, the command's input values (the same layout every
-  /// cycle) and the period. True when a run reached `growth`: the loop is generating energy.
+  /// cycle; compared exactly) and the period. True when a run reached `growth`: the loop is
+  /// generating energy.
   bool update(std::span<const double> velocity, std::span<const double> input,
               double period_s) noexcept;
 
@@ -77,18 +81,17 @@ class EnergyWatch {
   // The window being filled.
   double elapsed_s_ = 0.0;
   double kinetic_peak_j_ = 0.0;
-  double input_peak_ = 0.0;
-  JointVector joint_peak_j_;  // each joint's share at its own peak
-  JointVector reversals_;     // sign reversals this window
-  JointVector last_sign_;     // -1, 0 (not yet), +1
-  JointVector swing_speed_;   // previous window's peak speed per joint: the reversal scale
-  JointVector speed_peak_;    // this window's peak speed per joint
+  bool input_changed_ = false;  // the command changed in this window
+  JointVector joint_peak_j_;    // each joint's share at its own peak
+  JointVector reversals_;       // sign reversals this window
+  JointVector last_sign_;       // -1, 0 (not yet), +1
+  JointVector swing_speed_;     // previous window's peak speed per joint: the reversal scale
+  JointVector speed_peak_;      // this window's peak speed per joint
   double last_input_[kMaxInput] = {};
   int input_size_ = -1;  // -1: no input seen yet
   // The windows closed.
   bool have_previous_ = false;
   double previous_kinetic_j_ = 0.0;
-  double previous_input_ = 0.0;
   double run_from_j_ = 0.0;  // kinetic peak of the window before the run (0: no run)
   double run_to_j_ = 0.0;
   int run_windows_ = 0;
