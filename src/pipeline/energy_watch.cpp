@@ -20,14 +20,9 @@ void EnergyWatch::configure(const Options& options, std::span<const double> iner
 }
 
 void EnergyWatch::reset() noexcept {
-  elapsed_s_ = 0.0;
-  kinetic_peak_j_ = 0.0;
-  input_changed_ = false;
-  joint_peak_j_.setZero(dof_);
-  reversals_.setZero(dof_);
+  startWindow();
   last_sign_.setZero(dof_);
   swing_speed_.setZero(dof_);
-  speed_peak_.setZero(dof_);
   input_size_ = -1;
   have_previous_ = false;
   previous_kinetic_j_ = 0.0;
@@ -103,6 +98,10 @@ void EnergyWatch::closeWindow() noexcept {
   if (tripped()) {
     tripped_ = {run_from_j_, run_to_j_, run_windows_ * elapsed_s_, run_joint_};
   }
+  startWindow();
+}
+
+void EnergyWatch::startWindow() noexcept {
   elapsed_s_ = 0.0;
   kinetic_peak_j_ = 0.0;
   input_changed_ = false;

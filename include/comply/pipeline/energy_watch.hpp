@@ -73,6 +73,7 @@ class EnergyWatch {
 
  private:
   void closeWindow() noexcept;
+  void startWindow() noexcept;  // clears what one window gathers
   bool tripped() const noexcept;
 
   Options options_;
