@@ -263,9 +263,11 @@ void addGuardOptions(std::vector<Option>& table) {
                         "s per window of the energy rule (an oscillation growing while the "
                         "command holds still); 0: off",
                         &StabilityGuardConfig::energy_window_s, true));
-  table.push_back(guard("stability_guard.energy_growth", "4.0",
-                        "times the oscillation's energy grows, window over window, before FAULT",
-                        &StabilityGuardConfig::energy_growth));
+  table.push_back(number("stability_guard.energy_growth", "4.0",
+                         "times (above 1) the oscillation's energy grows, window over window, "
+                         "before FAULT",
+                         1.0, 1e6, true,
+                         [](WrapperConfig& c, double v) { c.stability_guard.energy_growth = v; }));
   table.push_back(guard("stability_guard.energy_floor_j", "0.05",
                         "J (joint-inertia weighted) the grown energy must exceed",
                         &StabilityGuardConfig::energy_floor_j, true));

@@ -7,9 +7,10 @@
 //   a joint at its effort limit for saturation_time_s (the law asks for more than the arm has),
 //   an oscillation whose energy grows while the command holds still (energy_watch.hpp).
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <variant>
 
 #include "comply/pipeline/controller.hpp"
 
@@ -50,31 +51,18 @@ bool Controller::guardMotion() noexcept {
 
 namespace {
 
-/// What the sender commands, as the energy rule compares it from cycle to cycle: the reference and
-/// its rates, the feedforward, the stiffness. Returns how many values it wrote.
-int commandInput(const CommandBus& bus, int dof, std::span<double, EnergyWatch::kMaxInput> out) {
-  int n = 0;
-  const auto put = [&](const double* values, int count) {
-    const int room = std::min(count, static_cast<int>(out.size()) - n);
-    std::copy_n(values, room, out.begin() + n);
-    n += room;
-  };
-  if (const auto* cartesian = std::get_if<comply_cartesian_command>(&bus)) {
-    put(cartesian->position, 3);
-    put(cartesian->orientation, 4);
-    put(cartesian->twist, 6);
-    put(cartesian->wrench_feedforward, 6);
-    put(cartesian->stiffness_translational, 9);
-    put(cartesian->stiffness_rotational, 9);
-    put(cartesian->torque_feedforward, dof);
-    put(cartesian->nullspace_position, dof);
-  } else if (const auto* joint = std::get_if<comply_joint_command>(&bus)) {
-    put(joint->position, dof);
-    put(joint->velocity, dof);
-    put(joint->torque_feedforward, dof);
-    put(joint->stiffness, dof);
+/// Whether two buses hold the same command, byte for byte (padding included: a difference there
+/// only makes the energy rule wait a window).
+bool sameBus(const CommandBus& a, const CommandBus& b) noexcept {
+  if (a.index() != b.index()) {
+    return false;
   }
-  return n;
+  return std::visit(
+      [&](const auto& bus) {
+        using Bus = std::decay_t<decltype(bus)>;
+        return std::memcmp(&bus, &std::get<Bus>(b), sizeof(Bus)) == 0;
+      },
+      a);
 }
 
 }  // namespace
@@ -84,16 +72,19 @@ bool Controller::guardEnergy() noexcept {
       diagnostics_.state.load(std::memory_order_relaxed) != WrapperState::kActive) {
     return true;
   }
-  std::array<double, EnergyWatch::kMaxInput> input{};
-  const int size = commandInput(lawBus(), dof_, input);
-  if (!energy_watch_.update({state_.velocity.data(), static_cast<std::size_t>(dof_)},
-                            {input.data(), static_cast<std::size_t>(size)}, period_s_)) {
+  const CommandBus& bus = lawBus();
+  const bool changed = !sameBus(bus, energy_bus_);
+  if (changed) {
+    energy_bus_ = bus;
+  }
+  if (!energy_watch_.update({state_.velocity.data(), static_cast<std::size_t>(dof_)}, changed,
+                            period_s_)) {
     return true;
   }
   const EnergyWatch::Run& run = energy_watch_.run();
   char detail[224];
   std::snprintf(detail, sizeof(detail),
-                "an oscillation of %s gained energy from %.3g J to %.3g J in %.2g s, window over "
+                "an oscillation of %s gained energy from %.3g J to %.3g J in %.3g s, window over "
                 "window, while the command held still (energy_growth %g)",
                 resolved_->config.joints[static_cast<std::size_t>(run.joint)].c_str(), run.from_j,
                 run.to_j, run.duration_s, parameters_.stability_guard.energy_growth);

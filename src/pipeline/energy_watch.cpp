@@ -23,7 +23,6 @@ void EnergyWatch::reset() noexcept {
   startWindow();
   last_sign_.setZero(dof_);
   swing_speed_.setZero(dof_);
-  input_size_ = -1;
   have_previous_ = false;
   previous_kinetic_j_ = 0.0;
   run_from_j_ = 0.0;
@@ -33,13 +32,14 @@ void EnergyWatch::reset() noexcept {
   tripped_ = {};
 }
 
-bool EnergyWatch::update(std::span<const double> velocity, std::span<const double> input,
+bool EnergyWatch::update(std::span<const double> velocity, bool command_changed,
                          double period_s) noexcept {
   if (!enabled() || dof_ == 0) {
     return false;
   }
   double kinetic_j = 0.0;
-  for (int i = 0; i < dof_; ++i) {
+  const int joints = std::min(dof_, static_cast<int>(velocity.size()));
+  for (int i = 0; i < joints; ++i) {
     const double dq = velocity[static_cast<std::size_t>(i)];
     const double share_j = 0.5 * inertia_[i] * dq * dq;
     kinetic_j += share_j;
@@ -57,12 +57,7 @@ bool EnergyWatch::update(std::span<const double> velocity, std::span<const doubl
   }
   kinetic_peak_j_ = std::max(kinetic_peak_j_, kinetic_j);
 
-  const int size = static_cast<int>(std::min<std::size_t>(input.size(), kMaxInput));
-  if (input_size_ != size || !std::equal(input.begin(), input.begin() + size, last_input_)) {
-    input_changed_ = true;
-  }
-  std::copy_n(input.begin(), size, last_input_);
-  input_size_ = size;
+  input_changed_ = input_changed_ || command_changed;
 
   elapsed_s_ += period_s;
   if (elapsed_s_ < options_.window_s) {

@@ -197,7 +197,7 @@ std::size_t Reader<Message>::take(std::vector<Sample<Message>>& out,
       }
       Sample<Message>& sample = out.emplace_back();
       sample.publisher = infos[i].publication_handle;
-      const Sender& sender = senderOf(infos[i].publication_handle);
+      const Sender sender = senderOf(infos[i].publication_handle);
       sample.participant = sender.participant;
       sample.sender = sender.gid;
       wire::Wire<Message>::read(samples[i], sample.message, sample.malformed);
@@ -215,22 +215,26 @@ std::size_t Reader<Message>::take(std::vector<Sample<Message>>& out,
 }
 
 template <typename Message>
-const typename Reader<Message>::Sender& Reader<Message>::senderOf(std::uint64_t publication) {
+typename Reader<Message>::Sender Reader<Message>::senderOf(std::uint64_t publication) {
   const auto known = senders_.find(publication);
   if (known != senders_.end()) {
     return known->second;
   }
-  Sender sender;
-  if (dds_builtintopic_endpoint_t* endpoint =
-          dds_get_matched_publication_data(entity_, publication)) {
-    sender.participant = endpoint->participant_instance_handle;
-    std::memcpy(sender.gid.data(), endpoint->participant_key.v, sender.gid.size());
-    dds_builtintopic_free_endpoint(endpoint);
+  dds_builtintopic_endpoint_t* endpoint = dds_get_matched_publication_data(entity_, publication);
+  if (endpoint == nullptr) {
+    // Not known (yet): asked again next time rather than remembered as nobody, whose outcomes
+    // every client would take for its own.
+    return {};
   }
+  Sender sender;
+  sender.participant = endpoint->participant_instance_handle;
+  std::memcpy(sender.gid.data(), endpoint->participant_key.v, sender.gid.size());
+  dds_builtintopic_free_endpoint(endpoint);
   if (senders_.size() > 4096) {
     senders_.clear();  // writers come and go; a long-lived host must not grow without bound
   }
-  return senders_.emplace(publication, sender).first->second;
+  senders_.emplace(publication, sender);
+  return sender;
 }
 
 template <typename Message>

@@ -51,16 +51,6 @@ std::string_view toString(WireCommandKind kind) {
   return kind == WireCommandKind::kJoint ? "joint" : "cartesian";
 }
 
-Gid participantGid(const Gid& endpoint) noexcept {
-  Gid participant = endpoint;
-  // The RTPS entity id of a participant (ENTITYID_PARTICIPANT).
-  participant[12] = 0x00;
-  participant[13] = 0x00;
-  participant[14] = 0x01;
-  participant[15] = 0xc1;
-  return participant;
-}
-
 std::string_view toString(Outcome outcome) {
   return outcome == Outcome::kApplied ? "applied" : "rejected";
 }

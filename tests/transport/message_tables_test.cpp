@@ -1,7 +1,8 @@
 // A field added to a copy of ControllerState's table (message_tables.hpp) and every spelling
 // following it with no other change: the C++ struct, the .msg and IDL text, CDR both ways (after
-// every old field, so an old reader still reads the rest), the DDS structs idlc generates, and
-// JSON. Python's dict is the same visit() (python/src/py_convert.cpp).
+// every old field: a reader of the old table still reads a top-level message, though not one
+// nested in a sequence, as an outcome in Diagnostics.outcomes is), the DDS structs idlc
+// generates, and JSON. Python's dict is the same visit() (python/src/py_convert.cpp).
 
 #include <gtest/gtest.h>
 

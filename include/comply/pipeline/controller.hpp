@@ -240,6 +240,7 @@ class Controller {
   JointVector overspeed_s_;        // per joint: how long it has been over its speed limit
   JointVector saturated_s_;        // per joint: how long it has sat at its effort limit
   EnergyWatch energy_watch_;       // the guard's energy rule (energy_watch.hpp)
+  CommandBus energy_bus_;          // the law's command the energy rule saw last
   bool reset_pending_ = false;
   // The wrist sensor (cycle_wrench.cpp): this cycle's reading less the tool's weight, then less
   // the tare, which is kept in the TCP frame (the sensor turns with the tool).

@@ -7,15 +7,15 @@
 // Per window of window_s:
 //   kinetic  the peak of  1/2 sum_i m_i dq_i^2  (m_i each joint's lightest inertia: a weighting
 //            that needs no mass matrix in the cycle; only its growth counts)
-//   input    whether the command in force the cycle acts on (reference, its rates, feedforward,
-//            stiffness) changed at all
+//   input    whether the command the law acts on (the whole bus: reference, rates, feedforward,
+//            gains, task frame, nullspace) changed at all
 //   swing    sign reversals of the velocity of the joint that held most of the peak (a reversal
 //            counts once the speed exceeds a tenth of that joint's previous peak: not noise)
 // A window grows when its kinetic peak is at least kStepGrowth x the previous one, the command held
 // still through it, and its dominant joint swung at least twice. A run of at least kMinRunWindows
 // growing windows whose kinetic peak rose `growth` times from where the run started, above
-// floor_j, is a FAULT: within kMinRunWindows windows of the growth's onset, or of its passing
-// floor_j, whichever is later (plus one window).
+// floor_j, is a FAULT, at the end of the first window where all three hold (the run has
+// kMinRunWindows windows, its energy has grown `growth` times, and is above floor_j).
 //
 // Only a command that holds still makes the arm's energy the loop's own: a stream of commands
 // (a policy at 10 Hz and up, a chunk playing, the force stage acting) feeds energy in at will, and
@@ -47,8 +47,6 @@ class EnergyWatch {
   static constexpr double kStepGrowth = 1.1;
   /// A run must be this long: an admittance arm pushed by a hand swings up within a window too.
   static constexpr int kMinRunWindows = 3;
-  /// The most input values update() compares (more are ignored).
-  static constexpr int kMaxInput = 8 * kMaxDof;
 
   /// `inertia` each joint's weight [kg m^2 | kg]; entries <= 0 count as 1.
   void configure(const Options& options, std::span<const double> inertia) noexcept;
@@ -56,11 +54,10 @@ class EnergyWatch {
   void reset() noexcept;
   [[nodiscard]] bool enabled() const noexcept { return options_.window_s > 0.0; }
 
-  /// One cycle: the measured joint velocities, the command's input values (the same layout every
-  /// cycle; compared exactly) and the period. True when a run reached `growth`: the loop is
-  /// generating energy.
-  bool update(std::span<const double> velocity, std::span<const double> input,
-              double period_s) noexcept;
+  /// One cycle: the measured joint velocities, whether the command the law acts on changed since
+  /// the last cycle, and the period. True when a run reached `growth`: the loop is generating
+  /// energy.
+  bool update(std::span<const double> velocity, bool command_changed, double period_s) noexcept;
 
   /// The run that tripped: its start and end kinetic peaks [J], its length [s] and the joint.
   struct Run {
@@ -88,8 +85,6 @@ class EnergyWatch {
   JointVector last_sign_;       // -1, 0 (not yet), +1
   JointVector swing_speed_;     // previous window's peak speed per joint: the reversal scale
   JointVector speed_peak_;      // this window's peak speed per joint
-  double last_input_[kMaxInput] = {};
-  int input_size_ = -1;  // -1: no input seen yet
   // The windows closed.
   bool have_previous_ = false;
   double previous_kinetic_j_ = 0.0;

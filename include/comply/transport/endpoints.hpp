@@ -142,7 +142,7 @@ class Reader final : public Endpoint {
     Gid gid{};                      ///< its GUID, as every peer knows it
   };
   /// The participant (process) of a matched writer, asked of DDS once per writer.
-  const Sender& senderOf(std::uint64_t publication);
+  Sender senderOf(std::uint64_t publication);
 
   std::int32_t waitset_ = 0;
   std::int32_t condition_ = 0;

@@ -128,8 +128,6 @@ std::string_view toString(Reason reason);
 
 /// A DDS GUID: 12 bytes of prefix (one per participant) and 4 of entity id.
 using Gid = std::array<std::uint8_t, 16>;
-/// The participant's GUID of an endpoint's GUID: the same prefix, entity id 0x000001c1.
-Gid participantGid(const Gid& endpoint) noexcept;
 /// 32 lower-case hex digits, as `ros2 topic echo` prints nothing better and logs can compare.
 std::string toHex(const Gid& gid);
 

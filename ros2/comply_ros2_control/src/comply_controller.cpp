@@ -91,20 +91,6 @@ std::uint64_t publisherId(const Gid& gid) {
   return hash == 0 ? 1 : hash;
 }
 
-/// The participant of a publisher's GID, as `comply run` names a command's sender: the RMWs
-/// over DDS (Cyclone, Fast DDS) put the writer's GUID in the GID's first 16 bytes; its first 12
-/// are the participant's prefix, and a participant's entity id is 0x000001c1.
-template <typename Gid>
-comply::pipeline::SenderId senderOf(const Gid& gid) {
-  comply::pipeline::SenderId sender{};
-  for (std::size_t i = 0; i < 12; ++i) {
-    sender[i] = static_cast<std::uint8_t>(gid.data[i]);
-  }
-  sender[14] = 0x01;
-  sender[15] = 0xc1;
-  return sender;
-}
-
 }  // namespace
 
 template <typename Command>
@@ -419,7 +405,8 @@ void ComplyController<Command>::offerToGate(const Header& header, const rclcpp::
                    ? comply::pipeline::CommandKind::kCartesian
                    : comply::pipeline::CommandKind::kJoint;
   offer.publisher = publisherId(info.get_rmw_message_info().publisher_gid);
-  offer.sender = senderOf(info.get_rmw_message_info().publisher_gid);
+  // offer.sender stays all zero ("not known"): rmw_cyclonedds puts a local instance handle, not
+  // the writer's GUID, into a message's publisher_gid, so no client could recognise its commands.
   offer.malformed = malformed;
   offer.now_ns = comply::monotonicNanoseconds();
   offer.clock_ns = get_node()->now().nanoseconds();  // the node's clock: ROS time, or /clock
