@@ -19,8 +19,8 @@
 //
 // Only a command that holds still makes the arm's energy the loop's own: a stream of commands
 // (a policy at 10 Hz and up, a chunk playing, the force stage acting) feeds energy in at will, and
-// a rule that judged it by how the stream varies tripped on a random stream of valid poses (twice
-// in 30 simulated minutes). While a stream flows, the rule waits; the other rules stand.
+// a rule that judged it by how the stream varies tripped on the soak's random stream of valid
+// poses. While a stream flows, the rule waits; the other rules stand.
 // A push or a commanded step (the arm rises for a window or two, then settles), a decaying
 // oscillation or an arm moved faster by hand (no swing) never makes a run.
 //
