@@ -26,7 +26,7 @@
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/record/recorder.hpp"
 
-namespace comply::app {
+namespace comply::host {
 
 template <typename Command>
 class BenchRecording final : public hardware::LoopObserver {
@@ -135,4 +135,4 @@ class BenchRecording final : public hardware::LoopObserver {
   std::uint64_t checksum_ = 0;  // the writer thread's
 };
 
-}  // namespace comply::app
+}  // namespace comply::host
