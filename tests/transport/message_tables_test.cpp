@@ -106,24 +106,30 @@ TEST(MessageTables, AFieldAddedToATableTravelsInCdrAfterTheOldOnes) {
 TEST(MessageTables, AFieldAddedToATableReachesTheDdsStructs) {
   using wire::fromWire;
   using wire::toWire;
-  const GrownState message = someState();
-  GrownWireState out{};
-  wire::Borrowed borrowed;
-  GROWN_STATE_FIELDS(COMPLY_TO_WIRE)
-  EXPECT_EQ(out.grip_force, 12.5);
-  EXPECT_EQ(out.joint_names._length, 2U);
-  EXPECT_STREQ(out.joint_names._buffer[1], "j2");
-  EXPECT_EQ(out.state, 1);
-
-  const GrownWireState& in = out;
+  const GrownState sent = someState();
+  GrownWireState wire_state{};
+  wire::Borrowed borrowed;  // what the wire form points into, alive to the end
+  {
+    // What COMPLY_TO_WIRE reads and writes.
+    const GrownState& message = sent;
+    GrownWireState& out = wire_state;
+    GROWN_STATE_FIELDS(COMPLY_TO_WIRE)
+    EXPECT_EQ(out.grip_force, 12.5);
+    EXPECT_EQ(out.joint_names._length, 2U);
+    EXPECT_STREQ(out.joint_names._buffer[1], "j2");
+    EXPECT_EQ(out.state, 1);
+  }
   GrownState back;
   {
-    GrownState& message = back;  // what COMPLY_FROM_WIRE writes to
+    // What COMPLY_FROM_WIRE reads and writes.
+    const GrownWireState& in = wire_state;
+    GrownState& message = back;
     GROWN_STATE_FIELDS(COMPLY_FROM_WIRE)
   }
   EXPECT_EQ(back.grip_force_n, 12.5);
-  EXPECT_EQ(back.joint_names, message.joint_names);
-  EXPECT_EQ(back.header.stamp, message.header.stamp);
+  EXPECT_EQ(back.joint_names, sent.joint_names);
+  EXPECT_EQ(back.header.stamp, sent.header.stamp);
+  EXPECT_EQ(back.state, HostState::kActive);
 }
 
 TEST(MessageTables, AFieldAddedToATableIsInTheJson) {
