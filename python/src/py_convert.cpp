@@ -123,11 +123,11 @@ void addPassivity(const pipeline::PassivitySnapshot& passivity, py::dict& d) {
 
 namespace {
 
+/// std::vector<double>, std::array<double, N>: a numpy array.
 template <typename T>
 concept DoubleArray = requires {
-  typename T::value_type;
-}
-&&std::is_same_v<typename T::value_type, double>;
+  requires std::is_same_v<typename T::value_type, double>;
+};
 
 /// A field of a table's message as Python has it: enums by name, stamps in seconds, a header as
 /// {"stamp", "frame_id"}, numbers in arrays as numpy arrays, a GUID as hex.

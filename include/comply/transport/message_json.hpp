@@ -16,9 +16,8 @@ nlohmann::json messageJson(const Message& message);
 /// A sequence of a table's messages (Diagnostics.outcomes).
 template <typename T>
 concept TableMessageList = requires {
-  typename T::value_type;
-}
-&&TableMessage<typename T::value_type>;
+  requires TableMessage<typename T::value_type>;
+};
 
 template <typename T>
 nlohmann::json fieldJson(const T& value) {
