@@ -2,10 +2,11 @@
 
 #include "comply/schema/describe.hpp"
 
-#include <cctype>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <sstream>
+
+#include "comply/core/upper_case.hpp"
 
 namespace comply::schema {
 namespace {
@@ -81,14 +82,6 @@ std::string constraintText(Constraint constraint, std::string_view unit) {
       return "entries 0 or 1";
   }
   return "?";
-}
-
-std::string upper(std::string_view text) {
-  std::string out(text);
-  for (char& c : out) {
-    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  }
-  return out;
 }
 
 std::string msgType(const FieldInfo& field) {
@@ -235,13 +228,13 @@ std::string rosMessage(CommandKind kind) {
       << "\nstd_msgs/Header header\n"
       << "uint32 fields  # FIELD_* groups this message sets; the others stay in force\n";
   for (const GroupInfo& group : groupsOf(kind)) {
-    out << "uint32 FIELD_" << upper(group.name) << "=" << static_cast<std::uint32_t>(group.field)
-        << "\n";
+    out << "uint32 FIELD_" << upperCase(group.name) << "="
+        << static_cast<std::uint32_t>(group.field) << "\n";
   }
   for (const FieldInfo& field : fields(kind)) {
     for (const EnumValue& value : field.values) {
-      out << "uint8 " << upper(field.name) << "_" << upper(value.name) << "=" << value.number
-          << "\n";
+      out << "uint8 " << upperCase(field.name) << "_" << upperCase(value.name) << "="
+          << value.number << "\n";
     }
   }
   out << "\n";
@@ -252,7 +245,7 @@ std::string rosMessage(CommandKind kind) {
     } else if (field.kind == FieldKind::kBlock3) {
       out << "3x3 row-major; ";
     } else if (field.kind == FieldKind::kEnum) {
-      out << upper(field.name) << "_*; ";
+      out << upperCase(field.name) << "_*; ";
     }
     out << "[" << (field.unit.empty() ? "-" : field.unit) << "] " << field.description << "\n";
   }
@@ -268,12 +261,12 @@ std::string ddsIdl(CommandKind kind) {
       << "#include \"std_msgs/msg/Header.idl\"\n\n"
       << "module comply_msgs {\nmodule msg {\nmodule dds_ {\n\nmodule " << name << "_Constants {\n";
   for (const GroupInfo& group : groupsOf(kind)) {
-    out << "const unsigned long FIELD_" << upper(group.name) << " = "
+    out << "const unsigned long FIELD_" << upperCase(group.name) << " = "
         << static_cast<std::uint32_t>(group.field) << ";\n";
   }
   for (const FieldInfo& field : fields(kind)) {
     for (const EnumValue& value : field.values) {
-      out << "const octet " << upper(field.name) << "_" << upper(value.name) << " = "
+      out << "const octet " << upperCase(field.name) << "_" << upperCase(value.name) << " = "
           << value.number << ";\n";
     }
   }

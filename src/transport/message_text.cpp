@@ -3,27 +3,21 @@
 #include "comply/transport/message_text.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <sstream>
 #include <stdexcept>
 
+#include "comply/core/upper_case.hpp"
+
 namespace comply::transport {
 namespace {
-
-std::string upper(std::string_view text) {
-  std::string out(text);
-  for (char& c : out) {
-    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  }
-  return out;
-}
 
 /// PREFIX_NAME=value for each value of an enum with toString().
 template <typename Enum>
 void addConstants(std::vector<ConstantText>& constants, std::string_view prefix,
                   std::initializer_list<Enum> values) {
   for (const Enum value : values) {
-    constants.push_back({std::string(prefix) + upper(toString(value)), static_cast<int>(value)});
+    constants.push_back(
+        {std::string(prefix) + upperCase(toString(value)), static_cast<int>(value)});
   }
 }
 
@@ -55,7 +49,7 @@ MessageText commandOutcome() {
                       fieldTexts<CommandOutcomeMessage>()};
   for (std::size_t i = 0; i < kReasonCount; ++i) {
     const auto reason = static_cast<Reason>(i);
-    message.constants.push_back({"REASON_" + upper(toString(reason)), static_cast<int>(i),
+    message.constants.push_back({"REASON_" + upperCase(toString(reason)), static_cast<int>(i),
                                  std::string(kRejectionReasonDocs[i])});
   }
   return message;
@@ -103,7 +97,7 @@ std::string rosMessageText(const MessageText& message) {
 }
 
 std::string ddsIdlText(const MessageText& message) {
-  const std::string guard = "COMPLY_MSGS__MSG__" + upper(message.name) + "_IDL";
+  const std::string guard = "COMPLY_MSGS__MSG__" + upperCase(message.name) + "_IDL";
   std::vector<std::string> includes;
   for (const FieldText& field : message.fields) {
     if (!field.idl_include.empty() &&
