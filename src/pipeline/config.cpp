@@ -1,10 +1,11 @@
-// Reading a controller file: the YAML text, then every option of the table (config_options.cpp)
+// Reading a controller file: the YAML text, then every option of the table (option_table.hpp)
 // at its key or its default, then the names, plugin parameters and the initial block.
 
 #include "comply/pipeline/config.hpp"
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -71,6 +72,15 @@ std::string rangeText(const options::Option& option) {
   return text.str();
 }
 
+/// "a, b or c".
+std::string alternatives(const std::vector<std::string>& choices) {
+  std::string text;
+  for (std::size_t i = 0; i < choices.size(); ++i) {
+    text += (i == 0 ? "" : i + 1 == choices.size() ? " or " : ", ") + choices[i];
+  }
+  return text;
+}
+
 bool inRange(const options::Option& option, double value) {
   const bool above = option.min_exclusive ? value > option.min : value >= option.min;
   return above && value <= option.max;  // false for NaN
@@ -101,13 +111,9 @@ options::Value readValue(const options::Option& option, const YAML::Node& node,
                 option.kind == Kind::kPerJoint ? "must be a number or a list of numbers"
                                                : "has the wrong type");
   }
-  if (option.kind == Kind::kChoice &&
-      ("|" + std::string(option.choices) + "|").find("|" + value.text + "|") == std::string::npos) {
-    std::string choices = option.choices;
-    for (std::size_t bar = choices.find('|'); bar != std::string::npos; bar = choices.find('|')) {
-      choices.replace(bar, 1, choices.find('|', bar + 1) == std::string::npos ? " or " : ", ");
-    }
-    report.fail(InputErrc::kInvalidValue, option.key, "must be " + choices);
+  if (option.kind == Kind::kChoice && std::find(option.choices.begin(), option.choices.end(),
+                                                 value.text) == option.choices.end()) {
+    report.fail(InputErrc::kInvalidValue, option.key, "must be " + alternatives(option.choices));
   }
   if (option.kind == Kind::kVector3 && value.numbers.size() != 3) {
     report.fail(InputErrc::kWrongSize, option.key, "must be [x, y, z]");
@@ -125,14 +131,10 @@ options::Value readValue(const options::Option& option, const YAML::Node& node,
 
 void readOptions(const YAML::Node& parameters, const Reporter& report, WrapperConfig& config) {
   for (const options::Option& option : options::table()) {
-    YAML::Node node = lookup(parameters, option.key);
-    if (!node) {
-      if (option.default_text == nullptr) {
-        continue;  // no default: the robot's, the URDF's, or unused
-      }
-      node = YAML::Load(option.default_text);
+    // An absent key keeps the member's default, which is the row's (option_table.hpp).
+    if (const YAML::Node node = lookup(parameters, option.key)) {
+      option.apply(config, readValue(option, node, report));
     }
-    option.apply(config, readValue(option, node, report));
   }
 }
 

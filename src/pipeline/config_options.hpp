@@ -1,8 +1,9 @@
 #pragma once
-// The wrapper's options, declared once: key, kind, default, allowed range and the comment that
-// documents it. The parser reads every option through this table (an absent key takes the
-// default written here) and `comply config --defaults` prints it, so the documented file and the
-// parser cannot disagree.
+// The wrapper's options as the parser reads them: one Option per row of the tables in
+// comply/pipeline/option_table.hpp (key, kind, default, allowed range and the comment that
+// documents it). The parser reads every option through this table (an absent key takes the
+// row's default, the same the struct member starts with), and `comply config --defaults` prints
+// it, so the documented file, the structs and the parser cannot disagree.
 
 #include <functional>
 #include <span>
@@ -23,27 +24,26 @@ struct Value {
   std::vector<double> numbers;
 };
 
+/// Whether an option's lower bound is allowed (kAtLeast) or not (kAbove).
+enum class Lower { kAtLeast, kAbove };
+
 struct Option {
-  Option(const char* key_in, Kind kind_in, const char* default_in, const char* comment_in,
-         double min_in = 0.0, double max_in = 1e300, bool min_exclusive_in = false)
-      : key(key_in),
-        kind(kind_in),
-        default_text(default_in),
-        comment(comment_in),
-        min(min_in),
-        max(max_in),
-        min_exclusive(min_exclusive_in) {}
+  Option(const char* key_in, Kind kind_in, const char* comment_in)
+      : key(key_in), kind(kind_in), comment(comment_in) {}
 
   const char* key;  ///< dotted path under ros__parameters ("soft_limits.stiffness")
   Kind kind;
-  const char* default_text;  ///< YAML of the default; nullptr: none (the comment says what then)
   const char* comment;       ///< unit and meaning, as printed in the documented file
-  double min = 0.0;          ///< numbers and per-joint entries: allowed range
+  std::string default_text;  ///< YAML of the default as written in the table; empty: none
+  Value default_value;       ///< the same, read
+  double min = -1e300;       ///< numbers and per-joint entries: allowed range
   double max = 1e300;
   bool min_exclusive = false;
-  const char* choices = "";  ///< kChoice: alternatives separated by '|'
+  std::vector<std::string> choices;  ///< kChoice: the alternatives
   std::function<void(WrapperConfig&, const Value&)> apply;
-  bool blank_line_before = false;  ///< layout of the printed file
+  bool blank_line_before = false;  ///< layout of the printed file: a new block starts here
+
+  [[nodiscard]] bool hasDefault() const { return !default_text.empty(); }
 };
 
 /// Every option, in the order of the documented file.

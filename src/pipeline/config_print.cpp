@@ -85,7 +85,7 @@ void printOptions(std::ostream& out) {
     }
     open_sections = path;
     const int indent = 4 + 2 * static_cast<int>(path.size());
-    if (option.default_text == nullptr) {
+    if (!option.hasDefault()) {
       line(out, indent, "# " + leaf + ": " + option.comment, "");
     } else {
       line(out, indent, leaf + ": " + option.default_text, option.comment);

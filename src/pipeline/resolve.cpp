@@ -114,7 +114,7 @@ std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig&
   parameters.gravity_compensation = config.gravity_compensation;
   parameters.hardware_compensates_gravity = config.hardware_compensates_gravity;
   parameters.payload_compensation = config.payload_compensation;
-  parameters.payload = config.payload;
+  parameters.payload = model::Payload{config.payload.mass_kg, config.payload.com_in_tip};
   parameters.friction = compileFriction(config.friction, dof);
   parameters.soft_limits = compileSoftLimits(config.soft_limits, lower, upper);
   parameters.filter_alpha = config.filter_alpha;

@@ -78,10 +78,12 @@ struct GateCounts {
   std::array<std::uint64_t, kCommandReasonCount> per_reason{};
 };
 
+/// What gateOptions() reads from a controller file; built there, so the defaults are the file's.
 struct GateOptions {
   CommandKind kind = CommandKind::kCartesian;  ///< the kind the controller takes
-  double publisher_timeout_s = 0.5;            ///< silence after which another writer may take over
-  double max_stamp_lead_s = 1.0;               ///< how far a stamp may be ahead of the host's clock
+  double publisher_timeout_s = 0;  ///< silence after which another writer may take over [s]
+  /// How far a stamp may be ahead of the host's clock [s].
+  double max_stamp_lead_s = ValidationConfig{}.max_stamp_lead_s;
 };
 
 /// The gate options of a controller: its kind, the publisher timeout (command_timeout_s) and the

@@ -35,6 +35,7 @@
 
 #include "comply/core/commands.hpp"
 #include "comply/model/data.hpp"
+#include "comply/pipeline/option_table.hpp"
 #include "comply/plugin/abi.h"
 
 namespace comply::pipeline {
@@ -48,17 +49,7 @@ enum class ForceSource : std::uint8_t {
 
 /// force_control.* in the controller file.
 struct ForceControlConfig {
-  ForceSource source = ForceSource::kAuto;
-  double proportional_gain = 0.2;     ///< k_p [1]: N of push per N of force error
-  double integral_gain_per_s = 10.0;  ///< k_i [1/s]
-  double integral_limit_n = 20.0;     ///< bound of k_i * integral on a force axis [N]
-  double integral_limit_n_m = 2.0;    ///< ... on a torque axis [N m]
-  double max_speed_m_per_s = 0.1;     ///< speed bound along a force axis, and of the pull-back
-  double max_angular_speed_rad_per_s = 0.5;
-  /// Contact-force limit per task axis [N], [N m]; 0: none.
-  Eigen::Vector3d contact_force_limit_n = Eigen::Vector3d::Zero();
-  Eigen::Vector3d contact_torque_limit_n_m = Eigen::Vector3d::Zero();
-  double limit_bandwidth_hz = 10.0;  ///< how fast the pull-back settles the force at its limit
+  COMPLY_OPTION_MEMBERS(COMPLY_FORCE_CONTROL_OPTIONS)
 };
 
 class ForceAxes {

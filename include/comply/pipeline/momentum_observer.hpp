@@ -18,18 +18,13 @@
 #include "comply/core/commands.hpp"
 #include "comply/core/state.hpp"
 #include "comply/model/data.hpp"
+#include "comply/pipeline/option_table.hpp"
 
 namespace comply::pipeline {
 
 /// observer.* in the controller file.
 struct ObserverConfig {
-  bool enabled = false;
-  double gain_per_s = 50.0;  ///< K_O [1/s]: the estimate's bandwidth (time constant 1/K_O)
-  /// lambda in (J J^T + lambda^2 I)^-1 J r: keeps the wrench bounded near a singularity.
-  double damping = 1e-3;
-  /// Use the hardware's measured joint torque (an arm with joint-torque sensing: its joint
-  /// friction then drops out of the estimate) instead of the torque the cycle commanded.
-  bool measured_torque = false;
+  COMPLY_OPTION_MEMBERS(COMPLY_OBSERVER_OPTIONS)
 };
 
 class MomentumObserver {

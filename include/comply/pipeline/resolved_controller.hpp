@@ -25,37 +25,39 @@ namespace comply::pipeline {
 /// Friction compensation with one entry per joint (see compensation.hpp for the formulas).
 struct FrictionParameters {
   FrictionModel model = FrictionModel::kNone;
-  JointVector phi1, phi2, phi3;      ///< sigmoid [N m], [s/rad], [rad/s]
-  JointVector viscous, coulomb;      ///< [N m s/rad], [N m]
-  double smoothing_velocity = 0.01;  ///< [rad/s]
+  JointVector phi1, phi2, phi3;   ///< sigmoid [N m], [s/rad], [rad/s]
+  JointVector viscous, coulomb;   ///< [N m s/rad], [N m]
+  double smoothing_velocity = 0;  ///< [rad/s]
 };
 
 /// Soft joint limits with one entry per joint, the URDF limits included.
 struct SoftLimitParameters {
-  bool enabled = true;
+  bool enabled = false;
   JointVector lower, upper;  ///< URDF position limits [rad | m]
   JointVector margin;        ///< [rad | m] inside each limit where the spring starts
   JointVector stiffness;     ///< [N m/rad]
   JointVector damping;       ///< [N m s/rad]
 };
 
-/// Everything the cycle reads, each per-joint value sized to the controller's dof.
+/// Everything the cycle reads, each per-joint value sized to the controller's dof. Every member
+/// is set by resolveController() from the configuration, whose defaults are the option table's:
+/// the zeros here are only what an unresolved one holds.
 struct CycleParameters {
-  double command_timeout_s = 0.5;
-  double chunk_blend_time_s = 0.1;
+  double command_timeout_s = 0;
+  double chunk_blend_time_s = 0;
   TimeoutBehavior timeout_behavior = TimeoutBehavior::kHold;
-  bool gravity_compensation = true;
+  bool gravity_compensation = false;
   bool hardware_compensates_gravity = false;  ///< see WrapperConfig
   bool payload_compensation = false;
   model::Payload payload;
   FrictionParameters friction;
   SoftLimitParameters soft_limits;
-  double filter_alpha = 1.0;
+  double filter_alpha = 0;
   JointVector torque_rate_limit;  ///< [N m/s]
   JointVector effort_limit;       ///< [N m]
   EffortSaturation effort_saturation = EffortSaturation::kClip;
   JointVector fault_damping;  ///< [N m s/rad]
-  double frozen_state_timeout_s = 0.1;
+  double frozen_state_timeout_s = 0;
   GainRampConfig gain_ramps;
   PassivityConfig passivity;
   StabilityGuardConfig stability_guard;
