@@ -58,29 +58,6 @@ std::vector<double> numberList(const YAML::Node& node) {
                            : std::vector<double>{node.as<double>()};
 }
 
-std::string rangeText(const options::Option& option) {
-  std::ostringstream text;
-  if (option.min < -1e300 && option.max >= 1e300) {
-    return "must be a finite number";  // any sign: only NaN and infinities are out of range
-  }
-  if (option.max < 1e300) {
-    text << "must be in " << (option.min_exclusive ? "(" : "[") << option.min << ", " << option.max
-         << "]";
-  } else {
-    text << "must be " << (option.min_exclusive ? "> " : ">= ") << option.min;
-  }
-  return text.str();
-}
-
-/// "a, b or c".
-std::string alternatives(const std::vector<std::string>& choices) {
-  std::string text;
-  for (std::size_t i = 0; i < choices.size(); ++i) {
-    text += (i == 0 ? "" : i + 1 == choices.size() ? " or " : ", ") + choices[i];
-  }
-  return text;
-}
-
 bool inRange(const options::Option& option, double value) {
   const bool above = option.min_exclusive ? value > option.min : value >= option.min;
   return above && value <= option.max;  // false for NaN
@@ -111,19 +88,19 @@ options::Value readValue(const options::Option& option, const YAML::Node& node,
                 option.kind == Kind::kPerJoint ? "must be a number or a list of numbers"
                                                : "has the wrong type");
   }
-  if (option.kind == Kind::kChoice && std::find(option.choices.begin(), option.choices.end(),
-                                                 value.text) == option.choices.end()) {
-    report.fail(InputErrc::kInvalidValue, option.key, "must be " + alternatives(option.choices));
+  if (option.kind == Kind::kChoice &&
+      std::find(option.choices.begin(), option.choices.end(), value.text) == option.choices.end()) {
+    report.fail(InputErrc::kInvalidValue, option.key, options::constraintText(option));
   }
   if (option.kind == Kind::kVector3 && value.numbers.size() != 3) {
     report.fail(InputErrc::kWrongSize, option.key, "must be [x, y, z]");
   }
   if (option.kind == Kind::kNumber && !inRange(option, value.number)) {
-    report.fail(InputErrc::kOutOfRange, option.key, rangeText(option));
+    report.fail(InputErrc::kOutOfRange, option.key, options::constraintText(option));
   }
   for (const double entry : value.numbers) {
     if (!inRange(option, entry)) {
-      report.fail(InputErrc::kOutOfRange, option.key, rangeText(option));
+      report.fail(InputErrc::kOutOfRange, option.key, options::constraintText(option));
     }
   }
   return value;
@@ -287,12 +264,13 @@ void checkTankBounds(const WrapperConfig& config, const Reporter& report) {
 
 }  // namespace
 
-WrapperConfig parseWrapperText(const std::string& yaml_text, const std::string& source,
-                               const std::string& controller_name) {
+namespace options {
+
+WrapperConfig parseParameters(const YAML::Node& parameters, const std::string& source,
+                              const std::string& controller_name) {
   WrapperConfig config;
   config.source = source;
-  const YAML::Node parameters =
-      controllerParameters(yaml_text, source, controller_name, config.name);
+  config.name = controller_name;
   const Reporter report(source, config.name + ".ros__parameters");
   readNames(parameters, report, config);
   rejectUnknownKeys(parameters, "", report);
@@ -307,6 +285,15 @@ WrapperConfig parseWrapperText(const std::string& yaml_text, const std::string& 
       initial ? schema::yamlToJson(initial, source, report.root() + ".initial")
               : nlohmann::json::object());
   return config;
+}
+
+}  // namespace options
+
+WrapperConfig parseWrapperText(const std::string& yaml_text, const std::string& source,
+                               const std::string& controller_name) {
+  std::string name;
+  const YAML::Node parameters = controllerParameters(yaml_text, source, controller_name, name);
+  return options::parseParameters(parameters, source, name);
 }
 
 WrapperConfig parseWrapperConfig(const std::string& yaml_text, const std::string& source,

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -53,7 +54,9 @@ template <typename Section>
 class Rows {
  public:
   using Of = Section& (*)(WrapperConfig&);
-  Rows(std::vector<Option>& table, Of of, bool new_block) : table_(table), of_(of), first_(new_block) {}
+  using OfConst = const Section& (*)(const WrapperConfig&);
+  Rows(std::vector<Option>& table, Of of, OfConst of_const, bool new_block)
+      : table_(table), of_(of), of_const_(of_const), first_(new_block) {}
 
   void number(double Section::*member, const char* key, const char* default_text,
               double default_value, Lower lower, double min, double max, const char* comment) {
@@ -63,7 +66,14 @@ class Rows {
     option.min = min;
     option.max = max;
     option.min_exclusive = lower == Lower::kAbove;
-    option.apply = [of = of_, member](WrapperConfig& c, const Value& v) { of(c).*member = v.number; };
+    option.apply = [of = of_, member](WrapperConfig& c, const Value& v) {
+      of(c).*member = v.number;
+    };
+    option.read = [of = of_const_, member](const WrapperConfig& c) {
+      Value value;
+      value.number = of(c).*member;
+      return value;
+    };
     add(std::move(option));
   }
 
@@ -72,6 +82,11 @@ class Rows {
     option.default_text = default_value ? "true" : "false";
     option.default_value.flag = default_value;
     option.apply = [of = of_, member](WrapperConfig& c, const Value& v) { of(c).*member = v.flag; };
+    option.read = [of = of_const_, member](const WrapperConfig& c) {
+      Value value;
+      value.flag = of(c).*member;
+      return value;
+    };
     add(std::move(option));
   }
 
@@ -92,6 +107,15 @@ class Rows {
         }
       }
     };
+    option.read = [of = of_const_, member](const WrapperConfig& c) {
+      Value read;
+      for (const auto& [value, name] : ChoiceNames<Enum>::kNames) {
+        if (of(c).*member == value) {
+          read.text = name;
+        }
+      }
+      return read;
+    };
     add(std::move(option));
   }
 
@@ -105,6 +129,12 @@ class Rows {
     option.apply = [of = of_, member](WrapperConfig& c, const Value& v) {
       of(c).*member = Eigen::Vector3d(v.numbers[0], v.numbers[1], v.numbers[2]);
     };
+    option.read = [of = of_const_, member](const WrapperConfig& c) {
+      const Eigen::Vector3d& vector = of(c).*member;
+      Value value;
+      value.numbers = {vector.x(), vector.y(), vector.z()};
+      return value;
+    };
     add(std::move(option));
   }
 
@@ -115,13 +145,18 @@ class Rows {
     table_.back().default_value.numbers = {default_value};
   }
 
-  void perJointUnset(std::vector<double> Section::*member, const char* key, Lower lower,
-                     double min, const char* comment) {
+  void perJointUnset(std::vector<double> Section::*member, const char* key, Lower lower, double min,
+                     const char* comment) {
     Option option(key, Kind::kPerJoint, comment);
     option.min = min;
     option.min_exclusive = lower == Lower::kAbove;
     option.apply = [of = of_, member](WrapperConfig& c, const Value& v) {
       of(c).*member = v.numbers;
+    };
+    option.read = [of = of_const_, member](const WrapperConfig& c) {
+      Value value;
+      value.numbers = of(c).*member;
+      return value;
     };
     add(std::move(option));
   }
@@ -135,12 +170,14 @@ class Rows {
 
   std::vector<Option>& table_;
   Of of_;
+  OfConst of_const_;
   bool first_;
 };
 
 // One expansion per row kind, into calls on `rows`.
-#define COMPLY_NUMBER_ROW(member, key, default_value, lower, min, max, comment) \
-  rows.number(&Section::member, key, #default_value, default_value, Lower::lower, min, max, comment);
+#define COMPLY_NUMBER_ROW(member, key, default_value, lower, min, max, comment)             \
+  rows.number(&Section::member, key, #default_value, default_value, Lower::lower, min, max, \
+              comment);
 #define COMPLY_FLAG_ROW(member, key, default_value, comment) \
   rows.flag(&Section::member, key, default_value, comment);
 #define COMPLY_CHOICE_ROW(member, key, Enum, default_value, comment) \
@@ -154,13 +191,14 @@ class Rows {
 
 /// Adds TABLE's rows, whose members are in WrapperConfig`path` (of type SectionType); a new block
 /// of the printed file when `new_block`.
-#define COMPLY_ADD_OPTIONS(TABLE, SectionType, path, new_block)                               \
-  {                                                                                           \
-    using Section = SectionType;                                                              \
-    Rows<Section> rows(                                                                       \
-        table, [](WrapperConfig& c) -> Section& { return c path; }, new_block);               \
-    TABLE(COMPLY_NUMBER_ROW, COMPLY_FLAG_ROW, COMPLY_CHOICE_ROW, COMPLY_VECTOR3_ROW,          \
-          COMPLY_PER_JOINT_ROW, COMPLY_PER_JOINT_UNSET_ROW)                                   \
+#define COMPLY_ADD_OPTIONS(TABLE, SectionType, path, new_block)                      \
+  {                                                                                  \
+    using Section = SectionType;                                                     \
+    Rows<Section> rows(                                                              \
+        table, [](WrapperConfig& c) -> Section& { return c path; },                  \
+        [](const WrapperConfig& c) -> const Section& { return c path; }, new_block); \
+    TABLE(COMPLY_NUMBER_ROW, COMPLY_FLAG_ROW, COMPLY_CHOICE_ROW, COMPLY_VECTOR3_ROW, \
+          COMPLY_PER_JOINT_ROW, COMPLY_PER_JOINT_UNSET_ROW)                          \
   }
 
 // The tables in the order the YAML file prints them; the order is part of the file.
@@ -185,6 +223,24 @@ std::vector<Option> makeTable() {
 }
 
 }  // namespace
+
+std::string constraintText(const Option& option) {
+  std::ostringstream text;
+  if (option.kind == Kind::kChoice) {
+    text << "must be ";
+    for (std::size_t i = 0; i < option.choices.size(); ++i) {
+      text << (i == 0 ? "" : i + 1 == option.choices.size() ? " or " : ", ") << option.choices[i];
+    }
+  } else if (option.min < -1e300 && option.max >= 1e300) {
+    text << "must be a finite number";  // any sign: only NaN and infinities are out of range
+  } else if (option.max < 1e300) {
+    text << "must be in " << (option.min_exclusive ? "(" : "[") << option.min << ", " << option.max
+         << "]";
+  } else {
+    text << "must be " << (option.min_exclusive ? "> " : ">= ") << option.min;
+  }
+  return text.str();
+}
 
 std::span<const Option> table() {
   static const std::vector<Option> kTable = makeTable();

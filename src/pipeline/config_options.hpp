@@ -5,6 +5,8 @@
 // row's default, the same the struct member starts with), and `comply config --defaults` prints
 // it, so the documented file, the structs and the parser cannot disagree.
 
+#include <yaml-cpp/yaml.h>
+
 #include <functional>
 #include <span>
 #include <string>
@@ -39,8 +41,9 @@ struct Option {
   double min = -1e300;       ///< numbers and per-joint entries: allowed range
   double max = 1e300;
   bool min_exclusive = false;
-  std::vector<std::string> choices;  ///< kChoice: the alternatives
-  std::function<void(WrapperConfig&, const Value&)> apply;
+  std::vector<std::string> choices;                         ///< kChoice: the alternatives
+  std::function<void(WrapperConfig&, const Value&)> apply;  ///< sets the member
+  std::function<Value(const WrapperConfig&)> read;          ///< the member's value
   bool blank_line_before = false;  ///< layout of the printed file: a new block starts here
 
   [[nodiscard]] bool hasDefault() const { return !default_text.empty(); }
@@ -48,6 +51,16 @@ struct Option {
 
 /// Every option, in the order of the documented file.
 std::span<const Option> table();
+
+/// What a value of `option` must be, as the parser says it ("must be > 0", "must be hold or
+/// reanchor").
+std::string constraintText(const Option& option);
+
+/// The controller's parameters (the mapping under ros__parameters) read into a configuration:
+/// the names, every option of the table, the plugin parameters and the initial block. Throws
+/// InputError naming `source` and the key.
+WrapperConfig parseParameters(const YAML::Node& parameters, const std::string& source,
+                              const std::string& controller_name);
 
 /// Keys that are read outside the table (names, plugin parameters, the initial block).
 inline constexpr const char* kSpecialKeys[] = {

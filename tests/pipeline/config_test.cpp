@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "comply/core/input_error.hpp"
+#include "comply/pipeline/config_parameters.hpp"
 
 namespace comply::pipeline {
 namespace {
@@ -499,14 +500,9 @@ TEST(DocumentedDefaults, PrintedDefaultsReadBackAsTheDefaults) {
     const WrapperConfig bare = parseWrapperConfig(
         "arm:\n  ros__parameters:\n    plugin: x\n    robot: fr3\n    tip_frame: fr3_tcp\n",
         "bare");
-    EXPECT_EQ(printed.command_timeout_s, bare.command_timeout_s);
-    EXPECT_EQ(printed.validation.quaternion_tolerance, bare.validation.quaternion_tolerance);
-    EXPECT_EQ(printed.validation.max_position_jump_m, bare.validation.max_position_jump_m);
-    EXPECT_EQ(printed.payload.com_in_tip, bare.payload.com_in_tip);
-    EXPECT_EQ(printed.friction.smoothing_velocity, bare.friction.smoothing_velocity);
-    EXPECT_EQ(printed.soft_limits.stiffness, bare.soft_limits.stiffness);
-    EXPECT_EQ(printed.torque_rate_limit, bare.torque_rate_limit);
-    EXPECT_EQ(printed.fault_damping, bare.fault_damping);
+    for (const OptionDeclaration& option : optionDeclarations()) {
+      EXPECT_EQ(optionValue(printed, option.name), optionValue(bare, option.name)) << option.name;
+    }
     EXPECT_EQ(printed.initial_cartesian.stiffness_translational,
               bare.initial_cartesian.stiffness_translational);
     EXPECT_EQ(printed.initial_cartesian.damping_mode, bare.initial_cartesian.damping_mode);
