@@ -21,60 +21,59 @@
 
 // What the wrapper accepts from a command source, and when it stops waiting for one
 // (WrapperConfig).
-#define COMPLY_COMMAND_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)       \
-  NUMBER(command_timeout_s, "command_timeout_s", 0.5, kAtLeast, 0.0, kNoLimit,                  \
-         "no command for this long -> timeout_behavior; 0: never")                             \
-  CHOICE(timeout_behavior, "timeout_behavior", TimeoutBehavior, kHold,                          \
-         "hold: keep the last pose, stop its motion; reanchor: measured pose")                  \
-  NUMBER(chunk_blend_time_s, "chunk_blend_time_s", 0.1, kAtLeast, 0.0, 10.0,                    \
+#define COMPLY_COMMAND_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET) \
+  NUMBER(command_timeout_s, "command_timeout_s", 0.5, kAtLeast, 0.0, kNoLimit,            \
+         "no command for this long -> timeout_behavior; 0: never")                        \
+  CHOICE(timeout_behavior, "timeout_behavior", TimeoutBehavior, kHold,                    \
+         "hold: keep the last pose, stop its motion; reanchor: measured pose")            \
+  NUMBER(chunk_blend_time_s, "chunk_blend_time_s", 0.1, kAtLeast, 0.0, 10.0,              \
          "s over which a new timed chunk takes over from the reference in force")
 
 // Limits on a command against the measured arm and the host's clock (ValidationConfig).
-#define COMPLY_VALIDATION_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)    \
-  NUMBER(quaternion_tolerance, "validation.quaternion_tolerance", 1.0e-3, kAbove, 0.0, 0.5,     \
-         "|norm - 1| renormalised below, rejected above")                                       \
-  NUMBER(max_position_jump_m, "validation.max_position_jump_m", 0.10, kAbove, 0.0, kNoLimit,    \
-         "target vs measured TCP position")                                                     \
-  NUMBER(max_orientation_jump_rad, "validation.max_orientation_jump_rad", 0.60, kAbove, 0.0,    \
-         M_PI, "target vs measured TCP orientation")                                            \
-  NUMBER(max_joint_jump_rad, "validation.max_joint_jump_rad", 0.50, kAbove, 0.0, kNoLimit,      \
-         "joint target vs measured position (joint commands)")                                  \
-  NUMBER(max_wn_period, "validation.max_wn_period", 0.35, kAtLeast, 0.0, 0.43,                  \
-         "largest w_n T a stiffness or damping may give on the arm's lightest inertia (0: no "  \
-         "bound)")                                                                              \
-  NUMBER(max_stamp_lead_s, "validation.max_stamp_lead_s", 1.0, kAbove, 0.0, kNoLimit,           \
+#define COMPLY_VALIDATION_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)       \
+  NUMBER(quaternion_tolerance, "validation.quaternion_tolerance", 1.0e-3, kAbove, 0.0, 0.5,        \
+         "|norm - 1| renormalised below, rejected above")                                          \
+  NUMBER(max_position_jump_m, "validation.max_position_jump_m", 0.10, kAbove, 0.0, kNoLimit,       \
+         "target vs measured TCP position")                                                        \
+  NUMBER(max_orientation_jump_rad, "validation.max_orientation_jump_rad", 0.60, kAbove, 0.0, M_PI, \
+         "target vs measured TCP orientation")                                                     \
+  NUMBER(max_joint_jump_rad, "validation.max_joint_jump_rad", 0.50, kAbove, 0.0, kNoLimit,         \
+         "joint target vs measured position (joint commands)")                                     \
+  NUMBER(max_wn_period, "validation.max_wn_period", 0.35, kAtLeast, 0.0, 0.43,                     \
+         "largest w_n T a stiffness or damping may give on the arm's lightest inertia (0: no "     \
+         "bound)")                                                                                 \
+  NUMBER(max_stamp_lead_s, "validation.max_stamp_lead_s", 1.0, kAbove, 0.0, kNoLimit,              \
          "s a command's stamp may be ahead of the host's clock (clock skew)")
 
 // Model-based torques added to the law's: gravity and a held payload (WrapperConfig).
-#define COMPLY_COMPENSATION_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)  \
-  FLAG(gravity_compensation, "compensation.gravity", true, "g(q) from the URDF")                \
+#define COMPLY_COMPENSATION_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET) \
+  FLAG(gravity_compensation, "compensation.gravity", true, "g(q) from the URDF")               \
   FLAG(payload_compensation, "compensation.payload.enabled", false, "a load held at the tip")
 
 // The payload held at the tip (PayloadConfig).
-#define COMPLY_PAYLOAD_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)       \
-  NUMBER(mass_kg, "compensation.payload.mass_kg", 0.0, kAtLeast, 0.0, 1e3, "kg")                \
+#define COMPLY_PAYLOAD_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET) \
+  NUMBER(mass_kg, "compensation.payload.mass_kg", 0.0, kAtLeast, 0.0, 1e3, "kg")          \
   VECTOR3(com_in_tip, "compensation.payload.com_m", -10.0, 10.0, "in the tip frame")
 
 // Joint friction (FrictionConfig; compensation.hpp has the formulas).
-#define COMPLY_FRICTION_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)      \
-  CHOICE(model, "compensation.friction.model", FrictionModel, kNone,                            \
-         "none | sigmoid (phi1..3, default robot.yaml) | viscous_coulomb")                      \
-  PER_JOINT_UNSET(phi1, "compensation.friction.phi1", kAtLeast, -kNoLimit, "sigmoid: N m")      \
-  PER_JOINT_UNSET(phi2, "compensation.friction.phi2", kAtLeast, -kNoLimit, "sigmoid: s/rad")    \
-  PER_JOINT_UNSET(phi3, "compensation.friction.phi3", kAtLeast, -kNoLimit, "sigmoid: rad/s")    \
-  PER_JOINT_UNSET(viscous, "compensation.friction.viscous", kAtLeast, 0.0,                      \
-                  "viscous_coulomb: N m s/rad")                                                 \
-  PER_JOINT_UNSET(coulomb, "compensation.friction.coulomb", kAtLeast, 0.0,                      \
-                  "viscous_coulomb: N m")                                                       \
-  NUMBER(smoothing_velocity, "compensation.friction.smoothing_velocity", 0.01, kAbove, 0.0,     \
+#define COMPLY_FRICTION_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)         \
+  CHOICE(model, "compensation.friction.model", FrictionModel, kNone,                               \
+         "none | sigmoid (phi1..3, default robot.yaml) | viscous_coulomb")                         \
+  PER_JOINT_UNSET(phi1, "compensation.friction.phi1", kAtLeast, -kNoLimit, "sigmoid: N m")         \
+  PER_JOINT_UNSET(phi2, "compensation.friction.phi2", kAtLeast, -kNoLimit, "sigmoid: s/rad")       \
+  PER_JOINT_UNSET(phi3, "compensation.friction.phi3", kAtLeast, -kNoLimit, "sigmoid: rad/s")       \
+  PER_JOINT_UNSET(viscous, "compensation.friction.viscous", kAtLeast, 0.0,                         \
+                  "viscous_coulomb: N m s/rad")                                                    \
+  PER_JOINT_UNSET(coulomb, "compensation.friction.coulomb", kAtLeast, 0.0, "viscous_coulomb: N m") \
+  NUMBER(smoothing_velocity, "compensation.friction.smoothing_velocity", 0.01, kAbove, 0.0,        \
          kNoLimit, "rad/s: tanh(dq / v) replaces sign(dq)")
 
 // Spring-dampers near the URDF limits (SoftLimitConfig).
-#define COMPLY_SOFT_LIMIT_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)    \
-  FLAG(enabled, "soft_limits.enabled", true, "spring-damper near the URDF limits")              \
-  PER_JOINT(margin, "soft_limits.margin_rad", 0.1, kAtLeast, 0.0,                               \
-            "spring starts this far inside each URDF limit")                                    \
-  PER_JOINT(stiffness, "soft_limits.stiffness", 100.0, kAtLeast, 0.0, "N m/rad")                \
+#define COMPLY_SOFT_LIMIT_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET) \
+  FLAG(enabled, "soft_limits.enabled", true, "spring-damper near the URDF limits")           \
+  PER_JOINT(margin, "soft_limits.margin_rad", 0.1, kAtLeast, 0.0,                            \
+            "spring starts this far inside each URDF limit")                                 \
+  PER_JOINT(stiffness, "soft_limits.stiffness", 100.0, kAtLeast, 0.0, "N m/rad")             \
   PER_JOINT(damping, "soft_limits.damping", 5.0, kAtLeast, 0.0, "N m s/rad")
 
 // What shapes the torque on its way to the motors (WrapperConfig). A torque-rate limit of 0
@@ -96,38 +95,37 @@
 // Rate limits on the gains the law sees (GainRampConfig). Each bounds every entry of its matrix
 // or vector per second; matrices move along the straight line to the command, so they stay
 // symmetric positive semi-definite.
-#define COMPLY_GAIN_RAMP_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)     \
-  FLAG(enabled, "gain_ramps.enabled", false,                                                    \
-       "a step in stiffness, damping or task frame becomes a ramp")                             \
-  NUMBER(translational_stiffness_per_s, "gain_ramps.translational_stiffness_per_s", 10000.0,    \
-         kAbove, 0.0, kNoLimit, "N/m per s")                                                    \
-  NUMBER(rotational_stiffness_per_s, "gain_ramps.rotational_stiffness_per_s", 1000.0, kAbove,   \
-         0.0, kNoLimit, "N m/rad per s")                                                        \
-  NUMBER(joint_stiffness_per_s, "gain_ramps.joint_stiffness_per_s", 2000.0, kAbove, 0.0,        \
-         kNoLimit, "N m/rad per s: joint control and the nullspace")                            \
-  NUMBER(translational_damping_per_s, "gain_ramps.translational_damping_per_s", 1000.0, kAbove, \
-         0.0, kNoLimit, "N s/m per s")                                                          \
-  NUMBER(rotational_damping_per_s, "gain_ramps.rotational_damping_per_s", 100.0, kAbove, 0.0,   \
-         kNoLimit, "N m s/rad per s")                                                           \
-  NUMBER(joint_damping_per_s, "gain_ramps.joint_damping_per_s", 200.0, kAbove, 0.0, kNoLimit,   \
-         "N m s/rad per s: joint control and the nullspace")                                    \
-  NUMBER(damping_ratio_per_s, "gain_ramps.damping_ratio_per_s", 5.0, kAbove, 0.0, kNoLimit,     \
-         "1/s")                                                                                 \
-  NUMBER(task_frame_rad_per_s, "gain_ramps.task_frame_rad_per_s", 1.0, kAbove, 0.0, kNoLimit,   \
+#define COMPLY_GAIN_RAMP_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)        \
+  FLAG(enabled, "gain_ramps.enabled", false,                                                       \
+       "a step in stiffness, damping or task frame becomes a ramp")                                \
+  NUMBER(translational_stiffness_per_s, "gain_ramps.translational_stiffness_per_s", 10000.0,       \
+         kAbove, 0.0, kNoLimit, "N/m per s")                                                       \
+  NUMBER(rotational_stiffness_per_s, "gain_ramps.rotational_stiffness_per_s", 1000.0, kAbove, 0.0, \
+         kNoLimit, "N m/rad per s")                                                                \
+  NUMBER(joint_stiffness_per_s, "gain_ramps.joint_stiffness_per_s", 2000.0, kAbove, 0.0, kNoLimit, \
+         "N m/rad per s: joint control and the nullspace")                                         \
+  NUMBER(translational_damping_per_s, "gain_ramps.translational_damping_per_s", 1000.0, kAbove,    \
+         0.0, kNoLimit, "N s/m per s")                                                             \
+  NUMBER(rotational_damping_per_s, "gain_ramps.rotational_damping_per_s", 100.0, kAbove, 0.0,      \
+         kNoLimit, "N m s/rad per s")                                                              \
+  NUMBER(joint_damping_per_s, "gain_ramps.joint_damping_per_s", 200.0, kAbove, 0.0, kNoLimit,      \
+         "N m s/rad per s: joint control and the nullspace")                                       \
+  NUMBER(damping_ratio_per_s, "gain_ramps.damping_ratio_per_s", 5.0, kAbove, 0.0, kNoLimit, "1/s") \
+  NUMBER(task_frame_rad_per_s, "gain_ramps.task_frame_rad_per_s", 1.0, kAbove, 0.0, kNoLimit,      \
          "rad/s of the task frame")
 
 // The energy tank (PassivityConfig; gain_guard.hpp): it pays for the energy a stiffness or
 // task-frame change injects into the springs and refuses, smoothly, what it cannot pay.
-#define COMPLY_PASSIVITY_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)     \
-  FLAG(enabled, "passivity.enabled", false,                                                     \
-       "energy tank: stiffness and task-frame changes only as paid for")                        \
-  NUMBER(tank_initial_j, "passivity.tank_initial_j", 1.0, kAtLeast, 0.0, 1e6,                   \
-         "J in the tank on activation")                                                         \
-  NUMBER(tank_max_j, "passivity.tank_max_j", 2.0, kAtLeast, 0.0, 1e6,                           \
-         "J: the damping refills it up to here")                                                \
-  NUMBER(tank_min_j, "passivity.tank_min_j", 0.01, kAtLeast, 0.0, 1e6, "J: never spent below")  \
-  NUMBER(nullspace_tank_initial_j, "passivity.nullspace_tank_initial_j", 0.5, kAtLeast, 0.0,    \
-         1e6, "J: the nullspace's own account (Cartesian control)")                             \
+#define COMPLY_PASSIVITY_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)       \
+  FLAG(enabled, "passivity.enabled", false,                                                       \
+       "energy tank: stiffness and task-frame changes only as paid for")                          \
+  NUMBER(tank_initial_j, "passivity.tank_initial_j", 1.0, kAtLeast, 0.0, 1e6,                     \
+         "J in the tank on activation")                                                           \
+  NUMBER(tank_max_j, "passivity.tank_max_j", 2.0, kAtLeast, 0.0, 1e6,                             \
+         "J: the damping refills it up to here")                                                  \
+  NUMBER(tank_min_j, "passivity.tank_min_j", 0.01, kAtLeast, 0.0, 1e6, "J: never spent below")    \
+  NUMBER(nullspace_tank_initial_j, "passivity.nullspace_tank_initial_j", 0.5, kAtLeast, 0.0, 1e6, \
+         "J: the nullspace's own account (Cartesian control)")                                    \
   NUMBER(nullspace_tank_max_j, "passivity.nullspace_tank_max_j", 1.0, kAtLeast, 0.0, 1e6, "J")
 
 // The stability guard (StabilityGuardConfig): what a running arm must never do, whatever the law
@@ -135,34 +133,34 @@
 // trips on an oscillation whose energy grows energy_growth times over windows of
 // energy_window_s, each higher than the last, while the command holds still.
 #define COMPLY_STABILITY_GUARD_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET) \
-  FLAG(enabled, "stability_guard.enabled", true,                                                 \
-       "FAULT on a runaway: overspeed, past a limit, sustained saturation, growing energy")      \
-  NUMBER(velocity_factor, "stability_guard.velocity_factor", 1.0, kAbove, 0.0, 1e6,              \
-         "FAULT above this times a joint's URDF velocity limit")                                 \
-  NUMBER(velocity_time_s, "stability_guard.velocity_time_s", 0.005, kAtLeast, 0.0, 1e6,          \
-         "s above it before FAULT")                                                              \
-  NUMBER(position_margin_rad, "stability_guard.position_margin_rad", 0.05, kAtLeast, 0.0, 1e6,   \
-         "rad | m past a URDF position limit: FAULT")                                            \
-  NUMBER(saturation_time_s, "stability_guard.saturation_time_s", 1.0, kAtLeast, 0.0, 1e6,        \
-         "s a joint may sit at its effort limit before FAULT; 0: never")                         \
-  NUMBER(energy_window_s, "stability_guard.energy_window_s", 0.25, kAtLeast, 0.0, 1e6,           \
-         "s per window of the energy rule (an oscillation growing while the command holds "      \
-         "still); 0: off")                                                                       \
-  NUMBER(energy_growth, "stability_guard.energy_growth", 4.0, kAbove, 1.0, 1e6,                  \
-         "times (above 1) the oscillation's energy grows, window over window, before FAULT")     \
-  NUMBER(energy_floor_j, "stability_guard.energy_floor_j", 0.05, kAtLeast, 0.0, 1e6,             \
+  FLAG(enabled, "stability_guard.enabled", true,                                                  \
+       "FAULT on a runaway: overspeed, past a limit, sustained saturation, growing energy")       \
+  NUMBER(velocity_factor, "stability_guard.velocity_factor", 1.0, kAbove, 0.0, 1e6,               \
+         "FAULT above this times a joint's URDF velocity limit")                                  \
+  NUMBER(velocity_time_s, "stability_guard.velocity_time_s", 0.005, kAtLeast, 0.0, 1e6,           \
+         "s above it before FAULT")                                                               \
+  NUMBER(position_margin_rad, "stability_guard.position_margin_rad", 0.05, kAtLeast, 0.0, 1e6,    \
+         "rad | m past a URDF position limit: FAULT")                                             \
+  NUMBER(saturation_time_s, "stability_guard.saturation_time_s", 1.0, kAtLeast, 0.0, 1e6,         \
+         "s a joint may sit at its effort limit before FAULT; 0: never")                          \
+  NUMBER(energy_window_s, "stability_guard.energy_window_s", 0.25, kAtLeast, 0.0, 1e6,            \
+         "s per window of the energy rule (an oscillation growing while the command holds "       \
+         "still); 0: off")                                                                        \
+  NUMBER(energy_growth, "stability_guard.energy_growth", 4.0, kAbove, 1.0, 1e6,                   \
+         "times (above 1) the oscillation's energy grows, window over window, before FAULT")      \
+  NUMBER(energy_floor_j, "stability_guard.energy_floor_j", 0.05, kAtLeast, 0.0, 1e6,              \
          "J (joint-inertia weighted) the grown energy must exceed")
 
 // The external wrench estimated from the joints' momentum (ObserverConfig).
-#define COMPLY_OBSERVER_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)      \
-  FLAG(enabled, "observer.enabled", false,                                                      \
-       "estimate the external wrench at the TCP from the joints' momentum (the state's "        \
-       "wrench)")                                                                               \
-  NUMBER(gain_per_s, "observer.gain_per_s", 50.0, kAbove, 0.0, 1e4,                             \
-         "1/s: the estimate's bandwidth (time constant 1/gain)")                                \
-  NUMBER(damping, "observer.damping", 0.001, kAtLeast, 0.0, 1.0,                                \
-         "lambda of the pseudo-inverse (J J^T + lambda^2 I)^-1 J near a singularity")           \
-  FLAG(measured_torque, "observer.measured_torque", false,                                      \
+#define COMPLY_OBSERVER_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET) \
+  FLAG(enabled, "observer.enabled", false,                                                 \
+       "estimate the external wrench at the TCP from the joints' momentum (the state's "   \
+       "wrench)")                                                                          \
+  NUMBER(gain_per_s, "observer.gain_per_s", 50.0, kAbove, 0.0, 1e4,                        \
+         "1/s: the estimate's bandwidth (time constant 1/gain)")                           \
+  NUMBER(damping, "observer.damping", 0.001, kAtLeast, 0.0, 1.0,                           \
+         "lambda of the pseudo-inverse (J J^T + lambda^2 I)^-1 J near a singularity")      \
+  FLAG(measured_torque, "observer.measured_torque", false,                                 \
        "use the measured joint torque (torque-sensing arms) instead of the commanded one")
 
 // The wrist force/torque sensor's reading (WrenchSensorConfig; cycle_wrench.cpp).
@@ -196,8 +194,8 @@
          "Hz: how fast the pull-back settles the force at its limit")
 
 // What the cycle sends the drives (OutputConfig; output_stage.hpp).
-#define COMPLY_OUTPUT_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)        \
-  CHOICE(mode, "output.mode", OutputMode, kTorque,                                              \
+#define COMPLY_OUTPUT_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET) \
+  CHOICE(mode, "output.mode", OutputMode, kTorque,                                       \
          "torque | joint_pd (onboard PD) | position, velocity (admittance)")
 
 // Admittance (output.mode position or velocity; AdmittanceConfig): the law's torque, with the
@@ -207,26 +205,25 @@
 // (a bound in the loop makes the virtual arm overshoot); the tracking bound is what a blocked or
 // lagging arm can wind up; the velocity correction keeps the drives' own integration error from
 // accumulating (velocity mode).
-#define COMPLY_ADMITTANCE_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)    \
-  VECTOR3(added_mass_kg, "output.admittance.added_mass_kg", 0.0, 1e4,                           \
-          "kg added to the arm's own inertia at the TCP, along task x y z")                     \
-  VECTOR3(added_inertia_kg_m2, "output.admittance.added_inertia_kg_m2", 0.0, 1e4,               \
-          "kg m^2 added at the TCP, about task x y z")                                          \
-  NUMBER(velocity_factor, "output.admittance.velocity_factor", 0.5, kAbove, 0.0, 1.0,           \
-         "joint speed bound: this times the URDF velocity limit")                               \
-  NUMBER(max_acceleration_rad_per_s2, "output.admittance.max_acceleration_rad_per_s2", 100.0,   \
-         kAbove, 0.0, 1e5, "joint acceleration bound: a net, far above the law's")              \
-  NUMBER(max_tracking_error_rad, "output.admittance.max_tracking_error_rad", 0.05, kAbove, 0.0, \
-         10.0, "the virtual arm stays this close to the measured arm")                          \
-  NUMBER(velocity_correction_per_s, "output.admittance.velocity_correction_per_s", 10.0,        \
-         kAtLeast, 0.0, 1e3, "velocity mode: 1/s x (virtual - measured), added")
+#define COMPLY_ADMITTANCE_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)       \
+  VECTOR3(added_mass_kg, "output.admittance.added_mass_kg", 0.0, 1e4,                              \
+          "kg added to the arm's own inertia at the TCP, along task x y z")                        \
+  VECTOR3(added_inertia_kg_m2, "output.admittance.added_inertia_kg_m2", 0.0, 1e4,                  \
+          "kg m^2 added at the TCP, about task x y z")                                             \
+  NUMBER(velocity_factor, "output.admittance.velocity_factor", 0.5, kAbove, 0.0, 1.0,              \
+         "joint speed bound: this times the URDF velocity limit")                                  \
+  NUMBER(max_acceleration_rad_per_s2, "output.admittance.max_acceleration_rad_per_s2", 100.0,      \
+         kAbove, 0.0, 1e5, "joint acceleration bound: a net, far above the law's")                 \
+  NUMBER(max_tracking_error_rad, "output.admittance.max_tracking_error_rad", 0.05, kAbove, 0.0,    \
+         10.0, "the virtual arm stays this close to the measured arm")                             \
+  NUMBER(velocity_correction_per_s, "output.admittance.velocity_correction_per_s", 10.0, kAtLeast, \
+         0.0, 1e3, "velocity mode: 1/s x (virtual - measured), added")
 
 // The struct members a table declares, with their defaults:
 //   struct GainRampConfig { COMPLY_OPTION_MEMBERS(COMPLY_GAIN_RAMP_OPTIONS) };
 #define COMPLY_OPTION_NUMBER_MEMBER(member, key, default_value, lower, min, max, comment) \
   double member = default_value;
-#define COMPLY_OPTION_FLAG_MEMBER(member, key, default_value, comment) \
-  bool member = default_value;
+#define COMPLY_OPTION_FLAG_MEMBER(member, key, default_value, comment) bool member = default_value;
 #define COMPLY_OPTION_CHOICE_MEMBER(member, key, Enum, default_value, comment) \
   Enum member = Enum::default_value;
 #define COMPLY_OPTION_VECTOR3_MEMBER(member, key, min, max, comment) \
@@ -235,7 +232,7 @@
   std::vector<double> member{default_value};
 #define COMPLY_OPTION_PER_JOINT_UNSET_MEMBER(member, key, lower, min, comment) \
   std::vector<double> member;
-#define COMPLY_OPTION_MEMBERS(TABLE)                                                  \
+#define COMPLY_OPTION_MEMBERS(TABLE)                                                         \
   TABLE(COMPLY_OPTION_NUMBER_MEMBER, COMPLY_OPTION_FLAG_MEMBER, COMPLY_OPTION_CHOICE_MEMBER, \
         COMPLY_OPTION_VECTOR3_MEMBER, COMPLY_OPTION_PER_JOINT_MEMBER,                        \
         COMPLY_OPTION_PER_JOINT_UNSET_MEMBER)
