@@ -10,9 +10,10 @@
 #include "comply/hardware/loop_clock.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/config.hpp"
+#include "comply/pipeline/config_parameters.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply_ros2_control/message_conversion.hpp"
-#include "comply_ros2_control/parameter_yaml.hpp"
+#include "comply_ros2_control/comply_parameters.hpp"
 #include "comply_ros2_control/prefix_search.hpp"
 
 namespace comply_ros2_control {
@@ -95,8 +96,14 @@ std::uint64_t publisherId(const Gid& gid) {
 
 template <typename Command>
 CallbackReturn ComplyController<Command>::on_init() {
-  // Declared here so that they exist with defaults; everything else arrives from the controller
-  // file (automatically declared from the parameter overrides).
+  // comply's options with their types, defaults, ranges and descriptions (comply_parameters.hpp);
+  // names, plugin parameters and the initial block arrive from the controller file as written.
+  try {
+    declareOptions(*get_node());
+  } catch (const std::exception& error) {
+    RCLCPP_ERROR(get_node()->get_logger(), "refused: %s", error.what());
+    return CallbackReturn::ERROR;
+  }
   auto_declare<double>(kStateRate, 100.0);
   auto_declare<double>(kDiagnosticsRate, 10.0);
   auto_declare<std::string>(kRobotDescription, "");
@@ -138,7 +145,7 @@ void ComplyController<Command>::resolve() {
   const auto parameters = node->get_parameters(node->list_parameters({}, 0).names);
   const std::string source = "the parameters of controller '" + name + "'";
   comply::pipeline::WrapperConfig config =
-      comply::pipeline::parseWrapperText(controllerFileText(name, parameters), source, name);
+      comply::pipeline::parseWrapperParameters(complyParameters(parameters), source, name);
   config.plugin = pluginInPrefix(config.plugin);
   config.robot = robotInPrefix(config.robot);
   auto robot = std::make_shared<comply::model::RobotDescription>(

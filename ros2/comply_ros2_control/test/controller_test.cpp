@@ -1,7 +1,8 @@
 // CartesianController in a ros2_control harness (loaned interfaces over plain doubles, as the
 // controller manager hands them out): configured from comply's own controller file given as a
 // ROS parameters file, it writes the torque comply's wrapper computes from that same file, the
-// parameters round-trip into the same configuration, and update() allocates nothing.
+// options are declared as parameters with their types, ranges and descriptions and read back as
+// the file reads, and update() allocates nothing.
 
 #include <gtest/gtest.h>
 
@@ -12,12 +13,14 @@
 #include <lifecycle_msgs/msg/state.hpp>
 #include <new>
 #include <nlohmann/json.hpp>
+#include <rclcpp_lifecycle/lifecycle_node.hpp>
 #include <sstream>
 
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/config.hpp"
+#include "comply/pipeline/config_parameters.hpp"
 #include "comply_ros2_control/comply_controller.hpp"
-#include "comply_ros2_control/parameter_yaml.hpp"
+#include "comply_ros2_control/comply_parameters.hpp"
 
 namespace {
 
@@ -190,37 +193,83 @@ TEST_F(ControllerHarness, ResetFaultServiceLeavesFault) {
   }
 }
 
-TEST(ParameterYaml, ParametersRoundTripIntoTheSameConfiguration) {
-  rclcpp::init(0, nullptr);
-  auto node = std::make_shared<rclcpp::Node>(
+/// A lifecycle node holding comply's controller file as parameters, its options declared.
+std::shared_ptr<rclcpp_lifecycle::LifecycleNode> declaredNode(const std::string& params_file) {
+  auto node = std::make_shared<rclcpp_lifecycle::LifecycleNode>(
       "cartesian_impedance",
       rclcpp::NodeOptions().automatically_declare_parameters_from_overrides(true).arguments(
-          {"--ros-args", "--params-file", kConfig}));
+          {"--ros-args", "--params-file", params_file}));
+  declareOptions(*node);
+  return node;
+}
+
+TEST(ComplyParameters, OptionsAreDeclaredWithTypeRangeAndDescriptionAndKeepTheFilesValues) {
+  rclcpp::init(0, nullptr);
+  const auto node = declaredNode(kConfig);
+  const auto descriptors =
+      node->describe_parameters({"validation.max_position_jump_m", "timeout_behavior",
+                                 "soft_limits.stiffness", "passivity.enabled"});
+  ASSERT_EQ(descriptors.size(), 4u);
+  EXPECT_EQ(descriptors[0].type, rcl_interfaces::msg::ParameterType::PARAMETER_DOUBLE);
+  EXPECT_EQ(descriptors[0].description, "target vs measured TCP position");
+  EXPECT_EQ(descriptors[0].additional_constraints, "must be > 0");
+  ASSERT_EQ(descriptors[0].floating_point_range.size(), 1u);
+  EXPECT_EQ(descriptors[0].floating_point_range[0].from_value, 0.0);
+  EXPECT_EQ(descriptors[1].type, rcl_interfaces::msg::ParameterType::PARAMETER_STRING);
+  EXPECT_EQ(descriptors[1].additional_constraints, "must be hold or reanchor");
+  EXPECT_EQ(descriptors[3].type, rcl_interfaces::msg::ParameterType::PARAMETER_BOOL);
+  // Every option is declared, set or not.
+  for (const auto& option : comply::pipeline::optionDeclarations()) {
+    EXPECT_TRUE(node->has_parameter(option.name)) << option.name;
+  }
+  // The parameters read as the file does, option for option.
+  const auto parameters = node->get_parameters(node->list_parameters({}, 0).names);
+  const auto from_parameters =
+      comply::pipeline::parseWrapperParameters(complyParameters(parameters), "test",
+                                               "cartesian_impedance");
+  const auto from_file =
+      comply::pipeline::parseWrapperText(fileText(kConfig), kConfig, "cartesian_impedance");
+  rclcpp::shutdown();
+  for (const auto& option : comply::pipeline::optionDeclarations()) {
+    EXPECT_EQ(comply::pipeline::optionValue(from_parameters, option.name),
+              comply::pipeline::optionValue(from_file, option.name))
+        << option.name;
+  }
+  EXPECT_EQ(from_parameters.plugin, from_file.plugin);
+  EXPECT_EQ(from_parameters.robot, from_file.robot);
+  ASSERT_TRUE(from_parameters.initial_block && from_file.initial_block);
+  EXPECT_EQ(*from_parameters.initial_block, *from_file.initial_block);
+}
+
+TEST(ComplyParameters, AnUnknownParameterIsComplysErrorAndAValueOutOfRangeIsRefusedAtInit) {
+  rclcpp::init(0, nullptr);
+  const auto node = declaredNode(kConfig);
   node->declare_parameter("use_sim_time_extra_is_not_ros_side", 1.0);
   const auto parameters = node->get_parameters(node->list_parameters({}, 0).names);
-  std::string text = controllerFileText("cartesian_impedance", parameters);
   rclcpp::shutdown();
-  // An unknown key is comply's error, named: the ROS-side filter lets comply options through.
-  EXPECT_THROW(comply::pipeline::parseWrapperText(text, "test", "cartesian_impedance"),
-               std::exception);
-  std::vector<rclcpp::Parameter> without_extra;
-  for (const auto& parameter : parameters) {
-    if (parameter.get_name() != "use_sim_time_extra_is_not_ros_side") {
-      without_extra.push_back(parameter);
-    }
+  // The ROS-side filter lets everything else through to comply's parser, which names it.
+  try {
+    comply::pipeline::parseWrapperParameters(complyParameters(parameters), "test",
+                                             "cartesian_impedance");
+    ADD_FAILURE() << "accepted";
+  } catch (const std::exception& error) {
+    EXPECT_NE(std::string(error.what()).find("use_sim_time_extra_is_not_ros_side"),
+              std::string::npos)
+        << error.what();
   }
-  text = controllerFileText("cartesian_impedance", without_extra);
-  const auto rebuilt = comply::pipeline::parseWrapperText(text, "test", "cartesian_impedance");
-  const auto original =
-      comply::pipeline::parseWrapperText(fileText(kConfig), kConfig, "cartesian_impedance");
-  EXPECT_EQ(rebuilt.plugin, original.plugin);
-  EXPECT_EQ(rebuilt.robot, original.robot);
-  EXPECT_EQ(rebuilt.command_timeout_s, original.command_timeout_s);
-  EXPECT_EQ(rebuilt.torque_rate_limit, original.torque_rate_limit);
-  EXPECT_EQ(rebuilt.gravity_compensation, original.gravity_compensation);
-  EXPECT_EQ(rebuilt.soft_limits.enabled, original.soft_limits.enabled);
-  ASSERT_TRUE(rebuilt.initial_block && original.initial_block);
-  EXPECT_EQ(*rebuilt.initial_block, *original.initial_block);
+
+  const std::string file = ::testing::TempDir() + "/comply_out_of_range.yaml";
+  std::ofstream(file) << "cartesian_impedance:\n  ros__parameters:\n    plugin: x\n"
+                         "    robot: fr3\n    command_timeout_s: -1.0\n";
+  rclcpp::init(0, nullptr);
+  try {
+    declaredNode(file);
+    ADD_FAILURE() << "accepted";
+  } catch (const std::exception& error) {
+    EXPECT_NE(std::string(error.what()).find("command_timeout_s must be >= 0"), std::string::npos)
+        << error.what();
+  }
+  rclcpp::shutdown();
 }
 
 }  // namespace

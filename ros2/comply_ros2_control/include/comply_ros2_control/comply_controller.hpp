@@ -1,7 +1,8 @@
 #pragma once
 // comply's wrapper as a ros2_control controller, for either command kind.
 //
-//   on_configure   the controller's parameters are comply's controller file (parameter_yaml.hpp):
+//   on_init        comply's options are declared as parameters (comply_parameters.hpp)
+//   on_configure   the controller's parameters are comply's controller file (comply_parameters.hpp):
 //                  robot, plugin, model, gains and limits are resolved once; errors name the
 //                  parameter and the controller stays unconfigured
 //   on_activate    the reference is seeded from the measured state (comply's activation)
