@@ -26,8 +26,9 @@ build: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS)
 
 # The files generated from the tables (docs, ROS 2 messages, DDS IDL), committed and compared by
-# tests/schema and tests/transport: run after a change to a table (the command schema's,
-# include/comply/schema/table.hpp, or the host messages', include/comply/transport/message_tables.hpp).
+# tests/schema, tests/transport and tests/pipeline: run after a change to a table (the command
+# schema's, include/comply/schema/table.hpp; the host messages', include/comply/transport/
+# message_tables.hpp; the options', include/comply/pipeline/option_table.hpp).
 COMPLY_CLI = $(BUILD_DIR)/apps/comply/comply
 IDL_DIR = src/transport/idl/comply_msgs/msg
 generated: build
@@ -40,7 +41,9 @@ generated: build
 	  $(COMPLY_CLI) schema --format msg --message $$m > msg/$$m.msg; \
 	  $(COMPLY_CLI) schema --format idl --message $$m > $(IDL_DIR)/$$m.idl; \
 	done
-	@echo "generated: docs/command-schema.md msg/*.msg $(IDL_DIR)/*.idl (commands and host messages)"
+	@$(COMPLY_CLI) config --defaults --robot fr3 > config/cartesian_impedance.yaml
+	@echo "generated: docs/command-schema.md msg/*.msg $(IDL_DIR)/*.idl (commands and host messages)," \
+	  "config/cartesian_impedance.yaml (options)"
 
 # Libraries, headers, the CLI, the reference plugins, robots and the CMake package `comply` under
 # PREFIX; the installed comply finds its plugins and robots relative to its own location.
