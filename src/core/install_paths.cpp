@@ -2,6 +2,9 @@
 
 #include <dlfcn.h>
 
+#include <cstdlib>
+#include <sstream>
+#include <string>
 #include <system_error>
 
 namespace comply {
@@ -45,6 +48,25 @@ std::optional<std::filesystem::path> installedFolder(std::string_view relative) 
     folder = folder->parent_path();
   }
   return std::nullopt;
+}
+
+std::vector<std::filesystem::path> searchPath(const char* variable,
+                                              std::string_view installed_relative,
+                                              const std::filesystem::path& build_folder) {
+  std::vector<std::filesystem::path> folders;
+  if (const char* listed = std::getenv(variable); listed != nullptr) {
+    std::stringstream entries(listed);
+    for (std::string entry; std::getline(entries, entry, ':');) {
+      if (!entry.empty()) {
+        folders.emplace_back(entry);
+      }
+    }
+  }
+  if (const auto installed = installedFolder(installed_relative)) {
+    folders.push_back(*installed);
+  }
+  folders.push_back(build_folder);
+  return folders;
 }
 
 }  // namespace comply

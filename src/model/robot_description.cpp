@@ -124,21 +124,7 @@ Model RobotDescription::loadModel(const ModelOptions& options) const {
 }
 
 std::vector<std::filesystem::path> robotSearchPath() {
-  std::vector<std::filesystem::path> folders;
-  if (const char* env = std::getenv("COMPLY_ROBOT_PATH"); env != nullptr) {
-    std::stringstream entries(env);
-    std::string entry;
-    while (std::getline(entries, entry, ':')) {
-      if (!entry.empty()) {
-        folders.emplace_back(entry);
-      }
-    }
-  }
-  if (const auto installed = installedFolder(COMPLY_ROBOTS_RELDIR)) {
-    folders.push_back(*installed);
-  }
-  folders.emplace_back(COMPLY_DEFAULT_ROBOTS_DIR);
-  return folders;
+  return searchPath("COMPLY_ROBOT_PATH", COMPLY_ROBOTS_RELDIR, COMPLY_DEFAULT_ROBOTS_DIR);
 }
 
 std::vector<std::string> availableRobots() {

@@ -35,21 +35,7 @@ PluginError::PluginError(PluginErrc code, const std::string& message)
     : std::runtime_error(message), code_(code) {}
 
 std::vector<std::filesystem::path> pluginSearchPath() {
-  std::vector<std::filesystem::path> folders;
-  if (const char* env = std::getenv("COMPLY_PLUGIN_PATH"); env != nullptr) {
-    std::stringstream entries(env);
-    std::string entry;
-    while (std::getline(entries, entry, ':')) {
-      if (!entry.empty()) {
-        folders.emplace_back(entry);
-      }
-    }
-  }
-  if (const auto installed = installedFolder(COMPLY_PLUGIN_RELDIR)) {
-    folders.push_back(*installed);
-  }
-  folders.emplace_back(COMPLY_DEFAULT_PLUGIN_DIR);
-  return folders;
+  return searchPath("COMPLY_PLUGIN_PATH", COMPLY_PLUGIN_RELDIR, COMPLY_DEFAULT_PLUGIN_DIR);
 }
 
 std::filesystem::path resolvePlugin(std::string_view name_or_path) {

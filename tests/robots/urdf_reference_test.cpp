@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -99,23 +100,14 @@ void expectSameRotation(const urdf::Rotation& actual, const std::vector<double>&
   }
 }
 
-std::string typeName(int type) {
-  switch (type) {
-    case urdf::Joint::REVOLUTE:
-      return "revolute";
-    case urdf::Joint::CONTINUOUS:
-      return "continuous";
-    case urdf::Joint::PRISMATIC:
-      return "prismatic";
-    case urdf::Joint::FLOATING:
-      return "floating";
-    case urdf::Joint::PLANAR:
-      return "planar";
-    case urdf::Joint::FIXED:
-      return "fixed";
-    default:
-      return "unknown";
-  }
+/// The urdfdom joint type a reference file names.
+int urdfType(const std::string& name) {
+  static const std::map<std::string, int> kTypes = {
+      {"revolute", urdf::Joint::REVOLUTE},   {"continuous", urdf::Joint::CONTINUOUS},
+      {"prismatic", urdf::Joint::PRISMATIC}, {"floating", urdf::Joint::FLOATING},
+      {"planar", urdf::Joint::PLANAR},       {"fixed", urdf::Joint::FIXED}};
+  const auto found = kTypes.find(name);
+  return found == kTypes.end() ? urdf::Joint::UNKNOWN : found->second;
 }
 
 bool isMovable(const urdf::Joint& joint) {
@@ -170,7 +162,7 @@ TEST_P(UrdfReferenceTest, JointsMatchReference) {
       continue;
     }
     const auto type = expected["type"].as<std::string>();
-    EXPECT_EQ(typeName(joint->type), type) << where << ": type";
+    EXPECT_EQ(joint->type, urdfType(type)) << where << ": type " << type;
     EXPECT_EQ(joint->parent_link_name, expected["parent"].as<std::string>()) << where << ": parent";
     EXPECT_EQ(joint->child_link_name, expected["child"].as<std::string>()) << where << ": child";
     expectSame(joint->parent_to_joint_origin_transform.position, doubles(expected["origin_xyz"]),

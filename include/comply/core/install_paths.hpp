@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 #include <string_view>
+#include <vector>
 
 namespace comply {
 
@@ -15,5 +16,12 @@ std::optional<std::filesystem::path> executableFolder();
 /// `relative` (written from the bin/ folder, e.g. "../lib/comply/plugins") resolved against that
 /// folder or one of its first parents, the first that exists.
 std::optional<std::filesystem::path> installedFolder(std::string_view relative);
+
+/// Where comply looks for named things (plugins, robots), in order: the folders listed in the
+/// environment variable `variable` (colon-separated), the installed folder `installed_relative`
+/// (installedFolder()) and `build_folder` (the source tree's, compiled in).
+std::vector<std::filesystem::path> searchPath(const char* variable,
+                                              std::string_view installed_relative,
+                                              const std::filesystem::path& build_folder);
 
 }  // namespace comply
