@@ -13,7 +13,8 @@
 #include <sstream>
 #include <thread>
 
-#include "../../src/host/live/live_messages.hpp"
+#include "comply/host/diagnostics_message.hpp"
+#include "comply/host/state_sample.hpp"
 #include "comply/host/controller_setup.hpp"
 #include "live_harness.hpp"
 #include "live_support.hpp"

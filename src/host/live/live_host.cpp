@@ -19,7 +19,7 @@
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/transport/host_transport.hpp"
 #include "live_intake.hpp"
-#include "live_messages.hpp"
+#include "comply/host/diagnostics_message.hpp"
 #include "live_observer.hpp"
 
 namespace comply::host {

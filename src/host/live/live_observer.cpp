@@ -13,14 +13,6 @@ namespace {
 
 using hardware::monotonicSeconds;
 
-void count(std::array<std::atomic<std::uint64_t>, LoopCounters::kBins>& bins,
-           double seconds) noexcept {
-  const double bin = seconds / LoopCounters::kBinSeconds;
-  const std::size_t index =
-      bin <= 0.0 ? 0 : std::min(static_cast<std::size_t>(bin), LoopCounters::kBins - 1);
-  bins[index].fetch_add(1, std::memory_order_relaxed);
-}
-
 }  // namespace
 
 double histogramQuantile(const std::array<std::atomic<std::uint64_t>, LoopCounters::kBins>& bins,
@@ -56,7 +48,7 @@ LiveObserver<Command>::LiveObserver(pipeline::Wrapper<Command>& wrapper,
 
 template <typename Command>
 void LiveObserver<Command>::beforeCycle(std::uint64_t /*index*/, double time_s) {
-  count(counters_.lateness, monotonicSeconds() - wall_origin_s_ - time_s);
+  LoopCounters::count(counters_.lateness, monotonicSeconds() - wall_origin_s_ - time_s);
   const auto request = static_cast<transport::RequestType>(
       lifecycle_request_.exchange(0, std::memory_order_acq_rel));
   // Lifecycle transitions run between cycles on this thread; they are rare operator requests,
@@ -78,7 +70,7 @@ void LiveObserver<Command>::afterCycle(const hardware::CycleRecord& record) {
   if (record.overrun) {
     counters_.overruns.fetch_add(1, std::memory_order_relaxed);
   }
-  count(counters_.compute, record.compute_s);
+  LoopCounters::count(counters_.compute, record.compute_s);
   if (record.state != nullptr) {
     last_state_ = *record.state;
   }

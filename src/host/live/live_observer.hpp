@@ -14,6 +14,7 @@
 #include "comply/core/spsc_queue.hpp"
 #include "comply/core/triple_buffer.hpp"
 #include "comply/hardware/control_loop.hpp"
+#include "comply/host/diagnostics_message.hpp"
 #include "comply/host/host_recording.hpp"
 #include "comply/host/state_sample.hpp"
 #include "comply/model/data.hpp"
@@ -22,17 +23,6 @@
 #include "comply/transport/messages.hpp"
 
 namespace comply::host {
-
-/// Cycle timing, written by the control thread, read by anyone.
-struct LoopCounters {
-  static constexpr std::size_t kBins = 200;
-  static constexpr double kBinSeconds = 10e-6;  ///< 10 us bins: 0..2 ms, the last one open
-  std::atomic<std::uint64_t> cycles{0};
-  std::atomic<std::uint64_t> overruns{0};
-  std::atomic<std::uint64_t> applied_deferred{0};  ///< applied events the gate had no room for yet
-  std::array<std::atomic<std::uint64_t>, kBins> compute{};
-  std::array<std::atomic<std::uint64_t>, kBins> lateness{};
-};
 
 /// p-quantile [s] of a histogram of LoopCounters (bin upper edge); 0 when empty.
 double histogramQuantile(const std::array<std::atomic<std::uint64_t>, LoopCounters::kBins>& bins,

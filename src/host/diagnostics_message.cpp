@@ -1,11 +1,12 @@
-// Message builders for `comply run` (see live_messages.hpp).
+// The live hosts' Diagnostics message (see diagnostics_message.hpp).
 
-#include "live_messages.hpp"
+#include "comply/host/diagnostics_message.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "comply/schema/schema.hpp"
+#include "comply/host/state_sample.hpp"
 
 namespace comply::host {
 namespace {
@@ -21,6 +22,13 @@ std::vector<std::uint64_t> binsOf(
 }
 
 }  // namespace
+
+void LoopCounters::count(std::array<std::atomic<std::uint64_t>, kBins>& bins,
+                         double seconds) noexcept {
+  const double bin = seconds / kBinSeconds;
+  const std::size_t index = bin <= 0.0 ? 0 : std::min(static_cast<std::size_t>(bin), kBins - 1);
+  bins[index].fetch_add(1, std::memory_order_relaxed);
+}
 
 transport::DiagnosticsMessage diagnosticsMessage(
     const pipeline::DiagnosticsSnapshot& wrapper, const LoopCounters& loop, double period_s,
