@@ -54,6 +54,24 @@ class ReferenceTest : public ::testing::TestWithParam<std::string> {
     data_ = std::make_unique<Data>(*model_);
   }
 
+  /// The worst errors against `reference` (its compute(q, dq)) over kSamples joint samples of
+  /// seed `seed`.
+  template <typename Reference>
+  WorstError worstAgainst(Reference& reference, unsigned seed, const std::string& label) {
+    testing::JointSampler sampler(*model_, seed);
+    WorstError worst;
+    for (int i = 0; i < kSamples; ++i) {
+      const testing::JointSample sample = sampler.next();
+      EXPECT_EQ(update(*model_, *data_, sample.q, sample.dq, Quantity::kAll), UpdateStatus::kOk);
+      const Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXd>(sample.q.data(), sample.q.size());
+      const Eigen::VectorXd dq =
+          Eigen::Map<const Eigen::VectorXd>(sample.dq.data(), sample.dq.size());
+      worst.add(*data_, reference.compute(q, dq), model_->dof());
+    }
+    worst.print(GetParam() + " vs " + label);
+    return worst;
+  }
+
   RobotDescription robot_;
   std::unique_ptr<Model> model_;
   std::unique_ptr<Data> data_;
@@ -62,17 +80,7 @@ class ReferenceTest : public ::testing::TestWithParam<std::string> {
 TEST_P(ReferenceTest, MatchesKdl) {
   testing::KdlReference kdl(robot_.urdf_path.string(), robot_.base_frame, robot_.tcp_frame,
                             robot_.joints);
-  testing::JointSampler sampler(*model_, 1);
-  WorstError worst;
-  for (int i = 0; i < kSamples; ++i) {
-    const testing::JointSample sample = sampler.next();
-    ASSERT_EQ(update(*model_, *data_, sample.q, sample.dq, Quantity::kAll), UpdateStatus::kOk);
-    const Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXd>(sample.q.data(), sample.q.size());
-    const Eigen::VectorXd dq =
-        Eigen::Map<const Eigen::VectorXd>(sample.dq.data(), sample.dq.size());
-    worst.add(*data_, kdl.compute(q, dq), model_->dof());
-  }
-  worst.print(GetParam() + " vs KDL");
+  const WorstError worst = worstAgainst(kdl, 1, "KDL");
   EXPECT_LE(worst.position, 1e-9);
   EXPECT_LE(worst.rotation, 1e-9);
   EXPECT_LE(worst.jacobian, 1e-9);
@@ -83,17 +91,7 @@ TEST_P(ReferenceTest, MatchesKdl) {
 
 TEST_P(ReferenceTest, MatchesMujoco) {
   testing::MujocoReference mujoco(robot_.urdf_path.string(), robot_.tcp_frame, robot_.joints);
-  testing::JointSampler sampler(*model_, 2);
-  WorstError worst;
-  for (int i = 0; i < kSamples; ++i) {
-    const testing::JointSample sample = sampler.next();
-    ASSERT_EQ(update(*model_, *data_, sample.q, sample.dq, Quantity::kAll), UpdateStatus::kOk);
-    const Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXd>(sample.q.data(), sample.q.size());
-    const Eigen::VectorXd dq =
-        Eigen::Map<const Eigen::VectorXd>(sample.dq.data(), sample.dq.size());
-    worst.add(*data_, mujoco.compute(q, dq), model_->dof());
-  }
-  worst.print(GetParam() + " vs MuJoCo");
+  const WorstError worst = worstAgainst(mujoco, 2, "MuJoCo");
   EXPECT_LE(worst.position, 1e-9);
   EXPECT_LE(worst.rotation, 1e-9);
   EXPECT_LE(worst.jacobian, 1e-9);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "command_bits.hpp"
+#include "validation_fixture.hpp"
 #include "comply/pipeline/command_validation.hpp"
 
 namespace comply::pipeline {
@@ -85,40 +86,9 @@ MeasuredPose measuredAtLastTarget() {
   return measured;
 }
 
-class CartesianValidation : public ::testing::Test {
+class CartesianValidation : public test::ValidationFixture<CartesianCommand> {
  protected:
-  /// Validates `incoming` and expects a rejection for `reason` whose message holds `fragments`,
-  /// with the merged command unchanged.
-  void expectRejected(const CartesianCommand& incoming, RejectionReason reason,
-                      const std::vector<std::string>& fragments) {
-    const CartesianCommand before = merged_;
-    const Verdict verdict = validateAndMerge(incoming, limits_, kDof, measured_, merged_);
-    EXPECT_FALSE(verdict.accepted);
-    EXPECT_EQ(verdict.reason, reason) << verdict.message;
-    EXPECT_EQ(verdict.message.rfind(std::string(toString(reason)) + ": ", 0), 0U)
-        << verdict.message;
-    for (const auto& fragment : fragments) {
-      EXPECT_NE(verdict.message.find(fragment), std::string::npos)
-          << "'" << fragment << "' not in: " << verdict.message;
-    }
-    expectSameBits(merged_, before);
-  }
-
-  /// Same for a change applied to a valid nextCommand().
-  void expectRejected(const std::function<void(CartesianCommand&)>& corrupt, RejectionReason reason,
-                      const std::vector<std::string>& fragments) {
-    CartesianCommand incoming = nextCommand();
-    corrupt(incoming);
-    expectRejected(incoming, reason, fragments);
-  }
-
-  Verdict validate(const CartesianCommand& incoming) {
-    return validateAndMerge(incoming, limits_, kDof, measured_, merged_);
-  }
-
-  ValidationConfig limits_;
-  CartesianCommand merged_ = lastAccepted();
-  MeasuredPose measured_ = measuredAtLastTarget();
+  CartesianValidation() : ValidationFixture(kDof, lastAccepted(), measuredAtLastTarget(), &nextCommand) {}
 };
 
 TEST_F(CartesianValidation, AcceptsAndReplacesEveryGroup) {

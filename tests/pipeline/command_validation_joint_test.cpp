@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "command_bits.hpp"
+#include "validation_fixture.hpp"
 #include "comply/pipeline/command_validation.hpp"
 
 namespace comply::pipeline {
@@ -74,32 +75,9 @@ const std::vector<Group>& allGroups() {
   return groups;
 }
 
-class JointValidation : public ::testing::Test {
+class JointValidation : public test::ValidationFixture<JointCommand> {
  protected:
-  /// Validates `incoming` and expects a rejection for `reason` whose message holds `fragments`,
-  /// with the merged command unchanged.
-  void expectRejected(const JointCommand& incoming, RejectionReason reason,
-                      const std::vector<std::string>& fragments) {
-    const JointCommand before = merged_;
-    const Verdict verdict = validateAndMerge(incoming, limits_, kDof, measured_, merged_);
-    EXPECT_FALSE(verdict.accepted);
-    EXPECT_EQ(verdict.reason, reason) << verdict.message;
-    EXPECT_EQ(verdict.message.rfind(std::string(toString(reason)) + ": ", 0), 0U)
-        << verdict.message;
-    for (const auto& fragment : fragments) {
-      EXPECT_NE(verdict.message.find(fragment), std::string::npos)
-          << "'" << fragment << "' not in: " << verdict.message;
-    }
-    expectSameBits(merged_, before);
-  }
-
-  Verdict validate(const JointCommand& incoming) {
-    return validateAndMerge(incoming, limits_, kDof, measured_, merged_);
-  }
-
-  ValidationConfig limits_;
-  JointCommand merged_ = lastAccepted();
-  MeasuredPose measured_ = measuredAt(lastAccepted().position);
+  JointValidation() : ValidationFixture(kDof, lastAccepted(), measuredAt(lastAccepted().position), &nextCommand) {}
 };
 
 TEST_F(JointValidation, AcceptsAndReplacesEveryGroup) {
