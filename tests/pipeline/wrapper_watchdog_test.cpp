@@ -22,6 +22,17 @@ std::string watchdogLines(const std::string& behavior, const std::string& more =
          "\n" + "torque_rate_limit_nm_per_s: " + std::to_string(kNoRateLimit) + "\n" + more;
 }
 
+/// Runs `law` (one cycle, the law's torque) past the timeout: one timeout, and the reference
+/// re-anchored at the arm, so the law pulls nowhere.
+template <typename WrapperType, typename Law>
+void expectReanchoredAfterTimeout(const WrapperType& wrapper, const Law& law) {
+  for (int i = 0; i < 2 * kTimeoutCycles; ++i) {
+    law();
+  }
+  EXPECT_EQ(wrapper.diagnostics().watchdog_timeouts, 1U);
+  COMPLY_EXPECT_JOINTS_NEAR(law(), JointVector::Zero(kFr3Dof), kTolerance);
+}
+
 template <typename WrapperType>
 class Watchdog : public ::testing::Test {
  protected:
@@ -161,11 +172,7 @@ TEST(WatchdogReanchor, JointReferenceMovesToTheMeasuredPosition) {
   const JointVector stuck = offset(home, 0, 0.03);
   state = restingAt(wrapper.controller(), stuck);
   EXPECT_NEAR(law()[0], 100.0 * 0.02, kTolerance);
-  for (int i = 0; i < 2 * kTimeoutCycles; ++i) {
-    law();
-  }
-  EXPECT_EQ(wrapper.diagnostics().watchdog_timeouts, 1U);
-  COMPLY_EXPECT_JOINTS_NEAR(law(), JointVector::Zero(kFr3Dof), kTolerance);
+  expectReanchoredAfterTimeout(wrapper, law);
 
   // Gains only: the re-anchored reference stays, so nothing pulls back to the old target.
   JointCommand gains = JointCommand::zero(kFr3Dof);
@@ -204,11 +211,7 @@ TEST(WatchdogReanchor, CartesianReferenceAndNullspaceTargetMoveToTheMeasuredPose
   // Pushed aside, elbow included: both the TCP pose and the joint configuration changed.
   const JointVector pushed = offset(offset(home, 0, 0.04), 2, 0.1);
   state = restingAt(wrapper.controller(), pushed);
-  for (int i = 0; i < 2 * kTimeoutCycles; ++i) {
-    law();
-  }
-  EXPECT_EQ(wrapper.diagnostics().watchdog_timeouts, 1U);
-  COMPLY_EXPECT_JOINTS_NEAR(law(), JointVector::Zero(kFr3Dof), kTolerance);
+  expectReanchoredAfterTimeout(wrapper, law);
 
   CartesianCommand gains = CartesianCommand::zero(kFr3Dof);
   gains.stamp_s = 2.0;
