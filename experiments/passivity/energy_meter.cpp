@@ -5,24 +5,16 @@
 
 #include "comply/core/rotation.hpp"
 #include "comply/model/update.hpp"
+#include "comply/schema/schema.hpp"
 
 namespace comply::experiments::passivity {
-namespace {
-
-Eigen::Quaterniond xyzw(const double* values) {
-  return Eigen::Quaterniond(values[3], values[0], values[1], values[2]).normalized();
+double taskSpringEnergy(const double* stiffness_row_major, const Eigen::Quaterniond& task_frame,
+                        const Eigen::Vector3d& error) {
+  const Eigen::Vector3d in_task = task_frame.conjugate() * error;
+  return 0.5 * in_task.dot(Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(
+                               stiffness_row_major) *
+                           in_task);
 }
-
-/// 1/2 e^T R K R^T e for a row-major task-frame K.
-double quadratic(const double* row_major, const Eigen::Quaterniond& frame,
-                 const Eigen::Vector3d& error) {
-  const Eigen::Vector3d in_task = frame.conjugate() * error;
-  return 0.5 *
-         in_task.dot(Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(row_major) *
-                     in_task);
-}
-
-}  // namespace
 
 EnergyMeter::EnergyMeter(const pipeline::Controller& controller, const sim::SimulatedRobot& plant)
     : controller_(controller),
@@ -40,13 +32,13 @@ void EnergyMeter::measure(const JointVector& position) {
 }
 
 double EnergyMeter::springEnergy(const comply_cartesian_command& law) const {
-  const Eigen::Quaterniond frame = xyzw(law.task_frame);
+  const Eigen::Quaterniond frame = schema::fromXyzw(law.task_frame).normalized();
   const Eigen::Vector3d position_error =
       pose_.tip_position - Eigen::Vector3d(law.position[0], law.position[1], law.position[2]);
   const Eigen::Vector3d orientation_error =
-      orientationError(pose_.tip_orientation, xyzw(law.orientation));
-  double energy = quadratic(law.stiffness_translational, frame, position_error) +
-                  quadratic(law.stiffness_rotational, frame, orientation_error);
+      orientationError(pose_.tip_orientation, schema::fromXyzw(law.orientation).normalized());
+  double energy = taskSpringEnergy(law.stiffness_translational, frame, position_error) +
+                  taskSpringEnergy(law.stiffness_rotational, frame, orientation_error);
   for (Eigen::Index i = 0; i < position_.size(); ++i) {
     const double error = law.nullspace_position[i] - position_[i];
     energy += 0.5 * law.nullspace_stiffness[i] * error * error;

@@ -18,6 +18,11 @@
 
 namespace comply::experiments::passivity {
 
+/// 1/2 e^T R K R^T e [J]: a spring of row-major stiffness K in the task frame R, stretched by e
+/// (base frame).
+double taskSpringEnergy(const double* stiffness_row_major, const Eigen::Quaterniond& task_frame,
+                        const Eigen::Vector3d& error);
+
 class EnergyMeter {
  public:
   EnergyMeter(const pipeline::Controller& controller, const sim::SimulatedRobot& plant);

@@ -15,7 +15,9 @@
 #include "comply/model/robot_description.hpp"
 #include "comply/model/update.hpp"
 #include "comply/pipeline/wrapper.hpp"
+#include "comply/schema/schema.hpp"
 #include "comply/sim/simulated_robot.hpp"
+#include "passivity/energy_meter.hpp"
 #include "sim_support.hpp"
 
 namespace comply::testing {
@@ -33,18 +35,6 @@ struct AuditResult {
   pipeline::PassivitySnapshot tank;
 };
 
-Eigen::Quaterniond xyzw(const double* values) {
-  return Eigen::Quaterniond(values[3], values[0], values[1], values[2]).normalized();
-}
-
-double quadratic(const double* row_major, const Eigen::Quaterniond& frame,
-                 const Eigen::Vector3d& error) {
-  const Eigen::Vector3d in_task = frame.conjugate() * error;
-  return 0.5 *
-         in_task.dot(Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(row_major) *
-                     in_task);
-}
-
 /// Tank + springs (with the gains the law read, at the plant's true joint positions, through the
 /// controller's kinematics, whose TCP the springs pull) + the force's potential + kinetic energy.
 double storage(const pipeline::Controller& controller, const sim::SimulatedRobot& plant,
@@ -54,13 +44,15 @@ double storage(const pipeline::Controller& controller, const sim::SimulatedRobot
   const std::span<const double> q(true_state.qpos, static_cast<std::size_t>(controller.dof()));
   EXPECT_EQ(model::update(controller.model(), scratch, q, q, model::Quantity::kPose),
             model::UpdateStatus::kOk);
-  const Eigen::Quaterniond frame = xyzw(law.task_frame);
+  const Eigen::Quaterniond frame = schema::fromXyzw(law.task_frame).normalized();
   const Eigen::Vector3d position_error =
       scratch.tip_position - Eigen::Vector3d(law.position[0], law.position[1], law.position[2]);
   const Eigen::Vector3d orientation_error =
-      orientationError(scratch.tip_orientation, xyzw(law.orientation));
-  double energy = quadratic(law.stiffness_translational, frame, position_error) +
-                  quadratic(law.stiffness_rotational, frame, orientation_error) -
+      orientationError(scratch.tip_orientation, schema::fromXyzw(law.orientation).normalized());
+  double energy = comply::experiments::passivity::taskSpringEnergy(law.stiffness_translational,
+                                                                   frame, position_error) +
+                  comply::experiments::passivity::taskSpringEnergy(law.stiffness_rotational, frame,
+                                                                   orientation_error) -
                   kForceN.dot(position_error);
   const mjModel& model = plant.mujocoModel();
   const mjData& data = plant.mujocoData();
