@@ -29,12 +29,7 @@ constexpr int kTaskAxes = 6;
 class HybridJointImpedance final : public JointController {
  public:
   void configure(int dof, const plugin::Parameters& parameters) override {
-    if (dof < 1 || dof > COMPLY_MAX_DOF) {
-      // snprintf rather than std::to_string: see joint_impedance.cpp (unloading the library).
-      char message[64];
-      std::snprintf(message, sizeof message, "dof %d outside 1..%d", dof, COMPLY_MAX_DOF);
-      throw plugin::ParameterError(message);
-    }
+    plugin::checkDof(dof);
     dof_ = dof;
     readTaskGains(parameters, "Kx", kx_);
     readTaskGains(parameters, "Kxd", kxd_);

@@ -17,13 +17,7 @@ namespace {
 class JointImpedance final : public JointController {
  public:
   void configure(int dof, const plugin::Parameters& parameters) override {
-    if (dof < 1 || dof > COMPLY_MAX_DOF) {
-      // snprintf rather than std::to_string: the latter leaves a GNU-unique symbol in the library,
-      // and glibc never unloads a library that has one, which would defeat reloading the plugin.
-      char message[64];
-      std::snprintf(message, sizeof message, "dof %d outside 1..%d", dof, COMPLY_MAX_DOF);
-      throw plugin::ParameterError(message);
-    }
+    plugin::checkDof(dof);
     dof_ = dof;
     max_stiffness_ = parameters.number("max_stiffness", std::numeric_limits<double>::infinity());
     // Written so that NaN is refused too: a NaN limit would silently disable the check.

@@ -1,6 +1,7 @@
 #pragma once
 // Read-only C++ view of the parameters a plugin receives at creation.
 
+#include <cstdio>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -15,6 +16,18 @@ class ParameterError : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;
 };
+
+/// Throws ParameterError unless 1 <= dof <= COMPLY_MAX_DOF: step() indexes the ABI's
+/// fixed-capacity arrays with it. (snprintf rather than std::to_string: the latter leaves a
+/// GNU-unique symbol in the library, and glibc never unloads a library that has one, which would
+/// defeat reloading the plugin.)
+inline void checkDof(int dof) {
+  if (dof < 1 || dof > COMPLY_MAX_DOF) {
+    char message[64];
+    std::snprintf(message, sizeof message, "dof %d outside 1..%d", dof, COMPLY_MAX_DOF);
+    throw ParameterError(message);
+  }
+}
 
 class Parameters {
  public:

@@ -56,10 +56,7 @@ class MyLaw final : public comply::CartesianController {
  public:
   void configure(int dof, const comply::plugin::Parameters& parameters) override {
     (void)parameters;
-    // step() indexes the fixed-capacity arrays with dof, so refuse what they cannot hold.
-    if (dof < 1 || dof > COMPLY_MAX_DOF) {
-      throw comply::plugin::ParameterError("dof outside 1..COMPLY_MAX_DOF");
-    }
+    comply::plugin::checkDof(dof);
     dof_ = dof;
   }
 

@@ -12,11 +12,7 @@ class MyLaw final : public comply::JointController {
  public:
   void configure(int dof, const comply::plugin::Parameters& parameters) override {
     (void)parameters;
-    // The wrapper never asks for more joints than the ABI holds; refuse it anyway, since step()
-    // indexes the fixed-capacity arrays with it.
-    if (dof < 1 || dof > COMPLY_MAX_DOF) {
-      throw comply::plugin::ParameterError("dof outside 1..COMPLY_MAX_DOF");
-    }
+    comply::plugin::checkDof(dof);
     dof_ = dof;
   }
 
