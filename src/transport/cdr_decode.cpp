@@ -49,9 +49,7 @@ void getField(Reader& r, Value& value) {
   } else if constexpr (K == FieldKind::kBlock3) {
     double row_major[9] = {};
     r.getArray(row_major, 9);
-    for (int k = 0; k < 9; ++k) {
-      value(k / 3, k % 3) = row_major[k];
-    }
+    value = schema::fromRowMajor(row_major);
   } else if constexpr (K == FieldKind::kEnum) {
     value = getEnum<Value>(r);
   } else if constexpr (K == FieldKind::kJointVector) {

@@ -34,9 +34,7 @@ void putField(Writer& w, const Value& value) {
     w.putArray(xyzw, 4);
   } else if constexpr (K == FieldKind::kBlock3) {
     double row_major[9];
-    for (int k = 0; k < 9; ++k) {
-      row_major[k] = value(k / 3, k % 3);
-    }
+    schema::toRowMajor(value, row_major);
     w.putArray(row_major, 9);
   } else if constexpr (K == FieldKind::kEnum) {
     w.put(static_cast<std::uint8_t>(value));

@@ -23,9 +23,7 @@ void toWire(const Value& value, WireValue& out) {
   if constexpr (K == FieldKind::kQuaternion) {
     schema::toXyzw(value, out);
   } else if constexpr (K == FieldKind::kBlock3) {
-    for (int k = 0; k < 9; ++k) {
-      out[k] = value(k / 3, k % 3);
-    }
+    schema::toRowMajor(value, out);
   } else if constexpr (K == FieldKind::kEnum) {
     out = static_cast<std::uint8_t>(value);
   } else if constexpr (K == FieldKind::kJointVector) {
@@ -45,9 +43,7 @@ void fromWire(const WireValue& in, Value& value, const char* name, std::string& 
   if constexpr (K == FieldKind::kQuaternion) {
     value = schema::fromXyzw(in);
   } else if constexpr (K == FieldKind::kBlock3) {
-    for (int k = 0; k < 9; ++k) {
-      value(k / 3, k % 3) = in[k];
-    }
+    value = schema::fromRowMajor(in);
   } else if constexpr (K == FieldKind::kEnum) {
     value = static_cast<Value>(in);
   } else if constexpr (K == FieldKind::kJointVector) {

@@ -125,9 +125,7 @@ void writeBus(const Value& value, BusValue& out, int dof) noexcept {
   if constexpr (K == FieldKind::kQuaternion) {
     toXyzw(value, out);
   } else if constexpr (K == FieldKind::kBlock3) {
-    for (int k = 0; k < 9; ++k) {
-      out[k] = value(k / 3, k % 3);
-    }
+    toRowMajor(value, out);
   } else if constexpr (K == FieldKind::kEnum) {
     out = static_cast<std::int32_t>(value);
   } else if constexpr (K == FieldKind::kJointVector) {
@@ -147,9 +145,7 @@ void readBus(const BusValue& in, Value& value, int dof) {
   if constexpr (K == FieldKind::kQuaternion) {
     value = fromXyzw(in);
   } else if constexpr (K == FieldKind::kBlock3) {
-    for (int k = 0; k < 9; ++k) {
-      value(k / 3, k % 3) = in[k];
-    }
+    value = fromRowMajor(in);
   } else if constexpr (K == FieldKind::kEnum) {
     value = static_cast<Value>(in);
   } else if constexpr (K == FieldKind::kJointVector) {

@@ -104,6 +104,15 @@ inline Eigen::Quaterniond fromXyzw(const double* xyzw) noexcept {
   return {xyzw[3], xyzw[0], xyzw[1], xyzw[2]};  // Eigen's constructor takes w first
 }
 
+// --- 3x3 gain blocks as 9 numbers, row-major, the order of the buses and the wire ---
+
+inline void toRowMajor(const Eigen::Matrix3d& block, double* row_major) noexcept {
+  Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>{row_major} = block;
+}
+inline Eigen::Matrix3d fromRowMajor(const double* row_major) noexcept {
+  return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(row_major);
+}
+
 // --- buses (plugin/abi.h) ---
 
 /// The bus for `dof` joints: joint arrays hold `dof` entries and zeros past them.

@@ -18,9 +18,7 @@ void fromField(const MessageValue& in, Value& value, const char* name, std::stri
   if constexpr (K == FieldKind::kQuaternion) {
     value = comply::schema::fromXyzw(in.data());
   } else if constexpr (K == FieldKind::kBlock3) {
-    for (int k = 0; k < 9; ++k) {
-      value(k / 3, k % 3) = in[static_cast<std::size_t>(k)];
-    }
+    value = comply::schema::fromRowMajor(in.data());
   } else if constexpr (K == FieldKind::kEnum) {
     value = static_cast<Value>(in);
   } else if constexpr (K == FieldKind::kJointVector) {
