@@ -92,6 +92,9 @@ options::Value readValue(const options::Option& option, const YAML::Node& node,
       std::find(option.choices.begin(), option.choices.end(), value.text) == option.choices.end()) {
     report.fail(InputErrc::kInvalidValue, option.key, options::constraintText(option));
   }
+  if (option.kind == Kind::kPerJoint && value.numbers.empty()) {
+    report.fail(InputErrc::kWrongSize, option.key, "must be one number or one per joint, not none");
+  }
   if (option.kind == Kind::kVector3 && value.numbers.size() != 3) {
     report.fail(InputErrc::kWrongSize, option.key, "must be [x, y, z]");
   }
@@ -294,6 +297,11 @@ WrapperConfig parseWrapperText(const std::string& yaml_text, const std::string& 
   std::string name;
   const YAML::Node parameters = controllerParameters(yaml_text, source, controller_name, name);
   return options::parseParameters(parameters, source, name);
+}
+
+const WrapperConfig& defaultConfig() {
+  static const WrapperConfig kDefaults;
+  return kDefaults;
 }
 
 WrapperConfig parseWrapperConfig(const std::string& yaml_text, const std::string& source,

@@ -226,7 +226,9 @@ std::vector<Option> makeTable() {
 
 std::string constraintText(const Option& option) {
   std::ostringstream text;
-  if (option.kind == Kind::kChoice) {
+  if (option.kind == Kind::kFlag) {
+    text << "must be true or false";
+  } else if (option.kind == Kind::kChoice) {
     text << "must be ";
     for (std::size_t i = 0; i < option.choices.size(); ++i) {
       text << (i == 0 ? "" : i + 1 == option.choices.size() ? " or " : ", ") << option.choices[i];

@@ -4,9 +4,12 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
+#include <utility>
 
 #include "comply/core/input_error.hpp"
 #include "config_options.hpp"
@@ -71,10 +74,14 @@ YAML::Node nest(const std::vector<FlatParameter>& parameters, const std::string&
     if (std::holds_alternative<std::monostate>(parameter.value)) {
       continue;
     }
+    const std::string key = controller_name + ".ros__parameters." + parameter.name;
     std::vector<std::string> path;
     std::stringstream name(parameter.name);
     for (std::string part; std::getline(name, part, '.');) {
       path.push_back(part);
+    }
+    if (path.empty() || std::find(path.begin(), path.end(), "") != path.end()) {
+      throw InputError(InputErrc::kInvalidValue, source, key, "is not a parameter name");
     }
     YAML::Node node;
     node.reset(root);  // reset(), not '=': assigning a YAML::Node overwrites its target
@@ -83,11 +90,14 @@ YAML::Node nest(const std::vector<FlatParameter>& parameters, const std::string&
       if (!next.IsDefined() || next.IsNull()) {
         next = YAML::Node(YAML::NodeType::Map);  // '=' on purpose: creates the section in place
       } else if (!next.IsMap()) {
-        throw InputError(InputErrc::kInconsistent, source,
-                         controller_name + ".ros__parameters." + parameter.name,
+        throw InputError(InputErrc::kInconsistent, source, key,
                          "lies under a parameter that has a value of its own");
       }
       node.reset(next);
+    }
+    if (node[path.back()].IsMap()) {
+      throw InputError(InputErrc::kInconsistent, source, key,
+                       "has a value and parameters under it");
     }
     node[path.back()] = yamlOf(parameter.value);
   }
@@ -107,8 +117,8 @@ std::vector<OptionDeclaration> optionDeclarations() {
     }
     declaration.description = option.comment;
     declaration.constraint = options::constraintText(option);
-    declaration.min = option.min < -1e300 ? std::numeric_limits<double>::lowest() : option.min;
-    declaration.max = option.max > 1e300 ? std::numeric_limits<double>::max() : option.max;
+    declaration.min = option.min <= -1e300 ? std::numeric_limits<double>::lowest() : option.min;
+    declaration.max = option.max >= 1e300 ? std::numeric_limits<double>::max() : option.max;
     declaration.choices = option.choices;
     declarations.push_back(std::move(declaration));
   }

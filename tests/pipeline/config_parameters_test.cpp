@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -81,6 +82,11 @@ TEST(OptionDeclarations, EveryOptionIsDeclaredOnceWithTheDefaultItsMemberStartsW
     }
     if (declaration.type == ParameterType::kString) {
       EXPECT_GE(declaration.choices.size(), 2u);
+    }
+    if (declaration.type == ParameterType::kBool) {
+      EXPECT_EQ(declaration.constraint, "must be true or false");
+    } else if (declaration.type == ParameterType::kDouble) {
+      EXPECT_TRUE(std::isfinite(declaration.min) && std::isfinite(declaration.max));
     }
   }
   const auto& timeout = *std::find_if(declarations.begin(), declarations.end(),
@@ -202,9 +208,21 @@ TEST(OptionDeclarations, BadParametersAreRefusedNamingTheParameter) {
   error = refusal({{"output.admittance.added_mass_kg", std::vector<double>{1.0, 2.0}}});
   EXPECT_EQ(error.code(), InputErrc::kWrongSize);
 
-  // A value and a section under the same name cannot both be.
+  // A value and a section under the same name cannot both be, in either order.
   error = refusal({{"validation", 1.0}, {"validation.max_position_jump_m", 0.1}});
   EXPECT_EQ(error.code(), InputErrc::kInconsistent);
+  error = refusal({{"validation.max_position_jump_m", 0.1}, {"validation", 1.0}});
+  EXPECT_EQ(error.code(), InputErrc::kInconsistent);
+
+  error = refusal({{"", 1.0}});
+  EXPECT_EQ(error.code(), InputErrc::kInvalidValue);
+  error = refusal({{"validation..max_position_jump_m", 0.1}});
+  EXPECT_EQ(error.code(), InputErrc::kInvalidValue);
+
+  // No number at all for a per-joint option would leave the joints without a limit.
+  error = refusal({{"torque_rate_limit_nm_per_s", std::vector<double>{}}});
+  EXPECT_EQ(error.code(), InputErrc::kWrongSize);
+  EXPECT_NE(std::string(error.what()).find("torque_rate_limit_nm_per_s"), std::string::npos);
 }
 
 }  // namespace

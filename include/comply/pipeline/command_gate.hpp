@@ -81,9 +81,10 @@ struct GateCounts {
 /// What gateOptions() reads from a controller file; built there, so the defaults are the file's.
 struct GateOptions {
   CommandKind kind = CommandKind::kCartesian;  ///< the kind the controller takes
-  double publisher_timeout_s = 0;  ///< silence after which another writer may take over [s]
+  /// Silence after which another writer may take over [s] (command_timeout_s).
+  double publisher_timeout_s = defaultConfig().command_timeout_s;
   /// How far a stamp may be ahead of the host's clock [s].
-  double max_stamp_lead_s = ValidationConfig{}.max_stamp_lead_s;
+  double max_stamp_lead_s = defaultConfig().validation.max_stamp_lead_s;
 };
 
 /// The gate options of a controller: its kind, the publisher timeout (command_timeout_s) and the

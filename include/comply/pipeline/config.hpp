@@ -138,6 +138,10 @@ struct WrapperConfig {
   CartesianCommand initial_cartesian;
 };
 
+/// Every option at its default (the option table's): what structs built from a configuration
+/// start with before they are set from one.
+const WrapperConfig& defaultConfig();
+
 /// Reads `controller_name` (or the only controller in the file when empty) from YAML text
 /// (`source` names it in messages). Touches no file. Throws InputError naming the source and the
 /// key on any error.

@@ -17,7 +17,10 @@
 //                                                            comment says what then)
 // Tables list their rows in the order of the documented file; each is one block there.
 //
-// Comments inside the tables are /* */: a // comment would swallow the line continuation.
+// Comments inside the tables are /* */: a // comment would swallow the line continuation. The
+// rows name kNoLimit, kAtLeast, kAbove and M_PI, which the expansion that reads ranges defines
+// (config_options.cpp); the struct expansion ignores them. Defaults are literals: the documented
+// file prints them as written.
 
 // What the wrapper accepts from a command source, and when it stops waiting for one
 // (WrapperConfig).

@@ -24,15 +24,15 @@ namespace comply::pipeline {
 
 /// Friction compensation with one entry per joint (see compensation.hpp for the formulas).
 struct FrictionParameters {
-  FrictionModel model = FrictionModel::kNone;
-  JointVector phi1, phi2, phi3;   ///< sigmoid [N m], [s/rad], [rad/s]
-  JointVector viscous, coulomb;   ///< [N m s/rad], [N m]
-  double smoothing_velocity = 0;  ///< [rad/s]
+  FrictionModel model = defaultConfig().friction.model;
+  JointVector phi1, phi2, phi3;  ///< sigmoid [N m], [s/rad], [rad/s]
+  JointVector viscous, coulomb;  ///< [N m s/rad], [N m]
+  double smoothing_velocity = defaultConfig().friction.smoothing_velocity;  ///< [rad/s]
 };
 
 /// Soft joint limits with one entry per joint, the URDF limits included.
 struct SoftLimitParameters {
-  bool enabled = false;
+  bool enabled = defaultConfig().soft_limits.enabled;
   JointVector lower, upper;  ///< URDF position limits [rad | m]
   JointVector margin;        ///< [rad | m] inside each limit where the spring starts
   JointVector stiffness;     ///< [N m/rad]
@@ -40,24 +40,23 @@ struct SoftLimitParameters {
 };
 
 /// Everything the cycle reads, each per-joint value sized to the controller's dof. Every member
-/// is set by resolveController() from the configuration, whose defaults are the option table's:
-/// the zeros here are only what an unresolved one holds.
+/// is set by resolveController() from the configuration; until then, the option table's defaults.
 struct CycleParameters {
-  double command_timeout_s = 0;
-  double chunk_blend_time_s = 0;
-  TimeoutBehavior timeout_behavior = TimeoutBehavior::kHold;
-  bool gravity_compensation = false;
+  double command_timeout_s = defaultConfig().command_timeout_s;
+  double chunk_blend_time_s = defaultConfig().chunk_blend_time_s;
+  TimeoutBehavior timeout_behavior = defaultConfig().timeout_behavior;
+  bool gravity_compensation = defaultConfig().gravity_compensation;
   bool hardware_compensates_gravity = false;  ///< see WrapperConfig
-  bool payload_compensation = false;
+  bool payload_compensation = defaultConfig().payload_compensation;
   model::Payload payload;
   FrictionParameters friction;
   SoftLimitParameters soft_limits;
-  double filter_alpha = 0;
+  double filter_alpha = defaultConfig().filter_alpha;
   JointVector torque_rate_limit;  ///< [N m/s]
   JointVector effort_limit;       ///< [N m]
-  EffortSaturation effort_saturation = EffortSaturation::kClip;
+  EffortSaturation effort_saturation = defaultConfig().effort_saturation;
   JointVector fault_damping;  ///< [N m s/rad]
-  double frozen_state_timeout_s = 0;
+  double frozen_state_timeout_s = defaultConfig().frozen_state_timeout_s;
   GainRampConfig gain_ramps;
   PassivityConfig passivity;
   StabilityGuardConfig stability_guard;

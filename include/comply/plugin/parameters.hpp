@@ -40,8 +40,7 @@ class Parameters {
 
   /// A list of numbers of exactly `expected_count` entries.
   /// Empty span when absent. Throws on a count mismatch or a string value.
-  [[nodiscard]] std::span<const double> numbers(std::string_view name,
-                                                int expected_count) const;
+  [[nodiscard]] std::span<const double> numbers(std::string_view name, int expected_count) const;
 
   /// A string; `fallback` when absent.
   [[nodiscard]] std::string text(std::string_view name, std::string_view fallback) const;

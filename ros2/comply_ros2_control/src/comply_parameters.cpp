@@ -1,7 +1,6 @@
 #include "comply_ros2_control/comply_parameters.hpp"
 
 #include <array>
-#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string_view>
@@ -115,9 +114,15 @@ void declareOptions(rclcpp_lifecycle::LifecycleNode& node) {
 }
 
 bool isRosSideParameter(const std::string& name) {
-  static constexpr std::array<std::string_view, 5> kRosSide = {
-      "use_sim_time", "update_rate", "robot_description", "state_publish_rate_hz",
-      "diagnostics_publish_rate_hz"};
+  // ros2_control's own (update_rate; is_async and thread_priority in newer releases) and this
+  // controller's.
+  static constexpr std::array<std::string_view, 7> kRosSide = {"use_sim_time",
+                                                               "update_rate",
+                                                               "is_async",
+                                                               "thread_priority",
+                                                               "robot_description",
+                                                               "state_publish_rate_hz",
+                                                               "diagnostics_publish_rate_hz"};
   for (const auto ros_side : kRosSide) {
     if (name == ros_side) {
       return true;
