@@ -58,12 +58,7 @@ TEST(ModelErrorTest, InvalidXml) {
 
 TEST(ModelErrorTest, KinematicLoopIsRefusedNotWalkedForever) {
   // urdfdom accepts this (the root is `base`); walking up from b used to never end.
-  const std::string loop = R"(<robot name="loop"><link name="base"/><link name="a"/>
-    <link name="b"/>
-    <joint name="j1" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>
-      <limit lower="-1" upper="1" velocity="1" effort="10"/></joint>
-    <joint name="j2" type="revolute"><parent link="b"/><child link="a"/><axis xyz="0 0 1"/>
-      <limit lower="-1" upper="1" velocity="1" effort="10"/></joint></robot>)";
+  const std::string loop = test_urdfs::kinematicLoop();
   expectModelError([&] { Model::fromUrdfString(loop, options({"j1"}, "b")); },
                    ModelErrc::kInvalidUrdf, {"kinematic loop", "a URDF must be a tree"});
 }

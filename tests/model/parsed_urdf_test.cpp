@@ -10,6 +10,7 @@
 #include <string>
 
 #include "comply/model/model_error.hpp"
+#include "test_urdfs.hpp"
 #include "urdf_checks.hpp"
 
 namespace comply::model {
@@ -17,12 +18,7 @@ namespace {
 
 TEST(ParsedUrdf, ALoopTheParserAcceptsIsFreedWhenTheModelGoes) {
   // The root is `base`, so urdfdom accepts the loop a -> b -> a.
-  const std::string loop = R"(<robot name="loop"><link name="base"/><link name="a"/>
-    <link name="b"/>
-    <joint name="j1" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>
-      <limit lower="-1" upper="1" velocity="1" effort="10"/></joint>
-    <joint name="j2" type="revolute"><parent link="b"/><child link="a"/><axis xyz="0 0 1"/>
-      <limit lower="-1" upper="1" velocity="1" effort="10"/></joint></robot>)";
+  const std::string loop = test_urdfs::kinematicLoop();
   std::weak_ptr<urdf::Link> link_in_loop;
   {
     std::shared_ptr<urdf::ModelInterface> parsed = urdf::parseURDF(loop);

@@ -5,6 +5,16 @@
 
 namespace comply::test_urdfs {
 
+/// A loop a -> b -> a under the root `base`: urdfdom accepts it, comply's model must not.
+inline std::string kinematicLoop() {
+  return R"(<robot name="loop"><link name="base"/><link name="a"/>
+    <link name="b"/>
+    <joint name="j1" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>
+      <limit lower="-1" upper="1" velocity="1" effort="10"/></joint>
+    <joint name="j2" type="revolute"><parent link="b"/><child link="a"/><axis xyz="0 0 1"/>
+      <limit lower="-1" upper="1" velocity="1" effort="10"/></joint></robot>)";
+}
+
 /// One revolute joint about y; a point-like 2 kg mass 0.5 m along x from the axis; tip at 1 m.
 inline std::string pendulum() {
   return R"(<robot name="pendulum">
