@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "comply/schema/schema.hpp"
+
 namespace comply::experiments::passivity {
 namespace {
 
@@ -20,13 +22,12 @@ constexpr double kQuarterTurnRad = 0.5 * M_PI;
 }  // namespace
 
 void copyGains(const CartesianCommand& from, CartesianCommand& to) {
-  to.stiffness_translational = from.stiffness_translational;
-  to.stiffness_rotational = from.stiffness_rotational;
-  to.damping_translational = from.damping_translational;
-  to.damping_rotational = from.damping_rotational;
-  to.damping_mode = from.damping_mode;
-  to.damping_ratio = from.damping_ratio;
-  to.task_frame = from.task_frame;
+  CartesianCommand gains = from;
+  gains.stamp_s = to.stamp_s;
+  gains.fields = CommandField::kStiffness | CommandField::kDamping | CommandField::kTaskFrame;
+  const CommandField fields = to.fields;
+  schema::merge(to, gains);
+  to.fields = fields;  // the groups `to` set stay as they were
 }
 
 PumpStream::PumpStream(PumpedGain pumped, const Eigen::Vector3d& target,

@@ -108,12 +108,9 @@ std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig&
     upper[i] = model.limits(i).upper;
   }
   CycleParameters& parameters = resolved->parameters;
-  parameters.command_timeout_s = config.command_timeout_s;
-  parameters.chunk_blend_time_s = config.chunk_blend_time_s;
-  parameters.timeout_behavior = config.timeout_behavior;
-  parameters.gravity_compensation = config.gravity_compensation;
+  COMPLY_OPTION_COPY(COMPLY_COMMAND_OPTIONS, parameters, config)
+  COMPLY_OPTION_COPY(COMPLY_COMPENSATION_OPTIONS, parameters, config)
   parameters.hardware_compensates_gravity = config.hardware_compensates_gravity;
-  parameters.payload_compensation = config.payload_compensation;
   parameters.payload = model::Payload{config.payload.mass_kg, config.payload.com_in_tip};
   parameters.friction = compileFriction(config.friction, dof);
   parameters.soft_limits = compileSoftLimits(config.soft_limits, lower, upper);

@@ -235,6 +235,16 @@
   std::vector<double> member{default_value};
 #define COMPLY_OPTION_PER_JOINT_UNSET_MEMBER(member, key, lower, min, comment) \
   std::vector<double> member;
+// The same members copied from `from` to `to` (a struct that declares them too):
+//   COMPLY_OPTION_COPY(COMPLY_COMMAND_OPTIONS, parameters, config)
+#define COMPLY_OPTION_COPY_MEMBER(member, ...) copy_to.member = copy_from.member;
+#define COMPLY_OPTION_COPY(TABLE, to, from)                                                \
+  {                                                                                        \
+    auto& copy_to = (to);                                                                  \
+    const auto& copy_from = (from);                                                        \
+    TABLE(COMPLY_OPTION_COPY_MEMBER, COMPLY_OPTION_COPY_MEMBER, COMPLY_OPTION_COPY_MEMBER, \
+          COMPLY_OPTION_COPY_MEMBER, COMPLY_OPTION_COPY_MEMBER, COMPLY_OPTION_COPY_MEMBER) \
+  }
 #define COMPLY_OPTION_MEMBERS(TABLE)                                                         \
   TABLE(COMPLY_OPTION_NUMBER_MEMBER, COMPLY_OPTION_FLAG_MEMBER, COMPLY_OPTION_CHOICE_MEMBER, \
         COMPLY_OPTION_VECTOR3_MEMBER, COMPLY_OPTION_PER_JOINT_MEMBER,                        \

@@ -42,12 +42,9 @@ struct SoftLimitParameters {
 /// Everything the cycle reads, each per-joint value sized to the controller's dof. Every member
 /// is set by resolveController() from the configuration; until then, the option table's defaults.
 struct CycleParameters {
-  double command_timeout_s = defaultConfig().command_timeout_s;
-  double chunk_blend_time_s = defaultConfig().chunk_blend_time_s;
-  TimeoutBehavior timeout_behavior = defaultConfig().timeout_behavior;
-  bool gravity_compensation = defaultConfig().gravity_compensation;
+  COMPLY_OPTION_MEMBERS(COMPLY_COMMAND_OPTIONS)
+  COMPLY_OPTION_MEMBERS(COMPLY_COMPENSATION_OPTIONS)
   bool hardware_compensates_gravity = false;  ///< see WrapperConfig
-  bool payload_compensation = defaultConfig().payload_compensation;
   model::Payload payload;
   FrictionParameters friction;
   SoftLimitParameters soft_limits;
