@@ -194,12 +194,7 @@ TEST_F(CartesianValidation, RejectsTaskFrameFarFromUnitNorm) {
 }
 
 TEST_F(CartesianValidation, MergedCommandAlwaysCarriesEveryGroup) {
-  // Whatever mask the sender used, the merged command holds every group (the plugin reads all).
-  merged_.fields = CommandField::kNone;
-  CartesianCommand incoming = nextCommand();
-  incoming.fields = CommandField::kVelocity;
-  ASSERT_TRUE(validate(incoming).accepted);
-  EXPECT_EQ(merged_.fields, CommandField::kAll);
+  expectMergedCarriesEveryGroup();
 }
 
 TEST_F(CartesianValidation, RejectsNonFiniteStamp) {

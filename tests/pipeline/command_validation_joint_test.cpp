@@ -117,12 +117,7 @@ TEST_F(JointValidation, EveryGroupAloneReplacesOnlyItself) {
 }
 
 TEST_F(JointValidation, MergedCommandAlwaysCarriesEveryGroup) {
-  // Whatever mask the sender used, the merged command holds every group (the plugin reads all).
-  merged_.fields = CommandField::kNone;
-  JointCommand incoming = nextCommand();
-  incoming.fields = CommandField::kVelocity;
-  ASSERT_TRUE(validate(incoming).accepted);
-  EXPECT_EQ(merged_.fields, CommandField::kAll);
+  expectMergedCarriesEveryGroup();
 }
 
 TEST_F(JointValidation, RejectsNonFiniteStamp) {

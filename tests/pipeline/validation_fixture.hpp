@@ -47,6 +47,15 @@ class ValidationFixture : public ::testing::Test {
     expectRejected(incoming, reason, fragments);
   }
 
+  /// Whatever mask the sender used, the merged command holds every group (the plugin reads all).
+  void expectMergedCarriesEveryGroup() {
+    merged_.fields = CommandField::kNone;
+    Command incoming = next_();
+    incoming.fields = CommandField::kVelocity;
+    ASSERT_TRUE(validate(incoming).accepted);
+    EXPECT_EQ(merged_.fields, CommandField::kAll);
+  }
+
   Verdict validate(const Command& incoming) {
     return validateAndMerge(incoming, limits_, dof_, measured_, merged_);
   }

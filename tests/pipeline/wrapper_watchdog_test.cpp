@@ -150,16 +150,14 @@ TEST_F(CartesianHold, TimeoutDropsTheTwistReference) {
 
 // ---- reanchor ---------------------------------------------------------------------------------
 
-TEST(WatchdogReanchor, JointReferenceMovesToTheMeasuredPosition) {
-  JointWrapper wrapper(fr3Config(kJointImpedancePlugin, watchdogLines("reanchor")));
+class JointReanchor : public Watchdog<JointWrapper> {
+ protected:
+  JointReanchor() : Watchdog(kJointImpedancePlugin, watchdogLines("reanchor")) {}
+};
+
+TEST_F(JointReanchor, JointReferenceMovesToTheMeasuredPosition) {
   const JointVector home = fr3Home();
-  JointState state = restingAt(wrapper.controller(), home);
-  wrapper.activate(state);
-  TorqueBuffer torque;
-  const auto law = [&] {
-    EXPECT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
-    return JointVector(torque.values - state.effort);
-  };
+  const auto law = [this] { return lawTorque(); };
 
   JointCommand target = JointCommand::zero(kFr3Dof);
   target.stamp_s = 1.0;
@@ -184,21 +182,19 @@ TEST(WatchdogReanchor, JointReferenceMovesToTheMeasuredPosition) {
   COMPLY_EXPECT_JOINTS_NEAR(wrapper.lastAccepted().position, stuck, 0.0);
 }
 
-TEST(WatchdogReanchor, CartesianReferenceAndNullspaceTargetMoveToTheMeasuredPose) {
+class CartesianReanchor : public Watchdog<CartesianWrapper> {
+ protected:
   // A stiff nullspace so that a nullspace target left behind would show in the torque.
-  CartesianWrapper wrapper(
-      fr3Config(kCartesianImpedancePlugin,
-                watchdogLines("reanchor",
-                              "initial:\n  damping_mode: absolute\n  nullspace_stiffness: 20\n")));
+  CartesianReanchor()
+      : Watchdog(kCartesianImpedancePlugin,
+                 watchdogLines("reanchor",
+                               "initial:\n  damping_mode: absolute\n  nullspace_stiffness: 20\n")) {}
+};
+
+TEST_F(CartesianReanchor, CartesianReferenceAndNullspaceTargetMoveToTheMeasuredPose) {
   const JointVector home = fr3Home();
-  JointState state = restingAt(wrapper.controller(), home);
-  wrapper.activate(state);
   const CartesianCommand seeded = wrapper.lastAccepted();
-  TorqueBuffer torque;
-  const auto law = [&] {
-    EXPECT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
-    return JointVector(torque.values - state.effort);
-  };
+  const auto law = [this] { return lawTorque(); };
 
   CartesianCommand target = CartesianCommand::zero(kFr3Dof);
   target.stamp_s = 1.0;
