@@ -6,6 +6,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -59,8 +60,9 @@ std::vector<double> numberList(const YAML::Node& node) {
 }
 
 bool inRange(const options::Option& option, double value) {
+  // Infinity too is out: an unbounded option still takes a number (0 is how options say "off").
   const bool above = option.min_exclusive ? value > option.min : value >= option.min;
-  return above && value <= option.max;  // false for NaN
+  return std::isfinite(value) && above && value <= option.max;
 }
 
 options::Value readValue(const options::Option& option, const YAML::Node& node,

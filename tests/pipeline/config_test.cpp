@@ -514,10 +514,12 @@ TEST(DocumentedDefaults, PrintedDefaultsReadBackAsTheDefaults) {
 }
 
 TEST(WrapperConfig, NonFiniteOrNegativeValidationLimitsAreRefused) {
-  // A NaN jump limit would switch the check off; a NaN tolerance would reject every command.
+  // A NaN jump limit would switch the check off; a NaN tolerance would reject every command; an
+  // infinite one is refused even where no upper bound is (0 is how options say "off").
   for (const char* line :
        {"validation:\n  max_position_jump_m: .nan", "validation:\n  quaternion_tolerance: -1.0e-3",
-        "validation:\n  max_orientation_jump_rad: .inf", "command_timeout_s: .nan",
+        "validation:\n  max_orientation_jump_rad: .inf", "validation:\n  max_position_jump_m: .inf",
+        "command_timeout_s: .inf", "torque_rate_limit_nm_per_s: [.inf]", "command_timeout_s: .nan",
         "effort_limit_nm: .nan", "compensation:\n  payload:\n    mass_kg: .nan"}) {
     SCOPED_TRACE(line);
     EXPECT_THROW(parse(line), InputError);
