@@ -10,7 +10,6 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 
 #include "comply/core/input_error.hpp"
 #include "comply/core/text_file.hpp"
@@ -40,8 +39,7 @@ class Reporter {
 YAML::Node lookup(const YAML::Node& parameters, const std::string& key) {
   YAML::Node node;
   node.reset(parameters);  // reset(), not '=': assigning a YAML::Node overwrites its target
-  std::stringstream path(key);
-  for (std::string part; std::getline(path, part, '.');) {
+  for (const std::string& part : options::keyPath(key)) {
     if (!node.IsMap()) {
       return YAML::Node(YAML::NodeType::Undefined);
     }

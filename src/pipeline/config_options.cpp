@@ -224,6 +224,15 @@ std::vector<Option> makeTable() {
 
 }  // namespace
 
+std::vector<std::string> keyPath(const std::string& key) {
+  std::vector<std::string> path;
+  std::stringstream parts(key);
+  for (std::string part; std::getline(parts, part, '.');) {
+    path.push_back(part);
+  }
+  return path;
+}
+
 std::string constraintText(const Option& option) {
   std::ostringstream text;
   if (option.kind == Kind::kFlag) {

@@ -52,6 +52,10 @@ struct Option {
 /// Every option, in the order of the documented file.
 std::span<const Option> table();
 
+/// The parts of a dotted key ("soft_limits.stiffness" -> soft_limits, stiffness); an empty part
+/// stays, so that a caller can refuse it.
+std::vector<std::string> keyPath(const std::string& key);
+
 /// What a value of `option` must be, as the parser says it ("must be > 0", "must be hold or
 /// reanchor").
 std::string constraintText(const Option& option);

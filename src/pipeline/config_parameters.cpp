@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
@@ -75,11 +74,7 @@ YAML::Node nest(const std::vector<FlatParameter>& parameters, const std::string&
       continue;
     }
     const std::string key = controller_name + ".ros__parameters." + parameter.name;
-    std::vector<std::string> path;
-    std::stringstream name(parameter.name);
-    for (std::string part; std::getline(name, part, '.');) {
-      path.push_back(part);
-    }
+    const std::vector<std::string> path = options::keyPath(parameter.name);
     if (path.empty() || std::find(path.begin(), path.end(), "") != path.end()) {
       throw InputError(InputErrc::kInvalidValue, source, key, "is not a parameter name");
     }

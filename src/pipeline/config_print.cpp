@@ -65,11 +65,7 @@ std::string compact(const nlohmann::json& value, schema::FieldKind kind) {
 void printOptions(std::ostream& out) {
   std::vector<std::string> open_sections;
   for (const options::Option& option : options::table()) {
-    std::vector<std::string> path;
-    std::stringstream key(option.key);
-    for (std::string part; std::getline(key, part, '.');) {
-      path.push_back(part);
-    }
+    std::vector<std::string> path = options::keyPath(option.key);
     const std::string leaf = path.back();
     path.pop_back();
     std::size_t common = 0;
