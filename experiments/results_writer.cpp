@@ -1,19 +1,16 @@
 #include "results_writer.hpp"
 
-#include <sys/wait.h>
-
-#include <array>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
 
-#include "source_dir.hpp"
+#include "comply/host/plot_script.hpp"
 
 namespace comply::experiments {
 namespace {
@@ -181,6 +178,15 @@ void writeResults(const ResultsTable& table, const std::filesystem::path& out_di
   std::ofstream(out_dir / "results.json") << toJson(table).dump(2) << "\n";
   std::ofstream markdown(out_dir / "table.md");
   writeMarkdownTable(table, markdown);
+}
+
+void writeResultsAndPlots(const ResultsTable& table, const std::filesystem::path& out_dir,
+                          const char* plot_script, bool pictures, std::ostream* progress) {
+  writeResults(table, out_dir);
+  if (pictures) {
+    host::runPlotScript(plot_script, {out_dir.string()},
+                        progress != nullptr ? *progress : std::cerr);
+  }
 }
 
 }  // namespace comply::experiments

@@ -61,4 +61,9 @@ nlohmann::json toJson(const ResultsTable& table);
 /// Writes <out_dir>/results.json and <out_dir>/table.md.
 void writeResults(const ResultsTable& table, const std::filesystem::path& out_dir);
 
+/// writeResults(), then, with `pictures`, the plots scripts/<plot_script> draws from the folder;
+/// the script's messages go to `progress` (std::cerr when null).
+void writeResultsAndPlots(const ResultsTable& table, const std::filesystem::path& out_dir,
+                          const char* plot_script, bool pictures, std::ostream* progress);
+
 }  // namespace comply::experiments

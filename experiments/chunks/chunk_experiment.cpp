@@ -1,10 +1,7 @@
 #include "chunks/chunk_experiment.hpp"
 
-#include <iostream>
 #include <ostream>
 #include <stdexcept>
-
-#include "comply/host/plot_script.hpp"
 
 namespace comply::experiments {
 
@@ -43,11 +40,8 @@ std::vector<ChunkRow> runChunks(const ChunkOptions& options) {
     rows.push_back({condition, chunks::runCondition(condition, options.settings,
                                                     options.out_dir / (condition.name + ".csv"))});
   }
-  writeResults(chunkTable(rows), options.out_dir);
-  if (options.pictures) {
-    host::runPlotScript("plot_chunks.py", {options.out_dir.string()},
-                        options.progress != nullptr ? *options.progress : std::cerr);
-  }
+  writeResultsAndPlots(chunkTable(rows), options.out_dir, "plot_chunks.py", options.pictures,
+                       options.progress);
   return rows;
 }
 

@@ -2,12 +2,10 @@
 
 #include <cmath>
 #include <fstream>
-#include <iostream>
 #include <ostream>
 #include <sstream>
 
 #include "comply/host/controller_setup.hpp"
-#include "comply/host/plot_script.hpp"
 #include "comply/host/sim_session.hpp"
 #include "comply/host/task_file.hpp"
 #include "connector_mating/mating_stream.hpp"
@@ -94,11 +92,8 @@ std::vector<ConnectorMatingRow> runConnectorMating(const ConnectorMatingOptions&
       rows.push_back(runTrial(trial, offset_deg, options, home, peg_file));
     }
   }
-  writeResults(connectorMatingTable(rows), options.out_dir);
-  if (options.pictures) {
-    host::runPlotScript("plot_connector_mating.py", {options.out_dir.string()},
-                        options.progress != nullptr ? *options.progress : std::cerr);
-  }
+  writeResultsAndPlots(connectorMatingTable(rows), options.out_dir, "plot_connector_mating.py",
+                       options.pictures, options.progress);
   return rows;
 }
 

@@ -1,11 +1,8 @@
 #include "passivity/passivity_experiment.hpp"
 
-#include <iostream>
 #include <optional>
 #include <ostream>
 #include <stdexcept>
-
-#include "comply/host/plot_script.hpp"
 
 namespace comply::experiments {
 namespace {
@@ -46,11 +43,8 @@ std::vector<PassivityRow> runPassivity(const PassivityOptions& options) {
                                              folder / (passivity::nameOf(condition) + ".csv"))});
     }
   }
-  writeResults(passivityTable(rows), options.out_dir);
-  if (options.pictures) {
-    host::runPlotScript("plot_passivity.py", {options.out_dir.string()},
-                        options.progress != nullptr ? *options.progress : std::cerr);
-  }
+  writeResultsAndPlots(passivityTable(rows), options.out_dir, "plot_passivity.py", options.pictures,
+                       options.progress);
   return rows;
 }
 

@@ -1,12 +1,10 @@
 #include "surface_following/surface_following_experiment.hpp"
 
 #include <fstream>
-#include <iostream>
 #include <ostream>
 #include <stdexcept>
 
 #include "comply/host/controller_setup.hpp"
-#include "comply/host/plot_script.hpp"
 #include "comply/host/sim_session.hpp"
 #include "comply/host/task_file.hpp"
 #include "comply/task/path.hpp"
@@ -107,11 +105,8 @@ std::vector<SurfaceFollowingRow> runSurfaceFollowing(const SurfaceFollowingOptio
   for (const SurfaceCondition& condition : conditions) {
     rows.push_back(runCondition(condition, options, home, tip_path));
   }
-  writeResults(surfaceFollowingTable(rows), options.out_dir);
-  if (options.pictures) {
-    host::runPlotScript("plot_surface_following.py", {options.out_dir.string()},
-                        options.progress != nullptr ? *options.progress : std::cerr);
-  }
+  writeResultsAndPlots(surfaceFollowingTable(rows), options.out_dir, "plot_surface_following.py",
+                       options.pictures, options.progress);
   return rows;
 }
 

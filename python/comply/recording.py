@@ -131,21 +131,19 @@ class _Fields:
         except UnicodeDecodeError as error:
             raise RecordingError(f"{self.what} is malformed: a string is not UTF-8") from error
 
-    def string_map(self):
+    def _map(self, read_key, read_value):
         inner = _Fields(self.bytes32(), self.what)
         pairs = {}
         while inner.pos < len(inner.body):
-            key = inner.string()
-            pairs[key] = inner.string()
+            key = read_key(inner)
+            pairs[key] = read_value(inner)
         return pairs
 
+    def string_map(self):
+        return self._map(_Fields.string, _Fields.string)
+
     def count_map(self):
-        inner = _Fields(self.bytes32(), self.what)
-        counts = {}
-        while inner.pos < len(inner.body):
-            key = inner.u16()
-            counts[key] = inner.u64()
-        return counts
+        return self._map(_Fields.u16, _Fields.u64)
 
 
 class McapReader:

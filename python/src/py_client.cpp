@@ -123,6 +123,16 @@ bool Client::write(transport::Writer<Message>& writer, const Message& message) {
   return true;
 }
 
+template <typename Message>
+void Client::publish(transport::Writer<Message>& writer, const Message& message) {
+  if (writer.matched() == 0) {
+    throw std::runtime_error(kNoHost);  // DDS would drop it without a word
+  }
+  if (!write(writer, message)) {
+    throw std::runtime_error(kRefused);
+  }
+}
+
 transport::Stamp Client::nextStamp() {
   transport::Stamp now = transport::Stamp::now();
   if (now <= last_stamp_) {
@@ -187,12 +197,7 @@ std::int64_t Client::sendCartesian(const py::kwargs& kwargs) {
       state_ ? transport::cartesianReferenceInForce(*state_, dof_) : CartesianCommand::zero(dof_);
   transport::CartesianCommandMessage message{{{}, ""}, cartesianFromKwargs(kwargs, dof_, base)};
   message.header.stamp = nextStamp();
-  if (cartesian_writer_.matched() == 0) {
-    throw std::runtime_error(kNoHost);  // DDS would drop it without a word
-  }
-  if (!write(cartesian_writer_, message)) {
-    throw std::runtime_error(kRefused);
-  }
+  publish(cartesian_writer_, message);
   return message.header.stamp.nanoseconds();
 }
 
@@ -201,12 +206,7 @@ std::int64_t Client::sendJoint(const py::kwargs& kwargs) {
       state_ ? transport::jointReferenceInForce(*state_, dof_) : JointCommand::zero(dof_);
   transport::JointCommandMessage message{{{}, ""}, jointFromKwargs(kwargs, dof_, base)};
   message.header.stamp = nextStamp();
-  if (joint_writer_.matched() == 0) {
-    throw std::runtime_error(kNoHost);
-  }
-  if (!write(joint_writer_, message)) {
-    throw std::runtime_error(kRefused);
-  }
+  publish(joint_writer_, message);
   return message.header.stamp.nanoseconds();
 }
 
@@ -223,12 +223,7 @@ std::int64_t Client::sendChunk(const py::object& chunk, const py::object& relati
     message.header.stamp = stamp;
     message.chunk = chunkFromPython(chunk, dof_, origin_s, std::optional(base));
     message.chunk.stamp_s = stamp.seconds();
-    if (writer.matched() == 0) {
-      throw std::runtime_error(kNoHost);
-    }
-    if (!write(writer, message)) {
-      throw std::runtime_error(kRefused);
-    }
+    publish(writer, message);
   };
   if (cartesian_) {
     send(cartesian_chunk_writer_, transport::CartesianChunkMessage{},
@@ -267,10 +262,7 @@ void Client::request(transport::RequestType request) {
   transport::RequestMessage message;
   message.header.stamp = nextStamp();
   message.request = request;
-  if (request_writer_.matched() == 0) {
-    throw std::runtime_error(kNoHost);
-  }
-  write(request_writer_, message);
+  publish(request_writer_, message);
 }
 
 void Client::close() {

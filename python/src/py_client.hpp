@@ -75,6 +75,9 @@ class Client {
   /// Writes `message`; true when DDS took it (then it is recorded).
   template <typename Message>
   bool write(transport::Writer<Message>& writer, const Message& message);
+  /// write(); throws when no host reads the topic or DDS refuses the message.
+  template <typename Message>
+  void publish(transport::Writer<Message>& writer, const Message& message);
 
   std::string name_;
   transport::Participant participant_;

@@ -59,6 +59,12 @@ transport::DiagnosticsMessage diagnosticsMessage(
     message.publisher = text.str();
   }
   message.outcomes = std::move(outcomes);
+  for (auto it = message.outcomes.rbegin(); it != message.outcomes.rend(); ++it) {
+    if (it->outcome == transport::Outcome::kRejected) {
+      message.last_rejection = it->message;  // the host's reasons too, not only the wrapper's
+      break;
+    }
+  }
   return message;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "chunk_curve.hpp"
 #include "chunk_track.hpp"
@@ -152,22 +153,14 @@ void addOffset(const JointOffset& e, const curve::QuinticWeights& w, double leng
 }
 
 template <typename Bus>
-struct Offset;
-template <>
-struct Offset<Cartesian> {
-  using Type = CartesianOffset;
-};
-template <>
-struct Offset<Joint> {
-  using Type = JointOffset;
-};
+using OffsetOf = std::conditional_t<std::is_same_v<Bus, Cartesian>, CartesianOffset, JointOffset>;
 
 /// The typed half of the player: its slots and the running chunk's blend.
 template <typename Bus>
 struct Engine {
   std::array<Track<Bus>, ChunkPlayer::kSlots> tracks;
   Bus from{};  ///< the reference in force when the running chunk started
-  typename Offset<Bus>::Type offset{};
+  OffsetOf<Bus> offset{};
   double start_s = 0.0;
   int cursor = 0;
   Bus settings{};  // scratch: the chunk's settings at this cycle's place

@@ -56,6 +56,19 @@ inline void putStringMap(std::vector<std::uint8_t>& out,
   put(out, static_cast<std::uint32_t>(body.size()));
   out.insert(out.end(), body.begin(), body.end());
 }
+/// A map or array of fixed-size pairs (MessageIndex records, Statistics' channel counts): its
+/// length in bytes, then each pair.
+template <typename Pairs>
+void putPairs(std::vector<std::uint8_t>& out, const Pairs& pairs) {
+  using Pair = typename Pairs::value_type;
+  constexpr std::size_t kPairBytes =
+      sizeof(typename Pair::first_type) + sizeof(typename Pair::second_type);
+  put(out, static_cast<std::uint32_t>(pairs.size() * kPairBytes));
+  for (const auto& [first, second] : pairs) {
+    put(out, first);
+    put(out, second);
+  }
+}
 /// Opens a record: the opcode and a length placeholder; closeRecord() fills the length in.
 inline std::size_t openRecord(std::vector<std::uint8_t>& out, Opcode opcode) {
   out.push_back(opcode);

@@ -200,11 +200,7 @@ void McapWriter::writeChunk() {
     index.message_index_offsets[channel] = file_offset_ + bytes.size();
     const std::size_t index_at = openRecord(bytes, mcap::kMessageIndex);
     put(bytes, channel);
-    put(bytes, static_cast<std::uint32_t>(entries.size() * 16));
-    for (const auto& [time, offset] : entries) {
-      put(bytes, time);
-      put(bytes, offset);
-    }
+    mcap::putPairs(bytes, entries);
     closeRecord(bytes, index_at);
   }
   index.message_index_length = file_offset_ + bytes.size() - index.offset - index.length;
@@ -287,11 +283,7 @@ void McapWriter::close() {
     put(bytes, static_cast<std::uint32_t>(chunk_indexes_.size()));
     put(bytes, message_start_time_);
     put(bytes, message_end_time_);
-    put(bytes, static_cast<std::uint32_t>(channel_message_counts_.size() * 10));
-    for (const auto& [channel, count] : channel_message_counts_) {
-      put(bytes, channel);
-      put(bytes, count);
-    }
+    mcap::putPairs(bytes, channel_message_counts_);
     closeRecord(bytes, record);
   });
   group(mcap::kMetadataIndex, [&] {

@@ -88,7 +88,7 @@ nlohmann::json groupNames(CommandField fields) {
 template <typename Command>
 Parsed<Command> fromJson(const nlohmann::json& object, int dof,
                          const ReadOptions<Command>& options) {
-  return generic::fromJson<typename SchemaOf<Command>::Type>(object, dof, options);
+  return generic::fromJson<SchemaOf<Command>>(object, dof, options);
 }
 template Parsed<CartesianCommand> fromJson(const nlohmann::json&, int,
                                            const ReadOptions<CartesianCommand>&);

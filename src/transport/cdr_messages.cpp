@@ -75,59 +75,20 @@ void putChunk(Writer& w, const Message& message, Put&& put) {
   }
 }
 
-}  // namespace
-
-void encodeCdr(const ControllerStateMessage& message, std::vector<std::uint8_t>& out) {
-  Writer w(out);
-  cdr::putFields(w, message);
-  w.finish();
-}
-
-void encodeCdr(const CommandOutcomeMessage& message, std::vector<std::uint8_t>& out) {
-  Writer w(out);
-  cdr::putFields(w, message);
-  w.finish();
-}
-
-void encodeCdr(const DiagnosticsMessage& message, std::vector<std::uint8_t>& out) {
-  Writer w(out);
-  cdr::putFields(w, message);
-  w.finish();
-}
-
-void encodeCdr(const CartesianCommandMessage& message, std::vector<std::uint8_t>& out) {
-  Writer w(out);
-  putCartesian(w, message);
-  w.finish();
-}
-
-void encodeCdr(const JointCommandMessage& message, std::vector<std::uint8_t>& out) {
-  Writer w(out);
-  putJoint(w, message);
-  w.finish();
-}
-
-void encodeCdr(const CartesianChunkMessage& message, std::vector<std::uint8_t>& out) {
-  Writer w(out);
+void putCartesianChunk(Writer& w, const CartesianChunkMessage& message) {
   putChunk<CartesianCommand, CartesianCommandMessage>(w, message, putCartesian);
-  w.finish();
 }
 
-void encodeCdr(const JointChunkMessage& message, std::vector<std::uint8_t>& out) {
-  Writer w(out);
+void putJointChunk(Writer& w, const JointChunkMessage& message) {
   putChunk<JointCommand, JointCommandMessage>(w, message, putJoint);
-  w.finish();
 }
 
-void encodeCdr(const RequestMessage& message, std::vector<std::uint8_t>& out) {
-  Writer w(out);
+void putRequest(Writer& w, const RequestMessage& message) {
   putHeader(w, message.header);
   w.put(static_cast<std::uint8_t>(message.request));
-  w.finish();
 }
 
-void encodeCdr(const CycleRecordMessage& message, std::vector<std::uint8_t>& out) {
-  Writer w(out);
+void putCycleRecord(Writer& w, const CycleRecordMessage& message) {
   cdr::putFields(w, message.state);
   w.put(message.compute_time_s);
   w.put(message.start_lateness_s);
@@ -139,44 +100,41 @@ void encodeCdr(const CycleRecordMessage& message, std::vector<std::uint8_t>& out
   for (const JointCommandMessage& command : message.joint_in_force) {
     putJoint(w, command);
   }
-  w.finish();
 }
 
-template <>
-std::string_view rosTypeName<ControllerStateMessage>() {
-  return "comply_msgs/msg/ControllerState";
-}
-template <>
-std::string_view rosTypeName<CommandOutcomeMessage>() {
-  return "comply_msgs/msg/CommandOutcome";
-}
-template <>
-std::string_view rosTypeName<DiagnosticsMessage>() {
-  return "comply_msgs/msg/Diagnostics";
-}
-template <>
-std::string_view rosTypeName<CartesianCommandMessage>() {
-  return "comply_msgs/msg/CartesianCommand";
-}
-template <>
-std::string_view rosTypeName<JointCommandMessage>() {
-  return "comply_msgs/msg/JointCommand";
-}
-template <>
-std::string_view rosTypeName<CartesianChunkMessage>() {
-  return "comply_msgs/msg/CartesianChunk";
-}
-template <>
-std::string_view rosTypeName<JointChunkMessage>() {
-  return "comply_msgs/msg/JointChunk";
-}
-template <>
-std::string_view rosTypeName<RequestMessage>() {
-  return "comply_msgs/msg/Request";
-}
-template <>
-std::string_view rosTypeName<CycleRecordMessage>() {
-  return "comply_msgs/msg/CycleRecord";
-}
+}  // namespace
+
+#define COMPLY_ENCODE_CDR(Message, PUT)                                    \
+  void encodeCdr(const Message& message, std::vector<std::uint8_t>& out) { \
+    Writer w(out);                                                         \
+    PUT(w, message);                                                       \
+    w.finish();                                                            \
+  }
+COMPLY_ENCODE_CDR(ControllerStateMessage, cdr::putFields)
+COMPLY_ENCODE_CDR(CommandOutcomeMessage, cdr::putFields)
+COMPLY_ENCODE_CDR(DiagnosticsMessage, cdr::putFields)
+COMPLY_ENCODE_CDR(CartesianCommandMessage, putCartesian)
+COMPLY_ENCODE_CDR(JointCommandMessage, putJoint)
+COMPLY_ENCODE_CDR(CartesianChunkMessage, putCartesianChunk)
+COMPLY_ENCODE_CDR(JointChunkMessage, putJointChunk)
+COMPLY_ENCODE_CDR(RequestMessage, putRequest)
+COMPLY_ENCODE_CDR(CycleRecordMessage, putCycleRecord)
+#undef COMPLY_ENCODE_CDR
+
+#define COMPLY_ROS_TYPE_NAME(Message, name) \
+  template <>                               \
+  std::string_view rosTypeName<Message>() { \
+    return "comply_msgs/msg/" name;         \
+  }
+COMPLY_ROS_TYPE_NAME(ControllerStateMessage, "ControllerState")
+COMPLY_ROS_TYPE_NAME(CommandOutcomeMessage, "CommandOutcome")
+COMPLY_ROS_TYPE_NAME(DiagnosticsMessage, "Diagnostics")
+COMPLY_ROS_TYPE_NAME(CartesianCommandMessage, "CartesianCommand")
+COMPLY_ROS_TYPE_NAME(JointCommandMessage, "JointCommand")
+COMPLY_ROS_TYPE_NAME(CartesianChunkMessage, "CartesianChunk")
+COMPLY_ROS_TYPE_NAME(JointChunkMessage, "JointChunk")
+COMPLY_ROS_TYPE_NAME(RequestMessage, "Request")
+COMPLY_ROS_TYPE_NAME(CycleRecordMessage, "CycleRecord")
+#undef COMPLY_ROS_TYPE_NAME
 
 }  // namespace comply::transport

@@ -16,42 +16,20 @@ namespace comply::transport {
 namespace {
 
 std::string_view suffixOf(Topic topic) {
-  switch (topic) {
-    case Topic::kCartesianCommand:
-      return "cartesian_command";
-    case Topic::kJointCommand:
-      return "joint_command";
-    case Topic::kCartesianChunk:
-      return "cartesian_chunk";
-    case Topic::kJointChunk:
-      return "joint_chunk";
-    case Topic::kRequest:
-      return "request";
-    case Topic::kState:
-      return "state";
-    case Topic::kDiagnostics:
-      return "diagnostics";
-  }
+#define COMPLY_TOPIC_SUFFIX(topic, Message, suffix) \
+  case Topic::topic:                                \
+    return suffix;
+  switch (topic) { COMPLY_TOPICS(COMPLY_TOPIC_SUFFIX) }
+#undef COMPLY_TOPIC_SUFFIX
   return "unknown";
 }
 
 const dds_topic_descriptor_t* descriptorOf(Topic topic) {
-  switch (topic) {
-    case Topic::kCartesianCommand:
-      return wire::Wire<CartesianCommandMessage>::descriptor();
-    case Topic::kJointCommand:
-      return wire::Wire<JointCommandMessage>::descriptor();
-    case Topic::kCartesianChunk:
-      return wire::Wire<CartesianChunkMessage>::descriptor();
-    case Topic::kJointChunk:
-      return wire::Wire<JointChunkMessage>::descriptor();
-    case Topic::kRequest:
-      return wire::Wire<RequestMessage>::descriptor();
-    case Topic::kState:
-      return wire::Wire<ControllerStateMessage>::descriptor();
-    case Topic::kDiagnostics:
-      return wire::Wire<DiagnosticsMessage>::descriptor();
-  }
+#define COMPLY_TOPIC_DESCRIPTOR(topic, Message, suffix) \
+  case Topic::topic:                                    \
+    return wire::Wire<Message>::descriptor();
+  switch (topic) { COMPLY_TOPICS(COMPLY_TOPIC_DESCRIPTOR) }
+#undef COMPLY_TOPIC_DESCRIPTOR
   return nullptr;
 }
 

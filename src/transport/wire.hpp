@@ -20,6 +20,22 @@ struct Wire {
   static void read(const void* sample, Message& message, std::string& malformed);
 };
 
+/// Wire<Message>: the idlc descriptor DESCRIPTOR, write() through WRITE(writer, message), read()
+/// through READ(sample, message, malformed).
+#define COMPLY_WIRE_MESSAGE(Message, DESCRIPTOR, WRITE, READ)                              \
+  template <>                                                                              \
+  const dds_topic_descriptor_t* Wire<Message>::descriptor() {                              \
+    return &DESCRIPTOR;                                                                    \
+  }                                                                                        \
+  template <>                                                                              \
+  dds_return_t Wire<Message>::write(dds_entity_t writer, const Message& message) {         \
+    return WRITE(writer, message);                                                         \
+  }                                                                                        \
+  template <>                                                                              \
+  void Wire<Message>::read(const void* sample, Message& message, std::string& malformed) { \
+    READ(sample, message, malformed);                                                      \
+  }
+
 // Helpers shared by the conversion files.
 inline Stamp fromWireStamp(std::int32_t sec, std::uint32_t nanosec) {
   return Stamp{sec, nanosec};

@@ -162,63 +162,15 @@ void readChunk(const void* sample, Message& message, std::string& malformed) {
 
 }  // namespace
 
-template <>
-const dds_topic_descriptor_t* Wire<CartesianCommandMessage>::descriptor() {
-  return &comply_msgs_msg_dds__CartesianCommand__desc;
-}
-template <>
-dds_return_t Wire<CartesianCommandMessage>::write(dds_entity_t writer,
-                                                  const CartesianCommandMessage& message) {
-  return writeCommand<WireCartesian>(writer, message);
-}
-template <>
-void Wire<CartesianCommandMessage>::read(const void* sample, CartesianCommandMessage& message,
-                                         std::string& malformed) {
-  readCommand<WireCartesian>(sample, message, malformed);
-}
-
-template <>
-const dds_topic_descriptor_t* Wire<JointCommandMessage>::descriptor() {
-  return &comply_msgs_msg_dds__JointCommand__desc;
-}
-template <>
-dds_return_t Wire<JointCommandMessage>::write(dds_entity_t writer,
-                                              const JointCommandMessage& message) {
-  return writeCommand<WireJoint>(writer, message);
-}
-template <>
-void Wire<JointCommandMessage>::read(const void* sample, JointCommandMessage& message,
-                                     std::string& malformed) {
-  readCommand<WireJoint>(sample, message, malformed);
-}
-
-template <>
-const dds_topic_descriptor_t* Wire<CartesianChunkMessage>::descriptor() {
-  return &comply_msgs_msg_dds__CartesianChunk__desc;
-}
-template <>
-dds_return_t Wire<CartesianChunkMessage>::write(dds_entity_t writer,
-                                                const CartesianChunkMessage& message) {
-  return writeChunk<comply_msgs_msg_dds__CartesianChunk_, WireCartesian>(writer, message);
-}
-template <>
-void Wire<CartesianChunkMessage>::read(const void* sample, CartesianChunkMessage& message,
-                                       std::string& malformed) {
-  readChunk<comply_msgs_msg_dds__CartesianChunk_>(sample, message, malformed);
-}
-
-template <>
-const dds_topic_descriptor_t* Wire<JointChunkMessage>::descriptor() {
-  return &comply_msgs_msg_dds__JointChunk__desc;
-}
-template <>
-dds_return_t Wire<JointChunkMessage>::write(dds_entity_t writer, const JointChunkMessage& message) {
-  return writeChunk<comply_msgs_msg_dds__JointChunk_, WireJoint>(writer, message);
-}
-template <>
-void Wire<JointChunkMessage>::read(const void* sample, JointChunkMessage& message,
-                                   std::string& malformed) {
-  readChunk<comply_msgs_msg_dds__JointChunk_>(sample, message, malformed);
-}
+COMPLY_WIRE_MESSAGE(CartesianCommandMessage, comply_msgs_msg_dds__CartesianCommand__desc,
+                    writeCommand<WireCartesian>, readCommand<WireCartesian>)
+COMPLY_WIRE_MESSAGE(JointCommandMessage, comply_msgs_msg_dds__JointCommand__desc,
+                    writeCommand<WireJoint>, readCommand<WireJoint>)
+COMPLY_WIRE_MESSAGE(CartesianChunkMessage, comply_msgs_msg_dds__CartesianChunk__desc,
+                    (writeChunk<comply_msgs_msg_dds__CartesianChunk_, WireCartesian>),
+                    readChunk<comply_msgs_msg_dds__CartesianChunk_>)
+COMPLY_WIRE_MESSAGE(JointChunkMessage, comply_msgs_msg_dds__JointChunk__desc,
+                    (writeChunk<comply_msgs_msg_dds__JointChunk_, WireJoint>),
+                    readChunk<comply_msgs_msg_dds__JointChunk_>)
 
 }  // namespace comply::transport::wire

@@ -8,47 +8,26 @@
 
 namespace comply::transport::wire {
 
-template <>
-const dds_topic_descriptor_t* Wire<ControllerStateMessage>::descriptor() {
-  return &comply_msgs_msg_dds__ControllerState__desc;
-}
+/// A message of the tables, member by member: write and read through the table TABLE.
+#define COMPLY_WIRE_TABLE_MESSAGE(Message, Dds, TABLE)                                   \
+  namespace {                                                                            \
+  dds_return_t write##Message(dds_entity_t writer, const Message& message) {             \
+    Dds out{};                                                                           \
+    Borrowed borrowed;                                                                   \
+    TABLE(COMPLY_TO_WIRE)                                                                \
+    return dds_write(writer, &out);                                                      \
+  }                                                                                      \
+  void read##Message(const void* sample, Message& message, std::string& /*malformed*/) { \
+    const auto& in = *static_cast<const Dds*>(sample);                                   \
+    TABLE(COMPLY_FROM_WIRE)                                                              \
+  }                                                                                      \
+  }                                                                                      \
+  COMPLY_WIRE_MESSAGE(Message, Dds##_desc, write##Message, read##Message)
 
-template <>
-dds_return_t Wire<ControllerStateMessage>::write(dds_entity_t writer,
-                                                 const ControllerStateMessage& message) {
-  comply_msgs_msg_dds__ControllerState_ out{};
-  Borrowed borrowed;
-  COMPLY_CONTROLLER_STATE_FIELDS(COMPLY_TO_WIRE)
-  return dds_write(writer, &out);
-}
-
-template <>
-void Wire<ControllerStateMessage>::read(const void* sample, ControllerStateMessage& message,
-                                        std::string& /*malformed*/) {
-  const auto& in = *static_cast<const comply_msgs_msg_dds__ControllerState_*>(sample);
-  COMPLY_CONTROLLER_STATE_FIELDS(COMPLY_FROM_WIRE)
-}
-
-template <>
-const dds_topic_descriptor_t* Wire<DiagnosticsMessage>::descriptor() {
-  return &comply_msgs_msg_dds__Diagnostics__desc;
-}
-
-template <>
-dds_return_t Wire<DiagnosticsMessage>::write(dds_entity_t writer,
-                                             const DiagnosticsMessage& message) {
-  comply_msgs_msg_dds__Diagnostics_ out{};
-  Borrowed borrowed;
-  COMPLY_DIAGNOSTICS_FIELDS(COMPLY_TO_WIRE)
-  return dds_write(writer, &out);
-}
-
-template <>
-void Wire<DiagnosticsMessage>::read(const void* sample, DiagnosticsMessage& message,
-                                    std::string& /*malformed*/) {
-  const auto& in = *static_cast<const comply_msgs_msg_dds__Diagnostics_*>(sample);
-  COMPLY_DIAGNOSTICS_FIELDS(COMPLY_FROM_WIRE)
-}
+COMPLY_WIRE_TABLE_MESSAGE(ControllerStateMessage, comply_msgs_msg_dds__ControllerState_,
+                          COMPLY_CONTROLLER_STATE_FIELDS)
+COMPLY_WIRE_TABLE_MESSAGE(DiagnosticsMessage, comply_msgs_msg_dds__Diagnostics_,
+                          COMPLY_DIAGNOSTICS_FIELDS)
 
 template <>
 const dds_topic_descriptor_t* Wire<RequestMessage>::descriptor() {

@@ -66,16 +66,21 @@ class CartesianStepRefusal : public ::testing::Test {
     }
     return command;
   }
+
+  /// The ratio command refused by `law` on `input`, with `reason` in the message.
+  void expectRefused(plugin::PluginInstance& law, const comply_input& input,
+                     const std::string& reason) {
+    const comply_cartesian_command command = ratioCommand();
+    comply_output output{};
+    EXPECT_EQ(law.step(input, &command, output), COMPLY_ERROR);
+    EXPECT_NE(std::string(output.message).find(reason), std::string::npos) << output.message;
+  }
 };
 
 TEST_F(CartesianStepRefusal, RatioModeWithoutInertiaAwareDamping) {
   plugin::PluginInstance law(cartesianImpedanceLibrary(), 7,
                              numberParameter("inertia_aware_damping", 0.0));
-  const comply_cartesian_command command = ratioCommand();
-  comply_output output{};
-  EXPECT_EQ(law.step(input_, &command, output), COMPLY_ERROR);
-  EXPECT_NE(std::string(output.message).find("inertia_aware_damping"), std::string::npos)
-      << output.message;
+  expectRefused(law, input_, "inertia_aware_damping");
 }
 
 TEST_F(CartesianStepRefusal, RatioModeWithSingularMassMatrix) {
@@ -84,11 +89,7 @@ TEST_F(CartesianStepRefusal, RatioModeWithSingularMassMatrix) {
   for (double& entry : input.mass_matrix) {
     entry = 0.0;
   }
-  const comply_cartesian_command command = ratioCommand();
-  comply_output output{};
-  EXPECT_EQ(law.step(input, &command, output), COMPLY_ERROR);
-  EXPECT_NE(std::string(output.message).find("not positive definite"), std::string::npos)
-      << output.message;
+  expectRefused(law, input, "not positive definite");
 }
 
 TEST_F(CartesianStepRefusal, SameCommandSucceedsWithInertiaAwareDamping) {

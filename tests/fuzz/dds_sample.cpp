@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
@@ -111,23 +112,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   try {
-    switch (data[0] % 5) {
-      case 0:
-        decode<CartesianCommandMessage>(data + 1, size - 1);
-        break;
-      case 1:
-        decode<JointCommandMessage>(data + 1, size - 1);
-        break;
-      case 2:
-        decode<RequestMessage>(data + 1, size - 1);
-        break;
-      case 3:
-        decode<ControllerStateMessage>(data + 1, size - 1);
-        break;
-      default:
-        decode<DiagnosticsMessage>(data + 1, size - 1);
-        break;
-    }
+    using Decode = void (*)(const std::uint8_t*, std::size_t);
+    constexpr Decode kDecoders[] = {decode<CartesianCommandMessage>, decode<JointCommandMessage>,
+                                    decode<RequestMessage>, decode<ControllerStateMessage>,
+                                    decode<DiagnosticsMessage>};
+    kDecoders[data[0] % std::size(kDecoders)](data + 1, size - 1);
   } catch (const std::exception&) {
     // A refusal with a message is an expected outcome; a crash is not.
   }

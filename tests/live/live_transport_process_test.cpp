@@ -202,16 +202,21 @@ class TransportProcessTest : public ::testing::Test {
     dds_guid_t guid{};
     EXPECT_EQ(dds_get_guid(writer_->handle(), &guid), DDS_RETCODE_OK);
     sendToDomain(domain_, dataPacket(guid, written_ + 1, bytes), address);
-    const std::int64_t stamp = command.header.stamp.nanoseconds();
-    const bool applied = client_->poll(1500ms, [&](const auto&) {
-      const auto it = client_->outcomes().find(stamp);
-      return it != client_->outcomes().end() &&
-             it->second.front().outcome == transport::Outcome::kApplied;
-    });
+    const bool applied = appliedWithin(command.header.stamp, 1500ms);
     if (applied) {
       ++written_;
     }
     return applied;
+  }
+
+  /// Whether the command stamped `stamp` is applied within `timeout`.
+  bool appliedWithin(transport::Stamp stamp, std::chrono::milliseconds timeout) {
+    const std::int64_t stamp_ns = stamp.nanoseconds();
+    return client_->poll(timeout, [&](const auto&) {
+      const auto it = client_->outcomes().find(stamp_ns);
+      return it != client_->outcomes().end() &&
+             it->second.front().outcome == transport::Outcome::kApplied;
+    });
   }
 
   /// Sends the sample as the connected writer's next one.
@@ -239,13 +244,7 @@ class TransportProcessTest : public ::testing::Test {
           poseCommand(*state, {0.0, 0.0, dz}, transport::Stamp::now());
       writer_->write(command);
       ++written_;
-      const std::int64_t stamp = command.header.stamp.nanoseconds();
-      const bool applied = client_->poll(300ms, [&](const auto&) {
-        const auto it = client_->outcomes().find(stamp);
-        return it != client_->outcomes().end() &&
-               it->second.front().outcome == transport::Outcome::kApplied;
-      });
-      if (applied) {
+      if (appliedWithin(command.header.stamp, 300ms)) {
         return std::chrono::duration<double>(Clock::now() - start).count();
       }
     }

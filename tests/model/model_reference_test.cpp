@@ -3,12 +3,12 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <iostream>
+#include <string>
 
 #include "comply/model/robot_description.hpp"
 #include "comply/model/update.hpp"
 #include "kdl_reference.hpp"
+#include "max_error.hpp"
 #include "mujoco_reference.hpp"
 #include "robot_sampling.hpp"
 
@@ -17,34 +17,17 @@ namespace {
 
 constexpr int kSamples = 1000;
 
-/// Largest absolute difference per quantity over all samples.
-struct WorstError {
-  double position = 0.0;
-  double rotation = 0.0;
-  double jacobian = 0.0;
-  double gravity = 0.0;
-  double coriolis = 0.0;
-  double mass_matrix = 0.0;
-
-  void add(const Data& data, const testing::ReferenceResult& reference, int dof) {
-    const auto max_abs = [](const auto& difference) { return difference.cwiseAbs().maxCoeff(); };
-    position = std::max(position, max_abs(data.tip_position - reference.position));
-    rotation =
-        std::max(rotation, max_abs(data.tip_rotation - reference.orientation.toRotationMatrix()));
-    jacobian = std::max(jacobian, max_abs(data.jacobian - reference.jacobian));
-    gravity = std::max(gravity, max_abs(data.gravity - reference.gravity));
-    coriolis = std::max(coriolis, max_abs(data.coriolis - reference.coriolis));
-    mass_matrix = std::max(mass_matrix, max_abs(data.mass_matrix - reference.mass_matrix));
-    EXPECT_EQ(reference.gravity.size(), dof);
-  }
-
-  void print(const std::string& label) const {
-    std::cout << label << " max abs error over " << kSamples << " samples: position " << position
-              << " m, rotation " << rotation << ", Jacobian " << jacobian << ", gravity " << gravity
-              << " N m, Coriolis " << coriolis << " N m, mass matrix " << mass_matrix
-              << " kg m^2\n";
-  }
-};
+/// The model's results in the references' form.
+testing::ReferenceResult resultOf(const Data& data) {
+  testing::ReferenceResult result;
+  result.position = data.tip_position;
+  result.orientation = data.tip_orientation;
+  result.jacobian = data.jacobian;
+  result.gravity = data.gravity;
+  result.coriolis = data.coriolis;
+  result.mass_matrix = data.mass_matrix;
+  return result;
+}
 
 class ReferenceTest : public ::testing::TestWithParam<std::string> {
  protected:
@@ -57,18 +40,18 @@ class ReferenceTest : public ::testing::TestWithParam<std::string> {
   /// The worst errors against `reference` (its compute(q, dq)) over kSamples joint samples of
   /// seed `seed`.
   template <typename Reference>
-  WorstError worstAgainst(Reference& reference, unsigned seed, const std::string& label) {
+  testing::MaxError worstAgainst(Reference& reference, unsigned seed, const std::string& label) {
     testing::JointSampler sampler(*model_, seed);
-    WorstError worst;
+    testing::MaxError worst;
     for (int i = 0; i < kSamples; ++i) {
       const testing::JointSample sample = sampler.next();
       EXPECT_EQ(update(*model_, *data_, sample.q, sample.dq, Quantity::kAll), UpdateStatus::kOk);
       const Eigen::VectorXd q = Eigen::Map<const Eigen::VectorXd>(sample.q.data(), sample.q.size());
       const Eigen::VectorXd dq =
           Eigen::Map<const Eigen::VectorXd>(sample.dq.data(), sample.dq.size());
-      worst.add(*data_, reference.compute(q, dq), model_->dof());
+      worst.add(resultOf(*data_), reference.compute(q, dq));
     }
-    worst.print(GetParam() + " vs " + label);
+    worst.print(GetParam() + " vs " + label + ", " + std::to_string(kSamples) + " samples,");
     return worst;
   }
 
@@ -80,25 +63,15 @@ class ReferenceTest : public ::testing::TestWithParam<std::string> {
 TEST_P(ReferenceTest, MatchesKdl) {
   testing::KdlReference kdl(robot_.urdf_path.string(), robot_.base_frame, robot_.tcp_frame,
                             robot_.joints);
-  const WorstError worst = worstAgainst(kdl, 1, "KDL");
-  EXPECT_LE(worst.position, 1e-9);
-  EXPECT_LE(worst.rotation, 1e-9);
-  EXPECT_LE(worst.jacobian, 1e-9);
-  EXPECT_LE(worst.gravity, 1e-9);
-  EXPECT_LE(worst.coriolis, 1e-9);
-  EXPECT_LE(worst.mass_matrix, 1e-9);
+  worstAgainst(kdl, 1, "KDL").expectWithin(1e-9, 1e-9);
 }
 
 TEST_P(ReferenceTest, MatchesMujoco) {
   testing::MujocoReference mujoco(robot_.urdf_path.string(), robot_.tcp_frame, robot_.joints);
-  const WorstError worst = worstAgainst(mujoco, 2, "MuJoCo");
-  EXPECT_LE(worst.position, 1e-9);
-  EXPECT_LE(worst.rotation, 1e-9);
-  EXPECT_LE(worst.jacobian, 1e-9);
-  EXPECT_LE(worst.gravity, 1e-9);
+  const testing::MaxError worst = worstAgainst(mujoco, 2, "MuJoCo");
   // MuJoCo stores each inertia as principal moments + axes, rounded at ~1e-8 kg m^2.
+  worst.expectWithin(1e-9, 1e-6);
   EXPECT_LE(worst.mass_matrix, 1e-7);
-  EXPECT_LE(worst.coriolis, 1e-6);
 }
 
 INSTANTIATE_TEST_SUITE_P(Robots, ReferenceTest, ::testing::ValuesIn(testing::shippedRobots()),

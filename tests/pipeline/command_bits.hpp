@@ -7,6 +7,7 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 #include "comply/core/commands.hpp"
 
@@ -26,41 +27,32 @@ inline bool sameBits(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
   return sameBits(a.coeffs(), b.coeffs());
 }
 
+template <typename Enum>
+requires std::is_enum_v<Enum>
+bool sameBits(Enum a, Enum b) {
+  return a == b;
+}
+
 #define COMPLY_EXPECT_SAME_FIELD(a, b, field) \
   EXPECT_TRUE(::comply::pipeline::test::sameBits((a).field, (b).field)) << #field " changed"
 
+#define COMPLY_EXPECT_SAME_ROW(name, group, kind, type, unit, constraint, role, init, doc) \
+  COMPLY_EXPECT_SAME_FIELD(actual, expected, name);
+
+/// Every field of the command table, and the stamp and mask.
 inline void expectSameBits(const JointCommand& actual, const JointCommand& expected) {
   COMPLY_EXPECT_SAME_FIELD(actual, expected, stamp_s);
   EXPECT_EQ(actual.fields, expected.fields);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, position);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, velocity);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, acceleration);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, stiffness);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, damping);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, torque_feedforward);
+  COMPLY_JOINT_COMMAND_FIELDS(COMPLY_EXPECT_SAME_ROW)
 }
 
 inline void expectSameBits(const CartesianCommand& actual, const CartesianCommand& expected) {
   COMPLY_EXPECT_SAME_FIELD(actual, expected, stamp_s);
   EXPECT_EQ(actual.fields, expected.fields);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, position);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, orientation);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, twist);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, acceleration);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, stiffness_translational);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, stiffness_rotational);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, damping_translational);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, damping_rotational);
-  EXPECT_EQ(actual.damping_mode, expected.damping_mode);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, damping_ratio);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, task_frame);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, wrench_feedforward);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, torque_feedforward);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, nullspace_position);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, nullspace_stiffness);
-  COMPLY_EXPECT_SAME_FIELD(actual, expected, nullspace_damping);
+  COMPLY_CARTESIAN_COMMAND_FIELDS(COMPLY_EXPECT_SAME_ROW)
 }
 
+#undef COMPLY_EXPECT_SAME_ROW
 #undef COMPLY_EXPECT_SAME_FIELD
 
 inline JointVector joints(std::initializer_list<double> values) {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <utility>
 
 namespace comply::pipeline {
 namespace {
@@ -147,20 +148,23 @@ TEST(CommandBus, JointCommandCopiesEveryGroup) {
 }
 
 TEST(CommandBus, FieldMaskBitsMatchTheAbi) {
-  EXPECT_EQ(static_cast<std::uint32_t>(CommandField::kVelocity),
-            static_cast<std::uint32_t>(COMPLY_FIELD_VELOCITY));
-  EXPECT_EQ(static_cast<std::uint32_t>(CommandField::kAcceleration),
-            static_cast<std::uint32_t>(COMPLY_FIELD_ACCELERATION));
-  EXPECT_EQ(static_cast<std::uint32_t>(CommandField::kStiffness),
-            static_cast<std::uint32_t>(COMPLY_FIELD_STIFFNESS));
-  EXPECT_EQ(static_cast<std::uint32_t>(CommandField::kDamping),
-            static_cast<std::uint32_t>(COMPLY_FIELD_DAMPING));
-  EXPECT_EQ(static_cast<std::uint32_t>(CommandField::kTaskFrame),
-            static_cast<std::uint32_t>(COMPLY_FIELD_TASK_FRAME));
-  EXPECT_EQ(static_cast<std::uint32_t>(CommandField::kWrenchFeedforward),
-            static_cast<std::uint32_t>(COMPLY_FIELD_WRENCH_FEEDFORWARD));
-  EXPECT_EQ(static_cast<std::uint32_t>(CommandField::kTorqueFeedforward),
-            static_cast<std::uint32_t>(COMPLY_FIELD_TORQUE_FEEDFORWARD));
+  const std::pair<CommandField, std::uint32_t> bits[] = {
+      {CommandField::kPosition, COMPLY_FIELD_POSITION},
+      {CommandField::kVelocity, COMPLY_FIELD_VELOCITY},
+      {CommandField::kAcceleration, COMPLY_FIELD_ACCELERATION},
+      {CommandField::kStiffness, COMPLY_FIELD_STIFFNESS},
+      {CommandField::kDamping, COMPLY_FIELD_DAMPING},
+      {CommandField::kTaskFrame, COMPLY_FIELD_TASK_FRAME},
+      {CommandField::kWrenchFeedforward, COMPLY_FIELD_WRENCH_FEEDFORWARD},
+      {CommandField::kTorqueFeedforward, COMPLY_FIELD_TORQUE_FEEDFORWARD},
+      {CommandField::kNullspace, COMPLY_FIELD_NULLSPACE},
+      {CommandField::kForce, COMPLY_FIELD_FORCE}};
+  std::uint32_t all = 0;
+  for (const auto& [field, abi_bit] : bits) {
+    EXPECT_EQ(static_cast<std::uint32_t>(field), abi_bit);
+    all |= abi_bit;
+  }
+  EXPECT_EQ(all, static_cast<std::uint32_t>(CommandField::kAll)) << "a group without its ABI bit";
   EXPECT_EQ(toBus(JointCommand::zero(1), 1).fields, static_cast<std::uint32_t>(CommandField::kAll));
 }
 

@@ -24,20 +24,20 @@ TEST(Diagnostics, FaultAndRejectionWritersNeverBlockAReader) {
   // writer that rewrites its slot back to back can starve a seqlock reader on a 2-core machine.
   // Each writer writes at least once: on a busy machine the reader's loop can end before a
   // writer thread is first scheduled, and the final check needs both texts.
-  std::thread cycle([&] {
-    do {
-      diagnostics.setFault("plugin: ", "step failed");
-      fault_writes.fetch_add(1);
-      std::this_thread::sleep_for(kWriterPause);
-    } while (!stop.load());
-  });
-  std::thread sender([&] {
-    do {
-      diagnostics.setRejection("command rejected: ", "pose_jump: too far");
-      rejection_writes.fetch_add(1);
-      std::this_thread::sleep_for(kWriterPause);
-    } while (!stop.load());
-  });
+  const auto writer = [&](auto write, std::atomic<int>& writes) {
+    return std::thread([&, write] {
+      do {
+        write();
+        writes.fetch_add(1);
+        std::this_thread::sleep_for(kWriterPause);
+      } while (!stop.load());
+    });
+  };
+  std::thread cycle =
+      writer([&] { diagnostics.setFault("plugin: ", "step failed"); }, fault_writes);
+  std::thread sender =
+      writer([&] { diagnostics.setRejection("command rejected: ", "pose_jump: too far"); },
+             rejection_writes);
   // Read until both writers have overlapped the reader for a while.
   int torn_snapshots = 0;
   for (int i = 0; i < 5'000 || fault_writes.load() < 500 || rejection_writes.load() < 500; ++i) {

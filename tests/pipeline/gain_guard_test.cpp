@@ -122,14 +122,7 @@ TEST_F(StiffnessStep, ATaskFrameStepTurnsAtTheConfiguredAngularRate) {
 
 /// A smooth motion around home so every cycle computes new numbers.
 JointState movingState(const JointVector& home, int cycle) {
-  JointState state = JointState::zero(kFr3Dof);
-  const double t = cycle * kPeriod;
-  for (int i = 0; i < kFr3Dof; ++i) {
-    const double omega = 2.0 * std::numbers::pi * (0.3 + 0.1 * i);
-    state.position[i] = home[i] + 0.03 * std::sin(omega * t + i);
-    state.velocity[i] = 0.03 * omega * std::cos(omega * t + i);
-  }
-  return state;
+  return test::movingState(home, cycle, 0.03, 0.3);
 }
 
 /// Runs `cycles` cycles of both wrappers on the same states and commands (new pose, gains,

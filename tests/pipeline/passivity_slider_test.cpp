@@ -53,15 +53,9 @@ class SliderRobot {
   SliderRobot& operator=(const SliderRobot&) = delete;
 
   [[nodiscard]] WrapperConfig config(const std::string& plugin, const std::string& lines) const {
-    std::string yaml = "slider_controller:\n  ros__parameters:\n    plugin: \"" + plugin +
-                       "\"\n    robot: \"" + folder_.string() +
-                       "\"\n    soft_limits:\n      enabled: false\n"
-                       "    torque_rate_limit_nm_per_s: 1.0e9\n";
-    std::istringstream stream(lines);
-    for (std::string line; std::getline(stream, line);) {
-      yaml += "    " + line + "\n";
-    }
-    return parseWrapperConfig(yaml, "passivity_slider_test.yaml");
+    return controllerConfig(
+        plugin, folder_.string(),
+        "soft_limits:\n  enabled: false\ntorque_rate_limit_nm_per_s: 1.0e9\n" + lines);
   }
 
  private:

@@ -39,6 +39,14 @@ void expectJoints(const JointVector& actual, std::initializer_list<double> expec
   }
 }
 
+/// One cycle of `shaper` on the torque `in`: the torque it sends is `out`.
+void expectShaped(TorqueShaper& shaper, std::initializer_list<double> in,
+                  std::initializer_list<double> out, bool filter = true) {
+  JointVector torque = joints(in);
+  shaper.apply(torque, kPeriod, filter);
+  expectJoints(torque, out);
+}
+
 TEST(TorqueShaper, StartsFromZeroSizedByTheEffortLimit) {
   const TorqueShaper shaper(filterOnly(0.5, 3));
   EXPECT_EQ(shaper.lastOutput(), JointVector::Zero(3));
@@ -51,25 +59,17 @@ TEST(TorqueShaper, LowPassFollowsItsRecurrence) {
   EXPECT_TRUE(shaper.apply(torque, kPeriod).finite);
   expectJoints(torque, {1.0, -2.0});
   // 0.25 * 4 + 0.75 * 1 = 1.75
-  torque = joints({4.0, -8.0});
-  shaper.apply(torque, kPeriod);
-  expectJoints(torque, {1.75, -3.5});
+  expectShaped(shaper, {4.0, -8.0}, {1.75, -3.5});
   // 0.25 * 0 + 0.75 * 1.75 = 1.3125
-  torque = joints({0.0, 0.0});
-  shaper.apply(torque, kPeriod);
-  expectJoints(torque, {1.3125, -2.625});
+  expectShaped(shaper, {0.0, 0.0}, {1.3125, -2.625});
   expectJoints(shaper.lastOutput(), {1.3125, -2.625});
 }
 
 TEST(TorqueShaper, UnfilteredPassSkipsTheLowPassButSeedsIt) {
   TorqueShaper shaper(filterOnly(0.25, 1));
-  JointVector torque = joints({4.0});
-  shaper.apply(torque, kPeriod, /*filter=*/false);
-  expectJoints(torque, {4.0});
+  expectShaped(shaper, {4.0}, {4.0}, /*filter=*/false);
   // The next filtered cycle continues from the torque actually sent: 0.75 * 4 = 3.
-  torque = joints({0.0});
-  shaper.apply(torque, kPeriod);
-  expectJoints(torque, {3.0});
+  expectShaped(shaper, {0.0}, {3.0});
 }
 
 TEST(TorqueShaper, NonFiniteTorqueRepeatsTheLastOutput) {
@@ -99,15 +99,9 @@ TEST(TorqueShaper, NonFiniteCycleLeavesTheFilterStateAsItWas) {
   // alpha 0.5, step 2: the filter state (4) differs from the output (2), so a NaN cycle that
   // re-seeded the filter from the output would show: 0.5 * 0 + 0.5 * 2 = 1 instead of 2.
   TorqueShaper shaper(limits(0.5, joints({2000.0}), joints({kInactive})));
-  JointVector torque = joints({8.0});
-  shaper.apply(torque, kPeriod);
-  expectJoints(torque, {2.0});
-  torque = joints({kNaN});
-  shaper.apply(torque, kPeriod);
-  expectJoints(torque, {2.0});
-  torque = joints({0.0});
-  shaper.apply(torque, kPeriod);
-  expectJoints(torque, {2.0});
+  expectShaped(shaper, {8.0}, {2.0});
+  expectShaped(shaper, {kNaN}, {2.0});
+  expectShaped(shaper, {0.0}, {2.0});
 }
 
 TEST(TorqueShaper, NonFiniteIsCaughtWithoutTheFilterToo) {
@@ -120,12 +114,8 @@ TEST(TorqueShaper, NonFiniteIsCaughtWithoutTheFilterToo) {
 
 TEST(TorqueShaper, HeldTorqueIsTheLimitedOutputNotTheFilterState) {
   TorqueShaper shaper(limits(1.0, joints({kInactive}), joints({10.0})));
-  JointVector torque = joints({100.0});
-  shaper.apply(torque, kPeriod);
-  expectJoints(torque, {10.0});
-  torque = joints({kNaN});
-  shaper.apply(torque, kPeriod);
-  expectJoints(torque, {10.0});
+  expectShaped(shaper, {100.0}, {10.0});
+  expectShaped(shaper, {kNaN}, {10.0});
 }
 
 TEST(TorqueShaper, RateLimitBoundsTheStepPerJoint) {
@@ -139,9 +129,7 @@ TEST(TorqueShaper, RateLimitBoundsTheStepPerJoint) {
   EXPECT_EQ(result.effort_limited, 0);
   expectJoints(torque, {1.0, -0.5, 0.25});
   // Next cycle continues from the limited output, not from the request.
-  torque = joints({5.0, -5.0, 0.25});
-  shaper.apply(torque, kPeriod);
-  expectJoints(torque, {2.0, -1.0, 0.25});
+  expectShaped(shaper, {5.0, -5.0, 0.25}, {2.0, -1.0, 0.25});
 }
 
 TEST(TorqueShaper, RateLimitScalesWithTheMeasuredPeriod) {

@@ -6,6 +6,7 @@
 
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/plugin/abi.h"
@@ -143,10 +144,24 @@ TEST(WrapperFault, HoldingTorqueStaysFiniteWhenTheDampingOverflows) {
 
 // ---- a law failing in the cycle ---------------------------------------------------------------
 
-class CartesianLawFault : public ::testing::Test {
+/// A wrapper on the FR3 and the torque of its cycles.
+template <typename WrapperType>
+class WrapperFixture : public ::testing::Test {
+ protected:
+  explicit WrapperFixture(WrapperConfig config) : wrapper(std::move(config)) {}
+
+  CycleStatus cycle(const JointState& state) {
+    return wrapper.update(state, kPeriod, torque.span());
+  }
+
+  WrapperType wrapper;
+  TorqueBuffer torque;
+};
+
+class CartesianLawFault : public WrapperFixture<CartesianWrapper> {
  protected:
   explicit CartesianLawFault(double rate_limit = kNoRateLimit)
-      : wrapper(fr3Config(kCartesianImpedancePlugin, ratioRefusingCartesian(rate_limit))) {}
+      : WrapperFixture(fr3Config(kCartesianImpedancePlugin, ratioRefusingCartesian(rate_limit))) {}
 
   void SetUp() override {
     ASSERT_EQ(wrapper.controller().effortLimit().size(), kFr3Dof);
@@ -155,13 +170,7 @@ class CartesianLawFault : public ::testing::Test {
     ASSERT_EQ(cycle(rest), CycleStatus::kOk);
   }
 
-  CycleStatus cycle(const JointState& state) {
-    return wrapper.update(state, kPeriod, torque.span());
-  }
-
-  CartesianWrapper wrapper;
   JointState rest;
-  TorqueBuffer torque;
 };
 
 TEST_F(CartesianLawFault, FailingStepHoldsTheArmUntilReset) {
@@ -238,13 +247,13 @@ TEST_F(RateLimitedCartesianLawFault, HoldingTorqueIsRateLimited) {
 
 // ---- an unusable joint state ------------------------------------------------------------------
 
-class JointStateFault : public ::testing::Test {
+class JointStateFault : public WrapperFixture<JointWrapper> {
  protected:
   JointStateFault()
-      : wrapper(fr3Config(kJointImpedancePlugin,
-                          "fault_damping: [1, 2, 3, 4, 5, 6, 7]\n"
-                          "torque_rate_limit_nm_per_s: " +
-                              std::to_string(kNoRateLimit))) {}
+      : WrapperFixture(fr3Config(kJointImpedancePlugin,
+                                 "fault_damping: [1, 2, 3, 4, 5, 6, 7]\n"
+                                 "torque_rate_limit_nm_per_s: " +
+                                     std::to_string(kNoRateLimit))) {}
 
   void SetUp() override {
     good = moving(restingAt(wrapper.controller(), fr3Home()), 0.1);
@@ -254,14 +263,8 @@ class JointStateFault : public ::testing::Test {
     ASSERT_EQ(cycle(good), CycleStatus::kOk);
   }
 
-  CycleStatus cycle(const JointState& state) {
-    return wrapper.update(state, kPeriod, torque.span());
-  }
-
-  JointWrapper wrapper;
   JointState good;
   JointState broken;
-  TorqueBuffer torque;
 };
 
 TEST_F(JointStateFault, NanStateHoldsTheArmAtTheLastGoodStateUntilReset) {

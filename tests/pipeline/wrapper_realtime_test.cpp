@@ -131,15 +131,7 @@ TEST(RealtimeProbe, SeesTheLocksAndAllocationsOfTheSendersSide) {
 /// A smooth motion around home, different on every joint, so the model and the laws see new
 /// numbers every cycle.
 JointState movingState(const JointVector& home, int cycle) {
-  JointState state = JointState::zero(kFr3Dof);
-  const double t = cycle * kPeriod;
-  for (int i = 0; i < kFr3Dof; ++i) {
-    const double omega = 2.0 * std::numbers::pi * (0.5 + 0.1 * i);
-    state.position[i] = home[i] + 0.05 * std::sin(omega * t + i);
-    state.velocity[i] = 0.05 * omega * std::cos(omega * t + i);
-    state.effort[i] = 0.0;
-  }
-  return state;
+  return test::movingState(home, cycle, 0.05, 0.5);
 }
 
 std::string realtimeLines(const std::string& behavior) {
@@ -155,6 +147,12 @@ const std::string kGuardedLines =
     "gain_ramps:\n  enabled: true\npassivity:\n  enabled: true\n  tank_initial_j: 0.02\n"
     "observer:\n  enabled: true\nforce_control:\n  contact_force_limit_n: [0.0, 2.0, 0.0]\n"
     "  contact_torque_limit_n_m: [0.0, 0.0, 0.2]\n";
+
+/// The lines of a realtime run: "hold" and "reanchor" as realtimeLines(); "hold+gains" holds
+/// with every guard on (kGuardedLines).
+std::string realtimeConfigLines(const std::string& behavior) {
+  return behavior == "hold+gains" ? realtimeLines("hold") + kGuardedLines : realtimeLines(behavior);
+}
 
 void expectTheGuardWorked(const DiagnosticsSnapshot& diagnostics) {
   EXPECT_TRUE(diagnostics.passivity.enabled);
@@ -238,9 +236,7 @@ TEST(WrapperRealtime, JointUpdateNeitherAllocatesNorLocks) {
   for (const std::string behavior : {"hold", "reanchor", "hold+gains"}) {
     SCOPED_TRACE(behavior);
     const bool guarded = behavior == "hold+gains";
-    JointWrapper wrapper(fr3Config(
-        kJointImpedancePlugin,
-        realtimeLines(guarded ? "hold" : behavior) + (guarded ? kGuardedLines : std::string())));
+    JointWrapper wrapper(fr3Config(kJointImpedancePlugin, realtimeConfigLines(behavior)));
     const JointVector home = fr3Home();
     expectRealtimeCycles(wrapper, [&](int cycle) {
       // Position, velocity and gains together, near where the arm is.
@@ -269,9 +265,7 @@ TEST(WrapperRealtime, CartesianUpdateNeitherAllocatesNorLocks) {
   for (const std::string behavior : {"hold", "reanchor", "hold+gains"}) {
     SCOPED_TRACE(behavior);
     const bool guarded = behavior == "hold+gains";
-    CartesianWrapper wrapper(fr3Config(
-        kCartesianImpedancePlugin,
-        realtimeLines(guarded ? "hold" : behavior) + (guarded ? kGuardedLines : std::string())));
+    CartesianWrapper wrapper(fr3Config(kCartesianImpedancePlugin, realtimeConfigLines(behavior)));
     bool ratio = true;
     double largest_push = 0.0;  // of the force stage, seen between the counted cycles
     const auto look = [&] {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <sstream>
 
 #include "comply/model/robot_description.hpp"
@@ -10,19 +11,19 @@
 
 namespace comply::pipeline::test {
 
-WrapperConfig fr3Config(const std::string& plugin, const std::string& parameter_lines) {
-  std::string yaml =
-      "arm_controller:\n"
-      "  ros__parameters:\n"
-      "    plugin: \"" +
-      plugin +
-      "\"\n"
-      "    robot: fr3\n";
+WrapperConfig controllerConfig(const std::string& plugin, const std::string& robot,
+                               const std::string& parameter_lines) {
+  std::string yaml = "arm_controller:\n  ros__parameters:\n    plugin: \"" + plugin +
+                     "\"\n    robot: \"" + robot + "\"\n";
   std::istringstream lines(parameter_lines);
   for (std::string line; std::getline(lines, line);) {
     yaml += "    " + line + "\n";
   }
   return parseWrapperConfig(yaml, "wrapper_test.yaml");
+}
+
+WrapperConfig fr3Config(const std::string& plugin, const std::string& parameter_lines) {
+  return controllerConfig(plugin, "fr3", parameter_lines);
 }
 
 JointVector fr3Home() {
@@ -56,6 +57,17 @@ JointVector offset(const JointVector& q, int joint, double delta) {
   JointVector result = q;
   result[joint] += delta;
   return result;
+}
+
+JointState movingState(const JointVector& home, int cycle, double amplitude, double base_hz) {
+  JointState state = JointState::zero(kFr3Dof);
+  const double t = cycle * kPeriod;
+  for (int i = 0; i < kFr3Dof; ++i) {
+    const double omega = 2.0 * std::numbers::pi * (base_hz + 0.1 * i);
+    state.position[i] = home[i] + amplitude * std::sin(omega * t + i);
+    state.velocity[i] = amplitude * omega * std::cos(omega * t + i);
+  }
+  return state;
 }
 
 double maxDifference(const JointVector& a, const JointVector& b) {

@@ -28,6 +28,11 @@ inline const std::string kUnterminatedErrorPlugin = COMPLY_TEST_FIXTURE_STEP_ERR
 inline const std::string kThrowingPlugin = COMPLY_TEST_FIXTURE_THROWING;
 inline const std::string kThrowingActivatePlugin = COMPLY_TEST_FIXTURE_THROWING_ACTIVATE;
 
+/// A controller file for `plugin` on `robot` (a name or a folder) with `parameter_lines` (YAML,
+/// unindented) below them.
+WrapperConfig controllerConfig(const std::string& plugin, const std::string& robot,
+                               const std::string& parameter_lines);
+
 /// Configuration of a controller for the FR3 with `plugin`; `parameter_lines` are YAML lines at
 /// the level of `plugin:` (nested keys indented further, by two spaces per level).
 WrapperConfig fr3Config(const std::string& plugin, const std::string& parameter_lines = {});
@@ -44,6 +49,10 @@ JointState restingAt(const Controller& core, const JointVector& q);
 
 /// `q` with `delta` added to joint `joint`.
 JointVector offset(const JointVector& q, int joint, double delta);
+
+/// A smooth motion around `home` at `cycle` (kPeriod apart), different on every joint (joint i at
+/// base_hz + 0.1 i Hz, `amplitude` [rad]), so every cycle computes new numbers; effort 0.
+JointState movingState(const JointVector& home, int cycle, double amplitude, double base_hz);
 
 /// A torque buffer for dof joints, filled with a value no controller would write.
 struct TorqueBuffer {

@@ -65,6 +65,16 @@ class Watchdog : public ::testing::Test {
   TorqueBuffer torque;
 };
 
+/// A Cartesian command that sets the stiffness alone, stamped `stamp_s`.
+CartesianCommand stiffnessOnly(double stamp_s) {
+  CartesianCommand gains = CartesianCommand::zero(kFr3Dof);
+  gains.stamp_s = stamp_s;
+  gains.fields = CommandField::kStiffness;
+  gains.stiffness_translational = 800.0 * Eigen::Matrix3d::Identity();
+  gains.stiffness_rotational = 40.0 * Eigen::Matrix3d::Identity();
+  return gains;
+}
+
 // ---- hold -------------------------------------------------------------------------------------
 
 class JointHold : public Watchdog<JointWrapper> {
@@ -138,12 +148,7 @@ TEST_F(CartesianHold, TimeoutDropsTheTwistReference) {
   EXPECT_EQ(wrapper.diagnostics().watchdog_timeouts, 1U);
 
   // A later stiffness-only command keeps the pose reference and does not revive the twist.
-  CartesianCommand gains = CartesianCommand::zero(kFr3Dof);
-  gains.stamp_s = 2.0;
-  gains.fields = CommandField::kStiffness;
-  gains.stiffness_translational = 800.0 * Eigen::Matrix3d::Identity();
-  gains.stiffness_rotational = 40.0 * Eigen::Matrix3d::Identity();
-  ASSERT_TRUE(wrapper.submit(gains).accepted);
+  ASSERT_TRUE(wrapper.submit(stiffnessOnly(2.0)).accepted);
   COMPLY_EXPECT_JOINTS_NEAR(lawTorque(), JointVector::Zero(kFr3Dof), kTolerance);
   EXPECT_TRUE(wrapper.lastAccepted().twist.isZero());
 }
@@ -188,7 +193,8 @@ class CartesianReanchor : public Watchdog<CartesianWrapper> {
   CartesianReanchor()
       : Watchdog(kCartesianImpedancePlugin,
                  watchdogLines("reanchor",
-                               "initial:\n  damping_mode: absolute\n  nullspace_stiffness: 20\n")) {}
+                               "initial:\n  damping_mode: absolute\n  nullspace_stiffness: 20\n")) {
+  }
 };
 
 TEST_F(CartesianReanchor, CartesianReferenceAndNullspaceTargetMoveToTheMeasuredPose) {
@@ -209,12 +215,7 @@ TEST_F(CartesianReanchor, CartesianReferenceAndNullspaceTargetMoveToTheMeasuredP
   state = restingAt(wrapper.controller(), pushed);
   expectReanchoredAfterTimeout(wrapper, law);
 
-  CartesianCommand gains = CartesianCommand::zero(kFr3Dof);
-  gains.stamp_s = 2.0;
-  gains.fields = CommandField::kStiffness;
-  gains.stiffness_translational = 800.0 * Eigen::Matrix3d::Identity();
-  gains.stiffness_rotational = 40.0 * Eigen::Matrix3d::Identity();
-  ASSERT_TRUE(wrapper.submit(gains).accepted);
+  ASSERT_TRUE(wrapper.submit(stiffnessOnly(2.0)).accepted);
   COMPLY_EXPECT_JOINTS_NEAR(law(), JointVector::Zero(kFr3Dof), kTolerance);
 
   const CartesianCommand in_force = wrapper.lastAccepted();

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "scratch.hpp"
 #include "comply/plugin/abi.h"
 #include "comply/plugin/loader.hpp"
 #include "comply/plugin/parameters.hpp"
@@ -69,27 +70,6 @@ class PluginPathGuard {
   std::optional<std::string> previous_;
 };
 
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "comply_plugin_test_XXXXXX").string();
-    if (::mkdtemp(pattern.data()) == nullptr) {
-      throw std::runtime_error("mkdtemp failed for " + pattern);
-    }
-    path_ = pattern;
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  [[nodiscard]] const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
-
 std::shared_ptr<const PluginLibrary> load(const std::string& path, int kind = 0) {
   return std::make_shared<const PluginLibrary>(path, kind);
 }
@@ -131,7 +111,7 @@ TEST(PluginLoader, MissingFileIsFileNotFound) {
 // A symlink loop once threw std::filesystem's own error; it is refused like a missing file, with
 // the cause.
 TEST(PluginLoader, ASymlinkLoopIsNamedAsOne) {
-  const TempDir dir;
+  const testing::ScratchDir dir("plugin_test");
   const std::string path = (dir.path() / "libcomply_loop.so").string();
   fs::create_symlink("libcomply_loop.so", path);
   expectPluginError([&] { PluginLibrary library(path); }, PluginErrc::kFileNotFound,
@@ -139,7 +119,7 @@ TEST(PluginLoader, ASymlinkLoopIsNamedAsOne) {
 }
 
 TEST(PluginLoader, UnknownNameListsEveryPathTried) {
-  const TempDir dir;
+  const testing::ScratchDir dir("plugin_test");
   const PluginPathGuard guard(dir.path().string());
   const fs::path default_dir = fs::path(kJointImpedance).parent_path();
   expectPluginError([] { (void)resolvePlugin("no_such_law"); }, PluginErrc::kFileNotFound,
@@ -148,7 +128,7 @@ TEST(PluginLoader, UnknownNameListsEveryPathTried) {
 }
 
 TEST(PluginLoader, TextFileIsNotASharedLibrary) {
-  const TempDir dir;
+  const testing::ScratchDir dir("plugin_test");
   const fs::path path = dir.path() / "libfoo.so";
   std::ofstream(path) << "This is a text file that only has the name of a shared library.\n"
                       << "dlopen has to refuse it rather than the loader crashing on it.\n";
@@ -252,7 +232,7 @@ TEST(PluginResolution, NamesResolveInTheBuildsControllerFolder) {
 }
 
 TEST(PluginResolution, PluginPathIsSearchedFirst) {
-  const TempDir dir;
+  const testing::ScratchDir dir("plugin_test");
   fs::create_symlink(kJointImpedanceC, dir.path() / "libcomply_renamed_law.so");
   // Shadows the build's C++ joint_impedance, as a user's own build of a law would.
   fs::create_symlink(kJointImpedanceC, dir.path() / "libcomply_joint_impedance.so");

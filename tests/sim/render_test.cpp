@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 
+#include "scratch.hpp"
 #include "comply/sim/image.hpp"
 #include "comply/sim/renderer.hpp"
 #include "comply/sim/sim_error.hpp"
@@ -36,28 +37,6 @@ Image filled(int width, int height, Rgb colour) {
   return image;
 }
 
-/// A folder of its own under the system temp dir, removed with everything in it.
-class TempFolder {
- public:
-  TempFolder() {
-    std::string pattern = (fs::temp_directory_path() / "comply_render_test_XXXXXX").string();
-    if (::mkdtemp(pattern.data()) == nullptr) {
-      throw std::runtime_error("mkdtemp failed for " + pattern);
-    }
-    path_ = pattern;
-  }
-  ~TempFolder() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  TempFolder(const TempFolder&) = delete;
-  TempFolder& operator=(const TempFolder&) = delete;
-  [[nodiscard]] const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
-
 // ---- images and PNG ------------------------------------------------------------------------
 
 TEST(Png, RoundTripKeepsEveryByte) {
@@ -70,7 +49,7 @@ TEST(Png, RoundTripKeepsEveryByte) {
       gradient.rgb.push_back(static_cast<std::uint8_t>((x * y) % 256));
     }
   }
-  const TempFolder folder;
+  const testing::ScratchDir folder("render_test");
   const fs::path file = folder.path() / "gradient.png";
   writePng(gradient, file);
   const Image read = readPng(file);
@@ -80,7 +59,7 @@ TEST(Png, RoundTripKeepsEveryByte) {
 }
 
 TEST(Png, WriteIntoMissingFolderNamesTheFile) {
-  const TempFolder folder;
+  const testing::ScratchDir folder("render_test");
   const fs::path file = folder.path() / "no_such_folder" / "out.png";
   try {
     writePng(filled(4, 4, {1, 2, 3}), file);
@@ -91,7 +70,7 @@ TEST(Png, WriteIntoMissingFolderNamesTheFile) {
 }
 
 TEST(Png, ReadingSomethingElseThrowsNamingTheFile) {
-  const TempFolder folder;
+  const testing::ScratchDir folder("render_test");
   const fs::path file = folder.path() / "not_a.png";
   {
     std::FILE* out = std::fopen(file.c_str(), "wb");
@@ -115,7 +94,7 @@ TEST(Png, GrayFileIsReadAsRgb) {
       0x1f, 0x39, 0xc6, 0x00, 0x00, 0x00, 0x10, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9c, 0x63, 0x60,
       0x68, 0xf8, 0xcf, 0xc0, 0x25, 0x22, 0x07, 0x00, 0x08, 0x67, 0x01, 0xbc, 0x9c, 0x67, 0x35,
       0xa0, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
-  const TempFolder folder;
+  const testing::ScratchDir folder("render_test");
   const fs::path file = folder.path() / "gray.png";
   {
     std::FILE* out = std::fopen(file.c_str(), "wb");

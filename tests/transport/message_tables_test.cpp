@@ -2,7 +2,8 @@
 // following it with no other change: the C++ struct, the .msg and IDL text, CDR both ways (after
 // every old field: a reader of the old table still reads a top-level message, though not one
 // nested in a sequence, as an outcome in Diagnostics.outcomes is), the DDS structs idlc
-// generates, and JSON. Python's dict is the same visit() (python/src/py_convert.cpp).
+// generates, JSON, and the copy into ROS 2's generated type. Python's dict is the same visit()
+// (python/src/py_convert.cpp).
 
 #include <gtest/gtest.h>
 
@@ -13,8 +14,10 @@
 
 #include "cdr_fields.hpp"
 #include "comply/transport/cdr.hpp"
+#include "comply/transport/message_copy.hpp"
 #include "comply/transport/message_json.hpp"
 #include "comply/transport/message_text.hpp"
+#include "ros_like_messages.hpp"
 #include "wire_fields.hpp"
 
 namespace comply::transport {
@@ -139,6 +142,22 @@ TEST(MessageTables, AFieldAddedToATableIsInTheJson) {
   EXPECT_EQ(json.at("tank_energy"), 0.75);
   EXPECT_EQ(json.at("header").at("stamp").at("nanosec"), 250);
   EXPECT_EQ(json.size(), messageJson(ControllerStateMessage{}).size() + 1);
+}
+
+COMPLY_MESSAGE_COPY(GrownState, GROWN_STATE_FIELDS)
+
+/// What rosidl would generate from the grown .msg.
+struct GrownRosState {
+  GROWN_STATE_FIELDS(COMPLY_ROS_LIKE_MEMBER)
+};
+
+TEST(MessageTables, AFieldAddedToATableReachesTheRos2Message) {
+  GrownRosState copy;
+  copyMessage(someState(), copy);
+  EXPECT_EQ(copy.grip_force, 12.5);
+  EXPECT_EQ(copy.tank_energy, 0.75);
+  EXPECT_EQ(copy.position, (std::vector<double>{0.1, -0.2}));
+  EXPECT_EQ(copy.state, static_cast<std::uint8_t>(HostState::kActive));
 }
 
 }  // namespace

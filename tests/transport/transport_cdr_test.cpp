@@ -17,6 +17,7 @@
 #include "comply/transport/endpoints.hpp"
 #include "comply_msgs/msg/JointCommand.h"
 #include "loopback.hpp"
+#include "message_values.hpp"
 
 namespace comply::transport {
 namespace {
@@ -122,23 +123,6 @@ double value(std::mt19937& random) {
   return std::uniform_real_distribution<double>(-9, 9)(random);
 }
 
-template <std::size_t N>
-std::array<double, N> values(std::mt19937& random) {
-  std::array<double, N> out{};
-  for (double& v : out) {
-    v = value(random);
-  }
-  return out;
-}
-
-std::vector<double> values(std::mt19937& random, std::size_t n) {
-  std::vector<double> out(n);
-  for (double& v : out) {
-    v = value(random);
-  }
-  return out;
-}
-
 /// What the host and its transport process hand each other decodes back to the same bytes, and
 /// every cut of it short of its last field is refused.
 template <typename Message>
@@ -219,72 +203,18 @@ TEST(TransportCdrEncoder, ChunksMatchTheWire) {
   expectEncoderMatchesTheWire(joint);
 }
 
+// Every table field set (message_values.hpp): sequences of 1 to 3 elements and strings of
+// several lengths between them, so the encoder meets each alignment the fields can leave.
 TEST(TransportCdrEncoder, StateDiagnosticsAndRequestsMatchTheWire) {
-  std::mt19937 random(11);
   ControllerStateMessage state;
-  state.header = {{100, 200}, "base"};
-  state.state = HostState::kFault;
-  state.command_kind = WireCommandKind::kJoint;
-  state.cycle = 123456789012ULL;
-  state.joint_names = {"j1", "joint_two", "j3"};
-  state.position = values(random, 3);
-  state.velocity = values(random, 3);
-  state.effort = values(random, 2);
-  state.torque_command = values(random, 3);
-  state.tcp_position = values<3>(random);
-  state.tcp_orientation = values<4>(random);
-  state.tcp_twist = values<6>(random);
-  state.reference_stamp = {5, 6};
-  state.reference_fields = 0x1FF;
-  state.reference_position = values<3>(random);
-  state.reference_orientation = values<4>(random);
-  state.reference_joint_position = values(random, 1);
-  state.contact_wrench = values<6>(random);
-  state.contact_wrench_source = WrenchSource::kObserver;
-  state.contact_wrench_tcp = values<6>(random);
-  state.contact_wrench_task = values<6>(random);
-  state.passivity = true;
-  state.tank_energy_j = 1.5;
-  state.nullspace_tank_energy_j = 2.5;
-  state.energy_injected_j = 3.5;
-  state.energy_dissipated_j = 4.5;
-  state.energy_refused_j = 5.5;
-  state.gain_fraction = 0.25;
+  testing::DistinctValues{}.set(state);
   expectEncoderMatchesTheWire(state);
-
   DiagnosticsMessage diagnostics;
-  diagnostics.header = {{7, 8}, "comply"};
-  diagnostics.state = HostState::kActive;
-  diagnostics.cycles = 1;
-  diagnostics.overruns = 2;
-  diagnostics.period_s = 0.001;
-  diagnostics.commands_received = 3;
-  diagnostics.commands_applied = 4;
-  diagnostics.commands_rejected = 5;
-  diagnostics.rejections = {1, 2, 3};
-  diagnostics.watchdog_timeouts = 6;
-  diagnostics.faults = 7;
-  diagnostics.rate_limit_hits = 8;
-  diagnostics.effort_limit_hits = 9;
-  diagnostics.histogram_bin_s = 1e-5;
-  diagnostics.compute_time_histogram = {4, 5};
-  diagnostics.start_lateness_histogram = {6};
-  diagnostics.last_fault = "a fault";
-  diagnostics.last_rejection = "no";
-  diagnostics.publisher = "";
-  diagnostics.records_dropped = 12;
-  diagnostics.recording = "run.mcap";
-  CommandOutcomeMessage outcome;
-  outcome.stamp = {1, 2};
-  outcome.command_kind = WireCommandKind::kJoint;
-  outcome.outcome = Outcome::kRejected;
-  outcome.reason = Reason::kPoseJump;
-  outcome.cycle = 77;
-  outcome.received = {3, 4};
-  outcome.applied = {5, 6};
-  outcome.message = "pose jump of 0.2 m";
-  diagnostics.outcomes = {outcome, outcome};
-  diagnostics.outcomes[1].message = "x";
+  testing::DistinctValues{.next = 7}.set(diagnostics);
+  ASSERT_FALSE(diagnostics.outcomes.empty());
+  expectEncoderMatchesTheWire(diagnostics);
+  diagnostics.outcomes.clear();
+  diagnostics.publisher.clear();
   expectEncoderMatchesTheWire(diagnostics);
 
   RequestMessage request;

@@ -28,15 +28,22 @@
 
 namespace comply::transport {
 
-enum class Topic : std::uint8_t {
-  kCartesianCommand,
-  kJointCommand,
-  kRequest,
-  kCartesianChunk,
-  kJointChunk,
-  kState,
-  kDiagnostics
-};
+/// Every topic: its enumerator (in this order: the numbers travel between a host and its transport
+/// process), the message it carries and its name under /<host_name>/.
+// clang-format off
+#define COMPLY_TOPICS(X)                                              \
+  X(kCartesianCommand, CartesianCommandMessage, "cartesian_command") \
+  X(kJointCommand, JointCommandMessage, "joint_command")             \
+  X(kRequest, RequestMessage, "request")                             \
+  X(kCartesianChunk, CartesianChunkMessage, "cartesian_chunk")       \
+  X(kJointChunk, JointChunkMessage, "joint_chunk")                   \
+  X(kState, ControllerStateMessage, "state")                         \
+  X(kDiagnostics, DiagnosticsMessage, "diagnostics")
+// clang-format on
+
+#define COMPLY_TOPIC_ENUMERATOR(topic, Message, suffix) topic,
+enum class Topic : std::uint8_t { COMPLY_TOPICS(COMPLY_TOPIC_ENUMERATOR) };
+#undef COMPLY_TOPIC_ENUMERATOR
 
 /// "rt/<host_name>/<topic>": the DDS name of the ROS topic /<host_name>/<topic>.
 std::string topicName(std::string_view host_name, Topic topic);
@@ -58,34 +65,13 @@ QosProfile qosOf(Topic topic);
 /// The topic each message travels on.
 template <typename Message>
 struct TopicOf;
-template <>
-struct TopicOf<CartesianCommandMessage> {
-  static constexpr Topic kTopic = Topic::kCartesianCommand;
-};
-template <>
-struct TopicOf<JointCommandMessage> {
-  static constexpr Topic kTopic = Topic::kJointCommand;
-};
-template <>
-struct TopicOf<CartesianChunkMessage> {
-  static constexpr Topic kTopic = Topic::kCartesianChunk;
-};
-template <>
-struct TopicOf<JointChunkMessage> {
-  static constexpr Topic kTopic = Topic::kJointChunk;
-};
-template <>
-struct TopicOf<RequestMessage> {
-  static constexpr Topic kTopic = Topic::kRequest;
-};
-template <>
-struct TopicOf<ControllerStateMessage> {
-  static constexpr Topic kTopic = Topic::kState;
-};
-template <>
-struct TopicOf<DiagnosticsMessage> {
-  static constexpr Topic kTopic = Topic::kDiagnostics;
-};
+#define COMPLY_TOPIC_OF(topic, Message, suffix)   \
+  template <>                                     \
+  struct TopicOf<Message> {                       \
+    static constexpr Topic kTopic = Topic::topic; \
+  };
+COMPLY_TOPICS(COMPLY_TOPIC_OF)
+#undef COMPLY_TOPIC_OF
 
 /// What the entities of every message type share: the DDS handles and their matching.
 class Endpoint {

@@ -12,8 +12,9 @@
 #include "comply/pipeline/config.hpp"
 #include "comply/pipeline/config_parameters.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
-#include "comply_ros2_control/message_conversion.hpp"
+#include "comply/transport/message_copy.hpp"
 #include "comply_ros2_control/comply_parameters.hpp"
+#include "comply_ros2_control/message_conversion.hpp"
 #include "comply_ros2_control/prefix_search.hpp"
 
 namespace comply_ros2_control {
@@ -171,18 +172,15 @@ void ComplyController<Command>::createEndpoints() {
   }
   const unsigned update_rate_hz = get_update_rate() > 0 ? get_update_rate() : 1000;
   nominal_period_s_ = 1.0 / update_rate_hz;
-  state_every_cycles_ =
-      std::max<std::uint64_t>(1, static_cast<std::uint64_t>(update_rate_hz / state_rate_hz + 0.5));
+  loop_ = std::make_unique<comply::host::LoopCounters>();
+  sampler_ = std::make_unique<comply::host::StateSampler<Command>>(*wrapper_);
+  sample_ = {};
+  samples_ = std::make_unique<comply::TripleBuffer<comply::host::StateSample>>();
   // The QoS of `comply run`'s topics: state as sensor data, diagnostics reliable and deep.
   state_publisher_ =
-      std::make_unique<realtime_tools::RealtimePublisher<comply_msgs::msg::ControllerState>>(
-          node->create_publisher<comply_msgs::msg::ControllerState>("~/state",
-                                                                    rclcpp::SensorDataQoS()));
-  diagnostics_publisher_ =
-      std::make_unique<realtime_tools::RealtimePublisher<comply_msgs::msg::Diagnostics>>(
-          node->create_publisher<comply_msgs::msg::Diagnostics>("~/diagnostics",
-                                                                rclcpp::QoS(100).reliable()));
-  prepareState(wrapper_->controller(), state_publisher_->msg_);
+      node->create_publisher<comply_msgs::msg::ControllerState>("~/state", rclcpp::SensorDataQoS());
+  diagnostics_publisher_ = node->create_publisher<comply_msgs::msg::Diagnostics>(
+      "~/diagnostics", rclcpp::QoS(100).reliable());
   command_subscription_ = node->create_subscription<CommandMessage>(
       // Deeper than ROS's 10: a burst that arrives while the executor is busy waits here instead
       // of being dropped unaccounted (comply run keeps all; rclcpp cannot bound a keep-all).
@@ -213,6 +211,8 @@ void ComplyController<Command>::createEndpoints() {
         response->message =
             why.empty() ? "tare requested: the next cycle's reading is the zero" : why;
       });
+  state_timer_ = node->create_wall_timer(std::chrono::duration<double>(1.0 / state_rate_hz),
+                                         [this] { publishState(); });
   diagnostics_timer_ = node->create_wall_timer(
       std::chrono::duration<double>(1.0 / diagnostics_rate_hz), [this] { publishDiagnostics(); });
 }
@@ -229,7 +229,6 @@ CallbackReturn ComplyController<Command>::on_configure(const rclcpp_lifecycle::S
     return CallbackReturn::ERROR;
   }
   const int dof = wrapper_->dof();
-  torque_.assign(static_cast<std::size_t>(dof), 0.0);
   command_.resize(dof);
   RCLCPP_INFO(get_node()->get_logger(), "configured: plugin %s on %d joints (%s)",
               wrapper_->controller().resolved().plugin->path().c_str(), dof,
@@ -330,6 +329,7 @@ CallbackReturn ComplyController<Command>::on_deactivate(const rclcpp_lifecycle::
 
 template <typename Command>
 CallbackReturn ComplyController<Command>::on_cleanup(const rclcpp_lifecycle::State&) {
+  state_timer_.reset();
   diagnostics_timer_.reset();
   reset_service_.reset();
   tare_service_.reset();
@@ -337,6 +337,8 @@ CallbackReturn ComplyController<Command>::on_cleanup(const rclcpp_lifecycle::Sta
   chunk_subscription_.reset();
   diagnostics_publisher_.reset();
   state_publisher_.reset();
+  samples_.reset();
+  sampler_.reset();
   wrapper_.reset();
   gate_.reset();
   joints_.clear();
@@ -350,7 +352,8 @@ controller_interface::return_type ComplyController<Command>::update(
   readState();
   const double period_s = period.seconds() > 0.0 ? period.seconds() : nominal_period_s_;
   // The cycle in the file's output.mode: a torque, a per-joint PD split or an admittance step.
-  if (wrapper_->cycle(state_, period_s, command_)) {
+  const bool wrote = wrapper_->cycle(state_, period_s, command_);
+  if (wrote) {
     const std::size_t fields = command_fields_.size();
     for (std::size_t i = 0; i < joints_.size(); ++i) {
       for (std::size_t k = 0; k < fields; ++k) {
@@ -359,23 +362,48 @@ controller_interface::return_type ComplyController<Command>::update(
       }
     }
   }
-  for (std::size_t i = 0; i < torque_.size(); ++i) {
-    torque_[i] = command_.effort[static_cast<Eigen::Index>(i)];
-  }
   gate_->noteCycle(cycle_, wrapper_->controller().stampInForce(),
                    [&time] { return time.nanoseconds(); });
-  if (++cycle_ % state_every_cycles_ == 0 && state_publisher_->trylock()) {
-    fillState(wrapper_->controller(), state_, torque_, cycle_ - 1, time, state_publisher_->msg_);
-    state_publisher_->unlockAndPublish();
+  afterCycle(time, period, wrote, start_s);
+  return controller_interface::return_type::OK;
+}
+
+template <typename Command>
+void ComplyController<Command>::afterCycle(const rclcpp::Time& time, const rclcpp::Duration& period,
+                                           bool wrote, double start_s) noexcept {
+  comply::hardware::CycleRecord record;
+  record.index = cycle_++;
+  record.period_s = nominal_period_s_;
+  record.wrote = wrote;
+  record.state = &state_;
+  record.torque = std::span<const double>(command_.effort.data(),
+                                          static_cast<std::size_t>(command_.effort.size()));
+  record.command = &command_;
+  sampler_->fill(record, state_, comply::transport::Stamp::fromNanoseconds(time.nanoseconds()),
+                 sample_);
+  samples_->publishFromSoleWriter(sample_);
+  // The controller manager schedules update(): its lateness is how much later than one nominal
+  // period after the previous one this cycle started.
+  if (record.index > 0) {
+    comply::host::LoopCounters::count(loop_->lateness, period.seconds() - nominal_period_s_);
   }
   const double compute_s = comply::hardware::monotonicSeconds() - start_s;
-  const auto bin =
-      std::min(kTimingBins - 1, static_cast<std::size_t>(compute_s / kTimingBinSeconds));
-  compute_bins_[bin].fetch_add(1, std::memory_order_relaxed);
+  comply::host::LoopCounters::count(loop_->compute, compute_s);
   if (compute_s > nominal_period_s_) {
-    overruns_.fetch_add(1, std::memory_order_relaxed);
+    loop_->overruns.fetch_add(1, std::memory_order_relaxed);
   }
-  return controller_interface::return_type::OK;
+  loop_->cycles.fetch_add(1, std::memory_order_relaxed);
+}
+
+template <typename Command>
+void ComplyController<Command>::publishState() {
+  if (!wrapper_ || !samples_->update()) {
+    return;  // no cycle since the last message (inactive)
+  }
+  comply_msgs::msg::ControllerState message;
+  comply::transport::copyMessage(
+      comply::host::stateMessage(samples_->read(), wrapper_->controller().resolved()), message);
+  state_publisher_->publish(message);
 }
 
 template <typename Command>
@@ -445,26 +473,22 @@ void ComplyController<Command>::onResetFault(std_srvs::srv::Trigger::Response& r
 
 template <typename Command>
 void ComplyController<Command>::publishDiagnostics() {
-  if (!wrapper_ || !diagnostics_publisher_->trylock()) {
+  if (!wrapper_) {
     return;
   }
-  diagnostics_publisher_->msg_.header.stamp = get_node()->now();
-  diagnostics_publisher_->msg_.header.frame_id = get_node()->get_name();
-  auto& message = diagnostics_publisher_->msg_;
   gate_->settle();
-  fillDiagnostics(wrapper_->diagnostics(), nominal_period_s_, gate_->counts(), gate_->publisher(),
-                  message);
-  message.overruns = overruns_.load(std::memory_order_relaxed);
-  message.outcomes.clear();
+  std::vector<comply::transport::CommandOutcomeMessage> outcomes;
   for (const comply::pipeline::CommandOutcome& outcome : gate_->takeOutcomes()) {
-    message.outcomes.push_back(toMessage(outcome));
+    outcomes.push_back(comply::host::outcomeMessage(outcome));
   }
-  message.histogram_bin = kTimingBinSeconds;
-  message.compute_time_histogram.resize(kTimingBins);
-  for (std::size_t i = 0; i < kTimingBins; ++i) {
-    message.compute_time_histogram[i] = compute_bins_[i].load(std::memory_order_relaxed);
-  }
-  diagnostics_publisher_->unlockAndPublish();
+  comply::transport::DiagnosticsMessage diagnostics = comply::host::diagnosticsMessage(
+      wrapper_->diagnostics(), *loop_, nominal_period_s_, gate_->counts(), gate_->publisher(),
+      get_node()->get_name(), std::move(outcomes));
+  diagnostics.header.stamp =
+      comply::transport::Stamp::fromNanoseconds(get_node()->now().nanoseconds());
+  comply_msgs::msg::Diagnostics message;
+  comply::transport::copyMessage(diagnostics, message);
+  diagnostics_publisher_->publish(message);
 }
 
 template class ComplyController<comply::JointCommand>;

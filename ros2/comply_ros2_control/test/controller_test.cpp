@@ -2,7 +2,8 @@
 // controller manager hands them out): configured from comply's own controller file given as a
 // ROS parameters file, it writes the torque comply's wrapper computes from that same file, the
 // options are declared as parameters with their types, ranges and descriptions and read back as
-// the file reads, and update() allocates nothing.
+// the file reads, update() allocates nothing, commands pass the command gate of `comply run` with
+// its rules, and the state and diagnostics are `comply run`'s messages.
 
 #include <gtest/gtest.h>
 
@@ -13,12 +14,17 @@
 #include <lifecycle_msgs/msg/state.hpp>
 #include <new>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <rclcpp_lifecycle/lifecycle_node.hpp>
 #include <sstream>
 
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/config.hpp"
 #include "comply/pipeline/config_parameters.hpp"
+#include "comply/schema/schema.hpp"
+#include "comply_msgs/msg/cartesian_command.hpp"
+#include "comply_msgs/msg/controller_state.hpp"
+#include "comply_msgs/msg/diagnostics.hpp"
 #include "comply_ros2_control/comply_controller.hpp"
 #include "comply_ros2_control/comply_parameters.hpp"
 
@@ -193,6 +199,199 @@ TEST_F(ControllerHarness, ResetFaultServiceLeavesFault) {
   }
 }
 
+using comply_msgs::msg::CartesianCommand;
+using comply_msgs::msg::CommandOutcome;
+using comply_msgs::msg::ControllerState;
+using comply_msgs::msg::Diagnostics;
+
+/// Two senders and a listener of the controller's topics, spun with it between cycles.
+class TopicHarness : public ControllerHarness {
+ protected:
+  void SetUp() override {
+    ControllerHarness::SetUp();
+    listener_ = std::make_shared<rclcpp::Node>("listener");
+    second_sender_ = std::make_shared<rclcpp::Node>("second_sender");
+    const std::string topic = "/cartesian_impedance/cartesian_command";
+    sender_a_ = listener_->create_publisher<CartesianCommand>(topic, rclcpp::QoS(1000).reliable());
+    sender_b_ =
+        second_sender_->create_publisher<CartesianCommand>(topic, rclcpp::QoS(1000).reliable());
+    state_ = listener_->create_subscription<ControllerState>(
+        "/cartesian_impedance/state", rclcpp::SensorDataQoS(),
+        [this](const ControllerState& state) { states_.push_back(state); });
+    diagnostics_ = listener_->create_subscription<Diagnostics>(
+        "/cartesian_impedance/diagnostics", rclcpp::QoS(100).reliable(),
+        [this](const Diagnostics& diagnostics) {
+          diagnostics_received_.push_back(diagnostics);
+          outcomes_.insert(outcomes_.end(), diagnostics.outcomes.begin(),
+                           diagnostics.outcomes.end());
+        });
+    executor_.add_node(controller_.get_node()->get_node_base_interface());
+    executor_.add_node(listener_);
+    executor_.add_node(second_sender_);
+    ASSERT_TRUE(runUntil([this] {
+      return sender_a_->get_subscription_count() > 0 && sender_b_->get_subscription_count() > 0 &&
+             !states_.empty() && !diagnostics_received_.empty();
+    })) << "the controller's topics were not discovered";
+  }
+  void TearDown() override {
+    executor_.remove_node(controller_.get_node()->get_node_base_interface());
+    executor_.remove_node(listener_);
+    executor_.remove_node(second_sender_);
+    state_.reset();
+    diagnostics_.reset();
+    sender_a_.reset();
+    sender_b_.reset();
+    listener_.reset();
+    second_sender_.reset();
+    ControllerHarness::TearDown();
+  }
+
+  /// 1 kHz cycles on the node's clock, the executor spun between them, until `done` or 10 s.
+  template <typename Done>
+  bool runUntil(Done&& done) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (std::chrono::steady_clock::now() < deadline) {
+      controller_.update(controller_.get_node()->now(), rclcpp::Duration(0, 1'000'000));
+      ++cycles_;
+      executor_.spin_some(std::chrono::milliseconds(1));
+      if (done()) {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  /// The measured TCP pose as a command from `stamp`.
+  CartesianCommand holdCommand(const rclcpp::Time& stamp) const {
+    CartesianCommand command;
+    command.header.stamp = stamp;
+    command.fields = static_cast<std::uint32_t>(comply::CommandField::kPosition);
+    command.position = states_.back().tcp_position;
+    command.orientation = states_.back().tcp_orientation;
+    return command;
+  }
+
+  /// The outcome of the command from `stamp`, once the diagnostics brought it.
+  std::optional<CommandOutcome> outcomeOf(const rclcpp::Time& stamp, std::size_t nth = 0) {
+    runUntil([&] {
+      std::size_t seen = 0;
+      for (const CommandOutcome& outcome : outcomes_) {
+        seen += rclcpp::Time(outcome.stamp) == stamp ? 1 : 0;
+      }
+      return seen > nth;
+    });
+    for (const CommandOutcome& outcome : outcomes_) {
+      if (rclcpp::Time(outcome.stamp) == stamp && nth-- == 0) {
+        return outcome;
+      }
+    }
+    return std::nullopt;
+  }
+
+  rclcpp::executors::SingleThreadedExecutor executor_;
+  std::shared_ptr<rclcpp::Node> listener_;
+  std::shared_ptr<rclcpp::Node> second_sender_;
+  rclcpp::Publisher<CartesianCommand>::SharedPtr sender_a_;
+  rclcpp::Publisher<CartesianCommand>::SharedPtr sender_b_;
+  rclcpp::Subscription<ControllerState>::SharedPtr state_;
+  rclcpp::Subscription<Diagnostics>::SharedPtr diagnostics_;
+  std::vector<ControllerState> states_;
+  std::vector<Diagnostics> diagnostics_received_;
+  std::vector<CommandOutcome> outcomes_;
+  std::uint64_t cycles_ = 0;
+};
+
+// The cases comply run's gate is tested on (tests/pipeline/command_gate_test.cpp and
+// tests/live), here through ROS 2 topics: applied with the cycle that took it, an equal stamp
+// refused (stamps increase strictly), a second sender refused while the first is active, a burst
+// beyond the wrapper's queue refused as queue_full, every command accounted once.
+TEST_F(TopicHarness, CommandsPassComplyRunsGate) {
+  const rclcpp::Time first = controller_.get_node()->now();
+  sender_a_->publish(holdCommand(first));
+  const auto applied = outcomeOf(first);
+  ASSERT_TRUE(applied);
+  EXPECT_EQ(applied->outcome, CommandOutcome::OUTCOME_APPLIED);
+  EXPECT_EQ(applied->reason, CommandOutcome::REASON_NONE);
+  EXPECT_GT(applied->cycle, 0U);
+  EXPECT_LT(applied->cycle, cycles_);
+  EXPECT_GE(rclcpp::Time(applied->applied), rclcpp::Time(applied->received));
+
+  sender_a_->publish(holdCommand(first));
+  const auto equal = outcomeOf(first, 1);
+  ASSERT_TRUE(equal);
+  EXPECT_EQ(equal->outcome, CommandOutcome::OUTCOME_REJECTED);
+  EXPECT_EQ(equal->reason, CommandOutcome::REASON_STALE_STAMP);
+
+  const rclcpp::Time other = controller_.get_node()->now();
+  sender_b_->publish(holdCommand(other));
+  const auto second = outcomeOf(other);
+  ASSERT_TRUE(second);
+  EXPECT_EQ(second->reason, CommandOutcome::REASON_OTHER_PUBLISHER);
+
+  const rclcpp::Time burst = controller_.get_node()->now();
+  constexpr int kBurst = 200;
+  for (int i = 1; i <= kBurst; ++i) {
+    sender_a_->publish(holdCommand(burst + rclcpp::Duration(0, i)));
+  }
+  // Delivered with no update() in between: more than the wrapper queues between two cycles (64).
+  const auto delivered = std::chrono::steady_clock::now() + std::chrono::milliseconds(500);
+  while (std::chrono::steady_clock::now() < delivered) {
+    executor_.spin_some(std::chrono::milliseconds(1));
+  }
+  ASSERT_TRUE(runUntil([&] { return outcomes_.size() >= 3 + kBurst; }));
+  std::size_t queue_full = 0;
+  for (const CommandOutcome& outcome : outcomes_) {
+    queue_full += outcome.reason == CommandOutcome::REASON_QUEUE_FULL ? 1 : 0;
+  }
+  EXPECT_GT(queue_full, 0U);
+  runUntil([&] { return diagnostics_received_.back().commands_received == 3 + kBurst; });
+  const Diagnostics& last = diagnostics_received_.back();
+  EXPECT_EQ(last.commands_received, 3U + kBurst);
+  EXPECT_EQ(last.commands_applied + last.commands_rejected, last.commands_received);
+  EXPECT_EQ(last.rejections[CommandOutcome::REASON_QUEUE_FULL], queue_full);
+  EXPECT_EQ(last.rejections[CommandOutcome::REASON_OTHER_PUBLISHER], 1U);
+  EXPECT_EQ(outcomes_.size(), last.commands_received) << "every command accounted once";
+}
+
+// ~/state and ~/diagnostics carry comply run's messages, built by the same code: every table
+// field set, the contact wrench and the tank's account included.
+TEST_F(TopicHarness, StateAndDiagnosticsAreComplyRunsMessages) {
+  ASSERT_TRUE(runUntil([&] { return states_.size() >= 5 && diagnostics_received_.size() >= 2; }));
+  const ControllerState& state = states_.back();
+  EXPECT_EQ(state.state, ControllerState::STATE_ACTIVE);
+  EXPECT_EQ(state.command_kind, ControllerState::COMMAND_KIND_CARTESIAN);
+  EXPECT_EQ(state.joint_names.size(), dof_);
+  EXPECT_EQ(state.position.size(), dof_);
+  EXPECT_EQ(state.header.frame_id, "fr3_link0");
+  EXPECT_GT(state.cycle, 0U);
+  EXPECT_LT(state.cycle, cycles_);
+  // The FR3's TCP at home, and the reference the activation seeded there.
+  EXPECT_NEAR(state.tcp_position[0], 0.307, 1e-3);
+  EXPECT_NEAR(state.tcp_position[2], 0.590, 1e-3);
+  EXPECT_NEAR(state.reference_position[2], state.tcp_position[2], 1e-6);
+  EXPECT_EQ(state.contact_wrench_source, ControllerState::WRENCH_SOURCE_NONE);
+  EXPECT_EQ(state.gain_fraction, 1.0);
+  EXPECT_TRUE(state.reference_joint_position.empty());
+  // A cycle's torque as the command interfaces hold it.
+  for (std::size_t i = 0; i < dof_; ++i) {
+    EXPECT_TRUE(std::isfinite(state.torque_command[i]));
+  }
+
+  const Diagnostics& diagnostics = diagnostics_received_.back();
+  EXPECT_EQ(diagnostics.header.frame_id, "cartesian_impedance");
+  EXPECT_EQ(diagnostics.state, ControllerState::STATE_ACTIVE);
+  EXPECT_EQ(diagnostics.period, 0.001);
+  EXPECT_GT(diagnostics.cycles, 0U);
+  EXPECT_GT(diagnostics.histogram_bin, 0.0);
+  std::uint64_t timed = 0;
+  for (const std::uint64_t count : diagnostics.compute_time_histogram) {
+    timed += count;
+  }
+  EXPECT_EQ(timed, diagnostics.cycles) << "every update() timed";
+  EXPECT_EQ(diagnostics.rejections.size(),
+            static_cast<std::size_t>(CommandOutcome::REASON_INVALID_STAMP) + 1);
+}
+
 /// A lifecycle node holding comply's controller file as parameters, its options declared.
 std::shared_ptr<rclcpp_lifecycle::LifecycleNode> declaredNode(const std::string& params_file) {
   auto node = std::make_shared<rclcpp_lifecycle::LifecycleNode>(
@@ -224,9 +423,8 @@ TEST(ComplyParameters, OptionsAreDeclaredWithTypeRangeAndDescriptionAndKeepTheFi
   }
   // The parameters read as the file does, option for option.
   const auto parameters = node->get_parameters(node->list_parameters({}, 0).names);
-  const auto from_parameters =
-      comply::pipeline::parseWrapperParameters(complyParameters(parameters), "test",
-                                               "cartesian_impedance");
+  const auto from_parameters = comply::pipeline::parseWrapperParameters(
+      complyParameters(parameters), "test", "cartesian_impedance");
   const auto from_file =
       comply::pipeline::parseWrapperText(fileText(kConfig), kConfig, "cartesian_impedance");
   rclcpp::shutdown();

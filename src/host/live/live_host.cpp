@@ -111,12 +111,6 @@ void publishDiagnostics(PublisherContext<Command>& c,
   transport::DiagnosticsMessage message =
       diagnosticsMessage(c.wrapper.diagnostics(), c.observer.counters(), c.period_s,
                          c.gate.counts(), c.gate.publisher(), c.options.name, std::move(outcomes));
-  for (auto it = message.outcomes.rbegin(); it != message.outcomes.rend(); ++it) {
-    if (it->outcome == transport::Outcome::kRejected) {
-      message.last_rejection = it->message;  // the host's reasons too, not only the wrapper's
-      break;
-    }
-  }
   if (c.recording != nullptr) {
     const record::RecorderStats stats = c.recording->stats();
     message.records_dropped = stats.dropped;

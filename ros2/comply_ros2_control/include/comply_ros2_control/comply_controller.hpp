@@ -2,12 +2,13 @@
 // comply's wrapper as a ros2_control controller, for either command kind.
 //
 //   on_init        comply's options are declared as parameters (comply_parameters.hpp)
-//   on_configure   the controller's parameters are comply's controller file (comply_parameters.hpp):
+//   on_configure   the controller's parameters are comply's controller file
+//   (comply_parameters.hpp):
 //                  robot, plugin, model, gains and limits are resolved once; errors name the
 //                  parameter and the controller stays unconfigured
 //   on_activate    the reference is seeded from the measured state (comply's activation)
-//   update         one comply cycle: state interfaces -> wrapper -> command interfaces; no
-//                  allocation, no lock, no exception (the state publisher is a try-lock)
+//   update         one comply cycle: state interfaces -> wrapper -> command interfaces, then the
+//                  cycle's state sample into a triple buffer; no allocation, no lock, no exception
 //   on_deactivate  the wrapper stops; the last torque stays on the interfaces until the
 //                  hardware or the next controller takes them
 //
@@ -21,10 +22,14 @@
 //                  applied (with the cycle that took it) or rejected with a reason
 //   ~/cartesian_chunk or ~/joint_chunk   comply_msgs timed chunk (docs/chunks.md), through the
 //                  same gate; waypoint times on the node's clock
-//   ~/state        comply_msgs/ControllerState every state_publish_rate_hz (default 100 Hz)
-//   ~/diagnostics  comply_msgs/Diagnostics at diagnostics_publish_rate_hz (default 10 Hz), with
-//                  the compute time of update() as a histogram (1 us bins), its overruns, and
-//                  the outcome of every command received since the previous message
+//   ~/state        comply_msgs/ControllerState at state_publish_rate_hz (default 100 Hz): the
+//                  newest cycle's, built as `comply run` builds it (comply::host::stateMessage)
+//   ~/diagnostics  comply_msgs/Diagnostics at diagnostics_publish_rate_hz (default 10 Hz), built
+//                  as `comply run` builds it (comply::host::diagnosticsMessage): the compute time
+//                  of update() and its start lateness as histograms, the overruns, and the outcome
+//                  of every command received since the previous message
+// Both are built off the real-time thread, in the executor's timers, and copied into comply_msgs
+// by the message tables (comply/transport/message_copy.hpp).
 //   ~/reset_fault  std_srvs/Trigger: leave FAULT
 //   ~/tare         std_srvs/Trigger: the wrist force/torque reading becomes its zero (refused
 //                  while no force-torque state interface has given a reading)
@@ -37,10 +42,6 @@
 // The command and state topics and types are those of `comply run`, so comply's Python client
 // and `comply send` / `comply echo` talk to either host.
 
-#include <realtime_tools/realtime_publisher.h>
-
-#include <array>
-#include <atomic>
 #include <controller_interface/controller_interface.hpp>
 #include <cstdint>
 #include <memory>
@@ -52,6 +53,9 @@
 #include "comply/core/actuator_command.hpp"
 #include "comply/core/commands.hpp"
 #include "comply/core/state.hpp"
+#include "comply/core/triple_buffer.hpp"
+#include "comply/host/diagnostics_message.hpp"
+#include "comply/host/state_sample.hpp"
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply_msgs/msg/cartesian_command.hpp"
@@ -111,6 +115,10 @@ class ComplyController : public controller_interface::ControllerInterface {
   void offerToGate(const Header& header, const rclcpp::MessageInfo& info,
                    const std::string& malformed, Submit&& submit);
   void onResetFault(std_srvs::srv::Trigger::Response& response);
+  /// After the cycle, on the real-time thread: timing and the state sample. No allocation.
+  void afterCycle(const rclcpp::Time& time, const rclcpp::Duration& period, bool wrote,
+                  double start_s) noexcept;
+  void publishState();
   void publishDiagnostics();
 
   std::unique_ptr<comply::pipeline::Wrapper<Command>> wrapper_;
@@ -127,29 +135,27 @@ class ComplyController : public controller_interface::ControllerInterface {
   bool sensor_in_tcp_ = true;
   comply::JointState state_;
   comply::ActuatorCommand command_;
-  std::vector<double> torque_;
   std::uint64_t cycle_ = 0;
-  std::uint64_t state_every_cycles_ = 10;
   double nominal_period_s_ = 0.001;
   // Every command passes it; update() tells it which cycle took them (wait-free), the
   // diagnostics timer settles and publishes their outcomes.
   std::unique_ptr<comply::pipeline::CommandGate> gate_;
 
-  // Compute time of update(), written by the real-time thread, read by the diagnostics timer.
-  static constexpr std::size_t kTimingBins = 500;
-  static constexpr double kTimingBinSeconds = 1e-6;
-  std::array<std::atomic<std::uint64_t>, kTimingBins> compute_bins_{};
-  std::atomic<std::uint64_t> overruns_{0};
+  // Timing of update() (written by the real-time thread, read by the diagnostics timer) and the
+  // newest cycle's state sample (update() fills the scratch and hands it over wait-free).
+  std::unique_ptr<comply::host::LoopCounters> loop_;
+  std::unique_ptr<comply::host::StateSampler<Command>> sampler_;
+  comply::host::StateSample sample_;
+  std::unique_ptr<comply::TripleBuffer<comply::host::StateSample>> samples_;
 
   typename rclcpp::Subscription<CommandMessage>::SharedPtr command_subscription_;
   typename rclcpp::Subscription<ChunkMessage>::SharedPtr chunk_subscription_;
   rclcpp::Service<std_srvs::srv::Trigger>::SharedPtr reset_service_;
   rclcpp::Service<std_srvs::srv::Trigger>::SharedPtr tare_service_;
+  rclcpp::TimerBase::SharedPtr state_timer_;
   rclcpp::TimerBase::SharedPtr diagnostics_timer_;
-  std::unique_ptr<realtime_tools::RealtimePublisher<comply_msgs::msg::ControllerState>>
-      state_publisher_;
-  std::unique_ptr<realtime_tools::RealtimePublisher<comply_msgs::msg::Diagnostics>>
-      diagnostics_publisher_;
+  rclcpp::Publisher<comply_msgs::msg::ControllerState>::SharedPtr state_publisher_;
+  rclcpp::Publisher<comply_msgs::msg::Diagnostics>::SharedPtr diagnostics_publisher_;
 };
 
 class JointController final : public ComplyController<comply::JointCommand> {};
