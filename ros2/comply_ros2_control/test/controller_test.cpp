@@ -225,18 +225,17 @@ class TopicHarness : public ControllerHarness {
           outcomes_.insert(outcomes_.end(), diagnostics.outcomes.begin(),
                            diagnostics.outcomes.end());
         });
-    executor_.add_node(controller_.get_node()->get_node_base_interface());
-    executor_.add_node(listener_);
-    executor_.add_node(second_sender_);
+    executor_ = std::make_unique<rclcpp::executors::SingleThreadedExecutor>();
+    executor_->add_node(controller_.get_node()->get_node_base_interface());
+    executor_->add_node(listener_);
+    executor_->add_node(second_sender_);
     ASSERT_TRUE(runUntil([this] {
       return sender_a_->get_subscription_count() > 0 && sender_b_->get_subscription_count() > 0 &&
              !states_.empty() && !diagnostics_received_.empty();
     })) << "the controller's topics were not discovered";
   }
   void TearDown() override {
-    executor_.remove_node(controller_.get_node()->get_node_base_interface());
-    executor_.remove_node(listener_);
-    executor_.remove_node(second_sender_);
+    executor_.reset();
     state_.reset();
     diagnostics_.reset();
     sender_a_.reset();
@@ -246,14 +245,16 @@ class TopicHarness : public ControllerHarness {
     ControllerHarness::TearDown();
   }
 
-  /// 1 kHz cycles on the node's clock, the executor spun between them, until `done` or 10 s.
+  /// Cycles on the node's clock, the executor spun between them, until `done` or 10 s.
   template <typename Done>
   bool runUntil(Done&& done) {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
     while (std::chrono::steady_clock::now() < deadline) {
+      // A joint moving a little: a stream that never changes is a frozen sensor (FAULT).
+      values_[1] = 1e-3 * static_cast<double>(cycles_ % 7);
       controller_.update(controller_.get_node()->now(), rclcpp::Duration(0, 1'000'000));
       ++cycles_;
-      executor_.spin_some(std::chrono::milliseconds(1));
+      executor_->spin_some(std::chrono::milliseconds(1));
       if (done()) {
         return true;
       }
@@ -288,7 +289,7 @@ class TopicHarness : public ControllerHarness {
     return std::nullopt;
   }
 
-  rclcpp::executors::SingleThreadedExecutor executor_;
+  std::unique_ptr<rclcpp::executors::SingleThreadedExecutor> executor_;  // after rclcpp::init
   std::shared_ptr<rclcpp::Node> listener_;
   std::shared_ptr<rclcpp::Node> second_sender_;
   rclcpp::Publisher<CartesianCommand>::SharedPtr sender_a_;
@@ -336,7 +337,7 @@ TEST_F(TopicHarness, CommandsPassComplyRunsGate) {
   // Delivered with no update() in between: more than the wrapper queues between two cycles (64).
   const auto delivered = std::chrono::steady_clock::now() + std::chrono::milliseconds(500);
   while (std::chrono::steady_clock::now() < delivered) {
-    executor_.spin_some(std::chrono::milliseconds(1));
+    executor_->spin_some(std::chrono::milliseconds(1));
   }
   ASSERT_TRUE(runUntil([&] { return outcomes_.size() >= 3 + kBurst; }));
   std::size_t queue_full = 0;
@@ -404,7 +405,7 @@ std::shared_ptr<rclcpp_lifecycle::LifecycleNode> declaredNode(const std::string&
 
 TEST(ComplyParameters, OptionsAreDeclaredWithTypeRangeAndDescriptionAndKeepTheFilesValues) {
   rclcpp::init(0, nullptr);
-  const auto node = declaredNode(kConfig);
+  auto node = declaredNode(kConfig);
   const auto descriptors =
       node->describe_parameters({"validation.max_position_jump_m", "timeout_behavior",
                                  "soft_limits.stiffness", "passivity.enabled"});
@@ -427,6 +428,7 @@ TEST(ComplyParameters, OptionsAreDeclaredWithTypeRangeAndDescriptionAndKeepTheFi
       complyParameters(parameters), "test", "cartesian_impedance");
   const auto from_file =
       comply::pipeline::parseWrapperText(fileText(kConfig), kConfig, "cartesian_impedance");
+  node.reset();
   rclcpp::shutdown();
   for (const auto& option : comply::pipeline::optionDeclarations()) {
     EXPECT_EQ(comply::pipeline::optionValue(from_parameters, option.name),
@@ -441,9 +443,12 @@ TEST(ComplyParameters, OptionsAreDeclaredWithTypeRangeAndDescriptionAndKeepTheFi
 
 TEST(ComplyParameters, AnUnknownParameterIsComplysErrorAndAValueOutOfRangeIsRefusedAtInit) {
   rclcpp::init(0, nullptr);
-  const auto node = declaredNode(kConfig);
-  node->declare_parameter("use_sim_time_extra_is_not_ros_side", 1.0);
-  const auto parameters = node->get_parameters(node->list_parameters({}, 0).names);
+  std::vector<rclcpp::Parameter> parameters;
+  {
+    const auto node = declaredNode(kConfig);
+    node->declare_parameter("use_sim_time_extra_is_not_ros_side", 1.0);
+    parameters = node->get_parameters(node->list_parameters({}, 0).names);
+  }
   rclcpp::shutdown();
   // The ROS-side filter lets everything else through to comply's parser, which names it.
   try {

@@ -58,9 +58,11 @@
 #include "comply/host/state_sample.hpp"
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
+#include "comply_msgs/msg/cartesian_chunk.hpp"
 #include "comply_msgs/msg/cartesian_command.hpp"
 #include "comply_msgs/msg/controller_state.hpp"
 #include "comply_msgs/msg/diagnostics.hpp"
+#include "comply_msgs/msg/joint_chunk.hpp"
 #include "comply_msgs/msg/joint_command.hpp"
 
 namespace comply_ros2_control {
