@@ -180,6 +180,16 @@ void writeResults(const ResultsTable& table, const std::filesystem::path& out_di
   writeMarkdownTable(table, markdown);
 }
 
+void printResults(const ResultsTable& table, const std::filesystem::path& out_dir,
+                  std::string_view files, std::ostream& out) {
+  writeMarkdownTable(table, out);
+  out << "results in " << std::filesystem::absolute(out_dir).string();
+  if (!files.empty()) {
+    out << " (" << files << ")";
+  }
+  out << "\n";
+}
+
 void writeResultsAndPlots(const ResultsTable& table, const std::filesystem::path& out_dir,
                           const char* plot_script, bool pictures, std::ostream* progress) {
   writeResults(table, out_dir);

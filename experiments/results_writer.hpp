@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -60,6 +61,19 @@ nlohmann::json toJson(const ResultsTable& table);
 
 /// Writes <out_dir>/results.json and <out_dir>/table.md.
 void writeResults(const ResultsTable& table, const std::filesystem::path& out_dir);
+
+/// What an experiment's command prints on `out`: the table, then the folder of the results and
+/// what it holds (`files`: empty to name none).
+void printResults(const ResultsTable& table, const std::filesystem::path& out_dir,
+                  std::string_view files, std::ostream& out);
+
+/// The options of a run whose progress goes to `err`.
+template <typename Options>
+Options withProgress(const Options& options, std::ostream& err) {
+  Options run = options;
+  run.progress = &err;
+  return run;
+}
 
 /// writeResults(), then, with `pictures`, the plots scripts/<plot_script> draws from the folder;
 /// the script's messages go to `progress` (std::cerr when null).

@@ -74,11 +74,8 @@ ResultsTable chunkTable(const std::vector<ChunkRow>& rows) {
 }
 
 int chunksCommand(const ChunkOptions& options, std::ostream& out, std::ostream& err) {
-  ChunkOptions run = options;
-  run.progress = &err;
-  writeMarkdownTable(chunkTable(runChunks(run)), out);
-  out << "results in " << std::filesystem::absolute(options.out_dir).string()
-      << " (results.json, table.md, chunks.png, a trace per condition)\n";
+  printResults(chunkTable(runChunks(withProgress(options, err))), options.out_dir,
+               "results.json, table.md, chunks.png, a trace per condition", out);
   return 0;
 }
 

@@ -122,10 +122,8 @@ ResultsTable connectorMatingTable(const std::vector<ConnectorMatingRow>& rows) {
 
 int connectorMatingCommand(const ConnectorMatingOptions& options, std::ostream& out,
                            std::ostream& err) {
-  ConnectorMatingOptions run = options;
-  run.progress = &err;
-  writeMarkdownTable(connectorMatingTable(runConnectorMating(run)), out);
-  out << "results in " << std::filesystem::absolute(options.out_dir).string() << "\n";
+  printResults(connectorMatingTable(runConnectorMating(withProgress(options, err))),
+               options.out_dir, "", out);
   return 0;
 }
 

@@ -101,12 +101,10 @@ ResultsTable passivityTable(const std::vector<PassivityRow>& rows) {
 }
 
 int passivityCommand(const PassivityOptions& options, std::ostream& out, std::ostream& err) {
-  PassivityOptions run = options;
-  run.progress = &err;
-  writeMarkdownTable(passivityTable(runPassivity(run)), out);
-  out << "results in " << std::filesystem::absolute(options.out_dir).string()
-      << " (results.json, table.md, passivity.png, one folder per scenario with a trace per "
-         "condition)\n";
+  printResults(
+      passivityTable(runPassivity(withProgress(options, err))), options.out_dir,
+      "results.json, table.md, passivity.png, one folder per scenario with a trace per condition",
+      out);
   return 0;
 }
 

@@ -144,12 +144,9 @@ ResultsTable surfaceFollowingTable(const std::vector<SurfaceFollowingRow>& rows)
 
 int surfaceFollowingCommand(const SurfaceFollowingOptions& options, std::ostream& out,
                             std::ostream& err) {
-  SurfaceFollowingOptions run = options;
-  run.progress = &err;
-  const std::vector<SurfaceFollowingRow> rows = runSurfaceFollowing(run);
-  writeMarkdownTable(surfaceFollowingTable(rows), out);
-  out << "results in " << std::filesystem::absolute(options.out_dir).string()
-      << " (results.json, table.md, surface_following.png, one folder per condition)\n";
+  printResults(surfaceFollowingTable(runSurfaceFollowing(withProgress(options, err))),
+               options.out_dir,
+               "results.json, table.md, surface_following.png, one folder per condition", out);
   return 0;
 }
 
