@@ -102,7 +102,8 @@ def settled_at(topic, target, tolerance_m, timeout=20):
 
 
 def cartesian_command(position, orientation, fields=1):
-    return yaml.safe_dump({'fields': fields, 'position': list(position),
+    # header: auto stamps it now (stamps must increase strictly; unstamped, all would be 0).
+    return yaml.safe_dump({'header': 'auto', 'fields': fields, 'position': list(position),
                            'orientation': list(orientation)}, default_flow_style=True)
 
 
@@ -164,6 +165,17 @@ def fr3_cartesian():
               f"diagnostics: '{rejected['last_rejection'] if rejected else ''}'; "
               f"TCP {holding[1] * 1e3:.3f} mm from the held target" if holding else 'moved')
 
+        # Unstamped (stamp 0, older than every command applied so far): refused, stamps
+        # increase strictly under ros2_control as under comply run.
+        unstamped = yaml.safe_load(cartesian_command(target, orientation))
+        del unstamped['header']
+        publish(f'{base}/cartesian_command', 'comply_msgs/msg/CartesianCommand',
+                yaml.safe_dump(unstamped, default_flow_style=True))
+        stale = wait_for(lambda: (lambda d: d if 'stale_stamp' in d['last_rejection'] else None)(
+            echo(f'{base}/diagnostics')), 10)
+        check('fr3: an unstamped command is refused as stale', bool(stale),
+              f"diagnostics: '{stale['last_rejection'] if stale else ''}'")
+
         target2 = [target[0] - 0.02, target[1], target[2]]
         outcome = python_client_without_ros('cartesian_impedance', target2, orientation)
         check('fr3: Python client without ROS 2 commands it', outcome.startswith('reached'),
@@ -196,7 +208,8 @@ def ur5e_joint():
         target[1] += 0.1
         target[2] -= 0.1
         publish(f'{base}/joint_command', 'comply_msgs/msg/JointCommand',
-                yaml.safe_dump({'fields': 1, 'position': target}, default_flow_style=True))
+                yaml.safe_dump({'header': 'auto', 'fields': 1, 'position': target},
+                               default_flow_style=True))
 
         def near():
             s = echo(f'{base}/state')

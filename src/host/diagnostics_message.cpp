@@ -52,19 +52,15 @@ transport::DiagnosticsMessage diagnosticsMessage(
   message.compute_time_histogram = binsOf(loop.compute);
   message.start_lateness_histogram = binsOf(loop.lateness);
   message.last_fault = wrapper.last_fault;
-  message.last_rejection = wrapper.last_rejection;
+  // The gate's: it sees every command, the ones it refuses itself (stamp, publisher) too.
+  message.last_rejection =
+      counts.last_rejection.empty() ? wrapper.last_rejection : counts.last_rejection;
   if (publisher != 0) {
     std::ostringstream text;
     text << std::hex << publisher;
     message.publisher = text.str();
   }
   message.outcomes = std::move(outcomes);
-  for (auto it = message.outcomes.rbegin(); it != message.outcomes.rend(); ++it) {
-    if (it->outcome == transport::Outcome::kRejected) {
-      message.last_rejection = it->message;  // the host's reasons too, not only the wrapper's
-      break;
-    }
-  }
   return message;
 }
 

@@ -98,6 +98,11 @@ CommandReason CommandGate::rejectLocked(CommandOutcome& outcome, CommandReason r
   outcome.applied = false;
   outcome.reason = reason;
   outcome.message = std::move(message);
+  // Named by its reason, as the wrapper names its own ("pose_jump: ..."), whoever refused it.
+  const std::string reason_name(toString(reason));
+  counts_.last_rejection = outcome.message.rfind(reason_name + ":", 0) == 0
+                               ? outcome.message
+                               : reason_name + ": " + outcome.message;
   ++counts_.rejected;
   ++counts_.per_reason.at(static_cast<std::size_t>(reason));
   settled_.push_back(std::move(outcome));
@@ -145,7 +150,13 @@ bool CommandGate::admitRequest(std::uint64_t participant, std::int64_t now_ns, s
        << " ms ago); only its own process may send requests until it is silent for "
        << options_.publisher_timeout_s << " s";
   why = text.str();
+  counts_.last_rejection = why;
   return false;
+}
+
+void CommandGate::noteRefusal(std::string why) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  counts_.last_rejection = std::move(why);
 }
 
 void CommandGate::releasePublisher(std::uint64_t publisher) {

@@ -137,6 +137,22 @@ TEST_F(CommandGateTest, ARefusedCommandDoesNotMoveTheStampRule) {
   EXPECT_TRUE(offer(offerAt(6 * kSecond)).empty());
 }
 
+// Diagnostics.last_rejection: the newest refusal, the wrapper's or the gate's own, named by its
+// reason, kept until the next.
+TEST_F(CommandGateTest, TheLastRejectionIsTheNewestRefusalNamedByItsReason) {
+  EXPECT_TRUE(offer(offerAt(5 * kSecond)).empty());
+  EXPECT_EQ(gate_.counts().last_rejection, "");
+  gate_.offer(offerAt(7 * kSecond), true, [] {
+    return Verdict{false, RejectionReason::kPoseJump, "pose_jump: target 2 m away"};
+  });
+  EXPECT_EQ(gate_.counts().last_rejection, "pose_jump: target 2 m away");
+  offer(offerAt(4 * kSecond));
+  EXPECT_EQ(gate_.counts().last_rejection.rfind("stale_stamp: stamp ", 0), 0U)
+      << gate_.counts().last_rejection;
+  EXPECT_TRUE(offer(offerAt(6 * kSecond)).empty());  // accepted
+  EXPECT_EQ(gate_.counts().last_rejection.rfind("stale_stamp: ", 0), 0U) << "kept";
+}
+
 TEST_F(CommandGateTest, ASecondPublisherIsRefusedUntilTheFirstIsSilent) {
   EXPECT_TRUE(offer(offerAt(1 * kSecond, kWriterA, 0)).empty());
   EXPECT_EQ(gate_.publisher(), kWriterA);

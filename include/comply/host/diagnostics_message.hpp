@@ -31,8 +31,8 @@ struct LoopCounters {
 };
 
 /// The counters of the wrapper, the loop and the gate, with `outcomes` attached; header.frame_id
-/// is `host_name`, header.stamp the wall clock; last_rejection the newest rejected outcome's
-/// message if there is one, the gate's reasons included (allocates: off the control thread).
+/// is `host_name`, header.stamp the wall clock; last_rejection the gate's (allocates: off the
+/// control thread).
 transport::DiagnosticsMessage diagnosticsMessage(
     const pipeline::DiagnosticsSnapshot& wrapper, const LoopCounters& loop, double period_s,
     const pipeline::GateCounts& counts, std::uint64_t publisher, const std::string& host_name,

@@ -76,6 +76,8 @@ struct GateCounts {
   std::uint64_t applied = 0;
   std::uint64_t rejected = 0;
   std::array<std::uint64_t, kCommandReasonCount> per_reason{};
+  /// The newest refused command's message, the gate's reasons and the wrapper's ("" if none).
+  std::string last_rejection;
 };
 
 /// What gateOptions() reads from a controller file; built there, so the defaults are the file's.
@@ -154,6 +156,9 @@ class CommandGate {
   /// them at once (a clean exit need not wait out publisher_timeout_s).
   void releasePublisher(std::uint64_t publisher);
 
+  /// A refusal outside the command stream (a request the host could not carry out): the newest
+  /// rejection in counts() from now on. admitRequest() notes its own.
+  void noteRefusal(std::string why);
   [[nodiscard]] GateCounts counts() const;
   [[nodiscard]] std::size_t pending() const;
   /// The writer that holds the command topics (0: none yet).

@@ -96,7 +96,6 @@ void Intake<Command>::handle(const transport::Sample<transport::RequestMessage>&
   // cannot deactivate or reset it. A refusal is the diagnostics' last rejection.
   std::string why;
   if (!gate_.admitRequest(sample.participant, monotonicNanoseconds(), why)) {
-    wrapper_.controller().diagnostics().setRejection("", why.c_str());
     return;
   }
   switch (sample.message.request) {
@@ -110,7 +109,7 @@ void Intake<Command>::handle(const transport::Sample<transport::RequestMessage>&
       break;
     case transport::RequestType::kTare:
       if (const std::string refused = wrapper_.tare(); !refused.empty()) {
-        wrapper_.controller().diagnostics().setRejection("tare: ", refused.c_str());
+        gate_.noteRefusal("tare: " + refused);
       }
       break;
   }
