@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
@@ -71,10 +72,14 @@ class ControllerHarness : public ::testing::Test {
  protected:
   void SetUp() override {
     rclcpp::init(0, nullptr);
+    std::vector<std::string> arguments{"--ros-args", "--params-file", kConfig};
+    if (with_sensor_) {
+      arguments.insert(arguments.end(), {"-p", "force_torque_sensor.name:=ft"});
+    }
     const auto options = rclcpp::NodeOptions()
                              .allow_undeclared_parameters(true)
                              .automatically_declare_parameters_from_overrides(true)
-                             .arguments({"--ros-args", "--params-file", kConfig});
+                             .arguments(arguments);
     ASSERT_EQ(controller_.init("cartesian_impedance", "", options),
               controller_interface::return_type::OK);
     ASSERT_EQ(controller_.configure().id(), lifecycle_msgs::msg::State::PRIMARY_STATE_INACTIVE);
@@ -87,6 +92,12 @@ class ControllerHarness : public ::testing::Test {
       state_interfaces_.emplace_back(robot.joints[i], "velocity", &values_[3 * i + 1]);
       state_interfaces_.emplace_back(robot.joints[i], "effort", &values_[3 * i + 2]);
       command_interfaces_.emplace_back(robot.joints[i], "effort", &values_[3 * dof_ + i]);
+    }
+    if (with_sensor_) {
+      const char* axes[] = {"force.x", "force.y", "force.z", "torque.x", "torque.y", "torque.z"};
+      for (std::size_t k = 0; k < 6; ++k) {
+        state_interfaces_.emplace_back("ft", axes[k], &wrench_[k]);
+      }
     }
     std::vector<hi::LoanedStateInterface> loaned_states;
     std::vector<hi::LoanedCommandInterface> loaned_commands;
@@ -117,6 +128,8 @@ class ControllerHarness : public ::testing::Test {
   }
 
   CartesianController controller_;
+  bool with_sensor_ = false;  ///< a wrist sensor "ft" on ros2_control's force-torque interfaces
+  std::array<double, 6> wrench_{};  ///< its reading: force x y z [N], torque x y z [N m]
   std::size_t dof_ = 0;
   std::vector<double> values_;  // per joint: position, velocity, effort; then the torques
   std::vector<hi::StateInterface> state_interfaces_;
@@ -391,6 +404,30 @@ TEST_F(TopicHarness, StateAndDiagnosticsAreComplyRunsMessages) {
   EXPECT_EQ(timed, diagnostics.cycles) << "every update() timed";
   EXPECT_EQ(diagnostics.rejections.size(),
             static_cast<std::size_t>(CommandOutcome::REASON_INVALID_STAMP) + 1);
+}
+
+class SensorTopicHarness : public TopicHarness {
+ protected:
+  SensorTopicHarness() { with_sensor_ = true; }
+};
+
+// A wrist force/torque sensor on ros2_control's interfaces (force_torque_sensor.name): its
+// reading is the state's contact wrench, reported as the sensor's; in the TCP frame it is the
+// reading itself (the sensor's axes are the TCP's, no tool is declared, no filter).
+TEST_F(SensorTopicHarness, TheWristSensorIsTheStatesContactWrench) {
+  wrench_ = {1.0, -2.0, 5.0, 0.1, 0.2, -0.3};
+  ASSERT_TRUE(runUntil([&] {
+    return states_.back().contact_wrench_source == ControllerState::WRENCH_SOURCE_SENSOR &&
+           states_.back().contact_wrench_tcp[2] == 5.0;
+  })) << "the sensor's reading never reached the state";
+  const ControllerState& state = states_.back();
+  for (std::size_t k = 0; k < 6; ++k) {
+    EXPECT_NEAR(state.contact_wrench_tcp[k], wrench_[k], 1e-12) << "axis " << k;
+  }
+  // In the base frame, the same force turned by the TCP's orientation: its norm is kept.
+  const double norm_tcp = std::hypot(wrench_[0], wrench_[1], wrench_[2]);
+  EXPECT_NEAR(std::hypot(state.contact_wrench[0], state.contact_wrench[1], state.contact_wrench[2]),
+              norm_tcp, 1e-12);
 }
 
 /// A lifecycle node holding comply's controller file as parameters, its options declared.
