@@ -1,6 +1,7 @@
 #include "comply_ros2_control/message_conversion.hpp"
 
 #include <string>
+#include <type_traits>
 
 #include "comply/schema/schema.hpp"
 #include "comply/schema/table.hpp"
@@ -43,22 +44,32 @@ double seconds(const builtin_interfaces::msg::Time& stamp) {
 
 }  // namespace
 
-comply::CartesianCommand fromMessage(const comply_msgs::msg::CartesianCommand& message,
-                                     std::string& malformed) {
-  comply::CartesianCommand command;
+namespace {
+
+/// A command message's command, field by field through its kind's table.
+template <typename Command, typename Message>
+Command commandFromMessage(const Message& message, std::string& malformed) {
+  Command command;
   command.stamp_s = seconds(message.header.stamp);
   command.fields = static_cast<comply::CommandField>(message.fields);
-  COMPLY_CARTESIAN_COMMAND_FIELDS(COMPLY_ROS_FROM)
+  if constexpr (std::is_same_v<Command, comply::CartesianCommand>) {
+    COMPLY_CARTESIAN_COMMAND_FIELDS(COMPLY_ROS_FROM)
+  } else {
+    COMPLY_JOINT_COMMAND_FIELDS(COMPLY_ROS_FROM)
+  }
   return command;
+}
+
+}  // namespace
+
+comply::CartesianCommand fromMessage(const comply_msgs::msg::CartesianCommand& message,
+                                     std::string& malformed) {
+  return commandFromMessage<comply::CartesianCommand>(message, malformed);
 }
 
 comply::JointCommand fromMessage(const comply_msgs::msg::JointCommand& message,
                                  std::string& malformed) {
-  comply::JointCommand command;
-  command.stamp_s = seconds(message.header.stamp);
-  command.fields = static_cast<comply::CommandField>(message.fields);
-  COMPLY_JOINT_COMMAND_FIELDS(COMPLY_ROS_FROM)
-  return command;
+  return commandFromMessage<comply::JointCommand>(message, malformed);
 }
 
 namespace {

@@ -48,6 +48,7 @@
 #include <rclcpp/rclcpp.hpp>
 #include <std_srvs/srv/trigger.hpp>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "comply/core/actuator_command.hpp"
@@ -67,21 +68,16 @@
 
 namespace comply_ros2_control {
 
+/// The command and chunk topics of a command kind, and their messages.
 template <typename Command>
-struct CommandTopic;
-template <>
-struct CommandTopic<comply::CartesianCommand> {
-  using Message = comply_msgs::msg::CartesianCommand;
-  using ChunkMessage = comply_msgs::msg::CartesianChunk;
-  static constexpr const char* kName = "~/cartesian_command";
-  static constexpr const char* kChunkName = "~/cartesian_chunk";
-};
-template <>
-struct CommandTopic<comply::JointCommand> {
-  using Message = comply_msgs::msg::JointCommand;
-  using ChunkMessage = comply_msgs::msg::JointChunk;
-  static constexpr const char* kName = "~/joint_command";
-  static constexpr const char* kChunkName = "~/joint_chunk";
+struct CommandTopic {
+  static constexpr bool kCartesian = std::is_same_v<Command, comply::CartesianCommand>;
+  using Message = std::conditional_t<kCartesian, comply_msgs::msg::CartesianCommand,
+                                     comply_msgs::msg::JointCommand>;
+  using ChunkMessage = std::conditional_t<kCartesian, comply_msgs::msg::CartesianChunk,
+                                          comply_msgs::msg::JointChunk>;
+  static constexpr const char* kName = kCartesian ? "~/cartesian_command" : "~/joint_command";
+  static constexpr const char* kChunkName = kCartesian ? "~/cartesian_chunk" : "~/joint_chunk";
 };
 
 template <typename Command>
