@@ -19,10 +19,10 @@ constexpr std::size_t kClockSamples = 64;
 // the writer's history and fails when the host acknowledges none of them within the reliability's
 // 0.1 s blocking time.
 constexpr const char* kNoHost =
-    "no comply host matches this client's command writer (comply run stopped, or never there)";
+    "no comply host matches this client's writer (comply run stopped, or never there)";
 constexpr const char* kRefused =
-    "DDS refused the command: the host acknowledged none of the commands sent before it within "
-    "0.1 s (is comply run stopped or stalled?)";
+    "DDS refused the message: the host acknowledged none of the messages sent before it on this "
+    "topic within 0.1 s (is comply run stopped or stalled?)";
 
 SteadyClock::time_point deadlineAfter(double seconds) {
   return SteadyClock::now() +

@@ -52,9 +52,8 @@ transport::DiagnosticsMessage diagnosticsMessage(
   message.compute_time_histogram = binsOf(loop.compute);
   message.start_lateness_histogram = binsOf(loop.lateness);
   message.last_fault = wrapper.last_fault;
-  // The gate's: it sees every command, the ones it refuses itself (stamp, publisher) too.
-  message.last_rejection =
-      counts.last_rejection.empty() ? wrapper.last_rejection : counts.last_rejection;
+  // The gate's: every command passes it, the ones it refuses itself (stamp, publisher) too.
+  message.last_rejection = counts.last_rejection;
   if (publisher != 0) {
     std::ostringstream text;
     text << std::hex << publisher;

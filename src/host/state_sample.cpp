@@ -43,7 +43,7 @@ transport::HostState hostState(pipeline::WrapperState state) {
 transport::ControllerStateMessage stateMessage(const StateSample& sample,
                                                const pipeline::ResolvedController& resolved) {
   transport::ControllerStateMessage message;
-  message.header = {sample.wall, resolved.robot.base_frame};
+  message.header = {sample.wall, resolved.config.base_frame};  // the model's: a file may set it
   message.state = hostState(sample.state);
   message.command_kind = resolved.cartesian() ? transport::WireCommandKind::kCartesian
                                               : transport::WireCommandKind::kJoint;

@@ -150,7 +150,7 @@ bool CommandGate::admitRequest(std::uint64_t participant, std::int64_t now_ns, s
        << " ms ago); only its own process may send requests until it is silent for "
        << options_.publisher_timeout_s << " s";
   why = text.str();
-  counts_.last_rejection = why;
+  counts_.last_rejection = std::string(toString(CommandReason::kOtherPublisher)) + ": " + why;
   return false;
 }
 

@@ -13,9 +13,9 @@
 #include <sstream>
 #include <thread>
 
+#include "comply/host/controller_setup.hpp"
 #include "comply/host/diagnostics_message.hpp"
 #include "comply/host/state_sample.hpp"
-#include "comply/host/controller_setup.hpp"
 #include "live_harness.hpp"
 #include "live_support.hpp"
 
@@ -337,6 +337,22 @@ TEST(LiveState, CarriesTheTanksAccount) {
   EXPECT_EQ(message.energy_dissipated_j, 2.125);
   EXPECT_EQ(message.energy_refused_j, 0.0625);
   EXPECT_EQ(message.gain_fraction, 0.4);
+}
+
+// The state's frame is the model's: a controller file may name a base other than robot.yaml's
+// (here the UR5e's base_link_inertia, turned half a turn about z from base_link).
+TEST(LiveState, IsInTheControllerFilesBaseFrame) {
+  pipeline::WrapperConfig config = host::simControllerConfig(
+      "ur5e", "",
+      (std::filesystem::path(COMPLY_SOURCE_DIR) / "config" / "sim" / "cartesian_impedance.yaml")
+          .string());
+  config.base_frame = "base_link_inertia";
+  const auto resolved = pipeline::resolveController(config);
+  ASSERT_NE(resolved->robot.base_frame, config.base_frame);
+  host::StateSample sample;
+  sample.joints = JointState::zero(resolved->dof);
+  sample.torque.setZero(resolved->dof);
+  EXPECT_EQ(host::stateMessage(sample, *resolved).header.frame_id, "base_link_inertia");
 }
 
 }  // namespace

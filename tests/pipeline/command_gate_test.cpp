@@ -151,6 +151,13 @@ TEST_F(CommandGateTest, TheLastRejectionIsTheNewestRefusalNamedByItsReason) {
       << gate_.counts().last_rejection;
   EXPECT_TRUE(offer(offerAt(6 * kSecond)).empty());  // accepted
   EXPECT_EQ(gate_.counts().last_rejection.rfind("stale_stamp: ", 0), 0U) << "kept";
+
+  // Requests: another process's, while A holds the topics, and one the host could not carry out.
+  std::string why;
+  EXPECT_FALSE(gate_.admitRequest(/*participant=*/99, 0, why));
+  EXPECT_EQ(gate_.counts().last_rejection, "other_publisher: " + why);
+  gate_.noteRefusal("tare: no wrist sensor reading yet");
+  EXPECT_EQ(gate_.counts().last_rejection, "tare: no wrist sensor reading yet");
 }
 
 TEST_F(CommandGateTest, ASecondPublisherIsRefusedUntilTheFirstIsSilent) {

@@ -25,6 +25,7 @@ void flatten(const ros_like::ControllerState& message, Flat& flat) {
 void flatten(const ros_like::Diagnostics& message, Flat& flat) {
   COMPLY_DIAGNOSTICS_FIELDS(BY_WIRE_NAME)
 }
+#undef BY_WIRE_NAME
 
 namespace {
 template <typename RosMessage, typename Message>

@@ -208,10 +208,14 @@ TEST(TransportCdrEncoder, ChunksMatchTheWire) {
 TEST(TransportCdrEncoder, StateDiagnosticsAndRequestsMatchTheWire) {
   ControllerStateMessage state;
   testing::DistinctValues{}.set(state);
+  state.state = HostState::kFault;
+  state.contact_wrench_source = WrenchSource::kSensor;
   expectEncoderMatchesTheWire(state);
   DiagnosticsMessage diagnostics;
   testing::DistinctValues{.next = 7}.set(diagnostics);
   ASSERT_FALSE(diagnostics.outcomes.empty());
+  diagnostics.outcomes.front().reason = Reason::kPoseJump;
+  diagnostics.outcomes.back().reason = Reason::kNone;
   expectEncoderMatchesTheWire(diagnostics);
   diagnostics.outcomes.clear();
   diagnostics.publisher.clear();

@@ -208,22 +208,31 @@ TEST(TransportMessages, ChunkRoundTripCarriesEachWaypointsTime) {
 
 // Every field of the tables away from its default, each value distinct, so a field lost or
 // swapped on the way shows; a field added to a table is covered with no line here.
-template <typename Message>
-void expectEveryFieldRoundTrips() {
+template <typename Message, typename Tweak>
+void expectEveryFieldRoundTrips(Tweak&& tweak) {
   Message message;
   testing::DistinctValues{}.set(message);
+  tweak(message);
   const testing::Flat sent = testing::flat(message);
   const testing::Flat got = testing::flat(roundTrip(message).message);
   EXPECT_EQ(got.numbers, sent.numbers);
   EXPECT_EQ(got.texts, sent.texts);
 }
 
+// The enumerations beyond their first two values (DistinctValues' own), REASON_NONE's 255 too.
 TEST(TransportMessages, DiagnosticsRoundTrip) {
-  expectEveryFieldRoundTrips<DiagnosticsMessage>();
+  expectEveryFieldRoundTrips<DiagnosticsMessage>([](DiagnosticsMessage& diagnostics) {
+    diagnostics.state = HostState::kFault;
+    diagnostics.outcomes.front().reason = Reason::kOtherPublisher;
+    diagnostics.outcomes.back().reason = Reason::kNone;
+  });
 }
 
 TEST(TransportMessages, StateRoundTrip) {
-  expectEveryFieldRoundTrips<ControllerStateMessage>();
+  expectEveryFieldRoundTrips<ControllerStateMessage>([](ControllerStateMessage& state) {
+    state.state = HostState::kFault;
+    state.contact_wrench_source = WrenchSource::kSensor;
+  });
 }
 
 TEST(TransportMessages, StateWithTheTankOffRoundTripsAsOff) {

@@ -76,7 +76,8 @@ struct GateCounts {
   std::uint64_t applied = 0;
   std::uint64_t rejected = 0;
   std::array<std::uint64_t, kCommandReasonCount> per_reason{};
-  /// The newest refused command's message, the gate's reasons and the wrapper's ("" if none).
+  /// The newest refusal ("" if none): a command's, the gate's or the wrapper's, named by its reason
+  /// ("pose_jump: ..."), or a request's (admitRequest(), noteRefusal()).
   std::string last_rejection;
 };
 

@@ -8,6 +8,7 @@
 // operator[]; builtin_interfaces/Time with sec and nanosec; std_msgs/Header with stamp and
 // frame_id; a nested message (Diagnostics' outcomes) as that message's own target type.
 
+#include <array>
 #include <cstddef>
 #include <string>
 #include <type_traits>

@@ -201,6 +201,7 @@ void ComplyController<Command>::createEndpoints() {
   tare_service_ = node->create_service<std_srvs::srv::Trigger>(
       "~/tare", [this](const std::shared_ptr<std_srvs::srv::Trigger::Request>,
                        std::shared_ptr<std_srvs::srv::Trigger::Response> response) {
+        const std::lock_guard<std::mutex> lock(endpoints_mutex_);
         if (!wrapper_) {
           response->success = false;
           response->message = "not configured";
@@ -219,13 +220,13 @@ void ComplyController<Command>::createEndpoints() {
 
 template <typename Command>
 CallbackReturn ComplyController<Command>::on_configure(const rclcpp_lifecycle::State&) {
+  const std::lock_guard<std::mutex> lock(endpoints_mutex_);
   try {
     resolve();
     createEndpoints();
   } catch (const std::exception& error) {
     RCLCPP_ERROR(get_node()->get_logger(), "cannot configure: %s", error.what());
-    wrapper_.reset();
-    gate_.reset();
+    release();
     return CallbackReturn::ERROR;
   }
   const int dof = wrapper_->dof();
@@ -316,6 +317,7 @@ CallbackReturn ComplyController<Command>::on_activate(const rclcpp_lifecycle::St
     return CallbackReturn::ERROR;
   }
   cycle_ = 0;
+  previous_start_s_ = 0.0;
   return CallbackReturn::SUCCESS;
 }
 
@@ -329,6 +331,13 @@ CallbackReturn ComplyController<Command>::on_deactivate(const rclcpp_lifecycle::
 
 template <typename Command>
 CallbackReturn ComplyController<Command>::on_cleanup(const rclcpp_lifecycle::State&) {
+  const std::lock_guard<std::mutex> lock(endpoints_mutex_);
+  release();
+  return CallbackReturn::SUCCESS;
+}
+
+template <typename Command>
+void ComplyController<Command>::release() {
   state_timer_.reset();
   diagnostics_timer_.reset();
   reset_service_.reset();
@@ -339,10 +348,10 @@ CallbackReturn ComplyController<Command>::on_cleanup(const rclcpp_lifecycle::Sta
   state_publisher_.reset();
   samples_.reset();
   sampler_.reset();
+  loop_.reset();
   wrapper_.reset();
   gate_.reset();
   joints_.clear();
-  return CallbackReturn::SUCCESS;
 }
 
 template <typename Command>
@@ -364,13 +373,13 @@ controller_interface::return_type ComplyController<Command>::update(
   }
   gate_->noteCycle(cycle_, wrapper_->controller().stampInForce(),
                    [&time] { return time.nanoseconds(); });
-  afterCycle(time, period, wrote, start_s);
+  afterCycle(time, wrote, start_s);
   return controller_interface::return_type::OK;
 }
 
 template <typename Command>
-void ComplyController<Command>::afterCycle(const rclcpp::Time& time, const rclcpp::Duration& period,
-                                           bool wrote, double start_s) noexcept {
+void ComplyController<Command>::afterCycle(const rclcpp::Time& time, bool wrote,
+                                           double start_s) noexcept {
   comply::hardware::CycleRecord record;
   record.index = cycle_++;
   record.period_s = nominal_period_s_;
@@ -383,10 +392,13 @@ void ComplyController<Command>::afterCycle(const rclcpp::Time& time, const rclcp
                  sample_);
   samples_->publishFromSoleWriter(sample_);
   // The controller manager schedules update(): its lateness is how much later than one nominal
-  // period after the previous one this cycle started.
-  if (record.index > 0) {
-    comply::host::LoopCounters::count(loop_->lateness, period.seconds() - nominal_period_s_);
+  // period after the previous start this one started, on the steady clock (ROS time may be
+  // simulated, and the manager's `period` is its own loop's).
+  if (previous_start_s_ > 0.0) {
+    comply::host::LoopCounters::count(loop_->lateness,
+                                      start_s - previous_start_s_ - nominal_period_s_);
   }
+  previous_start_s_ = start_s;
   const double compute_s = comply::hardware::monotonicSeconds() - start_s;
   comply::host::LoopCounters::count(loop_->compute, compute_s);
   if (compute_s > nominal_period_s_) {
@@ -397,6 +409,7 @@ void ComplyController<Command>::afterCycle(const rclcpp::Time& time, const rclcp
 
 template <typename Command>
 void ComplyController<Command>::publishState() {
+  const std::lock_guard<std::mutex> lock(endpoints_mutex_);
   if (!wrapper_ || !samples_->update()) {
     return;  // no cycle since the last message (inactive)
   }
@@ -409,6 +422,7 @@ void ComplyController<Command>::publishState() {
 template <typename Command>
 void ComplyController<Command>::onCommand(const CommandMessage& message,
                                           const rclcpp::MessageInfo& info) {
+  const std::lock_guard<std::mutex> lock(endpoints_mutex_);
   if (!wrapper_) {
     return;  // a configure that failed after the subscription existed
   }
@@ -420,6 +434,7 @@ void ComplyController<Command>::onCommand(const CommandMessage& message,
 template <typename Command>
 void ComplyController<Command>::onChunk(const ChunkMessage& message,
                                         const rclcpp::MessageInfo& info) {
+  const std::lock_guard<std::mutex> lock(endpoints_mutex_);
   if (!wrapper_) {
     return;
   }
@@ -458,6 +473,7 @@ void ComplyController<Command>::offerToGate(const Header& header, const rclcpp::
 
 template <typename Command>
 void ComplyController<Command>::onResetFault(std_srvs::srv::Trigger::Response& response) {
+  const std::lock_guard<std::mutex> lock(endpoints_mutex_);
   if (!wrapper_) {
     response.success = false;
     response.message = "not configured";
@@ -473,6 +489,7 @@ void ComplyController<Command>::onResetFault(std_srvs::srv::Trigger::Response& r
 
 template <typename Command>
 void ComplyController<Command>::publishDiagnostics() {
+  const std::lock_guard<std::mutex> lock(endpoints_mutex_);
   if (!wrapper_) {
     return;
   }

@@ -3,9 +3,8 @@
 //
 //   on_init        comply's options are declared as parameters (comply_parameters.hpp)
 //   on_configure   the controller's parameters are comply's controller file
-//   (comply_parameters.hpp):
-//                  robot, plugin, model, gains and limits are resolved once; errors name the
-//                  parameter and the controller stays unconfigured
+//                  (comply_parameters.hpp): robot, plugin, model, gains and limits are resolved
+//                  once; errors name the parameter and the controller stays unconfigured
 //   on_activate    the reference is seeded from the measured state (comply's activation)
 //   update         one comply cycle: state interfaces -> wrapper -> command interfaces, then the
 //                  cycle's state sample into a triple buffer; no allocation, no lock, no exception
@@ -28,11 +27,11 @@
 //                  as `comply run` builds it (comply::host::diagnosticsMessage): the compute time
 //                  of update() and its start lateness as histograms, the overruns, and the outcome
 //                  of every command received since the previous message
-// Both are built off the real-time thread, in the executor's timers, and copied into comply_msgs
-// by the message tables (comply/transport/message_copy.hpp).
 //   ~/reset_fault  std_srvs/Trigger: leave FAULT
 //   ~/tare         std_srvs/Trigger: the wrist force/torque reading becomes its zero (refused
 //                  while no force-torque state interface has given a reading)
+// The state and the diagnostics are built off the real-time thread, in the executor's timers, and
+// copied into comply_msgs by the message tables (comply/transport/message_copy.hpp).
 //
 // A wrist force/torque sensor (docs/contact-wrench.md), by parameters outside comply's file:
 //   force_torque_sensor.name             its state interfaces are <name>/force.x ... /torque.z
@@ -45,6 +44,7 @@
 #include <controller_interface/controller_interface.hpp>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <rclcpp/rclcpp.hpp>
 #include <std_srvs/srv/trigger.hpp>
 #include <string>
@@ -114,8 +114,9 @@ class ComplyController : public controller_interface::ControllerInterface {
                    const std::string& malformed, Submit&& submit);
   void onResetFault(std_srvs::srv::Trigger::Response& response);
   /// After the cycle, on the real-time thread: timing and the state sample. No allocation.
-  void afterCycle(const rclcpp::Time& time, const rclcpp::Duration& period, bool wrote,
-                  double start_s) noexcept;
+  void afterCycle(const rclcpp::Time& time, bool wrote, double start_s) noexcept;
+  /// Everything configure made, in the order its users need it gone (timers first).
+  void release();
   void publishState();
   void publishDiagnostics();
 
@@ -135,10 +136,15 @@ class ComplyController : public controller_interface::ControllerInterface {
   comply::ActuatorCommand command_;
   std::uint64_t cycle_ = 0;
   double nominal_period_s_ = 0.001;
+  double previous_start_s_ = 0.0;  ///< steady clock [s] at the previous update(); 0: none yet
   // Every command passes it; update() tells it which cycle took them (wait-free), the
   // diagnostics timer settles and publishes their outcomes.
   std::unique_ptr<comply::pipeline::CommandGate> gate_;
 
+  // The executor's callbacks (timers, subscriptions, services) and the lifecycle transitions may
+  // run on different threads of a multi-threaded executor: they hold this while they use what
+  // configure made. update() never takes it (the controller manager runs it only while active).
+  std::mutex endpoints_mutex_;
   // Timing of update() (written by the real-time thread, read by the diagnostics timer) and the
   // newest cycle's state sample (update() fills the scratch and hands it over wait-free).
   std::unique_ptr<comply::host::LoopCounters> loop_;
