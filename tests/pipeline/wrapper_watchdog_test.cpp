@@ -65,6 +65,15 @@ class Watchdog : public ::testing::Test {
   TorqueBuffer torque;
 };
 
+/// A joint command that sets the stiffness alone, every joint `stiffness` [N m/rad].
+JointCommand jointStiffnessOnly(double stamp_s, double stiffness) {
+  JointCommand gains = JointCommand::zero(kFr3Dof);
+  gains.stamp_s = stamp_s;
+  gains.fields = CommandField::kStiffness;
+  gains.stiffness.setConstant(stiffness);
+  return gains;
+}
+
 /// A Cartesian command that sets the stiffness alone, stamped `stamp_s`.
 CartesianCommand stiffnessOnly(double stamp_s) {
   CartesianCommand gains = CartesianCommand::zero(kFr3Dof);
@@ -112,11 +121,7 @@ TEST_F(JointHold, PartialCommandAfterTheTimeoutDoesNotReviveTheVelocity) {
   submitVelocity(1.0, 0.1);
   ASSERT_GT(cyclesUntilTorqueVanishes(kTolerance), 0);
 
-  JointCommand gains = JointCommand::zero(kFr3Dof);
-  gains.stamp_s = 2.0;
-  gains.fields = CommandField::kStiffness;
-  gains.stiffness.setConstant(150.0);
-  ASSERT_TRUE(wrapper.submit(gains).accepted);
+  ASSERT_TRUE(wrapper.submit(jointStiffnessOnly(2.0, 150.0)).accepted);
   COMPLY_EXPECT_JOINTS_NEAR(lawTorque(), JointVector::Zero(kFr3Dof), kTolerance);
   EXPECT_EQ(wrapper.lastAccepted().velocity, JointVector(JointVector::Zero(kFr3Dof)));
 
@@ -178,11 +183,7 @@ TEST_F(JointReanchor, JointReferenceMovesToTheMeasuredPosition) {
   expectReanchoredAfterTimeout(wrapper, law);
 
   // Gains only: the re-anchored reference stays, so nothing pulls back to the old target.
-  JointCommand gains = JointCommand::zero(kFr3Dof);
-  gains.stamp_s = 2.0;
-  gains.fields = CommandField::kStiffness;
-  gains.stiffness.setConstant(200.0);
-  ASSERT_TRUE(wrapper.submit(gains).accepted);
+  ASSERT_TRUE(wrapper.submit(jointStiffnessOnly(2.0, 200.0)).accepted);
   COMPLY_EXPECT_JOINTS_NEAR(law(), JointVector::Zero(kFr3Dof), kTolerance);
   COMPLY_EXPECT_JOINTS_NEAR(wrapper.lastAccepted().position, stuck, 0.0);
 }
