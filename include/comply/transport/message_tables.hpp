@@ -113,7 +113,7 @@
     "[-] cycles per bin of cycle-start lateness (wall clock)") \
   X(std::string, last_fault, last_fault, {}, "why the controller last entered FAULT (\"\" if never)") \
   X(std::string, last_rejection, last_rejection, {}, \
-    "why the last refused command was refused (\"\" if none)") \
+    "why the last refused command or request was refused, its reason first (\"\" if none)") \
   X(std::string, publisher, publisher, {}, "the writer holding the command topics (\"\" when none)") \
   X(std::uint64_t, records_dropped, records_dropped, 0, \
     "[-] records the recording refused, its lanes full (--record; 0 without)") \
