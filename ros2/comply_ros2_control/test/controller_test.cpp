@@ -76,6 +76,9 @@ class ControllerHarness : public ::testing::Test {
     if (with_sensor_) {
       arguments.insert(arguments.end(), {"-p", "force_torque_sensor.name:=ft"});
     }
+    if (joint_pd_) {
+      arguments.insert(arguments.end(), {"-p", "output.mode:=joint_pd"});
+    }
     const auto options = rclcpp::NodeOptions()
                              .allow_undeclared_parameters(true)
                              .automatically_declare_parameters_from_overrides(true)
@@ -85,13 +88,17 @@ class ControllerHarness : public ::testing::Test {
     ASSERT_EQ(controller_.configure().id(), lifecycle_msgs::msg::State::PRIMARY_STATE_INACTIVE);
     const auto robot = comply::model::loadRobotDescription("fr3");
     dof_ = robot.joints.size();
-    values_.resize(4 * dof_);
+    values_.resize(3 * dof_);
+    command_values_.resize(commandKinds().size() * dof_);
     for (std::size_t i = 0; i < dof_; ++i) {
       values_[3 * i] = robot.home[i];
       state_interfaces_.emplace_back(robot.joints[i], "position", &values_[3 * i]);
       state_interfaces_.emplace_back(robot.joints[i], "velocity", &values_[3 * i + 1]);
       state_interfaces_.emplace_back(robot.joints[i], "effort", &values_[3 * i + 2]);
-      command_interfaces_.emplace_back(robot.joints[i], "effort", &values_[3 * dof_ + i]);
+      for (std::size_t k = 0; k < commandKinds().size(); ++k) {
+        command_interfaces_.emplace_back(robot.joints[i], commandKinds()[k],
+                                         &command_values_[i * commandKinds().size() + k]);
+      }
     }
     if (with_sensor_) {
       const char* axes[] = {"force.x", "force.y", "force.z", "torque.x", "torque.y", "torque.z"};
@@ -118,7 +125,18 @@ class ControllerHarness : public ::testing::Test {
     rclcpp::shutdown();
   }
 
-  double torque(std::size_t joint) const { return values_[3 * dof_ + joint]; }
+  /// The command interfaces of a joint, as the controller claims them in its output.mode.
+  std::vector<std::string> commandKinds() const {
+    if (joint_pd_) {
+      return {"position", "velocity", "effort", "stiffness", "damping"};
+    }
+    return {"effort"};
+  }
+  /// Command interface `kind` of `joint` (index into commandKinds()).
+  double command(std::size_t joint, std::size_t kind) const {
+    return command_values_[joint * commandKinds().size() + kind];
+  }
+  double torque(std::size_t joint) const { return command(joint, 0); }
   comply::JointState jointState() const {
     auto state = comply::JointState::zero(static_cast<int>(dof_));
     for (std::size_t i = 0; i < dof_; ++i) {
@@ -129,9 +147,11 @@ class ControllerHarness : public ::testing::Test {
 
   CartesianController controller_;
   bool with_sensor_ = false;  ///< a wrist sensor "ft" on ros2_control's force-torque interfaces
+  bool joint_pd_ = false;     ///< output.mode joint_pd: five command interfaces per joint
   std::array<double, 6> wrench_{};  ///< its reading: force x y z [N], torque x y z [N m]
   std::size_t dof_ = 0;
-  std::vector<double> values_;  // per joint: position, velocity, effort; then the torques
+  std::vector<double> values_;          // per joint: position, velocity, effort
+  std::vector<double> command_values_;  // per joint: commandKinds()
   std::vector<hi::StateInterface> state_interfaces_;
   std::vector<hi::CommandInterface> command_interfaces_;
 };
@@ -177,6 +197,42 @@ TEST_F(ControllerHarness, UpdateAllocatesNothing) {
   counting = false;
   delete allocation_probe;
   EXPECT_EQ(allocations.load(), 1);
+}
+
+class JointPdHarness : public ControllerHarness {
+ protected:
+  JointPdHarness() { joint_pd_ = true; }
+};
+
+// output.mode joint_pd (an arm with an onboard PD): the controller claims q_d, dq_d, tau_ff, kp
+// and kd per joint and writes exactly what comply's wrapper computes in that mode.
+TEST_F(JointPdHarness, WritesTheJointPdCommandOfComplysWrapperOnTheSameFile) {
+  comply::pipeline::WrapperConfig config =
+      comply::pipeline::parseWrapperConfig(fileText(kConfig), kConfig, "cartesian_impedance");
+  config.output.mode = comply::OutputMode::kJointPd;
+  comply::pipeline::Wrapper<comply::CartesianCommand> reference(config);
+  reference.activate(jointState());
+  comply::ActuatorCommand expected;
+  expected.resize(static_cast<int>(dof_));
+  const comply::JointVector comply::ActuatorCommand::*fields[] = {
+      &comply::ActuatorCommand::position, &comply::ActuatorCommand::velocity,
+      &comply::ActuatorCommand::effort, &comply::ActuatorCommand::stiffness,
+      &comply::ActuatorCommand::damping};
+  const rclcpp::Duration period(0, 1'000'000);
+  for (int cycle = 0; cycle < 50; ++cycle) {
+    values_[1] = 0.01 * cycle;  // joint 1 moving
+    ASSERT_EQ(controller_.update(rclcpp::Time(0), period), controller_interface::return_type::OK);
+    auto state = jointState();
+    state.velocity[0] = values_[1];
+    ASSERT_TRUE(reference.cycle(state, 0.001, expected));
+    for (std::size_t i = 0; i < dof_; ++i) {
+      for (std::size_t k = 0; k < 5; ++k) {
+        ASSERT_DOUBLE_EQ(command(i, k), (expected.*fields[k])[static_cast<Eigen::Index>(i)])
+            << commandKinds()[k] << " of joint " << i << ", cycle " << cycle;
+      }
+    }
+  }
+  EXPECT_GT(command(0, 3), 0.0) << "a stiffness reached the drive";
 }
 
 // ~/reset_fault through a real service call: refused outside FAULT, accepted in it (a NaN
