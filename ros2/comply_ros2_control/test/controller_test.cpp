@@ -7,12 +7,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <lifecycle_msgs/msg/state.hpp>
+#include <map>
 #include <new>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -76,8 +78,8 @@ class ControllerHarness : public ::testing::Test {
     if (with_sensor_) {
       arguments.insert(arguments.end(), {"-p", "force_torque_sensor.name:=ft"});
     }
-    if (joint_pd_) {
-      arguments.insert(arguments.end(), {"-p", "output.mode:=joint_pd"});
+    if (output_mode_ != "torque") {
+      arguments.insert(arguments.end(), {"-p", "output.mode:=" + output_mode_});
     }
     const auto options = rclcpp::NodeOptions()
                              .allow_undeclared_parameters(true)
@@ -127,8 +129,11 @@ class ControllerHarness : public ::testing::Test {
 
   /// The command interfaces of a joint, as the controller claims them in its output.mode.
   std::vector<std::string> commandKinds() const {
-    if (joint_pd_) {
+    if (output_mode_ == "joint_pd") {
       return {"position", "velocity", "effort", "stiffness", "damping"};
+    }
+    if (output_mode_ == "position" || output_mode_ == "velocity") {
+      return {output_mode_};
     }
     return {"effort"};
   }
@@ -147,8 +152,8 @@ class ControllerHarness : public ::testing::Test {
 
   CartesianController controller_;
   bool with_sensor_ = false;  ///< a wrist sensor "ft" on ros2_control's force-torque interfaces
-  bool joint_pd_ = false;     ///< output.mode joint_pd: five command interfaces per joint
-  std::array<double, 6> wrench_{};  ///< its reading: force x y z [N], torque x y z [N m]
+  std::string output_mode_ = "torque";  ///< output.mode, and the command interfaces it claims
+  std::array<double, 6> wrench_{};      ///< its reading: force x y z [N], torque x y z [N m]
   std::size_t dof_ = 0;
   std::vector<double> values_;          // per joint: position, velocity, effort
   std::vector<double> command_values_;  // per joint: commandKinds()
@@ -199,25 +204,35 @@ TEST_F(ControllerHarness, UpdateAllocatesNothing) {
   EXPECT_EQ(allocations.load(), 1);
 }
 
-class JointPdHarness : public ControllerHarness {
+class OutputModeHarness : public ControllerHarness,
+                          public ::testing::WithParamInterface<std::string> {
  protected:
-  JointPdHarness() { joint_pd_ = true; }
+  OutputModeHarness() { output_mode_ = GetParam(); }
 };
 
-// output.mode joint_pd (an arm with an onboard PD): the controller claims q_d, dq_d, tau_ff, kp
-// and kd per joint and writes exactly what comply's wrapper computes in that mode.
-TEST_F(JointPdHarness, WritesTheJointPdCommandOfComplysWrapperOnTheSameFile) {
+// Every output.mode under ros2_control (an arm with an onboard PD, position or velocity drives):
+// the controller claims that mode's command interfaces and writes exactly what comply's wrapper
+// computes in it on the same file.
+TEST_P(OutputModeHarness, WritesTheCommandOfComplysWrapperInItsMode) {
   comply::pipeline::WrapperConfig config =
       comply::pipeline::parseWrapperConfig(fileText(kConfig), kConfig, "cartesian_impedance");
-  config.output.mode = comply::OutputMode::kJointPd;
+  for (const comply::OutputMode mode : comply::kOutputModes) {
+    if (comply::toString(mode) == output_mode_) {
+      config.output.mode = mode;
+    }
+  }
+  ASSERT_EQ(comply::toString(config.output.mode), output_mode_);
   comply::pipeline::Wrapper<comply::CartesianCommand> reference(config);
   reference.activate(jointState());
   comply::ActuatorCommand expected;
   expected.resize(static_cast<int>(dof_));
-  const comply::JointVector comply::ActuatorCommand::*fields[] = {
-      &comply::ActuatorCommand::position, &comply::ActuatorCommand::velocity,
-      &comply::ActuatorCommand::effort, &comply::ActuatorCommand::stiffness,
-      &comply::ActuatorCommand::damping};
+  const std::map<std::string, comply::JointVector comply::ActuatorCommand::*> fields = {
+      {"position", &comply::ActuatorCommand::position},
+      {"velocity", &comply::ActuatorCommand::velocity},
+      {"effort", &comply::ActuatorCommand::effort},
+      {"stiffness", &comply::ActuatorCommand::stiffness},
+      {"damping", &comply::ActuatorCommand::damping}};
+  const std::vector<std::string> kinds = commandKinds();
   const rclcpp::Duration period(0, 1'000'000);
   for (int cycle = 0; cycle < 50; ++cycle) {
     values_[1] = 0.01 * cycle;  // joint 1 moving
@@ -226,14 +241,21 @@ TEST_F(JointPdHarness, WritesTheJointPdCommandOfComplysWrapperOnTheSameFile) {
     state.velocity[0] = values_[1];
     ASSERT_TRUE(reference.cycle(state, 0.001, expected));
     for (std::size_t i = 0; i < dof_; ++i) {
-      for (std::size_t k = 0; k < 5; ++k) {
-        ASSERT_DOUBLE_EQ(command(i, k), (expected.*fields[k])[static_cast<Eigen::Index>(i)])
-            << commandKinds()[k] << " of joint " << i << ", cycle " << cycle;
+      for (std::size_t k = 0; k < kinds.size(); ++k) {
+        ASSERT_DOUBLE_EQ(command(i, k),
+                         (expected.*fields.at(kinds[k]))[static_cast<Eigen::Index>(i)])
+            << kinds[k] << " of joint " << i << ", cycle " << cycle;
       }
     }
   }
-  EXPECT_GT(command(0, 3), 0.0) << "a stiffness reached the drive";
+  EXPECT_TRUE(std::any_of(command_values_.begin(), command_values_.end(), [](double value) {
+    return value != 0.0;
+  })) << "no command reached the drives";
 }
+
+INSTANTIATE_TEST_SUITE_P(Modes, OutputModeHarness,
+                         ::testing::Values("joint_pd", "position", "velocity"),
+                         [](const auto& info) { return info.param; });
 
 // ~/reset_fault through a real service call: refused outside FAULT, accepted in it (a NaN
 // position sends the controller there), and the controller leaves FAULT once the state is usable.
