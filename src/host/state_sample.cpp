@@ -92,6 +92,16 @@ transport::CommandOutcomeMessage outcomeMessage(const pipeline::CommandOutcome& 
   return message;
 }
 
+std::vector<transport::CommandOutcomeMessage> outcomeMessages(
+    const std::vector<pipeline::CommandOutcome>& outcomes) {
+  std::vector<transport::CommandOutcomeMessage> messages;
+  messages.reserve(outcomes.size());
+  for (const pipeline::CommandOutcome& outcome : outcomes) {
+    messages.push_back(outcomeMessage(outcome));
+  }
+  return messages;
+}
+
 template <typename Command>
 StateSampler<Command>::StateSampler(const pipeline::Wrapper<Command>& wrapper)
     : wrapper_(wrapper), inactive_pose_(wrapper.controller().model()) {}

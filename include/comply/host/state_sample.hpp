@@ -3,6 +3,7 @@
 // thread right after the cycle: fixed size, so filling and copying it never allocates.
 
 #include <Eigen/Geometry>
+#include <vector>
 
 #include "comply/core/state.hpp"
 #include "comply/hardware/control_loop.hpp"
@@ -64,6 +65,9 @@ transport::ControllerStateMessage stateMessage(const StateSample& sample,
 
 /// A command gate's outcome as the wire's CommandOutcome.
 transport::CommandOutcomeMessage outcomeMessage(const pipeline::CommandOutcome& outcome);
+/// Gate outcomes (CommandGate::takeOutcomes()) as the wire's CommandOutcomes, in order.
+std::vector<transport::CommandOutcomeMessage> outcomeMessages(
+    const std::vector<pipeline::CommandOutcome>& outcomes);
 
 extern template class StateSampler<CartesianCommand>;
 extern template class StateSampler<JointCommand>;

@@ -494,13 +494,9 @@ void ComplyController<Command>::publishDiagnostics() {
     return;
   }
   gate_->settle();
-  std::vector<comply::transport::CommandOutcomeMessage> outcomes;
-  for (const comply::pipeline::CommandOutcome& outcome : gate_->takeOutcomes()) {
-    outcomes.push_back(comply::host::outcomeMessage(outcome));
-  }
   comply::transport::DiagnosticsMessage diagnostics = comply::host::diagnosticsMessage(
       wrapper_->diagnostics(), *loop_, nominal_period_s_, gate_->counts(), gate_->publisher(),
-      get_node()->get_name(), std::move(outcomes));
+      get_node()->get_name(), comply::host::outcomeMessages(gate_->takeOutcomes()));
   diagnostics.header.stamp =
       comply::transport::Stamp::fromNanoseconds(get_node()->now().nanoseconds());
   comply_msgs::msg::Diagnostics message;

@@ -48,16 +48,6 @@ void offerSample(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gat
 
 }  // namespace
 
-std::vector<transport::CommandOutcomeMessage> outcomeMessages(
-    const std::vector<pipeline::CommandOutcome>& outcomes) {
-  std::vector<transport::CommandOutcomeMessage> messages;
-  messages.reserve(outcomes.size());
-  for (const pipeline::CommandOutcome& outcome : outcomes) {
-    messages.push_back(outcomeMessage(outcome));
-  }
-  return messages;
-}
-
 template <typename Command>
 template <typename Message>
 void Intake<Command>::handleCommand(const transport::Sample<Message>& sample) {

@@ -28,10 +28,6 @@ static_assert(static_cast<int>(transport::Reason::kQueueFull) ==
                   static_cast<int>(pipeline::CommandReason::kInactive) &&
               transport::kReasonCount == pipeline::kCommandReasonCount);
 
-/// Gate outcomes as the wire's CommandOutcomes (outcomeMessage() of state_sample.hpp).
-std::vector<transport::CommandOutcomeMessage> outcomeMessages(
-    const std::vector<pipeline::CommandOutcome>& outcomes);
-
 /// Takes the samples of the command and chunk topics and the request topic and feeds the gate.
 template <typename Command>
 class Intake {
