@@ -175,12 +175,7 @@ int sendAll(Participant& participant, const SendOptions& options,
   const int dof = static_cast<int>(state.position.size());
   // A group given in part keeps the rest in force: the host's reference for the first command,
   // then what the command before it left (a stream of positions keeps the orientation).
-  Command in_force;
-  if constexpr (std::is_same_v<Command, CartesianCommand>) {
-    in_force = transport::cartesianReferenceInForce(state, dof);
-  } else {
-    in_force = transport::jointReferenceInForce(state, dof);
-  }
+  Command in_force = transport::referenceInForce<Command>(state, dof);
   // Keep-all both ways: at any --rate the writer waits for room rather than drop a command, and no
   // outcome is dropped before it is read.
   transport::Writer<Message> writer(participant, options.client.name, transport::kKeepAll);

@@ -191,23 +191,27 @@ bool Client::poll(double wait_s) {
   return !states.empty();
 }
 
-std::int64_t Client::sendCartesian(const py::kwargs& kwargs) {
+template <typename Command>
+Command Client::referenceInForce() const {
   // Keywords a group leaves out keep the reference in force (position alone keeps orientation).
-  const CartesianCommand base =
-      state_ ? transport::cartesianReferenceInForce(*state_, dof_) : CartesianCommand::zero(dof_);
-  transport::CartesianCommandMessage message{{{}, ""}, cartesianFromKwargs(kwargs, dof_, base)};
+  return state_ ? transport::referenceInForce<Command>(*state_, dof_) : Command::zero(dof_);
+}
+
+template <typename Message>
+std::int64_t Client::sendCommand(transport::Writer<Message>& writer, const py::kwargs& kwargs) {
+  using Command = decltype(Message::command);
+  Message message{{{}, ""}, commandFromKwargs<Command>(kwargs, dof_, referenceInForce<Command>())};
   message.header.stamp = nextStamp();
-  publish(cartesian_writer_, message);
+  publish(writer, message);
   return message.header.stamp.nanoseconds();
 }
 
+std::int64_t Client::sendCartesian(const py::kwargs& kwargs) {
+  return sendCommand(cartesian_writer_, kwargs);
+}
+
 std::int64_t Client::sendJoint(const py::kwargs& kwargs) {
-  const JointCommand base =
-      state_ ? transport::jointReferenceInForce(*state_, dof_) : JointCommand::zero(dof_);
-  transport::JointCommandMessage message{{{}, ""}, jointFromKwargs(kwargs, dof_, base)};
-  message.header.stamp = nextStamp();
-  publish(joint_writer_, message);
-  return message.header.stamp.nanoseconds();
+  return sendCommand(joint_writer_, kwargs);
 }
 
 std::int64_t Client::sendChunk(const py::object& chunk, const py::object& relative_to) {
@@ -219,19 +223,18 @@ std::int64_t Client::sendChunk(const py::object& chunk, const py::object& relati
   } else {
     origin_s = relative_to.cast<double>();
   }
-  const auto send = [&](auto& writer, auto message, const auto& base) {
+  const auto send = [&](auto& writer, auto message) {
+    using Command = decltype(message.chunk.waypoints[0].command);
     message.header.stamp = stamp;
-    message.chunk = chunkFromPython(chunk, dof_, origin_s, std::optional(base));
+    message.chunk =
+        chunkFromPython(chunk, dof_, origin_s, std::optional(referenceInForce<Command>()));
     message.chunk.stamp_s = stamp.seconds();
     publish(writer, message);
   };
   if (cartesian_) {
-    send(cartesian_chunk_writer_, transport::CartesianChunkMessage{},
-         state_ ? transport::cartesianReferenceInForce(*state_, dof_)
-                : CartesianCommand::zero(dof_));
+    send(cartesian_chunk_writer_, transport::CartesianChunkMessage{});
   } else {
-    send(joint_chunk_writer_, transport::JointChunkMessage{},
-         state_ ? transport::jointReferenceInForce(*state_, dof_) : JointCommand::zero(dof_));
+    send(joint_chunk_writer_, transport::JointChunkMessage{});
   }
   return stamp.nanoseconds();
 }

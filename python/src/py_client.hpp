@@ -78,6 +78,12 @@ class Client {
   /// write(); throws when no host reads the topic or DDS refuses the message.
   template <typename Message>
   void publish(transport::Writer<Message>& writer, const Message& message);
+  /// What a command given in part builds on: the reference in the newest state, else zero.
+  template <typename Command>
+  [[nodiscard]] Command referenceInForce() const;
+  /// A command from keywords, stamped and published; its stamp [ns].
+  template <typename Message>
+  std::int64_t sendCommand(transport::Writer<Message>& writer, const py::kwargs& kwargs);
 
   std::string name_;
   transport::Participant participant_;

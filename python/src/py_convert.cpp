@@ -29,19 +29,6 @@ nlohmann::json valueToJson(const py::handle& value) {
   return list;
 }
 
-template <typename Command>
-Command fromKwargs(const py::dict& kwargs, int dof, const std::optional<Command>& base) {
-  schema::ReadOptions<Command> options;
-  options.base = base;
-  options.allow_shorthand = true;
-  options.source = "keyword arguments";
-  try {
-    return schema::fromJson<Command>(kwargsToJson(kwargs), dof, options).command;
-  } catch (const InputError& error) {
-    throw py::value_error(error.what());
-  }
-}
-
 py::dict stampDict(const transport::Stamp& stamp) {
   py::dict d;
   d["sec"] = stamp.sec;
@@ -95,15 +82,22 @@ template Chunk<CartesianCommand> chunkFromPython(const py::handle&, int, double,
 template Chunk<JointCommand> chunkFromPython(const py::handle&, int, double,
                                              const std::optional<JointCommand>&);
 
-CartesianCommand cartesianFromKwargs(const py::dict& kwargs, int dof,
-                                     const std::optional<CartesianCommand>& base) {
-  return fromKwargs<CartesianCommand>(kwargs, dof, base);
+template <typename Command>
+Command commandFromKwargs(const py::dict& kwargs, int dof, const std::optional<Command>& base) {
+  schema::ReadOptions<Command> options;
+  options.base = base;
+  options.allow_shorthand = true;
+  options.source = "keyword arguments";
+  try {
+    return schema::fromJson<Command>(kwargsToJson(kwargs), dof, options).command;
+  } catch (const InputError& error) {
+    throw py::value_error(error.what());
+  }
 }
 
-JointCommand jointFromKwargs(const py::dict& kwargs, int dof,
-                             const std::optional<JointCommand>& base) {
-  return fromKwargs<JointCommand>(kwargs, dof, base);
-}
+template CartesianCommand commandFromKwargs(const py::dict&, int,
+                                            const std::optional<CartesianCommand>&);
+template JointCommand commandFromKwargs(const py::dict&, int, const std::optional<JointCommand>&);
 
 py::array_t<double> array(const double* values, std::size_t size) {
   py::array_t<double> out(static_cast<py::ssize_t>(size));

@@ -26,10 +26,9 @@ nlohmann::json kwargsToJson(const py::dict& kwargs);
 /// are the groups of the keywords given. Raises ValueError naming the keyword.
 /// `base`: what the keywords a given group leaves out keep (the reference in force, say), so
 /// position=... alone keeps the orientation in force; without it, Command::zero(dof).
-CartesianCommand cartesianFromKwargs(const py::dict& kwargs, int dof,
-                                     const std::optional<CartesianCommand>& base = std::nullopt);
-JointCommand jointFromKwargs(const py::dict& kwargs, int dof,
-                             const std::optional<JointCommand>& base = std::nullopt);
+template <typename Command>
+Command commandFromKwargs(const py::dict& kwargs, int dof,
+                          const std::optional<Command>& base = std::nullopt);
 
 /// A timed chunk from Python: a list of dicts, each a waypoint's schema keywords plus "time" [s]
 /// relative to `time_origin_s`, or {"chunk": that list}. Each waypoint builds on the one before

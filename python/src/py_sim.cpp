@@ -308,12 +308,7 @@ py::tuple Sim::step(const py::object& command) {
             return;
           }
           const py::dict kwargs = command.cast<py::dict>();
-          Command c;
-          if constexpr (std::is_same_v<Command, CartesianCommand>) {
-            c = cartesianFromKwargs(kwargs, dof(), e->wrapper.lastAccepted());
-          } else {
-            c = jointFromKwargs(kwargs, dof(), e->wrapper.lastAccepted());
-          }
+          Command c = commandFromKwargs<Command>(kwargs, dof(), e->wrapper.lastAccepted());
           c.stamp_s = stampSeconds(*stamp_ns);
           if (host::HostRecording* to = recording()) {
             to->received(transport::CommandMessageOf<Command>{header, c},

@@ -88,7 +88,8 @@ std::string_view toString(RequestType request) {
   return "unknown";
 }
 
-CartesianCommand cartesianReferenceInForce(const ControllerStateMessage& state, int dof) {
+template <>
+CartesianCommand referenceInForce(const ControllerStateMessage& state, int dof) {
   CartesianCommand command = CartesianCommand::zero(dof);
   const auto& p = state.reference_position;
   const auto& q = state.reference_orientation;  // x y z w
@@ -97,7 +98,8 @@ CartesianCommand cartesianReferenceInForce(const ControllerStateMessage& state, 
   return command;
 }
 
-JointCommand jointReferenceInForce(const ControllerStateMessage& state, int dof) {
+template <>
+JointCommand referenceInForce(const ControllerStateMessage& state, int dof) {
   JointCommand command = JointCommand::zero(dof);
   if (state.reference_joint_position.size() == static_cast<std::size_t>(dof)) {
     command.position =

@@ -162,8 +162,12 @@ struct RequestMessage {
 /// send the orientation in force with it (or the group's default would be a jump); every client
 /// (Python's Client, `comply send`) starts from this. Only the pose (joint position) reference is
 /// in the state: other groups start from Command::zero(dof).
-CartesianCommand cartesianReferenceInForce(const ControllerStateMessage& state, int dof);
-JointCommand jointReferenceInForce(const ControllerStateMessage& state, int dof);
+template <typename Command>
+Command referenceInForce(const ControllerStateMessage& state, int dof);
+template <>
+CartesianCommand referenceInForce(const ControllerStateMessage& state, int dof);
+template <>
+JointCommand referenceInForce(const ControllerStateMessage& state, int dof);
 
 /// A received message and who wrote it.
 template <typename Message>

@@ -14,66 +14,18 @@
 #include <thread>
 
 #include "comply/hardware/control_loop.hpp"
+#include "comply/host/diagnostics_message.hpp"
 #include "comply/host/hardware_backends.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/transport/host_transport.hpp"
 #include "live_intake.hpp"
-#include "comply/host/diagnostics_message.hpp"
 #include "live_observer.hpp"
 
 namespace comply::host {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-/// The commands and chunks of one receive, merged by stamp: they come on different topics, and a
-/// sender's stamps must increase across all of them. Each topic keeps its arrival order (a stamp
-/// that went back on one topic is still refused as stale).
-template <typename Command>
-void handleInStampOrder(const transport::Inbox& inbox, Intake<Command>& intake) {
-  std::size_t next[4] = {0, 0, 0, 0};
-  const std::size_t sizes[4] = {inbox.cartesian.size(), inbox.joint.size(),
-                                inbox.cartesian_chunks.size(), inbox.joint_chunks.size()};
-  const auto stamp_at = [](const auto& samples, std::size_t index) {
-    return samples[index].message.header.stamp.nanoseconds();
-  };
-  while (true) {
-    int first = -1;
-    std::int64_t first_stamp = 0;
-    for (int topic = 0; topic < 4; ++topic) {
-      if (next[topic] == sizes[topic]) {
-        continue;
-      }
-      const std::size_t i = next[topic];
-      const std::int64_t stamp = topic == 0   ? stamp_at(inbox.cartesian, i)
-                                 : topic == 1 ? stamp_at(inbox.joint, i)
-                                 : topic == 2 ? stamp_at(inbox.cartesian_chunks, i)
-                                              : stamp_at(inbox.joint_chunks, i);
-      if (first < 0 || stamp < first_stamp) {
-        first = topic;
-        first_stamp = stamp;
-      }
-    }
-    if (first < 0) {
-      return;
-    }
-    switch (first) {
-      case 0:
-        intake.handle(inbox.cartesian[next[0]++]);
-        break;
-      case 1:
-        intake.handle(inbox.joint[next[1]++]);
-        break;
-      case 2:
-        intake.handle(inbox.cartesian_chunks[next[2]++]);
-        break;
-      default:
-        intake.handle(inbox.joint_chunks[next[3]++]);
-        break;
-    }
-  }
-}
 
 template <typename Command>
 void readerThread(transport::HostTransport& transport, Intake<Command>& intake,
@@ -82,13 +34,7 @@ void readerThread(transport::HostTransport& transport, Intake<Command>& intake,
   while (running.load()) {
     inbox.clear();
     transport.receive(inbox, 0.1);
-    handleInStampOrder(inbox, intake);
-    for (const auto& sample : inbox.requests) {
-      intake.handle(sample);
-    }
-    for (const std::uint64_t publisher : inbox.departed) {
-      intake.departed(publisher);
-    }
+    intake.take(inbox);
   }
 }
 

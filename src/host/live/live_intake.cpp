@@ -2,6 +2,8 @@
 
 #include "live_intake.hpp"
 
+#include <array>
+#include <tuple>
 #include <type_traits>
 
 #include "comply/core/clock.hpp"
@@ -46,6 +48,17 @@ void offerSample(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gat
              [&] { return submitSample(wrapper, sample.message, offer.stamp_ns, offer.clock_ns); });
 }
 
+/// Calls visit(index, samples) for each topic's samples in a tuple of them.
+template <typename Topics, typename Visit>
+void forEachTopic(const Topics& topics, Visit&& visit) {
+  std::apply(
+      [&](const auto&... samples) {
+        int topic = 0;
+        (visit(topic++, samples), ...);
+      },
+      topics);
+}
+
 }  // namespace
 
 template <typename Command>
@@ -60,25 +73,46 @@ void Intake<Command>::handleCommand(const transport::Sample<Message>& sample) {
               kCartesian ? pipeline::CommandKind::kCartesian : pipeline::CommandKind::kJoint);
 }
 
+/// The commands and chunks of one receive, merged by stamp: they come on different topics, and a
+/// sender's stamps must increase across all of them. Each topic keeps its arrival order (a stamp
+/// that went back on one topic is still refused as stale).
 template <typename Command>
-void Intake<Command>::handle(const transport::Sample<transport::CartesianCommandMessage>& sample) {
-  handleCommand(sample);
-}
-template <typename Command>
-void Intake<Command>::handle(const transport::Sample<transport::JointCommandMessage>& sample) {
-  handleCommand(sample);
-}
-template <typename Command>
-void Intake<Command>::handle(const transport::Sample<transport::CartesianChunkMessage>& sample) {
-  handleCommand(sample);
-}
-template <typename Command>
-void Intake<Command>::handle(const transport::Sample<transport::JointChunkMessage>& sample) {
-  handleCommand(sample);
+void Intake<Command>::take(const transport::Inbox& inbox) {
+  const auto topics =
+      std::tie(inbox.cartesian, inbox.joint, inbox.cartesian_chunks, inbox.joint_chunks);
+  std::array<std::size_t, std::tuple_size_v<decltype(topics)>> next{};
+  while (true) {
+    int first = -1;
+    std::int64_t first_stamp = 0;
+    forEachTopic(topics, [&](int topic, const auto& samples) {
+      if (next[topic] == samples.size()) {
+        return;
+      }
+      const std::int64_t stamp = samples[next[topic]].message.header.stamp.nanoseconds();
+      if (first < 0 || stamp < first_stamp) {
+        first = topic;
+        first_stamp = stamp;
+      }
+    });
+    if (first < 0) {
+      break;
+    }
+    forEachTopic(topics, [&](int topic, const auto& samples) {
+      if (topic == first) {
+        handleCommand(samples[next[topic]++]);
+      }
+    });
+  }
+  for (const auto& sample : inbox.requests) {
+    handleRequest(sample);
+  }
+  for (const std::uint64_t publisher : inbox.departed) {
+    gate_.releasePublisher(publisher);
+  }
 }
 
 template <typename Command>
-void Intake<Command>::handle(const transport::Sample<transport::RequestMessage>& sample) {
+void Intake<Command>::handleRequest(const transport::Sample<transport::RequestMessage>& sample) {
   if (recording_ != nullptr && sample.malformed.empty()) {
     recording_->received(sample.message, transport::Stamp::now());
   }

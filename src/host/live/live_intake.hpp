@@ -8,6 +8,7 @@
 #include "comply/host/host_recording.hpp"
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
+#include "comply/transport/host_transport.hpp"
 #include "comply/transport/messages.hpp"
 #include "live_observer.hpp"
 
@@ -36,13 +37,9 @@ class Intake {
          pipeline::CommandGate& gate)
       : wrapper_(wrapper), observer_(observer), gate_(gate) {}
 
-  void handle(const transport::Sample<transport::CartesianCommandMessage>& sample);
-  void handle(const transport::Sample<transport::JointCommandMessage>& sample);
-  void handle(const transport::Sample<transport::CartesianChunkMessage>& sample);
-  void handle(const transport::Sample<transport::JointChunkMessage>& sample);
-  void handle(const transport::Sample<transport::RequestMessage>& sample);
-  /// A writer went away: it no longer holds the command topics.
-  void departed(std::uint64_t publisher) { gate_.releasePublisher(publisher); }
+  /// One receive: its commands and chunks in stamp order, then its requests, then the writers
+  /// that went away (they no longer hold the command topics).
+  void take(const transport::Inbox& inbox);
   /// Every well-formed command and request is recorded as received (nullptr: none).
   void setRecording(HostRecording* recording) noexcept { recording_ = recording; }
 
@@ -50,6 +47,7 @@ class Intake {
   /// A command or chunk of either kind: recorded as received, then offered to the gate.
   template <typename Message>
   void handleCommand(const transport::Sample<Message>& sample);
+  void handleRequest(const transport::Sample<transport::RequestMessage>& sample);
 
   pipeline::Wrapper<Command>& wrapper_;
   LiveObserver<Command>& observer_;
