@@ -10,17 +10,11 @@
 #include <vector>
 
 #include "command_bits.hpp"
-#include "validation_fixture.hpp"
 #include "comply/pipeline/command_validation.hpp"
+#include "validation_fixture.hpp"
 
-namespace comply::pipeline {
+namespace comply::pipeline::test {
 namespace {
-
-using test::expectSameBits;
-using test::joints;
-
-constexpr int kDof = 3;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 Eigen::Quaterniond rotation(double angle, const Eigen::Vector3d& axis) {
   return Eigen::Quaterniond(Eigen::AngleAxisd(angle, axis.normalized()));
@@ -88,7 +82,8 @@ MeasuredPose measuredAtLastTarget() {
 
 class CartesianValidation : public test::ValidationFixture<CartesianCommand> {
  protected:
-  CartesianValidation() : ValidationFixture(kDof, lastAccepted(), measuredAtLastTarget(), &nextCommand) {}
+  CartesianValidation()
+      : ValidationFixture(kDof, lastAccepted(), measuredAtLastTarget(), &nextCommand) {}
 };
 
 TEST_F(CartesianValidation, AcceptsAndReplacesEveryGroup) {
@@ -393,4 +388,4 @@ TEST_F(CartesianValidation, ValidateCommandChecksAndNormalisesWithoutMerging) {
 }
 
 }  // namespace
-}  // namespace comply::pipeline
+}  // namespace comply::pipeline::test

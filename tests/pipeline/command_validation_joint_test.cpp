@@ -10,18 +10,11 @@
 #include <vector>
 
 #include "command_bits.hpp"
-#include "validation_fixture.hpp"
 #include "comply/pipeline/command_validation.hpp"
+#include "validation_fixture.hpp"
 
-namespace comply::pipeline {
+namespace comply::pipeline::test {
 namespace {
-
-using test::expectSameBits;
-using test::joints;
-
-constexpr int kDof = 3;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// The command in force before each test (stamp 1 s), distinct values in every group.
 JointCommand lastAccepted() {
@@ -77,7 +70,9 @@ const std::vector<Group>& allGroups() {
 
 class JointValidation : public test::ValidationFixture<JointCommand> {
  protected:
-  JointValidation() : ValidationFixture(kDof, lastAccepted(), measuredAt(lastAccepted().position), &nextCommand) {}
+  JointValidation()
+      : ValidationFixture(kDof, lastAccepted(), measuredAt(lastAccepted().position), &nextCommand) {
+  }
 };
 
 TEST_F(JointValidation, AcceptsAndReplacesEveryGroup) {
@@ -241,4 +236,4 @@ TEST(RejectionReasonNames, AreDistinctAndStable) {
 }
 
 }  // namespace
-}  // namespace comply::pipeline
+}  // namespace comply::pipeline::test

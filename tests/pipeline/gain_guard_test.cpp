@@ -10,6 +10,7 @@
 #include <string>
 
 #include "comply/pipeline/wrapper.hpp"
+#include "pose_step.hpp"
 #include "wrapper_support.hpp"
 
 namespace comply::pipeline::test {
@@ -34,11 +35,7 @@ class StiffnessStep : public ::testing::Test {
   void start(CartesianWrapper& wrapper) {
     state = restingAt(wrapper.controller(), fr3Home());
     wrapper.activate(state);
-    CartesianCommand target = CartesianCommand::zero(kFr3Dof);
-    target.stamp_s = 1.0;
-    target.fields = CommandField::kPosition;
-    target.position = wrapper.measuredPose().tcp_position + Eigen::Vector3d(0.02, 0.0, 0.0);
-    target.orientation = wrapper.measuredPose().tcp_orientation;
+    const CartesianCommand target = testing::poseStep(wrapper, Eigen::Vector3d(0.02, 0.0, 0.0));
     ASSERT_TRUE(wrapper.submit(target).accepted);
     for (int cycle = 0; cycle < 200; ++cycle) {
       cycleOnce(wrapper);

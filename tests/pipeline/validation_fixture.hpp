@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,6 +15,11 @@
 #include "comply/pipeline/command_validation.hpp"
 
 namespace comply::pipeline::test {
+
+/// Both kinds are validated for a 3-joint arm.
+inline constexpr int kDof = 3;
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
 template <typename Command>
 class ValidationFixture : public ::testing::Test {

@@ -13,6 +13,7 @@
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/sim/simulated_clock.hpp"
 #include "comply/sim/simulated_robot.hpp"
+#include "pose_step.hpp"
 #include "sim_support.hpp"
 
 namespace comply::testing {
@@ -65,11 +66,7 @@ Drift driftAfterAFrozenStream(bool brakes) {
   JointState state = JointState::zero(plant.dof());
   sensor.read(state);
   wrapper.activate(state);
-  CartesianCommand target = CartesianCommand::zero(plant.dof());
-  target.stamp_s = 1.0;
-  target.fields = CommandField::kPosition;
-  target.position = wrapper.measuredPose().tcp_position + Eigen::Vector3d(0.0, 0.05, 0.0);
-  target.orientation = wrapper.measuredPose().tcp_orientation;
+  const CartesianCommand target = testing::poseStep(wrapper, Eigen::Vector3d(0.0, 0.05, 0.0));
   EXPECT_TRUE(wrapper.submit(target).accepted);  // the arm moves, then its stream freezes
 
   hardware::ControlLoop loop(sensor, wrapper, clock, {.period_s = plant.controlPeriod()});

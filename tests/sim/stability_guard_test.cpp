@@ -13,6 +13,7 @@
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/sim/simulated_robot.hpp"
+#include "pose_step.hpp"
 #include "sim_support.hpp"
 
 namespace comply::testing {
@@ -38,11 +39,7 @@ RunResult stepWithStiffness(const std::string& robot, double stiffness_n_per_m) 
   JointState state = JointState::zero(dof);
   plant.read(state);
   wrapper.activate(state);
-  CartesianCommand target = CartesianCommand::zero(dof);
-  target.stamp_s = 1.0;
-  target.fields = CommandField::kPosition;
-  target.position = wrapper.measuredPose().tcp_position + Eigen::Vector3d(0.05, 0.0, 0.0);
-  target.orientation = wrapper.measuredPose().tcp_orientation;
+  const CartesianCommand target = testing::poseStep(wrapper, Eigen::Vector3d(0.05, 0.0, 0.0));
   EXPECT_TRUE(wrapper.submit(target).accepted);
   RunResult result;
   JointVector torque = JointVector::Zero(dof);
