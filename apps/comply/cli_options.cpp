@@ -4,8 +4,8 @@
 #include "cli_options.hpp"
 
 #include <CLI/CLI.hpp>
-#include <cmath>
-#include <cstdlib>
+
+#include "comply/core/number_text.hpp"
 
 namespace comply::app {
 
@@ -13,11 +13,8 @@ CLI::Validator finiteIn(double low, double high) {
   const std::string range = "a finite number in [" + CLI::detail::to_string(low) + ", " +
                             CLI::detail::to_string(high) + "]";
   return {[low, high, range](const std::string& text) -> std::string {
-            char* end = nullptr;
-            const double value = std::strtod(text.c_str(), &end);
-            const bool ok = end != text.c_str() && *end == '\0' && std::isfinite(value) &&
-                            value >= low && value <= high;
-            return ok ? "" : "must be " + range;
+            const std::optional<double> value = finiteNumber(text);
+            return value && *value >= low && *value <= high ? "" : "must be " + range;
           },
           "FINITE in [" + CLI::detail::to_string(low) + ", " + CLI::detail::to_string(high) + "]"};
 }

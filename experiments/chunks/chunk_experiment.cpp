@@ -3,22 +3,18 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "comply/core/number_text.hpp"
+
 namespace comply::experiments {
 
 chunks::Condition chunkConditionOf(const std::string& name) {
   for (const auto& [prefix, mode] : {std::pair{std::string("stepped_"), chunks::Mode::kStepped},
                                      std::pair{std::string("chunks_"), chunks::Mode::kChunks}}) {
     if (name.starts_with(prefix) && name.ends_with("hz")) {
-      const std::string number = name.substr(prefix.size(), name.size() - prefix.size() - 2);
-      std::size_t used = 0;
-      double rate_hz = 0.0;
-      try {
-        rate_hz = std::stod(number, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used == number.size() && rate_hz > 0.0 && rate_hz <= 1000.0) {
-        return {name, mode, rate_hz};
+      const std::optional<double> rate_hz =
+          finiteNumber(name.substr(prefix.size(), name.size() - prefix.size() - 2));
+      if (rate_hz && *rate_hz > 0.0 && *rate_hz <= 1000.0) {
+        return {name, mode, *rate_hz};
       }
     }
   }

@@ -43,4 +43,13 @@ NumberTexts numbersApart(double value, double limit) {
   }
 }
 
+std::optional<double> finiteNumber(const std::string& text) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0' || !std::isfinite(value)) {
+    return std::nullopt;
+  }
+  return value;
+}
+
 }  // namespace comply

@@ -56,5 +56,14 @@ TEST(NumbersApart, NonFiniteValuesAreNamed) {
   expectTexts(std::numeric_limits<double>::quiet_NaN(), 100.0, "nan", "100");
 }
 
+TEST(FiniteNumber, ReadsAWholeFiniteNumberAndNothingElse) {
+  EXPECT_EQ(finiteNumber("10"), 10.0);
+  EXPECT_EQ(finiteNumber("-2.5e-3"), -2.5e-3);
+  EXPECT_EQ(finiteNumber(" 7"), 7.0);  // leading blanks, as strtod
+  for (const std::string text : {"", " ", "12abc", "10 ", "nan", "inf", "-inf", "1e999", "hz"}) {
+    EXPECT_FALSE(finiteNumber(text).has_value()) << "'" << text << "'";
+  }
+}
+
 }  // namespace
 }  // namespace comply

@@ -23,14 +23,8 @@ struct Evaluation {
   double potential_energy;
 };
 
-class FiniteDifferenceTest : public ::testing::TestWithParam<std::string> {
+class FiniteDifferenceTest : public testing::ShippedRobotTest {
  protected:
-  void SetUp() override {
-    robot_ = loadRobotDescription(GetParam());
-    model_ = std::make_unique<Model>(robot_.loadModel());
-    data_ = std::make_unique<Data>(*model_);
-  }
-
   Evaluation evaluate(const std::vector<double>& q) {
     EXPECT_EQ(update(*model_, *data_, q, {}, Quantity::kPose | Quantity::kMassMatrix),
               UpdateStatus::kOk);
@@ -40,10 +34,6 @@ class FiniteDifferenceTest : public ::testing::TestWithParam<std::string> {
     }
     return {data_->tip_position, data_->tip_rotation, data_->mass_matrix, potential};
   }
-
-  RobotDescription robot_;
-  std::unique_ptr<Model> model_;
-  std::unique_ptr<Data> data_;
 };
 
 TEST_P(FiniteDifferenceTest, DerivativesAgree) {

@@ -19,24 +19,12 @@ constexpr int kSamples = 1000;
 
 /// The model's results in the references' form.
 testing::ReferenceResult resultOf(const Data& data) {
-  testing::ReferenceResult result;
-  result.position = data.tip_position;
-  result.orientation = data.tip_orientation;
-  result.jacobian = data.jacobian;
-  result.gravity = data.gravity;
-  result.coriolis = data.coriolis;
-  result.mass_matrix = data.mass_matrix;
-  return result;
+  return {data.tip_position, data.tip_orientation, data.jacobian,
+          data.gravity,      data.coriolis,        data.mass_matrix};
 }
 
-class ReferenceTest : public ::testing::TestWithParam<std::string> {
+class ReferenceTest : public testing::ShippedRobotTest {
  protected:
-  void SetUp() override {
-    robot_ = loadRobotDescription(GetParam());
-    model_ = std::make_unique<Model>(robot_.loadModel());
-    data_ = std::make_unique<Data>(*model_);
-  }
-
   /// The worst errors against `reference` (its compute(q, dq)) over kSamples joint samples of
   /// seed `seed`.
   template <typename Reference>
@@ -54,10 +42,6 @@ class ReferenceTest : public ::testing::TestWithParam<std::string> {
     worst.print(GetParam() + " vs " + label + ", " + std::to_string(kSamples) + " samples,");
     return worst;
   }
-
-  RobotDescription robot_;
-  std::unique_ptr<Model> model_;
-  std::unique_ptr<Data> data_;
 };
 
 TEST_P(ReferenceTest, MatchesKdl) {

@@ -1,13 +1,18 @@
 #pragma once
-// Random joint states inside a model's limits, reproducible from a seed.
+// Random joint states inside a model's limits, reproducible from a seed, and the fixture of the
+// tests run on every shipped robot.
+
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "comply/model/data.hpp"
 #include "comply/model/model.hpp"
 #include "comply/model/robot_description.hpp"
 
@@ -47,6 +52,20 @@ class JointSampler {
  private:
   const model::Model& model_;
   std::mt19937 engine_;
+};
+
+/// A test on the robot its parameter names: its description, model and data, loaded per test.
+class ShippedRobotTest : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override {
+    robot_ = model::loadRobotDescription(GetParam());
+    model_ = std::make_unique<model::Model>(robot_.loadModel());
+    data_ = std::make_unique<model::Data>(*model_);
+  }
+
+  model::RobotDescription robot_;
+  std::unique_ptr<model::Model> model_;
+  std::unique_ptr<model::Data> data_;
 };
 
 }  // namespace comply::testing

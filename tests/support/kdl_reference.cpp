@@ -1,7 +1,5 @@
 #include "kdl_reference.hpp"
 
-#include "kdl_chain.hpp"
-
 #include <urdf_parser/urdf_parser.h>
 
 #include <Eigen/Geometry>
@@ -19,6 +17,8 @@
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
+
+#include "kdl_chain.hpp"
 
 namespace comply::testing {
 namespace {
@@ -44,10 +44,9 @@ struct KdlReference::Impl {
   // member order above makes sure the chain is complete by then, and Impl never moves.
   explicit Impl(KDL::Chain c) : chain(std::move(c)) {
     const unsigned n = chain.getNrOfJoints();
-    q.resize(n);
-    dq.resize(n);
-    gravity.resize(n);
-    coriolis.resize(n);
+    for (KDL::JntArray* joint_array : {&q, &dq, &gravity, &coriolis}) {
+      joint_array->resize(n);
+    }
     jac.resize(n);
     mass.resize(n);
   }

@@ -3,6 +3,7 @@
 // digits, so an entry of 1000001 N/m once read "an entry of 1e+06 N/m, above the limit of 1e+06":
 // the two are printed with as many digits as tell them apart.
 
+#include <optional>
 #include <string>
 
 namespace comply {
@@ -18,5 +19,9 @@ struct NumberTexts {
 /// numbers differ ("0.12" beside "0.1", "0.5000000000000001" beside "0.5"; 17 digits tell any two
 /// doubles apart). Both are rounded alike, so a value above its limit is printed above it.
 NumberTexts numbersApart(double value, double limit);
+
+/// The finite number that is the whole of `text` (strtod's syntax: "1e3", " 2", "-0.5"); nullopt
+/// for "", "12abc", "nan", "inf" or a value out of double's range.
+std::optional<double> finiteNumber(const std::string& text);
 
 }  // namespace comply
