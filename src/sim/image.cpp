@@ -66,23 +66,36 @@ FileHandle openFile(const std::filesystem::path& file, const char* mode, const c
   return FileHandle(handle);
 }
 
-// ---- writing -------------------------------------------------------------------------------
-
-struct PngWriter {
+/// libpng's state for one file, either direction: libpng keeps separate create and destroy calls
+/// for reading and writing.
+template <bool kWriting>
+struct PngHandle {
   png_structp png = nullptr;
   png_infop info = nullptr;
   PngError error;
 
-  PngWriter() {
-    png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &error, onPngError, onPngWarning);
+  PngHandle() {
+    png = kWriting
+              ? png_create_write_struct(PNG_LIBPNG_VER_STRING, &error, onPngError, onPngWarning)
+              : png_create_read_struct(PNG_LIBPNG_VER_STRING, &error, onPngError, onPngWarning);
     if (png != nullptr) {
       info = png_create_info_struct(png);
     }
   }
-  ~PngWriter() { png_destroy_write_struct(&png, &info); }
-  PngWriter(const PngWriter&) = delete;
-  PngWriter& operator=(const PngWriter&) = delete;
+  ~PngHandle() {
+    if constexpr (kWriting) {
+      png_destroy_write_struct(&png, &info);
+    } else {
+      png_destroy_read_struct(&png, &info, nullptr);
+    }
+  }
+  PngHandle(const PngHandle&) = delete;
+  PngHandle& operator=(const PngHandle&) = delete;
 };
+using PngWriter = PngHandle<true>;
+using PngReader = PngHandle<false>;
+
+// ---- writing -------------------------------------------------------------------------------
 
 /// False when libpng reported an error (its message is in the writer's PngError).
 bool encode(PngWriter& writer, std::FILE* file, const Image& image, png_bytepp rows) {
@@ -100,22 +113,6 @@ bool encode(PngWriter& writer, std::FILE* file, const Image& image, png_bytepp r
 }
 
 // ---- reading -------------------------------------------------------------------------------
-
-struct PngReader {
-  png_structp png = nullptr;
-  png_infop info = nullptr;
-  PngError error;
-
-  PngReader() {
-    png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &error, onPngError, onPngWarning);
-    if (png != nullptr) {
-      info = png_create_info_struct(png);
-    }
-  }
-  ~PngReader() { png_destroy_read_struct(&png, &info, nullptr); }
-  PngReader(const PngReader&) = delete;
-  PngReader& operator=(const PngReader&) = delete;
-};
 
 /// Reads the header and asks libpng to deliver 8-bit RGB whatever the file holds. False on error.
 bool readHeader(PngReader& reader, std::FILE* file, png_uint_32* width, png_uint_32* height) {

@@ -147,79 +147,89 @@ class UrdfReferenceTest : public testing::TestWithParam<std::string> {
 
   std::string robot() const { return GetParam(); }
 
+  /// check(expected, element, where) for each entry of the reference's `section` ("joints",
+  /// "links"); `find` looks the entry's name up in the URDF, and an entry it lacks fails.
+  template <typename Find, typename Check>
+  void forEachEntry(const std::string& section, Find find, Check check) {
+    ASSERT_TRUE(reference_[section].IsSequence());
+    for (const YAML::Node& expected : reference_[section]) {
+      const auto name = expected["name"].as<std::string>();
+      // "joints" -> "joint": the messages name one element.
+      const std::string where = robot() + " " + section.substr(0, section.size() - 1) + " " + name;
+      if (const auto element = find(name)) {
+        check(expected, *element, where);
+      } else {
+        ADD_FAILURE() << where << ": missing from the URDF";
+      }
+    }
+  }
+
   YAML::Node reference_;
   urdf::ModelInterfaceSharedPtr urdf_;
 };
 
 TEST_P(UrdfReferenceTest, JointsMatchReference) {
-  ASSERT_TRUE(reference_["joints"].IsSequence());
-  for (const YAML::Node& expected : reference_["joints"]) {
-    const auto name = expected["name"].as<std::string>();
-    const std::string where = robot() + " joint " + name;
-    const urdf::JointConstSharedPtr joint = urdf_->getJoint(name);
-    if (!joint) {
-      ADD_FAILURE() << where << ": missing from the URDF";
-      continue;
-    }
-    const auto type = expected["type"].as<std::string>();
-    EXPECT_EQ(joint->type, urdfType(type)) << where << ": type " << type;
-    EXPECT_EQ(joint->parent_link_name, expected["parent"].as<std::string>()) << where << ": parent";
-    EXPECT_EQ(joint->child_link_name, expected["child"].as<std::string>()) << where << ": child";
-    expectSame(joint->parent_to_joint_origin_transform.position, doubles(expected["origin_xyz"]),
-               where + " origin xyz");
-    expectSameRotation(joint->parent_to_joint_origin_transform.rotation,
-                       doubles(expected["origin_rpy"]), where + " origin rpy");
-    if (type == "fixed") {
-      continue;
-    }
-    expectSame(joint->axis, doubles(expected["axis"]), where + " axis");
-    const YAML::Node limits = expected["limits"];
-    if (!joint->limits) {
-      ADD_FAILURE() << where << ": no <limit> in the URDF";
-      continue;
-    }
-    if (type == "revolute" || type == "prismatic") {
-      expectSame(joint->limits->lower, limits["lower"].as<double>(), where + " limit lower");
-      expectSame(joint->limits->upper, limits["upper"].as<double>(), where + " limit upper");
-    }
-    expectSame(joint->limits->velocity, limits["velocity"].as<double>(), where + " limit velocity");
-    expectSame(joint->limits->effort, limits["effort"].as<double>(), where + " limit effort");
-  }
+  const auto find = [&](const std::string& name) { return urdf_->getJoint(name); };
+  forEachEntry(
+      "joints", find,
+      [&](const YAML::Node& expected, const urdf::Joint& joint, const std::string& where) {
+        const auto type = expected["type"].as<std::string>();
+        EXPECT_EQ(joint.type, urdfType(type)) << where << ": type " << type;
+        EXPECT_EQ(joint.parent_link_name, expected["parent"].as<std::string>())
+            << where << ": parent";
+        EXPECT_EQ(joint.child_link_name, expected["child"].as<std::string>()) << where << ": child";
+        expectSame(joint.parent_to_joint_origin_transform.position, doubles(expected["origin_xyz"]),
+                   where + " origin xyz");
+        expectSameRotation(joint.parent_to_joint_origin_transform.rotation,
+                           doubles(expected["origin_rpy"]), where + " origin rpy");
+        if (type == "fixed") {
+          return;
+        }
+        expectSame(joint.axis, doubles(expected["axis"]), where + " axis");
+        const YAML::Node limits = expected["limits"];
+        if (!joint.limits) {
+          ADD_FAILURE() << where << ": no <limit> in the URDF";
+          return;
+        }
+        if (type == "revolute" || type == "prismatic") {
+          expectSame(joint.limits->lower, limits["lower"].as<double>(), where + " limit lower");
+          expectSame(joint.limits->upper, limits["upper"].as<double>(), where + " limit upper");
+        }
+        expectSame(joint.limits->velocity, limits["velocity"].as<double>(),
+                   where + " limit velocity");
+        expectSame(joint.limits->effort, limits["effort"].as<double>(), where + " limit effort");
+      });
 }
 
 TEST_P(UrdfReferenceTest, LinksMatchReference) {
-  ASSERT_TRUE(reference_["links"].IsSequence());
-  for (const YAML::Node& expected : reference_["links"]) {
-    const auto name = expected["name"].as<std::string>();
-    const std::string where = robot() + " link " + name;
-    const urdf::LinkConstSharedPtr link = urdf_->getLink(name);
-    if (!link) {
-      ADD_FAILURE() << where << ": missing from the URDF";
-      continue;
-    }
-    const auto mass = expected["mass"].as<double>();
-    if (mass == 0.0) {
-      EXPECT_TRUE(!link->inertial || link->inertial->mass == 0.0)
-          << where << ": a pure frame in the reference, but the URDF gives it mass";
-      continue;
-    }
-    if (!link->inertial) {
-      ADD_FAILURE() << where << ": no <inertial> in the URDF";
-      continue;
-    }
-    const urdf::Inertial& inertial = *link->inertial;
-    expectSame(inertial.mass, mass, where + " mass");
-    expectSame(inertial.origin.position, doubles(expected["com_xyz"]), where + " com xyz");
-    // The reference tensors are in link axes, so a rotated inertial frame would reinterpret them.
-    expectSameRotation(inertial.origin.rotation, {0.0, 0.0, 0.0}, where + " inertial rpy");
-    const YAML::Node inertia = expected["inertia"];
-    expectSame(inertial.ixx, inertia["ixx"].as<double>(), where + " ixx");
-    expectSame(inertial.ixy, inertia["ixy"].as<double>(), where + " ixy");
-    expectSame(inertial.ixz, inertia["ixz"].as<double>(), where + " ixz");
-    expectSame(inertial.iyy, inertia["iyy"].as<double>(), where + " iyy");
-    expectSame(inertial.iyz, inertia["iyz"].as<double>(), where + " iyz");
-    expectSame(inertial.izz, inertia["izz"].as<double>(), where + " izz");
-  }
+  const auto find = [&](const std::string& name) { return urdf_->getLink(name); };
+  forEachEntry(
+      "links", find,
+      [&](const YAML::Node& expected, const urdf::Link& link, const std::string& where) {
+        const auto mass = expected["mass"].as<double>();
+        if (mass == 0.0) {
+          EXPECT_TRUE(!link.inertial || link.inertial->mass == 0.0)
+              << where << ": a pure frame in the reference, but the URDF gives it mass";
+          return;
+        }
+        if (!link.inertial) {
+          ADD_FAILURE() << where << ": no <inertial> in the URDF";
+          return;
+        }
+        const urdf::Inertial& inertial = *link.inertial;
+        expectSame(inertial.mass, mass, where + " mass");
+        expectSame(inertial.origin.position, doubles(expected["com_xyz"]), where + " com xyz");
+        // The reference tensors are in link axes, so a rotated inertial frame would reinterpret
+        // them.
+        expectSameRotation(inertial.origin.rotation, {0.0, 0.0, 0.0}, where + " inertial rpy");
+        const YAML::Node inertia = expected["inertia"];
+        expectSame(inertial.ixx, inertia["ixx"].as<double>(), where + " ixx");
+        expectSame(inertial.ixy, inertia["ixy"].as<double>(), where + " ixy");
+        expectSame(inertial.ixz, inertia["ixz"].as<double>(), where + " ixz");
+        expectSame(inertial.iyy, inertia["iyy"].as<double>(), where + " iyy");
+        expectSame(inertial.iyz, inertia["iyz"].as<double>(), where + " iyz");
+        expectSame(inertial.izz, inertia["izz"].as<double>(), where + " izz");
+      });
 }
 
 // The URDF may only add the default TCP frame beyond the reference: anything else would be a
