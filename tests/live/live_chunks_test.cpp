@@ -92,9 +92,7 @@ TEST(LiveHost, CommandSendSendsChunksFromAFile) {
   Client client(domain, "chunkfile");
   const auto state = client.state(20s);
   ASSERT_TRUE(state);
-  const std::string file = (std::filesystem::temp_directory_path() /
-                            ("comply_send_chunks_" + std::to_string(domain) + ".jsonl"))
-                               .string();
+  const std::string file = scratchFile("send_chunks.jsonl");
   const double x = state->reference_position[0];
   const double y = state->reference_position[1];
   const double z = state->reference_position[2];

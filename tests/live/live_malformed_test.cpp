@@ -92,9 +92,7 @@ std::vector<std::string> linesOf(const std::string& file) {
 TEST(LiveMalformed, AFloodOfUnreadableSamplesIsCountedNotPrintedOneByOne) {
   const int domain = randomDomain();
   const std::string name = "malformed";
-  const std::string output =
-      (std::filesystem::temp_directory_path() / ("comply_malformed_" + std::to_string(getpid())))
-          .string();
+  const std::string output = scratchFile("malformed.log");
   Process host(hostArgs(domain, name), output);
   Client client(domain, name);
   ASSERT_TRUE(client.state(20s)) << "no state from comply run";

@@ -27,9 +27,7 @@ constexpr double kCommandTimeoutS = 0.5;  // config/sim/cartesian_impedance.yaml
 /// A JSON-lines stream for `comply send`: `count` poses wobbling 2 cm around the state's TCP.
 std::string writeStream(const transport::ControllerStateMessage& state, int count,
                         const std::string& name) {
-  const std::string file =
-      (std::filesystem::temp_directory_path() / (name + std::to_string(getpid()) + ".jsonl"))
-          .string();
+  const std::string file = scratchFile(name + ".jsonl");
   std::ofstream out(file);
   for (int i = 0; i < count; ++i) {
     const double y = state.tcp_position[1] + 0.02 * std::sin(2.0 * M_PI * i / 1000.0);
@@ -291,9 +289,7 @@ TEST(LiveHost, CommandSendAccountsEveryCommandOfAFileAtAnyRate) {
   Client client(domain, "file");
   const auto state = client.state(20s);
   ASSERT_TRUE(state);
-  const std::string file = (std::filesystem::temp_directory_path() /
-                            ("comply_send_" + std::to_string(domain) + ".jsonl"))
-                               .string();
+  const std::string file = scratchFile("send.jsonl");
   {
     std::ofstream lines(file);
     for (int i = 0; i < 300; ++i) {

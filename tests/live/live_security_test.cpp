@@ -42,9 +42,7 @@ class LiveSecurity : public ::testing::Test {
 
   // DDS Security admits domains 0..230; randomDomain() draws from 1..230.
   int domain_ = randomDomain();
-  std::string log_ = (std::filesystem::temp_directory_path() /
-                      ("comply_security_" + std::to_string(::getpid()) + ".log"))
-                         .string();
+  std::string log_ = scratchFile("security.log");
   std::unique_ptr<Process> host_;
   std::unique_ptr<Client> client_;
 };

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "comply/transport/endpoints.hpp"
+#include "scratch.hpp"
 
 namespace comply::live_test {
 
@@ -95,6 +96,11 @@ class Process {
   pid_t pid_ = -1;
   bool exited_ = false;
 };
+
+/// `<tmp>/comply_live_<pid>/<name>`: a file of this test process, whose parallel runs do not meet.
+inline std::string scratchFile(const std::string& name) {
+  return testing::scratchPath("comply_live", name).string();
+}
 
 inline std::vector<std::string> hostArgs(int domain, const std::string& name) {
   return {"run",    "--config", kHostConfig, "--robot",

@@ -260,9 +260,7 @@ class TransportProcessTest : public ::testing::Test {
   }
 
   int domain_ = randomDomain();
-  std::string log_ = (std::filesystem::temp_directory_path() /
-                      ("comply_transport_process_" + std::to_string(::getpid()) + ".log"))
-                         .string();
+  std::string log_ = scratchFile("transport_process.log");
   std::unique_ptr<Process> host_;
   std::unique_ptr<Client> client_;
   std::unique_ptr<transport::Participant> sender_;

@@ -60,14 +60,26 @@ JointCommand pushBeyondTheLimits() {
   return push;
 }
 
-TEST(WrapperShaping, EffortLimitClipsAndCountsEveryClippedCycle) {
-  JointWrapper wrapper(fr3Config(kJointImpedancePlugin,
-                                 "torque_rate_limit_nm_per_s: " + std::to_string(kNoRateLimit)));
-  const JointState state = restingAt(wrapper.controller(), fr3Home());
-  wrapper.activate(state);
-  const JointVector& limit = wrapper.controller().effortLimit();
+/// A joint wrapper on the FR3 at rest at home, without a rate limit, `pushBeyondTheLimits()` in
+/// force; `config_lines`: more of its controller file.
+struct Pushed {
+  explicit Pushed(const std::string& config_lines = {})
+      : wrapper(fr3Config(kJointImpedancePlugin, config_lines + "torque_rate_limit_nm_per_s: " +
+                                                     std::to_string(kNoRateLimit))),
+        state(restingAt(wrapper.controller(), fr3Home())),
+        limit(wrapper.controller().effortLimit()) {
+    wrapper.activate(state);
+    EXPECT_TRUE(wrapper.submit(pushBeyondTheLimits()).accepted);
+  }
+  JointWrapper wrapper;
+  const JointState state;
+  const JointVector limit;
   TorqueBuffer torque;
-  ASSERT_TRUE(wrapper.submit(pushBeyondTheLimits()).accepted);
+};
+
+TEST(WrapperShaping, EffortLimitClipsAndCountsEveryClippedCycle) {
+  Pushed pushed;
+  auto& [wrapper, state, limit, torque] = pushed;
   for (int cycle = 0; cycle < 10; ++cycle) {
     ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
   }
@@ -81,14 +93,8 @@ TEST(WrapperShaping, EffortLimitClipsAndCountsEveryClippedCycle) {
 // commanded) away from what was asked; scaling keeps its direction: the torque above gravity is
 // the law's times one share, the joint that binds exactly at its limit.
 TEST(WrapperShaping, ScaledSaturationKeepsTheDirectionOfTheLawsTorque) {
-  JointWrapper wrapper(fr3Config(
-      kJointImpedancePlugin,
-      "effort_saturation: scale\ntorque_rate_limit_nm_per_s: " + std::to_string(kNoRateLimit)));
-  const JointState state = restingAt(wrapper.controller(), fr3Home());
-  wrapper.activate(state);
-  const JointVector& limit = wrapper.controller().effortLimit();
-  TorqueBuffer torque;
-  ASSERT_TRUE(wrapper.submit(pushBeyondTheLimits()).accepted);
+  Pushed pushed("effort_saturation: scale\n");
+  auto& [wrapper, state, limit, torque] = pushed;
   ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
   const JointVector above_gravity = torque.values - state.effort;  // effort: the gravity torque
   const double share = above_gravity[0] / 500.0;
