@@ -32,21 +32,18 @@ class Controller {
   }
 };
 
-class JointController : public Controller {
+/// A law for commands of one kind: implement step(), real-time, every cycle.
+template <typename CommandBus, comply_command_kind kKind>
+class ControllerFor : public Controller {
  public:
-  static constexpr comply_command_kind kCommandKind = COMPLY_COMMAND_JOINT;
-  using Command = comply_joint_command;
-  virtual comply_status step(const comply_input& input, const comply_joint_command& command,
+  static constexpr comply_command_kind kCommandKind = kKind;
+  using Command = CommandBus;
+  virtual comply_status step(const comply_input& input, const Command& command,
                              comply_output& output) noexcept = 0;
 };
 
-class CartesianController : public Controller {
- public:
-  static constexpr comply_command_kind kCommandKind = COMPLY_COMMAND_CARTESIAN;
-  using Command = comply_cartesian_command;
-  virtual comply_status step(const comply_input& input, const comply_cartesian_command& command,
-                             comply_output& output) noexcept = 0;
-};
+using JointController = ControllerFor<comply_joint_command, COMPLY_COMMAND_JOINT>;
+using CartesianController = ControllerFor<comply_cartesian_command, COMPLY_COMMAND_CARTESIAN>;
 
 namespace plugin::detail {
 
@@ -89,9 +86,9 @@ struct Adapter {
         *input, *static_cast<const typename Law::Command*>(command), *output);
   }
   static const comply_plugin_api* api(const char* name) {
-    static const comply_plugin_api table{COMPLY_ABI_VERSION, name,     Law::kCommandKind,
-                                         &create,            &destroy, &requiredQuantities,
-                                         &activate,          &step};
+    static const comply_plugin_api table{
+        COMPLY_ABI_VERSION, name, Law::kCommandKind, &create, &destroy, &requiredQuantities,
+        &activate,          &step};
     return &table;
   }
 };
@@ -99,8 +96,8 @@ struct Adapter {
 }  // namespace plugin::detail
 }  // namespace comply
 
-#define COMPLY_EXPORT_CONTROLLER(LawClass, plugin_name)                                  \
-  extern "C" __attribute__((visibility("default"))) const comply_plugin_api*             \
-  comply_plugin_entry(void) {                                                             \
-    return ::comply::plugin::detail::Adapter<LawClass>::api(plugin_name);                 \
+#define COMPLY_EXPORT_CONTROLLER(LawClass, plugin_name)                                           \
+  extern "C" __attribute__((visibility("default"))) const comply_plugin_api* comply_plugin_entry( \
+      void) {                                                                                     \
+    return ::comply::plugin::detail::Adapter<LawClass>::api(plugin_name);                         \
   }
