@@ -302,9 +302,17 @@ TEST(LiveHost, CommandSendAccountsEveryCommandOfAFileAtAnyRate) {
     SCOPED_TRACE("--rate " + rate);
     const SendResult sent = sendFile(domain, "file", file, rate);
     EXPECT_EQ(sent.exit_code, 0);
-    EXPECT_EQ(sent.applied, 300U) << sent.text.substr(0, 2000);
     EXPECT_EQ(sent.text.find("without an outcome"), std::string::npos)
         << sent.text.substr(sent.text.size() - 300);
+    // Every command has its outcome. At 100 Hz the host takes each; at 5 kHz, five commands a
+    // cycle, a loaded machine's host may fall behind, and queue_full is then the right answer.
+    EXPECT_EQ(sent.applied + sent.rejected, 300U) << sent.text.substr(0, 2000);
+    EXPECT_EQ(sent.rejected, sent.queue_full) << sent.text.substr(0, 2000);
+    if (rate == "100") {
+      EXPECT_EQ(sent.applied, 300U) << sent.text.substr(0, 2000);
+    } else {
+      EXPECT_GE(sent.applied, 150U) << sent.text.substr(0, 2000);
+    }
   }
   std::filesystem::remove(file);
 }

@@ -15,6 +15,7 @@
 #include <iterator>
 #include <map>
 #include <random>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -111,8 +112,10 @@ inline std::vector<std::string> hostArgs(int domain, const std::string& name) {
 /// What `comply send --file` printed and how it ended.
 struct SendResult {
   int exit_code = -1;
-  std::string text;         ///< its output, after a newline (every outcome line follows one)
-  std::size_t applied = 0;  ///< lines "applied ..."
+  std::string text;            ///< its output, after a newline (every outcome line follows one)
+  std::size_t applied = 0;     ///< lines "applied ..."
+  std::size_t queue_full = 0;  ///< lines "rejected ...: queue_full: ..."
+  std::size_t rejected = 0;    ///< lines "rejected ...", for any reason
 };
 
 /// Runs `comply send --file file --rate rate` to host `name` on `domain` and waits for it.
@@ -127,9 +130,14 @@ inline SendResult sendFile(int domain, const std::string& name, const std::strin
   std::ifstream printed(output);
   result.text = "\n" + std::string((std::istreambuf_iterator<char>(printed)),
                                    std::istreambuf_iterator<char>());
-  for (std::size_t at = result.text.find("\napplied "); at != std::string::npos;
-       at = result.text.find("\napplied ", at + 1)) {
-    ++result.applied;
+  std::istringstream lines(result.text);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.starts_with("applied ")) {
+      ++result.applied;
+    } else if (line.starts_with("rejected ")) {
+      ++result.rejected;
+      result.queue_full += line.find(": queue_full: ") != std::string::npos ? 1 : 0;
+    }
   }
   std::filesystem::remove(output);
   return result;

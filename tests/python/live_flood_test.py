@@ -17,6 +17,10 @@ import comply
 from live_host import running_host
 
 COMMANDS = 5000
+CYCLE_HZ = 1000
+# A flood is several commands per cycle. The client's own speed depends on the machine and its load
+# (10 to 20 kHz here, 8 kHz beside a build), so the floor is set by the cycle, not by a machine.
+FLOOD_HZ = 5 * CYCLE_HZ
 WRITER_KEEPS = 1000  # unacknowledged commands the client's writer holds at most
 
 
@@ -43,9 +47,9 @@ def main():
                 continue
             key = "applied" if outcome["applied"] else outcome["reason"]
             counts[key] = counts.get(key, 0) + 1
-        print(f"sent {COMMANDS} in {elapsed:.3f} s ({rate_hz / 1000:.0f}x the 1 kHz cycle); "
+        print(f"sent {COMMANDS} in {elapsed:.3f} s ({rate_hz / CYCLE_HZ:.0f}x the 1 kHz cycle); "
               f"outcomes {counts}; missing {missing}")
-        assert rate_hz >= 10000, f"the client sent at only {rate_hz:.0f} Hz: not a flood"
+        assert rate_hz >= FLOOD_HZ, f"the client sent at only {rate_hz:.0f} Hz: not a flood"
         assert missing == 0, f"{missing} commands without an outcome"
         assert set(counts) <= {"applied", "queue_full"}, counts
         assert counts.get("applied", 0) > 0, counts
