@@ -11,6 +11,7 @@
 Usage: system_test.py COMPLY_CLI PYTHON_MODULE_DIR CONFIG_DIR
 """
 
+import contextlib
 import math
 import os
 import random
@@ -68,7 +69,10 @@ def distance(a, b):
     return math.sqrt(sum((x - y) ** 2 for x, y in zip(a, b)))
 
 
-def launch(robot, controller):
+@contextlib.contextmanager
+def launched(robot, controller, check_name):
+    """comply_bringup for robot and controller; yields whether the controller became active (the
+    check check_name), and stops the launch on leaving."""
     process = subprocess.Popen(
         ['ros2', 'launch', 'comply_bringup', 'comply.launch.py', f'robot:={robot}',
          f'controller:={controller}'], env=ENV, stdout=open(f'launch_{robot}.log', 'w'),
@@ -77,15 +81,16 @@ def launch(robot, controller):
     def active():
         code, text = ros2('control', 'list_controllers', timeout=20)
         return code == 0 and controller in text and 'active' in text.split(controller, 1)[1]
-    return process, wait_for(active, 90, 1.0)
-
-
-def stop(process):
-    os.killpg(process.pid, signal.SIGINT)
     try:
-        process.wait(timeout=20)
-    except subprocess.TimeoutExpired:
-        os.killpg(process.pid, signal.SIGKILL)
+        became_active = bool(wait_for(active, 90, 1.0))
+        check(check_name, became_active, 'ros2 control list_controllers')
+        yield became_active
+    finally:
+        os.killpg(process.pid, signal.SIGINT)
+        try:
+            process.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
 
 
 def settled_at(topic, target, tolerance_m, timeout=20):
@@ -139,9 +144,7 @@ def update_timing(topic):
 
 
 def fr3_cartesian():
-    process, active = launch('fr3', 'cartesian_impedance')
-    try:
-        check('fr3: controller active', bool(active), 'ros2 control list_controllers')
+    with launched('fr3', 'cartesian_impedance', 'fr3: controller active') as active:
         if not active:
             return
         base = '/cartesian_impedance'
@@ -192,14 +195,10 @@ def fr3_cartesian():
         check('fr3: update() timing', cycles >= 10000,
               f'{cycles} cycles: mean {mean_us:.1f} us, p99 {p99_us:.0f} us, '
               f'{overruns} overruns')
-    finally:
-        stop(process)
 
 
 def ur5e_joint():
-    process, active = launch('ur5e', 'joint_impedance')
-    try:
-        check('ur5e: joint controller active', bool(active), 'ros2 control list_controllers')
+    with launched('ur5e', 'joint_impedance', 'ur5e: joint controller active') as active:
         if not active:
             return
         base = '/joint_impedance'
@@ -219,8 +218,6 @@ def ur5e_joint():
         check('ur5e: ros2 topic pub moves the joints', reached is not None,
               f'largest joint error {reached[1] * 1e3:.2f} mrad, TCP at '
               f'{[round(x, 4) for x in reached[0]["tcp_position"]]}' if reached else 'not reached')
-    finally:
-        stop(process)
 
 
 def rclcpp_to_comply_run():
