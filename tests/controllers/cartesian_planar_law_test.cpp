@@ -43,10 +43,8 @@ struct PlanarArm {
     input.dof = 2;
     input.available = COMPLY_NEED_POSE | COMPLY_NEED_JACOBIAN;
     input.period_s = 0.001;
-    input.position[0] = q1;
-    input.position[1] = q2;
-    input.velocity[0] = dq1;
-    input.velocity[1] = dq2;
+    writeJoints({q1, q2}, input.position);
+    writeJoints({dq1, dq2}, input.velocity);
     input.tcp_position[0] = x();
     input.tcp_position[1] = 0.0;
     input.tcp_position[2] = z();
@@ -180,8 +178,7 @@ TEST_F(CartesianPlanarLaw, FeedforwardWrenchAndTorque) {
   for (int k = 0; k < 6; ++k) {
     command.wrench_feedforward[k] = wrench[k];
   }
-  command.torque_feedforward[0] = 0.25;
-  command.torque_feedforward[1] = -1.0;
+  writeJoints({0.25, -1.0}, command.torque_feedforward);
 
   // Only x, z forces and the y moment do work on this arm.
   const Eigen::VectorXd torque = stepTorque(law_, input, &command);

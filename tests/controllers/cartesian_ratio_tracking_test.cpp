@@ -9,8 +9,8 @@
 #include <Eigen/LU>
 #include <filesystem>
 
-#include "law_test_support.hpp"
 #include "comply/host/synthetic_chain.hpp"
+#include "law_test_support.hpp"
 
 namespace comply::law_test {
 namespace {

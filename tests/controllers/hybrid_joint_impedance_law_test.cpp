@@ -11,11 +11,14 @@
 #include <string>
 #include <vector>
 
+#include "bus_values.hpp"
 #include "comply/plugin/abi.h"
 #include "comply/plugin/loader.hpp"
 
 namespace comply::plugin {
 namespace {
+
+using law_test::writeJoints;
 
 std::shared_ptr<const PluginLibrary> hybridLibrary() {
   return std::make_shared<const PluginLibrary>(COMPLY_TEST_HYBRID_JOINT_IMPEDANCE,
@@ -88,30 +91,23 @@ TEST(HybridJointImpedanceLaw, TwoJointsByHand) {
   comply_input input{};
   input.dof = 2;
   input.available = COMPLY_NEED_POSE | COMPLY_NEED_JACOBIAN | COMPLY_NEED_CORIOLIS;
-  input.position[0] = 0.25;
-  input.position[1] = 0.5;
-  input.velocity[0] = 0.5;
-  input.velocity[1] = -1.0;
+  writeJoints({0.25, 0.5}, input.position);
+  writeJoints({0.5, -1.0}, input.velocity);
   // Column-major 6 x 2: joint 0 moves the tip along x and turns it about z, joint 1 half as far.
   input.jacobian[0 * 6 + 0] = 1.0;
   input.jacobian[0 * 6 + 5] = 1.0;
   input.jacobian[1 * 6 + 0] = 0.5;
   input.jacobian[1 * 6 + 5] = 1.0;
-  input.coriolis[0] = 0.125;
-  input.coriolis[1] = -0.25;
+  writeJoints({0.125, -0.25}, input.coriolis);
 
   comply_joint_command command{};
   command.dof = 2;
-  command.position[0] = 0.75;
-  command.position[1] = 0.25;
-  command.velocity[0] = 3.0;  // ignored: the damping acts on dq alone, as in polymetis
-  command.velocity[1] = 3.0;
-  command.stiffness[0] = 40.0;
-  command.stiffness[1] = 30.0;
-  command.damping[0] = 4.0;
-  command.damping[1] = 6.0;
-  command.torque_feedforward[0] = 1.0;
-  command.torque_feedforward[1] = -0.5;
+  writeJoints({0.75, 0.25}, command.position);
+  writeJoints({3.0, 3.0},
+              command.velocity);  // ignored: the damping acts on dq alone, as in polymetis
+  writeJoints({40.0, 30.0}, command.stiffness);
+  writeJoints({4.0, 6.0}, command.damping);
+  writeJoints({1.0, -0.5}, command.torque_feedforward);
 
   // e = (0.5, -0.25); J e = (x 0.375, rz 0.25); J dq = (x 0, rz -0.5).
   // Wrench: fx = 100 * 0.375 - 8 * 0 = 37.5, mz = 10 * 0.25 + 2 * 0.5 = 3.5.

@@ -74,16 +74,11 @@ TEST(JointImpedanceLaw, PlanarTwoLinkPerJointGains) {
   const comply_input input = inputFromModel(model, {0.25, 0.5}, {0.5, 0.25});
 
   comply_joint_command command = jointCommand(model.dof());
-  command.position[0] = 0.5;
-  command.position[1] = -0.25;
-  command.velocity[0] = 0.0;
-  command.velocity[1] = 1.0;
-  command.stiffness[0] = 120.0;
-  command.stiffness[1] = 60.0;
-  command.damping[0] = 8.0;
-  command.damping[1] = 4.0;
-  command.torque_feedforward[0] = -2.0;
-  command.torque_feedforward[1] = 0.75;
+  writeJoints({0.5, -0.25}, command.position);
+  writeJoints({0.0, 1.0}, command.velocity);
+  writeJoints({120.0, 60.0}, command.stiffness);
+  writeJoints({8.0, 4.0}, command.damping);
+  writeJoints({-2.0, 0.75}, command.torque_feedforward);
 
   const Eigen::VectorXd torque = stepTorque(law, input, &command);
   // Shoulder: 120 (0.5 - 0.25) + 8 (0 - 0.5) - 2 = 30 - 4 - 2.
@@ -100,8 +95,7 @@ TEST(JointImpedanceLaw, ZeroGainsLeaveOnlyFeedforward) {
   comply_joint_command command = jointCommand(model.dof());
   command.position[0] = -1.0;
   command.velocity[1] = 4.0;
-  command.torque_feedforward[0] = 0.125;
-  command.torque_feedforward[1] = -7.0;
+  writeJoints({0.125, -7.0}, command.torque_feedforward);
 
   const Eigen::VectorXd torque = stepTorque(law, input, &command);
   EXPECT_EQ(torque[0], 0.125);

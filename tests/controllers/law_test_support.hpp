@@ -9,12 +9,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "bus_values.hpp"
 #include "comply/model/data.hpp"
 #include "comply/model/model.hpp"
 #include "comply/model/robot_description.hpp"
