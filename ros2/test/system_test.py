@@ -71,8 +71,8 @@ def distance(a, b):
 
 @contextlib.contextmanager
 def launched(robot, controller, check_name):
-    """comply_bringup for robot and controller; yields whether the controller became active (the
-    check check_name), and stops the launch on leaving."""
+    """comply_bringup for robot and controller; yields the controller's topic prefix and its first
+    state once it is active (the check check_name), else None; stops the launch on leaving."""
     process = subprocess.Popen(
         ['ros2', 'launch', 'comply_bringup', 'comply.launch.py', f'robot:={robot}',
          f'controller:={controller}'], env=ENV, stdout=open(f'launch_{robot}.log', 'w'),
@@ -84,7 +84,7 @@ def launched(robot, controller, check_name):
     try:
         became_active = bool(wait_for(active, 90, 1.0))
         check(check_name, became_active, 'ros2 control list_controllers')
-        yield became_active
+        yield (f'/{controller}', echo(f'/{controller}/state')) if became_active else None
     finally:
         os.killpg(process.pid, signal.SIGINT)
         try:
@@ -144,11 +144,10 @@ def update_timing(topic):
 
 
 def fr3_cartesian():
-    with launched('fr3', 'cartesian_impedance', 'fr3: controller active') as active:
-        if not active:
+    with launched('fr3', 'cartesian_impedance', 'fr3: controller active') as started:
+        if not started:
             return
-        base = '/cartesian_impedance'
-        state = echo(f'{base}/state')
+        base, state = started
         target = [state['tcp_position'][0], state['tcp_position'][1] + 0.02,
                   state['tcp_position'][2] - 0.02]
         orientation = state['tcp_orientation']
@@ -198,11 +197,10 @@ def fr3_cartesian():
 
 
 def ur5e_joint():
-    with launched('ur5e', 'joint_impedance', 'ur5e: joint controller active') as active:
-        if not active:
+    with launched('ur5e', 'joint_impedance', 'ur5e: joint controller active') as started:
+        if not started:
             return
-        base = '/joint_impedance'
-        state = echo(f'{base}/state')
+        base, state = started
         target = list(state['position'])
         target[1] += 0.1
         target[2] -= 0.1
