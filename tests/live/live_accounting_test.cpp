@@ -138,27 +138,26 @@ TEST_P(LiveHostOn, MixedStreamIsAccountedExactlyOnce) {
   EXPECT_EQ(last.rejections.at(pose_jump) - before.rejections.at(pose_jump),
             static_cast<std::uint64_t>(refused[Reason::kPoseJump]));
   EXPECT_EQ(last.faults, 0U);
-  EXPECT_EQ(host.stop(), 0);
 }
 
 /// What the gate refuses before the wrapper sees a command, from a client's side: a joint command
 /// to the Cartesian controller (wrong_kind) and a command stamped like the one in force
 /// (stale_stamp: stamps must be strictly newer). In process only: it is the gate's rule, not the
 /// transport's, and needs no discovery.
-TEST(LiveHostInProcess, WrongKindAndEqualStampAreRejected) {
-  const std::unique_ptr<HostHarness> host = makeHarness("in_process");
-  host->start("kinds");
-  const auto state = host->state(20s);
+TEST_F(LiveHostInProcess, WrongKindAndEqualStampAreRejected) {
+  HostHarness& host = *host_;
+  host.start("kinds");
+  const auto state = host.state(20s);
   ASSERT_TRUE(state) << "no state from the host";
   const int dof = static_cast<int>(state->position.size());
-  ASSERT_TRUE(host->connect(1, dof));
+  ASSERT_TRUE(host.connect(1, dof));
   const auto outcomesOf = [&](transport::Stamp stamp) -> auto& {
-    return host->outcomes()[stamp.nanoseconds()];
+    return host.outcomes()[stamp.nanoseconds()];
   };
 
   const transport::Stamp stamp = transport::Stamp::now();
-  ASSERT_TRUE(host->send(poseCommand(*state, Eigen::Vector3d::Zero(), stamp), 1));
-  ASSERT_TRUE(host->poll(5s, [&](const auto&) { return !outcomesOf(stamp).empty(); }));
+  ASSERT_TRUE(host.send(poseCommand(*state, Eigen::Vector3d::Zero(), stamp), 1));
+  ASSERT_TRUE(host.poll(5s, [&](const auto&) { return !outcomesOf(stamp).empty(); }));
   ASSERT_EQ(outcomesOf(stamp).front().outcome, transport::Outcome::kApplied)
       << outcomesOf(stamp).front().message;
   // The state names the command in force by its exact stamp, nanoseconds included (a double in
@@ -166,7 +165,7 @@ TEST(LiveHostInProcess, WrongKindAndEqualStampAreRejected) {
   std::optional<transport::ControllerStateMessage> in_force;
   for (int attempt = 0; attempt < 100 && !(in_force && in_force->reference_stamp == stamp);
        ++attempt) {
-    in_force = host->state(100ms);
+    in_force = host.state(100ms);
   }
   ASSERT_TRUE(in_force);
   EXPECT_EQ(in_force->reference_stamp.nanoseconds(), stamp.nanoseconds());
@@ -174,9 +173,9 @@ TEST(LiveHostInProcess, WrongKindAndEqualStampAreRejected) {
   transport::JointCommandMessage joint;
   joint.header.stamp = transport::Stamp::fromNanoseconds(stamp.nanoseconds() + 1000000);  // +1 ms
   joint.command = JointCommand::zero(dof);
-  ASSERT_TRUE(host->send(joint, 1));
-  ASSERT_TRUE(host->send(poseCommand(*state, Eigen::Vector3d::Zero(), stamp), 1));
-  ASSERT_TRUE(host->poll(5s, [&](const auto&) {
+  ASSERT_TRUE(host.send(joint, 1));
+  ASSERT_TRUE(host.send(poseCommand(*state, Eigen::Vector3d::Zero(), stamp), 1));
+  ASSERT_TRUE(host.poll(5s, [&](const auto&) {
     return !outcomesOf(joint.header.stamp).empty() && outcomesOf(stamp).size() >= 2;
   }));
 
@@ -192,30 +191,29 @@ TEST(LiveHostInProcess, WrongKindAndEqualStampAreRejected) {
   EXPECT_EQ(stale.outcome, transport::Outcome::kRejected);
   EXPECT_EQ(stale.reason, Reason::kStaleStamp) << stale.message;
   EXPECT_EQ(toString(stale.reason), "stale_stamp");
-  EXPECT_EQ(host->stop(), 0);
 }
 
 /// A sender whose clock is an hour ahead, and a stamp whose nanoseconds are out of range: both
 /// were applied before, and the first then locked every later sender out as stale until the host
 /// restarted. Now both are refused by the host's clock policy and the next command applies.
-TEST(LiveHostInProcess, AStampFromTheFutureOrOutOfRangeIsRefusedAndLocksNoOneOut) {
-  const std::unique_ptr<HostHarness> host = makeHarness("in_process");
-  host->start("clock");
-  const auto state = host->state(20s);
+TEST_F(LiveHostInProcess, AStampFromTheFutureOrOutOfRangeIsRefusedAndLocksNoOneOut) {
+  HostHarness& host = *host_;
+  host.start("clock");
+  const auto state = host.state(20s);
   ASSERT_TRUE(state) << "no state from the host";
-  ASSERT_TRUE(host->connect(1, static_cast<int>(state->position.size())));
+  ASSERT_TRUE(host.connect(1, static_cast<int>(state->position.size())));
   const auto outcomesOf = [&](transport::Stamp stamp) -> auto& {
-    return host->outcomes()[stamp.nanoseconds()];
+    return host.outcomes()[stamp.nanoseconds()];
   };
 
   const transport::Stamp now = transport::Stamp::now();
   const transport::Stamp hour_ahead{now.sec + 3600, now.nanosec};
   transport::Stamp out_of_range{now.sec - 4, 4'000'000'000U};  // reads as "now", if summed
   const transport::Stamp next = transport::Stamp::fromNanoseconds(now.nanoseconds() + 1000000);
-  ASSERT_TRUE(host->send(poseCommand(*state, Eigen::Vector3d::Zero(), hour_ahead), 1));
-  ASSERT_TRUE(host->send(poseCommand(*state, Eigen::Vector3d::Zero(), out_of_range), 1));
-  ASSERT_TRUE(host->send(poseCommand(*state, Eigen::Vector3d::Zero(), next), 1));
-  ASSERT_TRUE(host->poll(5s, [&](const auto&) {
+  ASSERT_TRUE(host.send(poseCommand(*state, Eigen::Vector3d::Zero(), hour_ahead), 1));
+  ASSERT_TRUE(host.send(poseCommand(*state, Eigen::Vector3d::Zero(), out_of_range), 1));
+  ASSERT_TRUE(host.send(poseCommand(*state, Eigen::Vector3d::Zero(), next), 1));
+  ASSERT_TRUE(host.poll(5s, [&](const auto&) {
     return !outcomesOf(hour_ahead).empty() && !outcomesOf(out_of_range).empty() &&
            !outcomesOf(next).empty();
   }));
@@ -226,23 +224,22 @@ TEST(LiveHostInProcess, AStampFromTheFutureOrOutOfRangeIsRefusedAndLocksNoOneOut
   EXPECT_EQ(toString(invalid.reason), "invalid_stamp") << invalid.message;
   const transport::CommandOutcomeMessage& applied = outcomesOf(next).front();
   EXPECT_EQ(applied.outcome, transport::Outcome::kApplied) << applied.message;
-  EXPECT_EQ(host->stop(), 0);
 }
 
 /// Deactivating used to leave the last torque on the simulated motors (the arm fell from a
 /// 0.59 m TCP height to 0.03 m) while the state still showed the pose of the last active cycle.
 /// Now the plant holds like a driver's brake, and the state shows the inactive arm where it is.
-TEST(LiveHostInProcess, DeactivateHoldsTheArmAndTheStateSaysInactive) {
-  const std::unique_ptr<HostHarness> host = makeHarness("in_process");
-  host->start("deactivate");
-  const auto before = host->state(20s);
+TEST_F(LiveHostInProcess, DeactivateHoldsTheArmAndTheStateSaysInactive) {
+  HostHarness& host = *host_;
+  host.start("deactivate");
+  const auto before = host.state(20s);
   ASSERT_TRUE(before) << "no state from the host";
   ASSERT_EQ(before->state, transport::HostState::kActive);
-  ASSERT_TRUE(host->request(transport::RequestType::kDeactivate, 1));
+  ASSERT_TRUE(host.request(transport::RequestType::kDeactivate, 1));
   std::optional<transport::ControllerStateMessage> after;
   const auto deadline = std::chrono::steady_clock::now() + 20s;
   while (std::chrono::steady_clock::now() < deadline) {
-    after = host->state(100ms);
+    after = host.state(100ms);
     if (after && after->state == transport::HostState::kInactive &&
         after->cycle > before->cycle + 1000) {
       break;  // inactive for a second of control
@@ -256,52 +253,50 @@ TEST(LiveHostInProcess, DeactivateHoldsTheArmAndTheStateSaysInactive) {
   for (std::size_t i = 0; i < after->velocity.size(); ++i) {
     EXPECT_EQ(after->velocity[i], 0.0) << "joint " << i << " moves while braked";
   }
-  EXPECT_EQ(host->stop(), 0);
 }
 
 /// Any process could deactivate the controller: requests skipped the one-publisher rule. Now a
 /// request from another process than the one holding the command topics is refused (and named in
 /// the diagnostics) while the holder is heard; the holder's own process may send them.
-TEST(LiveHostInProcess, RequestsObeyThePublisherRule) {
-  const std::unique_ptr<HostHarness> host = makeHarness("in_process");
-  host->start("requests");
-  const auto state = host->state(20s);
+TEST_F(LiveHostInProcess, RequestsObeyThePublisherRule) {
+  HostHarness& host = *host_;
+  host.start("requests");
+  const auto state = host.state(20s);
   ASSERT_TRUE(state);
-  ASSERT_TRUE(host->connect(1, static_cast<int>(state->position.size())));  // holds the topics
+  ASSERT_TRUE(host.connect(1, static_cast<int>(state->position.size())));  // holds the topics
   const auto keepCommanding = [&] {
     ASSERT_TRUE(
-        host->send(poseCommand(*state, Eigen::Vector3d::Zero(), transport::Stamp::now()), 1));
+        host.send(poseCommand(*state, Eigen::Vector3d::Zero(), transport::Stamp::now()), 1));
   };
   keepCommanding();
-  ASSERT_TRUE(host->request(transport::RequestType::kDeactivate, 2));
-  ASSERT_TRUE(host->poll(5s, [](const transport::DiagnosticsMessage& d) {
+  ASSERT_TRUE(host.request(transport::RequestType::kDeactivate, 2));
+  ASSERT_TRUE(host.poll(5s, [](const transport::DiagnosticsMessage& d) {
     return d.last_rejection.find("request refused") != std::string::npos;
   })) << "no refusal in the diagnostics";
   keepCommanding();
   std::this_thread::sleep_for(200ms);
-  auto now = host->state(1s);
+  auto now = host.state(1s);
   ASSERT_TRUE(now);
   EXPECT_EQ(now->state, transport::HostState::kActive) << "another process deactivated the arm";
 
-  ASSERT_TRUE(host->request(transport::RequestType::kDeactivate, 1));
+  ASSERT_TRUE(host.request(transport::RequestType::kDeactivate, 1));
   const auto deadline = std::chrono::steady_clock::now() + 5s;
   while (std::chrono::steady_clock::now() < deadline &&
          (!now || now->state != transport::HostState::kInactive)) {
     std::this_thread::sleep_for(20ms);
-    now = host->state(100ms);
+    now = host.state(100ms);
   }
   ASSERT_TRUE(now);
   EXPECT_EQ(now->state, transport::HostState::kInactive) << "the holder's own request was refused";
-  EXPECT_EQ(host->stop(), 0);
 }
 
 /// A tare request reaches the cycle: the simulated arm's wrist sensor, started with an offset,
 /// then reads zero at rest, reported as the sensor's, and nothing is refused.
-TEST(LiveHostInProcess, ATareRequestZeroesTheWristSensor) {
-  const std::unique_ptr<HostHarness> host = makeHarness("in_process");
-  host->setHardwareOptions({"wrench_offset=3,-2,4,0.1,0.2,-0.1"});  // the sensor's own offset
-  host->start("tare");
-  const auto before = host->state(20s);
+TEST_F(LiveHostInProcess, ATareRequestZeroesTheWristSensor) {
+  HostHarness& host = *host_;
+  host.setHardwareOptions({"wrench_offset=3,-2,4,0.1,0.2,-0.1"});  // the sensor's own offset
+  host.start("tare");
+  const auto before = host.state(20s);
   ASSERT_TRUE(before) << "no state from the host";
   EXPECT_EQ(before->contact_wrench_source, transport::WrenchSource::kSensor);
   EXPECT_GT(Eigen::Vector3d(before->contact_wrench[0], before->contact_wrench[1],
@@ -309,11 +304,11 @@ TEST(LiveHostInProcess, ATareRequestZeroesTheWristSensor) {
                 .norm(),
             5.0)
       << "the offset shows before the tare";
-  ASSERT_TRUE(host->request(transport::RequestType::kTare, 1));
+  ASSERT_TRUE(host.request(transport::RequestType::kTare, 1));
   std::optional<transport::ControllerStateMessage> after;
   const auto deadline = std::chrono::steady_clock::now() + 10s;
   while (std::chrono::steady_clock::now() < deadline) {
-    after = host->state(100ms);
+    after = host.state(100ms);
     if (after && after->cycle > before->cycle + 200) {
       break;
     }
@@ -323,10 +318,9 @@ TEST(LiveHostInProcess, ATareRequestZeroesTheWristSensor) {
   const Eigen::Vector3d force(after->contact_wrench[0], after->contact_wrench[1],
                               after->contact_wrench[2]);
   EXPECT_LT(force.norm(), 0.2) << "the tare did not reach the cycle";
-  EXPECT_FALSE(host->poll(500ms, [](const transport::DiagnosticsMessage& d) {
+  EXPECT_FALSE(host.poll(500ms, [](const transport::DiagnosticsMessage& d) {
     return d.last_rejection.find("tare") != std::string::npos;
   })) << "the tare was refused";
-  EXPECT_EQ(host->stop(), 0);
 }
 
 }  // namespace

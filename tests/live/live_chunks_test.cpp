@@ -81,16 +81,13 @@ TEST_P(LiveHostOn, PlaysAChunkOnTheHostsClockAndRefusesALateOne) {
   EXPECT_EQ(refused.reason, transport::Reason::kLateChunk);
   EXPECT_NE(refused.message.find("last waypoint was due"), std::string::npos) << refused.message;
   EXPECT_EQ(host.outcomes()[command_stamp].front().outcome, transport::Outcome::kApplied);
-  EXPECT_EQ(host.stop(), 0);
 }
 
 // `comply send --file` with chunks among commands: each chunk's times are seconds after it is
 // sent; commands and chunks are all applied, and the arm ends on the last chunk's last waypoint.
 TEST(LiveHost, CommandSendSendsChunksFromAFile) {
-  const int domain = randomDomain();
-  Process host(hostArgs(domain, "chunkfile"));
-  Client client(domain, "chunkfile");
-  const auto state = client.state(20s);
+  ProcessHost live("chunkfile");
+  const auto state = live.client.state(20s);
   ASSERT_TRUE(state);
   const std::string file = scratchFile("send_chunks.jsonl");
   const double x = state->reference_position[0];
@@ -109,11 +106,11 @@ TEST(LiveHost, CommandSendSendsChunksFromAFile) {
       lines << "]}\n";
     }
   }
-  const SendResult sent = sendFile(domain, "chunkfile", file, "2");
+  const SendResult sent = sendFile(live.domain, "chunkfile", file, "2");
   EXPECT_EQ(sent.exit_code, 0);
   EXPECT_EQ(sent.applied, 4U) << sent.text;
   std::this_thread::sleep_for(600ms);  // the last chunk runs 0.4 s after it was sent
-  const auto after = client.state(2s);
+  const auto after = live.client.state(2s);
   ASSERT_TRUE(after);
   EXPECT_NEAR(after->reference_position[1], y + 0.06, 1e-6);
   std::filesystem::remove(file);

@@ -44,24 +44,22 @@ std::vector<std::string> senderArgs(int domain, const std::string& name, const s
 }
 
 TEST(LiveHost, WatchdogHoldsWithinTheTimeoutOfAKilledSender) {
-  const int domain = randomDomain();
-  Process host(hostArgs(domain, "watchdog"));
-  Client client(domain, "watchdog");
-  const auto state = client.state(20s);
+  ProcessHost live("watchdog");
+  const auto state = live.client.state(20s);
   ASSERT_TRUE(state);
-  Process sender(senderArgs(domain, "watchdog", writeStream(*state, 20000, "watchdog")));
-  ASSERT_TRUE(client.poll(20s, [](const auto& d) { return d.commands_applied >= 500; }));
-  const std::uint64_t timeouts = client.last().watchdog_timeouts;
+  Process sender(senderArgs(live.domain, "watchdog", writeStream(*state, 20000, "watchdog")));
+  ASSERT_TRUE(live.client.poll(20s, [](const auto& d) { return d.commands_applied >= 500; }));
+  const std::uint64_t timeouts = live.client.last().watchdog_timeouts;
   sender.signal(SIGKILL);
   const auto killed = Clock::now();
-  ASSERT_TRUE(client.poll(3s, [&](const auto& d) { return d.watchdog_timeouts > timeouts; }));
+  ASSERT_TRUE(live.client.poll(3s, [&](const auto& d) { return d.watchdog_timeouts > timeouts; }));
   const double after_s = std::chrono::duration<double>(Clock::now() - killed).count();
   EXPECT_LE(after_s, kCommandTimeoutS + 0.25) << "the watchdog took too long";
   EXPECT_GE(after_s, kCommandTimeoutS - 0.2) << "the watchdog fired before the timeout";
   // Holding: the reference stays where the last command left it.
-  const auto first = client.state(1s);
+  const auto first = live.client.state(1s);
   std::this_thread::sleep_for(200ms);
-  const auto second = client.state(1s);
+  const auto second = live.client.state(1s);
   ASSERT_TRUE(first && second);
   EXPECT_EQ(first->reference_position, second->reference_position);
   EXPECT_EQ(second->state, transport::HostState::kActive);
@@ -101,7 +99,6 @@ TEST_P(LiveHostOn, APublisherThatLeavesReleasesTheCommandTopicsAtOnce) {
   ASSERT_TRUE(applied) << "the second publisher was never let in";
   EXPECT_LT(std::chrono::duration<double>(Clock::now() - closed).count(), 0.4)
       << "let in only after the first's silence timed out";
-  EXPECT_EQ(host.stop(), 0);
 }
 
 TEST_P(LiveHostOn, SecondPublisherIsRefusedUntilTheFirstGoesSilent) {
@@ -167,7 +164,6 @@ TEST_P(LiveHostOn, SecondPublisherIsRefusedUntilTheFirstGoesSilent) {
   }
   EXPECT_GE(refused, 30);
   EXPECT_GE(applied, 30);
-  EXPECT_EQ(host.stop(), 0);
 }
 
 /// The soak saw one sender given another's outcome: two senders' commands carried the same
@@ -207,7 +203,6 @@ TEST_P(LiveHostOn, TwoSendersOfOneStampEachGetTheirOwnOutcome) {
     }
   }
   EXPECT_EQ(checked, 2) << "an outcome named neither sender";
-  EXPECT_EQ(host.stop(), 0);
 }
 
 TEST(LiveHost, ClientCarriesOnAcrossAHostRestart) {
@@ -255,20 +250,18 @@ TEST(LiveHost, APositionAloneFromCommandSendKeepsTheOrientationInForce) {
   // The wire carries the pose as one group: `comply send` completes a position given alone with
   // the orientation in force (from the host's state), as the Python client does, instead of
   // sending the group's identity orientation (a 180 degree pose_jump on the FR3).
-  const int domain = randomDomain();
-  Process host(hostArgs(domain, "partial"));
-  Client client(domain, "partial");
-  const auto before = client.state(20s);
+  ProcessHost live("partial");
+  const auto before = live.client.state(20s);
   ASSERT_TRUE(before);
   std::ostringstream json;
   json << "{\"position\": [" << before->reference_position[0] << ", "
        << before->reference_position[1] + 0.01 << ", " << before->reference_position[2] << "]}";
   Process sender(
-      {"send", "--domain", std::to_string(domain), "--name", "partial", "--json", json.str()});
+      {"send", "--domain", std::to_string(live.domain), "--name", "partial", "--json", json.str()});
   EXPECT_EQ(sender.wait(20s), 0) << "the command was not applied";
   std::optional<transport::ControllerStateMessage> after;
   for (int attempt = 0; attempt < 50; ++attempt) {
-    after = client.state(1s);
+    after = live.client.state(1s);
     if (after && after->reference_position[1] > before->reference_position[1] + 0.005) {
       break;
     }
@@ -284,10 +277,8 @@ TEST(LiveHost, APositionAloneFromCommandSendKeepsTheOrientationInForce) {
 /// outcome" (exit 1) when all were applied: it read the outcomes only after sending, from a
 /// keep-last reader. And at a high --rate its keep-last writer dropped commands before they left.
 TEST(LiveHost, CommandSendAccountsEveryCommandOfAFileAtAnyRate) {
-  const int domain = randomDomain();
-  Process host(hostArgs(domain, "file"));
-  Client client(domain, "file");
-  const auto state = client.state(20s);
+  ProcessHost live("file");
+  const auto state = live.client.state(20s);
   ASSERT_TRUE(state);
   const std::string file = scratchFile("send.jsonl");
   {
@@ -300,7 +291,7 @@ TEST(LiveHost, CommandSendAccountsEveryCommandOfAFileAtAnyRate) {
   }
   for (const std::string rate : {"100", "5000"}) {
     SCOPED_TRACE("--rate " + rate);
-    const SendResult sent = sendFile(domain, "file", file, rate);
+    const SendResult sent = sendFile(live.domain, "file", file, rate);
     EXPECT_EQ(sent.exit_code, 0);
     EXPECT_EQ(sent.text.find("without an outcome"), std::string::npos)
         << sent.text.substr(sent.text.size() - 300);

@@ -204,6 +204,15 @@ class Client {
   std::map<std::int64_t, std::vector<transport::CommandOutcomeMessage>> outcomes_;
 };
 
+/// `comply run --sim` as host `name` on a domain of its own, and a client of it.
+struct ProcessHost {
+  explicit ProcessHost(const std::string& name)
+      : domain(randomDomain()), host(hostArgs(domain, name)), client(domain, name) {}
+  const int domain;
+  Process host;
+  Client client;
+};
+
 /// Sends empty commands (no field group: a no-op the host still accounts) until the host reports
 /// one: after that the host's reader has matched `writer`, and nothing sent later is lost to
 /// discovery (a reader that has not yet discovered a writer drops its first samples).
