@@ -1,5 +1,6 @@
 #include "comply/core/number_text.hpp"
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -45,8 +46,11 @@ NumberTexts numbersApart(double value, double limit) {
 
 std::optional<double> finiteNumber(const std::string& text) {
   char* end = nullptr;
+  errno = 0;
   const double value = std::strtod(text.c_str(), &end);
-  if (end == text.c_str() || *end != '\0' || !std::isfinite(value)) {
+  // ERANGE: beyond double's range, or so small it lost precision (1e-400 reads as 0).
+  if (end == text.c_str() || end != text.c_str() + text.size() || errno == ERANGE ||
+      !std::isfinite(value)) {
     return std::nullopt;
   }
   return value;

@@ -103,8 +103,8 @@ TEST(HybridJointImpedanceLaw, TwoJointsByHand) {
   comply_joint_command command{};
   command.dof = 2;
   writeJoints({0.75, 0.25}, command.position);
-  writeJoints({3.0, 3.0},
-              command.velocity);  // ignored: the damping acts on dq alone, as in polymetis
+  // The velocity target is ignored: the damping acts on dq alone, as in polymetis.
+  writeJoints({3.0, 3.0}, command.velocity);
   writeJoints({40.0, 30.0}, command.stiffness);
   writeJoints({4.0, 6.0}, command.damping);
   writeJoints({1.0, -0.5}, command.torque_feedforward);

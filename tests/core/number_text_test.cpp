@@ -60,9 +60,11 @@ TEST(FiniteNumber, ReadsAWholeFiniteNumberAndNothingElse) {
   EXPECT_EQ(finiteNumber("10"), 10.0);
   EXPECT_EQ(finiteNumber("-2.5e-3"), -2.5e-3);
   EXPECT_EQ(finiteNumber(" 7"), 7.0);  // leading blanks, as strtod
-  for (const std::string text : {"", " ", "12abc", "10 ", "nan", "inf", "-inf", "1e999", "hz"}) {
+  for (const std::string text :
+       {"", " ", "12abc", "10 ", "nan", "inf", "-inf", "1e999", "1e-400", "hz"}) {
     EXPECT_FALSE(finiteNumber(text).has_value()) << "'" << text << "'";
   }
+  EXPECT_FALSE(finiteNumber(std::string("1\0x", 3)).has_value()) << "the whole text, past a NUL";
 }
 
 }  // namespace

@@ -92,8 +92,8 @@ class HostHarness {
 std::unique_ptr<HostHarness> makeHarness(const std::string& transport);
 
 /// The transport-neutral tests: one instance per transport (live_harness.cpp instantiates them).
-/// A test of one host on the transport its parameter names. It ends with the host stopped: a stop
-/// that is not clean (exit code 0) fails the test.
+/// A test of one host on the transport its parameter names. It ends with the host stopped: an exit
+/// code other than 0 fails the test.
 class LiveHostOn : public ::testing::TestWithParam<std::string> {
  protected:
   void TearDown() override { EXPECT_EQ(host_->stop(), 0) << "the host did not stop cleanly"; }
@@ -101,7 +101,8 @@ class LiveHostOn : public ::testing::TestWithParam<std::string> {
   std::unique_ptr<HostHarness> host_ = makeHarness(GetParam());
 };
 
-/// The same on the in-process transport alone, for what the DDS host's tests already cover there.
+/// The same on the in-process transport alone: for tests of the gate's rules, which one transport
+/// covers, and of requests, which the DDS harness cannot send.
 class LiveHostInProcess : public ::testing::Test {
  protected:
   void TearDown() override { EXPECT_EQ(host_->stop(), 0) << "the host did not stop cleanly"; }

@@ -292,9 +292,9 @@ TEST(LiveHost, CommandSendAccountsEveryCommandOfAFileAtAnyRate) {
   for (const std::string rate : {"100", "5000"}) {
     SCOPED_TRACE("--rate " + rate);
     const SendResult sent = sendFile(live.domain, "file", file, rate);
-    EXPECT_EQ(sent.exit_code, 0);
+    EXPECT_EQ(sent.exit_code, sent.rejected == 0 ? 0 : 1) << "1: some refused, as documented";
     EXPECT_EQ(sent.text.find("without an outcome"), std::string::npos)
-        << sent.text.substr(sent.text.size() - 300);
+        << sent.text.substr(sent.text.size() > 300 ? sent.text.size() - 300 : 0);
     // Every command has its outcome. At 100 Hz the host takes each; at 5 kHz, five commands a
     // cycle, a loaded machine's host may fall behind, and queue_full is then the right answer.
     EXPECT_EQ(sent.applied + sent.rejected, 300U) << sent.text.substr(0, 2000);

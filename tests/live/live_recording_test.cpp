@@ -25,7 +25,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path scratch(const std::string& name) {
-  return testing::scratchPath("comply_live_rec", name);
+  return scratchFile(name);
 }
 
 double recordSeconds() {

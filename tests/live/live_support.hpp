@@ -98,9 +98,11 @@ class Process {
   bool exited_ = false;
 };
 
-/// `<tmp>/comply_live_<pid>/<name>`: a file of this test process, whose parallel runs do not meet.
+/// `<tmp>/comply_live_XXXXXX/<name>`: a file in a folder of this test process (parallel runs do not
+/// meet), removed with it when the process exits.
 inline std::string scratchFile(const std::string& name) {
-  return testing::scratchPath("comply_live", name).string();
+  static const testing::ScratchDir folder("live");
+  return (folder.path() / name).string();
 }
 
 inline std::vector<std::string> hostArgs(int domain, const std::string& name) {
@@ -112,7 +114,7 @@ inline std::vector<std::string> hostArgs(int domain, const std::string& name) {
 /// What `comply send --file` printed and how it ended.
 struct SendResult {
   int exit_code = -1;
-  std::string text;            ///< its output, after a newline (every outcome line follows one)
+  std::string text;            ///< its output
   std::size_t applied = 0;     ///< lines "applied ..."
   std::size_t queue_full = 0;  ///< lines "rejected ...: queue_full: ..."
   std::size_t rejected = 0;    ///< lines "rejected ...", for any reason
@@ -128,8 +130,8 @@ inline SendResult sendFile(int domain, const std::string& name, const std::strin
   SendResult result;
   result.exit_code = sender.wait(std::chrono::seconds(60));
   std::ifstream printed(output);
-  result.text = "\n" + std::string((std::istreambuf_iterator<char>(printed)),
-                                   std::istreambuf_iterator<char>());
+  result.text =
+      std::string((std::istreambuf_iterator<char>(printed)), std::istreambuf_iterator<char>());
   std::istringstream lines(result.text);
   for (std::string line; std::getline(lines, line);) {
     if (line.starts_with("applied ")) {

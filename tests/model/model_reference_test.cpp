@@ -19,8 +19,12 @@ constexpr int kSamples = 1000;
 
 /// The model's results in the references' form.
 testing::ReferenceResult resultOf(const Data& data) {
-  return {data.tip_position, data.tip_orientation, data.jacobian,
-          data.gravity,      data.coriolis,        data.mass_matrix};
+  return {.position = data.tip_position,
+          .orientation = data.tip_orientation,
+          .jacobian = data.jacobian,
+          .gravity = data.gravity,
+          .coriolis = data.coriolis,
+          .mass_matrix = data.mass_matrix};
 }
 
 class ReferenceTest : public testing::ShippedRobotTest {

@@ -69,17 +69,19 @@ struct Pushed {
         state(restingAt(wrapper.controller(), fr3Home())),
         limit(wrapper.controller().effortLimit()) {
     wrapper.activate(state);
-    EXPECT_TRUE(wrapper.submit(pushBeyondTheLimits()).accepted);
+    accepted = wrapper.submit(pushBeyondTheLimits()).accepted;
   }
   JointWrapper wrapper;
   const JointState state;
   const JointVector limit;
   TorqueBuffer torque;
+  bool accepted = false;  ///< the wrapper took the push
 };
 
 TEST(WrapperShaping, EffortLimitClipsAndCountsEveryClippedCycle) {
   Pushed pushed;
-  auto& [wrapper, state, limit, torque] = pushed;
+  auto& [wrapper, state, limit, torque, accepted] = pushed;
+  ASSERT_TRUE(accepted);
   for (int cycle = 0; cycle < 10; ++cycle) {
     ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
   }
@@ -94,7 +96,8 @@ TEST(WrapperShaping, EffortLimitClipsAndCountsEveryClippedCycle) {
 // the law's times one share, the joint that binds exactly at its limit.
 TEST(WrapperShaping, ScaledSaturationKeepsTheDirectionOfTheLawsTorque) {
   Pushed pushed("effort_saturation: scale\n");
-  auto& [wrapper, state, limit, torque] = pushed;
+  auto& [wrapper, state, limit, torque, accepted] = pushed;
+  ASSERT_TRUE(accepted);
   ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk);
   const JointVector above_gravity = torque.values - state.effort;  // effort: the gravity torque
   const double share = above_gravity[0] / 500.0;

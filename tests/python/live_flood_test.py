@@ -47,7 +47,7 @@ def main():
                 continue
             key = "applied" if outcome["applied"] else outcome["reason"]
             counts[key] = counts.get(key, 0) + 1
-        print(f"sent {COMMANDS} in {elapsed:.3f} s ({rate_hz / CYCLE_HZ:.0f}x the 1 kHz cycle); "
+        print(f"sent {COMMANDS} in {elapsed:.3f} s ({rate_hz / CYCLE_HZ:.0f}x the {CYCLE_HZ / 1000:.0f} kHz cycle); "
               f"outcomes {counts}; missing {missing}")
         assert rate_hz >= FLOOD_HZ, f"the client sent at only {rate_hz:.0f} Hz: not a flood"
         assert missing == 0, f"{missing} commands without an outcome"

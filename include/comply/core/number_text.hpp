@@ -21,7 +21,7 @@ struct NumberTexts {
 NumberTexts numbersApart(double value, double limit);
 
 /// The finite number that is the whole of `text` (strtod's syntax: "1e3", " 2", "-0.5"); nullopt
-/// for "", "12abc", "nan", "inf" or a value out of double's range.
+/// for "", "12abc", "nan", "inf", a value out of double's range or one that underflows.
 std::optional<double> finiteNumber(const std::string& text);
 
 }  // namespace comply

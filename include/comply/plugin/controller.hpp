@@ -9,6 +9,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <type_traits>
 
 #include "comply/plugin/abi.h"
 #include "comply/plugin/parameters.hpp"
@@ -32,18 +33,23 @@ class Controller {
   }
 };
 
-/// A law for commands of one kind: implement step(), real-time, every cycle.
-template <typename CommandBus, comply_command_kind kKind>
+/// A law for one command bus: implement step(), real-time, every cycle.
+template <typename CommandBus>
 class ControllerFor : public Controller {
  public:
-  static constexpr comply_command_kind kCommandKind = kKind;
+  static_assert(std::is_same_v<CommandBus, comply_joint_command> ||
+                    std::is_same_v<CommandBus, comply_cartesian_command>,
+                "a law reads comply_joint_command or comply_cartesian_command");
+  static constexpr comply_command_kind kCommandKind =
+      std::is_same_v<CommandBus, comply_cartesian_command> ? COMPLY_COMMAND_CARTESIAN
+                                                           : COMPLY_COMMAND_JOINT;
   using Command = CommandBus;
   virtual comply_status step(const comply_input& input, const Command& command,
                              comply_output& output) noexcept = 0;
 };
 
-using JointController = ControllerFor<comply_joint_command, COMPLY_COMMAND_JOINT>;
-using CartesianController = ControllerFor<comply_cartesian_command, COMPLY_COMMAND_CARTESIAN>;
+class JointController : public ControllerFor<comply_joint_command> {};
+class CartesianController : public ControllerFor<comply_cartesian_command> {};
 
 namespace plugin::detail {
 

@@ -163,7 +163,7 @@ struct RequestMessage {
 /// (Python's Client, `comply send`) starts from this. Only the pose (joint position) reference is
 /// in the state: other groups start from Command::zero(dof).
 template <typename Command>
-Command referenceInForce(const ControllerStateMessage& state, int dof);
+Command referenceInForce(const ControllerStateMessage& state, int dof) = delete;
 template <>
 CartesianCommand referenceInForce(const ControllerStateMessage& state, int dof);
 template <>
