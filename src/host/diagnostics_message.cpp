@@ -30,6 +30,14 @@ void LoopCounters::count(std::array<std::atomic<std::uint64_t>, kBins>& bins,
   bins[index].fetch_add(1, std::memory_order_relaxed);
 }
 
+void LoopCounters::countCycle(double compute_s, bool overrun) noexcept {
+  cycles.fetch_add(1, std::memory_order_relaxed);
+  if (overrun) {
+    overruns.fetch_add(1, std::memory_order_relaxed);
+  }
+  count(compute, compute_s);
+}
+
 transport::DiagnosticsMessage diagnosticsMessage(
     const pipeline::DiagnosticsSnapshot& wrapper, const LoopCounters& loop, double period_s,
     const pipeline::GateCounts& counts, std::uint64_t publisher, const std::string& host_name,

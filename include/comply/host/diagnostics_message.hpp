@@ -28,6 +28,8 @@ struct LoopCounters {
 
   /// Counts `seconds` in `bins`: wait-free, for the control thread.
   static void count(std::array<std::atomic<std::uint64_t>, kBins>& bins, double seconds) noexcept;
+  /// One cycle that took `compute_s` of computing, an overrun or not: wait-free.
+  void countCycle(double compute_s, bool overrun) noexcept;
 };
 
 /// The counters of the wrapper, the loop and the gate, with `outcomes` attached; header.frame_id

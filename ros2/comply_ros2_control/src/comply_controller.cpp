@@ -400,11 +400,7 @@ void ComplyController<Command>::afterCycle(const rclcpp::Time& time, bool wrote,
   }
   previous_start_s_ = start_s;
   const double compute_s = comply::hardware::monotonicSeconds() - start_s;
-  comply::host::LoopCounters::count(loop_->compute, compute_s);
-  if (compute_s > nominal_period_s_) {
-    loop_->overruns.fetch_add(1, std::memory_order_relaxed);
-  }
-  loop_->cycles.fetch_add(1, std::memory_order_relaxed);
+  loop_->countCycle(compute_s, compute_s > nominal_period_s_);
 }
 
 template <typename Command>

@@ -66,11 +66,7 @@ void LiveObserver<Command>::beforeCycle(std::uint64_t /*index*/, double time_s) 
 
 template <typename Command>
 void LiveObserver<Command>::afterCycle(const hardware::CycleRecord& record) {
-  counters_.cycles.fetch_add(1, std::memory_order_relaxed);
-  if (record.overrun) {
-    counters_.overruns.fetch_add(1, std::memory_order_relaxed);
-  }
-  LoopCounters::count(counters_.compute, record.compute_s);
+  counters_.countCycle(record.compute_s, record.overrun);
   if (record.state != nullptr) {
     last_state_ = *record.state;
   }
