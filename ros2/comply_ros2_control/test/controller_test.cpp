@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -39,21 +40,36 @@ double* volatile allocation_probe = nullptr;  // volatile: the probe's new is no
 
 }  // namespace
 
-// Counts allocations of the thread that set `counting` (the test's "real-time" thread only).
-void* operator new(std::size_t size) {
-  if (counting) {
-    allocations.fetch_add(1);
-  }
-  if (void* memory = std::malloc(size == 0 ? 1 : size)) {
-    return memory;
-  }
-  throw std::bad_alloc();
+// Counts the allocations of the thread that set `counting` (the test's "real-time" thread only),
+// at malloc: operator new's and Eigen's alike. glibc exports its allocator as __libc_* for exactly
+// this replacement.
+extern "C" {
+void* __libc_malloc(std::size_t size);                     // NOLINT(bugprone-reserved-identifier)
+void* __libc_calloc(std::size_t count, std::size_t size);  // NOLINT(bugprone-reserved-identifier)
+void* __libc_realloc(void* memory, std::size_t size);      // NOLINT(bugprone-reserved-identifier)
+void* __libc_memalign(std::size_t alignment, std::size_t size);  // NOLINT
+
+void* malloc(std::size_t size) {
+  allocations.fetch_add(counting ? 1 : 0, std::memory_order_relaxed);
+  return __libc_malloc(size);
 }
-void operator delete(void* memory) noexcept {
-  std::free(memory);
+void* calloc(std::size_t count, std::size_t size) {
+  allocations.fetch_add(counting ? 1 : 0, std::memory_order_relaxed);
+  return __libc_calloc(count, size);
 }
-void operator delete(void* memory, std::size_t) noexcept {
-  std::free(memory);
+void* realloc(void* memory, std::size_t size) {
+  allocations.fetch_add(counting ? 1 : 0, std::memory_order_relaxed);
+  return __libc_realloc(memory, size);
+}
+int posix_memalign(void** memory, std::size_t alignment, std::size_t size) {
+  allocations.fetch_add(counting ? 1 : 0, std::memory_order_relaxed);
+  *memory = __libc_memalign(alignment, size);
+  return *memory != nullptr || size == 0 ? 0 : ENOMEM;
+}
+void* aligned_alloc(std::size_t alignment, std::size_t size) {
+  allocations.fetch_add(counting ? 1 : 0, std::memory_order_relaxed);
+  return __libc_memalign(alignment, size);
+}
 }
 
 namespace comply_ros2_control {
@@ -202,6 +218,20 @@ TEST_F(ControllerHarness, UpdateAllocatesNothing) {
   counting = false;
   delete allocation_probe;
   EXPECT_EQ(allocations.load(), 1);
+}
+
+// Not only a warmed-up loop: the first cycles after activation (first state sample, first use of
+// the gate and of the law) allocate nothing either.
+TEST_F(ControllerHarness, FirstCyclesAllocateNothing) {
+  const rclcpp::Duration period(0, 1'000'000);
+  allocations = 0;
+  counting = true;
+  for (int cycle = 0; cycle < 10; ++cycle) {
+    values_[1] = 1e-3 * cycle;
+    controller_.update(rclcpp::Time(0), period);
+  }
+  counting = false;
+  EXPECT_EQ(allocations.load(), 0);
 }
 
 class OutputModeHarness : public ControllerHarness,
