@@ -17,7 +17,7 @@ void addConstants(std::vector<ConstantText>& constants, std::string_view prefix,
                   std::initializer_list<Enum> values) {
   for (const Enum value : values) {
     constants.push_back(
-        {std::string(prefix) + upperCase(toString(value)), static_cast<int>(value)});
+        {std::string(prefix) + upperCase(toString(value)), static_cast<int>(value), {}});
   }
 }
 
@@ -43,9 +43,9 @@ MessageText commandOutcome() {
                       "comply_msgs/CommandOutcome: what became of one command (an entry of "
                       "Diagnostics.outcomes).\nEvery command the host receives gets exactly one: "
                       "applied by a control cycle, or rejected with\na reason.",
-                      {{"OUTCOME_APPLIED", static_cast<int>(Outcome::kApplied)},
-                       {"OUTCOME_REJECTED", static_cast<int>(Outcome::kRejected)},
-                       {"REASON_NONE", static_cast<int>(Reason::kNone)}},
+                      {{"OUTCOME_APPLIED", static_cast<int>(Outcome::kApplied), {}},
+                       {"OUTCOME_REJECTED", static_cast<int>(Outcome::kRejected), {}},
+                       {"REASON_NONE", static_cast<int>(Reason::kNone), {}}},
                       fieldTexts<CommandOutcomeMessage>()};
   for (std::size_t i = 0; i < kReasonCount; ++i) {
     const auto reason = static_cast<Reason>(i);

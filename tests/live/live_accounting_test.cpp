@@ -80,11 +80,8 @@ Planned plan(int i, const transport::ControllerStateMessage& state, std::int64_t
 
 TEST_P(LiveHostOn, MixedStreamIsAccountedExactlyOnce) {
   HostHarness& host = *host_;
-  host.start("mixed");
-  const auto state = host.state(20s);
-  ASSERT_TRUE(state) << "no state from the host";
-  const int dof = static_cast<int>(state->position.size());
-  ASSERT_TRUE(host.connect(1, dof)) << "no outcome for a probe command";
+  const auto state = host.startConnected("mixed", 1);
+  ASSERT_TRUE(state);
   host.poll(300ms, [](const auto&) { return false; });  // the probes' last outcomes
   host.outcomes().clear();
   const transport::DiagnosticsMessage before = host.last();
@@ -146,11 +143,9 @@ TEST_P(LiveHostOn, MixedStreamIsAccountedExactlyOnce) {
 /// transport's, and needs no discovery.
 TEST_F(LiveHostInProcess, WrongKindAndEqualStampAreRejected) {
   HostHarness& host = *host_;
-  host.start("kinds");
-  const auto state = host.state(20s);
-  ASSERT_TRUE(state) << "no state from the host";
+  const auto state = host.startConnected("kinds", 1);
+  ASSERT_TRUE(state);
   const int dof = static_cast<int>(state->position.size());
-  ASSERT_TRUE(host.connect(1, dof));
   const auto outcomesOf = [&](transport::Stamp stamp) -> auto& {
     return host.outcomes()[stamp.nanoseconds()];
   };
@@ -198,10 +193,8 @@ TEST_F(LiveHostInProcess, WrongKindAndEqualStampAreRejected) {
 /// restarted. Now both are refused by the host's clock policy and the next command applies.
 TEST_F(LiveHostInProcess, AStampFromTheFutureOrOutOfRangeIsRefusedAndLocksNoOneOut) {
   HostHarness& host = *host_;
-  host.start("clock");
-  const auto state = host.state(20s);
-  ASSERT_TRUE(state) << "no state from the host";
-  ASSERT_TRUE(host.connect(1, static_cast<int>(state->position.size())));
+  const auto state = host.startConnected("clock", 1);
+  ASSERT_TRUE(state);
   const auto outcomesOf = [&](transport::Stamp stamp) -> auto& {
     return host.outcomes()[stamp.nanoseconds()];
   };
@@ -260,10 +253,8 @@ TEST_F(LiveHostInProcess, DeactivateHoldsTheArmAndTheStateSaysInactive) {
 /// the diagnostics) while the holder is heard; the holder's own process may send them.
 TEST_F(LiveHostInProcess, RequestsObeyThePublisherRule) {
   HostHarness& host = *host_;
-  host.start("requests");
-  const auto state = host.state(20s);
+  const auto state = host.startConnected("requests", 1);  // publisher 1 holds the topics
   ASSERT_TRUE(state);
-  ASSERT_TRUE(host.connect(1, static_cast<int>(state->position.size())));  // holds the topics
   const auto keepCommanding = [&] {
     ASSERT_TRUE(
         host.send(poseCommand(*state, Eigen::Vector3d::Zero(), transport::Stamp::now()), 1));

@@ -37,10 +37,8 @@ transport::CartesianChunkMessage chunkAlongY(const transport::ControllerStateMes
 
 TEST_P(LiveHostOn, PlaysAChunkOnTheHostsClockAndRefusesALateOne) {
   HostHarness& host = *host_;
-  host.start("chunks");
-  const auto state = host.state(20s);
+  const auto state = host.startConnected("chunks", 1);
   ASSERT_TRUE(state);
-  ASSERT_TRUE(host.connect(1, static_cast<int>(state->position.size())));
   ASSERT_TRUE(host.connectChunks(1));
 
   const double now_s = transport::Stamp::now().seconds();

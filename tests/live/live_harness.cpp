@@ -232,6 +232,24 @@ bool HostHarness::connect(int publisher, int dof) {
          handshake(noOp<transport::JointCommandMessage>(dof), publisher);
 }
 
+std::optional<transport::ControllerStateMessage> HostHarness::startConnected(
+    const std::string& name, int publishers) {
+  start(name);
+  auto first_state = state(20s);
+  if (!first_state) {
+    ADD_FAILURE() << "no state from host " << name;
+    return std::nullopt;
+  }
+  const int dof = static_cast<int>(first_state->position.size());
+  for (int publisher = 1; publisher <= publishers; ++publisher) {
+    if (!connect(publisher, dof)) {
+      ADD_FAILURE() << "host " << name << " accounted no probe command of publisher " << publisher;
+      return std::nullopt;
+    }
+  }
+  return first_state;
+}
+
 bool HostHarness::connectChunks(int publisher) {
   transport::CartesianChunkMessage late;  // one waypoint in 1970: refused as late_chunk
   late.chunk.waypoints.push_back({1.0, CartesianCommand::zero(1)});

@@ -45,6 +45,11 @@ class HostHarness {
   /// discovery. It may take the command topics (the publisher rule). False if the host never
   /// answered.
   bool connect(int publisher, int dof);
+  /// start(name), then waits up to 20 s for the first state and connects publishers 1 to
+  /// `publishers` in that order (so publisher 1 takes the command topics); the first state, or
+  /// none when the host sent none or did not answer a publisher's probes.
+  std::optional<transport::ControllerStateMessage> startConnected(const std::string& name,
+                                                                  int publishers);
   /// Sends from `publisher` (connected first); false when the transport refused the message.
   /// Safe from one thread per publisher while another thread polls.
   virtual bool send(const transport::CartesianCommandMessage& message, int publisher) = 0;

@@ -69,12 +69,9 @@ TEST(LiveHost, WatchdogHoldsWithinTheTimeoutOfAKilledSender) {
 /// after it used to be refused as other_publisher for the whole command_timeout_s.
 TEST_P(LiveHostOn, APublisherThatLeavesReleasesTheCommandTopicsAtOnce) {
   HostHarness& host = *host_;
-  host.start("departure");
-  const auto state = host.state(20s);
+  // Publisher 1 takes the command topics, 2 is refused while 1 is there.
+  const auto state = host.startConnected("departure", 2);
   ASSERT_TRUE(state);
-  const int dof = static_cast<int>(state->position.size());
-  ASSERT_TRUE(host.connect(1, dof));  // takes the command topics
-  ASSERT_TRUE(host.connect(2, dof));  // refused while the first is there
   const transport::Stamp first_stamp = transport::Stamp::now();
   ASSERT_TRUE(host.send(poseCommand(*state, Eigen::Vector3d::Zero(), first_stamp), 1));
   ASSERT_TRUE(host.poll(
@@ -103,14 +100,10 @@ TEST_P(LiveHostOn, APublisherThatLeavesReleasesTheCommandTopicsAtOnce) {
 
 TEST_P(LiveHostOn, SecondPublisherIsRefusedUntilTheFirstGoesSilent) {
   HostHarness& host = *host_;
-  host.start("lockout");
-  const auto state = host.state(20s);
-  ASSERT_TRUE(state);
-  const int dof = static_cast<int>(state->position.size());
   // Both before either streams: the first's probe takes the command topics, the second's is
   // refused (an outcome all the same).
-  ASSERT_TRUE(host.connect(1, dof));
-  ASSERT_TRUE(host.connect(2, dof));
+  const auto state = host.startConnected("lockout", 2);
+  ASSERT_TRUE(state);
 
   // The first publisher: poses wobbling 2 cm along y at 1 kHz until it goes silent, as a sender
   // that dies would (the watchdog test kills a real one). A jthread: silenced and joined however
@@ -170,12 +163,8 @@ TEST_P(LiveHostOn, SecondPublisherIsRefusedUntilTheFirstGoesSilent) {
 /// stamp, and a client matched outcomes by stamp alone. An outcome names its sender.
 TEST_P(LiveHostOn, TwoSendersOfOneStampEachGetTheirOwnOutcome) {
   HostHarness& host = *host_;
-  host.start("same_stamp");
-  const auto state = host.state(20s);
+  const auto state = host.startConnected("same_stamp", 2);  // publisher 1 holds the topics
   ASSERT_TRUE(state);
-  const int dof = static_cast<int>(state->position.size());
-  ASSERT_TRUE(host.connect(1, dof));  // holds the command topics
-  ASSERT_TRUE(host.connect(2, dof));
   const transport::Gid holder = host.sender(1);
   const transport::Gid other = host.sender(2);
   ASSERT_NE(holder, other);

@@ -100,10 +100,7 @@ TEST_F(ForceAxesTest, WithoutAxesOrLimitsTheStageStandsAside) {
 }
 
 TEST_F(ForceAxesTest, AForceAxisLosesItsSpringAndPushesTheTarget) {
-  ForceControlConfig config;
-  config.proportional_gain = 0.5;
-  config.integral_gain_per_s = 5.0;
-  stage_.configure(config);
+  stage_.configure({.proportional_gain = 0.5, .integral_gain_per_s = 5.0});
   in_.force_axes[2] = 1.0;  // task z
   in_.wrench_target[2] = 10.0;
   const Vector6d exerted = (Vector6d() << 1.0, 2.0, 6.0, 0.1, 0.2, 0.3).finished();
@@ -136,11 +133,8 @@ TEST_F(ForceAxesTest, AForceAxisLosesItsSpringAndPushesTheTarget) {
 }
 
 TEST_F(ForceAxesTest, TheIntegralIsBoundedAndHoldsWithoutAnEstimate) {
-  ForceControlConfig config;
-  config.proportional_gain = 0.0;
-  config.integral_gain_per_s = 10.0;
-  config.integral_limit_n = 3.0;
-  stage_.configure(config);
+  stage_.configure(
+      {.proportional_gain = 0.0, .integral_gain_per_s = 10.0, .integral_limit_n = 3.0});
   in_.force_axes[1] = 1.0;
   in_.wrench_target[1] = -8.0;                       // pull along -y of the task frame
   const Vector6d wrench = onTool(Vector6d::Zero());  // no contact: error -8 N
@@ -165,11 +159,8 @@ TEST_F(ForceAxesTest, TheIntegralIsBoundedAndHoldsWithoutAnEstimate) {
 }
 
 TEST_F(ForceAxesTest, ThePushFadesBetweenOnceAndTwiceTheSpeedBound) {
-  ForceControlConfig config;
-  config.proportional_gain = 0.0;
-  config.integral_gain_per_s = 10.0;
-  config.max_speed_m_per_s = 0.1;
-  stage_.configure(config);
+  stage_.configure(
+      {.proportional_gain = 0.0, .integral_gain_per_s = 10.0, .max_speed_m_per_s = 0.1});
   in_.force_axes[2] = 1.0;
   in_.wrench_target[2] = 10.0;
   const Vector6d wrench = onTool(Vector6d::Zero());
@@ -188,10 +179,7 @@ TEST_F(ForceAxesTest, ThePushFadesBetweenOnceAndTwiceTheSpeedBound) {
 }
 
 TEST_F(ForceAxesTest, ATorqueAxisTakesTheRotationalSpringOut) {
-  ForceControlConfig config;
-  config.proportional_gain = 0.5;
-  config.integral_gain_per_s = 5.0;
-  stage_.configure(config);
+  stage_.configure({.proportional_gain = 0.5, .integral_gain_per_s = 5.0});
   in_.force_axes[3] = 1.0;  // about task x
   in_.wrench_target[3] = 0.5;
   const Vector6d wrench = onTool(Vector6d::Zero());
@@ -208,11 +196,9 @@ TEST_F(ForceAxesTest, ATorqueAxisTakesTheRotationalSpringOut) {
 }
 
 TEST_F(ForceAxesTest, TheContactLimitPullsTheReferenceBackAndReturnsIt) {
-  ForceControlConfig config;
-  config.contact_force_limit_n = Vector3d(0.0, 0.0, 10.0);  // task z only
-  config.limit_bandwidth_hz = 2.0;
-  config.max_speed_m_per_s = 0.1;
-  stage_.configure(config);
+  stage_.configure({.max_speed_m_per_s = 0.1,
+                    .contact_force_limit_n = Vector3d(0.0, 0.0, 10.0),  // task z only
+                    .limit_bandwidth_hz = 2.0});
   const double error_z = errorInTask(in_)[2];
   ASSERT_GT(std::abs(error_z), 1e-3);
   const double sign = error_z > 0.0 ? 1.0 : -1.0;
@@ -256,9 +242,7 @@ TEST_F(ForceAxesTest, TheContactLimitPullsTheReferenceBackAndReturnsIt) {
 }
 
 TEST_F(ForceAxesTest, TheLimitClipsTheForceLoopToo) {
-  ForceControlConfig config;
-  config.contact_force_limit_n = Vector3d(0.0, 0.0, 12.0);
-  stage_.configure(config);
+  stage_.configure({.contact_force_limit_n = Vector3d(0.0, 0.0, 12.0)});
   in_.force_axes[2] = 1.0;
   in_.wrench_target[2] = 30.0;
   const Vector6d wrench = onTool(Vector6d::Zero());

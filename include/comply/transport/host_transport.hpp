@@ -11,6 +11,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "comply/transport/messages.hpp"
@@ -33,19 +34,42 @@ struct Inbox {
   /// command topics releases them at once rather than after its silence times out.
   std::vector<std::uint64_t> departed;
 
-  void clear() {
-    cartesian.clear();
-    joint.clear();
-    cartesian_chunks.clear();
-    joint_chunks.clear();
-    requests.clear();
-    departed.clear();
+  /// The samples of the command and chunk topics, for code that treats them alike (forEachTopic).
+  auto commandTopics() { return std::tie(cartesian, joint, cartesian_chunks, joint_chunks); }
+  [[nodiscard]] auto commandTopics() const {
+    return std::tie(cartesian, joint, cartesian_chunks, joint_chunks);
   }
-  [[nodiscard]] bool empty() const {
-    return cartesian.empty() && joint.empty() && cartesian_chunks.empty() && joint_chunks.empty() &&
-           requests.empty() && departed.empty();
-  }
+  /// The same and the requests: every topic a host reads.
+  auto topics() { return std::tuple_cat(commandTopics(), std::tie(requests)); }
+  [[nodiscard]] auto topics() const { return std::tuple_cat(commandTopics(), std::tie(requests)); }
+
+  void clear();
+  [[nodiscard]] bool empty() const;
 };
+
+/// Calls visit(index, samples) for each topic's samples in a tuple of them (Inbox::topics()), in
+/// the tuple's order.
+template <typename Topics, typename Visit>
+void forEachTopic(Topics&& topics, Visit&& visit) {
+  std::apply(
+      [&](auto&... samples) {
+        int topic = 0;
+        (visit(topic++, samples), ...);
+      },
+      topics);
+}
+
+inline void Inbox::clear() {
+  forEachTopic(topics(), [](int /*topic*/, auto& samples) { samples.clear(); });
+  departed.clear();
+}
+
+inline bool Inbox::empty() const {
+  bool none = departed.empty();
+  forEachTopic(topics(),
+               [&](int /*topic*/, const auto& samples) { none = none && samples.empty(); });
+  return none;
+}
 
 struct HostTransportOptions {
   std::string name = "comply";       ///< the host's name: topics /<name>/...

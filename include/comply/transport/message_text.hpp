@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "comply/transport/messages.hpp"
@@ -41,79 +42,60 @@ struct MessageText {
 
 namespace text {
 
+/// A type the interface files name as it is: its .msg type, its IDL type and the IDL file that
+/// declares it ("" for a primitive).
+inline FieldText named(std::string msg_type, std::string idl_type, std::string idl_include = "") {
+  return {{}, std::move(msg_type), std::move(idl_type), "", {}, std::move(idl_include)};
+}
+
 template <typename T>
-struct Spelling;  // msg type, IDL type, IDL suffix, IDL include
-template <>
-struct Spelling<bool> {
-  static FieldText of() { return {{}, "bool", "boolean", "", {}, ""}; }
-};
-template <>
-struct Spelling<double> {
-  static FieldText of() { return {{}, "float64", "double", "", {}, ""}; }
-};
-template <>
-struct Spelling<std::uint8_t> {
-  static FieldText of() { return {{}, "uint8", "octet", "", {}, ""}; }
-};
-template <>
-struct Spelling<std::uint32_t> {
-  static FieldText of() { return {{}, "uint32", "unsigned long", "", {}, ""}; }
-};
-template <>
-struct Spelling<std::uint64_t> {
-  static FieldText of() { return {{}, "uint64", "unsigned long long", "", {}, ""}; }
-};
-template <>
-struct Spelling<std::string> {
-  static FieldText of() { return {{}, "string", "string", "", {}, ""}; }
-};
-template <>
-struct Spelling<Stamp> {
-  static FieldText of() {
-    return {{}, "builtin_interfaces/Time",        "builtin_interfaces::msg::dds_::Time_", "",
-            {}, "builtin_interfaces/msg/Time.idl"};
-  }
-};
-template <>
-struct Spelling<Header> {
-  static FieldText of() {
-    return {{}, "std_msgs/Header",        "std_msgs::msg::dds_::Header_", "",
-            {}, "std_msgs/msg/Header.idl"};
-  }
-};
-template <>
-struct Spelling<CommandOutcomeMessage> {
-  static FieldText of() {
-    return {{},
-            "CommandOutcome",
-            "comply_msgs::msg::dds_::CommandOutcome_",
-            "",
-            {},
-            "comply_msgs/msg/CommandOutcome.idl"};
-  }
-};
-template <typename T>
-requires std::is_enum_v<T>
-struct Spelling<T> : Spelling<std::uint8_t> {
-};
+inline constexpr bool kIsStdArray = false;
 template <typename T, std::size_t N>
-struct Spelling<std::array<T, N>> {
-  static FieldText of() {
-    FieldText element = Spelling<T>::of();
-    element.msg_type += "[" + std::to_string(N) + "]";
-    element.idl_suffix = "[" + std::to_string(N) + "]";
-    return element;
-  }
-};
+inline constexpr bool kIsStdArray<std::array<T, N>> = true;
 template <typename T>
-struct Spelling<std::vector<T>> {
-  static FieldText of() {
-    FieldText element = Spelling<T>::of();
+inline constexpr bool kIsStdVector = false;
+template <typename T>
+inline constexpr bool kIsStdVector<std::vector<T>> = true;
+
+/// How the interface files spell a member of C++ type T (its name and doc left empty). An enum is
+/// its uint8 code on the wire.
+template <typename T>
+FieldText spelling() {
+  if constexpr (std::is_same_v<T, bool>) {
+    return named("bool", "boolean");
+  } else if constexpr (std::is_same_v<T, double>) {
+    return named("float64", "double");
+  } else if constexpr (std::is_same_v<T, std::uint8_t> || std::is_enum_v<T>) {
+    return named("uint8", "octet");
+  } else if constexpr (std::is_same_v<T, std::uint32_t>) {
+    return named("uint32", "unsigned long");
+  } else if constexpr (std::is_same_v<T, std::uint64_t>) {
+    return named("uint64", "unsigned long long");
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    return named("string", "string");
+  } else if constexpr (std::is_same_v<T, Stamp>) {
+    return named("builtin_interfaces/Time", "builtin_interfaces::msg::dds_::Time_",
+                 "builtin_interfaces/msg/Time.idl");
+  } else if constexpr (std::is_same_v<T, Header>) {
+    return named("std_msgs/Header", "std_msgs::msg::dds_::Header_", "std_msgs/msg/Header.idl");
+  } else if constexpr (std::is_same_v<T, CommandOutcomeMessage>) {
+    return named("CommandOutcome", "comply_msgs::msg::dds_::CommandOutcome_",
+                 "comply_msgs/msg/CommandOutcome.idl");
+  } else if constexpr (kIsStdArray<T>) {
+    FieldText element = spelling<typename T::value_type>();
+    const std::string bound = "[" + std::to_string(std::tuple_size_v<T>) + "]";
+    element.msg_type += bound;
+    element.idl_suffix = bound;
+    return element;
+  } else if constexpr (kIsStdVector<T>) {
+    FieldText element = spelling<typename T::value_type>();
     element.msg_type += "[]";
     element.idl_type = "sequence<" + element.idl_type + ">";
     return element;
+  } else {
+    static_assert(sizeof(T) == 0, "a message member of a type the interface files cannot spell");
   }
-};
+}
 
 }  // namespace text
 
@@ -123,7 +105,7 @@ std::vector<FieldText> fieldTexts() {
   std::vector<FieldText> fields;
   const Message empty{};
   Message::visit(empty, [&](FieldName name, const auto& value) {
-    FieldText field = text::Spelling<std::remove_cvref_t<decltype(value)>>::of();
+    FieldText field = text::spelling<std::remove_cvref_t<decltype(value)>>();
     field.name = name.wire;
     field.doc = name.doc;
     fields.push_back(std::move(field));

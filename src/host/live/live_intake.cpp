@@ -48,17 +48,6 @@ void offerSample(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gat
              [&] { return submitSample(wrapper, sample.message, offer.stamp_ns, offer.clock_ns); });
 }
 
-/// Calls visit(index, samples) for each topic's samples in a tuple of them.
-template <typename Topics, typename Visit>
-void forEachTopic(const Topics& topics, Visit&& visit) {
-  std::apply(
-      [&](const auto&... samples) {
-        int topic = 0;
-        (visit(topic++, samples), ...);
-      },
-      topics);
-}
-
 }  // namespace
 
 template <typename Command>
@@ -78,13 +67,12 @@ void Intake<Command>::handleCommand(const transport::Sample<Message>& sample) {
 /// that went back on one topic is still refused as stale).
 template <typename Command>
 void Intake<Command>::take(const transport::Inbox& inbox) {
-  const auto topics =
-      std::tie(inbox.cartesian, inbox.joint, inbox.cartesian_chunks, inbox.joint_chunks);
+  const auto topics = inbox.commandTopics();
   std::array<std::size_t, std::tuple_size_v<decltype(topics)>> next{};
   while (true) {
     int first = -1;
     std::int64_t first_stamp = 0;
-    forEachTopic(topics, [&](int topic, const auto& samples) {
+    transport::forEachTopic(topics, [&](int topic, const auto& samples) {
       if (next[topic] == samples.size()) {
         return;
       }
@@ -97,7 +85,7 @@ void Intake<Command>::take(const transport::Inbox& inbox) {
     if (first < 0) {
       break;
     }
-    forEachTopic(topics, [&](int topic, const auto& samples) {
+    transport::forEachTopic(topics, [&](int topic, const auto& samples) {
       if (topic == first) {
         handleCommand(samples[next[topic]++]);
       }

@@ -18,9 +18,11 @@ namespace comply::transport::process {
 
 enum class FrameKind : std::uint8_t {
   // transport process -> host
-  kReady = 1,      ///< started; payload: describe() text
-  kFailed = 2,     ///< could not start; payload: why
-  kCartesian = 3,  ///< a received sample (sample payload)
+  kReady = 1,   ///< started; payload: describe() text
+  kFailed = 2,  ///< could not start; payload: why
+  // 3 to 7: a received sample (sample payload) of each of Inbox::topics(), in its order
+  // (sampleFrameKind)
+  kCartesian = 3,
   kJoint = 4,
   kCartesianChunk = 5,
   kJointChunk = 6,
@@ -33,6 +35,16 @@ enum class FrameKind : std::uint8_t {
   kDiagnostics = 21,  ///< payload: CDR
   kFlush = 22,        ///< payload: f64 timeout [s]
 };
+
+static_assert(std::tuple_size_v<decltype(Inbox{}.topics())> ==
+                  static_cast<int>(FrameKind::kRequest) - static_cast<int>(FrameKind::kCartesian) +
+                      1,
+              "one sample frame kind per topic of the inbox");
+
+/// The kind of frame that carries a sample of topic `topic` of Inbox::topics().
+constexpr FrameKind sampleFrameKind(int topic) {
+  return static_cast<FrameKind>(static_cast<int>(FrameKind::kCartesian) + topic);
+}
 
 /// A frame larger than this is a broken peer, not a message (a 64-waypoint chunk is ~80 kB).
 inline constexpr std::size_t kMaxFrameBytes = 16U << 20U;

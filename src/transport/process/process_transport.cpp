@@ -365,21 +365,6 @@ class ProcessHostTransport final : public HostTransport {
       case FrameKind::kFailed:
         failure_ = process::readText(frame.payload);
         break;
-      case FrameKind::kCartesian:
-        take(frame, inbox.cartesian);
-        break;
-      case FrameKind::kJoint:
-        take(frame, inbox.joint);
-        break;
-      case FrameKind::kCartesianChunk:
-        take(frame, inbox.cartesian_chunks);
-        break;
-      case FrameKind::kJointChunk:
-        take(frame, inbox.joint_chunks);
-        break;
-      case FrameKind::kRequest:
-        take(frame, inbox.requests);
-        break;
       case FrameKind::kDeparted:
         if (const auto writer = process::readU64(frame.payload)) {
           publishers_.erase(*writer);
@@ -395,8 +380,22 @@ class ProcessHostTransport final : public HostTransport {
         flushed_ = !frame.payload.empty() && frame.payload[0] != 0;
         break;
       default:
-        frames_broken_ = true;
+        takeSample(frame, inbox);
         break;
+    }
+  }
+
+  /// A sample frame into its topic's list; any other kind breaks the stream.
+  void takeSample(const Frame& frame, Inbox& inbox) {
+    bool taken = false;
+    forEachTopic(inbox.topics(), [&](int topic, auto& samples) {
+      if (frame.kind == process::sampleFrameKind(topic)) {
+        take(frame, samples);
+        taken = true;
+      }
+    });
+    if (!taken) {
+      frames_broken_ = true;
     }
   }
 

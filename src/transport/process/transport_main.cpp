@@ -36,6 +36,7 @@
 
 namespace {
 
+using comply::transport::forEachTopic;
 using comply::transport::HostTransport;
 using comply::transport::HostTransportOptions;
 using comply::transport::Inbox;
@@ -44,6 +45,7 @@ using comply::transport::process::appendSampleFrame;
 using comply::transport::process::Frame;
 using comply::transport::process::FrameKind;
 using comply::transport::process::FrameReader;
+using comply::transport::process::sampleFrameKind;
 
 using Clock = std::chrono::steady_clock;
 constexpr auto kHeartbeatPeriod = std::chrono::milliseconds(50);
@@ -204,20 +206,13 @@ class Forwarder {
 
  private:
   void appendInbox(const Inbox& inbox) {
-    appendSamples(FrameKind::kCartesian, inbox.cartesian);
-    appendSamples(FrameKind::kJoint, inbox.joint);
-    appendSamples(FrameKind::kCartesianChunk, inbox.cartesian_chunks);
-    appendSamples(FrameKind::kJointChunk, inbox.joint_chunks);
-    appendSamples(FrameKind::kRequest, inbox.requests);
+    forEachTopic(inbox.topics(), [&](int topic, const auto& samples) {
+      for (const auto& sample : samples) {
+        appendSampleFrame(sampleFrameKind(topic), sample, scratch_, out_);
+      }
+    });
     for (const std::uint64_t writer : inbox.departed) {
       appendFrame(FrameKind::kDeparted, writer, out_);
-    }
-  }
-  template <typename Message>
-  void appendSamples(FrameKind kind,
-                     const std::vector<comply::transport::Sample<Message>>& samples) {
-    for (const auto& sample : samples) {
-      appendSampleFrame(kind, sample, scratch_, out_);
     }
   }
 
