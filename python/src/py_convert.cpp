@@ -135,7 +135,7 @@ py::object fieldObject(const T& value) {
     py::dict header;
     header["stamp"] = value.stamp.seconds();
     header["frame_id"] = value.frame_id;
-    return std::move(header);
+    return header;
   } else if constexpr (std::is_same_v<T, transport::Gid>) {
     return py::str(transport::toHex(value));
   } else if constexpr (std::is_same_v<T, transport::Outcomes>) {
@@ -143,7 +143,7 @@ py::object fieldObject(const T& value) {
     for (const auto& outcome : value) {
       outcomes.append(toDict(outcome));
     }
-    return std::move(outcomes);
+    return outcomes;
   } else if constexpr (DoubleArray<T>) {
     return array(value.data(), value.size());
   } else {

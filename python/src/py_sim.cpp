@@ -339,7 +339,7 @@ py::tuple Sim::step(const py::object& command) {
       std::visit([](auto& e) { return e->wrapper.diagnostics(); }, session_->episode);
   const bool terminated = d.state == pipeline::WrapperState::kFault;
   const bool truncated = max_time_s_ > 0.0 && session_->plant.simTime() >= max_time_s_;
-  info["state"] = std::string(pipeline::toString(d.state));
+  info["state"] = std::string(toString(d.state));
   info["last_fault"] = d.last_fault;
   return py::make_tuple(session_->observation(), 0.0, terminated, truncated, info);
 }

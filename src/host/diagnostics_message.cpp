@@ -44,7 +44,7 @@ transport::DiagnosticsMessage diagnosticsMessage(
     std::vector<transport::CommandOutcomeMessage> outcomes) {
   transport::DiagnosticsMessage message;
   message.header = {transport::Stamp::now(), host_name};
-  message.state = hostState(wrapper.state);
+  message.state = wrapper.state;
   message.cycles = loop.cycles.load(std::memory_order_relaxed);
   message.overruns = loop.overruns.load(std::memory_order_relaxed);
   message.period_s = period_s;

@@ -28,23 +28,11 @@ void setPassivity(const pipeline::PassivitySnapshot& passivity,
 
 }  // namespace
 
-transport::HostState hostState(pipeline::WrapperState state) {
-  switch (state) {
-    case pipeline::WrapperState::kActive:
-      return transport::HostState::kActive;
-    case pipeline::WrapperState::kFault:
-      return transport::HostState::kFault;
-    case pipeline::WrapperState::kInactive:
-      break;
-  }
-  return transport::HostState::kInactive;
-}
-
 transport::ControllerStateMessage stateMessage(const StateSample& sample,
                                                const pipeline::ResolvedController& resolved) {
   transport::ControllerStateMessage message;
   message.header = {sample.wall, resolved.config.base_frame};  // the model's: a file may set it
-  message.state = hostState(sample.state);
+  message.state = sample.state;
   message.command_kind = resolved.cartesian() ? transport::WireCommandKind::kCartesian
                                               : transport::WireCommandKind::kJoint;
   message.cycle = sample.cycle;

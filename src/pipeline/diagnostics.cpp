@@ -5,18 +5,6 @@
 
 namespace comply::pipeline {
 
-std::string_view toString(WrapperState state) {
-  switch (state) {
-    case WrapperState::kInactive:
-      return "inactive";
-    case WrapperState::kActive:
-      return "active";
-    case WrapperState::kFault:
-      return "fault";
-  }
-  return "unknown";
-}
-
 std::uint64_t DiagnosticsSnapshot::rejectionsTotal() const {
   return std::accumulate(rejections.begin(), rejections.end(), std::uint64_t{0});
 }

@@ -23,18 +23,6 @@ double Stamp::seconds() const noexcept {
   return stampSeconds(nanoseconds());
 }
 
-std::string_view toString(HostState state) {
-  switch (state) {
-    case HostState::kInactive:
-      return "inactive";
-    case HostState::kActive:
-      return "active";
-    case HostState::kFault:
-      return "fault";
-  }
-  return "unknown";
-}
-
 std::string_view toString(WrenchSource source) {
   switch (source) {
     case WrenchSource::kObserver:

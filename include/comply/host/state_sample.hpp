@@ -57,7 +57,6 @@ class StateSampler {
   model::Data inactive_pose_;
 };
 
-transport::HostState hostState(pipeline::WrapperState state);
 
 /// The state topic's message of `sample` (allocates: off the control thread).
 transport::ControllerStateMessage stateMessage(const StateSample& sample,

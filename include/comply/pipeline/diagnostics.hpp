@@ -11,12 +11,12 @@
 #include <string>
 #include <utility>
 
+#include "comply/core/wrapper_state.hpp"
 #include "comply/pipeline/command_validation.hpp"
 
 namespace comply::pipeline {
 
-enum class WrapperState : std::uint8_t { kInactive, kActive, kFault };
-std::string_view toString(WrapperState state);
+using comply::WrapperState;
 
 /// The gain guard's account (passivity.* options: the energy tank), as of the last cycle. Totals
 /// count from activation. Every field is 0 (and gain_fraction 1) while the tank is off.

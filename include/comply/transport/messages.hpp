@@ -15,6 +15,7 @@
 #include "comply/core/chunk.hpp"
 #include "comply/core/command_reasons.hpp"
 #include "comply/core/commands.hpp"
+#include "comply/core/wrapper_state.hpp"
 #include "comply/transport/message_tables.hpp"
 
 namespace comply::transport {
@@ -78,14 +79,13 @@ template <typename Command>
 using ChunkMessageOf = std::conditional_t<std::is_same_v<Command, CartesianCommand>,
                                           CartesianChunkMessage, JointChunkMessage>;
 
-/// ControllerState.STATE_*.
-enum class HostState : std::uint8_t { kInactive = 0, kActive = 1, kFault = 2 };
+/// ControllerState.STATE_*: the wrapper's state, as every host reports it.
+using HostState = WrapperState;
 /// ControllerState.WRENCH_SOURCE_*.
 enum class WrenchSource : std::uint8_t { kNone = 0, kObserver = 1, kSensor = 2 };
 std::string_view toString(WrenchSource source);
 /// ControllerState.COMMAND_KIND_*.
 enum class WireCommandKind : std::uint8_t { kCartesian = 0, kJoint = 1 };
-std::string_view toString(HostState state);
 std::string_view toString(WireCommandKind kind);
 
 /// The field types of the message tables (message_tables.hpp).

@@ -132,19 +132,11 @@ class ProcessHostTransport final : public HostTransport {
   }
 
   void publish(const ControllerStateMessage& state) override {
-    const std::lock_guard<std::mutex> lock(send_mutex_);
-    encodeCdr(state, cdr_);
-    out_.clear();
-    process::appendFrame(FrameKind::kState, cdr_, out_);
-    sendLocked(out_);
+    sendEncoded(FrameKind::kState, state);
   }
 
   void publish(const DiagnosticsMessage& diagnostics) override {
-    const std::lock_guard<std::mutex> lock(send_mutex_);
-    encodeCdr(diagnostics, cdr_);
-    out_.clear();
-    process::appendFrame(FrameKind::kDiagnostics, cdr_, out_);
-    sendLocked(out_);
+    sendEncoded(FrameKind::kDiagnostics, diagnostics);
   }
 
   bool flush(double timeout_s) override {
@@ -336,6 +328,16 @@ class ProcessHostTransport final : public HostTransport {
       }
       return n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK);
     }
+  }
+
+  /// `message` in CDR, in one frame of `kind` to the process.
+  template <typename Message>
+  void sendEncoded(FrameKind kind, const Message& message) {
+    const std::lock_guard<std::mutex> lock(send_mutex_);
+    encodeCdr(message, cdr_);
+    out_.clear();
+    process::appendFrame(kind, cdr_, out_);
+    sendLocked(out_);
   }
 
   template <typename Message>
