@@ -37,6 +37,9 @@ std::string instantiate(std::string_view path, const PluginSpec& spec) {
   const bool joint = spec.kind == "joint";
   const bool cpp = spec.language == "cpp";
   std::string text(embeddedTemplate(path));
+  // Both C laws start alike; their templates name the common part rather than repeat it.
+  text = replaceAll(std::move(text), "/* COMPLY_TEMPLATE_C_LIFECYCLE */\n",
+                    embeddedTemplate("plugin/c_lifecycle.c"));
   text = replaceAll(std::move(text), "COMPLY_TEMPLATE_LANGUAGES", cpp ? "C CXX" : "C");
   text = replaceAll(std::move(text), "COMPLY_TEMPLATE_SOURCE",
                     std::string(kTemplateName) + (cpp ? ".cpp" : ".c"));

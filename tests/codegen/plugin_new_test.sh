@@ -10,6 +10,12 @@ name=law_${kind}_${lang}
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 "$comply" plugin new "$name" --kind "$kind" --lang "$lang" >files.txt
 cd "$name"
+# Every template name and placeholder is replaced (the C laws' shared lifecycle included).
+if grep -rn "COMPLY_TEMPLATE\|my_law\|MyLaw" .; then
+  echo "a template placeholder is left in the generated project" >&2
+  exit 1
+fi
+[ "$lang" != c ] || grep -q "static void\* create(" "$name.c"
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix" >../cmake.log
 cmake --build build >../build.log || { cat ../build.log; exit 1; }
 (cd build && ctest --output-on-failure) >../ctest.log || { cat ../ctest.log; exit 1; }
