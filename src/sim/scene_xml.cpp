@@ -9,6 +9,7 @@
 
 #include "comply/core/temporary_file.hpp"
 #include "comply/core/text_file.hpp"
+#include "comply/core/xml_tags.hpp"
 #include "comply/sim/sim_error.hpp"
 
 namespace comply::sim {
@@ -53,58 +54,27 @@ std::string withoutComments(const std::string& xml) {
   return out;
 }
 
-/// Position one past the '>' of the opening tag that starts at `begin` (quotes respected).
-std::size_t tagEnd(const std::string& xml, std::size_t begin) {
-  char quote = 0;
-  for (std::size_t i = begin; i < xml.size(); ++i) {
-    if (quote != 0) {
-      quote = xml[i] == quote ? 0 : quote;
-    } else if (xml[i] == '"' || xml[i] == '\'') {
-      quote = xml[i];
-    } else if (xml[i] == '>') {
-      return i + 1;
-    }
-  }
-  return std::string::npos;
-}
-
-/// Start of the first opening tag `<name` followed by a space, '>' or '/' at or after `from`.
-std::size_t findTag(const std::string& xml, std::string_view name, std::size_t from = 0) {
-  const std::string open = "<" + std::string(name);
-  for (std::size_t at = xml.find(open, from); at != std::string::npos;
-       at = xml.find(open, at + 1)) {
-    const std::size_t next = at + open.size();
-    if (next < xml.size() && std::string_view(" \t\r\n/>").find(xml[next]) != std::string::npos) {
-      return at;
-    }
-  }
-  return std::string::npos;
-}
-
 /// The URDF with our <mujoco> compiler options in place of any it had: fixed-joint frames stay
 /// bodies (the TCP must exist), inertias come from <inertial> only (as in the controller's
 /// model), and relative mesh paths resolve against the robot's folder.
 std::string urdfForMujoco(const model::RobotDescription& robot) {
   std::string urdf = withoutComments(readText(robot.urdf_path, "URDF"));
-  if (const std::size_t begin = findTag(urdf, "mujoco"); begin != std::string::npos) {
-    const std::size_t open_end = tagEnd(urdf, begin);
-    std::size_t end = open_end;
-    if (open_end != std::string::npos && urdf[open_end - 2] != '/') {
-      const std::size_t close = urdf.find("</mujoco>", open_end);
-      end = close == std::string::npos ? std::string::npos : close + 9;
+  if (const auto mujoco = findOpeningTag(urdf, "mujoco")) {
+    std::size_t end = mujoco->end;
+    if (!mujoco->selfClosing(urdf)) {
+      const std::size_t close = urdf.find("</mujoco>", mujoco->end);
+      if (close == std::string::npos) {
+        throw SimError("URDF '" + robot.urdf_path.string() + "': unterminated <mujoco> element");
+      }
+      end = close + 9;
     }
-    if (end == std::string::npos) {
-      throw SimError("URDF '" + robot.urdf_path.string() + "': unterminated <mujoco> element");
-    }
-    urdf.erase(begin, end - begin);
+    urdf.erase(mujoco->begin, end - mujoco->begin);
   }
-  const std::size_t robot_tag = findTag(urdf, "robot");
-  const std::size_t robot_end =
-      robot_tag == std::string::npos ? robot_tag : tagEnd(urdf, robot_tag);
-  if (robot_end == std::string::npos || urdf[robot_end - 2] == '/') {
+  const auto robot_tag = findOpeningTag(urdf, "robot");
+  if (!robot_tag || robot_tag->selfClosing(urdf)) {
     throw SimError("URDF '" + robot.urdf_path.string() + "' has no <robot> element with links");
   }
-  urdf.insert(robot_end,
+  urdf.insert(robot_tag->end,
               "<mujoco><compiler fusestatic=\"false\" discardvisual=\"true\" "
               "inertiafromgeom=\"false\" balanceinertia=\"true\" meshdir=\"" +
                   robot.folder.string() + "\"/></mujoco>");
@@ -134,44 +104,40 @@ std::string robotMjcf(const model::RobotDescription& robot) {
 /// What stands inside the <mujocoinclude> root of a fragment file.
 std::string fragmentBody(const std::filesystem::path& file, const std::string& what) {
   const std::string xml = withoutComments(readText(file, what));
-  const std::size_t begin = findTag(xml, "mujocoinclude");
-  const std::size_t open_end = begin == std::string::npos ? begin : tagEnd(xml, begin);
+  const auto root = findOpeningTag(xml, "mujocoinclude");
   const std::size_t close = xml.rfind("</mujocoinclude>");
-  if (open_end == std::string::npos || close == std::string::npos || close < open_end) {
+  if (!root || close == std::string::npos || close < root->end) {
     throw SimError(what + " '" + file.string() +
                    "': the root element must be <mujocoinclude> ... </mujocoinclude>");
   }
-  return xml.substr(open_end, close - open_end);
+  return xml.substr(root->end, close - root->end);
 }
 
 /// Inserts `content` as the last children of the body named `name`.
 void appendToBody(std::string& mjcf, const std::string& name, const std::string& content,
                   const std::string& robot_name) {
   const std::string attribute = "name=\"" + name + "\"";
-  for (std::size_t at = findTag(mjcf, "body"); at != std::string::npos;
-       at = findTag(mjcf, "body", at + 1)) {
-    const std::size_t end = tagEnd(mjcf, at);
-    if (end == std::string::npos ||
-        mjcf.substr(at, end - at).find(attribute) == std::string::npos) {
+  for (auto body = findOpeningTag(mjcf, "body"); body;
+       body = findOpeningTag(mjcf, "body", body->end)) {
+    if (mjcf.substr(body->begin, body->end - body->begin).find(attribute) == std::string::npos) {
       continue;
     }
-    if (mjcf[end - 2] == '/') {  // <body .../>: open it up
-      mjcf.replace(end - 2, 2, ">" + content + "</body>");
+    if (body->selfClosing(mjcf)) {  // <body .../>: open it up
+      mjcf.replace(body->end - 2, 2, ">" + content + "</body>");
       return;
     }
     // The matching </body>: count nested bodies.
     int depth = 1;
-    std::size_t cursor = end;
+    std::size_t cursor = body->end;
     while (depth > 0) {
-      const std::size_t next_open = findTag(mjcf, "body", cursor);
+      const auto next_open = findOpeningTag(mjcf, "body", cursor);
       const std::size_t next_close = mjcf.find("</body>", cursor);
       if (next_close == std::string::npos) {
         break;
       }
-      if (next_open != std::string::npos && next_open < next_close) {
-        const std::size_t open_end = tagEnd(mjcf, next_open);
-        depth += mjcf[open_end - 2] == '/' ? 0 : 1;
-        cursor = open_end;
+      if (next_open && next_open->begin < next_close) {
+        depth += next_open->selfClosing(mjcf) ? 0 : 1;
+        cursor = next_open->end;
       } else {
         --depth;
         cursor = depth == 0 ? next_close : next_close + 7;
@@ -185,12 +151,11 @@ void appendToBody(std::string& mjcf, const std::string& name, const std::string&
 }
 
 void insertAfterTag(std::string& mjcf, std::string_view tag, const std::string& content) {
-  const std::size_t at = findTag(mjcf, tag);
-  const std::size_t end = at == std::string::npos ? at : tagEnd(mjcf, at);
-  if (end == std::string::npos) {
+  const auto opening = findOpeningTag(mjcf, tag);
+  if (!opening) {
     throw SimError("converted model has no <" + std::string(tag) + "> element");
   }
-  mjcf.insert(end, content);
+  mjcf.insert(opening->end, content);
 }
 
 }  // namespace

@@ -13,61 +13,13 @@
 #include <string_view>
 
 #include "comply/core/temporary_file.hpp"
+#include "comply/core/xml_tags.hpp"
 
 namespace comply::testing {
 namespace {
 
 [[noreturn]] void fail(const std::string& message) {
   throw std::runtime_error("MujocoReference: " + message);
-}
-
-/// Span of the opening tag `<name ...>` of the first `name` element outside comments,
-/// processing instructions, CDATA and DOCTYPE: [begin of '<', one past '>').
-struct TagSpan {
-  std::size_t begin;
-  std::size_t end;
-};
-
-std::optional<TagSpan> findOpeningTag(const std::string& xml, std::string_view name) {
-  const auto skipPast = [&](std::size_t from, std::string_view terminator) {
-    const std::size_t at = xml.find(terminator, from);
-    return at == std::string::npos ? xml.size() : at + terminator.size();
-  };
-  std::size_t i = 0;
-  while ((i = xml.find('<', i)) != std::string::npos) {
-    const std::string_view rest = std::string_view(xml).substr(i);
-    if (rest.starts_with("<!--")) {
-      i = skipPast(i + 4, "-->");
-    } else if (rest.starts_with("<![CDATA[")) {
-      i = skipPast(i + 9, "]]>");
-    } else if (rest.starts_with("<?")) {
-      i = skipPast(i + 2, "?>");
-    } else if (rest.starts_with("<!")) {
-      i = skipPast(i + 2, ">");
-    } else {
-      std::size_t name_end = i + 1;
-      while (name_end < xml.size() &&
-             std::string_view(" \t\r\n/>").find(xml[name_end]) == std::string_view::npos) {
-        ++name_end;
-      }
-      if (std::string_view(xml).substr(i + 1, name_end - i - 1) == name) {
-        // The tag ends at the first '>' outside a quoted attribute value.
-        char quote = 0;
-        for (std::size_t j = name_end; j < xml.size(); ++j) {
-          if (quote != 0) {
-            quote = xml[j] == quote ? 0 : quote;
-          } else if (xml[j] == '"' || xml[j] == '\'') {
-            quote = xml[j];
-          } else if (xml[j] == '>') {
-            return TagSpan{i, j + 1};
-          }
-        }
-        return std::nullopt;
-      }
-      i = name_end;
-    }
-  }
-  return std::nullopt;
 }
 
 /// The URDF text with a <mujoco> element added when it has none. Without it MuJoCo would fuse
@@ -78,11 +30,11 @@ std::string withMujocoCompilerOptions(std::string xml, const std::string& path) 
   if (findOpeningTag(xml, "mujoco")) {
     return xml;
   }
-  const std::optional<TagSpan> robot = findOpeningTag(xml, "robot");
+  const std::optional<XmlTag> robot = findOpeningTag(xml, "robot");
   if (!robot) {
     fail("'" + path + "' has no <robot> element");
   }
-  if (xml[robot->end - 2] == '/') {
+  if (robot->selfClosing(xml)) {
     fail("'" + path + "' has an empty <robot/> element");
   }
   xml.insert(robot->end,
