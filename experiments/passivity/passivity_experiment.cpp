@@ -29,16 +29,15 @@ std::vector<PassivityRow> runPassivity(const PassivityOptions& options) {
     conditions.push_back(passivity::conditionOf(name));
   }
   std::vector<PassivityRow> rows;
-  for (const Scenario scenario : {Scenario::kFreeSpaceStiffness, Scenario::kFreeSpaceFrame,
-                                  Scenario::kWallContact, Scenario::kNormalTask}) {
-    const std::filesystem::path folder = options.out_dir / passivity::nameOf(scenario);
+  for (const auto& [scenario, scenario_name] : passivity::kScenarios) {
+    const std::filesystem::path folder = options.out_dir / scenario_name;
     std::filesystem::create_directories(folder);
     for (const Condition condition : conditions) {
       if (options.progress != nullptr) {
-        *options.progress << "passivity: " << passivity::nameOf(scenario) << ", "
-                          << passivity::nameOf(condition) << "\n";
+        *options.progress << "passivity: " << scenario_name << ", " << passivity::nameOf(condition)
+                          << "\n";
       }
-      rows.push_back({passivity::nameOf(scenario), passivity::nameOf(condition),
+      rows.push_back({std::string(scenario_name), passivity::nameOf(condition),
                       passivity::runScenario(scenario, condition, settings,
                                              folder / (passivity::nameOf(condition) + ".csv"))});
     }

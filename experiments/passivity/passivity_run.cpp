@@ -237,43 +237,45 @@ class Recorder final : public hardware::LoopObserver {
 
 }  // namespace
 
-std::string nameOf(Scenario scenario) {
-  switch (scenario) {
-    case Scenario::kFreeSpaceStiffness:
-      return "free_space_stiffness";
-    case Scenario::kFreeSpaceFrame:
-      return "free_space_frame";
-    case Scenario::kWallContact:
-      return "wall_contact";
-    case Scenario::kNormalTask:
-      return "normal_task";
+namespace {
+
+template <typename Enum, std::size_t N>
+std::string nameIn(const std::array<Named<Enum>, N>& table, Enum value) {
+  for (const Named<Enum>& entry : table) {
+    if (entry.value == value) {
+      return std::string(entry.name);
+    }
   }
   return "?";
+}
+
+}  // namespace
+
+std::string nameOf(Scenario scenario) {
+  return nameIn(kScenarios, scenario);
 }
 
 std::string nameOf(Condition condition) {
-  switch (condition) {
-    case Condition::kNone:
-      return "none";
-    case Condition::kRamps:
-      return "ramps";
-    case Condition::kTank:
-      return "tank";
-    case Condition::kTankOnly:
-      return "tank_only";
+  return nameIn(kConditions, condition);
+}
+
+std::vector<std::string> conditionNames() {
+  std::vector<std::string> names;
+  for (const Named<Condition>& entry : kConditions) {
+    names.emplace_back(entry.name);
   }
-  return "?";
+  return names;
 }
 
 Condition conditionOf(const std::string& name) {
-  for (const Condition condition :
-       {Condition::kNone, Condition::kRamps, Condition::kTank, Condition::kTankOnly}) {
-    if (nameOf(condition) == name) {
-      return condition;
+  std::string known;
+  for (const Named<Condition>& entry : kConditions) {
+    if (entry.name == name) {
+      return entry.value;
     }
+    known += (known.empty() ? "" : ", ") + std::string(entry.name);
   }
-  throw std::invalid_argument("unknown passivity condition '" + name +
-                              "' (none, ramps, tank, tank_only)");
+  throw std::invalid_argument("unknown passivity condition '" + name + "' (" + known + ")");
 }
 
 RunResult runScenario(Scenario scenario, Condition condition, const RunSettings& settings,
