@@ -108,7 +108,7 @@ CLI::App* addPassivity(CLI::App& experiment, PassivityOptions& options) {
                    "none (no gain stage), ramps (gain_ramps), tank (gain_ramps and passivity), "
                    "tank_only (passivity without gain_ramps)")
       ->capture_default_str()
-      ->check(CLI::IsMember(passivity::conditionNames()));
+      ->check(CLI::IsMember(namesIn(passivity::kConditions)));
   command
       ->add_option("--torque-rate-limit", options.torque_rate_limit_nm_per_s,
                    "ablation: the torque-rate limit per joint [N m/s] (default: the controller "

@@ -95,7 +95,7 @@ LiveCommands addLiveCommands(CLI::App& app) {
   send_command
       ->add_option("--request", send->request,
                    "activate, deactivate, reset (leave FAULT) or tare (the wrist sensor's zero)")
-      ->check(CLI::IsMember({"activate", "deactivate", "reset", "tare"}));
+      ->check(CLI::IsMember(namesIn(transport::kRequestTypeNames)));
   send_command->add_flag("--no-wait", send->no_wait, "do not wait for the outcomes");
 
   auto echo = std::make_shared<EchoOptions>();

@@ -11,6 +11,7 @@
 #include <optional>
 #include <ostream>
 #include <sstream>
+#include <stdexcept>
 #include <thread>
 #include <type_traits>
 
@@ -258,10 +259,11 @@ int sendRequest(Participant& participant, const SendOptions& options, std::ostre
   }
   transport::RequestMessage message;
   message.header.stamp = transport::Stamp::now();
-  message.request = options.request == "activate"     ? transport::RequestType::kActivate
-                    : options.request == "deactivate" ? transport::RequestType::kDeactivate
-                    : options.request == "tare"       ? transport::RequestType::kTare
-                                                      : transport::RequestType::kReset;
+  const auto request = valueIn(transport::kRequestTypeNames, options.request);
+  if (!request) {
+    throw std::invalid_argument("unknown request '" + options.request + "'");
+  }
+  message.request = *request;
   writer.write(message);
   writer.flush(options.client.timeout_s);
   out << "sent request " << options.request << "\n";

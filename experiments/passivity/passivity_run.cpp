@@ -237,42 +237,20 @@ class Recorder final : public hardware::LoopObserver {
 
 }  // namespace
 
-namespace {
-
-template <typename Enum, std::size_t N>
-std::string nameIn(const std::array<Named<Enum>, N>& table, Enum value) {
-  for (const Named<Enum>& entry : table) {
-    if (entry.value == value) {
-      return std::string(entry.name);
-    }
-  }
-  return "?";
-}
-
-}  // namespace
-
 std::string nameOf(Scenario scenario) {
-  return nameIn(kScenarios, scenario);
+  return std::string(nameIn(kScenarios, scenario, "?"));
 }
 
 std::string nameOf(Condition condition) {
-  return nameIn(kConditions, condition);
-}
-
-std::vector<std::string> conditionNames() {
-  std::vector<std::string> names;
-  for (const Named<Condition>& entry : kConditions) {
-    names.emplace_back(entry.name);
-  }
-  return names;
+  return std::string(nameIn(kConditions, condition, "?"));
 }
 
 Condition conditionOf(const std::string& name) {
+  if (const auto condition = valueIn(kConditions, name)) {
+    return *condition;
+  }
   std::string known;
-  for (const Named<Condition>& entry : kConditions) {
-    if (entry.name == name) {
-      return entry.value;
-    }
+  for (const auto& entry : kConditions) {
     known += (known.empty() ? "" : ", ") + std::string(entry.name);
   }
   throw std::invalid_argument("unknown passivity condition '" + name + "' (" + known + ")");

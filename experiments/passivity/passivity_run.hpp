@@ -6,14 +6,13 @@
 // clock); the experiment observes it itself because it reads the controller's law bus and the
 // plant's mass matrix, which the simulation log does not keep.
 
-#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <iosfwd>
 #include <optional>
 #include <string>
-#include <string_view>
-#include <vector>
+
+#include "comply/core/enum_names.hpp"
 
 namespace comply::experiments::passivity {
 
@@ -23,33 +22,24 @@ enum class Scenario { kFreeSpaceStiffness, kFreeSpaceFrame, kWallContact, kNorma
 /// option is config/sim/cartesian_impedance.yaml's.
 enum class Condition { kNone, kRamps, kTank, kTankOnly };
 
-/// An enumerator and the name the experiment's folders, files, table and command line give it.
-template <typename Enum>
-struct Named {
-  Enum value;
-  std::string_view name;
-};
-/// Every scenario, in the order the experiment runs them.
-inline constexpr std::array<Named<Scenario>, 4> kScenarios{{
-    {Scenario::kFreeSpaceStiffness, "free_space_stiffness"},
-    {Scenario::kFreeSpaceFrame, "free_space_frame"},
-    {Scenario::kWallContact, "wall_contact"},
-    {Scenario::kNormalTask, "normal_task"},
-}};
-/// Every condition.
-inline constexpr std::array<Named<Condition>, 4> kConditions{{
-    {Condition::kNone, "none"},
-    {Condition::kRamps, "ramps"},
-    {Condition::kTank, "tank"},
-    {Condition::kTankOnly, "tank_only"},
-}};
+/// Every scenario, in the order the experiment runs them, and every condition, by the names its
+/// folders, files, table and command line give them.
+inline constexpr EnumNames<Scenario, 4> kScenarios{
+    {{Scenario::kFreeSpaceStiffness, "free_space_stiffness"},
+     {Scenario::kFreeSpaceFrame, "free_space_frame"},
+     {Scenario::kWallContact, "wall_contact"},
+     {Scenario::kNormalTask, "normal_task"}}};
+static_assert(listsValuesInOrder(kScenarios));
+inline constexpr EnumNames<Condition, 4> kConditions{{{Condition::kNone, "none"},
+                                                      {Condition::kRamps, "ramps"},
+                                                      {Condition::kTank, "tank"},
+                                                      {Condition::kTankOnly, "tank_only"}}};
+static_assert(listsValuesInOrder(kConditions));
 
 std::string nameOf(Scenario scenario);
 std::string nameOf(Condition condition);
 /// The condition called `name`; throws std::invalid_argument on anything else.
 Condition conditionOf(const std::string& name);
-/// The names of kConditions, for the command line.
-std::vector<std::string> conditionNames();
 
 /// Commands a policy sends: every 2 ms (500 Hz), fast enough to switch within a few
 /// milliseconds of each turning point, as a learned policy or a teleoperator might.

@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "comply/core/enum_names.hpp"
+
 namespace comply {
 namespace {
 
@@ -13,30 +15,21 @@ std::string compose(const std::string& source, const std::string& key, const std
   return text + (text.empty() ? "" : ": ") + message;
 }
 
+constexpr EnumNames<InputErrc, 9> kInputErrcNames{{{InputErrc::kCannotRead, "cannot_read"},
+                                                   {InputErrc::kSyntax, "syntax"},
+                                                   {InputErrc::kMissingKey, "missing_key"},
+                                                   {InputErrc::kUnknownKey, "unknown_key"},
+                                                   {InputErrc::kWrongType, "wrong_type"},
+                                                   {InputErrc::kWrongSize, "wrong_size"},
+                                                   {InputErrc::kOutOfRange, "out_of_range"},
+                                                   {InputErrc::kInvalidValue, "invalid_value"},
+                                                   {InputErrc::kInconsistent, "inconsistent"}}};
+static_assert(listsValuesInOrder(kInputErrcNames));
+
 }  // namespace
 
 std::string_view toString(InputErrc code) {
-  switch (code) {
-    case InputErrc::kCannotRead:
-      return "cannot_read";
-    case InputErrc::kSyntax:
-      return "syntax";
-    case InputErrc::kMissingKey:
-      return "missing_key";
-    case InputErrc::kUnknownKey:
-      return "unknown_key";
-    case InputErrc::kWrongType:
-      return "wrong_type";
-    case InputErrc::kWrongSize:
-      return "wrong_size";
-    case InputErrc::kOutOfRange:
-      return "out_of_range";
-    case InputErrc::kInvalidValue:
-      return "invalid_value";
-    case InputErrc::kInconsistent:
-      return "inconsistent";
-  }
-  return "unknown";
+  return nameIn(kInputErrcNames, code);
 }
 
 InputError::InputError(InputErrc code, std::string source, std::string key,

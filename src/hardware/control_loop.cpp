@@ -30,9 +30,9 @@ ControlLoop::ControlLoop(HardwareInterface& hardware, CycleController& controlle
   const OutputMode mode = controller_.outputMode();
   if (!hardware_.accepts(mode)) {
     std::string accepted;
-    for (const OutputMode candidate : kOutputModes) {
+    for (const auto& [candidate, name] : kOutputModeNames) {
       if (hardware_.accepts(candidate)) {
-        accepted += (accepted.empty() ? "" : ", ") + std::string(toString(candidate));
+        accepted += (accepted.empty() ? "" : ", ") + std::string(name);
       }
     }
     throw std::invalid_argument(

@@ -1,39 +1,31 @@
 #include "comply/model/model_error.hpp"
 
+#include "comply/core/enum_names.hpp"
+
 namespace comply::model {
+namespace {
+
+constexpr EnumNames<ModelErrc, 14> kModelErrcNames{
+    {{ModelErrc::kFileNotFound, "file_not_found"},
+     {ModelErrc::kInvalidUrdf, "invalid_urdf"},
+     {ModelErrc::kInvalidDescription, "invalid_description"},
+     {ModelErrc::kUnknownRobot, "unknown_robot"},
+     {ModelErrc::kUnknownJoint, "unknown_joint"},
+     {ModelErrc::kMissingJoint, "missing_joint"},
+     {ModelErrc::kDuplicateJoint, "duplicate_joint"},
+     {ModelErrc::kJointNotInChain, "joint_not_in_chain"},
+     {ModelErrc::kUnknownFrame, "unknown_frame"},
+     {ModelErrc::kFrameNotInChain, "frame_not_in_chain"},
+     {ModelErrc::kUnsupportedJoint, "unsupported_joint"},
+     {ModelErrc::kTooManyJoints, "too_many_joints"},
+     {ModelErrc::kInvalidInertia, "invalid_inertia"},
+     {ModelErrc::kInvalidOption, "invalid_option"}}};
+static_assert(listsValuesInOrder(kModelErrcNames));
+
+}  // namespace
 
 std::string_view toString(ModelErrc code) {
-  switch (code) {
-    case ModelErrc::kFileNotFound:
-      return "file_not_found";
-    case ModelErrc::kInvalidUrdf:
-      return "invalid_urdf";
-    case ModelErrc::kInvalidDescription:
-      return "invalid_description";
-    case ModelErrc::kUnknownRobot:
-      return "unknown_robot";
-    case ModelErrc::kUnknownJoint:
-      return "unknown_joint";
-    case ModelErrc::kMissingJoint:
-      return "missing_joint";
-    case ModelErrc::kDuplicateJoint:
-      return "duplicate_joint";
-    case ModelErrc::kJointNotInChain:
-      return "joint_not_in_chain";
-    case ModelErrc::kUnknownFrame:
-      return "unknown_frame";
-    case ModelErrc::kFrameNotInChain:
-      return "frame_not_in_chain";
-    case ModelErrc::kUnsupportedJoint:
-      return "unsupported_joint";
-    case ModelErrc::kTooManyJoints:
-      return "too_many_joints";
-    case ModelErrc::kInvalidInertia:
-      return "invalid_inertia";
-    case ModelErrc::kInvalidOption:
-      return "invalid_option";
-  }
-  return "unknown_error";
+  return nameIn(kModelErrcNames, code, "unknown_error");
 }
 
 ModelError::ModelError(ModelErrc code, const std::string& message)

@@ -14,41 +14,6 @@ namespace {
 
 constexpr double kNoLimit = std::numeric_limits<double>::infinity();
 
-template <typename Enum>
-struct ChoiceNames;
-template <>
-struct ChoiceNames<TimeoutBehavior> {
-  static constexpr std::pair<TimeoutBehavior, const char*> kNames[] = {
-      {TimeoutBehavior::kHold, "hold"}, {TimeoutBehavior::kReanchor, "reanchor"}};
-};
-template <>
-struct ChoiceNames<FrictionModel> {
-  static constexpr std::pair<FrictionModel, const char*> kNames[] = {
-      {FrictionModel::kNone, "none"},
-      {FrictionModel::kSigmoid, "sigmoid"},
-      {FrictionModel::kViscousCoulomb, "viscous_coulomb"}};
-};
-template <>
-struct ChoiceNames<EffortSaturation> {
-  static constexpr std::pair<EffortSaturation, const char*> kNames[] = {
-      {EffortSaturation::kClip, "clip"}, {EffortSaturation::kScale, "scale"}};
-};
-template <>
-struct ChoiceNames<ForceSource> {
-  static constexpr std::pair<ForceSource, const char*> kNames[] = {
-      {ForceSource::kAuto, "auto"},
-      {ForceSource::kObserver, "observer"},
-      {ForceSource::kSensor, "sensor"}};
-};
-template <>
-struct ChoiceNames<OutputMode> {
-  static constexpr std::pair<OutputMode, const char*> kNames[] = {
-      {OutputMode::kTorque, toString(OutputMode::kTorque).data()},
-      {OutputMode::kJointPd, toString(OutputMode::kJointPd).data()},
-      {OutputMode::kPosition, toString(OutputMode::kPosition).data()},
-      {OutputMode::kVelocity, toString(OutputMode::kVelocity).data()}};
-};
-
 /// Adds the rows of one table, whose members live in the section `of` returns.
 template <typename Section>
 class Rows {
@@ -90,30 +55,25 @@ class Rows {
     add(std::move(option));
   }
 
-  template <typename Enum>
-  void choice(Enum Section::*member, const char* key, Enum default_value, const char* comment) {
+  template <typename Enum, std::size_t N>
+  void choice(Enum Section::*member, const char* key, Enum default_value,
+              const EnumNames<Enum, N>& names, const char* comment) {
     Option option(key, Kind::kChoice, comment);
-    for (const auto& [value, name] : ChoiceNames<Enum>::kNames) {
+    for (const auto& [value, name] : names) {
       option.choices.emplace_back(name);
       if (value == default_value) {
         option.default_text = name;
         option.default_value.text = name;
       }
     }
-    option.apply = [of = of_, member](WrapperConfig& c, const Value& v) {
-      for (const auto& [value, name] : ChoiceNames<Enum>::kNames) {
-        if (v.text == name) {
-          of(c).*member = value;
-        }
+    option.apply = [of = of_, member, &names](WrapperConfig& c, const Value& v) {
+      if (const auto value = valueIn(names, v.text)) {
+        of(c).*member = *value;
       }
     };
-    option.read = [of = of_const_, member](const WrapperConfig& c) {
+    option.read = [of = of_const_, member, &names](const WrapperConfig& c) {
       Value read;
-      for (const auto& [value, name] : ChoiceNames<Enum>::kNames) {
-        if (of(c).*member == value) {
-          read.text = name;
-        }
-      }
+      read.text = nameIn(names, of(c).*member, "");
       return read;
     };
     add(std::move(option));
@@ -181,7 +141,7 @@ class Rows {
 #define COMPLY_FLAG_ROW(member, key, default_value, comment) \
   rows.flag(&Section::member, key, default_value, comment);
 #define COMPLY_CHOICE_ROW(member, key, Enum, default_value, comment) \
-  rows.choice(&Section::member, key, Enum::default_value, comment);
+  rows.choice(&Section::member, key, Enum::default_value, k##Enum##Names, comment);
 #define COMPLY_VECTOR3_ROW(member, key, min, max, comment) \
   rows.vector3(&Section::member, key, min, max, comment);
 #define COMPLY_PER_JOINT_ROW(member, key, default_value, lower, min, comment) \

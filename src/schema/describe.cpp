@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "comply/core/upper_case.hpp"
+#include "field_kinds.hpp"
 
 namespace comply::schema {
 namespace {
@@ -30,21 +31,8 @@ std::string valueNames(const FieldInfo& field, std::string_view separator) {
 
 /// Size and layout as a user writes it.
 std::string typeText(const FieldInfo& field) {
-  switch (field.kind) {
-    case FieldKind::kVector3:
-      return "3";
-    case FieldKind::kVector6:
-      return "6";
-    case FieldKind::kJointVector:
-      return "dof";
-    case FieldKind::kBlock3:
-      return "3x3, row-major";
-    case FieldKind::kQuaternion:
-      return "4, x y z w";
-    case FieldKind::kEnum:
-      return valueNames(field, " | ");
-  }
-  return "?";
+  return field.kind == FieldKind::kEnum ? valueNames(field, " | ")
+                                        : std::string(spellingOf(field.kind).size_text);
 }
 
 /// A markdown table cell: `|` would end it.
@@ -80,44 +68,6 @@ std::string constraintText(Constraint constraint, std::string_view unit) {
       return "unit norm";
     case Constraint::kSelection:
       return "entries 0 or 1";
-  }
-  return "?";
-}
-
-std::string msgType(const FieldInfo& field) {
-  switch (field.kind) {
-    case FieldKind::kVector3:
-      return "float64[3]";
-    case FieldKind::kVector6:
-      return "float64[6]";
-    case FieldKind::kJointVector:
-      return "float64[]";
-    case FieldKind::kBlock3:
-      return "float64[9]";
-    case FieldKind::kQuaternion:
-      return "float64[4]";
-    case FieldKind::kEnum:
-      return "uint8";
-  }
-  return "?";
-}
-
-/// rosidl's DDS IDL spelling of the .msg type (the wire is the same for octet and uint8).
-std::string idlMember(const FieldInfo& field) {
-  const std::string name(field.name);
-  switch (field.kind) {
-    case FieldKind::kVector3:
-      return "double " + name + "[3]";
-    case FieldKind::kVector6:
-      return "double " + name + "[6]";
-    case FieldKind::kJointVector:
-      return "sequence<double> " + name;
-    case FieldKind::kBlock3:
-      return "double " + name + "[9]";
-    case FieldKind::kQuaternion:
-      return "double " + name + "[4]";
-    case FieldKind::kEnum:
-      return "octet " + name;
   }
   return "?";
 }
@@ -239,7 +189,7 @@ std::string rosMessage(CommandKind kind) {
   }
   out << "\n";
   for (const FieldInfo& field : fields(kind)) {
-    out << msgType(field) << " " << field.name << "  # ";
+    out << spellingOf(field.kind).msg_type << " " << field.name << "  # ";
     if (field.kind == FieldKind::kQuaternion) {
       out << "x y z w; ";
     } else if (field.kind == FieldKind::kBlock3) {
@@ -273,7 +223,8 @@ std::string ddsIdl(CommandKind kind) {
   out << "};\n\nstruct " << name << "_ {\n"
       << "  std_msgs::msg::dds_::Header_ header;\n  unsigned long fields;\n";
   for (const FieldInfo& field : fields(kind)) {
-    out << "  " << idlMember(field) << ";\n";
+    const FieldKindSpelling& spelling = spellingOf(field.kind);
+    out << "  " << spelling.idl_type << " " << field.name << spelling.idl_bound << ";\n";
   }
   out << "};\n\n};  // module dds_\n};  // module msg\n};  // module comply_msgs\n";
   return out.str();

@@ -3,7 +3,9 @@
 #include <limits>
 #include <type_traits>
 
+#include "comply/core/enum_names.hpp"
 #include "comply/schema/generic_json.hpp"
+#include "field_kinds.hpp"
 
 namespace comply::schema {
 namespace {
@@ -33,6 +35,21 @@ std::vector<EnumValue> enumValues() {
 #define COMPLY_SCHEMA_GROUP_INFO(enumerator, name, doc) \
   GroupInfo{CommandField::enumerator, name, doc},
 
+constexpr EnumNames<Constraint, 5> kConstraintNames{
+    {{Constraint::kNone, "none"},
+     {Constraint::kNonNegative, "non_negative"},
+     {Constraint::kSymmetricPsd, "symmetric_psd"},
+     {Constraint::kUnitQuaternion, "unit_quaternion"},
+     {Constraint::kSelection, "selection"}}};
+static_assert(listsValuesInOrder(kConstraintNames));
+
+constexpr EnumNames<Role, 5> kRoleNames{{{Role::kNone, "none"},
+                                         {Role::kSeedTcpPosition, "seed_tcp_position"},
+                                         {Role::kSeedTcpOrientation, "seed_tcp_orientation"},
+                                         {Role::kSeedJointPosition, "seed_joint_position"},
+                                         {Role::kZeroOnStop, "zero_on_stop"}}};
+static_assert(listsValuesInOrder(kRoleNames));
+
 }  // namespace
 
 std::span<const FieldInfo> fields(CommandKind kind) {
@@ -52,37 +69,12 @@ std::string_view toString(CommandKind kind) {
 }
 
 std::string_view toString(FieldKind kind) {
-  switch (kind) {
-    case FieldKind::kVector3:
-      return "vector3";
-    case FieldKind::kVector6:
-      return "vector6";
-    case FieldKind::kJointVector:
-      return "joint_vector";
-    case FieldKind::kBlock3:
-      return "block3x3";
-    case FieldKind::kQuaternion:
-      return "quaternion_xyzw";
-    case FieldKind::kEnum:
-      return "enum";
-  }
-  return "unknown";
+  return static_cast<std::size_t>(kind) < std::size(kFieldKinds) ? spellingOf(kind).name
+                                                                 : "unknown";
 }
 
 std::string_view toString(Constraint constraint) {
-  switch (constraint) {
-    case Constraint::kNone:
-      return "none";
-    case Constraint::kNonNegative:
-      return "non_negative";
-    case Constraint::kSymmetricPsd:
-      return "symmetric_psd";
-    case Constraint::kUnitQuaternion:
-      return "unit_quaternion";
-    case Constraint::kSelection:
-      return "selection";
-  }
-  return "unknown";
+  return nameIn(kConstraintNames, constraint);
 }
 
 double gainLimit(std::string_view unit) noexcept {
@@ -125,19 +117,7 @@ double valueLimit(std::string_view unit) noexcept {
 }
 
 std::string_view toString(Role role) {
-  switch (role) {
-    case Role::kNone:
-      return "none";
-    case Role::kSeedTcpPosition:
-      return "seed_tcp_position";
-    case Role::kSeedTcpOrientation:
-      return "seed_tcp_orientation";
-    case Role::kSeedJointPosition:
-      return "seed_joint_position";
-    case Role::kZeroOnStop:
-      return "zero_on_stop";
-  }
-  return "unknown";
+  return nameIn(kRoleNames, role);
 }
 
 }  // namespace comply::schema

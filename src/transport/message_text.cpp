@@ -12,12 +12,11 @@ namespace comply::transport {
 namespace {
 
 /// PREFIX_NAME=value for each value of an enum with toString().
-template <typename Enum>
+template <typename Enum, std::size_t N>
 void addConstants(std::vector<ConstantText>& constants, std::string_view prefix,
-                  std::initializer_list<Enum> values) {
-  for (const Enum value : values) {
-    constants.push_back(
-        {std::string(prefix) + upperCase(toString(value)), static_cast<int>(value), {}});
+                  const EnumNames<Enum, N>& names) {
+  for (const auto& [value, name] : names) {
+    constants.push_back({std::string(prefix) + upperCase(name), static_cast<int>(value), {}});
   }
 }
 
@@ -29,12 +28,9 @@ MessageText controllerState() {
                       "the robot's base frame.",
                       {},
                       fieldTexts<ControllerStateMessage>()};
-  addConstants(message.constants, "STATE_",
-               {HostState::kInactive, HostState::kActive, HostState::kFault});
-  addConstants(message.constants, "COMMAND_KIND_",
-               {WireCommandKind::kCartesian, WireCommandKind::kJoint});
-  addConstants(message.constants, "WRENCH_SOURCE_",
-               {WrenchSource::kNone, WrenchSource::kObserver, WrenchSource::kSensor});
+  addConstants(message.constants, "STATE_", kWrapperStateNames);
+  addConstants(message.constants, "COMMAND_KIND_", kWireCommandKindNames);
+  addConstants(message.constants, "WRENCH_SOURCE_", kWrenchSourceNames);
   return message;
 }
 
@@ -43,10 +39,10 @@ MessageText commandOutcome() {
                       "comply_msgs/CommandOutcome: what became of one command (an entry of "
                       "Diagnostics.outcomes).\nEvery command the host receives gets exactly one: "
                       "applied by a control cycle, or rejected with\na reason.",
-                      {{"OUTCOME_APPLIED", static_cast<int>(Outcome::kApplied), {}},
-                       {"OUTCOME_REJECTED", static_cast<int>(Outcome::kRejected), {}},
-                       {"REASON_NONE", static_cast<int>(Reason::kNone), {}}},
+                      {},
                       fieldTexts<CommandOutcomeMessage>()};
+  addConstants(message.constants, "OUTCOME_", kOutcomeNames);
+  message.constants.push_back({"REASON_NONE", static_cast<int>(Reason::kNone), {}});
   for (std::size_t i = 0; i < kReasonCount; ++i) {
     const auto reason = static_cast<Reason>(i);
     message.constants.push_back({"REASON_" + upperCase(toString(reason)), static_cast<int>(i),

@@ -23,26 +23,6 @@ double Stamp::seconds() const noexcept {
   return stampSeconds(nanoseconds());
 }
 
-std::string_view toString(WrenchSource source) {
-  switch (source) {
-    case WrenchSource::kObserver:
-      return "observer";
-    case WrenchSource::kSensor:
-      return "sensor";
-    case WrenchSource::kNone:
-      break;
-  }
-  return "none";
-}
-
-std::string_view toString(WireCommandKind kind) {
-  return kind == WireCommandKind::kJoint ? "joint" : "cartesian";
-}
-
-std::string_view toString(Outcome outcome) {
-  return outcome == Outcome::kApplied ? "applied" : "rejected";
-}
-
 bool sentBy(const CommandOutcomeMessage& outcome, const Gid& sender) noexcept {
   return outcome.sender == sender || outcome.sender == Gid{};
 }
@@ -58,22 +38,24 @@ std::string toHex(const Gid& gid) {
   return text;
 }
 
-std::string_view toString(Reason reason) {
-  return rejectionReasonName(static_cast<std::size_t>(reason));
+std::string_view toString(WrenchSource source) {
+  return nameIn(kWrenchSourceNames, source);
+}
+
+std::string_view toString(WireCommandKind kind) {
+  return nameIn(kWireCommandKindNames, kind);
+}
+
+std::string_view toString(Outcome outcome) {
+  return nameIn(kOutcomeNames, outcome);
 }
 
 std::string_view toString(RequestType request) {
-  switch (request) {
-    case RequestType::kActivate:
-      return "activate";
-    case RequestType::kDeactivate:
-      return "deactivate";
-    case RequestType::kReset:
-      return "reset";
-    case RequestType::kTare:
-      return "tare";
-  }
-  return "unknown";
+  return nameIn(kRequestTypeNames, request);
+}
+
+std::string_view toString(Reason reason) {
+  return rejectionReasonName(static_cast<std::size_t>(reason));
 }
 
 template <>

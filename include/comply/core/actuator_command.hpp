@@ -13,28 +13,22 @@
 #include <string_view>
 
 #include "comply/core/capacity.hpp"
+#include "comply/core/enum_names.hpp"
 
 namespace comply {
 
 enum class OutputMode : std::uint8_t { kTorque, kJointPd, kPosition, kVelocity };
 
-/// Every mode, in the order of the enum (for listing what a drive accepts).
-inline constexpr OutputMode kOutputModes[] = {OutputMode::kTorque, OutputMode::kJointPd,
-                                              OutputMode::kPosition, OutputMode::kVelocity};
+/// Every mode, in the order of the enum, by its name in a controller file (`output.mode`) and in
+/// messages.
+inline constexpr EnumNames<OutputMode, 4> kOutputModeNames{{{OutputMode::kTorque, "torque"},
+                                                            {OutputMode::kJointPd, "joint_pd"},
+                                                            {OutputMode::kPosition, "position"},
+                                                            {OutputMode::kVelocity, "velocity"}}};
+static_assert(listsValuesInOrder(kOutputModeNames));
 
-/// The mode's name in a controller file (`output.mode`) and in messages.
 constexpr std::string_view toString(OutputMode mode) noexcept {
-  switch (mode) {
-    case OutputMode::kTorque:
-      return "torque";
-    case OutputMode::kJointPd:
-      return "joint_pd";
-    case OutputMode::kPosition:
-      return "position";
-    case OutputMode::kVelocity:
-      return "velocity";
-  }
-  return "?";
+  return nameIn(kOutputModeNames, mode, "?");
 }
 
 /// The admittance modes: the law moves a virtual arm whose motion the drives follow.

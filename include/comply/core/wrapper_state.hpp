@@ -5,11 +5,19 @@
 #include <cstdint>
 #include <string_view>
 
+#include "comply/core/enum_names.hpp"
+
 namespace comply {
 
 enum class WrapperState : std::uint8_t { kInactive = 0, kActive = 1, kFault = 2 };
+inline constexpr EnumNames<WrapperState, 3> kWrapperStateNames{
+    {{WrapperState::kInactive, "inactive"},
+     {WrapperState::kActive, "active"},
+     {WrapperState::kFault, "fault"}}};
+static_assert(listsValuesInOrder(kWrapperStateNames));
 
-/// "inactive", "active" or "fault".
-std::string_view toString(WrapperState state);
+constexpr std::string_view toString(WrapperState state) noexcept {
+  return nameIn(kWrapperStateNames, state);
+}
 
 }  // namespace comply

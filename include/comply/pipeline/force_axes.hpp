@@ -34,6 +34,7 @@
 // allocation, no lock, no exception.
 
 #include "comply/core/commands.hpp"
+#include "comply/core/enum_names.hpp"
 #include "comply/model/data.hpp"
 #include "comply/pipeline/option_table.hpp"
 #include "comply/plugin/abi.h"
@@ -46,6 +47,10 @@ enum class ForceSource : std::uint8_t {
   kObserver,  ///< the momentum observer (observer.enabled)
   kSensor,    ///< the wrist force/torque sensor
 };
+inline constexpr EnumNames<ForceSource, 3> kForceSourceNames{{{ForceSource::kAuto, "auto"},
+                                                              {ForceSource::kObserver, "observer"},
+                                                              {ForceSource::kSensor, "sensor"}}};
+static_assert(listsValuesInOrder(kForceSourceNames));
 
 /// force_control.* in the controller file.
 struct ForceControlConfig {

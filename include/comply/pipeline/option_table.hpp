@@ -9,7 +9,9 @@
 // A table is a macro over the row kinds, each itself a macro the user defines:
 //   NUMBER(member, key, default, lower, min, max, comment)   double; lower: kAtLeast | kAbove min
 //   FLAG(member, key, default, comment)                      bool
-//   CHOICE(member, key, Enum, default, comment)              enum class; default: its enumerator
+//   CHOICE(member, key, Enum, default, comment)              enum class named by kEnumNames
+//                                                            (enum_names.hpp); default: its
+//                                                            enumerator
 //   VECTOR3(member, key, min, max, comment)                  Eigen::Vector3d, zero by default
 //   PER_JOINT(member, key, default, lower, min, comment)     one number (every joint) or one per
 //                                                            joint; std::vector<double>

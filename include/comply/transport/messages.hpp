@@ -15,6 +15,7 @@
 #include "comply/core/chunk.hpp"
 #include "comply/core/command_reasons.hpp"
 #include "comply/core/commands.hpp"
+#include "comply/core/enum_names.hpp"
 #include "comply/core/wrapper_state.hpp"
 #include "comply/transport/message_tables.hpp"
 
@@ -83,9 +84,17 @@ using ChunkMessageOf = std::conditional_t<std::is_same_v<Command, CartesianComma
 using HostState = WrapperState;
 /// ControllerState.WRENCH_SOURCE_*.
 enum class WrenchSource : std::uint8_t { kNone = 0, kObserver = 1, kSensor = 2 };
+inline constexpr EnumNames<WrenchSource, 3> kWrenchSourceNames{
+    {{WrenchSource::kNone, "none"},
+     {WrenchSource::kObserver, "observer"},
+     {WrenchSource::kSensor, "sensor"}}};
+static_assert(listsValuesInOrder(kWrenchSourceNames));
 std::string_view toString(WrenchSource source);
 /// ControllerState.COMMAND_KIND_*.
 enum class WireCommandKind : std::uint8_t { kCartesian = 0, kJoint = 1 };
+inline constexpr EnumNames<WireCommandKind, 2> kWireCommandKindNames{
+    {{WireCommandKind::kCartesian, "cartesian"}, {WireCommandKind::kJoint, "joint"}}};
+static_assert(listsValuesInOrder(kWireCommandKindNames));
 std::string_view toString(WireCommandKind kind);
 
 /// The field types of the message tables (message_tables.hpp).
@@ -115,6 +124,9 @@ struct CycleRecordMessage {
 
 /// CommandOutcome.OUTCOME_*.
 enum class Outcome : std::uint8_t { kApplied = 0, kRejected = 1 };
+inline constexpr EnumNames<Outcome, 2> kOutcomeNames{
+    {{Outcome::kApplied, "applied"}, {Outcome::kRejected, "rejected"}}};
+static_assert(listsValuesInOrder(kOutcomeNames));
 std::string_view toString(Outcome outcome);
 
 /// CommandOutcome.REASON_*: the wrapper's rejection reasons (pipeline::RejectionReason, same
@@ -149,6 +161,13 @@ struct DiagnosticsMessage {
 /// Request.REQUEST_*.
 /// kTare: the wrist force/torque sensor's reading becomes its zero (pipeline::Wrapper::tare).
 enum class RequestType : std::uint8_t { kActivate = 1, kDeactivate = 2, kReset = 3, kTare = 4 };
+/// The names `comply send --request` takes.
+inline constexpr EnumNames<RequestType, 4> kRequestTypeNames{
+    {{RequestType::kActivate, "activate"},
+     {RequestType::kDeactivate, "deactivate"},
+     {RequestType::kReset, "reset"},
+     {RequestType::kTare, "tare"}}};
+static_assert(listsValuesInOrder(kRequestTypeNames, 1));
 std::string_view toString(RequestType request);
 
 /// comply_msgs/Request.

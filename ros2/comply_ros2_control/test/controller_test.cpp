@@ -246,11 +246,8 @@ class OutputModeHarness : public ControllerHarness,
 TEST_P(OutputModeHarness, WritesTheCommandOfComplysWrapperInItsMode) {
   comply::pipeline::WrapperConfig config =
       comply::pipeline::parseWrapperConfig(fileText(kConfig), kConfig, "cartesian_impedance");
-  for (const comply::OutputMode mode : comply::kOutputModes) {
-    if (comply::toString(mode) == output_mode_) {
-      config.output.mode = mode;
-    }
-  }
+  config.output.mode =
+      comply::valueIn(comply::kOutputModeNames, output_mode_).value_or(config.output.mode);
   ASSERT_EQ(comply::toString(config.output.mode), output_mode_);
   comply::pipeline::Wrapper<comply::CartesianCommand> reference(config);
   reference.activate(jointState());
