@@ -31,14 +31,7 @@ class Rows {
     option.min = min;
     option.max = max;
     option.min_exclusive = lower == Lower::kAbove;
-    option.apply = [of = of_, member](WrapperConfig& c, const Value& v) {
-      of(c).*member = v.number;
-    };
-    option.read = [of = of_const_, member](const WrapperConfig& c) {
-      Value value;
-      value.number = of(c).*member;
-      return value;
-    };
+    bind(option, member, &Value::number);
     add(std::move(option));
   }
 
@@ -46,12 +39,7 @@ class Rows {
     Option option(key, Kind::kFlag, comment);
     option.default_text = default_value ? "true" : "false";
     option.default_value.flag = default_value;
-    option.apply = [of = of_, member](WrapperConfig& c, const Value& v) { of(c).*member = v.flag; };
-    option.read = [of = of_const_, member](const WrapperConfig& c) {
-      Value value;
-      value.flag = of(c).*member;
-      return value;
-    };
+    bind(option, member, &Value::flag);
     add(std::move(option));
   }
 
@@ -110,18 +98,24 @@ class Rows {
     Option option(key, Kind::kPerJoint, comment);
     option.min = min;
     option.min_exclusive = lower == Lower::kAbove;
-    option.apply = [of = of_, member](WrapperConfig& c, const Value& v) {
-      of(c).*member = v.numbers;
-    };
-    option.read = [of = of_const_, member](const WrapperConfig& c) {
-      Value value;
-      value.numbers = of(c).*member;
-      return value;
-    };
+    bind(option, member, &Value::numbers);
     add(std::move(option));
   }
 
  private:
+  /// apply and read for a member kept as it is in one slot of Value.
+  template <typename T>
+  void bind(Option& option, T Section::*member, T Value::*slot) {
+    option.apply = [of = of_, member, slot](WrapperConfig& c, const Value& v) {
+      of(c).*member = v.*slot;
+    };
+    option.read = [of = of_const_, member, slot](const WrapperConfig& c) {
+      Value value;
+      value.*slot = of(c).*member;
+      return value;
+    };
+  }
+
   void add(Option option) {
     option.blank_line_before = first_;
     first_ = false;

@@ -12,8 +12,10 @@ here=$(cd "$(dirname "$0")" && pwd)
 comply=$prefix/bin/comply
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 "$comply" codegen simulink --out gen >/dev/null
+# The model's code folder with the models' shared rtwtypes.h in it.
+cp -r "$here/models/${model}_ert_rtw" model && cp "$here/models/rtwtypes.h" model/
 cmake -S gen -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix" \
-  -DCOMPLY_MODEL="$model" -DCOMPLY_MODEL_DIR="$here/models/${model}_ert_rtw" \
+  -DCOMPLY_MODEL="$model" -DCOMPLY_MODEL_DIR="$work/model" \
   -DCOMPLY_KIND="$kind" -DCOMPLY_PARAMETERS="$parameters" >cmake.log
 cmake --build build >build.log
 plugin=$work/build/libcomply_$model.so

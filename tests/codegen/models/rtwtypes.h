@@ -1,6 +1,8 @@
 /*
  * Stand-in for Embedded Coder's rtwtypes.h (the subset the hand-written models use), so the
- * model sources below compile exactly as generated code would, without MATLAB.
+ * model sources compile exactly as generated code would, without MATLAB. One for both models, as
+ * Embedded Coder's shared utilities folder holds it; the test puts a copy into each model's code
+ * folder, where the adapter's CMakeLists.txt looks for it.
  */
 #ifndef RTWTYPES_H
 #define RTWTYPES_H
