@@ -29,12 +29,10 @@ inline constexpr EnumNames<Scenario, 4> kScenarios{
      {Scenario::kFreeSpaceFrame, "free_space_frame"},
      {Scenario::kWallContact, "wall_contact"},
      {Scenario::kNormalTask, "normal_task"}}};
-static_assert(listsValuesInOrder(kScenarios));
 inline constexpr EnumNames<Condition, 4> kConditions{{{Condition::kNone, "none"},
                                                       {Condition::kRamps, "ramps"},
                                                       {Condition::kTank, "tank"},
                                                       {Condition::kTankOnly, "tank_only"}}};
-static_assert(listsValuesInOrder(kConditions));
 
 std::string nameOf(Scenario scenario);
 std::string nameOf(Condition condition);

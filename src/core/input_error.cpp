@@ -24,7 +24,6 @@ constexpr EnumNames<InputErrc, 9> kInputErrcNames{{{InputErrc::kCannotRead, "can
                                                    {InputErrc::kOutOfRange, "out_of_range"},
                                                    {InputErrc::kInvalidValue, "invalid_value"},
                                                    {InputErrc::kInconsistent, "inconsistent"}}};
-static_assert(listsValuesInOrder(kInputErrcNames));
 
 }  // namespace
 

@@ -20,7 +20,6 @@ constexpr EnumNames<ModelErrc, 14> kModelErrcNames{
      {ModelErrc::kTooManyJoints, "too_many_joints"},
      {ModelErrc::kInvalidInertia, "invalid_inertia"},
      {ModelErrc::kInvalidOption, "invalid_option"}}};
-static_assert(listsValuesInOrder(kModelErrcNames));
 
 }  // namespace
 

@@ -41,14 +41,12 @@ constexpr EnumNames<Constraint, 5> kConstraintNames{
      {Constraint::kSymmetricPsd, "symmetric_psd"},
      {Constraint::kUnitQuaternion, "unit_quaternion"},
      {Constraint::kSelection, "selection"}}};
-static_assert(listsValuesInOrder(kConstraintNames));
 
 constexpr EnumNames<Role, 5> kRoleNames{{{Role::kNone, "none"},
                                          {Role::kSeedTcpPosition, "seed_tcp_position"},
                                          {Role::kSeedTcpOrientation, "seed_tcp_orientation"},
                                          {Role::kSeedJointPosition, "seed_joint_position"},
                                          {Role::kZeroOnStop, "zero_on_stop"}}};
-static_assert(listsValuesInOrder(kRoleNames));
 
 }  // namespace
 

@@ -25,7 +25,6 @@ inline constexpr EnumNames<OutputMode, 4> kOutputModeNames{{{OutputMode::kTorque
                                                             {OutputMode::kJointPd, "joint_pd"},
                                                             {OutputMode::kPosition, "position"},
                                                             {OutputMode::kVelocity, "velocity"}}};
-static_assert(listsValuesInOrder(kOutputModeNames));
 
 constexpr std::string_view toString(OutputMode mode) noexcept {
   return nameIn(kOutputModeNames, mode, "?");

@@ -1,8 +1,7 @@
 #pragma once
 // An enum's names as one table, read both ways: the name of a value (messages, files, tables)
 // and the value of a name (controller files, command lines). A table lists every enumerator once,
-// in the order of their values, which listsValuesInOrder() checks beside the table: a value
-// skipped or listed twice fails to compile.
+// in the order of their values without a gap; a table that does not fails to compile.
 
 #include <array>
 #include <cstddef>
@@ -15,23 +14,32 @@ namespace comply {
 
 template <typename Enum>
 struct EnumName {
-  Enum value;
+  Enum value{};
   std::string_view name;
 };
 
 template <typename Enum, std::size_t N>
-using EnumNames = std::array<EnumName<Enum>, N>;
-
-/// Whether `names` lists the values first, first + 1, first + 2, ... in that order.
-template <typename Enum, std::size_t N>
-constexpr bool listsValuesInOrder(const EnumNames<Enum, N>& names, std::size_t first = 0) {
-  for (std::size_t i = 0; i < N; ++i) {
-    if (static_cast<std::size_t>(names[i].value) != first + i) {
-      return false;
+class EnumNames {
+ public:
+  /// Implicit, so that a table reads as its rows: EnumNames<E, 2> kNames{{{E::kA, "a"}, ...}}.
+  consteval EnumNames(const EnumName<Enum> (&entries)[N]) {  // NOLINT(google-explicit-constructor)
+    for (std::size_t i = 0; i < N; ++i) {
+      if (i > 0 && static_cast<long long>(entries[i].value) !=
+                       static_cast<long long>(entries[i - 1].value) + 1) {
+        // Reached only while compiling: a table out of order or with a gap is an error there.
+        throw "EnumNames: list the enumerators in the order of their values, without a gap";
+      }
+      entries_[i] = entries[i];
     }
   }
-  return true;
-}
+
+  [[nodiscard]] constexpr auto begin() const noexcept { return entries_.begin(); }
+  [[nodiscard]] constexpr auto end() const noexcept { return entries_.end(); }
+  [[nodiscard]] static constexpr std::size_t size() noexcept { return N; }
+
+ private:
+  std::array<EnumName<Enum>, N> entries_{};
+};
 
 /// The name of `value`; `unknown` for a value the table lacks (a cast from a bad integer).
 template <typename Enum, std::size_t N>

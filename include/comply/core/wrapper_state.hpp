@@ -14,7 +14,6 @@ inline constexpr EnumNames<WrapperState, 3> kWrapperStateNames{
     {{WrapperState::kInactive, "inactive"},
      {WrapperState::kActive, "active"},
      {WrapperState::kFault, "fault"}}};
-static_assert(listsValuesInOrder(kWrapperStateNames));
 
 constexpr std::string_view toString(WrapperState state) noexcept {
   return nameIn(kWrapperStateNames, state);

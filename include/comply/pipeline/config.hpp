@@ -37,20 +37,17 @@ namespace comply::pipeline {
 enum class TimeoutBehavior { kHold, kReanchor };
 inline constexpr EnumNames<TimeoutBehavior, 2> kTimeoutBehaviorNames{
     {{TimeoutBehavior::kHold, "hold"}, {TimeoutBehavior::kReanchor, "reanchor"}}};
-static_assert(listsValuesInOrder(kTimeoutBehaviorNames));
 enum class FrictionModel { kNone, kSigmoid, kViscousCoulomb };
 inline constexpr EnumNames<FrictionModel, 3> kFrictionModelNames{
     {{FrictionModel::kNone, "none"},
      {FrictionModel::kSigmoid, "sigmoid"},
      {FrictionModel::kViscousCoulomb, "viscous_coulomb"}}};
-static_assert(listsValuesInOrder(kFrictionModelNames));
 /// How a torque beyond the effort limits is brought within them: each joint clipped on its own
 /// (the direction of the law's torque turns), or the law's whole torque scaled (it keeps its
 /// direction, and so does the wrench it commands).
 enum class EffortSaturation { kClip, kScale };
 inline constexpr EnumNames<EffortSaturation, 2> kEffortSaturationNames{
     {{EffortSaturation::kClip, "clip"}, {EffortSaturation::kScale, "scale"}}};
-static_assert(listsValuesInOrder(kEffortSaturationNames));
 
 /// Joint friction compensation (compensation.friction.*; compensation.hpp has the formulas).
 struct FrictionConfig {

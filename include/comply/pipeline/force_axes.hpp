@@ -50,7 +50,6 @@ enum class ForceSource : std::uint8_t {
 inline constexpr EnumNames<ForceSource, 3> kForceSourceNames{{{ForceSource::kAuto, "auto"},
                                                               {ForceSource::kObserver, "observer"},
                                                               {ForceSource::kSensor, "sensor"}}};
-static_assert(listsValuesInOrder(kForceSourceNames));
 
 /// force_control.* in the controller file.
 struct ForceControlConfig {

@@ -88,13 +88,11 @@ inline constexpr EnumNames<WrenchSource, 3> kWrenchSourceNames{
     {{WrenchSource::kNone, "none"},
      {WrenchSource::kObserver, "observer"},
      {WrenchSource::kSensor, "sensor"}}};
-static_assert(listsValuesInOrder(kWrenchSourceNames));
 std::string_view toString(WrenchSource source);
 /// ControllerState.COMMAND_KIND_*.
 enum class WireCommandKind : std::uint8_t { kCartesian = 0, kJoint = 1 };
 inline constexpr EnumNames<WireCommandKind, 2> kWireCommandKindNames{
     {{WireCommandKind::kCartesian, "cartesian"}, {WireCommandKind::kJoint, "joint"}}};
-static_assert(listsValuesInOrder(kWireCommandKindNames));
 std::string_view toString(WireCommandKind kind);
 
 /// The field types of the message tables (message_tables.hpp).
@@ -126,7 +124,6 @@ struct CycleRecordMessage {
 enum class Outcome : std::uint8_t { kApplied = 0, kRejected = 1 };
 inline constexpr EnumNames<Outcome, 2> kOutcomeNames{
     {{Outcome::kApplied, "applied"}, {Outcome::kRejected, "rejected"}}};
-static_assert(listsValuesInOrder(kOutcomeNames));
 std::string_view toString(Outcome outcome);
 
 /// CommandOutcome.REASON_*: the wrapper's rejection reasons (pipeline::RejectionReason, same
@@ -167,7 +164,6 @@ inline constexpr EnumNames<RequestType, 4> kRequestTypeNames{
      {RequestType::kDeactivate, "deactivate"},
      {RequestType::kReset, "reset"},
      {RequestType::kTare, "tare"}}};
-static_assert(listsValuesInOrder(kRequestTypeNames, 1));
 std::string_view toString(RequestType request);
 
 /// comply_msgs/Request.
