@@ -29,7 +29,7 @@ std::optional<XmlTag> findOpeningTag(std::string_view xml, std::string_view name
         char quote = 0;
         for (std::size_t j = name_end; j < xml.size(); ++j) {
           if (quote != 0) {
-            quote = xml[j] == quote ? 0 : quote;
+            quote = xml[j] == quote ? '\0' : quote;
           } else if (xml[j] == '"' || xml[j] == '\'') {
             quote = xml[j];
           } else if (xml[j] == '>') {
