@@ -54,14 +54,15 @@ class Rows {
         option.default_value.text = name;
       }
     }
-    option.apply = [of = of_, member, &names](WrapperConfig& c, const Value& v) {
-      if (const auto value = valueIn(names, v.text)) {
+    // The tables are globals (kEnumNames beside each enum), so a pointer to one outlives the row.
+    option.apply = [of = of_, member, table = &names](WrapperConfig& c, const Value& v) {
+      if (const auto value = valueIn(*table, v.text)) {
         of(c).*member = *value;
       }
     };
-    option.read = [of = of_const_, member, &names](const WrapperConfig& c) {
+    option.read = [of = of_const_, member, table = &names](const WrapperConfig& c) {
       Value read;
-      read.text = nameIn(names, of(c).*member, "");
+      read.text = nameIn(*table, of(c).*member, "");
       return read;
     };
     add(std::move(option));
