@@ -250,8 +250,8 @@ Condition conditionOf(const std::string& name) {
     return *condition;
   }
   std::string known;
-  for (const auto& entry : kConditions) {
-    known += (known.empty() ? "" : ", ") + std::string(entry.name);
+  for (const std::string& condition : namesIn(kConditions)) {
+    known += (known.empty() ? "" : ", ") + condition;
   }
   throw std::invalid_argument("unknown passivity condition '" + name + "' (" + known + ")");
 }

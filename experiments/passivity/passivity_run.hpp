@@ -22,8 +22,8 @@ enum class Scenario { kFreeSpaceStiffness, kFreeSpaceFrame, kWallContact, kNorma
 /// option is config/sim/cartesian_impedance.yaml's.
 enum class Condition { kNone, kRamps, kTank, kTankOnly };
 
-/// Every scenario, in the order the experiment runs them, and every condition, by the names its
-/// folders, files, table and command line give them.
+/// Every scenario and every condition, by the names its folders, files, table and command line
+/// give them. The experiment runs the scenarios in this order, which is the enum's.
 inline constexpr EnumNames<Scenario, 4> kScenarios{
     {{Scenario::kFreeSpaceStiffness, "free_space_stiffness"},
      {Scenario::kFreeSpaceFrame, "free_space_frame"},

@@ -13,7 +13,7 @@ namespace comply::schema {
 struct FieldKindSpelling {
   FieldKind kind;
   std::string_view name;       ///< toString(FieldKind): describe --format json
-  std::string_view size_text;  ///< size and layout as a user writes it (kEnum: its value names)
+  std::string_view size_text;  ///< size and layout as a user writes it (kEnum: "", its values)
   std::string_view msg_type;   ///< the ROS 2 .msg type
   std::string_view idl_type;   ///< rosidl's DDS IDL type (octet and uint8 share the wire)
   std::string_view idl_bound;  ///< the IDL array bound after the member name ("" for none)

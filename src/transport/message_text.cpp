@@ -11,7 +11,7 @@
 namespace comply::transport {
 namespace {
 
-/// PREFIX_NAME=value for each value of an enum with toString().
+/// PREFIX_NAME=value for each row of an enum's EnumNames table.
 template <typename Enum, std::size_t N>
 void addConstants(std::vector<ConstantText>& constants, std::string_view prefix,
                   const EnumNames<Enum, N>& names) {

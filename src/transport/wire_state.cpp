@@ -49,9 +49,8 @@ void Wire<RequestMessage>::read(const void* sample, RequestMessage& message,
   const auto& in = *static_cast<const comply_msgs_msg_dds__Request_*>(sample);
   fromWire(in.header, message.header);
   message.request = static_cast<RequestType>(in.request);
-  if (in.request < static_cast<std::uint8_t>(RequestType::kActivate) ||
-      in.request > static_cast<std::uint8_t>(RequestType::kTare)) {
-    malformed = "request " + std::to_string(in.request) + " is none of REQUEST_* (1 to 4)";
+  if (nameIn(kRequestTypeNames, message.request, "").empty()) {
+    malformed = "request " + std::to_string(in.request) + " is none of REQUEST_*";
   }
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 // An enum's names as one table, read both ways: the name of a value (messages, files, tables)
-// and the value of a name (controller files, command lines). A table lists every enumerator once,
-// in the order of their values without a gap; a table that does not fails to compile.
+// and the value of a name (controller files, command lines). A table lists the enumerators in the
+// order of their values, without a gap, each name once; a table that does not fails to compile.
+// A table that stops short of the enum's last enumerator does compile (C++ cannot count an enum's
+// enumerators): its value then has the name nameIn() gives for an unknown value.
 
 #include <array>
 #include <cstddef>
@@ -28,6 +30,11 @@ class EnumNames {
                        static_cast<long long>(entries[i - 1].value) + 1) {
         // Reached only while compiling: a table out of order or with a gap is an error there.
         throw "EnumNames: list the enumerators in the order of their values, without a gap";
+      }
+      for (std::size_t j = 0; j < i; ++j) {
+        if (entries[j].name == entries[i].name) {
+          throw "EnumNames: each name once";
+        }
       }
       entries_[i] = entries[i];
     }

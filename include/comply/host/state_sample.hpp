@@ -57,7 +57,6 @@ class StateSampler {
   model::Data inactive_pose_;
 };
 
-
 /// The state topic's message of `sample` (allocates: off the control thread).
 transport::ControllerStateMessage stateMessage(const StateSample& sample,
                                                const pipeline::ResolvedController& resolved);
