@@ -40,7 +40,7 @@ struct Episode final : hardware::LoopObserver {
   void afterCycle(const hardware::CycleRecord& record) override {
     const transport::Stamp now = clockAt(record.time_s);
     // The gate's clock is the recording's, so an outcome's applied time is the cycle's.
-    gate->noteCycle(record.index, wrapper.controller().stampInForce(),
+    gate->noteCycle(record.index, wrapper.controller().idInForce(),
                     [&] { return now.nanoseconds(); });
     if (recording != nullptr && record.state != nullptr) {
       sampler->fill(record, *record.state, now, sample);
@@ -303,8 +303,9 @@ py::tuple Sim::step(const py::object& command) {
               to->received(transport::ChunkMessageOf<Command>{header, c},
                            e->clockAt(session_->plant.simTime()));
             }
-            session_->gate.offer(
-                offer, active, [&] { return e->wrapper.submitChunk(c, stampSeconds(*stamp_ns)); });
+            session_->gate.offer(offer, active, [&](std::int64_t wire_stamp_ns) {
+              return e->wrapper.submitChunk(c, stampSeconds(*stamp_ns), wire_stamp_ns);
+            });
             return;
           }
           const py::dict kwargs = command.cast<py::dict>();
@@ -314,7 +315,9 @@ py::tuple Sim::step(const py::object& command) {
             to->received(transport::CommandMessageOf<Command>{header, c},
                          e->clockAt(session_->plant.simTime()));
           }
-          session_->gate.offer(offer, active, [&] { return e->wrapper.submit(c); });
+          session_->gate.offer(offer, active, [&](std::int64_t wire_stamp_ns) {
+            return e->wrapper.submit(c, wire_stamp_ns);
+          });
         },
         session_->episode);
   }

@@ -34,7 +34,7 @@ void encodeCycle(std::span<const std::uint8_t> raw, const pipeline::BusOf<Comman
   message.state = stateMessage(cycle.state, resolved);
   message.compute_time_s = cycle.compute_s;
   message.start_lateness_s = cycle.start_lateness_s;
-  const transport::Header header{transport::Stamp::fromSeconds(in_force.stamp_s),
+  const transport::Header header{transport::Stamp::fromNanoseconds(cycle.state.reference.stamp_ns),
                                  resolved.robot.base_frame};
   if constexpr (std::is_same_v<Command, CartesianCommand>) {
     message.cartesian_in_force.push_back({header, schema::fromBus(in_force)});

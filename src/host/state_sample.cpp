@@ -55,7 +55,8 @@ transport::ControllerStateMessage stateMessage(const StateSample& sample,
   }
   message.contact_wrench_source = sample.contact_wrench_source;
   message.contact_wrench_bandwidth_hz = sample.contact_wrench_bandwidth_hz;
-  message.reference_stamp = transport::Stamp::fromSeconds(sample.reference_stamp_s);
+  message.reference_stamp = transport::Stamp::fromNanoseconds(sample.reference.stamp_ns);
+  message.reference_sequence = sample.reference.sequence;
   message.reference_fields = sample.reference_fields;
   if (!resolved.cartesian()) {
     message.reference_joint_position = vectorOf(sample.reference_joint_position);
@@ -73,6 +74,7 @@ transport::CommandOutcomeMessage outcomeMessage(const pipeline::CommandOutcome& 
   message.outcome = outcome.applied ? transport::Outcome::kApplied : transport::Outcome::kRejected;
   message.reason = static_cast<transport::Reason>(outcome.reason);
   message.cycle = outcome.cycle;
+  message.sequence = outcome.sequence;
   message.received = transport::Stamp::fromNanoseconds(outcome.received_ns);
   message.applied = transport::Stamp::fromNanoseconds(outcome.applied_ns);
   message.message = outcome.message;
@@ -160,7 +162,7 @@ void StateSampler<Command>::fill(const hardware::CycleRecord& record, const Join
   if (bus == nullptr) {
     return;
   }
-  s.reference_stamp_s = bus->stamp_s;
+  s.reference = controller.idInForce();
   s.reference_fields = bus->fields;
   if constexpr (std::is_same_v<Command, CartesianCommand>) {
     s.reference_position = Eigen::Vector3d(bus->position[0], bus->position[1], bus->position[2]);

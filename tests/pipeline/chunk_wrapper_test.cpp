@@ -100,7 +100,7 @@ TEST_F(CartesianChunks, PlaysThroughItsWaypointsAtTheirTimesWithTheGainsOfEach) 
   EXPECT_LT((reference() - c.waypoints.back().command.position).norm(), 1e-12);
   EXPECT_DOUBLE_EQ(law().stiffness_translational[0], 3000.0);
   EXPECT_EQ(Eigen::Map<const Vector6d>(law().twist).norm(), 0.0) << "held at rest after the end";
-  EXPECT_DOUBLE_EQ(wrapper.controller().stampInForce(), c.stamp_s);
+  EXPECT_EQ(wrapper.controller().idInForce().stamp_ns, stampNanoseconds(c.stamp_s));
 }
 
 TEST_F(CartesianChunks, ALateOrMalformedChunkIsRefusedWithItsReasonAndChangesNothing) {
@@ -148,7 +148,7 @@ TEST_F(CartesianChunks, ALateOrMalformedChunkIsRefusedWithItsReasonAndChangesNot
            c.waypoints[k].command.position.z() += 0.3;
          }
        }},
-      {"stale stamp", RejectionReason::kStaleStamp, "waypoint 0: stale_stamp",
+      {"stale stamp", RejectionReason::kStaleStamp, "stale_stamp: stamp is older",
        [](CartesianChunk& c) { c.stamp_s = -1.0; }},
   };
   for (const Case& test : cases) {
@@ -279,7 +279,7 @@ TEST_F(CartesianChunks, AChunkTakenInFaultIsInForceButDoesNotMove) {
     ++cycle_count;
   }
   // Accounted as applied (its stamp in force), but the fault stopped it where the reference was.
-  EXPECT_DOUBLE_EQ(wrapper.controller().stampInForce(), c.stamp_s);
+  EXPECT_EQ(wrapper.controller().idInForce().stamp_ns, stampNanoseconds(c.stamp_s));
   EXPECT_LT(
       (Eigen::Map<const Eigen::Vector3d>(
            std::get<comply_cartesian_command>(wrapper.controller().activeCommand()).position) -

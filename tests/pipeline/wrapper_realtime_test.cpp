@@ -203,23 +203,23 @@ void expectRealtimeCycles(
       << "the timeout path did not run";
 }
 
-// The gate's control-thread side: noting the stamp in force after every cycle, with the intake
+// The gate's control-thread side: noting the command in force after every cycle, with the intake
 // offering and settling commands between cycles, as a live host does.
 TEST(WrapperRealtime, TheGatesCycleSideNeitherAllocatesNorLocks) {
   CommandGate gate({.kind = CommandKind::kJoint, .publisher_timeout_s = 0.5});
   RealtimeProbe probe;
+  std::uint64_t accepted = 0;
   for (int cycle = 0; cycle < kCycles; ++cycle) {
     if (cycle % 10 == 0) {
       Offer offer;
       offer.stamp_ns = static_cast<std::int64_t>(cycle + 1) * 1'000'000;
       offer.kind = CommandKind::kJoint;
       offer.publisher = 1;
-      gate.offer(offer, true, [] { return Verdict{}; });
+      gate.offer(offer, true, [&](std::int64_t) { return Verdict{.sequence = ++accepted}; });
     }
-    const double stamp_in_force_s =
-        stampSeconds(static_cast<std::int64_t>(cycle / 10 * 10 + 1) * 1'000'000);
+    const CommandId in_force{.sequence = accepted};
     EXPECT_TRUE(probe.measure([&] {
-      return gate.noteCycle(cycle, stamp_in_force_s, [cycle] { return std::int64_t{cycle}; });
+      return gate.noteCycle(cycle, in_force, [cycle] { return std::int64_t{cycle}; });
     }));
     if (cycle % 100 == 0) {
       gate.settle();

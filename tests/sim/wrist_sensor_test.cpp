@@ -1,6 +1,6 @@
 // The wrist force/torque path on all four robots: the plant's sensor reads as a real one (the
 // tool's weight, an offset fixed in the sensor, the environment), the cycle takes the declared
-// tool's weight and a tare off (cycle_wrench.cpp), and hosts report what is left.
+// tool's weight and a tare off (wrist_sensor.hpp), and hosts report what is left.
 //   - After a tare, a known wrench at the TCP reads within 5 % + 0.5 N (5 % + 0.05 N m).
 //   - A 1 kg tool, declared, tared at home and turned through 90 deg reads within 0.2 N of zero;
 //     the same tool undeclared reads its weight's turn (the check can fail).

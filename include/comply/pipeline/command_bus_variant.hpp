@@ -3,6 +3,7 @@
 // Held as a variant so one cycle serves joint and Cartesian control; the reference rules (merge a
 // partial command, seed from the measured pose, stop the motion) are the schema's, per bus type.
 
+#include <cstdint>
 #include <utility>
 #include <variant>
 
@@ -14,6 +15,17 @@
 namespace comply::pipeline {
 
 using CommandBus = std::variant<comply_joint_command, comply_cartesian_command>;
+
+/// Which command is in force. The wrapper numbers every command and chunk it accepts, in order;
+/// the number travels with it through the intake queue and the cycle to the command gate, which
+/// settles outcomes by it, and to the state and the recording. The stamp is the sender's, exact
+/// (integer nanoseconds: a double in seconds resolves only about 0.24 us at today's epoch).
+struct CommandId {
+  std::uint64_t sequence = 0;  ///< 0: none accepted yet (the controller file's initial command)
+  std::int64_t stamp_ns = 0;   ///< the sender's stamp [ns since its epoch]
+
+  friend bool operator==(const CommandId&, const CommandId&) = default;
+};
 
 /// The bus type of a C++ command type, as the schema converts it.
 template <typename Command>

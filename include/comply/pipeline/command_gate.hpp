@@ -11,13 +11,15 @@
 //      sender is a process where the transport names it (Offer::participant: its command and
 //      chunk writers are one sender), else a writer
 //   4. an active controller
-//   5. the stamp rules: a well-formed stamp (nanoseconds below 1e9), not more than
+//   5. the stamp rules: a well-formed stamp (nanoseconds below 1e9), and not more than
 //      `max_stamp_lead_s` ahead of the host's clock (a sender whose clock runs ahead, or one
-//      stamp from the future, would otherwise lock every later command out as stale), and
-//      strictly newer than the last accepted command, compared on the exact wire stamp (integer
-//      nanoseconds), so that the stamp in force always names one command. A reset request clears
-//      the last accepted stamp (clearStampFloor()).
-//   6. the wrapper's own checks (Wrapper::submit: finite, unit quaternions, gains, jumps, queue)
+//      stamp from the future, would otherwise lock every later command out as stale)
+//   6. the wrapper's checks (Wrapper::submit with the exact wire stamp): strictly newer than the
+//      last accepted command in integer nanoseconds (the wrapper's stamp floor, the only one; a
+//      reset request clears it), finite, unit quaternions, gains, jumps, queue
+// A command that passes carries the number the wrapper gave it (CommandId::sequence); the cycle
+// reports the number in force after every cycle, and the gate settles every pending command up
+// to it as applied: two commands are told apart however close their stamps.
 //
 // Threads: offer() on the intake thread (any non-real-time thread), noteCycle() on the control
 // thread after each cycle (wait-free, no allocation), settle()/takeOutcomes() on any non-real-time
@@ -32,6 +34,7 @@
 #include <vector>
 
 #include "comply/core/spsc_queue.hpp"
+#include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/command_validation.hpp"
 #include "comply/pipeline/config.hpp"
 
@@ -65,6 +68,7 @@ struct CommandOutcome {
   bool applied = false;
   CommandReason reason = CommandReason::kNone;  ///< kNone when applied
   std::uint64_t cycle = 0;                      ///< applied: the index of the cycle that took it
+  std::uint64_t sequence = 0;  ///< accepted: the wrapper's number for it (CommandId::sequence)
   std::int64_t received_ns = 0;  ///< wall clock (CLOCK_REALTIME) when the gate was offered it
   std::int64_t applied_ns = 0;   ///< applied: wall clock at the end of that cycle
   std::string message;           ///< rejected: why, naming the field or the rule
@@ -113,28 +117,28 @@ class CommandGate {
  public:
   explicit CommandGate(GateOptions options);
 
-  /// Passes `offer` through rules 1-5 and then `submit()` (rule 6, returning the wrapper's
-  /// Verdict), under the gate's lock; `active` says whether the controller is active. A command
+  /// Passes `offer` through rules 1-5 and then `submit(offer.stamp_ns)` (rule 6, returning the
+  /// wrapper's Verdict: Wrapper::submit(command, stamp_ns)), under the gate's lock; `active` says whether the controller is active. A command
   /// that passes waits until a cycle takes it (noteCycle + settle); one that fails is settled at
   /// once as rejected. Returns why it was refused, kNone when it waits for a cycle (for a host's
   /// log; the outcome, with its message, comes from takeOutcomes()).
   template <typename Submit>
   CommandReason offer(const Offer& offer, bool active, Submit&& submit);
 
-  /// The control thread, after every cycle: `stamp_in_force_s` is the stamp of the command in
-  /// force (the bus's stamp_s). When it moved, the commands up to it were applied by `cycle` at
-  /// `time_ns()` (the host's clock [ns], asked only then: most cycles take no command).
-  /// Wait-free and allocation-free; false when the event queue was full, and the same stamp is
-  /// noted again on the next cycle.
+  /// The control thread, after every cycle: `in_force` is the command in force
+  /// (Controller::idInForce()). When it moved, the commands up to its number were applied by
+  /// `cycle` at `time_ns()` (the host's clock [ns], asked only then: most cycles take no
+  /// command). Wait-free and allocation-free; false when the event queue was full, and the same
+  /// command is noted again on the next cycle.
   template <typename TimeNs>
-  bool noteCycle(std::uint64_t cycle, double stamp_in_force_s, TimeNs&& time_ns) noexcept {
-    if (stamp_in_force_s == last_noted_stamp_s_) {
+  bool noteCycle(std::uint64_t cycle, const CommandId& in_force, TimeNs&& time_ns) noexcept {
+    if (in_force.sequence == last_noted_sequence_) {
       return true;
     }
-    if (!applied_.push({cycle, stamp_in_force_s, time_ns()})) {
+    if (!applied_.push({cycle, in_force.sequence, time_ns()})) {
       return false;
     }
-    last_noted_stamp_s_ = stamp_in_force_s;
+    last_noted_sequence_ = in_force.sequence;
     return true;
   }
 
@@ -145,9 +149,6 @@ class CommandGate {
   /// At shutdown (after the last cycle): the accepted commands no cycle took, rejected as
   /// kInactive.
   void abandonPending(const std::string& why);
-  /// A reset request: the next command may carry any stamp again (within the lead), so that a
-  /// stamp from a clock that ran ahead does not lock senders out until the host restarts.
-  void clearStampFloor();
   /// An operator request (activate, deactivate, reset) from `participant` (the process that sent
   /// it) at steady time `now_ns`: allowed when no publisher holds the command topics, or when
   /// the holder is silent for publisher_timeout_s, or when it comes from the holder's own process.
@@ -171,24 +172,22 @@ class CommandGate {
  private:
   struct Applied {
     std::uint64_t cycle = 0;
-    double stamp_s = 0.0;
+    std::uint64_t sequence = 0;  ///< the command in force after that cycle
     std::int64_t wall_ns = 0;
   };
   struct Pending {
-    double stamp_s;
+    std::uint64_t sequence;  ///< the number the wrapper gave it
     CommandOutcome outcome;
   };
   /// Rules 1-5: kNone when they pass, else the reason (and the outcome settled as rejected).
   CommandReason admitLocked(const Offer& offer, bool active, CommandOutcome& outcome);
   /// Settles `outcome` as rejected for `reason`; returns `reason`.
   CommandReason rejectLocked(CommandOutcome& outcome, CommandReason reason, std::string message);
-  void acceptLocked(const Offer& offer, CommandOutcome& outcome);
+  void acceptLocked(std::uint64_t sequence, CommandOutcome& outcome);
 
   GateOptions options_;
   mutable std::mutex mutex_;
   GateCounts counts_;
-  std::int64_t last_accepted_ns_ = 0;
-  bool accepted_any_ = false;
   std::uint64_t holder_ = 0;
   std::uint64_t holder_participant_ = 0;
   std::int64_t holder_heard_ns_ = 0;
@@ -197,7 +196,7 @@ class CommandGate {
   std::vector<CommandOutcome> settled_;
   // The control thread's side.
   SpscQueue<Applied> applied_{4096};
-  double last_noted_stamp_s_ = -1.0;
+  std::uint64_t last_noted_sequence_ = 0;
 };
 
 template <typename Submit>
@@ -208,11 +207,11 @@ CommandReason CommandGate::offer(const Offer& offer, bool active, Submit&& submi
       refused != CommandReason::kNone) {
     return refused;
   }
-  const Verdict verdict = submit();
+  const Verdict verdict = submit(offer.stamp_ns);
   if (!verdict.accepted) {
     return rejectLocked(outcome, commandReason(verdict.reason), verdict.message);
   }
-  acceptLocked(offer, outcome);
+  acceptLocked(verdict.sequence, outcome);
   return CommandReason::kNone;
 }
 

@@ -29,8 +29,12 @@ std::string_view toString(RejectionReason reason);
 struct Verdict {
   bool accepted = true;
   RejectionReason reason = RejectionReason::kNonFinite;
-  std::string message;  ///< why, with the field name; empty when accepted
+  std::string message;         ///< why, with the field name; empty when accepted
+  std::uint64_t sequence = 0;  ///< accepted by a wrapper: the number it gave it (CommandId)
 };
+
+/// "sec.nanosec s", exact; nanosec in [0, 1e9) as on the wire, also before the epoch.
+std::string stampText(std::int64_t stamp_ns);
 
 /// The pose at joint positions `position` from a model update that computed the pose.
 MeasuredPose measuredPoseFrom(const JointVector& position, const model::Data& data) noexcept;

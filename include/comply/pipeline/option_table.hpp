@@ -168,7 +168,7 @@
   FLAG(measured_torque, "observer.measured_torque", false,                                 \
        "use the measured joint torque (torque-sensing arms) instead of the commanded one")
 
-// The wrist force/torque sensor's reading (WrenchSensorConfig; cycle_wrench.cpp).
+// The wrist force/torque sensor's reading (WrenchSensorConfig; wrist_sensor.hpp).
 #define COMPLY_WRENCH_SENSOR_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET) \
   NUMBER(filter_hz, "wrench_sensor.filter_hz", 0.0, kAtLeast, 0.0, 1e4,                         \
          "Hz: first-order low-pass on the wrist sensor's reading (tool weight off); 0: off")

@@ -62,8 +62,8 @@ struct CycleParameters {
   WrenchSensorConfig wrench_sensor;
   ForceControlConfig force_control;
   /// compensation.payload.enabled as written: the declared payload is the tool beyond the wrist
-  /// sensor, whose weight comes off the sensor's reading in every mode (cycle_wrench.cpp) and whose
-  /// inertial force comes off it in admittance (output_admittance.cpp). payload_compensation
+  /// sensor, whose weight comes off the sensor's reading in every mode (wrist_sensor.hpp) and whose
+  /// inertial force comes off it in admittance (virtual_arm.hpp). payload_compensation
   /// (its weight in the torque) is off in admittance, this is not.
   bool payload_on_sensor = false;
   JointVector velocity_limit;  ///< URDF [rad/s | m/s], for the stability guard and admittance

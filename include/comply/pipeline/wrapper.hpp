@@ -9,8 +9,9 @@
 //   cycle      wrapper.update(state, period_s, torque);      // real-time thread
 //   deactivate wrapper.deactivate();
 //
-// A submitted command is validated here, against the pose the cycle last published, and queued
-// with its field mask; the cycle merges it into the command in force. So update() never blocks on
+// A submitted command is validated here, against the pose the cycle last published and the one
+// stamp floor (the last accepted stamp, integer nanoseconds), numbered (CommandId) and queued with
+// its field mask; the cycle merges it into the command in force. So update() never blocks on
 // a sender, never sees a half-written command, and a rejected command changes nothing. Lifecycle
 // calls (activate, deactivate) run between cycles, as in ros2_control. submit(), reset(),
 // lastAccepted() and diagnostics() may run at any time.
@@ -45,10 +46,7 @@ class Wrapper final : public hardware::CycleController {
 
   /// Non-RT. See Controller::activate(). Reactivation after deactivate() seeds again (and, in an
   /// admittance mode, starts the virtual arm at `state`).
-  void activate(const JointState& state) {
-    controller_.activate(state);
-    output_.activate(state);
-  }
+  void activate(const JointState& state) { controller_.activate(state); }
   /// Non-RT. update() outputs nothing until the next activate().
   void deactivate() noexcept { controller_.deactivate(); }
   /// Any thread. Asks the cycle to leave FAULT; the law runs again from the next cycle with a
@@ -56,19 +54,27 @@ class Wrapper final : public hardware::CycleController {
   /// may carry any stamp.
   void reset();
   /// Any thread. The next cycle takes the wrist sensor's reading, less the declared tool's
-  /// weight, as its zero (Controller::sensorWrench; cycle_wrench.cpp). Returns why not, empty
+  /// weight, as its zero (Controller::sensorWrench; wrist_sensor.hpp). Returns why not, empty
   /// when queued: the hardware has never given a reading, or the intake queue is full.
   [[nodiscard]] std::string tare();
 
   /// Any non-RT thread. Validates `command` (the field groups it sets) against the measured pose
   /// and the last accepted stamp and queues it for the next cycle. A rejected command changes
-  /// nothing; the reason is counted in the diagnostics.
+  /// nothing; the reason is counted in the diagnostics. Its stamp_s may repeat the last accepted
+  /// one, never go back (a task file's or an experiment's commands).
   Verdict submit(const Command& command);
+  /// The same for a command whose exact wire stamp `wire_stamp_ns` names it (a transport's,
+  /// through the command gate): it must be strictly newer than the last accepted, compared in
+  /// integer nanoseconds. Not counted in the diagnostics: the gate counts what it offers.
+  Verdict submit(const Command& command, std::int64_t wire_stamp_ns);
   /// Any non-RT thread. Validates a timed chunk as a whole (validateChunk) and queues it: the
   /// next cycle starts it, blending in from the reference in force. `host_time_s` is the host's
   /// clock now, in the timebase of the waypoints' times; the cycle meets those times to within
   /// one control period. A rejected chunk changes nothing.
   Verdict submitChunk(const Chunk<Command>& chunk, double host_time_s);
+  /// The same for a chunk named by its exact wire stamp (see submit()).
+  Verdict submitChunk(const Chunk<Command>& chunk, double host_time_s,
+                      std::int64_t wire_stamp_ns);
   /// The command in force (merged) as of the last cycle.
   [[nodiscard]] Command lastAccepted() const;
   /// The pose the cycle last measured (what commands are validated against).
@@ -83,11 +89,13 @@ class Wrapper final : public hardware::CycleController {
   /// One control cycle for a control loop (hardware/control_loop.hpp), in the configured
   /// output.mode (output_stage.hpp): true when `command` holds a command to write.
   bool cycle(const JointState& state, double period_s, ActuatorCommand& command) noexcept override {
-    return output_.cycle(controller_, state, period_s, command);
+    return controller_.cycle(state, period_s, command);
   }
-  [[nodiscard]] OutputMode outputMode() const noexcept override { return output_.mode(); }
+  [[nodiscard]] OutputMode outputMode() const noexcept override {
+    return controller_.output().mode();
+  }
   /// The output stage (the virtual arm of an admittance mode).
-  [[nodiscard]] const OutputStage& output() const noexcept { return output_; }
+  [[nodiscard]] const OutputStage& output() const noexcept { return controller_.output(); }
   [[nodiscard]] bool wantsHold() const noexcept override { return controller_.holdRequested(); }
   void warm(const JointState& last_state) noexcept override { controller_.warm(last_state); }
 
@@ -100,9 +108,31 @@ class Wrapper final : public hardware::CycleController {
 
  private:
   mutable Controller controller_;  // mutable: reading its published values is a reader's update
-  OutputStage output_;
-  /// Counts a rejection and returns it; counts an acceptance and moves the stamp floor.
-  Verdict account(Verdict verdict, double stamp_s);
+
+  /// A command's stamp as the stamp floor judges it.
+  struct IntakeStamp {
+    std::int64_t ns = 0;
+    /// The wire stamp names the command: strictly newer than the last accepted. Else (stamp_s
+    /// of a direct caller) it may repeat it, never go back; and a non-finite one is left to the
+    /// validation, which names it.
+    bool names_command = false;
+    bool finite = true;
+  };
+  static IntakeStamp directStamp(double stamp_s) noexcept;
+  /// Why `stamp` is refused by the stamp floor; accepted when it passes.
+  [[nodiscard]] Verdict checkFloor(const IntakeStamp& stamp) const;
+  Verdict submitStamped(const Command& command, const IntakeStamp& stamp);
+  Verdict submitChunkStamped(const Chunk<Command>& chunk, double host_time_s,
+                             const IntakeStamp& stamp);
+  /// The number and stamp the command queued next will carry.
+  [[nodiscard]] CommandId nextId(const IntakeStamp& stamp) const noexcept {
+    return {.sequence = last_sequence_ + 1, .stamp_ns = stamp.ns};
+  }
+  /// A command or chunk queued: the stamp floor moves to it, it takes its number (into
+  /// `verdict`), and its gains are the intake's from now on.
+  void accept(const IntakeStamp& stamp, const Command& gains, Verdict& verdict);
+  /// Counts a direct caller's verdict in the diagnostics (the gate counts what it offers).
+  Verdict account(Verdict verdict, const IntakeStamp& stamp);
 
   /// The command the intake has let through (the one in force when first asked, then every
   /// accepted command and chunk merged in): a damping ratio sent alone is checked against the
@@ -114,7 +144,10 @@ class Wrapper final : public hardware::CycleController {
                      double period_s, Command& candidate);
 
   mutable std::mutex intake_mutex_;  // senders and lifecycle calls only, never the cycle
-  double last_stamp_s_ = 0.0;
+  // The one stamp floor: the last accepted stamp [ns]; a reset clears it.
+  std::int64_t floor_ns_ = 0;
+  bool accepted_any_ = false;
+  std::uint64_t last_sequence_ = 0;
   std::optional<Command> intake_gains_;
 };
 

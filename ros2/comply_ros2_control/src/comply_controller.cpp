@@ -371,7 +371,7 @@ controller_interface::return_type ComplyController<Command>::update(
       }
     }
   }
-  gate_->noteCycle(cycle_, wrapper_->controller().stampInForce(),
+  gate_->noteCycle(cycle_, wrapper_->controller().idInForce(),
                    [&time] { return time.nanoseconds(); });
   afterCycle(time, wrote, start_s);
   return controller_interface::return_type::OK;
@@ -424,7 +424,8 @@ void ComplyController<Command>::onCommand(const CommandMessage& message,
   }
   std::string malformed;
   const Command command = fromMessage(message, malformed);
-  offerToGate(message.header, info, malformed, [&] { return wrapper_->submit(command); });
+  offerToGate(message.header, info, malformed,
+              [&](std::int64_t stamp_ns) { return wrapper_->submit(command, stamp_ns); });
 }
 
 template <typename Command>
@@ -437,7 +438,9 @@ void ComplyController<Command>::onChunk(const ChunkMessage& message,
   std::string malformed;
   const comply::Chunk<Command> chunk = fromMessage(message, malformed);
   const double now_s = comply::stampSeconds(get_node()->now().nanoseconds());
-  offerToGate(message.header, info, malformed, [&] { return wrapper_->submitChunk(chunk, now_s); });
+  offerToGate(message.header, info, malformed, [&](std::int64_t stamp_ns) {
+    return wrapper_->submitChunk(chunk, now_s, stamp_ns);
+  });
 }
 
 template <typename Command>
@@ -476,8 +479,7 @@ void ComplyController<Command>::onResetFault(std_srvs::srv::Trigger::Response& r
     return;
   }
   const bool in_fault = wrapper_->diagnostics().state == comply::pipeline::WrapperState::kFault;
-  wrapper_->reset();
-  gate_->clearStampFloor();  // either way: a stamp that ran ahead locks no sender out
+  wrapper_->reset();  // either way it clears the stamp floor: a stamp that ran ahead locks no one out
   response.success = in_fault;
   response.message = in_fault ? "reset requested: the law runs again from the next cycle"
                               : "not in FAULT: nothing to reset (stamp floor cleared)";

@@ -82,13 +82,7 @@ void publisherThread(PublisherContext<Command> c, const std::atomic<bool>& runni
     if (now >= next_state) {
       StateSample sample;
       if (c.observer.takeState(sample)) {
-        transport::ControllerStateMessage message = stateMessage(sample, c.resolved);
-        // The cycle knows the stamp in force as a double; the gate knows it to the nanosecond.
-        const std::int64_t applied_ns = c.gate.appliedStampNs();
-        if (applied_ns != 0 && stampSeconds(applied_ns) == sample.reference_stamp_s) {
-          message.reference_stamp = transport::Stamp::fromNanoseconds(applied_ns);
-        }
-        c.transport.publish(message);
+        c.transport.publish(stateMessage(sample, c.resolved));
       }
       next_state = std::max(next_state + state_period, now);
     }

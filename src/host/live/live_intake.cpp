@@ -20,11 +20,11 @@ pipeline::Verdict submitSample(pipeline::Wrapper<Command>& wrapper, const Messag
   if constexpr (std::is_same_v<Message, transport::CommandMessageOf<Command>>) {
     Command command = message.command;
     command.stamp_s = stampSeconds(stamp_ns);
-    return wrapper.submit(command);
+    return wrapper.submit(command, stamp_ns);
   } else if constexpr (std::is_same_v<Message, transport::ChunkMessageOf<Command>>) {
     Chunk<Command> chunk = message.chunk;
     chunk.stamp_s = stampSeconds(stamp_ns);
-    return wrapper.submitChunk(chunk, stampSeconds(clock_ns));
+    return wrapper.submitChunk(chunk, stampSeconds(clock_ns), stamp_ns);
   } else {
     return {};  // unreachable
   }
@@ -44,8 +44,9 @@ void offerSample(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gat
   offer.clock_ns = wallClockNanoseconds();  // senders stamp with their wall clock (ROS 2 time)
   offer.nanosec = sample.message.header.stamp.nanosec;
   const bool active = wrapper.diagnostics().state != pipeline::WrapperState::kInactive;
-  gate.offer(offer, active,
-             [&] { return submitSample(wrapper, sample.message, offer.stamp_ns, offer.clock_ns); });
+  gate.offer(offer, active, [&](std::int64_t stamp_ns) {
+    return submitSample(wrapper, sample.message, stamp_ns, offer.clock_ns);
+  });
 }
 
 }  // namespace
@@ -116,8 +117,7 @@ void Intake<Command>::handleRequest(const transport::Sample<transport::RequestMe
       observer_.requestLifecycle(sample.message.request);
       break;
     case transport::RequestType::kReset:
-      wrapper_.reset();
-      gate_.clearStampFloor();
+      wrapper_.reset();  // clears the stamp floor too
       break;
     case transport::RequestType::kTare:
       if (const std::string refused = wrapper_.tare(); !refused.empty()) {

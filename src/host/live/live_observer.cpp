@@ -70,7 +70,7 @@ void LiveObserver<Command>::afterCycle(const hardware::CycleRecord& record) {
   if (record.state != nullptr) {
     last_state_ = *record.state;
   }
-  if (!gate_.noteCycle(record.index, wrapper_.controller().stampInForce(), wallClockNanoseconds)) {
+  if (!gate_.noteCycle(record.index, wrapper_.controller().idInForce(), wallClockNanoseconds)) {
     counters_.applied_deferred.fetch_add(1, std::memory_order_relaxed);
   }
   fillSample(record);

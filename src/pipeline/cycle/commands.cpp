@@ -1,7 +1,7 @@
 // Stages "commands" and "watchdog": every message the intake queued since the last cycle is taken
 // in order (commands merged by their field mask into the command in force, reset requests noted, a
-// tare taken), and the watchdog applies the timeout policy to the same command in force, so the
-// reference rules live in one place: here, on the bus the law reads.
+// tare taken), and the watchdog (command_watchdog.hpp) applies the timeout policy to the same
+// command in force, so the reference rules live in one place: here, on the bus the law reads.
 
 #include "comply/pipeline/controller.hpp"
 
@@ -12,28 +12,22 @@ void Controller::takeCommands() noexcept {
   for (const IntakeMessage* message = intake_.front(); message != nullptr;
        message = intake_.front()) {
     if (message->type == IntakeMessage::Type::kTare) {
-      tare();
+      wrist_.tare(data_);
     } else if (message->type == IntakeMessage::Type::kReset) {
       // Only a fault present when the request arrives can be reset: a request must not stay armed
       // and clear a later fault unasked.
       reset_pending_ = diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kFault;
     } else if (message->type == IntakeMessage::Type::kChunk) {
-      if (chunks_.playing()) {
-        (void)chunks_.play(time_s_, active_);  // the running chunk's reference at this time
-      }
-      chunks_.start(message->chunk_slot, active_, time_s_);
-      // Taken, whatever happens to it next (FAULT stops it at once): its stamp is in force.
-      std::visit([this](auto& bus) noexcept { bus.stamp_s = chunks_.stamp(); }, active_);
+      takeChunk(*message);
       changed = true;
     } else {
-      takeCommand(message->command);
+      takeCommand(*message);
       changed = true;
     }
     intake_.pop();
   }
   if (changed) {
-    last_command_time_s_ = time_s_;
-    watchdog_expired_ = false;
+    watchdog_.heard(time_s_);
   }
   const bool chunk_ran = chunks_.playing();
   playChunk();
@@ -42,15 +36,26 @@ void Controller::takeCommands() noexcept {
   }
 }
 
-void Controller::takeCommand(const CommandBus& command) noexcept {
+void Controller::takeCommand(const IntakeMessage& message) noexcept {
   const std::uint32_t sets =
-      std::visit([](const auto& bus) noexcept { return bus.fields; }, command);
+      std::visit([](const auto& bus) noexcept { return bus.fields; }, message.command);
   if ((sets & chunks_.fields()) != 0) {
     (void)chunks_.play(time_s_, active_);
     chunks_.stop();
     stopMotion(active_);
   }
-  mergeInto(active_, command);
+  mergeInto(active_, message.command);
+  id_in_force_ = message.id;
+}
+
+void Controller::takeChunk(const IntakeMessage& message) noexcept {
+  if (chunks_.playing()) {
+    (void)chunks_.play(time_s_, active_);  // the running chunk's reference at this time
+  }
+  chunks_.start(message.chunk_slot, active_, time_s_);
+  // Taken, whatever happens to it next (FAULT stops it at once): its stamp is in force.
+  std::visit([this](auto& bus) noexcept { bus.stamp_s = chunks_.stamp(); }, active_);
+  id_in_force_ = message.id;
 }
 
 void Controller::playChunk() noexcept {
@@ -66,16 +71,13 @@ void Controller::playChunk() noexcept {
   }
   (void)chunks_.play(time_s_, active_);
   // A chunk is a command that lasts: the watchdog counts from its end.
-  last_command_time_s_ = time_s_;
-  watchdog_expired_ = false;
+  watchdog_.heard(time_s_);
 }
 
 void Controller::watchdog() noexcept {
-  const double timeout_s = parameters_.command_timeout_s;
-  if (watchdog_expired_ || timeout_s <= 0.0 || time_s_ - last_command_time_s_ < timeout_s) {
+  if (!watchdog_.expires(time_s_)) {
     return;
   }
-  watchdog_expired_ = true;
   chunks_.stop();
   diagnostics_.watchdog_timeouts.fetch_add(1, std::memory_order_relaxed);
   if (parameters_.timeout_behavior == TimeoutBehavior::kReanchor) {

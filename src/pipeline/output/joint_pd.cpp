@@ -16,6 +16,8 @@
 
 #include "comply/pipeline/output_stage.hpp"
 
+#include "comply/pipeline/controller.hpp"
+
 namespace comply::pipeline {
 namespace {
 

@@ -1,5 +1,5 @@
 // Stages "compensate", "shape" and "write", and the safe state "hold": what is added to the law's
-// torque, how the sum is shaped for the motors, and what goes out in FAULT.
+// torque, how the sum is shaped for the motors, and what goes out in FAULT (safe_hold.hpp).
 
 #include <algorithm>
 #include <cmath>
@@ -77,16 +77,8 @@ CycleStatus Controller::write(std::span<double> torque) noexcept {
 
 CycleStatus Controller::hold(std::span<double> torque) noexcept {
   force_active_ = false;  // no law runs: what it would read is the command in force
-  // Hold the arm against gravity (and the payload) and damp every joint: the arm comes to rest
-  // where it is, without a reference that may be the cause of the fault. The state is the last
-  // usable one when this cycle's was not.
-  for (int i = 0; i < dof_; ++i) {
-    // A velocity so large that its damping overflows (a broken sensor) damps nothing, nor does
-    // one from a frozen stream (a constant push in a direction the arm may no longer move).
-    const double velocity = state_frozen_ ? 0.0 : state_.velocity[i];
-    const double damping = parameters_.fault_damping[i] * velocity;
-    torque_[i] = hold_gravity_[i] - (std::isfinite(damping) ? damping : 0.0);
-  }
+  // The state is the last usable one when this cycle's was not.
+  safe_hold_.torque(state_, frozen_.frozen(), torque_);
   const ShapingResult shaped = shaper_.apply(torque_, period_s_, /*filter=*/false);
   if (!shaped.finite) {
     // Nothing finite to hold with (no usable state was ever measured): command no torque rather

@@ -78,36 +78,42 @@ JointVector declaredArmature(const model::RobotDescription& robot, const model::
   return armature;
 }
 
-std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig& input) {
-  auto resolved = std::make_shared<ResolvedController>();
-  resolved->config = input;
-  WrapperConfig& config = resolved->config;
+namespace {
+
+/// Step 1: the robot's description (loaded unless the configuration carries one), its model with
+/// the configuration's joints and frames, and the plugin, whose command kind decides the rest.
+void loadModelAndPlugin(ResolvedController& resolved) {
+  WrapperConfig& config = resolved.config;
   if (!config.robot_description) {
     completeForRobot(config, std::make_shared<const model::RobotDescription>(
                                  model::loadRobotDescription(config.robot)));
   }
-  resolved->robot = *config.robot_description;
-  model::ModelOptions options = resolved->robot.modelOptions(config.tip_frame);
+  resolved.robot = *config.robot_description;
+  model::ModelOptions options = resolved.robot.modelOptions(config.tip_frame);
   options.joint_names = config.joints;
   options.base_frame = config.base_frame;
-  resolved->model = std::make_shared<const model::Model>(resolved->robot.loadModel(options));
-  const model::Model& model = *resolved->model;
-  resolved->dof = model.dof();
-  if (resolved->dof != config.dof) {
-    throw std::runtime_error(config.name + ": the model has " + std::to_string(resolved->dof) +
+  resolved.model = std::make_shared<const model::Model>(resolved.robot.loadModel(options));
+  resolved.dof = resolved.model->dof();
+  if (resolved.dof != config.dof) {
+    throw std::runtime_error(config.name + ": the model has " + std::to_string(resolved.dof) +
                              " joints but the configuration lists " + std::to_string(config.dof));
   }
-  resolved->plugin = std::make_shared<const plugin::PluginLibrary>(config.plugin);
-  resolved->command_kind = resolved->plugin->api().command_kind;
+  resolved.plugin = std::make_shared<const plugin::PluginLibrary>(config.plugin);
+  resolved.command_kind = resolved.plugin->api().command_kind;
+}
 
-  const int dof = resolved->dof;
+/// Step 2: every number the cycle reads, as fixed-size vectors.
+void compileParameters(ResolvedController& resolved) {
+  const WrapperConfig& config = resolved.config;
+  const model::Model& model = *resolved.model;
+  const int dof = resolved.dof;
   JointVector lower(dof);
   JointVector upper(dof);
   for (int i = 0; i < dof; ++i) {
     lower[i] = model.limits(i).lower;
     upper[i] = model.limits(i).upper;
   }
-  CycleParameters& parameters = resolved->parameters;
+  CycleParameters& parameters = resolved.parameters;
   COMPLY_OPTION_COPY(COMPLY_COMMAND_OPTIONS, parameters, config)
   COMPLY_OPTION_COPY(COMPLY_COMPENSATION_OPTIONS, parameters, config)
   parameters.hardware_compensates_gravity = config.hardware_compensates_gravity;
@@ -132,29 +138,41 @@ std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig&
   parameters.payload_on_sensor = config.payload_compensation;
   parameters.wrench_sensor = config.wrench_sensor;
   parameters.force_control = config.force_control;
-  if (isAdmittance(config.output.mode)) {
-    // The law drives a virtual arm (output_stage.hpp): it has no weight or friction to carry (the
-    // arm's own position control carries them), and a torque-rate limit on it would only delay
-    // the virtual arm's answer to a contact. Its state is computed, not measured, so it cannot
-    // go stale; the arm's own drives watch their encoders.
-    parameters.gravity_compensation = false;
-    parameters.payload_compensation = false;
-    parameters.friction.model = FrictionModel::kNone;
-    parameters.torque_rate_limit.setConstant(dof, std::numeric_limits<double>::infinity());
-    parameters.frozen_state_timeout_s = 0.0;
-    // The momentum observer would estimate the virtual arm's wrench; the contact wrench of an
-    // admittance arm is its force/torque sensor's.
-    parameters.observer.enabled = false;
+}
+
+/// Step 3: an admittance law drives a virtual arm (virtual_arm.hpp): it has no weight or friction
+/// to carry (the arm's own position control carries them), and a torque-rate limit on it would
+/// only delay the virtual arm's answer to a contact. Its state is computed, not measured, so it
+/// cannot go stale; the arm's own drives watch their encoders. The momentum observer would
+/// estimate the virtual arm's wrench; the contact wrench of an admittance arm is its force/torque
+/// sensor's.
+void adaptToOutputMode(ResolvedController& resolved) {
+  if (!isAdmittance(resolved.config.output.mode)) {
+    return;
   }
+  CycleParameters& parameters = resolved.parameters;
+  parameters.gravity_compensation = false;
+  parameters.payload_compensation = false;
+  parameters.friction.model = FrictionModel::kNone;
+  parameters.torque_rate_limit.setConstant(resolved.dof, std::numeric_limits<double>::infinity());
+  parameters.frozen_state_timeout_s = 0.0;
+  parameters.observer.enabled = false;
+}
+
+/// Step 4: the robot-dependent gain bound (torque output), which the initial command must keep,
+/// and the joint inertias the stability guard's energy rule weighs speeds with.
+void boundGains(ResolvedController& resolved) {
+  const WrapperConfig& config = resolved.config;
+  const model::Model& model = *resolved.model;
   if (config.output.mode == OutputMode::kTorque && config.validation.max_wn_period > 0.0) {
-    resolved->gain_bound = lightestInertias(model, declaredArmature(resolved->robot, model));
-    resolved->gain_bound.max_wn_period = config.validation.max_wn_period;
-    resolved->gain_bound.robot = resolved->robot.name;
+    resolved.gain_bound = lightestInertias(model, declaredArmature(resolved.robot, model));
+    resolved.gain_bound.max_wn_period = config.validation.max_wn_period;
+    resolved.gain_bound.robot = resolved.robot.name;
     // The initial command is checked at 1 kHz: the period is the host's, known at the first cycle.
     const Verdict verdict =
-        resolved->cartesian()
-            ? checkRenderable(config.initial_cartesian, resolved->gain_bound, 1e-3)
-            : checkRenderable(config.initial_joint, resolved->gain_bound, 1e-3);
+        resolved.cartesian()
+            ? checkRenderable(config.initial_cartesian, resolved.gain_bound, 1e-3)
+            : checkRenderable(config.initial_joint, resolved.gain_bound, 1e-3);
     if (!verdict.accepted) {
       throw InputError(InputErrc::kOutOfRange, config.name, "initial",
                        verdict.message + " at 1 kHz; lower it, or set validation.max_wn_period");
@@ -162,11 +180,17 @@ std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig&
   }
   const StabilityGuardConfig& guard = config.stability_guard;
   if (guard.enabled && guard.energy_window_s > 0.0) {
-    parameters.guard_inertia =
-        resolved->gain_bound.joint_inertia.size() == dof
-            ? resolved->gain_bound.joint_inertia
-            : lightestInertias(model, declaredArmature(resolved->robot, model)).joint_inertia;
+    resolved.parameters.guard_inertia =
+        resolved.gain_bound.joint_inertia.size() == resolved.dof
+            ? resolved.gain_bound.joint_inertia
+            : lightestInertias(model, declaredArmature(resolved.robot, model)).joint_inertia;
   }
+}
+
+/// Step 5: choices that cannot hold together.
+void checkConsistency(const ResolvedController& resolved) {
+  const WrapperConfig& config = resolved.config;
+  const CycleParameters& parameters = resolved.parameters;
   if (parameters.force_control.source == ForceSource::kObserver && !parameters.observer.enabled) {
     throw InputError(InputErrc::kInconsistent, config.name, "force_control.source",
                      isAdmittance(config.output.mode)
@@ -175,6 +199,18 @@ std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig&
                                ") runs no observer; use sensor"
                          : "observer, but observer.enabled is false");
   }
+}
+
+}  // namespace
+
+std::shared_ptr<const ResolvedController> resolveController(const WrapperConfig& input) {
+  auto resolved = std::make_shared<ResolvedController>();
+  resolved->config = input;
+  loadModelAndPlugin(*resolved);
+  compileParameters(*resolved);
+  adaptToOutputMode(*resolved);
+  boundGains(*resolved);
+  checkConsistency(*resolved);
   return resolved;
 }
 

@@ -7,17 +7,6 @@
 #include "comply/core/clock.hpp"
 
 namespace comply::pipeline {
-namespace {
-
-/// "sec.nanosec s", exact; nanosec in [0, 1e9) as on the wire, also before the epoch.
-std::string stampText(std::int64_t stamp_ns) {
-  const StampParts parts = splitStamp(stamp_ns);
-  const std::string fraction = std::to_string(parts.nanosec);
-  return std::to_string(parts.sec) + "." + std::string(9 - fraction.size(), '0') + fraction + " s";
-}
-
-}  // namespace
-
 std::string_view toString(CommandReason reason) {
   return rejectionReasonName(static_cast<std::size_t>(reason));
 }
@@ -78,19 +67,12 @@ CommandReason CommandGate::admitLocked(const Offer& offer, bool active, CommandO
          << options_.max_stamp_lead_s << " s: validation.max_stamp_lead_s)";
     return rejectLocked(outcome, CommandReason::kFutureStamp, text.str());
   }
-  if (accepted_any_ && offer.stamp_ns <= last_accepted_ns_) {
-    return rejectLocked(outcome, commandReason(RejectionReason::kStaleStamp),
-                        "stamp " + stampText(offer.stamp_ns) +
-                            " is not newer than the last accepted " + stampText(last_accepted_ns_));
-  }
   return CommandReason::kNone;
 }
 
-void CommandGate::acceptLocked(const Offer& offer, CommandOutcome& outcome) {
-  accepted_any_ = true;
-  last_accepted_ns_ = offer.stamp_ns;
-  // The wrapper sees stamp_s, the stamp in seconds: noteCycle() reports it back in that unit.
-  pending_.push_back({stampSeconds(offer.stamp_ns), std::move(outcome)});
+void CommandGate::acceptLocked(std::uint64_t sequence, CommandOutcome& outcome) {
+  outcome.sequence = sequence;
+  pending_.push_back({sequence, std::move(outcome)});
 }
 
 CommandReason CommandGate::rejectLocked(CommandOutcome& outcome, CommandReason reason,
@@ -114,7 +96,7 @@ void CommandGate::settle() {
   while (const Applied* next = applied_.front()) {
     const Applied event = *next;
     applied_.pop();
-    while (!pending_.empty() && pending_.front().stamp_s <= event.stamp_s) {
+    while (!pending_.empty() && pending_.front().sequence <= event.sequence) {
       CommandOutcome& outcome = pending_.front().outcome;
       outcome.applied = true;
       outcome.reason = CommandReason::kNone;
@@ -164,11 +146,6 @@ void CommandGate::releasePublisher(std::uint64_t publisher) {
   if (holder_ == publisher) {
     holder_ = 0;
   }
-}
-
-void CommandGate::clearStampFloor() {
-  const std::lock_guard<std::mutex> lock(mutex_);
-  accepted_any_ = false;
 }
 
 std::vector<CommandOutcome> CommandGate::takeOutcomes() {

@@ -31,8 +31,8 @@ const Vector6d* Controller::contactWrench(ForceSource source) const noexcept {
   if (observer) {
     return &observer_.wrench();
   }
-  if (source != ForceSource::kObserver && sensor_valid_) {
-    return &sensor_wrench_;
+  if (source != ForceSource::kObserver && wrist_.valid()) {
+    return &wrist_.wrench();
   }
   return nullptr;
 }

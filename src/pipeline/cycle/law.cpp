@@ -7,15 +7,15 @@
 namespace comply::pipeline {
 
 bool Controller::runLaw() noexcept {
-  output_.message[0] = '\0';
-  if (plugin_->step(input_, busPointer(lawBus()), output_) != COMPLY_OK) {
+  law_output_.message[0] = '\0';
+  if (plugin_->step(input_, busPointer(lawBus()), law_output_) != COMPLY_OK) {
     // A plugin may leave its message unterminated; never read past the buffer.
-    output_.message[COMPLY_MESSAGE_CAPACITY - 1] = '\0';
-    enterFault("plugin: ", output_.message[0] != '\0' ? output_.message : "step failed");
+    law_output_.message[COMPLY_MESSAGE_CAPACITY - 1] = '\0';
+    enterFault("plugin: ", law_output_.message[0] != '\0' ? law_output_.message : "step failed");
     return false;
   }
   for (int i = 0; i < dof_; ++i) {
-    torque_[i] = output_.torque[i];
+    torque_[i] = law_output_.torque[i];
   }
   law_torque_ = torque_;  // kept apart for a saturation that scales the law's torque alone
   if (!torque_.allFinite()) {

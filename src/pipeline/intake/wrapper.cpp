@@ -1,5 +1,7 @@
 #include "comply/pipeline/wrapper.hpp"
 
+#include <cmath>
+#include <limits>
 #include <string>
 
 #include "comply/pipeline/command_bus.hpp"
@@ -38,8 +40,7 @@ std::string commandsWaiting() {
 
 template <typename Command>
 Wrapper<Command>::Wrapper(std::shared_ptr<const ResolvedController> resolved)
-    : controller_(checkedKind(std::move(resolved), kKind<Command>)),
-      output_(controller_.resolved()) {}
+    : controller_(checkedKind(std::move(resolved), kKind<Command>)) {}
 
 template <typename Command>
 Wrapper<Command>::Wrapper(const WrapperConfig& config) : Wrapper(resolveController(config)) {}
@@ -47,7 +48,8 @@ Wrapper<Command>::Wrapper(const WrapperConfig& config) : Wrapper(resolveControll
 template <typename Command>
 void Wrapper<Command>::reset() {
   const std::lock_guard<std::mutex> lock(intake_mutex_);
-  last_stamp_s_ = 0.0;  // as the command gate's floor: a stamp that ran ahead locks no one out
+  floor_ns_ = 0;  // a stamp that ran ahead locks no one out
+  accepted_any_ = false;
   IntakeMessage message;
   message.type = IntakeMessage::Type::kReset;
   message.command = emptyBus(kKind<Command>);
@@ -70,25 +72,71 @@ std::string Wrapper<Command>::tare() {
 }
 
 template <typename Command>
-Verdict Wrapper<Command>::account(Verdict verdict, double stamp_s) {
+typename Wrapper<Command>::IntakeStamp Wrapper<Command>::directStamp(double stamp_s) noexcept {
+  const bool finite = std::isfinite(stamp_s);
+  return {.ns = finite ? stampNanoseconds(stamp_s) : 0, .names_command = false, .finite = finite};
+}
+
+template <typename Command>
+Verdict Wrapper<Command>::checkFloor(const IntakeStamp& stamp) const {
+  if (!stamp.finite) {
+    return {};  // the validation refuses it as non-finite
+  }
+  const auto stale = [](std::string why) {
+    return Verdict{false, RejectionReason::kStaleStamp,
+                   std::string(toString(RejectionReason::kStaleStamp)) + ": " + why};
+  };
+  if (stamp.names_command) {
+    if (accepted_any_ && stamp.ns <= floor_ns_) {
+      return stale("stamp " + stampText(stamp.ns) + " is not newer than the last accepted " +
+                   stampText(floor_ns_));
+    }
+  } else if (stamp.ns < floor_ns_) {
+    return stale("stamp is older than the last accepted command");
+  }
+  return {};
+}
+
+template <typename Command>
+void Wrapper<Command>::accept(const IntakeStamp& stamp, const Command& gains, Verdict& verdict) {
+  floor_ns_ = stamp.ns;
+  accepted_any_ = true;
+  verdict.sequence = ++last_sequence_;
+  intake_gains_ = gains;
+}
+
+template <typename Command>
+Verdict Wrapper<Command>::account(Verdict verdict, const IntakeStamp& stamp) {
   Diagnostics& diagnostics = controller_.diagnostics();
-  if (!verdict.accepted) {
+  if (verdict.accepted) {
+    diagnostics.commands_accepted.fetch_add(1);
+  } else if (!stamp.names_command) {
     diagnostics.rejections[static_cast<std::size_t>(verdict.reason)].fetch_add(1);
     diagnostics.setRejection("command rejected: ", verdict.message.c_str());
-    return verdict;
   }
-  last_stamp_s_ = stamp_s;
-  diagnostics.commands_accepted.fetch_add(1);
   return verdict;
 }
 
 template <typename Command>
 Verdict Wrapper<Command>::submit(const Command& command) {
+  return submitStamped(command, directStamp(command.stamp_s));
+}
+
+template <typename Command>
+Verdict Wrapper<Command>::submit(const Command& command, std::int64_t wire_stamp_ns) {
+  return submitStamped(command, {.ns = wire_stamp_ns, .names_command = true});
+}
+
+template <typename Command>
+Verdict Wrapper<Command>::submitStamped(const Command& command, const IntakeStamp& stamp) {
   const std::lock_guard<std::mutex> lock(intake_mutex_);
+  if (Verdict stale = checkFloor(stamp); !stale.accepted) {
+    return account(std::move(stale), stamp);
+  }
   const int dof = controller_.dof();
   const MeasuredPose measured = controller_.measuredPose();
   Command checked = Command::zero(dof);
-  checked.stamp_s = last_stamp_s_;
+  checked.stamp_s = -std::numeric_limits<double>::infinity();  // the floor is checked above
   Verdict verdict =
       validateAndMerge(command, controller_.resolved().config.validation, dof, measured, checked);
   Command gains = Command::zero(dof);
@@ -99,13 +147,14 @@ Verdict Wrapper<Command>::submit(const Command& command) {
     IntakeMessage message;
     message.command = toBus(checked, dof);
     std::get<BusOf<Command>>(message.command).fields = static_cast<std::uint32_t>(command.fields);
+    message.id = nextId(stamp);
     if (!controller_.enqueue(message)) {
       verdict = queueFull(commandsWaiting());
     } else {
-      intake_gains_ = gains;
+      accept(stamp, gains, verdict);
     }
   }
-  return account(std::move(verdict), command.stamp_s);
+  return account(std::move(verdict), stamp);
 }
 
 template <typename Command>
@@ -130,12 +179,28 @@ Verdict Wrapper<Command>::checkGains(const Command& command, CommandField fields
 
 template <typename Command>
 Verdict Wrapper<Command>::submitChunk(const Chunk<Command>& chunk, double host_time_s) {
+  return submitChunkStamped(chunk, host_time_s, directStamp(chunk.stamp_s));
+}
+
+template <typename Command>
+Verdict Wrapper<Command>::submitChunk(const Chunk<Command>& chunk, double host_time_s,
+                                      std::int64_t wire_stamp_ns) {
+  return submitChunkStamped(chunk, host_time_s, {.ns = wire_stamp_ns, .names_command = true});
+}
+
+template <typename Command>
+Verdict Wrapper<Command>::submitChunkStamped(const Chunk<Command>& chunk, double host_time_s,
+                                             const IntakeStamp& stamp) {
   const std::lock_guard<std::mutex> lock(intake_mutex_);
+  if (Verdict stale = checkFloor(stamp); !stale.accepted) {
+    return account(std::move(stale), stamp);
+  }
   const int dof = controller_.dof();
   const MeasuredPose measured = controller_.measuredPose();
   Chunk<Command> checked = chunk;
-  Verdict verdict = validateChunk(checked, controller_.resolved().config.validation, dof, measured,
-                                  last_stamp_s_, host_time_s);
+  Verdict verdict =
+      validateChunk(checked, controller_.resolved().config.validation, dof, measured,
+                    -std::numeric_limits<double>::infinity(), host_time_s);  // floor: above
   // Each waypoint's gains as the chunk reaches them, merged into what is in force before it.
   Command gains = intakeGains();
   for (const ChunkWaypoint<Command>& waypoint : checked.waypoints) {
@@ -154,6 +219,7 @@ Verdict Wrapper<Command>::submitChunk(const Chunk<Command>& chunk, double host_t
     message.type = IntakeMessage::Type::kChunk;
     message.command = emptyBus(kKind<Command>);
     message.chunk_slot = chunks.load(checked, host_to_controller_s);
+    message.id = nextId(stamp);
     if (message.chunk_slot < 0) {
       verdict =
           queueFull("all " + std::to_string(ChunkPlayer::kSlots) +
@@ -162,10 +228,10 @@ Verdict Wrapper<Command>::submitChunk(const Chunk<Command>& chunk, double host_t
       chunks.release(message.chunk_slot);
       verdict = queueFull(commandsWaiting());
     } else {
-      intake_gains_ = gains;
+      accept(stamp, gains, verdict);
     }
   }
-  return account(std::move(verdict), chunk.stamp_s);
+  return account(std::move(verdict), stamp);
 }
 
 template <typename Command>

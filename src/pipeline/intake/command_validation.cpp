@@ -67,6 +67,12 @@ Verdict validateAndMergeAny(const Command& incoming, const ValidationConfig& lim
 
 }  // namespace
 
+std::string stampText(std::int64_t stamp_ns) {
+  const StampParts parts = splitStamp(stamp_ns);
+  const std::string fraction = std::to_string(parts.nanosec);
+  return std::to_string(parts.sec) + "." + std::string(9 - fraction.size(), '0') + fraction + " s";
+}
+
 MeasuredPose measuredPoseFrom(const JointVector& position, const model::Data& data) noexcept {
   MeasuredPose pose;
   pose.position = position;

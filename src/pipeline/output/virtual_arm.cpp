@@ -1,53 +1,58 @@
-// Output modes position and velocity: admittance. The law runs on a virtual arm (q_v, dq_v)
-// instead of the measured one; its torque, plus the wrist sensor's wrench
-// (Controller::sensorWrench: the declared tool's weight and the tare off) mapped to the joints,
-// accelerates the virtual arm,
-//   (M(q_v) + J^T A J) ddq_v = tau_law(q_v, dq_v) + J(q_v)^T w_ext,
-// where A is the inertia added at the TCP (output.admittance.added_*, task frame). The virtual arm
-// has no gravity, friction or Coriolis force; the arm's own position or velocity control carries
-// those. At rest the law's spring balances the external wrench, so the arm renders the commanded
-// stiffness, whatever the inertia. Semi-implicit Euler, one step per cycle, then the bounds:
-// joint acceleration, joint speed (a share of the URDF limit), the URDF position limits.
-//
-// Drift: the virtual arm is kept within max_tracking_error_rad of the measured one per joint (an
-// arm blocked by a wall or lagging its command cannot wind the virtual arm up); in velocity mode
-// the command adds velocity_correction_per_s (q_v - q), so the drives' own integration error does
-// not accumulate. FAULT holds the measured position of the fault's first cycle (the virtual arm
-// waits there); a non-finite state passes to the controller, which faults on it.
+// The virtual arm of the admittance modes (virtual_arm.hpp).
 
 #include <algorithm>
 #include <cmath>
 
+#include "comply/pipeline/virtual_arm.hpp"
+
+#include "comply/pipeline/controller.hpp"
 #include "comply/pipeline/output_stage.hpp"
 
 namespace comply::pipeline {
 
-bool OutputStage::admittance(Controller& controller, const JointState& state, double period_s,
-                             ActuatorCommand& command) noexcept {
-  const bool measured = state.usable(dof_);
-  if (measured) {
-    last_measured_ = state.position;
-    keepNearMeasured(state);
-  }
-  virtual_.wrench = state.wrench;  // the raw reading: the controller takes the tool and tare off
-  virtual_.wrench_valid = state.wrench_valid;
-  const std::span<double> torque(command.effort.data(),
-                                 static_cast<std::size_t>(command.effort.size()));
-  const CycleStatus status = controller.update(measured ? virtual_ : state, period_s, torque);
-  if (status == CycleStatus::kInactive) {
-    return false;
-  }
-  if (status == CycleStatus::kFault) {
-    holdMeasured(state, command);
-    return true;
-  }
-  holding_ = false;
-  integrate(controller, period_s, command);
-  writeMotion(state, command);
-  return true;
+VirtualArm::VirtualArm(const ResolvedController& resolved)
+    : parameters_(resolved.parameters),
+      dof_(resolved.dof),
+      velocity_mode_(resolved.parameters.output.mode == OutputMode::kVelocity),
+      added_inertia_(
+          (resolved.parameters.output.admittance.added_mass_kg.array() > 0.0).any() ||
+          (resolved.parameters.output.admittance.added_inertia_kg_m2.array() > 0.0).any()) {
+  virtual_ = JointState::zero(dof_);
+  last_measured_.setZero(dof_);
+  hold_position_.setZero(dof_);
+  inertia_.setZero(dof_, dof_);
+  virtual_torque_.setZero(dof_);
+  acceleration_.setZero(dof_);
 }
 
-void OutputStage::keepNearMeasured(const JointState& state) noexcept {
+void VirtualArm::reset(const JointState& state) noexcept {
+  virtual_.position = state.position;
+  virtual_.velocity = state.velocity;
+  virtual_.effort.setZero(dof_);
+  last_measured_ = state.position;
+  acceleration_.setZero(dof_);
+  holding_ = false;
+}
+
+const JointState& VirtualArm::lawState(const JointState& measured) noexcept {
+  const bool usable = measured.usable(dof_);
+  if (usable) {
+    last_measured_ = measured.position;
+    keepNearMeasured(measured);
+  }
+  virtual_.wrench = measured.wrench;  // the raw reading: the controller takes the tool and tare off
+  virtual_.wrench_valid = measured.wrench_valid;
+  return usable ? virtual_ : measured;
+}
+
+void VirtualArm::step(const Controller& controller, const JointState& measured, double period_s,
+                      ActuatorCommand& command) noexcept {
+  holding_ = false;
+  integrate(controller, period_s, command);
+  writeMotion(measured, command);
+}
+
+void VirtualArm::keepNearMeasured(const JointState& state) noexcept {
   const double bound = parameters_.output.admittance.max_tracking_error_rad;
   for (int i = 0; i < dof_; ++i) {
     const double error = virtual_.position[i] - state.position[i];
@@ -60,7 +65,7 @@ void OutputStage::keepNearMeasured(const JointState& state) noexcept {
   }
 }
 
-void OutputStage::integrate(const Controller& controller, double period_s,
+void VirtualArm::integrate(const Controller& controller, double period_s,
                             const ActuatorCommand& command) noexcept {
   const AdmittanceConfig& admittance = parameters_.output.admittance;
   const model::Data& data = controller.modelData();
@@ -99,7 +104,7 @@ void OutputStage::integrate(const Controller& controller, double period_s,
   }
 }
 
-void OutputStage::addInertia(const Controller& controller) noexcept {
+void VirtualArm::addInertia(const Controller& controller) noexcept {
   const AdmittanceConfig& admittance = parameters_.output.admittance;
   const model::Data& data = controller.modelData();
   const auto n = static_cast<Eigen::Index>(dof_);
@@ -117,7 +122,7 @@ void OutputStage::addInertia(const Controller& controller) noexcept {
   inertia_.noalias() += weighted.transpose() * weighted;
 }
 
-void OutputStage::addPayload(const model::Data& data, bool sensed) noexcept {
+void VirtualArm::addPayload(const model::Data& data, bool sensed) noexcept {
   // The sensor's reading carries the payload's inertial force -m a_com; it is given that force
   // back from the virtual arm's last acceleration (what the drives follow), with the centre of
   // mass moving by J_com = J_linear - [r]x J_angular. The payload's mass joins the virtual arm:
@@ -141,18 +146,18 @@ void OutputStage::addPayload(const model::Data& data, bool sensed) noexcept {
   }
 }
 
-void OutputStage::writeMotion(const JointState& state, ActuatorCommand& command) const noexcept {
+void VirtualArm::writeMotion(const JointState& state, ActuatorCommand& command) const noexcept {
   const double correction = parameters_.output.admittance.velocity_correction_per_s;
   for (int i = 0; i < dof_; ++i) {
     command.position[i] = virtual_.position[i];
     command.velocity[i] =
-        mode() == OutputMode::kVelocity
+        velocity_mode_
             ? virtual_.velocity[i] + correction * (virtual_.position[i] - state.position[i])
             : virtual_.velocity[i];
   }
 }
 
-void OutputStage::holdMeasured(const JointState& state, ActuatorCommand& command) noexcept {
+void VirtualArm::hold(const JointState& state, ActuatorCommand& command) noexcept {
   if (!holding_) {
     holding_ = true;
     hold_position_ = last_measured_;
@@ -163,7 +168,7 @@ void OutputStage::holdMeasured(const JointState& state, ActuatorCommand& command
   const double correction = parameters_.output.admittance.velocity_correction_per_s;
   for (int i = 0; i < dof_; ++i) {
     command.position[i] = hold_position_[i];
-    command.velocity[i] = mode() == OutputMode::kVelocity && measured
+    command.velocity[i] = velocity_mode_ && measured
                               ? correction * (hold_position_[i] - state.position[i])
                               : 0.0;
   }

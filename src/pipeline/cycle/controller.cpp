@@ -29,14 +29,20 @@ Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
       parameters_(resolved_->parameters),
       dof_(resolved_->dof),
       data_(*resolved_->model),
-      shaper_(ShapingLimits{parameters_.filter_alpha, parameters_.torque_rate_limit,
-                            parameters_.effort_limit}),
       measured_(MeasuredPose{}),
       in_force_(emptyBus(resolved_->command_kind)),
+      frozen_(parameters_.frozen_state_timeout_s),
+      wrist_(*resolved_),
+      guard_(*resolved_),
       active_(initialBus(*resolved_)),
+      chunks_(resolved_->command_kind, dof_, parameters_.chunk_blend_time_s),
+      watchdog_(parameters_.command_timeout_s),
       gains_(parameters_.gain_ramps, parameters_.passivity),
       force_bus_(emptyBus(resolved_->command_kind)),
-      chunks_(resolved_->command_kind, dof_, parameters_.chunk_blend_time_s) {
+      shaper_(ShapingLimits{parameters_.filter_alpha, parameters_.torque_rate_limit,
+                            parameters_.effort_limit}),
+      safe_hold_(parameters_, dof_),
+      output_stage_(*resolved_) {
   data_.payload = parameters_.payload;
   plugin_ = std::make_unique<plugin::PluginInstance>(resolved_->plugin, dof_,
                                                      resolved_->config.plugin_parameters);
@@ -67,15 +73,6 @@ Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
   torque_.setZero(dof_);
   law_torque_.setZero(dof_);
   scratch_.setZero(dof_);
-  hold_gravity_.setZero(dof_);
-  overspeed_s_.setZero(dof_);
-  saturated_s_.setZero(dof_);
-  const StabilityGuardConfig& guard = parameters_.stability_guard;
-  energy_watch_.configure({.window_s = guard.enabled ? guard.energy_window_s : 0.0,
-                           .growth = guard.energy_growth,
-                           .floor_j = guard.energy_floor_j},
-                          {parameters_.guard_inertia.data(),
-                           static_cast<std::size_t>(parameters_.guard_inertia.size())});
   input_.dof = dof_;
 }
 
@@ -95,7 +92,7 @@ void Controller::activate(const JointState& state) {
                              ": the model could not be evaluated at this state");
   }
   state_ = state;
-  keepHoldingGravity();  // a FAULT in the first cycle holds at this state
+  safe_hold_.keepGravity(data_);  // a FAULT in the first cycle holds at this state
   time_s_ = 0.0;
   fillPluginInput(state_, data_, quantities_, time_s_, period_s_, input_);
 
@@ -105,6 +102,7 @@ void Controller::activate(const JointState& state) {
        message = intake_.front()) {
     if (message->type == IntakeMessage::Type::kCommand) {
       mergeInto(active_, message->command);
+      id_in_force_ = message->id;
     } else if (message->type == IntakeMessage::Type::kChunk) {
       chunks_.release(message->chunk_slot);  // a chunk's times were for the cycle that ran
     }
@@ -120,32 +118,32 @@ void Controller::activate(const JointState& state) {
   }
   plugin_->trialStep(input_, busPointer(seeded));  // throws before anything changes
   active_ = seeded;
-  gains_.reset(active_, data_, state_, diagnostics_);
-  in_force_changed_ = false;
   // Start the rate limit from what the joints carry now, so the first torque does not jump. Of
   // that, a robot that compensates gravity itself supplies the gravity: comply's share is the rest.
   torque_ = state_.effort.allFinite() ? state_.effort : data_.gravity.head(dof_);
   if (parameters_.hardware_compensates_gravity) {
     torque_ -= data_.gravity.head(dof_);
   }
-  shaper_.reset(torque_);
-  observer_.reset();  // the torque before activation is not known
-  force_.reset();
-  force_active_ = false;
-  sensor_filtered_ = false;  // the wrist sensor's low-pass starts from the next reading
-  repeated_cycles_ = 0;
-  state_frozen_ = false;
-  sequence_seen_ = false;
-  overspeed_s_.setZero(dof_);
-  saturated_s_.setZero(dof_);
-  energy_watch_.reset();
-  last_command_time_s_ = 0.0;
-  watchdog_expired_ = false;
+  resetStages();
+  in_force_changed_ = false;
   reset_pending_ = false;
   state_usable_ = true;
   measured_.publishFromSoleWriter(currentPose());  // the cycle is not running during activation
   publishInForce();
   diagnostics_.state.store(WrapperState::kActive);
+}
+
+void Controller::resetStages() noexcept {
+  frozen_.reset();
+  observer_.reset();  // the torque before activation is not known
+  wrist_.reset();     // its low-pass starts from the next reading; the tare stays
+  guard_.reset();
+  watchdog_.reset();
+  gains_.reset(active_, data_, state_, diagnostics_);
+  force_.reset();
+  force_active_ = false;
+  shaper_.reset(torque_);
+  output_stage_.reset(state_);
 }
 
 void Controller::deactivate() noexcept {
@@ -178,7 +176,7 @@ void Controller::warm(const JointState& last_state) noexcept {
     }
   };
   touch(&input_, sizeof input_);
-  touch(&output_, sizeof output_);
+  touch(&law_output_, sizeof law_output_);
   touch(busPointer(active_), sizeof(CommandBus));
   touch(busPointer(lawBus()), sizeof(CommandBus));
 }

@@ -1,0 +1,57 @@
+// The control cycle as two tables of contents (controller.hpp): cycle() for the drives around
+// update(), the law's cycle. Each stage lives in its own file; this one only says in which order
+// they run and where a failure leads.
+
+#include "comply/pipeline/controller.hpp"
+
+namespace comply::pipeline {
+
+bool Controller::cycle(const JointState& state, double period_s,
+                       ActuatorCommand& command) noexcept {
+  command.mode = output_stage_.mode();
+  const std::span<double> torque(command.effort.data(),
+                                 static_cast<std::size_t>(command.effort.size()));
+  const JointState& law_state = output_stage_.lawState(state);  // output/output_stage.cpp
+  const CycleStatus status = update(law_state, period_s, torque);
+  return output_stage_.write(status, *this, state, period_s, command);
+}
+
+CycleStatus Controller::update(const JointState& state, double period_s,
+                               std::span<double> torque) noexcept {
+  advanceClock(period_s);
+  if (diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kInactive) {
+    return CycleStatus::kInactive;
+  }
+  if (static_cast<int>(torque.size()) < dof_) {
+    enterFault("output: ", "torque buffer smaller than the number of joints");
+    return CycleStatus::kFault;
+  }
+  state_usable_ = measure(state);  // measure.cpp; FAULT on a bad state
+  if (state_usable_) {
+    guardMotion();  // guard.cpp; FAULT on a runaway (the state stays usable for the hold)
+  }
+  takeCommands();  // commands.cpp
+  watchdog();      // commands.cpp
+  if (diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kFault) {
+    // A reset is consumed either way: one refused for a bad state is not carried to a later cycle.
+    const bool reset = reset_pending_ && state_usable_;
+    reset_pending_ = false;
+    if (!reset) {
+      return hold(torque);  // torque.cpp
+    }
+    diagnostics_.state.store(WrapperState::kActive, std::memory_order_relaxed);
+  }
+  reset_pending_ = false;
+  guardGains();     // gains.cpp
+  applyForce();     // force.cpp
+  if (!runLaw()) {  // law.cpp
+    return hold(torque);
+  }
+  compensate();                          // torque.cpp
+  if (!shape() || !guardSaturation()) {  // torque.cpp; guard.cpp
+    return hold(torque);
+  }
+  return write(torque);
+}
+
+}  // namespace comply::pipeline
