@@ -123,11 +123,11 @@ class EnergyTank {
   /// Gershgorin bounds of the gains in force (Cartesian): the smallest damping (ratio mode: the
   /// smallest stiffness) and the largest stiffness per block, and the smallest damping ratio.
   struct Bounds {
-    double translational = 0.0;
-    double rotational = 0.0;
+    double translational = 0.0;  ///< [N s/m]; ratio mode [N/m]
+    double rotational = 0.0;     ///< [N m s/rad]; ratio mode [N m/rad]
     double ratio = 0.0;
-    double stiffest_translational = 0.0;
-    double stiffest_rotational = 0.0;
+    double stiffest_translational = 0.0;  ///< [N/m]
+    double stiffest_rotational = 0.0;     ///< [N m/rad]
   } bounds_;
 
   // Refill window: the error increments (position minus commanded velocity times time) summed
