@@ -116,8 +116,6 @@ void GainGuard::reset(const CommandBus& command, const model::Data& data, const 
   publish(diagnostics);
 }
 
-}
-
 GainGuard::StiffnessStack GainGuard::stiffnessOf(const CommandBus& bus) noexcept {
   StiffnessStack stack;
   if (const auto* cartesian = std::get_if<Cartesian>(&bus)) {
