@@ -1,35 +1,18 @@
 #pragma once
 // Stage "gains": what stands between the gains a command asks for and the gains the control law
-// sees, so that it holds for every law, generated C included, without the law knowing.
+// sees, so that it holds for every law, generated C included, without the law knowing. Each
+// cycle a change of gains goes through two limits in turn:
 //
 //   ramps  every stiffness, damping and damping-ratio entry moves toward the command at most at
-//          its configured rate, the task frame at most at its angular rate (gain_ramps.*).
-//   tank   an energy tank pays for what a change of stiffness or task frame injects into the
-//          springs at the current error, dV = 1/2 e^T (K_base,new - K_base,old) e with
-//          K_base = R K R^T (Ferraguti et al., T-RO 2015). When it cannot pay, the change made
-//          this cycle is scaled back to what it can pay: the gains stay where they are and go on
-//          as the tank refills, never falling back. A decrease is always allowed; the energy it
-//          releases is credited only up to what the tank paid and has not had back, so a
-//          decrease cannot fill the tank with energy it never held. The nullspace has its own
-//          account (Dietrich et al., RA-L 2017).
+//          its configured rate, the task frame at most at its angular rate (gain_ramps.hpp).
+//   tank   the energy tank pays for what the stiffness and frame part of that step injects into
+//          the springs; what it cannot pay is held back this cycle and offered again the next
+//          (energy_tank.hpp). Damping injects nothing and is only ramped.
 //
-// Refill. The damping dissipates at least d_min |J dq - v_d|^2 (d_min: a lower bound of the
-// damping matrix), and over a window of w seconds the integral of |x'|^2 is at least
-// |x(w) - x(0)|^2 / w (Cauchy-Schwarz). The tank is credited that bound, computed from position
-// increments minus the commanded velocity times the time: measured velocity never enters, so
-// its noise cannot create energy. With damping ratios, the damping is the law's
-// D = 2 S (Lambda # K) S (# the matrix geometric mean, monotone in both arguments), bounded
-// below from K, the ratios and Lambda^-1 = J M^-1 J^T, evaluated once per window and only while
-// the tank is not full. The nullspace account has no refill: the projected damping's
-// dissipation has no lower bound as cheap; it spends its initial energy and what decreases give
-// back.
-//
-// What the energy is computed from: the TCP pose error against the command's pose and the task
-// frame as commanded (a law that turns the frame with the measured tool, task_frame_reference:
-// tcp, rotates it further; the tank then sees only the commanded part), and for the nullspace
-// 1/2 sum k_i (q_ns,i - q_i)^2. Real-time: no allocation, no lock, no exception.
+// A new command's motion fields and feedforward pass at once; only its gains are held. With
+// nothing to hold back, the law reads the command bit for bit. Real-time: no allocation, no
+// lock, no exception.
 
-#include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 
 #include "comply/core/capacity.hpp"
@@ -38,25 +21,9 @@
 #include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/config.hpp"
 #include "comply/pipeline/diagnostics.hpp"
+#include "comply/pipeline/energy_tank.hpp"
 
 namespace comply::pipeline {
-
-/// One energy account: what it holds, and what it paid and has not had back.
-struct EnergyAccount {
-  double energy_j = 0.0;
-  double outstanding_j = 0.0;  ///< paid for increases, not yet returned by decreases
-  double max_j = 0.0;
-  double min_j = 0.0;
-
-  /// The part of `injection_j` (> 0) it can pay; takes it.
-  double pay(double injection_j) noexcept;
-  /// A decrease released `released_j` (> 0): credits what was paid and is not back yet.
-  void takeBack(double released_j) noexcept;
-  /// Credits `credit_j` up to the ceiling; returns what was taken.
-  double refill(double credit_j) noexcept;
-  /// [J] what it can spend before the floor.
-  [[nodiscard]] double spendable() const noexcept { return energy_j - min_j; }
-};
 
 class GainGuard {
  public:
@@ -86,27 +53,12 @@ class GainGuard {
   /// Every stiffness entry of a bus, for the fraction of a change in force: the two task blocks
   /// and the nullspace (Cartesian) or the joints.
   using StiffnessStack = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 18 + kMaxDof, 1>;
-  using JacobianTranspose = Eigen::Matrix<double, Eigen::Dynamic, 6, 0, kMaxDof, 6>;
 
   /// Move the gains in force toward `target`; true once they are the target's.
   bool updateCartesian(const comply_cartesian_command& target, const model::Data& data,
                        const JointState& state, double period_s) noexcept;
   bool updateJoint(const comply_joint_command& target, const JointState& state,
                    double period_s) noexcept;
-  /// The eigenvalue bounds the refill reads, from the gains in force (after they moved).
-  void cacheBounds() noexcept;
-  /// Pays what `account` can of a change that injects `injected_j` (of `full_j` the whole
-  /// change would have), or takes back what a decrease released.
-  void settle(EnergyAccount& account, double full_j, double injected_j) noexcept;
-  void openWindow(bool ratio) noexcept;
-  void refillCartesian(const comply_cartesian_command& gains, const model::Data& data,
-                       double period_s, bool torque_clipped) noexcept;
-  void refillJoint(const comply_joint_command& gains, const JointState& state, double period_s,
-                   bool torque_clipped) noexcept;
-  /// Ratio mode: from the window's smallest stiffness bounds (in: translational, rotational
-  /// [N/m, N m/rad]) a lower bound of the law's damping (out: [N s/m, N m s/rad]).
-  bool ratioDampingBound(const model::Data& data, double& translational,
-                         double& rotational) noexcept;
   static StiffnessStack stiffnessOf(const CommandBus& bus) noexcept;
   [[nodiscard]] double gainFraction() const noexcept;
   void publish(Diagnostics& diagnostics) const noexcept;
@@ -116,20 +68,7 @@ class GainGuard {
   CommandBus law_;
   bool pending_ = false;   ///< the gains in force are not yet the command's
   double fraction_ = 1.0;  ///< gainFraction() as of the last change
-  /// Gershgorin bounds of the gains in force (Cartesian): the smallest damping (ratio mode: the
-  /// smallest stiffness) and the largest stiffness per block, and the smallest damping ratio.
-  struct Bounds {
-    double translational = 0.0;
-    double rotational = 0.0;
-    double ratio = 0.0;
-    double stiffest_translational = 0.0;
-    double stiffest_rotational = 0.0;
-  } bounds_;
-  EnergyAccount task_;
-  EnergyAccount nullspace_;
-  double injected_j_ = 0.0;
-  double dissipated_j_ = 0.0;
-  double refused_j_ = 0.0;  ///< this cycle's, not a total: a held-back change is offered again
+  EnergyTank tank_;
 
   // The commanded stiffness and task frame, and how far the gains in force were from them when
   // they were commanded.
@@ -137,27 +76,6 @@ class GainGuard {
   double from_distance_ = 0.0;
   Eigen::Quaterniond target_frame_ = Eigen::Quaterniond::Identity();
   double from_angle_ = 0.0;  ///< [rad]
-
-  // Refill window: the error increments (position minus commanded velocity times time) summed
-  // since it opened, and the smallest damping (ratio mode: stiffness and ratio) seen in it.
-  static constexpr double kWindowS = 0.01;
-  bool window_open_ = false;
-  bool window_ratio_ = false;
-  bool window_clipped_ = false;  ///< shaping clipped a torque in the window: it credits nothing
-  double window_elapsed_s_ = 0.0;
-  Vector6d window_increment_ = Vector6d::Zero();
-  double window_translational_ = 0.0;
-  double window_rotational_ = 0.0;
-  double window_ratio_min_ = 0.0;
-  double window_stiffest_translational_ = 0.0;  ///< largest stiffness seen: the sampling's share
-  double window_stiffest_rotational_ = 0.0;
-  JointVector joint_window_increment_;
-  JointVector window_joint_damping_;
-  JointVector window_joint_stiffest_;
-  Eigen::Vector3d previous_position_ = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond previous_orientation_ = Eigen::Quaterniond::Identity();
-  JointVector previous_joints_;
-  Eigen::LLT<JointMatrix> mass_factor_;
 };
 
 }  // namespace comply::pipeline

@@ -1,10 +1,8 @@
 #pragma once
 // The curves a chunk is evaluated on (chunk_player.cpp): the cubic Hermite basis of a segment
-// between two waypoints, the quintic that blends a new chunk in from the reference in force, and
-// the SO(3) exponential and its right Jacobian for orientation segments. Real-time safe.
-
-#include <Eigen/Geometry>
-#include <cmath>
+// between two waypoints and the quintic that blends a new chunk in from the reference in force.
+// Orientation segments use the SO(3) exponential and right Jacobian of comply/core/rotation.hpp.
+// Real-time safe.
 
 namespace comply::pipeline::curve {
 
@@ -45,45 +43,6 @@ inline QuinticWeights quinticDecay(double s) noexcept {
       {-30 * s2 + 60 * s3 - 30 * s4, 1 - 18 * s2 + 32 * s3 - 15 * s4,
        s - 4.5 * s2 + 6 * s3 - 2.5 * s4},
       {-60 * s + 180 * s2 - 120 * s3, -36 * s + 96 * s2 - 60 * s3, 1 - 9 * s + 18 * s2 - 10 * s3}};
-}
-
-inline Eigen::Matrix3d hat(const Eigen::Vector3d& v) noexcept {
-  Eigen::Matrix3d m;
-  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return m;
-}
-
-/// exp of a rotation vector as a unit quaternion.
-inline Eigen::Quaterniond expRotation(const Eigen::Vector3d& phi) noexcept {
-  const double angle = phi.norm();
-  if (angle < 1e-12) {
-    return Eigen::Quaterniond(1.0, 0.5 * phi.x(), 0.5 * phi.y(), 0.5 * phi.z()).normalized();
-  }
-  return Eigen::Quaterniond(Eigen::AngleAxisd(angle, phi / angle));
-}
-
-/// The right Jacobian of SO(3): the body angular velocity of Exp(phi(t)) is J_r(phi) dphi/dt.
-inline Eigen::Matrix3d rightJacobian(const Eigen::Vector3d& phi) noexcept {
-  const double angle = phi.norm();
-  const Eigen::Matrix3d skew = hat(phi);
-  if (angle < 1e-6) {
-    return Eigen::Matrix3d::Identity() - 0.5 * skew + skew * skew / 6.0;
-  }
-  const double a2 = angle * angle;
-  return Eigen::Matrix3d::Identity() - (1 - std::cos(angle)) / a2 * skew +
-         (angle - std::sin(angle)) / (a2 * angle) * skew * skew;
-}
-
-/// Its inverse (|phi| < pi).
-inline Eigen::Matrix3d rightJacobianInverse(const Eigen::Vector3d& phi) noexcept {
-  const double angle = phi.norm();
-  const Eigen::Matrix3d skew = hat(phi);
-  if (angle < 1e-6) {
-    return Eigen::Matrix3d::Identity() + 0.5 * skew + skew * skew / 12.0;
-  }
-  const double a2 = angle * angle;
-  const double k = 1.0 / a2 - (1 + std::cos(angle)) / (2 * angle * std::sin(angle));
-  return Eigen::Matrix3d::Identity() + 0.5 * skew + k * skew * skew;
 }
 
 }  // namespace comply::pipeline::curve

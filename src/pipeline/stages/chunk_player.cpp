@@ -138,7 +138,7 @@ void addOffset(const CartesianOffset& e, const curve::QuinticWeights& w, double 
   // The rotation's rates add as vectors, which holds to first order in the offset's angle (the
   // exact rate of Exp(e) q has Jacobian terms in e): the offset is small when a chunk continues
   // the one before it, and the orientation itself stays continuous whatever its size.
-  m.orientation = (curve::expRotation(rotation[0]) * m.orientation).normalized();
+  m.orientation = (quaternionExp(rotation[0]) * m.orientation).normalized();
   m.angular_velocity += rotation[1];
   m.angular_acceleration += rotation[2];
 }

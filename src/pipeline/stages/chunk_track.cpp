@@ -74,8 +74,7 @@ void derive(Track<Cartesian>& track) {
   track.time_s[0] = leadInTime(track);
   w[0] = w[1];
   Vector3Map(w[0].position) = ConstVector3Map(w[1].position) - 0.5 * lead_s * Vector3d(w[1].twist);
-  toXyzw((first * curve::expRotation(-0.5 * lead_s * first_body_rate)).normalized(),
-         w[0].orientation);
+  toXyzw((first * quaternionExp(-0.5 * lead_s * first_body_rate)).normalized(), w[0].orientation);
   Eigen::Map<Vector6d>(w[0].twist).setZero();
 
   for (int k = 0; k + 1 < n; ++k) {
@@ -89,7 +88,7 @@ void derive(Track<Cartesian>& track) {
     const double length = track.time_s[k + 1] - track.time_s[k];
     rotation.phi = quaternionLog(relative);
     rotation.slope0 = length * (q0.toRotationMatrix().transpose() * Vector3d(w[k].twist + 3));
-    rotation.slope1 = length * curve::rightJacobianInverse(rotation.phi) *
+    rotation.slope1 = length * rightJacobianInverse(rotation.phi) *
                       (q1.toRotationMatrix().transpose() * Vector3d(w[k + 1].twist + 3));
   }
 }
@@ -146,10 +145,10 @@ CartesianMotion motionAt(const Track<Cartesian>& track, const Place& place) noex
   const Vector3d dphi = (w.first[1] * r.slope0 + w.first[2] * r.phi + w.first[3] * r.slope1) / h;
   const Vector3d ddphi =
       (w.second[1] * r.slope0 + w.second[2] * r.phi + w.second[3] * r.slope1) / (h * h);
-  motion.orientation = (fromXyzw(a.orientation) * curve::expRotation(phi)).normalized();
+  motion.orientation = (fromXyzw(a.orientation) * quaternionExp(phi)).normalized();
   // d/dt (R J_r dphi) = R (J_r ddphi + dJ_r/dt dphi): the second term, quadratic in the
   // segment's rate, is left out of the acceleration (a feedforward, not the path).
-  const Eigen::Matrix3d to_base = motion.orientation.toRotationMatrix() * curve::rightJacobian(phi);
+  const Eigen::Matrix3d to_base = motion.orientation.toRotationMatrix() * rightJacobian(phi);
   motion.angular_velocity = to_base * dphi;
   motion.angular_acceleration = to_base * ddphi;
   return motion;
