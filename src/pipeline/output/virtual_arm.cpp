@@ -1,10 +1,11 @@
 // The virtual arm of the admittance modes (virtual_arm.hpp).
 
+#include "comply/pipeline/virtual_arm.hpp"
+
 #include <algorithm>
 #include <cmath>
 
-#include "comply/pipeline/virtual_arm.hpp"
-
+#include "comply/core/rotation.hpp"
 #include "comply/pipeline/controller.hpp"
 #include "comply/pipeline/output_stage.hpp"
 
@@ -133,8 +134,7 @@ void VirtualArm::addPayload(const model::Data& data, bool sensed) noexcept {
   const auto n = static_cast<Eigen::Index>(dof_);
   const double mass = parameters_.payload.mass_kg;
   const Eigen::Vector3d arm = data.tip_rotation * parameters_.payload.com_in_tip;
-  Eigen::Matrix3d cross;
-  cross << 0.0, -arm.z(), arm.y(), arm.z(), 0.0, -arm.x(), -arm.y(), arm.x(), 0.0;
+  const Eigen::Matrix3d cross = skew(arm);
   Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::ColMajor, 3, kMaxDof> com_jacobian(3, n);
   com_jacobian.noalias() = data.jacobian.topLeftCorner(3, n);
   com_jacobian.noalias() -= cross * data.jacobian.bottomLeftCorner(3, n);
