@@ -34,65 +34,72 @@ std::string seconds(std::uint64_t ns) {
   return text.str();
 }
 
-}  // namespace
-
-int inspectCommand(const InspectOptions& options, std::ostream& out, std::ostream& err) {
-  std::map<std::uint16_t, ChannelTally> tallies;
-  record::McapContents contents;
-  try {
-    contents = record::readMcap(options.file, [&](const record::McapMessageView& m) {
-      ChannelTally& tally = tallies[m.channel_id];
-      tally.first_ns = tally.count == 0 ? m.log_time_ns : std::min(tally.first_ns, m.log_time_ns);
-      tally.last_ns = std::max(tally.last_ns, m.log_time_ns);
-      ++tally.count;
-    });
-  } catch (const record::McapError& error) {
-    err << "comply inspect: " << error.what() << "\n";
-    return 2;
-  }
+/// The log-time span over every channel; `any` is false when no channel holds a message.
+struct LogSpan {
   std::uint64_t first = 0;
   std::uint64_t last = 0;
   bool any = false;
+};
+
+LogSpan logSpan(const std::map<std::uint16_t, ChannelTally>& tallies) {
+  LogSpan span;
   for (const auto& [id, tally] : tallies) {
     if (tally.count > 0) {
-      first = any ? std::min(first, tally.first_ns) : tally.first_ns;
-      last = any ? std::max(last, tally.last_ns) : tally.last_ns;
-      any = true;
+      span.first = span.any ? std::min(span.first, tally.first_ns) : tally.first_ns;
+      span.last = span.any ? std::max(span.last, tally.last_ns) : tally.last_ns;
+      span.any = true;
     }
   }
-  const auto file_bytes = std::filesystem::file_size(options.file);
+  return span;
+}
 
-  if (options.json) {
-    nlohmann::json document;
-    document["file"] = options.file;
-    document["bytes"] = file_bytes;
-    document["profile"] = contents.profile;
-    document["library"] = contents.library;
-    document["complete"] = contents.complete;
-    document["stopped"] = contents.stopped;
-    document["chunks"] = contents.chunks;
-    document["messages"] = contents.messages;
-    document["chunk_bytes"] = contents.chunk_bytes;
-    document["uncompressed_chunk_bytes"] = contents.uncompressed_chunk_bytes;
-    document["start_ns"] = first;
-    document["end_ns"] = last;
-    document["channels"] = nlohmann::json::array();
-    for (const record::McapChannelInfo& channel : contents.channels) {
-      const ChannelTally tally = tallies[channel.id];
-      document["channels"].push_back({{"id", channel.id},
-                                      {"topic", channel.topic},
-                                      {"type", channel.schema_name},
-                                      {"count", tally.count},
-                                      {"rate_hz", rateHz(tally)}});
-    }
-    document["metadata"] = nlohmann::json::object();
-    for (const auto& [name, map] : contents.metadata) {
-      document["metadata"][name] = map;
-    }
-    out << document.dump(2) << "\n";
-    return contents.complete ? 0 : 1;
+/// Reads the whole file, counting each channel's messages and their log-time span.
+record::McapContents readAndTally(const std::string& file,
+                                  std::map<std::uint16_t, ChannelTally>& tallies) {
+  return record::readMcap(file, [&](const record::McapMessageView& m) {
+    ChannelTally& tally = tallies[m.channel_id];
+    tally.first_ns = tally.count == 0 ? m.log_time_ns : std::min(tally.first_ns, m.log_time_ns);
+    tally.last_ns = std::max(tally.last_ns, m.log_time_ns);
+    ++tally.count;
+  });
+}
+
+void printJson(const InspectOptions& options, std::uintmax_t file_bytes,
+               const record::McapContents& contents, std::map<std::uint16_t, ChannelTally>& tallies,
+               const LogSpan& span, std::ostream& out) {
+  nlohmann::json document;
+  document["file"] = options.file;
+  document["bytes"] = file_bytes;
+  document["profile"] = contents.profile;
+  document["library"] = contents.library;
+  document["complete"] = contents.complete;
+  document["stopped"] = contents.stopped;
+  document["chunks"] = contents.chunks;
+  document["messages"] = contents.messages;
+  document["chunk_bytes"] = contents.chunk_bytes;
+  document["uncompressed_chunk_bytes"] = contents.uncompressed_chunk_bytes;
+  document["start_ns"] = span.first;
+  document["end_ns"] = span.last;
+  document["channels"] = nlohmann::json::array();
+  for (const record::McapChannelInfo& channel : contents.channels) {
+    const ChannelTally tally = tallies[channel.id];
+    document["channels"].push_back({{"id", channel.id},
+                                    {"topic", channel.topic},
+                                    {"type", channel.schema_name},
+                                    {"count", tally.count},
+                                    {"rate_hz", rateHz(tally)}});
   }
+  document["metadata"] = nlohmann::json::object();
+  for (const auto& [name, map] : contents.metadata) {
+    document["metadata"][name] = map;
+  }
+  out << document.dump(2) << "\n";
+}
 
+/// Size, writer, compression, time span and completeness, ahead of the channel table.
+void printFileSummary(const InspectOptions& options, std::uintmax_t file_bytes,
+                      const record::McapContents& contents, const LogSpan& span,
+                      std::ostream& out) {
   out << options.file << ": " << std::fixed << std::setprecision(1)
       << static_cast<double>(file_bytes) / 1e6 << " MB, " << contents.messages << " messages in "
       << contents.chunks << " chunks, written by " << contents.library << " (profile "
@@ -104,14 +111,18 @@ int inspectCommand(const InspectOptions& options, std::ostream& out, std::ostrea
         << "x: " << static_cast<double>(contents.uncompressed_chunk_bytes) / 1e6
         << " MB of messages\n";
   }
-  if (any) {
-    out << "time span: " << seconds(last - first) << " s (log time " << seconds(first) << " to "
-        << seconds(last) << " s)\n";
+  if (span.any) {
+    out << "time span: " << seconds(span.last - span.first) << " s (log time "
+        << seconds(span.first) << " to " << seconds(span.last) << " s)\n";
   }
   if (!contents.complete) {
     out << "INCOMPLETE: " << contents.stopped
         << "; everything up to the last complete chunk is listed\n";
   }
+}
+
+void printChannelTable(const record::McapContents& contents,
+                       std::map<std::uint16_t, ChannelTally>& tallies, std::ostream& out) {
   out << "\n  " << std::left << std::setw(28) << "topic" << std::setw(34) << "type" << std::right
       << std::setw(10) << "messages" << std::setw(12) << "rate [Hz]"
       << "\n";
@@ -121,6 +132,9 @@ int inspectCommand(const InspectOptions& options, std::ostream& out, std::ostrea
         << channel.schema_name << std::right << std::setw(10) << tally.count << std::setw(12)
         << std::setprecision(1) << rateHz(tally) << "\n";
   }
+}
+
+void printMetadata(const record::McapContents& contents, std::ostream& out) {
   for (const auto& [name, map] : contents.metadata) {
     if (name == "comply_recording") {
       out << "\ndropped records: " << map.at("records_dropped") << " (written "
@@ -136,6 +150,28 @@ int inspectCommand(const InspectOptions& options, std::ostream& out, std::ostrea
   }
   if (!contents.complete) {
     out << "\n(no dropped-record count: it is written when a recording closes)\n";
+  }
+}
+
+}  // namespace
+
+int inspectCommand(const InspectOptions& options, std::ostream& out, std::ostream& err) {
+  std::map<std::uint16_t, ChannelTally> tallies;
+  record::McapContents contents;
+  try {
+    contents = readAndTally(options.file, tallies);
+  } catch (const record::McapError& error) {
+    err << "comply inspect: " << error.what() << "\n";
+    return 2;
+  }
+  const LogSpan span = logSpan(tallies);
+  const auto file_bytes = std::filesystem::file_size(options.file);
+  if (options.json) {
+    printJson(options, file_bytes, contents, tallies, span, out);
+  } else {
+    printFileSummary(options, file_bytes, contents, span, out);
+    printChannelTable(contents, tallies, out);
+    printMetadata(contents, out);
   }
   return contents.complete ? 0 : 1;
 }
