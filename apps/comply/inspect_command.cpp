@@ -34,6 +34,17 @@ std::string seconds(std::uint64_t ns) {
   return text.str();
 }
 
+/// Reads the whole file, counting each channel's messages and their log-time span.
+record::McapContents readAndTally(const std::string& file,
+                                  std::map<std::uint16_t, ChannelTally>& tallies) {
+  return record::readMcap(file, [&](const record::McapMessageView& m) {
+    ChannelTally& tally = tallies[m.channel_id];
+    tally.first_ns = tally.count == 0 ? m.log_time_ns : std::min(tally.first_ns, m.log_time_ns);
+    tally.last_ns = std::max(tally.last_ns, m.log_time_ns);
+    ++tally.count;
+  });
+}
+
 /// The log-time span over every channel; `any` is false when no channel holds a message.
 struct LogSpan {
   std::uint64_t first = 0;
@@ -53,87 +64,7 @@ LogSpan logSpan(const std::map<std::uint16_t, ChannelTally>& tallies) {
   return span;
 }
 
-/// Reads the whole file, counting each channel's messages and their log-time span.
-record::McapContents readAndTally(const std::string& file,
-                                  std::map<std::uint16_t, ChannelTally>& tallies) {
-  return record::readMcap(file, [&](const record::McapMessageView& m) {
-    ChannelTally& tally = tallies[m.channel_id];
-    tally.first_ns = tally.count == 0 ? m.log_time_ns : std::min(tally.first_ns, m.log_time_ns);
-    tally.last_ns = std::max(tally.last_ns, m.log_time_ns);
-    ++tally.count;
-  });
-}
-
-void printJson(const InspectOptions& options, std::uintmax_t file_bytes,
-               const record::McapContents& contents, std::map<std::uint16_t, ChannelTally>& tallies,
-               const LogSpan& span, std::ostream& out) {
-  nlohmann::json document;
-  document["file"] = options.file;
-  document["bytes"] = file_bytes;
-  document["profile"] = contents.profile;
-  document["library"] = contents.library;
-  document["complete"] = contents.complete;
-  document["stopped"] = contents.stopped;
-  document["chunks"] = contents.chunks;
-  document["messages"] = contents.messages;
-  document["chunk_bytes"] = contents.chunk_bytes;
-  document["uncompressed_chunk_bytes"] = contents.uncompressed_chunk_bytes;
-  document["start_ns"] = span.first;
-  document["end_ns"] = span.last;
-  document["channels"] = nlohmann::json::array();
-  for (const record::McapChannelInfo& channel : contents.channels) {
-    const ChannelTally tally = tallies[channel.id];
-    document["channels"].push_back({{"id", channel.id},
-                                    {"topic", channel.topic},
-                                    {"type", channel.schema_name},
-                                    {"count", tally.count},
-                                    {"rate_hz", rateHz(tally)}});
-  }
-  document["metadata"] = nlohmann::json::object();
-  for (const auto& [name, map] : contents.metadata) {
-    document["metadata"][name] = map;
-  }
-  out << document.dump(2) << "\n";
-}
-
-/// Size, writer, compression, time span and completeness, ahead of the channel table.
-void printFileSummary(const InspectOptions& options, std::uintmax_t file_bytes,
-                      const record::McapContents& contents, const LogSpan& span,
-                      std::ostream& out) {
-  out << options.file << ": " << std::fixed << std::setprecision(1)
-      << static_cast<double>(file_bytes) / 1e6 << " MB, " << contents.messages << " messages in "
-      << contents.chunks << " chunks, written by " << contents.library << " (profile "
-      << contents.profile << ")\n";
-  if (contents.uncompressed_chunk_bytes > contents.chunk_bytes) {
-    out << "chunks compressed " << std::setprecision(1)
-        << static_cast<double>(contents.uncompressed_chunk_bytes) /
-               static_cast<double>(std::max<std::uint64_t>(contents.chunk_bytes, 1))
-        << "x: " << static_cast<double>(contents.uncompressed_chunk_bytes) / 1e6
-        << " MB of messages\n";
-  }
-  if (span.any) {
-    out << "time span: " << seconds(span.last - span.first) << " s (log time "
-        << seconds(span.first) << " to " << seconds(span.last) << " s)\n";
-  }
-  if (!contents.complete) {
-    out << "INCOMPLETE: " << contents.stopped
-        << "; everything up to the last complete chunk is listed\n";
-  }
-}
-
-void printChannelTable(const record::McapContents& contents,
-                       std::map<std::uint16_t, ChannelTally>& tallies, std::ostream& out) {
-  out << "\n  " << std::left << std::setw(28) << "topic" << std::setw(34) << "type" << std::right
-      << std::setw(10) << "messages" << std::setw(12) << "rate [Hz]"
-      << "\n";
-  for (const record::McapChannelInfo& channel : contents.channels) {
-    const ChannelTally tally = tallies[channel.id];
-    out << "  " << std::left << std::setw(28) << channel.topic << std::setw(34)
-        << channel.schema_name << std::right << std::setw(10) << tally.count << std::setw(12)
-        << std::setprecision(1) << rateHz(tally) << "\n";
-  }
-}
-
+/// The file's metadata records: the recorder's own counts in words, any other as key=value.
 void printMetadata(const record::McapContents& contents, std::ostream& out) {
   for (const auto& [name, map] : contents.metadata) {
     if (name == "comply_recording") {
@@ -164,15 +95,69 @@ int inspectCommand(const InspectOptions& options, std::ostream& out, std::ostrea
     err << "comply inspect: " << error.what() << "\n";
     return 2;
   }
-  const LogSpan span = logSpan(tallies);
+  const auto [first, last, any] = logSpan(tallies);
   const auto file_bytes = std::filesystem::file_size(options.file);
+
   if (options.json) {
-    printJson(options, file_bytes, contents, tallies, span, out);
-  } else {
-    printFileSummary(options, file_bytes, contents, span, out);
-    printChannelTable(contents, tallies, out);
-    printMetadata(contents, out);
+    nlohmann::json document;
+    document["file"] = options.file;
+    document["bytes"] = file_bytes;
+    document["profile"] = contents.profile;
+    document["library"] = contents.library;
+    document["complete"] = contents.complete;
+    document["stopped"] = contents.stopped;
+    document["chunks"] = contents.chunks;
+    document["messages"] = contents.messages;
+    document["chunk_bytes"] = contents.chunk_bytes;
+    document["uncompressed_chunk_bytes"] = contents.uncompressed_chunk_bytes;
+    document["start_ns"] = first;
+    document["end_ns"] = last;
+    document["channels"] = nlohmann::json::array();
+    for (const record::McapChannelInfo& channel : contents.channels) {
+      const ChannelTally tally = tallies[channel.id];
+      document["channels"].push_back({{"id", channel.id},
+                                      {"topic", channel.topic},
+                                      {"type", channel.schema_name},
+                                      {"count", tally.count},
+                                      {"rate_hz", rateHz(tally)}});
+    }
+    document["metadata"] = nlohmann::json::object();
+    for (const auto& [name, map] : contents.metadata) {
+      document["metadata"][name] = map;
+    }
+    out << document.dump(2) << "\n";
+    return contents.complete ? 0 : 1;
   }
+
+  out << options.file << ": " << std::fixed << std::setprecision(1)
+      << static_cast<double>(file_bytes) / 1e6 << " MB, " << contents.messages << " messages in "
+      << contents.chunks << " chunks, written by " << contents.library << " (profile "
+      << contents.profile << ")\n";
+  if (contents.uncompressed_chunk_bytes > contents.chunk_bytes) {
+    out << "chunks compressed " << std::setprecision(1)
+        << static_cast<double>(contents.uncompressed_chunk_bytes) /
+               static_cast<double>(std::max<std::uint64_t>(contents.chunk_bytes, 1))
+        << "x: " << static_cast<double>(contents.uncompressed_chunk_bytes) / 1e6
+        << " MB of messages\n";
+  }
+  if (any) {
+    out << "time span: " << seconds(last - first) << " s (log time " << seconds(first) << " to "
+        << seconds(last) << " s)\n";
+  }
+  if (!contents.complete) {
+    out << "INCOMPLETE: " << contents.stopped
+        << "; everything up to the last complete chunk is listed\n";
+  }
+  out << "\n  " << std::left << std::setw(28) << "topic" << std::setw(34) << "type" << std::right
+      << std::setw(10) << "messages" << std::setw(12) << "rate [Hz]"
+      << "\n";
+  for (const record::McapChannelInfo& channel : contents.channels) {
+    const ChannelTally tally = tallies[channel.id];
+    out << "  " << std::left << std::setw(28) << channel.topic << std::setw(34)
+        << channel.schema_name << std::right << std::setw(10) << tally.count << std::setw(12)
+        << std::setprecision(1) << rateHz(tally) << "\n";
+  }
+  printMetadata(contents, out);
   return contents.complete ? 0 : 1;
 }
 

@@ -37,6 +37,38 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
   return m;
 }
 
+std::string joinNames(const std::vector<std::string>& names) {
+  std::string joined;
+  for (const auto& name : names) {
+    joined += (joined.empty() ? "" : ", ") + name;
+  }
+  return joined;
+}
+
+bool isMovable(int type) {
+  return type == urdf::Joint::REVOLUTE || type == urdf::Joint::CONTINUOUS ||
+         type == urdf::Joint::PRISMATIC;
+}
+
+std::string_view jointTypeName(int type) {
+  switch (type) {
+    case urdf::Joint::REVOLUTE:
+      return "revolute";
+    case urdf::Joint::CONTINUOUS:
+      return "continuous";
+    case urdf::Joint::PRISMATIC:
+      return "prismatic";
+    case urdf::Joint::FLOATING:
+      return "floating";
+    case urdf::Joint::PLANAR:
+      return "planar";
+    case urdf::Joint::FIXED:
+      return "fixed";
+    default:
+      return "unknown";
+  }
+}
+
 /// Mass properties of a set of rigidly connected links, accumulated in one frame.
 struct MassAccumulator {
   double mass = 0.0;
@@ -73,6 +105,77 @@ struct MassAccumulator {
     first_moment += inertial.mass * com;
   }
 };
+
+// The caller's joint order is kept, so each requested name must name exactly one URDF joint.
+std::map<std::string, int> indexRequestedJoints(const urdf::ModelInterface& urdf,
+                                                const std::vector<std::string>& joint_names) {
+  std::map<std::string, int> user_index;
+  std::vector<std::string> unknown;
+  std::vector<std::string> duplicate;
+  for (int i = 0; i < static_cast<int>(joint_names.size()); ++i) {
+    const std::string& name = joint_names[i];
+    if (!urdf.getJoint(name)) {
+      unknown.push_back(name);
+    } else if (!user_index.emplace(name, i).second) {
+      duplicate.push_back(name);
+    }
+  }
+  if (!unknown.empty()) {
+    throw ModelError(ModelErrc::kUnknownJoint,
+                     "robot '" + urdf.getName() + "' has no joint named: " + joinNames(unknown));
+  }
+  if (!duplicate.empty()) {
+    throw ModelError(ModelErrc::kDuplicateJoint,
+                     "joints requested more than once: " + joinNames(duplicate));
+  }
+  return user_index;
+}
+
+// Every movable joint on the path is controlled and nothing else is, so no joint is silently
+// locked or ignored; returns the number of controlled joints.
+std::size_t checkChainMatchesRequest(const std::vector<urdf::JointConstSharedPtr>& path,
+                                     const std::map<std::string, int>& user_index,
+                                     const ModelOptions& options, const std::string& base_name) {
+  std::vector<std::string> missing;
+  std::vector<std::string> on_path;
+  for (const auto& joint : path) {
+    if (joint->type == urdf::Joint::FLOATING || joint->type == urdf::Joint::PLANAR ||
+        joint->type == urdf::Joint::UNKNOWN) {
+      throw ModelError(ModelErrc::kUnsupportedJoint,
+                       "joint '" + joint->name + "' between '" + base_name + "' and '" +
+                           options.tip_frame + "' is " + std::string(jointTypeName(joint->type)) +
+                           "; only revolute, continuous, prismatic and fixed joints are supported");
+    }
+    if (isMovable(joint->type)) {
+      on_path.push_back(joint->name);
+      if (user_index.count(joint->name) == 0) {
+        missing.push_back(joint->name);
+      }
+    }
+  }
+  std::vector<std::string> off_chain;
+  for (const auto& name : options.joint_names) {
+    if (std::find(on_path.begin(), on_path.end(), name) == on_path.end()) {
+      off_chain.push_back(name);
+    }
+  }
+  if (!off_chain.empty()) {
+    throw ModelError(ModelErrc::kJointNotInChain, "joints not movable between '" + base_name +
+                                                      "' and '" + options.tip_frame +
+                                                      "': " + joinNames(off_chain));
+  }
+  if (!missing.empty()) {
+    throw ModelError(ModelErrc::kMissingJoint,
+                     "movable joints between '" + base_name + "' and '" + options.tip_frame +
+                         "' not listed as controlled: " + joinNames(missing));
+  }
+  if (on_path.size() > static_cast<std::size_t>(kMaxDof)) {
+    throw ModelError(ModelErrc::kTooManyJoints, "the chain has " + std::to_string(on_path.size()) +
+                                                    " movable joints; at most " +
+                                                    std::to_string(kMaxDof) + " are supported");
+  }
+  return on_path.size();
+}
 
 // Precomputes the Rodrigues terms so the update evaluates a joint with one sin and one cos.
 void placeBody(const urdf::Joint& joint, const Eigen::Isometry3d& joint_in_parent,
