@@ -34,32 +34,68 @@ std::string seconds(std::uint64_t ns) {
   return text.str();
 }
 
+/// Reads the whole file, counting each channel's messages and their log-time span.
+record::McapContents readAndTally(const std::string& file,
+                                  std::map<std::uint16_t, ChannelTally>& tallies) {
+  return record::readMcap(file, [&](const record::McapMessageView& m) {
+    ChannelTally& tally = tallies[m.channel_id];
+    tally.first_ns = tally.count == 0 ? m.log_time_ns : std::min(tally.first_ns, m.log_time_ns);
+    tally.last_ns = std::max(tally.last_ns, m.log_time_ns);
+    ++tally.count;
+  });
+}
+
+/// The log-time span over every channel; `any` is false when no channel holds a message.
+struct LogSpan {
+  std::uint64_t first = 0;
+  std::uint64_t last = 0;
+  bool any = false;
+};
+
+LogSpan logSpan(const std::map<std::uint16_t, ChannelTally>& tallies) {
+  LogSpan span;
+  for (const auto& [id, tally] : tallies) {
+    if (tally.count > 0) {
+      span.first = span.any ? std::min(span.first, tally.first_ns) : tally.first_ns;
+      span.last = span.any ? std::max(span.last, tally.last_ns) : tally.last_ns;
+      span.any = true;
+    }
+  }
+  return span;
+}
+
+/// The file's metadata records: the recorder's own counts in words, any other as key=value.
+void printMetadata(const record::McapContents& contents, std::ostream& out) {
+  for (const auto& [name, map] : contents.metadata) {
+    if (name == "comply_recording") {
+      out << "\ndropped records: " << map.at("records_dropped") << " (written "
+          << map.at("records_written") << "); writer thread CPU " << map.at("writer_cpu_s")
+          << " s\n";
+    } else {
+      out << "\n" << name << ":";
+      for (const auto& [key, value] : map) {
+        out << " " << key << "=" << value;
+      }
+      out << "\n";
+    }
+  }
+  if (!contents.complete) {
+    out << "\n(no dropped-record count: it is written when a recording closes)\n";
+  }
+}
+
 }  // namespace
 
 int inspectCommand(const InspectOptions& options, std::ostream& out, std::ostream& err) {
   std::map<std::uint16_t, ChannelTally> tallies;
   record::McapContents contents;
   try {
-    contents = record::readMcap(options.file, [&](const record::McapMessageView& m) {
-      ChannelTally& tally = tallies[m.channel_id];
-      tally.first_ns = tally.count == 0 ? m.log_time_ns : std::min(tally.first_ns, m.log_time_ns);
-      tally.last_ns = std::max(tally.last_ns, m.log_time_ns);
-      ++tally.count;
-    });
+    contents = readAndTally(options.file, tallies);
   } catch (const record::McapError& error) {
     err << "comply inspect: " << error.what() << "\n";
     return 2;
   }
-  std::uint64_t first = 0;
-  std::uint64_t last = 0;
-  bool any = false;
-  for (const auto& [id, tally] : tallies) {
-    if (tally.count > 0) {
-      first = any ? std::min(first, tally.first_ns) : tally.first_ns;
-      last = any ? std::max(last, tally.last_ns) : tally.last_ns;
-      any = true;
-    }
-  }
+  const auto [first, last, any] = logSpan(tallies);
   const auto file_bytes = std::filesystem::file_size(options.file);
 
   if (options.json) {
@@ -121,22 +157,7 @@ int inspectCommand(const InspectOptions& options, std::ostream& out, std::ostrea
         << channel.schema_name << std::right << std::setw(10) << tally.count << std::setw(12)
         << std::setprecision(1) << rateHz(tally) << "\n";
   }
-  for (const auto& [name, map] : contents.metadata) {
-    if (name == "comply_recording") {
-      out << "\ndropped records: " << map.at("records_dropped") << " (written "
-          << map.at("records_written") << "); writer thread CPU " << map.at("writer_cpu_s")
-          << " s\n";
-    } else {
-      out << "\n" << name << ":";
-      for (const auto& [key, value] : map) {
-        out << " " << key << "=" << value;
-      }
-      out << "\n";
-    }
-  }
-  if (!contents.complete) {
-    out << "\n(no dropped-record count: it is written when a recording closes)\n";
-  }
+  printMetadata(contents, out);
   return contents.complete ? 0 : 1;
 }
 

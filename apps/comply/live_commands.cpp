@@ -28,10 +28,7 @@ void addClientOptions(CLI::App* command, ClientOptions& client) {
                       "(scripts/create-keystore.sh; docs/live-control.md)");
 }
 
-}  // namespace
-
-LiveCommands addLiveCommands(CLI::App& app) {
-  auto run = std::make_shared<RunOptions>();
+CLI::App* addRunCommand(CLI::App& app, RunOptions* run) {
   CLI::App* run_command = app.add_subcommand(
       "run", "the controller host: live commands over DDS (ROS 2 topics), state and diagnostics");
   run_command->add_option("--config", run->config_file, "controller YAML")->required();
@@ -81,8 +78,10 @@ LiveCommands addLiveCommands(CLI::App& app) {
       ->check(CLI::Range(0.0, 500.0));
   run_command->add_option("--record", run->record_path,
                           "record every cycle, command and outcome to this MCAP file");
+  return run_command;
+}
 
-  auto send = std::make_shared<SendOptions>();
+CLI::App* addSendCommand(CLI::App& app, SendOptions* send) {
   CLI::App* send_command = app.add_subcommand("send", "send a command (or a stream) to a host");
   addClientOptions(send_command, send->client);
   send_command->add_option("--json", send->json, "one command as a JSON object");
@@ -97,8 +96,10 @@ LiveCommands addLiveCommands(CLI::App& app) {
                    "activate, deactivate, reset (leave FAULT) or tare (the wrist sensor's zero)")
       ->check(CLI::IsMember(namesIn(transport::kRequestTypeNames)));
   send_command->add_flag("--no-wait", send->no_wait, "do not wait for the outcomes");
+  return send_command;
+}
 
-  auto echo = std::make_shared<EchoOptions>();
+CLI::App* addEchoCommand(CLI::App& app, EchoOptions* echo) {
   CLI::App* echo_command = app.add_subcommand("echo", "print a host's state or diagnostics");
   addClientOptions(echo_command, echo->client);
   echo_command->add_option("topic", echo->topic, "state, diagnostics or both")
@@ -107,6 +108,19 @@ LiveCommands addLiveCommands(CLI::App& app) {
   echo_command->add_flag("--json", echo->json, "one JSON object per line");
   echo_command->add_option("--count", echo->count, "stop after this many messages")
       ->check(CLI::NonNegativeNumber);
+  return echo_command;
+}
+
+}  // namespace
+
+LiveCommands addLiveCommands(CLI::App& app) {
+  // The options outlive this call: the parsed values are read when the command runs.
+  auto run = std::make_shared<RunOptions>();
+  auto send = std::make_shared<SendOptions>();
+  auto echo = std::make_shared<EchoOptions>();
+  CLI::App* run_command = addRunCommand(app, run.get());
+  CLI::App* send_command = addSendCommand(app, send.get());
+  CLI::App* echo_command = addEchoCommand(app, echo.get());
 
   LiveCommands commands;
   commands.parsed = [=] {

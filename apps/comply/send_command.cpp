@@ -167,6 +167,30 @@ bool handshake(transport::Writer<Message>& writer,
   return false;
 }
 
+/// How the i-th of `count` objects is read: on top of what is in force, named by its place.
+template <typename Command>
+schema::ReadOptions<Command> commandReadOptions(const SendOptions& options, std::size_t count,
+                                                std::size_t i, const Command& in_force) {
+  schema::ReadOptions<Command> read;
+  read.source = options.file.empty() ? "--json" : options.file;
+  read.allow_shorthand = true;  // typed by hand: a block as 1 or 3 numbers, a vector as 1
+  read.key_prefix = count > 1 ? "[" + std::to_string(i) + "]." : "";
+  read.base = in_force;
+  return read;
+}
+
+template <typename Command>
+void writeChunk(transport::Writer<transport::ChunkMessageOf<Command>>& writer,
+                const transport::Stamp& stamp, Chunk<Command> chunk) {
+  // A chunk's times are seconds after it is sent, on this machine's clock (the host's, on one
+  // machine).
+  transport::ChunkMessageOf<Command> message{{stamp, ""}, std::move(chunk)};
+  for (ChunkWaypoint<Command>& waypoint : message.chunk.waypoints) {
+    waypoint.time_s += stamp.seconds();
+  }
+  writer.write(message);
+}
+
 template <typename Message>
 int sendAll(Participant& participant, const SendOptions& options,
             const std::vector<nlohmann::json>& objects,
@@ -205,11 +229,8 @@ int sendAll(Participant& participant, const SendOptions& options,
   OutcomeCollector outcomes(diagnostics, participant.gid());
   auto next = std::chrono::steady_clock::now();
   for (std::size_t i = 0; i < objects.size(); ++i) {
-    schema::ReadOptions<Command> read;
-    read.source = options.file.empty() ? "--json" : options.file;
-    read.allow_shorthand = true;  // typed by hand: a block as 1 or 3 numbers, a vector as 1
-    read.key_prefix = objects.size() > 1 ? "[" + std::to_string(i) + "]." : "";
-    read.base = in_force;
+    const schema::ReadOptions<Command> read =
+        commandReadOptions(options, objects.size(), i, in_force);
     const bool chunk = schema::isChunkJson(objects[i]);
     // Read before the wait, so that a bad line stops the run before anything of it is sent.
     std::optional<Message> message;
@@ -225,13 +246,7 @@ int sendAll(Participant& participant, const SendOptions& options,
     next += period;
     const transport::Stamp stamp = nextStamp(last);
     if (chunk) {
-      // A chunk's times are seconds after it is sent, on this machine's clock (the host's, on
-      // one machine).
-      ChunkMessage chunk_message{{stamp, ""}, std::move(*waypoints)};
-      for (ChunkWaypoint<Command>& waypoint : chunk_message.chunk.waypoints) {
-        waypoint.time_s += stamp.seconds();
-      }
-      chunk_writer->write(chunk_message);
+      writeChunk(*chunk_writer, stamp, std::move(*waypoints));
     } else {
       message->header.stamp = stamp;
       writer.write(*message);

@@ -54,10 +54,7 @@ constexpr const char* kStatsDoc =
     "The recording's counts: dict(written, dropped, bytes, writer_cpu_s, error), or None "
     "without record=";
 
-}  // namespace
-
-PYBIND11_MODULE(_comply, m) {
-  m.doc() = "comply: live compliant control over DDS, and an in-process simulator";
+void translateRecordingErrors() {
   // A recording that cannot be created is the file system's answer, as open() gives it.
   py::register_exception_translator([](std::exception_ptr raised) {
     try {
@@ -68,7 +65,9 @@ PYBIND11_MODULE(_comply, m) {
       PyErr_SetString(PyExc_OSError, error.what());
     }
   });
+}
 
+void bindClient(py::module_& m) {
   py::class_<Client>(m, "Client", kClientDoc)
       .def(py::init<const std::string&, int, const std::string&, double,
                     const std::optional<std::filesystem::path>&,
@@ -104,7 +103,9 @@ PYBIND11_MODULE(_comply, m) {
       .def("recording_stats", &Client::recordingStats, kStatsDoc)
       .def_property_readonly("dof", &Client::dof)
       .def_property_readonly("cartesian", &Client::cartesian);
+}
 
+void bindSim(py::module_& m) {
   py::class_<Sim>(m, "Sim", kSimDoc)
       .def(py::init<const std::string&, const std::string&, int, double,
                     const std::optional<std::filesystem::path>&>(),
@@ -123,7 +124,9 @@ PYBIND11_MODULE(_comply, m) {
       .def_property_readonly("dof", &Sim::dof)
       .def_property_readonly("cartesian", &Sim::cartesian)
       .def_property_readonly("time", &Sim::time);
+}
 
+void bindTaskFrames(py::module_& m) {
   m.def(
       "frenet_frame",
       [](const Eigen::Vector3d& velocity, const Eigen::Vector3d& acceleration,
@@ -142,4 +145,14 @@ PYBIND11_MODULE(_comply, m) {
       },
       py::arg("tangent"), py::arg("surface_normal"),
       "Darboux frame of a curve on a surface as a task_frame quaternion (x y z w), or None");
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_comply, m) {
+  m.doc() = "comply: live compliant control over DDS, and an in-process simulator";
+  translateRecordingErrors();
+  bindClient(m);
+  bindSim(m);
+  bindTaskFrames(m);
 }

@@ -132,6 +132,31 @@ void printRecording(const HostRecording& recording, std::ostream& out) {
   out.unsetf(std::ios::floatfield);
 }
 
+/// Its receiving runs just below the control thread: a command waits for it, not the scheduler.
+std::unique_ptr<transport::HostTransport> openHostTransport(const LiveHostOptions& options) {
+  return transport::makeHostTransport(
+      options.transport, {.name = options.name,
+                          .domain_id = options.domain_id,
+                          .network = options.network,
+                          .receive_priority = options.priority > 1 ? options.priority - 1 : 0,
+                          .security = options.security});
+}
+
+/// The recording of --record; none without it.
+std::unique_ptr<HostRecording> openRecording(
+    const LiveHostOptions& options,
+    const std::shared_ptr<const pipeline::ResolvedController>& resolved,
+    const HardwareBackend& backend) {
+  if (options.record_path.empty()) {
+    return nullptr;
+  }
+  return std::make_unique<HostRecording>(
+      options.record_path, resolved, options.name,
+      record::StringMap{{"host", "comply run"},
+                        {"rate_hz", (std::ostringstream() << options.rate_hz).str()},
+                        {"hardware", backend.description}});
+}
+
 template <typename Command>
 int runWith(const LiveHostOptions& options,
             const std::shared_ptr<const pipeline::ResolvedController>& resolved,
@@ -145,12 +170,7 @@ int runWith(const LiveHostOptions& options,
     return 1;
   }
   wrapper.activate(state);
-  const std::unique_ptr<transport::HostTransport> transport = transport::makeHostTransport(
-      options.transport, {.name = options.name,
-                          .domain_id = options.domain_id,
-                          .network = options.network,
-                          .receive_priority = options.priority > 1 ? options.priority - 1 : 0,
-                          .security = options.security});
+  const std::unique_ptr<transport::HostTransport> transport = openHostTransport(options);
 
   const double period_s = 1.0 / options.rate_hz;
   pipeline::CommandGate gate(pipeline::gateOptions(resolved->config, resolved->cartesian()));
@@ -161,13 +181,8 @@ int runWith(const LiveHostOptions& options,
       {.period_s = period_s, .cycles = cycles, .warm_ahead_s = 1e-6 * options.warm_ahead_us});
   loop.setObserver(&observer);
   Intake<Command> intake(wrapper, observer, gate);
-  std::unique_ptr<HostRecording> recording;
-  if (!options.record_path.empty()) {
-    recording = std::make_unique<HostRecording>(
-        options.record_path, resolved, options.name,
-        record::StringMap{{"host", "comply run"},
-                          {"rate_hz", (std::ostringstream() << options.rate_hz).str()},
-                          {"hardware", backend.description}});
+  const std::unique_ptr<HostRecording> recording = openRecording(options, resolved, backend);
+  if (recording != nullptr) {
     observer.setRecording(recording.get());
     intake.setRecording(recording.get());
   }

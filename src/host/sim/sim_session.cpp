@@ -241,6 +241,39 @@ std::uint64_t cyclesIn(double seconds, double period_s) {
   return static_cast<std::uint64_t>(std::llround(seconds / period_s));
 }
 
+/// Runs the loop under a crash guard: log.csv is streamed while the loop runs, and a crashing or
+/// hanging plugin is named.
+template <typename Command>
+void runGuarded(const SimRunOptions& options, const pipeline::ResolvedController& resolved,
+                SimRecorder<Command>& recorder, hardware::ControlLoop& loop, SimResult& result) {
+  CrashGuard guard(resolved.plugin->path().string(),
+                   options.out_dir.empty() ? std::filesystem::path() : options.out_dir / "log.csv",
+                   kStepTimeoutS);
+  recorder.setGuard(&guard);  // it writes the header with the first row
+  loop.run();
+  recorder.setGuard(nullptr);
+  if (result.log.size() == 0) {  // no cycle ran: the header alone
+    std::ostringstream header;
+    writeLogHeader(result.log, header);
+    guard.append(header.str());
+  }
+  guard.flush();
+  if (const std::string error = guard.writeError(); !error.empty()) {
+    addMessage(result.summary, "log.csv is incomplete: writing it failed (" + error + ")",
+               options.progress);
+  }
+}
+
+void summarizeDiagnostics(const pipeline::DiagnosticsSnapshot& diagnostics, SimSummary& summary) {
+  summary.rejections = diagnostics.rejectionsTotal();
+  summary.rate_limit_hits = diagnostics.rate_limit_hits;
+  summary.effort_limit_hits = diagnostics.effort_limit_hits;
+  summary.faults = diagnostics.faults;
+  if (diagnostics.faults > 0) {
+    summary.fault_reason = diagnostics.last_fault;
+  }
+}
+
 template <typename Command>
 SimResult runWith(const SimRunOptions& options,
                   const std::shared_ptr<const pipeline::ResolvedController>& resolved) {
@@ -291,26 +324,7 @@ SimResult runWith(const SimRunOptions& options,
         record::StringMap{{"host", "comply sim"}, {"clock", "simulated"}});
     recorder.setRecording(recording.get(), resolved->robot.base_frame);
   }
-  {
-    // log.csv is streamed while the loop runs; a crashing or hanging plugin is named.
-    CrashGuard guard(
-        resolved->plugin->path().string(),
-        options.out_dir.empty() ? std::filesystem::path() : options.out_dir / "log.csv",
-        kStepTimeoutS);
-    recorder.setGuard(&guard);  // it writes the header with the first row
-    loop.run();
-    recorder.setGuard(nullptr);
-    if (result.log.size() == 0) {  // no cycle ran: the header alone
-      std::ostringstream header;
-      writeLogHeader(result.log, header);
-      guard.append(header.str());
-    }
-    guard.flush();
-    if (const std::string error = guard.writeError(); !error.empty()) {
-      addMessage(summary, "log.csv is incomplete: writing it failed (" + error + ")",
-                 options.progress);
-    }
-  }
+  runGuarded(options, *resolved, recorder, loop, result);
   clock.waitUntil(loop.nextCycleTime());  // the plant carries out the last torque written
   progress.finish();
   summary.wall_s = recorder.wallSeconds();
@@ -323,14 +337,7 @@ SimResult runWith(const SimRunOptions& options,
                                          stats.bytes,         stats.writer_cpu_s, stats.error};
   }
 
-  const pipeline::DiagnosticsSnapshot diagnostics = wrapper.diagnostics();
-  summary.rejections = diagnostics.rejectionsTotal();
-  summary.rate_limit_hits = diagnostics.rate_limit_hits;
-  summary.effort_limit_hits = diagnostics.effort_limit_hits;
-  summary.faults = diagnostics.faults;
-  if (diagnostics.faults > 0) {
-    summary.fault_reason = diagnostics.last_fault;
-  }
+  summarizeDiagnostics(wrapper.diagnostics(), summary);
   summarizeLog(result.log, task_source.motionEndTime(), summary);
   if (!result.log.cycle_cost_us.empty()) {
     summary.cycle_cost = summarize(result.log.cycle_cost_us);
