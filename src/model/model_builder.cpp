@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "chain_path.hpp"
+#include "comply/core/rotation.hpp"
 #include "comply/core/text_file.hpp"
 #include "comply/model/model.hpp"
 #include "comply/model/model_error.hpp"
@@ -29,12 +30,6 @@ Eigen::Isometry3d toIsometry(const urdf::Pose& pose) {
           .toRotationMatrix();
   transform.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
   return transform;
-}
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
 }
 
 std::string joinNames(const std::vector<std::string>& names) {
