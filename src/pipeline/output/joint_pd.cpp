@@ -14,9 +14,8 @@
 
 #include <cmath>
 
-#include "comply/pipeline/output_stage.hpp"
-
 #include "comply/pipeline/controller.hpp"
+#include "comply/pipeline/output_stage.hpp"
 
 namespace comply::pipeline {
 namespace {
