@@ -74,7 +74,7 @@ transport::CommandOutcomeMessage outcomeMessage(const pipeline::CommandOutcome& 
   message.outcome = outcome.applied ? transport::Outcome::kApplied : transport::Outcome::kRejected;
   message.reason = static_cast<transport::Reason>(outcome.reason);
   message.cycle = outcome.cycle;
-  message.sequence = outcome.sequence;
+  message.sequence_number = outcome.sequence;
   message.received = transport::Stamp::fromNanoseconds(outcome.received_ns);
   message.applied = transport::Stamp::fromNanoseconds(outcome.applied_ns);
   message.message = outcome.message;

@@ -37,7 +37,7 @@
   X(Vector6, tcp_twist, tcp_twist, {}, "[m/s, rad/s] measured TCP twist, linear first (J dq)") \
   X(Stamp, reference_stamp, reference_stamp, {}, "header.stamp of the newest command in force") \
   X(std::uint64_t, reference_sequence, reference_sequence, 0, \
-    "[-] the host's number for that command (CommandOutcome.sequence); 0: none taken yet") \
+    "[-] the host's number for that command (CommandOutcome.sequence_number); 0: none taken yet") \
   X(std::uint32_t, reference_fields, reference_fields, 0, "FIELD_* groups any command has set so far") \
   X(Vector3, reference_position, reference_position, {}, \
     "[m] TCP reference in force (Cartesian control)") \
@@ -82,7 +82,7 @@
   X(Outcome, outcome, outcome, Outcome::kApplied, "OUTCOME_*") \
   X(Reason, reason, reason, Reason::kNone, "REASON_*; REASON_NONE when applied") \
   X(std::uint64_t, cycle, cycle, 0, "[-] index of the control cycle that took it (applied)") \
-  X(std::uint64_t, sequence, sequence, 0, \
+  X(std::uint64_t, sequence_number, sequence_number, 0, \
     "[-] the host's number for it, in the order it accepted commands (applied; " \
     "ControllerState.reference_sequence names the one in force)") \
   X(Stamp, received, received, {}, "host wall clock when the host's reader took it") \
