@@ -77,78 +77,25 @@ class Reader {
     Cursor c(body);
     switch (opcode) {
       case mcap::kHeader:
-        contents_.profile = c.getString();
-        contents_.library = c.getString();
+        readHeader(c);
         break;
-      case mcap::kSchema: {
-        const auto id = c.get<std::uint16_t>();
-        Schema schema{c.getString(), c.getString(), c.getString()};
-        schemas_[id] = std::move(schema);
+      case mcap::kSchema:
+        readSchema(c);
         break;
-      }
-      case mcap::kChannel: {
-        McapChannelInfo channel;
-        channel.id = c.get<std::uint16_t>();
-        channel.schema_id = c.get<std::uint16_t>();
-        channel.topic = c.getString();
-        channel.message_encoding = c.getString();
-        channel.metadata = c.getStringMap();
-        if (const auto found = schemas_.find(channel.schema_id); found != schemas_.end()) {
-          channel.schema_name = found->second.name;
-          channel.schema_encoding = found->second.encoding;
-          channel.schema_data = found->second.data;
-        }
-        // The summary repeats the channels: keep the first of each id.
-        bool known = false;
-        for (const McapChannelInfo& existing : contents_.channels) {
-          known = known || existing.id == channel.id;
-        }
-        if (!known && c.ok()) {
-          contents_.channels.push_back(std::move(channel));
-        }
+      case mcap::kChannel:
+        readChannel(c);
         break;
-      }
       case mcap::kMessage:
-        if (on_message_) {
-          McapMessageView message;
-          message.channel_id = c.get<std::uint16_t>();
-          message.sequence = c.get<std::uint32_t>();
-          message.log_time_ns = c.get<std::uint64_t>();
-          message.publish_time_ns = c.get<std::uint64_t>();
-          message.data = c.getBytes(c.remaining());
-          if (c.ok()) {
-            on_message_(message);
-          }
-        }
-        ++contents_.messages;
+        readMessage(c);
         break;
       case mcap::kChunk:
-        return chunk(c, at);
-      case mcap::kMetadata: {
-        std::string name = c.getString();
-        contents_.metadata.emplace_back(std::move(name), c.getStringMap());
+        return readChunk(c, at);
+      case mcap::kMetadata:
+        readMetadata(c);
         break;
-      }
-      case mcap::kStatistics: {
-        McapStatistics s;
-        s.message_count = c.get<std::uint64_t>();
-        c.get<std::uint16_t>();  // schemas
-        c.get<std::uint32_t>();  // channels
-        c.get<std::uint32_t>();  // attachments
-        c.get<std::uint32_t>();  // metadata
-        s.chunk_count = c.get<std::uint32_t>();
-        s.message_start_time_ns = c.get<std::uint64_t>();
-        s.message_end_time_ns = c.get<std::uint64_t>();
-        const auto size = c.get<std::uint32_t>();
-        for (std::uint32_t i = 0; i + 10 <= size && c.ok(); i += 10) {
-          const auto channel = c.get<std::uint16_t>();
-          s.channel_message_counts[channel] = c.get<std::uint64_t>();
-        }
-        if (c.ok()) {
-          contents_.statistics = std::move(s);
-        }
+      case mcap::kStatistics:
+        readStatistics(c);
         break;
-      }
       default:  // indexes, summary offsets, data end: what a seeking reader needs, not this one
         break;
     }
@@ -159,7 +106,80 @@ class Reader {
     return true;
   }
 
-  bool chunk(Cursor& c, std::uint64_t at) {
+  void readHeader(Cursor& c) {
+    contents_.profile = c.getString();
+    contents_.library = c.getString();
+  }
+
+  void readSchema(Cursor& c) {
+    const auto id = c.get<std::uint16_t>();
+    Schema schema{c.getString(), c.getString(), c.getString()};
+    schemas_[id] = std::move(schema);
+  }
+
+  void readChannel(Cursor& c) {
+    McapChannelInfo channel;
+    channel.id = c.get<std::uint16_t>();
+    channel.schema_id = c.get<std::uint16_t>();
+    channel.topic = c.getString();
+    channel.message_encoding = c.getString();
+    channel.metadata = c.getStringMap();
+    if (const auto found = schemas_.find(channel.schema_id); found != schemas_.end()) {
+      channel.schema_name = found->second.name;
+      channel.schema_encoding = found->second.encoding;
+      channel.schema_data = found->second.data;
+    }
+    // The summary repeats the channels: keep the first of each id.
+    bool known = false;
+    for (const McapChannelInfo& existing : contents_.channels) {
+      known = known || existing.id == channel.id;
+    }
+    if (!known && c.ok()) {
+      contents_.channels.push_back(std::move(channel));
+    }
+  }
+
+  void readMessage(Cursor& c) {
+    if (on_message_) {
+      McapMessageView message;
+      message.channel_id = c.get<std::uint16_t>();
+      message.sequence = c.get<std::uint32_t>();
+      message.log_time_ns = c.get<std::uint64_t>();
+      message.publish_time_ns = c.get<std::uint64_t>();
+      message.data = c.getBytes(c.remaining());
+      if (c.ok()) {
+        on_message_(message);
+      }
+    }
+    ++contents_.messages;
+  }
+
+  void readMetadata(Cursor& c) {
+    std::string name = c.getString();
+    contents_.metadata.emplace_back(std::move(name), c.getStringMap());
+  }
+
+  void readStatistics(Cursor& c) {
+    McapStatistics s;
+    s.message_count = c.get<std::uint64_t>();
+    c.get<std::uint16_t>();  // schemas
+    c.get<std::uint32_t>();  // channels
+    c.get<std::uint32_t>();  // attachments
+    c.get<std::uint32_t>();  // metadata
+    s.chunk_count = c.get<std::uint32_t>();
+    s.message_start_time_ns = c.get<std::uint64_t>();
+    s.message_end_time_ns = c.get<std::uint64_t>();
+    const auto size = c.get<std::uint32_t>();
+    for (std::uint32_t i = 0; i + 10 <= size && c.ok(); i += 10) {
+      const auto channel = c.get<std::uint16_t>();
+      s.channel_message_counts[channel] = c.get<std::uint64_t>();
+    }
+    if (c.ok()) {
+      contents_.statistics = std::move(s);
+    }
+  }
+
+  bool readChunk(Cursor& c, std::uint64_t at) {
     c.get<std::uint64_t>();  // start time
     c.get<std::uint64_t>();  // end time
     const auto uncompressed_size = c.get<std::uint64_t>();

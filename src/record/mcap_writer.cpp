@@ -12,6 +12,7 @@
 #include <cstring>
 
 #include "mcap_format.hpp"
+#include "mcap_records.hpp"
 
 namespace comply::record {
 
@@ -19,33 +20,6 @@ using mcap::closeRecord;
 using mcap::openRecord;
 using mcap::put;
 using mcap::putString;
-using mcap::putStringMap;
-
-namespace {
-
-void appendSchemaRecord(std::vector<std::uint8_t>& out, std::uint16_t id, std::string_view name,
-                        std::string_view encoding, std::string_view data) {
-  const std::size_t at = openRecord(out, mcap::kSchema);
-  put(out, id);
-  putString(out, name);
-  putString(out, encoding);
-  putString(out, data);  // uint32 length + bytes, as a string is
-  closeRecord(out, at);
-}
-
-void appendChannelRecord(std::vector<std::uint8_t>& out, std::uint16_t id, std::uint16_t schema_id,
-                         std::string_view topic, std::string_view message_encoding,
-                         const StringMap& metadata) {
-  const std::size_t at = openRecord(out, mcap::kChannel);
-  put(out, id);
-  put(out, schema_id);
-  putString(out, topic);
-  putString(out, message_encoding);
-  putStringMap(out, metadata);
-  closeRecord(out, at);
-}
-
-}  // namespace
 
 std::string_view toString(Compression compression) {
   return compression == Compression::kZstd ? "zstd" : "";
@@ -63,10 +37,7 @@ McapWriter::McapWriter(const std::string& path, McapWriterOptions options)
     zstd_ = context;
   }
   std::vector<std::uint8_t> bytes(std::begin(mcap::kMagic), std::end(mcap::kMagic));
-  const std::size_t at = openRecord(bytes, mcap::kHeader);
-  putString(bytes, options_.profile);
-  putString(bytes, options_.library);
-  closeRecord(bytes, at);
+  mcap::appendHeaderRecord(bytes, options_.profile, options_.library);
   append(bytes);
   chunk_.reserve(options_.chunk_bytes + 4096);
 }
@@ -115,7 +86,7 @@ std::uint16_t McapWriter::addSchema(std::string_view name, std::string_view enco
   const auto id = static_cast<std::uint16_t>(schemas_.size() + 1);
   schemas_.push_back({std::string(name), std::string(encoding), std::string(data)});
   std::vector<std::uint8_t> bytes;
-  appendSchemaRecord(bytes, id, name, encoding, data);
+  mcap::appendSchemaRecord(bytes, id, name, encoding, data);
   append(bytes);
   return id;
 }
@@ -125,7 +96,7 @@ std::uint16_t McapWriter::addChannel(std::uint16_t schema_id, std::string_view t
   const auto id = static_cast<std::uint16_t>(channels_.size());
   channels_.push_back({schema_id, std::string(topic), std::string(message_encoding), metadata, 0});
   std::vector<std::uint8_t> bytes;
-  appendChannelRecord(bytes, id, schema_id, topic, message_encoding, metadata);
+  mcap::appendChannelRecord(bytes, id, schema_id, topic, message_encoding, metadata);
   append(bytes);
   return id;
 }
@@ -146,13 +117,8 @@ void McapWriter::write(std::uint16_t channel_id, std::uint64_t log_time_ns,
   chunk_start_time_ = std::min(chunk_start_time_, log_time_ns);
   chunk_end_time_ = std::max(chunk_end_time_, log_time_ns);
   chunk_messages_[channel_id].emplace_back(log_time_ns, chunk_.size());
-  const std::size_t at = openRecord(chunk_, mcap::kMessage);
-  put(chunk_, channel_id);
-  put(chunk_, channels_[channel_id].sequence++);
-  put(chunk_, log_time_ns);
-  put(chunk_, publish_time_ns);
-  chunk_.insert(chunk_.end(), data.begin(), data.end());
-  closeRecord(chunk_, at);
+  mcap::appendMessageRecord(chunk_, channel_id, channels_[channel_id].sequence++, log_time_ns,
+                            publish_time_ns, data);
 
   message_start_time_ =
       message_count_ == 0 ? log_time_ns : std::min(message_start_time_, log_time_ns);
@@ -179,15 +145,8 @@ void McapWriter::writeChunk() {
   // a torn tail that a reader stops at.
   std::vector<std::uint8_t> bytes;
   bytes.reserve(records.size() + 256);
-  const std::size_t at = openRecord(bytes, mcap::kChunk);
-  put(bytes, chunk_start_time_);
-  put(bytes, chunk_end_time_);
-  put(bytes, static_cast<std::uint64_t>(chunk_.size()));
-  put(bytes, mcap::crc32(chunk_));
-  putString(bytes, toString(options_.compression));
-  put(bytes, static_cast<std::uint64_t>(records.size()));
-  bytes.insert(bytes.end(), records.begin(), records.end());
-  closeRecord(bytes, at);
+  mcap::appendChunkRecord(bytes, chunk_start_time_, chunk_end_time_, chunk_,
+                          toString(options_.compression), records);
 
   ChunkIndex index;
   index.start_time = chunk_start_time_;
@@ -198,10 +157,7 @@ void McapWriter::writeChunk() {
   index.uncompressed_size = chunk_.size();
   for (const auto& [channel, entries] : chunk_messages_) {
     index.message_index_offsets[channel] = file_offset_ + bytes.size();
-    const std::size_t index_at = openRecord(bytes, mcap::kMessageIndex);
-    put(bytes, channel);
-    mcap::putPairs(bytes, entries);
-    closeRecord(bytes, index_at);
+    mcap::appendMessageIndexRecord(bytes, channel, entries);
   }
   index.message_index_length = file_offset_ + bytes.size() - index.offset - index.length;
   append(bytes);
@@ -232,26 +188,17 @@ void McapWriter::close() {
   writeChunk();
   std::vector<std::uint8_t> bytes;
   // Metadata records, then the data end: the end of the data section.
-  std::vector<std::tuple<std::uint64_t, std::uint64_t, std::string>> metadata_indexes;
+  std::vector<mcap::MetadataIndex> metadata_indexes;
   for (const auto& [name, map] : metadata_) {
     const std::uint64_t offset = file_offset_ + bytes.size();
-    const std::size_t at = openRecord(bytes, mcap::kMetadata);
-    putString(bytes, name);
-    putStringMap(bytes, map);
-    closeRecord(bytes, at);
-    metadata_indexes.emplace_back(offset, file_offset_ + bytes.size() - offset, name);
+    mcap::appendMetadataRecord(bytes, name, map);
+    metadata_indexes.push_back({offset, file_offset_ + bytes.size() - offset, name});
   }
-  const std::size_t at = openRecord(bytes, mcap::kDataEnd);
-  put(bytes, std::uint32_t{0});  // data section CRC: not computed (0 says so)
-  closeRecord(bytes, at);
+  mcap::appendDataEndRecord(bytes);
 
   // The summary: one group per record kind, each listed in the summary offsets.
   const std::uint64_t summary_start = file_offset_ + bytes.size();
-  struct Group {
-    std::uint8_t opcode;
-    std::uint64_t start, length;
-  };
-  std::vector<Group> groups;
+  std::vector<mcap::SummaryGroup> groups;
   const auto group = [&](mcap::Opcode opcode, auto&& write_records) {
     const std::uint64_t start = file_offset_ + bytes.size();
     write_records();
@@ -262,75 +209,34 @@ void McapWriter::close() {
   };
   group(mcap::kSchema, [&] {
     for (std::size_t i = 0; i < schemas_.size(); ++i) {
-      appendSchemaRecord(bytes, static_cast<std::uint16_t>(i + 1), schemas_[i].name,
-                         schemas_[i].encoding, schemas_[i].data);
+      mcap::appendSchemaRecord(bytes, static_cast<std::uint16_t>(i + 1), schemas_[i].name,
+                               schemas_[i].encoding, schemas_[i].data);
     }
   });
   group(mcap::kChannel, [&] {
     for (std::size_t i = 0; i < channels_.size(); ++i) {
       const Channel& channel = channels_[i];
-      appendChannelRecord(bytes, static_cast<std::uint16_t>(i), channel.schema_id, channel.topic,
-                          channel.message_encoding, channel.metadata);
+      mcap::appendChannelRecord(bytes, static_cast<std::uint16_t>(i), channel.schema_id,
+                                channel.topic, channel.message_encoding, channel.metadata);
     }
   });
-  group(mcap::kStatistics, [&] {
-    const std::size_t record = openRecord(bytes, mcap::kStatistics);
-    put(bytes, message_count_);
-    put(bytes, static_cast<std::uint16_t>(schemas_.size()));
-    put(bytes, static_cast<std::uint32_t>(channels_.size()));
-    put(bytes, std::uint32_t{0});  // attachments
-    put(bytes, static_cast<std::uint32_t>(metadata_.size()));
-    put(bytes, static_cast<std::uint32_t>(chunk_indexes_.size()));
-    put(bytes, message_start_time_);
-    put(bytes, message_end_time_);
-    mcap::putPairs(bytes, channel_message_counts_);
-    closeRecord(bytes, record);
-  });
+  group(mcap::kStatistics, [&] { appendStatisticsRecord(bytes); });
   group(mcap::kMetadataIndex, [&] {
-    for (const auto& [offset, length, name] : metadata_indexes) {
-      const std::size_t record = openRecord(bytes, mcap::kMetadataIndex);
-      put(bytes, offset);
-      put(bytes, length);
-      putString(bytes, name);
-      closeRecord(bytes, record);
+    for (const mcap::MetadataIndex& index : metadata_indexes) {
+      mcap::appendMetadataIndexRecord(bytes, index);
     }
   });
   group(mcap::kChunkIndex, [&] {
     for (const ChunkIndex& index : chunk_indexes_) {
-      const std::size_t record = openRecord(bytes, mcap::kChunkIndex);
-      put(bytes, index.start_time);
-      put(bytes, index.end_time);
-      put(bytes, index.offset);
-      put(bytes, index.length);
-      put(bytes, static_cast<std::uint32_t>(index.message_index_offsets.size() * 10));
-      for (const auto& [channel, offset] : index.message_index_offsets) {
-        put(bytes, channel);
-        put(bytes, offset);
-      }
-      put(bytes, index.message_index_length);
-      putString(bytes, toString(options_.compression));
-      put(bytes, index.compressed_size);
-      put(bytes, index.uncompressed_size);
-      closeRecord(bytes, record);
+      appendChunkIndexRecord(bytes, index);
     }
   });
   const std::uint64_t summary_offset_start = file_offset_ + bytes.size();
-  for (const Group& g : groups) {
-    const std::size_t record = openRecord(bytes, mcap::kSummaryOffset);
-    put(bytes, g.opcode);
-    put(bytes, g.start);
-    put(bytes, g.length);
-    closeRecord(bytes, record);
+  for (const mcap::SummaryGroup& summary_group : groups) {
+    mcap::appendSummaryOffsetRecord(bytes, summary_group);
   }
-  // The footer's length is written before the CRC, which covers the summary up to and including
-  // the footer's summary_offset_start: opcode and length included.
-  bytes.push_back(mcap::kFooter);
-  put(bytes, std::uint64_t{8 + 8 + 4});
-  put(bytes, summary_start);
-  put(bytes, summary_offset_start);
-  const std::size_t summary_begin = summary_start - file_offset_;
-  put(bytes, mcap::crc32(std::span<const std::uint8_t>(bytes).subspan(summary_begin)));
-  bytes.insert(bytes.end(), std::begin(mcap::kMagic), std::end(mcap::kMagic));
+  mcap::appendFooterRecord(bytes, summary_start, summary_offset_start,
+                           summary_start - file_offset_);
   append(bytes);
   const int fd = fd_;
   fd_ = -1;
@@ -338,6 +244,35 @@ void McapWriter::close() {
     errno = errno == 0 ? EIO : errno;
     fail("close");
   }
+}
+
+void McapWriter::appendStatisticsRecord(std::vector<std::uint8_t>& out) const {
+  const std::size_t at = openRecord(out, mcap::kStatistics);
+  put(out, message_count_);
+  put(out, static_cast<std::uint16_t>(schemas_.size()));
+  put(out, static_cast<std::uint32_t>(channels_.size()));
+  put(out, std::uint32_t{0});  // attachments
+  put(out, static_cast<std::uint32_t>(metadata_.size()));
+  put(out, static_cast<std::uint32_t>(chunk_indexes_.size()));
+  put(out, message_start_time_);
+  put(out, message_end_time_);
+  mcap::putPairs(out, channel_message_counts_);
+  closeRecord(out, at);
+}
+
+void McapWriter::appendChunkIndexRecord(std::vector<std::uint8_t>& out,
+                                        const ChunkIndex& index) const {
+  const std::size_t at = openRecord(out, mcap::kChunkIndex);
+  put(out, index.start_time);
+  put(out, index.end_time);
+  put(out, index.offset);
+  put(out, index.length);
+  mcap::putPairs(out, index.message_index_offsets);  // channel: u16, offset: u64
+  put(out, index.message_index_length);
+  putString(out, toString(options_.compression));
+  put(out, index.compressed_size);
+  put(out, index.uncompressed_size);
+  closeRecord(out, at);
 }
 
 }  // namespace comply::record

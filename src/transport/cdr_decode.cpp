@@ -1,7 +1,7 @@
 // The live messages back from their CDR bytes, field by field in the order cdr_messages.cpp
 // writes them (the commands from the schema tables, the host's messages from theirs). What the
-// transport process and the host hand each other (process_transport.cpp); tests/transport holds
-// every decoder against its encoder and against the bytes CycloneDDS puts on the wire.
+// transport process and the host hand each other (process/frame_adapter.cpp); tests/transport
+// holds every decoder against its encoder and against the bytes CycloneDDS puts on the wire.
 
 #include <Eigen/Core>
 

@@ -103,6 +103,9 @@ class McapWriter {
   void writeChunk();
   void append(const std::vector<std::uint8_t>& bytes);
   void fail(const char* what);
+  // The summary's records of the writer's own state (the other records: mcap_writer.cpp).
+  void appendStatisticsRecord(std::vector<std::uint8_t>& out) const;
+  void appendChunkIndexRecord(std::vector<std::uint8_t>& out, const ChunkIndex& index) const;
 
   std::string path_;
   McapWriterOptions options_;

@@ -1,5 +1,7 @@
-// Which robots a bench run names, and the merge of several processes' rows (see
-// cycle_bench.hpp).
+// A wrapper's rows (see bench_rows.hpp), which robots a bench run names, and the merge of
+// several processes' rows (see cycle_bench.hpp).
+
+#include "bench_rows.hpp"
 
 #include <algorithm>
 #include <sstream>
@@ -19,6 +21,16 @@ double median(std::vector<double> values) {
 }
 
 }  // namespace
+
+BenchRow bench::benchRow(const RowNames& names, const char* stage, std::vector<double>& samples) {
+  BenchRow result;
+  result.wrapper = names.wrapper;
+  result.plugin = names.plugin;
+  result.stage = stage;
+  result.timing = host::summarize(samples);
+  result.p50_min_us = result.p50_max_us = result.timing.p50_us;
+  return result;
+}
 
 std::vector<std::string> benchRobots(const std::string& robot_option) {
   if (robot_option == "all") {

@@ -1,0 +1,88 @@
+// The set-up of a benchmarked wrapper (see bench_variant.hpp).
+
+#include "bench_variant.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "comply/host/controller_setup.hpp"
+#include "comply/pipeline/resolved_controller.hpp"
+
+namespace comply::host::bench {
+namespace {
+
+/// A chunk that lasts the whole run: 64 waypoints around the measured TCP, the stiffness and the
+/// task frame changing at each, so every cycle evaluates the curve, the gains and the frame.
+CartesianChunk benchChunk(const MeasuredPose& measured, double run_s, int dof) {
+  CartesianChunk chunk;
+  chunk.fields = CommandField::kPosition | CommandField::kStiffness | CommandField::kTaskFrame;
+  for (int k = 0; k < kMaxChunkWaypoints; ++k) {
+    const double t = run_s * k / (kMaxChunkWaypoints - 1);
+    ChunkWaypoint<CartesianCommand> waypoint{t, CartesianCommand::zero(dof)};
+    waypoint.command.position =
+        measured.tcp_position + 0.01 * Eigen::Vector3d(std::sin(k), std::cos(k), 0.0);
+    waypoint.command.orientation = measured.tcp_orientation;
+    waypoint.command.stiffness_translational = (500.0 + 20.0 * k) * Eigen::Matrix3d::Identity();
+    waypoint.command.stiffness_rotational = 30.0 * Eigen::Matrix3d::Identity();
+    waypoint.command.task_frame =
+        Eigen::AngleAxisd(0.1 * k, Eigen::Vector3d::UnitZ()) * Eigen::Quaterniond::Identity();
+    chunk.waypoints.push_back(waypoint);
+  }
+  return chunk;
+}
+
+/// Force along a turned task frame's z; its x and y under the contact-force limit.
+void submitForceCommand(pipeline::Wrapper<CartesianCommand>& wrapper,
+                        const std::string& wrapper_name) {
+  CartesianCommand command = CartesianCommand::zero(wrapper.dof());
+  command.fields = CommandField::kForce | CommandField::kTaskFrame;
+  command.task_frame =
+      Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()) * Eigen::Quaterniond::Identity();
+  command.force_axes[2] = 1.0;
+  command.wrench_target[2] = 5.0;
+  const pipeline::Verdict verdict = wrapper.submit(command);
+  if (!verdict.accepted) {
+    throw std::runtime_error(wrapper_name +
+                             ": the benchmark's force command was refused: " + verdict.message);
+  }
+}
+
+}  // namespace
+
+pipeline::WrapperConfig variantConfig(const std::string& robot, const std::string& plugin,
+                                      const Variant& variant) {
+  pipeline::WrapperConfig config = host::controllerConfig(robot, plugin);
+  config.initial_cartesian.damping_mode = variant.damping_mode;
+  config.observer.enabled = variant.observer || variant.force;
+  if (variant.force) {
+    config.force_control.contact_force_limit_n = Eigen::Vector3d(30.0, 30.0, 0.0);
+  }
+  config.output.mode = variant.output;
+  if (variant.gain_stage) {
+    // Ramps and tank on, the tank far from full so that it refills (and, with ratios, bounds the
+    // damping from the mass matrix) every window: the stage's dearest steady state.
+    config.gain_ramps.enabled = true;
+    config.passivity.enabled = true;
+    config.passivity.tank_initial_j = 0.1;
+    config.passivity.tank_max_j = 1e6;
+  }
+  return config;
+}
+
+void submitVariantCommands(pipeline::Wrapper<CartesianCommand>& wrapper, const Variant& variant,
+                           const std::string& wrapper_name, double run_s) {
+  if (variant.force) {
+    submitForceCommand(wrapper, wrapper_name);
+  }
+  if (variant.chunked) {
+    // The host's clock is the controller's here: 0 at activation.
+    const pipeline::Verdict verdict =
+        wrapper.submitChunk(benchChunk(wrapper.measuredPose(), run_s, wrapper.dof()), 0.0);
+    if (!verdict.accepted) {
+      throw std::runtime_error(wrapper_name +
+                               ": the benchmark's chunk was refused: " + verdict.message);
+    }
+  }
+}
+
+}  // namespace comply::host::bench
