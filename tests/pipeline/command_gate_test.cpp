@@ -107,10 +107,12 @@ TEST_F(CommandGateTest, TheLastRejectionIsTheNewestRefusalNamedByItsReason) {
     return Verdict{false, RejectionReason::kPoseJump, "pose_jump: target 2 m away"};
   });
   EXPECT_EQ(gate_.counts().last_rejection, "pose_jump: target 2 m away");
-  gate_.offer(offerAt(8 * kSecond), true,
-              [](std::int64_t) { return Verdict{false, RejectionReason::kNonFinite, "stamp"}; });
+  gate_.offer(offerAt(8 * kSecond), true, [](std::int64_t) {
+    return Verdict{false, RejectionReason::kNonFinite, "stamp"};
+  });
   EXPECT_EQ(gate_.counts().last_rejection, "non_finite: stamp") << "named by its reason";
-  EXPECT_TRUE(offer(offerAt(9 * kSecond)).empty());  // accepted
+  EXPECT_EQ(gate_.offer(offerAt(9 * kSecond), true, [this](std::int64_t) { return accepted(); }),
+            CommandReason::kNone);
   EXPECT_EQ(gate_.counts().last_rejection, "non_finite: stamp") << "kept";
 
   // Requests: another process's, while A holds the topics, and one the host could not carry out.
@@ -267,16 +269,17 @@ class CommandGateWithWrapper : public ::testing::Test {
     offer.stamp_ns = stamp_ns;
     offer.kind = CommandKind::kJoint;
     offer.publisher = kWriterA;
-    gate_.offer(offer, true,
-                [&](std::int64_t wire_stamp_ns) { return wrapper_.submit(command, wire_stamp_ns); });
+    gate_.offer(offer, true, [&](std::int64_t wire_stamp_ns) {
+      return wrapper_.submit(command, wire_stamp_ns);
+    });
     return gate_.takeOutcomes();
   }
   /// One control cycle, reported to the gate as the hosts report it; the outcomes it settled.
   std::vector<CommandOutcome> cycle(std::uint64_t index) {
     std::vector<double> torque(kFr3Dof, 0.0);
     EXPECT_NE(wrapper_.update(state_, kPeriod, torque), CycleStatus::kInactive);
-    EXPECT_TRUE(gate_.noteCycle(index, wrapper_.controller().idInForce(),
-                                [] { return std::int64_t{99}; }));
+    EXPECT_TRUE(
+        gate_.noteCycle(index, wrapper_.controller().idInForce(), [] { return std::int64_t{99}; }));
     gate_.settle();
     return gate_.takeOutcomes();
   }
@@ -363,6 +366,27 @@ TEST_F(CommandGateWithWrapper, AResetClearsTheOneStampFloor) {
   EXPECT_TRUE(offer(10 * kSecond).empty()) << "after a reset any stamp is new again";
 }
 
+// A direct caller's stamp_s (a task file, an experiment) may repeat the last one, never go back;
+// one beyond what integer nanoseconds hold stands at the end of the range, without overflow.
+TEST_F(CommandGateWithWrapper, ADirectCallersStampMayRepeatAndIsJudgedInTheSameFloor) {
+  JointCommand command = JointCommand::zero(kFr3Dof);
+  command.fields = CommandField::kStiffness;
+  command.stiffness.setConstant(100.0);
+  command.stamp_s = 2.5;
+  EXPECT_TRUE(wrapper_.submit(command).accepted);
+  EXPECT_TRUE(wrapper_.submit(command).accepted) << "the same stamp again";
+  command.stamp_s = 2.4;
+  EXPECT_EQ(wrapper_.submit(command).reason, RejectionReason::kStaleStamp);
+  EXPECT_EQ(wrapper_.diagnostics().rejectionsTotal(), 1U) << "counted once, by the wrapper";
+  // A wire command must be newer than the direct one: one floor for both.
+  EXPECT_EQ(offer(stampNanoseconds(2.5)).size(), 1U);
+  EXPECT_TRUE(offer(stampNanoseconds(2.5) + 1).empty());
+  command.stamp_s = 1e300;
+  EXPECT_TRUE(wrapper_.submit(command).accepted);
+  command.stamp_s = 5.0;
+  EXPECT_EQ(wrapper_.submit(command).reason, RejectionReason::kStaleStamp);
+}
+
 TEST_F(CommandGateWithWrapper, TheGateCountsWhatItOffersAndTheWrapperDoesNotCountItAgain) {
   EXPECT_TRUE(offer(5 * kSecond).empty());
   EXPECT_EQ(offer(4 * kSecond).size(), 1U);
@@ -393,8 +417,7 @@ TEST(CommandGateWithWrapperQueue, AFullQueueIsRefusedAsQueueFullAndTheRestApplyI
   }
   std::vector<double> torque(kFr3Dof, 0.0);
   ASSERT_NE(wrapper.update(state, kPeriod, torque), CycleStatus::kInactive);
-  ASSERT_TRUE(
-      gate.noteCycle(0, wrapper.controller().idInForce(), [] { return std::int64_t{99}; }));
+  ASSERT_TRUE(gate.noteCycle(0, wrapper.controller().idInForce(), [] { return std::int64_t{99}; }));
   gate.settle();
   const GateCounts counts = gate.counts();
   const std::size_t queue_full =

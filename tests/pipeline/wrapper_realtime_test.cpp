@@ -218,9 +218,8 @@ TEST(WrapperRealtime, TheGatesCycleSideNeitherAllocatesNorLocks) {
       gate.offer(offer, true, [&](std::int64_t) { return Verdict{.sequence = ++accepted}; });
     }
     const CommandId in_force{.sequence = accepted};
-    EXPECT_TRUE(probe.measure([&] {
-      return gate.noteCycle(cycle, in_force, [cycle] { return std::int64_t{cycle}; });
-    }));
+    EXPECT_TRUE(probe.measure(
+        [&] { return gate.noteCycle(cycle, in_force, [cycle] { return std::int64_t{cycle}; }); }));
     if (cycle % 100 == 0) {
       gate.settle();
       gate.takeOutcomes();

@@ -31,7 +31,7 @@ struct StateSample {
   /// [Hz] the estimate's first-order bandwidth (observer K_O / 2 pi, sensor filter_hz); 0: raw.
   double contact_wrench_bandwidth_hz = 0.0;
   pipeline::PassivitySnapshot passivity;  ///< the energy tank's account after the cycle
-  pipeline::CommandId reference;  ///< the command in force: its number and exact stamp
+  pipeline::CommandId reference;          ///< the command in force: its number and exact stamp
   std::uint32_t reference_fields = 0;
   Eigen::Vector3d reference_position = Eigen::Vector3d::Zero();
   Eigen::Quaterniond reference_orientation = Eigen::Quaterniond::Identity();

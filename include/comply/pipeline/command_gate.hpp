@@ -68,7 +68,7 @@ struct CommandOutcome {
   bool applied = false;
   CommandReason reason = CommandReason::kNone;  ///< kNone when applied
   std::uint64_t cycle = 0;                      ///< applied: the index of the cycle that took it
-  std::uint64_t sequence = 0;  ///< accepted: the wrapper's number for it (CommandId::sequence)
+  std::uint64_t sequence = 0;    ///< accepted: the wrapper's number for it (CommandId::sequence)
   std::int64_t received_ns = 0;  ///< wall clock (CLOCK_REALTIME) when the gate was offered it
   std::int64_t applied_ns = 0;   ///< applied: wall clock at the end of that cycle
   std::string message;           ///< rejected: why, naming the field or the rule
@@ -118,10 +118,11 @@ class CommandGate {
   explicit CommandGate(GateOptions options);
 
   /// Passes `offer` through rules 1-5 and then `submit(offer.stamp_ns)` (rule 6, returning the
-  /// wrapper's Verdict: Wrapper::submit(command, stamp_ns)), under the gate's lock; `active` says whether the controller is active. A command
-  /// that passes waits until a cycle takes it (noteCycle + settle); one that fails is settled at
-  /// once as rejected. Returns why it was refused, kNone when it waits for a cycle (for a host's
-  /// log; the outcome, with its message, comes from takeOutcomes()).
+  /// wrapper's Verdict: Wrapper::submit(command, stamp_ns)), under the gate's lock; `active` says
+  /// whether the controller is active. A command that passes waits until a cycle takes it
+  /// (noteCycle + settle); one that fails is settled at once as rejected. Returns why it was
+  /// refused, kNone when it waits for a cycle (for a host's log; the outcome, with its message,
+  /// comes from takeOutcomes()).
   template <typename Submit>
   CommandReason offer(const Offer& offer, bool active, Submit&& submit);
 

@@ -199,7 +199,7 @@ class Controller {
   [[nodiscard]] const CommandBus& guardedBus() const noexcept {
     return gains_.enabled() ? gains_.lawBus() : active_;
   }
-  bool runLaw() noexcept;  // law.cpp
+  bool runLaw() noexcept;      // law.cpp
   void compensate() noexcept;  // torque.cpp
   bool shape() noexcept;
   void scaleIntoLimits() noexcept;  // effort_saturation: scale
@@ -243,7 +243,7 @@ class Controller {
 
   // The cycle's own state.
   JointState state_;
-  bool state_usable_ = false;  // this cycle's state passed measure(), so input_ is current
+  bool state_usable_ = false;      // this cycle's state passed measure(), so input_ is current
   bool in_force_changed_ = false;  // active_ changed since the gain stage last saw it
   bool reset_pending_ = false;
   bool torque_clipped_ = false;  // the last cycle's torque was rate or effort limited

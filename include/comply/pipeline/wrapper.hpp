@@ -73,8 +73,7 @@ class Wrapper final : public hardware::CycleController {
   /// one control period. A rejected chunk changes nothing.
   Verdict submitChunk(const Chunk<Command>& chunk, double host_time_s);
   /// The same for a chunk named by its exact wire stamp (see submit()).
-  Verdict submitChunk(const Chunk<Command>& chunk, double host_time_s,
-                      std::int64_t wire_stamp_ns);
+  Verdict submitChunk(const Chunk<Command>& chunk, double host_time_s, std::int64_t wire_stamp_ns);
   /// The command in force (merged) as of the last cycle.
   [[nodiscard]] Command lastAccepted() const;
   /// The pose the cycle last measured (what commands are validated against).

@@ -438,9 +438,8 @@ void ComplyController<Command>::onChunk(const ChunkMessage& message,
   std::string malformed;
   const comply::Chunk<Command> chunk = fromMessage(message, malformed);
   const double now_s = comply::stampSeconds(get_node()->now().nanoseconds());
-  offerToGate(message.header, info, malformed, [&](std::int64_t stamp_ns) {
-    return wrapper_->submitChunk(chunk, now_s, stamp_ns);
-  });
+  offerToGate(message.header, info, malformed,
+              [&](std::int64_t stamp_ns) { return wrapper_->submitChunk(chunk, now_s, stamp_ns); });
 }
 
 template <typename Command>
@@ -479,7 +478,8 @@ void ComplyController<Command>::onResetFault(std_srvs::srv::Trigger::Response& r
     return;
   }
   const bool in_fault = wrapper_->diagnostics().state == comply::pipeline::WrapperState::kFault;
-  wrapper_->reset();  // either way it clears the stamp floor: a stamp that ran ahead locks no one out
+  wrapper_
+      ->reset();  // either way it clears the stamp floor: a stamp that ran ahead locks no one out
   response.success = in_fault;
   response.message = in_fault ? "reset requested: the law runs again from the next cycle"
                               : "not in FAULT: nothing to reset (stamp floor cleared)";

@@ -170,9 +170,8 @@ void boundGains(ResolvedController& resolved) {
     resolved.gain_bound.robot = resolved.robot.name;
     // The initial command is checked at 1 kHz: the period is the host's, known at the first cycle.
     const Verdict verdict =
-        resolved.cartesian()
-            ? checkRenderable(config.initial_cartesian, resolved.gain_bound, 1e-3)
-            : checkRenderable(config.initial_joint, resolved.gain_bound, 1e-3);
+        resolved.cartesian() ? checkRenderable(config.initial_cartesian, resolved.gain_bound, 1e-3)
+                             : checkRenderable(config.initial_joint, resolved.gain_bound, 1e-3);
     if (!verdict.accepted) {
       throw InputError(InputErrc::kOutOfRange, config.name, "initial",
                        verdict.message + " at 1 kHz; lower it, or set validation.max_wn_period");

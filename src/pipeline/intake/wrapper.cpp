@@ -74,7 +74,16 @@ std::string Wrapper<Command>::tare() {
 template <typename Command>
 typename Wrapper<Command>::IntakeStamp Wrapper<Command>::directStamp(double stamp_s) noexcept {
   const bool finite = std::isfinite(stamp_s);
-  return {.ns = finite ? stampNanoseconds(stamp_s) : 0, .names_command = false, .finite = finite};
+  // Beyond about 292 years from the epoch the nanoseconds do not fit: such a stamp stands at the
+  // end of the range (a later one cannot be newer, an earlier one is older).
+  constexpr double kRangeS = 9.2e9;
+  std::int64_t ns = 0;
+  if (finite) {
+    ns = stamp_s >= kRangeS    ? std::numeric_limits<std::int64_t>::max()
+         : stamp_s <= -kRangeS ? std::numeric_limits<std::int64_t>::min()
+                               : stampNanoseconds(stamp_s);
+  }
+  return {.ns = ns, .names_command = false, .finite = finite};
 }
 
 template <typename Command>

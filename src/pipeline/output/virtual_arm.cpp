@@ -67,7 +67,7 @@ void VirtualArm::keepNearMeasured(const JointState& state) noexcept {
 }
 
 void VirtualArm::integrate(const Controller& controller, double period_s,
-                            const ActuatorCommand& command) noexcept {
+                           const ActuatorCommand& command) noexcept {
   const AdmittanceConfig& admittance = parameters_.output.admittance;
   const model::Data& data = controller.modelData();
   const auto n = static_cast<Eigen::Index>(dof_);
@@ -168,9 +168,8 @@ void VirtualArm::hold(const JointState& state, ActuatorCommand& command) noexcep
   const double correction = parameters_.output.admittance.velocity_correction_per_s;
   for (int i = 0; i < dof_; ++i) {
     command.position[i] = hold_position_[i];
-    command.velocity[i] = velocity_mode_ && measured
-                              ? correction * (hold_position_[i] - state.position[i])
-                              : 0.0;
+    command.velocity[i] =
+        velocity_mode_ && measured ? correction * (hold_position_[i] - state.position[i]) : 0.0;
   }
 }
 

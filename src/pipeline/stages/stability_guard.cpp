@@ -25,8 +25,7 @@ bool sameBus(const CommandBus& a, const CommandBus& b) noexcept {
 }  // namespace
 
 StabilityGuard::StabilityGuard(const ResolvedController& resolved)
-    : resolved_(resolved),
-      parameters_(resolved.parameters) {
+    : resolved_(resolved), parameters_(resolved.parameters) {
   overspeed_s_.setZero(resolved.dof);
   saturated_s_.setZero(resolved.dof);
   const StabilityGuardConfig& guard = parameters_.stability_guard;
