@@ -166,8 +166,6 @@ class CommandGate {
   [[nodiscard]] std::size_t pending() const;
   /// The writer that holds the command topics (0: none yet).
   [[nodiscard]] std::uint64_t publisher() const;
-  /// The exact stamp of the newest command a cycle applied (0: none yet).
-  [[nodiscard]] std::int64_t appliedStampNs() const;
   [[nodiscard]] const GateOptions& options() const noexcept { return options_; }
 
  private:
@@ -192,7 +190,6 @@ class CommandGate {
   std::uint64_t holder_ = 0;
   std::uint64_t holder_participant_ = 0;
   std::int64_t holder_heard_ns_ = 0;
-  std::int64_t applied_stamp_ns_ = 0;
   std::deque<Pending> pending_;
   std::vector<CommandOutcome> settled_;
   // The control thread's side.

@@ -36,6 +36,11 @@ class StabilityGuard {
  private:
   const ResolvedController& resolved_;
   const CycleParameters& parameters_;
+  // From the configuration, once: the speed no joint may keep [rad/s | m/s], and the positions
+  // past which a joint has left its URDF range by more than the margin [rad | m].
+  JointVector allowed_speed_;
+  JointVector lowest_;
+  JointVector highest_;
   JointVector overspeed_s_;   // per joint: how long it has been over its speed limit
   JointVector saturated_s_;   // per joint: how long it has sat at its effort limit
   EnergyWatch energy_watch_;  // the energy rule

@@ -28,7 +28,7 @@ namespace comply::pipeline {
 
 class WristSensor {
  public:
-  explicit WristSensor(const ResolvedController& resolved) noexcept : resolved_(resolved) {}
+  explicit WristSensor(const ResolvedController& resolved) noexcept;
 
   /// The low-pass starts again from the next reading (activation); the tare stays.
   void reset() noexcept { filtered_ = false; }
@@ -49,6 +49,9 @@ class WristSensor {
 
  private:
   const ResolvedController& resolved_;
+  /// The declared tool's weight beyond the sensor [N, base frame]; zero when none is declared or
+  /// it is not on the sensor. From the configuration, once.
+  Eigen::Vector3d tool_weight_n_ = Eigen::Vector3d::Zero();
   Vector6d untared_ = Vector6d::Zero();  // this cycle's reading less the tool's weight
   Vector6d wrench_ = Vector6d::Zero();   // ... less the tare
   Vector6d tare_in_tcp_ = Vector6d::Zero();

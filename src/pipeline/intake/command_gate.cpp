@@ -102,7 +102,6 @@ void CommandGate::settle() {
       outcome.reason = CommandReason::kNone;
       outcome.cycle = event.cycle;
       outcome.applied_ns = event.wall_ns;
-      applied_stamp_ns_ = outcome.stamp_ns;
       ++counts_.applied;
       settled_.push_back(std::move(outcome));
       pending_.pop_front();
@@ -168,11 +167,6 @@ std::size_t CommandGate::pending() const {
 std::uint64_t CommandGate::publisher() const {
   const std::lock_guard<std::mutex> lock(mutex_);
   return holder_;
-}
-
-std::int64_t CommandGate::appliedStampNs() const {
-  const std::lock_guard<std::mutex> lock(mutex_);
-  return applied_stamp_ns_;
 }
 
 }  // namespace comply::pipeline

@@ -29,6 +29,9 @@ StabilityGuard::StabilityGuard(const ResolvedController& resolved)
   overspeed_s_.setZero(resolved.dof);
   saturated_s_.setZero(resolved.dof);
   const StabilityGuardConfig& guard = parameters_.stability_guard;
+  allowed_speed_ = guard.velocity_factor * parameters_.velocity_limit;
+  lowest_ = parameters_.soft_limits.lower.array() - guard.position_margin_rad;
+  highest_ = parameters_.soft_limits.upper.array() + guard.position_margin_rad;
   energy_watch_.configure({.window_s = guard.enabled ? guard.energy_window_s : 0.0,
                            .growth = guard.energy_growth,
                            .floor_j = guard.energy_floor_j},
@@ -50,7 +53,7 @@ bool StabilityGuard::checkMotion(const JointState& state, double period_s) noexc
   for (int i = 0; i < resolved_.dof; ++i) {
     const char* joint = resolved_.config.joints[static_cast<std::size_t>(i)].c_str();
     const double speed = std::abs(state.velocity[i]);
-    const double allowed = guard.velocity_factor * parameters_.velocity_limit[i];
+    const double allowed = allowed_speed_[i];
     overspeed_s_[i] = allowed > 0.0 && speed > allowed ? overspeed_s_[i] + period_s : 0.0;
     if (overspeed_s_[i] > guard.velocity_time_s) {
       std::snprintf(detail_, sizeof(detail_),
@@ -58,10 +61,8 @@ bool StabilityGuard::checkMotion(const JointState& state, double period_s) noexc
                     allowed, guard.velocity_factor);
       return false;
     }
-    const double lower = parameters_.soft_limits.lower[i] - guard.position_margin_rad;
-    const double upper = parameters_.soft_limits.upper[i] + guard.position_margin_rad;
     const double q = state.position[i];
-    if (q < lower || q > upper) {
+    if (q < lowest_[i] || q > highest_[i]) {
       std::snprintf(detail_, sizeof(detail_),
                     "%s at %.4g, past its URDF limit [%.4g, %.4g] by more than %g", joint, q,
                     parameters_.soft_limits.lower[i], parameters_.soft_limits.upper[i],

@@ -4,6 +4,13 @@
 
 namespace comply::pipeline {
 
+WristSensor::WristSensor(const ResolvedController& resolved) noexcept : resolved_(resolved) {
+  const CycleParameters& parameters = resolved.parameters;
+  if (parameters.payload_on_sensor && parameters.payload.mass_kg > 0.0) {
+    tool_weight_n_ = parameters.payload.mass_kg * resolved.model->gravity();
+  }
+}
+
 void WristSensor::sense(const JointState& state, const model::Data& data,
                         double period_s) noexcept {
   valid_ = state.wrench_valid && state.wrench.allFinite();
@@ -18,10 +25,9 @@ void WristSensor::sense(const JointState& state, const model::Data& data,
     reading.tail<3>() = data.tip_rotation * state.wrench.tail<3>();
   }
   if (parameters.payload_on_sensor && parameters.payload.mass_kg > 0.0) {
-    const Eigen::Vector3d weight = parameters.payload.mass_kg * resolved_.model->gravity();
     const Eigen::Vector3d arm = data.tip_rotation * parameters.payload.com_in_tip;
-    reading.head<3>() -= weight;
-    reading.tail<3>() -= arm.cross(weight);
+    reading.head<3>() -= tool_weight_n_;
+    reading.tail<3>() -= arm.cross(tool_weight_n_);
   }
   const double filter_hz = parameters.wrench_sensor.filter_hz;
   if (filter_hz > 0.0 && filtered_) {
