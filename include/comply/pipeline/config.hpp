@@ -85,6 +85,11 @@ struct StabilityGuardConfig {
   COMPLY_OPTION_MEMBERS(COMPLY_STABILITY_GUARD_OPTIONS)
 };
 
+/// The motion governor (governor.*; motion_governor.hpp).
+struct GovernorConfig {
+  COMPLY_OPTION_MEMBERS(COMPLY_GOVERNOR_OPTIONS)
+};
+
 /// The wrist force/torque sensor's reading as the cycle uses it (wrench_sensor.*).
 struct WrenchSensorConfig {
   COMPLY_OPTION_MEMBERS(COMPLY_WRENCH_SENSOR_OPTIONS)
@@ -136,6 +141,7 @@ struct WrapperConfig {
   GainRampConfig gain_ramps;
   PassivityConfig passivity;
   StabilityGuardConfig stability_guard;
+  GovernorConfig governor;           ///< governor.*: the speeds no command drives past
   ObserverConfig observer;           ///< the external wrench estimate (observer.*)
   WrenchSensorConfig wrench_sensor;  ///< wrench_sensor.*
   ForceControlConfig force_control;  ///< force_control.*: force along task axes

@@ -156,6 +156,22 @@
   NUMBER(energy_floor_j, "stability_guard.energy_floor_j", 0.05, kAtLeast, 0.0, 1e6,              \
          "J (joint-inertia weighted) the grown energy must exceed")
 
+// The motion governor (GovernorConfig; motion_governor.hpp): prevents what the stability guard
+// detects. The law's torque is scaled down, its direction kept, as a joint nears its share of its
+// URDF speed or the TCP nears its speeds, and a joint or the TCP past them is braked; the
+// overspeed FAULT (stability_guard.velocity_factor) stays as the last line. Chunks are checked
+// against the same speeds at the intake.
+#define COMPLY_GOVERNOR_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)           \
+  FLAG(enabled, "governor.enabled", true,                                                            \
+       "no accepted command drives a joint or the TCP past the speeds below")                        \
+  NUMBER(velocity_fraction, "governor.velocity_fraction", 0.8, kAbove, 0.0, 1.0,                     \
+         "share of each joint's URDF velocity limit no joint passes; below "                         \
+         "stability_guard.velocity_factor")                                                          \
+  NUMBER(tcp_speed_m_per_s, "governor.tcp_speed_m_per_s", 1.0, kAtLeast, 0.0, 10.0,                  \
+         "m/s the TCP does not pass (Cartesian laws); 0: no bound")                                  \
+  NUMBER(tcp_angular_speed_rad_per_s, "governor.tcp_angular_speed_rad_per_s", 2.5, kAtLeast, 0.0,    \
+         20.0, "rad/s the TCP does not pass (Cartesian laws); 0: no bound")
+
 // The external wrench estimated from the joints' momentum (ObserverConfig).
 #define COMPLY_OBSERVER_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET) \
   FLAG(enabled, "observer.enabled", false,                                                 \

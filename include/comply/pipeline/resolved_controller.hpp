@@ -57,6 +57,7 @@ struct CycleParameters {
   GainRampConfig gain_ramps;
   PassivityConfig passivity;
   StabilityGuardConfig stability_guard;
+  GovernorConfig governor;
   ObserverConfig observer;
   OutputConfig output;
   WrenchSensorConfig wrench_sensor;
@@ -67,8 +68,10 @@ struct CycleParameters {
   /// (its weight in the torque) is off in admittance, this is not.
   bool payload_on_sensor = false;
   JointVector velocity_limit;  ///< URDF [rad/s | m/s], for the stability guard and admittance
-  /// Each joint's lightest inertia [kg m^2 | kg]: the energy rule's weights (empty when off).
-  JointVector guard_inertia;
+  /// Each joint's lightest inertia [kg m^2 | kg] over the workspace (the declared rotor inertias
+  /// included; gain_bound.hpp): the energy rule's weights, the governor's and the controlled
+  /// stop's bound on a joint's damping.
+  JointVector joint_inertia;
 };
 
 struct ResolvedController {

@@ -127,6 +127,7 @@ void compileParameters(ResolvedController& resolved) {
   parameters.gain_ramps = config.gain_ramps;
   parameters.passivity = config.passivity;
   parameters.stability_guard = config.stability_guard;
+  parameters.governor = config.governor;
   parameters.observer = config.observer;
   parameters.velocity_limit.resize(dof);
   for (int i = 0; i < dof; ++i) {
@@ -177,13 +178,12 @@ void boundGains(ResolvedController& resolved) {
                        verdict.message + " at 1 kHz; lower it, or set validation.max_wn_period");
     }
   }
-  const StabilityGuardConfig& guard = config.stability_guard;
-  if (guard.enabled && guard.energy_window_s > 0.0) {
-    resolved.parameters.guard_inertia =
-        resolved.gain_bound.joint_inertia.size() == resolved.dof
-            ? resolved.gain_bound.joint_inertia
-            : lightestInertias(model, declaredArmature(resolved.robot, model)).joint_inertia;
-  }
+  // The lightest joint inertias weigh the energy rule and bound the governor's and the stop's
+  // damping (deadbeat on the lightest inertia is stable on every heavier one).
+  resolved.parameters.joint_inertia =
+      resolved.gain_bound.joint_inertia.size() == resolved.dof
+          ? resolved.gain_bound.joint_inertia
+          : lightestInertias(model, declaredArmature(resolved.robot, model)).joint_inertia;
 }
 
 /// Step 5: choices that cannot hold together.
@@ -197,6 +197,17 @@ void checkConsistency(const ResolvedController& resolved) {
                                std::string(toString(config.output.mode)) +
                                ") runs no observer; use sensor"
                          : "observer, but observer.enabled is false");
+  }
+  // The governor keeps joints below the speed the guard faults at; at or above it, the guard
+  // would fault on motion the governor allows.
+  const GovernorConfig& governor = parameters.governor;
+  const StabilityGuardConfig& guard = parameters.stability_guard;
+  if (governor.enabled && guard.enabled &&
+      governor.velocity_fraction >= guard.velocity_factor) {
+    throw InputError(InputErrc::kInconsistent, config.name, "governor.velocity_fraction",
+                     std::to_string(governor.velocity_fraction) +
+                         " is not below stability_guard.velocity_factor (" +
+                         std::to_string(guard.velocity_factor) + ")");
   }
 }
 

@@ -35,8 +35,8 @@ StabilityGuard::StabilityGuard(const ResolvedController& resolved)
   energy_watch_.configure({.window_s = guard.enabled ? guard.energy_window_s : 0.0,
                            .growth = guard.energy_growth,
                            .floor_j = guard.energy_floor_j},
-                          {parameters_.guard_inertia.data(),
-                           static_cast<std::size_t>(parameters_.guard_inertia.size())});
+                          {parameters_.joint_inertia.data(),
+                           static_cast<std::size_t>(parameters_.joint_inertia.size())});
 }
 
 void StabilityGuard::reset() noexcept {
