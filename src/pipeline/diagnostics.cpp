@@ -74,6 +74,7 @@ DiagnosticsSnapshot Diagnostics::snapshot() const {
   }
   result.rate_limit_hits = rate_limit_hits.load();
   result.effort_limit_hits = effort_limit_hits.load();
+  result.governor_hits = governor_hits.load();
   result.faults = faults.load();
   result.watchdog_timeouts = watchdog_timeouts.load();
   result.passivity = passivity();

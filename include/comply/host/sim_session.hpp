@@ -118,6 +118,7 @@ struct SimSummary {
   std::uint64_t rejections = 0;
   std::uint64_t rate_limit_hits = 0;
   std::uint64_t effort_limit_hits = 0;
+  std::uint64_t governor_hits = 0;  ///< cycles the motion governor acted in
   std::uint64_t faults = 0;
   /// Cycles whose controller time exceeded the control period: on a real arm each is a missed
   /// deadline (the simulation just waits).

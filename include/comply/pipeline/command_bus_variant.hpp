@@ -41,5 +41,8 @@ void mergeInto(CommandBus& active, const CommandBus& incoming) noexcept;
 void seedFromMeasured(CommandBus& bus, const MeasuredPose& measured) noexcept;
 /// Rates (velocity, twist, acceleration) to zero: the reference holds where it is.
 void stopMotion(CommandBus& bus) noexcept;
+/// The measured pose held and nothing pushed: seedFromMeasured() and the feedforward wrench and
+/// torque to zero (what a reset leaves in force).
+void holdMeasured(CommandBus& bus, const MeasuredPose& measured) noexcept;
 
 }  // namespace comply::pipeline

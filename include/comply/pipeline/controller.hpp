@@ -23,6 +23,8 @@
 //                (force_axes.hpp; Cartesian laws)
 //   law          plugin step, finite check                       -> FAULT on failure
 //   compensate   gravity, payload, friction, soft joint limits
+//   govern       the law's torque scaled (direction kept) so no joint passes its share of its
+//                URDF speed, nor the TCP its speeds; braking past them (motion_governor.*)
 //   shape        low-pass, finite check, torque-rate limit, effort limit (torque_shaper.*); a
 //                joint held at its effort limit too long         -> FAULT (stability_guard.*)
 //   write        torque out; in FAULT the safe hold's torque instead (safe_hold.*)
@@ -59,6 +61,7 @@
 #include "comply/pipeline/frozen_state.hpp"
 #include "comply/pipeline/gain_guard.hpp"
 #include "comply/pipeline/momentum_observer.hpp"
+#include "comply/pipeline/motion_governor.hpp"
 #include "comply/pipeline/output_stage.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/pipeline/safe_hold.hpp"
@@ -164,10 +167,11 @@ class Controller {
   [[nodiscard]] bool sensorSeen() const noexcept { return wrist_.seen(); }
   /// The output stage (output.mode; the virtual arm of an admittance mode).
   [[nodiscard]] const OutputStage& output() const noexcept { return output_stage_; }
-  /// In FAULT on a frozen sensor stream: the hold's gravity is that of a pose the arm may have
-  /// left, so the hardware's own hold (brakes) is asked for as well (CycleController::wantsHold).
+  /// In FAULT once the controlled stop has brought the arm to rest, or at once on a frozen sensor
+  /// stream (the hold's gravity is that of a pose the arm may have left): the hardware's own hold
+  /// (brakes) is asked for as well (CycleController::wantsHold).
   [[nodiscard]] bool holdRequested() const noexcept {
-    return frozen_.frozen() &&
+    return (frozen_.frozen() || safe_hold_.atRest()) &&
            diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kFault;
   }
   /// Benchmark protocol, the law's cost alone: measureOnly() runs the measure stage at `state`
@@ -194,6 +198,7 @@ class Controller {
   void takeChunk(const IntakeMessage& message) noexcept;
   void playChunk() noexcept;
   void watchdog() noexcept;
+  void resumeAfterReset() noexcept;
   void guardGains() noexcept;  // gains.cpp
   void applyForce() noexcept;  // force.cpp
   [[nodiscard]] const CommandBus& guardedBus() const noexcept {
@@ -201,6 +206,7 @@ class Controller {
   }
   bool runLaw() noexcept;      // law.cpp
   void compensate() noexcept;  // torque.cpp
+  void govern() noexcept;
   bool shape() noexcept;
   void scaleIntoLimits() noexcept;  // effort_saturation: scale
   CycleStatus write(std::span<double> torque) noexcept;
@@ -237,6 +243,7 @@ class Controller {
   ForceAxes force_;             // force
   CommandBus force_bus_;        //   the law's command when the force stage acts (Cartesian)
   bool force_active_ = false;   //   the force stage wrote force_bus_ this cycle
+  MotionGovernor governor_;     // govern
   TorqueShaper shaper_;         // shape
   SafeHold safe_hold_;          // hold (FAULT)
   OutputStage output_stage_;    // output

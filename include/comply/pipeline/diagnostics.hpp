@@ -37,6 +37,7 @@ struct DiagnosticsSnapshot {
   std::array<std::uint64_t, kRejectionReasonCount> rejections{};
   std::uint64_t rate_limit_hits = 0;    ///< joint-cycles clipped by the torque-rate limit
   std::uint64_t effort_limit_hits = 0;  ///< joint-cycles clipped by the effort limit
+  std::uint64_t governor_hits = 0;      ///< cycles the motion governor acted in
   std::uint64_t faults = 0;
   std::uint64_t watchdog_timeouts = 0;
   PassivitySnapshot passivity;
@@ -70,6 +71,7 @@ class Diagnostics {
   std::array<std::atomic<std::uint64_t>, kRejectionReasonCount> rejections{};
   std::atomic<std::uint64_t> rate_limit_hits{0};
   std::atomic<std::uint64_t> effort_limit_hits{0};
+  std::atomic<std::uint64_t> governor_hits{0};
   std::atomic<std::uint64_t> faults{0};
   std::atomic<std::uint64_t> watchdog_timeouts{0};
   /// The gain guard's account, written by the cycle (see PassivitySnapshot).

@@ -72,6 +72,8 @@ struct CycleParameters {
   /// included; gain_bound.hpp): the energy rule's weights, the governor's and the controlled
   /// stop's bound on a joint's damping.
   JointVector joint_inertia;
+  double tcp_mass_kg = 0.0;        ///< the lightest apparent mass at the TCP (the same way)
+  double tcp_inertia_kg_m2 = 0.0;  ///< the lightest apparent rotational inertia at the TCP
 };
 
 struct ResolvedController {

@@ -111,6 +111,8 @@
     "[-] joint-cycles clipped by the torque-rate limit") \
   X(std::uint64_t, effort_limit_hits, effort_limit_hits, 0, \
     "[-] joint-cycles clipped by the effort limit") \
+  X(std::uint64_t, governor_hits, governor_hits, 0, \
+    "[-] cycles the motion governor scaled the law's torque or braked a joint or the TCP") \
   X(double, histogram_bin_s, histogram_bin, 0.0, "[s] width of one bin of the two histograms") \
   X(Counts, compute_time_histogram, compute_time_histogram, {}, \
     "[-] cycles per bin of compute time; last bin: all above") \

@@ -204,6 +204,7 @@ void printSummary(const SimSummary& summary, std::ostream& out) {
       << " N m/s\n"
       << "  rate-limit hits       " << summary.rate_limit_hits << " joint-cycles\n"
       << "  effort-limit hits     " << summary.effort_limit_hits << " joint-cycles\n"
+      << "  governor hits         " << summary.governor_hits << " cycles\n"
       << "  commands              " << summary.commands_sent << " sent, " << summary.rejections
       << " rejected\n"
       << "  faults                " << summary.faults << "\n"

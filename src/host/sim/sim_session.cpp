@@ -268,6 +268,7 @@ void summarizeDiagnostics(const pipeline::DiagnosticsSnapshot& diagnostics, SimS
   summary.rejections = diagnostics.rejectionsTotal();
   summary.rate_limit_hits = diagnostics.rate_limit_hits;
   summary.effort_limit_hits = diagnostics.effort_limit_hits;
+  summary.governor_hits = diagnostics.governor_hits;
   summary.faults = diagnostics.faults;
   if (diagnostics.faults > 0) {
     summary.fault_reason = diagnostics.last_fault;

@@ -180,10 +180,12 @@ void boundGains(ResolvedController& resolved) {
   }
   // The lightest joint inertias weigh the energy rule and bound the governor's and the stop's
   // damping (deadbeat on the lightest inertia is stable on every heavier one).
-  resolved.parameters.joint_inertia =
-      resolved.gain_bound.joint_inertia.size() == resolved.dof
-          ? resolved.gain_bound.joint_inertia
-          : lightestInertias(model, declaredArmature(resolved.robot, model)).joint_inertia;
+  const GainBound lightest = resolved.gain_bound.enabled()
+                                ? resolved.gain_bound
+                                : lightestInertias(model, declaredArmature(resolved.robot, model));
+  resolved.parameters.joint_inertia = lightest.joint_inertia;
+  resolved.parameters.tcp_mass_kg = lightest.translational_mass_kg;
+  resolved.parameters.tcp_inertia_kg_m2 = lightest.rotational_inertia_kg_m2;
 }
 
 /// Step 5: choices that cannot hold together.

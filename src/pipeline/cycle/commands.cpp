@@ -74,6 +74,22 @@ void Controller::playChunk() noexcept {
   watchdog_.heard(time_s_);
 }
 
+void Controller::resumeAfterReset() noexcept {
+  // The command in force may be what caused the fault (a target the arm could not reach, a
+  // feedforward it could not carry), and the arm has moved since: the measured pose is held, with
+  // the gains and task frame in force, and the stages that integrate start again from here.
+  chunks_.stop();
+  holdMeasured(active_, currentPose());
+  frozen_.reset();  // it did not judge the state the hardware's hold kept still
+  publishInForce();
+  guard_.reset();
+  watchdog_.heard(time_s_);
+  gains_.reset(active_, data_, state_, diagnostics_);
+  force_.reset();
+  force_active_ = false;
+  safe_hold_.reset();
+}
+
 void Controller::watchdog() noexcept {
   if (!watchdog_.expires(time_s_)) {
     return;

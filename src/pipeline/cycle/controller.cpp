@@ -39,6 +39,7 @@ Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
       watchdog_(parameters_.command_timeout_s),
       gains_(parameters_.gain_ramps, parameters_.passivity),
       force_bus_(emptyBus(resolved_->command_kind)),
+      governor_(*resolved_, resolved_->cartesian()),
       shaper_(ShapingLimits{parameters_.filter_alpha, parameters_.torque_rate_limit,
                             parameters_.effort_limit}),
       safe_hold_(parameters_, dof_),
@@ -142,6 +143,7 @@ void Controller::resetStages() noexcept {
   gains_.reset(active_, data_, state_, diagnostics_);
   force_.reset();
   force_active_ = false;
+  safe_hold_.reset();
   shaper_.reset(torque_);
   output_stage_.reset(state_);
 }

@@ -39,6 +39,7 @@ CycleStatus Controller::update(const JointState& state, double period_s,
     if (!reset) {
       return hold(torque);  // torque.cpp
     }
+    resumeAfterReset();  // commands.cpp: the measured pose held, never the fault's target
     diagnostics_.state.store(WrapperState::kActive, std::memory_order_relaxed);
   }
   reset_pending_ = false;
@@ -48,6 +49,7 @@ CycleStatus Controller::update(const JointState& state, double period_s,
     return hold(torque);
   }
   compensate();                          // torque.cpp
+  govern();                              // torque.cpp
   if (!shape() || !guardSaturation()) {  // torque.cpp; guard.cpp
     return hold(torque);
   }

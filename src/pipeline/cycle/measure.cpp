@@ -15,8 +15,11 @@ bool Controller::measure(const JointState& state) noexcept {
     enterFault("state: ", "joint state of the wrong size or with NaN/inf position or velocity");
     return false;
   }
-  // torque_ is the last cycle's output, computed from the last state.
-  if (frozen_.check(state, state_, torque_, time_s_)) {
+  // torque_ is the last cycle's output, computed from the last state. Held at rest after a
+  // FAULT's stop, the hardware's own hold (brakes) keeps the state still on purpose.
+  const bool braked = safe_hold_.atRest() &&
+                      diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kFault;
+  if (!braked && frozen_.check(state, state_, torque_, time_s_)) {
     enterFault("state: ",
                state.sequence_valid
                    ? "the driver's sample counter has not advanced for frozen_state_timeout_s: a "

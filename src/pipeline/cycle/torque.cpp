@@ -26,6 +26,12 @@ void Controller::compensate() noexcept {
   }
 }
 
+void Controller::govern() noexcept {
+  if (governor_.apply(state_, data_, period_s_, law_torque_, torque_).acted()) {
+    diagnostics_.governor_hits.fetch_add(1, std::memory_order_relaxed);
+  }
+}
+
 void Controller::scaleIntoLimits() noexcept {
   // The largest share s of the law's torque that keeps every joint within its limit with the
   // compensation added in full: a wrench the arm cannot give whole is given in its direction.
@@ -78,7 +84,7 @@ CycleStatus Controller::write(std::span<double> torque) noexcept {
 CycleStatus Controller::hold(std::span<double> torque) noexcept {
   force_active_ = false;  // no law runs: what it would read is the command in force
   // The state is the last usable one when this cycle's was not.
-  safe_hold_.torque(state_, frozen_.frozen(), torque_);
+  safe_hold_.torque(state_, frozen_.frozen(), period_s_, torque_);
   const ShapingResult shaped = shaper_.apply(torque_, period_s_, /*filter=*/false);
   if (!shaped.finite) {
     // Nothing finite to hold with (no usable state was ever measured): command no torque rather

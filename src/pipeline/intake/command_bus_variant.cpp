@@ -1,5 +1,8 @@
 #include "comply/pipeline/command_bus_variant.hpp"
 
+#include <algorithm>
+#include <iterator>
+
 #include "comply/schema/schema.hpp"
 
 namespace comply::pipeline {
@@ -32,6 +35,18 @@ void seedFromMeasured(CommandBus& bus, const MeasuredPose& measured) noexcept {
 
 void stopMotion(CommandBus& bus) noexcept {
   std::visit([](auto& typed) { schema::stopMotion(typed); }, bus);
+}
+
+void holdMeasured(CommandBus& bus, const MeasuredPose& measured) noexcept {
+  seedFromMeasured(bus, measured);
+  std::visit(
+      [](auto& typed) {
+        if constexpr (requires { typed.wrench_feedforward; }) {
+          std::fill(std::begin(typed.wrench_feedforward), std::end(typed.wrench_feedforward), 0.0);
+        }
+        std::fill(std::begin(typed.torque_feedforward), std::end(typed.torque_feedforward), 0.0);
+      },
+      bus);
 }
 
 }  // namespace comply::pipeline

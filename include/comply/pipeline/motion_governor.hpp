@@ -1,0 +1,86 @@
+#pragma once
+// Stage "govern": no accepted command drives a joint past governor.velocity_fraction of its URDF
+// speed, or the TCP past its speeds, whatever the law, its gains and the output mode. The
+// stability guard detects an overspeed; this stage prevents one, so the guard's FAULT is the last
+// line, not the first.
+//
+// Method. The law's torque is scaled by one share s in [0, 1], its direction kept (as
+// effort_saturation: scale does), so that for every joint i moving at |v_i| the law's push along
+// the motion, p_i = sign(v_i) s tau_law_i, stays within what can still be taken back in time:
+//
+//   p_i <= min( sqrt(2 rho_i m_i margin_i),  m_i margin_i / T ),   margin_i = 0.9 w_i - |v_i|
+//
+// w_i the governed speed (velocity_fraction x URDF limit), m_i the joint's lightest inertia over
+// the workspace (the others free to move, the rotor inertia included: parameters.joint_inertia),
+// rho_i its torque-rate limit and T the period. The first term is the push the rate limit can
+// unwind before the joint reaches 0.9 w_i, had the push alone accelerated it (p^2 / (2 rho m) of
+// speed gained while the torque ramps down); the second the push that would reach it within one
+// period. The lightest inertia makes both conservative on every pose. A joint past 0.9 w_i is
+// braked, -D_i (|v_i| - 0.9 w_i) with D_i = m_i / (2 T) (half of deadbeat on the lightest
+// inertia: stable on every heavier one), within its effort limit; the 10 % between 0.9 w_i and
+// w_i is the margin for what the model leaves out (the coupling between joints, Coriolis). The
+// law's braking (a push against the motion) is never scaled.
+//
+// The TCP (Cartesian laws; governor.tcp_speed_m_per_s, tcp_angular_speed_rad_per_s): while the
+// law adds power (tau_law . dq > 0), its share falls linearly from 1 at half a TCP speed limit to 0
+// at 0.9 of it; past 0.9 of it the TCP is braked through J^T with the lightest apparent mass
+// (inertia) at the TCP over 2 T as the damping.
+//
+// Normal tracking is untouched: below half a joint's governed speed with the push a joint of the
+// lightest inertia could unwind, s = 1 exactly and the torque is the law's, bit for bit.
+//
+// Real-time: allocates nothing, takes no lock, never throws.
+
+#include <cstdint>
+
+#include "comply/core/capacity.hpp"
+#include "comply/core/state.hpp"
+#include "comply/model/data.hpp"
+#include "comply/pipeline/resolved_controller.hpp"
+
+namespace comply::pipeline {
+
+/// What the stage did this cycle.
+struct GovernorResult {
+  double share = 1.0;    ///< of the law's torque let through
+  bool braked = false;   ///< a joint or the TCP past 0.9 of its speed was braked
+  [[nodiscard]] bool acted() const noexcept { return share < 1.0 || braked; }
+};
+
+class MotionGovernor {
+ public:
+  /// `tcp`: the TCP is governed (a Cartesian law, whose cycle computes the Jacobian).
+  MotionGovernor(const ResolvedController& resolved, bool tcp);
+
+  [[nodiscard]] bool enabled() const noexcept { return enabled_; }
+  /// Governs `torque` (compensation + law) at `state`: the law's share of it, `law_torque`, is
+  /// scaled in both (so later stages see the governed law), and braking is added to `torque`.
+  /// `data` holds this state's Jacobian when the TCP is governed.
+  GovernorResult apply(const JointState& state, const model::Data& data, double period_s,
+                       JointVector& law_torque, JointVector& torque) const noexcept;
+
+  /// The speed each joint is governed to [rad/s | m/s] (velocity_fraction x URDF).
+  [[nodiscard]] const JointVector& governedSpeed() const noexcept { return governed_speed_; }
+
+ private:
+  [[nodiscard]] double jointShare(const JointState& state, double period_s,
+                                  const JointVector& law_torque) const noexcept;
+  [[nodiscard]] double tcpShare(const Vector6d& tcp_twist, double law_power) const noexcept;
+  bool brakeJoints(const JointState& state, double period_s, JointVector& torque) const noexcept;
+  bool brakeTcp(const Vector6d& tcp_twist, const model::Data& data, double period_s,
+                JointVector& torque) const noexcept;
+
+  bool enabled_ = false;
+  bool tcp_ = false;
+  int dof_ = 0;
+  JointVector governed_speed_;  // w_i
+  JointVector inertia_;         // m_i
+  JointVector rate_limit_;      // rho_i [N m/s]
+  JointVector effort_limit_;    // [N m]
+  double tcp_speed_ = 0.0;          // [m/s], 0: none
+  double tcp_angular_speed_ = 0.0;  // [rad/s], 0: none
+  double tcp_mass_kg_ = 0.0;        // lightest apparent mass at the TCP
+  double tcp_inertia_kg_m2_ = 0.0;  // lightest apparent rotational inertia at the TCP
+};
+
+}  // namespace comply::pipeline

@@ -1,0 +1,133 @@
+#include "comply/pipeline/motion_governor.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace comply::pipeline {
+namespace {
+
+// Shares of a governed speed (motion_governor.hpp): the law's push must be unwindable before
+// kBrakeFrom; past it the stage brakes. The TCP's share starts falling at kTcpFrom.
+constexpr double kBrakeFrom = 0.9;
+constexpr double kTcpFrom = 0.5;
+
+/// The law's share the TCP allows at speed `speed` of limit `limit` (0: none).
+double tcpSpeedShare(double speed, double limit) noexcept {
+  if (limit <= 0.0 || speed <= kTcpFrom * limit) {
+    return 1.0;
+  }
+  return std::clamp((kBrakeFrom * limit - speed) / ((kBrakeFrom - kTcpFrom) * limit), 0.0, 1.0);
+}
+
+}  // namespace
+
+MotionGovernor::MotionGovernor(const ResolvedController& resolved, bool tcp)
+    : dof_(resolved.dof) {
+  const CycleParameters& parameters = resolved.parameters;
+  const GovernorConfig& config = parameters.governor;
+  enabled_ = config.enabled && parameters.joint_inertia.size() == dof_;
+  governed_speed_ = config.velocity_fraction * parameters.velocity_limit;
+  inertia_ = enabled_ ? parameters.joint_inertia : JointVector::Zero(dof_);
+  rate_limit_ = parameters.torque_rate_limit;
+  effort_limit_ = parameters.effort_limit;
+  tcp_ = tcp && enabled_;
+  tcp_speed_ = config.tcp_speed_m_per_s;
+  tcp_angular_speed_ = config.tcp_angular_speed_rad_per_s;
+  tcp_mass_kg_ = parameters.tcp_mass_kg;
+  tcp_inertia_kg_m2_ = parameters.tcp_inertia_kg_m2;
+}
+
+double MotionGovernor::jointShare(const JointState& state, double period_s,
+                                  const JointVector& law_torque) const noexcept {
+  double share = 1.0;
+  for (int i = 0; i < dof_; ++i) {
+    const double velocity = state.velocity[i];
+    // At rest the push itself is the direction it would start the motion in.
+    const double push = velocity == 0.0 ? std::abs(law_torque[i])
+                                        : (velocity > 0.0 ? law_torque[i] : -law_torque[i]);
+    if (push <= 0.0) {
+      continue;  // the law brakes this joint (or leaves it): never scaled
+    }
+    const double margin = std::max(kBrakeFrom * governed_speed_[i] - std::abs(velocity), 0.0);
+    double allowed = inertia_[i] * margin / period_s;
+    if (std::isfinite(rate_limit_[i])) {  // an admittance's virtual arm has no rate limit
+      allowed = std::min(allowed, std::sqrt(2.0 * rate_limit_[i] * inertia_[i] * margin));
+    }
+    if (push > allowed) {
+      share = std::min(share, allowed / push);
+    }
+  }
+  return share;
+}
+
+double MotionGovernor::tcpShare(const Vector6d& tcp_twist, double law_power) const noexcept {
+  if (law_power <= 0.0) {
+    return 1.0;  // the law takes energy out: never scaled
+  }
+  return std::min(tcpSpeedShare(tcp_twist.head<3>().norm(), tcp_speed_),
+                  tcpSpeedShare(tcp_twist.tail<3>().norm(), tcp_angular_speed_));
+}
+
+bool MotionGovernor::brakeJoints(const JointState& state, double period_s,
+                                 JointVector& torque) const noexcept {
+  bool braked = false;
+  for (int i = 0; i < dof_; ++i) {
+    const double velocity = state.velocity[i];
+    const double excess = std::abs(velocity) - kBrakeFrom * governed_speed_[i];
+    if (excess <= 0.0) {
+      continue;
+    }
+    const double brake = std::min(inertia_[i] / (2.0 * period_s) * excess, effort_limit_[i]);
+    torque[i] -= velocity > 0.0 ? brake : -brake;
+    braked = true;
+  }
+  return braked;
+}
+
+bool MotionGovernor::brakeTcp(const Vector6d& tcp_twist, const model::Data& data, double period_s,
+                              JointVector& torque) const noexcept {
+  Vector6d wrench = Vector6d::Zero();
+  const auto brake = [&](int row, double limit, double inertia) noexcept {
+    const Eigen::Vector3d velocity = tcp_twist.segment<3>(row);
+    const double speed = velocity.norm();
+    const double excess = speed - kBrakeFrom * limit;
+    if (limit <= 0.0 || inertia <= 0.0 || excess <= 0.0) {
+      return false;
+    }
+    wrench.segment<3>(row) = -(inertia / (2.0 * period_s) * excess / speed) * velocity;
+    return true;
+  };
+  const bool linear = brake(0, tcp_speed_, tcp_mass_kg_);
+  const bool angular = brake(3, tcp_angular_speed_, tcp_inertia_kg_m2_);
+  if (!linear && !angular) {
+    return false;
+  }
+  torque.head(dof_).noalias() += data.jacobian.leftCols(dof_).transpose() * wrench;
+  return true;
+}
+
+GovernorResult MotionGovernor::apply(const JointState& state, const model::Data& data,
+                                     double period_s, JointVector& law_torque,
+                                     JointVector& torque) const noexcept {
+  GovernorResult result;
+  if (!enabled_ || !(period_s > 0.0)) {
+    return result;
+  }
+  result.share = jointShare(state, period_s, law_torque);
+  Vector6d tcp_twist = Vector6d::Zero();
+  if (tcp_) {
+    tcp_twist.noalias() = data.jacobian.leftCols(dof_) * state.velocity.head(dof_);
+    result.share = std::min(result.share, tcpShare(tcp_twist, law_torque.dot(state.velocity)));
+  }
+  if (result.share < 1.0) {
+    torque -= (1.0 - result.share) * law_torque;
+    law_torque *= result.share;
+  }
+  result.braked = brakeJoints(state, period_s, torque);
+  if (tcp_) {
+    result.braked = brakeTcp(tcp_twist, data, period_s, torque) || result.braked;
+  }
+  return result;
+}
+
+}  // namespace comply::pipeline
