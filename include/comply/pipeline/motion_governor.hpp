@@ -75,6 +75,7 @@ class MotionGovernor {
   int dof_ = 0;
   JointVector governed_speed_;  // w_i
   JointVector inertia_;         // m_i
+  JointVector root_inertia_;    // sqrt(m_i)
   JointVector rate_limit_;      // rho_i [N m/s]
   JointVector effort_limit_;    // [N m]
   double tcp_speed_ = 0.0;          // [m/s], 0: none

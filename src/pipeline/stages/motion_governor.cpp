@@ -9,6 +9,7 @@ namespace {
 // Shares of a governed speed (motion_governor.hpp): the law's push must be unwindable before
 // kBrakeFrom; past it the stage brakes. The TCP's share starts falling at kTcpFrom.
 constexpr double kBrakeFrom = 0.9;
+constexpr double kJointFrom = 0.2;
 constexpr double kTcpFrom = 0.5;
 
 /// The law's share the TCP allows at speed `speed` of limit `limit` (0: none).
@@ -27,7 +28,8 @@ MotionGovernor::MotionGovernor(const ResolvedController& resolved, bool tcp)
   const GovernorConfig& config = parameters.governor;
   enabled_ = config.enabled && parameters.joint_inertia.size() == dof_;
   governed_speed_ = config.velocity_fraction * parameters.velocity_limit;
-  inertia_ = enabled_ ? parameters.joint_inertia : JointVector::Zero(dof_);
+  inertia_ = enabled_ ? parameters.joint_inertia : JointVector::Ones(dof_);
+  root_inertia_ = inertia_.cwiseSqrt();
   rate_limit_ = parameters.torque_rate_limit;
   effort_limit_ = parameters.effort_limit;
   tcp_ = tcp && enabled_;
@@ -39,14 +41,26 @@ MotionGovernor::MotionGovernor(const ResolvedController& resolved, bool tcp)
 
 double MotionGovernor::jointShare(const JointState& state, double period_s,
                                   const JointVector& law_torque) const noexcept {
+  // The other joints' torques reach joint i through the inverse inertia's off-diagonal, at most
+  // |tau_j| / sqrt(m_i m_j) of acceleration each (Cauchy-Schwarz on the positive definite inverse,
+  // whose diagonal is at most 1 / m): their share of joint i's push, in its worst direction.
+  double coupled = 0.0;
+  for (int j = 0; j < dof_; ++j) {
+    coupled += std::abs(law_torque[j]) / root_inertia_[j];
+  }
   double share = 1.0;
   for (int i = 0; i < dof_; ++i) {
     const double velocity = state.velocity[i];
-    // At rest the push itself is the direction it would start the motion in.
-    const double push = velocity == 0.0 ? std::abs(law_torque[i])
-                                        : (velocity > 0.0 ? law_torque[i] : -law_torque[i]);
+    const double own = velocity > 0.0 ? law_torque[i] : -law_torque[i];
+    // A slow joint is left alone: a law holding a contact pushes at rest, and what a push from
+    // slow can add is what the margin above kJointFrom is for.
+    if (std::abs(velocity) < kJointFrom * governed_speed_[i]) {
+      continue;
+    }
+    const double push =
+        std::max(own, 0.0) + root_inertia_[i] * coupled - std::abs(law_torque[i]);
     if (push <= 0.0) {
-      continue;  // the law brakes this joint (or leaves it): never scaled
+      continue;  // the law brakes this joint and nothing else pushes it: never scaled
     }
     const double margin = std::max(kBrakeFrom * governed_speed_[i] - std::abs(velocity), 0.0);
     double allowed = inertia_[i] * margin / period_s;
