@@ -22,9 +22,11 @@ namespace {
 using pipeline::WrapperState;
 
 /// The wrapper on the plant, as the control loop runs it (the hardware's hold when asked for).
+template <typename Command = CartesianCommand>
 struct Arm {
   explicit Arm(const pipeline::WrapperConfig& config)
-      : plant(*config.robot_description, sim::PlantOptions{}), wrapper(config) {
+      : plant(*config.robot_description, sim::PlantOptions{.actuation = config.output.mode}),
+        wrapper(config) {
     state = JointState::zero(wrapper.dof());
     command.resize(wrapper.dof());
     plant.read(state);
@@ -58,7 +60,7 @@ struct Arm {
   [[nodiscard]] double fastestJoint() const { return state.velocity.cwiseAbs().maxCoeff(); }
 
   sim::SimulatedRobot plant;
-  pipeline::CartesianWrapper wrapper;
+  pipeline::Wrapper<Command> wrapper;
   JointState state;
   ActuatorCommand command;
   Eigen::Vector3d start_tcp;
@@ -69,15 +71,14 @@ struct Arm {
 };
 
 /// A stiff target `offset_m` from the measured TCP, rotated by `angle_rad` about base z.
-CartesianCommand stiffStep(const Arm& arm, const Eigen::Vector3d& offset_m, double angle_rad) {
+CartesianCommand stiffStep(const Arm<>& arm, const Eigen::Vector3d& offset_m, double angle_rad) {
   CartesianCommand target = CartesianCommand::zero(arm.wrapper.dof());
   target.stamp_s = 1.0;
   target.fields = CommandField::kPosition | CommandField::kStiffness;
   const MeasuredPose measured = arm.wrapper.measuredPose();
   target.position = measured.tcp_position + offset_m;
-  target.orientation =
-      Eigen::Quaterniond(Eigen::AngleAxisd(angle_rad, Eigen::Vector3d::UnitZ())) *
-      measured.tcp_orientation;
+  target.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(angle_rad, Eigen::Vector3d::UnitZ())) *
+                       measured.tcp_orientation;
   target.stiffness_translational = 1e4 * Eigen::Matrix3d::Identity();
   target.stiffness_rotational = (angle_rad == 0.0 ? 200.0 : 4000.0) * Eigen::Matrix3d::Identity();
   return target;
@@ -90,10 +91,9 @@ TEST_P(StopMeansStop, StiffStepsStayBelowTheGovernedSpeed) {
   const pipeline::WrapperConfig config = simCartesianConfig(GetParam());
   for (const double angle : {0.0, 0.5}) {
     SCOPED_TRACE(GetParam() + (angle == 0.0 ? ": 10 cm at 1e4 N/m" : ": 0.5 rad at 4000 N m/rad"));
-    Arm arm(config);
-    const CartesianCommand step =
-        stiffStep(arm, angle == 0.0 ? Eigen::Vector3d(0.1, 0.0, 0.0) : Eigen::Vector3d::Zero(),
-                  angle);
+    Arm<> arm(config);
+    const CartesianCommand step = stiffStep(
+        arm, angle == 0.0 ? Eigen::Vector3d(0.1, 0.0, 0.0) : Eigen::Vector3d::Zero(), angle);
     const pipeline::Verdict verdict = arm.wrapper.submit(step);
     if (!verdict.accepted) {
       // The gain bound refused it with the arm's numbers: nothing reached the arm.
@@ -120,7 +120,7 @@ TEST_P(StopMeansStop, AFaultFromFullSpeedEndsAtRestAndAResetHoldsThere) {
   pipeline::WrapperConfig config = simCartesianConfig(GetParam());
   config.governor.enabled = false;
   config.validation.max_wn_period = 0.0;  // the stop is what is tested, at any gain
-  Arm arm(config);
+  Arm<> arm(config);
   ASSERT_TRUE(arm.wrapper.submit(stiffStep(arm, Eigen::Vector3d(0.1, 0.0, 0.0), 0.0)).accepted);
   int cycle = 0;
   for (; cycle < 3000 && !arm.faulted(); ++cycle) {
@@ -141,10 +141,9 @@ TEST_P(StopMeansStop, AFaultFromFullSpeedEndsAtRestAndAResetHoldsThere) {
   EXPECT_LT(stop_cycles, 2000) << "not at rest 2 s after the FAULT";
   EXPECT_TRUE(arm.held) << "the hardware's hold was never asked for";
   EXPECT_LT((arm.tcp() - at_fault).norm(), 0.15);
-  RecordProperty(GetParam() + "_stop",
-                 "from " + std::to_string(fault_speed) + " rad/s: " +
-                     std::to_string(stop_cycles) + " ms, " +
-                     std::to_string(stop_distance_m * 100.0) + " cm");
+  RecordProperty(GetParam() + "_stop", "from " + std::to_string(fault_speed) +
+                                           " rad/s: " + std::to_string(stop_cycles) + " ms, " +
+                                           std::to_string(stop_distance_m * 100.0) + " cm");
 
   const Eigen::Vector3d at_reset = arm.tcp();
   arm.worst_ratio = 0.0;
@@ -155,6 +154,44 @@ TEST_P(StopMeansStop, AFaultFromFullSpeedEndsAtRestAndAResetHoldsThere) {
   EXPECT_FALSE(arm.faulted()) << arm.wrapper.diagnostics().last_fault;
   EXPECT_LT((arm.tcp() - at_reset).norm(), 0.005) << "the reset re-armed a target";
   EXPECT_LT(arm.worst_ratio, 0.05);
+}
+
+// Finding 6: the governor bounds every law and output mode. A Cartesian law on drives with an
+// onboard PD (joint_pd), and a joint law, each with gains past what the gain bound would accept
+// (off here: the governor is what is tested): a 10 cm and a 0.5 rad step stay below the governed
+// speed.
+TEST_P(StopMeansStop, JointPdDrivesAndJointLawsAreGovernedToo) {
+  pipeline::WrapperConfig cartesian = simCartesianConfig(GetParam());
+  cartesian.output.mode = OutputMode::kJointPd;
+  cartesian.validation.max_wn_period = 0.0;
+  {
+    Arm<> arm(cartesian);
+    CartesianCommand step = stiffStep(arm, Eigen::Vector3d(0.1, 0.0, 0.0), 0.0);
+    step.stiffness_translational *= 10.0;
+    ASSERT_TRUE(arm.wrapper.submit(step).accepted);
+    for (int cycle = 0; cycle < 3000; ++cycle) {
+      arm.cycle();
+    }
+    EXPECT_FALSE(arm.faulted()) << arm.wrapper.diagnostics().last_fault;
+    EXPECT_LE(arm.worst_ratio, cartesian.governor.velocity_fraction) << "joint_pd";
+  }
+  pipeline::WrapperConfig joint = host::simControllerConfig(
+      GetParam(), "", (kSourceDir / "config" / "sim" / "joint_impedance.yaml").string());
+  joint.validation.max_wn_period = 0.0;
+  Arm<JointCommand> arm(joint);
+  JointCommand step = JointCommand::zero(arm.wrapper.dof());
+  step.stamp_s = 1.0;
+  step.fields = CommandField::kPosition | CommandField::kStiffness;
+  step.position = arm.state.position;
+  step.position.array() += 0.45;  // within the 0.5 rad jump limit, every joint at once
+  step.stiffness = JointVector::Constant(arm.wrapper.dof(), 5000.0);
+  ASSERT_TRUE(arm.wrapper.submit(step).accepted);
+  for (int cycle = 0; cycle < 3000; ++cycle) {
+    arm.cycle();
+  }
+  EXPECT_FALSE(arm.faulted()) << arm.wrapper.diagnostics().last_fault;
+  EXPECT_LE(arm.worst_ratio, joint.governor.velocity_fraction) << "joint law";
+  RecordProperty(GetParam() + "_joint_law", "speed ratio " + std::to_string(arm.worst_ratio));
 }
 
 INSTANTIATE_TEST_SUITE_P(Robots, StopMeansStop, ::testing::ValuesIn(model::availableRobots()),

@@ -5,29 +5,34 @@
 // line, not the first.
 //
 // Method. The law's torque is scaled by one share s in [0, 1], its direction kept (as
-// effort_saturation: scale does), so that for every joint i moving at |v_i| the law's push along
-// the motion, p_i = sign(v_i) s tau_law_i, stays within what can still be taken back in time:
+// effort_saturation: scale does), so that for every joint i moving faster than 0.2 w_i the law's
+// push on it, p_i, stays within what can still be taken back in time:
 //
-//   p_i <= min( sqrt(2 rho_i m_i margin_i),  m_i margin_i / T ),   margin_i = 0.9 w_i - |v_i|
+//   p_i <= min( sqrt(2 rho_i m_i margin_i),  m_i margin_i / T ),   margin_i = 0.85 w_i - |v_i|
+//
+//   p_i = s ( max(sign(v_i) tau_i, 0) + sum_{j != i} |tau_j| sqrt(m_i / m_j) )
 //
 // w_i the governed speed (velocity_fraction x URDF limit), m_i the joint's lightest inertia over
 // the workspace (the others free to move, the rotor inertia included: parameters.joint_inertia),
-// rho_i its torque-rate limit and T the period. The first term is the push the rate limit can
-// unwind before the joint reaches 0.9 w_i, had the push alone accelerated it (p^2 / (2 rho m) of
-// speed gained while the torque ramps down); the second the push that would reach it within one
-// period. The lightest inertia makes both conservative on every pose. A joint past 0.9 w_i is
-// braked, -D_i (|v_i| - 0.9 w_i) with D_i = m_i / (2 T) (half of deadbeat on the lightest
-// inertia: stable on every heavier one), within its effort limit; the 10 % between 0.9 w_i and
-// w_i is the margin for what the model leaves out (the coupling between joints, Coriolis). The
-// law's braking (a push against the motion) is never scaled.
+// rho_i its torque-rate limit, T the period and tau the law's torque. The sum is what the other
+// joints' torques can add to joint i's acceleration through the inverse inertia's off-diagonal
+// (at most |tau_j| / sqrt(m_i m_j) each, Cauchy-Schwarz on a positive definite matrix whose
+// diagonal is at most 1 / m), in its worst direction. The first bound is the push the rate limit
+// can unwind before the joint reaches 0.85 w_i (p^2 / (2 rho m) of speed gained while the torque
+// ramps down); the second the push that would reach it within one period. A joint past 0.85 w_i is
+// braked, -D_i (|v_i| - 0.85 w_i) with D_i = m_i / (2 T) (half of deadbeat on the lightest
+// inertia: stable on every heavier one), within its effort limit; the 15 % between 0.85 w_i and
+// w_i is the margin for what the model leaves out (Coriolis and centrifugal torques, the lag of
+// a rate-limited torque). The law's braking is never scaled, and a joint slower than 0.2 w_i is
+// left alone: a law holding a contact pushes at rest.
 //
 // The TCP (Cartesian laws; governor.tcp_speed_m_per_s, tcp_angular_speed_rad_per_s): while the
 // law adds power (tau_law . dq > 0), its share falls linearly from 1 at half a TCP speed limit to 0
-// at 0.9 of it; past 0.9 of it the TCP is braked through J^T with the lightest apparent mass
+// at 0.85 of it; past 0.85 of it the TCP is braked through J^T with the lightest apparent mass
 // (inertia) at the TCP over 2 T as the damping.
 //
-// Normal tracking is untouched: below half a joint's governed speed with the push a joint of the
-// lightest inertia could unwind, s = 1 exactly and the torque is the law's, bit for bit.
+// Normal tracking is untouched: while no joint passes 0.2 w_i with more push than the bounds allow
+// and the TCP stays below half its limits, s = 1 exactly and the torque is the law's, bit for bit.
 //
 // Real-time: allocates nothing, takes no lock, never throws.
 
@@ -42,8 +47,8 @@ namespace comply::pipeline {
 
 /// What the stage did this cycle.
 struct GovernorResult {
-  double share = 1.0;    ///< of the law's torque let through
-  bool braked = false;   ///< a joint or the TCP past 0.9 of its speed was braked
+  double share = 1.0;   ///< of the law's torque let through
+  bool braked = false;  ///< a joint or the TCP past 0.85 of its speed was braked
   [[nodiscard]] bool acted() const noexcept { return share < 1.0 || braked; }
 };
 
@@ -73,11 +78,11 @@ class MotionGovernor {
   bool enabled_ = false;
   bool tcp_ = false;
   int dof_ = 0;
-  JointVector governed_speed_;  // w_i
-  JointVector inertia_;         // m_i
-  JointVector root_inertia_;    // sqrt(m_i)
-  JointVector rate_limit_;      // rho_i [N m/s]
-  JointVector effort_limit_;    // [N m]
+  JointVector governed_speed_;      // w_i
+  JointVector inertia_;             // m_i
+  JointVector root_inertia_;        // sqrt(m_i)
+  JointVector rate_limit_;          // rho_i [N m/s]
+  JointVector effort_limit_;        // [N m]
   double tcp_speed_ = 0.0;          // [m/s], 0: none
   double tcp_angular_speed_ = 0.0;  // [rad/s], 0: none
   double tcp_mass_kg_ = 0.0;        // lightest apparent mass at the TCP

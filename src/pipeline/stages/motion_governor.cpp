@@ -8,7 +8,7 @@ namespace {
 
 // Shares of a governed speed (motion_governor.hpp): the law's push must be unwindable before
 // kBrakeFrom; past it the stage brakes. The TCP's share starts falling at kTcpFrom.
-constexpr double kBrakeFrom = 0.9;
+constexpr double kBrakeFrom = 0.85;
 constexpr double kJointFrom = 0.2;
 constexpr double kTcpFrom = 0.5;
 
@@ -22,8 +22,7 @@ double tcpSpeedShare(double speed, double limit) noexcept {
 
 }  // namespace
 
-MotionGovernor::MotionGovernor(const ResolvedController& resolved, bool tcp)
-    : dof_(resolved.dof) {
+MotionGovernor::MotionGovernor(const ResolvedController& resolved, bool tcp) : dof_(resolved.dof) {
   const CycleParameters& parameters = resolved.parameters;
   const GovernorConfig& config = parameters.governor;
   enabled_ = config.enabled && parameters.joint_inertia.size() == dof_;
@@ -57,8 +56,7 @@ double MotionGovernor::jointShare(const JointState& state, double period_s,
     if (std::abs(velocity) < kJointFrom * governed_speed_[i]) {
       continue;
     }
-    const double push =
-        std::max(own, 0.0) + root_inertia_[i] * coupled - std::abs(law_torque[i]);
+    const double push = std::max(own, 0.0) + root_inertia_[i] * coupled - std::abs(law_torque[i]);
     if (push <= 0.0) {
       continue;  // the law brakes this joint and nothing else pushes it: never scaled
     }
