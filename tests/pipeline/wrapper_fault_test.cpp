@@ -1,9 +1,12 @@
 // FAULT handling (docs/design.md, "Safety semantics"): a law that fails on activation is refused
 // before any torque is sent; a law that fails in the cycle, or an unusable joint state, switches to
-// the safe holding torque g(q) - D_fault dq until an explicit reset, and only a reset leaves it.
+// the controlled stop (gravity and braking within the effort limits, then a hold where the arm came
+// to rest) until an explicit reset, and only a reset leaves it: with the measured pose held.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <utility>
@@ -49,9 +52,20 @@ JointState moving(JointState state, double speed) {
   return state;
 }
 
-/// The safe holding torque at `state`.
+/// The controlled stop's torque at `state`, a moving one (safe_hold.hpp): gravity and, per joint,
+/// damping max(fault_damping, m / 2T) within what the effort limit leaves beside gravity.
 JointVector holdingTorque(const Controller& core, const JointState& state) {
-  return gravityAt(core, state.position) - kFaultDamping.cwiseProduct(state.velocity);
+  const CycleParameters& parameters = core.resolved().parameters;
+  const JointVector gravity = gravityAt(core, state.position);
+  JointVector torque = gravity;
+  for (int i = 0; i < kFr3Dof; ++i) {
+    const double gain =
+        std::max(kFaultDamping[i], parameters.joint_inertia[i] / (2.0 * kPeriod));
+    const double brake = gain * state.velocity[i];
+    const double available = parameters.effort_limit[i] - std::abs(gravity[i]);
+    torque[i] -= std::isfinite(brake) ? std::clamp(brake, -available, available) : 0.0;
+  }
+  return torque;
 }
 
 // ---- activation -------------------------------------------------------------------------------
@@ -210,6 +224,36 @@ TEST_F(CartesianLawFault, ResetWithTheFailingCommandStillInForceFaultsAgain) {
   wrapper.reset();
   EXPECT_EQ(cycle(rest), CycleStatus::kFault);
   EXPECT_EQ(wrapper.diagnostics().faults, 2U);
+}
+
+TEST_F(CartesianLawFault, AResetHoldsTheMeasuredPoseNotTheTargetInForceAtTheFault) {
+  // A target 5 cm off and a feedforward push in force when the law fails: the reset must not put
+  // them back (the arm stopped elsewhere; they may be what caused the fault).
+  CartesianCommand target = CartesianCommand::zero(kFr3Dof);
+  target.stamp_s = 0.5;
+  target.fields = CommandField::kPosition | CommandField::kWrenchFeedforward;
+  target.position = wrapper.measuredPose().tcp_position + Eigen::Vector3d(0.05, 0.0, 0.0);
+  target.orientation = wrapper.measuredPose().tcp_orientation;
+  target.wrench_feedforward << 10.0, 0.0, 0.0, 0.0, 0.0, 1.0;
+  ASSERT_TRUE(wrapper.submit(target).accepted);
+  ASSERT_EQ(cycle(rest), CycleStatus::kOk);
+  ASSERT_TRUE(wrapper.submit(damping(1.0, DampingMode::kRatio)).accepted);
+  ASSERT_EQ(cycle(rest), CycleStatus::kFault);
+  ASSERT_TRUE(wrapper.submit(damping(2.0, DampingMode::kAbsolute)).accepted);
+  JointState stopped = rest;
+  stopped.position[0] += 0.02;  // where the stop left the arm
+  ASSERT_EQ(cycle(stopped), CycleStatus::kFault);
+  wrapper.reset();
+  ASSERT_EQ(cycle(stopped), CycleStatus::kOk);
+  const auto& in_force = std::get<comply_cartesian_command>(wrapper.controller().activeCommand());
+  const MeasuredPose measured = wrapper.measuredPose();
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_DOUBLE_EQ(in_force.position[axis], measured.tcp_position[axis]) << axis;
+  }
+  for (const double value : in_force.wrench_feedforward) {
+    EXPECT_EQ(value, 0.0) << "the feedforward in force at the fault was re-armed";
+  }
+  EXPECT_EQ(in_force.damping_mode, COMPLY_DAMPING_ABSOLUTE) << "the gains sent since stay";
 }
 
 TEST_F(CartesianLawFault, ResetBeforeAFaultDoesNotClearIt) {

@@ -14,75 +14,11 @@
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/sim/simulated_robot.hpp"
+#include "governed_arm.hpp"
 #include "sim_support.hpp"
 
 namespace comply::testing {
 namespace {
-
-using pipeline::WrapperState;
-
-/// The wrapper on the plant, as the control loop runs it (the hardware's hold when asked for).
-template <typename Command = CartesianCommand>
-struct Arm {
-  explicit Arm(const pipeline::WrapperConfig& config)
-      : plant(*config.robot_description, sim::PlantOptions{.actuation = config.output.mode}),
-        wrapper(config) {
-    state = JointState::zero(wrapper.dof());
-    command.resize(wrapper.dof());
-    plant.read(state);
-    wrapper.activate(state);
-    start_tcp = wrapper.measuredPose().tcp_position;
-  }
-
-  /// One cycle; the largest joint speed over its URDF limit and the TCP speed are kept.
-  void cycle() {
-    plant.read(state);
-    if (wrapper.cycle(state, plant.controlPeriod(), command)) {
-      plant.writeCommand(command);
-      if (wrapper.wantsHold()) {
-        held = plant.hold() || held;
-      }
-    }
-    plant.step();
-    const model::Model& model = wrapper.controller().model();
-    double ratio = 0.0;
-    for (int i = 0; i < wrapper.dof(); ++i) {
-      ratio = std::max(ratio, std::abs(state.velocity[i]) / model.limits(i).velocity);
-    }
-    worst_ratio = std::max(worst_ratio, ratio);
-    const Eigen::Vector3d tcp = wrapper.measuredPose().tcp_position;
-    worst_tcp_speed = std::max(worst_tcp_speed, (tcp - last_tcp).norm() / plant.controlPeriod());
-    last_tcp = tcp;
-  }
-
-  [[nodiscard]] bool faulted() const { return wrapper.diagnostics().state == WrapperState::kFault; }
-  [[nodiscard]] Eigen::Vector3d tcp() const { return wrapper.measuredPose().tcp_position; }
-  [[nodiscard]] double fastestJoint() const { return state.velocity.cwiseAbs().maxCoeff(); }
-
-  sim::SimulatedRobot plant;
-  pipeline::Wrapper<Command> wrapper;
-  JointState state;
-  ActuatorCommand command;
-  Eigen::Vector3d start_tcp;
-  Eigen::Vector3d last_tcp = Eigen::Vector3d::Constant(std::nan(""));
-  double worst_ratio = 0.0;
-  double worst_tcp_speed = 0.0;
-  bool held = false;
-};
-
-/// A stiff target `offset_m` from the measured TCP, rotated by `angle_rad` about base z.
-CartesianCommand stiffStep(const Arm<>& arm, const Eigen::Vector3d& offset_m, double angle_rad) {
-  CartesianCommand target = CartesianCommand::zero(arm.wrapper.dof());
-  target.stamp_s = 1.0;
-  target.fields = CommandField::kPosition | CommandField::kStiffness;
-  const MeasuredPose measured = arm.wrapper.measuredPose();
-  target.position = measured.tcp_position + offset_m;
-  target.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(angle_rad, Eigen::Vector3d::UnitZ())) *
-                       measured.tcp_orientation;
-  target.stiffness_translational = 1e4 * Eigen::Matrix3d::Identity();
-  target.stiffness_rotational = (angle_rad == 0.0 ? 200.0 : 4000.0) * Eigen::Matrix3d::Identity();
-  return target;
-}
 
 class StopMeansStop : public ::testing::TestWithParam<std::string> {};
 
