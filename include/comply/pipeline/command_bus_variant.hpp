@@ -41,5 +41,10 @@ void mergeInto(CommandBus& active, const CommandBus& incoming) noexcept;
 void seedFromMeasured(CommandBus& bus, const MeasuredPose& measured) noexcept;
 /// Rates (velocity, twist, acceleration) to zero: the reference holds where it is.
 void stopMotion(CommandBus& bus) noexcept;
+/// A Cartesian bus's reference along the force axes it selects onto the measured pose (task
+/// frame; pipeline::anchorForceAxes), so that wherever those axes end (a command merged, the
+/// watchdog, a chunk stopped) the arm is held where it is, not sprung back to a reference that was
+/// never checked along them. A joint bus is left as it is.
+void anchorForceAxes(CommandBus& bus, const MeasuredPose& measured) noexcept;
 
 }  // namespace comply::pipeline

@@ -1,5 +1,6 @@
 #include "comply/pipeline/command_bus_variant.hpp"
 
+#include "comply/pipeline/force_axes.hpp"
 #include "comply/schema/schema.hpp"
 
 namespace comply::pipeline {
@@ -32,6 +33,12 @@ void seedFromMeasured(CommandBus& bus, const MeasuredPose& measured) noexcept {
 
 void stopMotion(CommandBus& bus) noexcept {
   std::visit([](auto& typed) { schema::stopMotion(typed); }, bus);
+}
+
+void anchorForceAxes(CommandBus& bus, const MeasuredPose& measured) noexcept {
+  if (auto* cartesian = std::get_if<comply_cartesian_command>(&bus)) {
+    anchorForceAxes(*cartesian, measured.tcp_position, measured.tcp_orientation);
+  }
 }
 
 }  // namespace comply::pipeline
