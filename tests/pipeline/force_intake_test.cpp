@@ -188,6 +188,31 @@ TEST_F(ForceIntake, AWrenchAboveWhatTheArmExertsIsRefused) {
   EXPECT_EQ(wrapper_->submit(feedforward).reason, RejectionReason::kOutOfRange);
 }
 
+TEST_F(ForceIntake, TheForceStageNeverCommandsMoreThanTheArmExertsWhereItIs) {
+  start();
+  // A target just within the bound at home; then the arm is elsewhere, where it is not.
+  const Controller& controller = wrapper_->controller();
+  Vector6d up = Vector6d::Zero();
+  up[2] = 1.0;
+  const double bound =
+      1.0 /
+      effortRatio(controller.modelData().jacobian, up, controller.effortLimit(), kFr3Dof).ratio;
+  CartesianCommand target = pushUp(home_, 1.0, Eigen::Vector3d::Zero());
+  target.wrench_target[2] = 0.99 * bound;
+  ASSERT_TRUE(wrapper_->submit(target).accepted);
+  state_ = restingAt(controller, offset(fr3Home(), 5, 0.8));
+  cycle();
+  const model::Data& data = controller.modelData();
+  ASSERT_GT(effortRatio(data.jacobian, 0.99 * bound * up, controller.effortLimit(), kFr3Dof).ratio,
+            1.0)
+      << "the pose must carry less along z";
+  const auto& law = std::get<comply_cartesian_command>(controller.lawBus());
+  const Vector6d pushed = Eigen::Map<const Vector6d>(law.wrench_feedforward);
+  EXPECT_NEAR(effortRatio(data.jacobian, pushed, controller.effortLimit(), kFr3Dof).ratio, 1.0,
+              1e-9);
+  EXPECT_GT(pushed[2], 0.0) << "scaled along its direction";
+}
+
 TEST(WrenchBound, AWrenchAboveTheEffortLimitsIsScaledOntoThem) {
   Jacobian jacobian = Jacobian::Zero(6, 2);
   jacobian(2, 0) = 0.5;   // joint 0: 0.5 N m per N along z
