@@ -59,6 +59,7 @@ Verdict checkStampAndFields(Command& incoming, const ValidationConfig& limits, i
 struct Jump {
   double distance = 0.0;  ///< [m]
   double angle = 0.0;     ///< [rad]
+  bool force_axes_left_out = false;
 };
 
 /// How far `incoming`'s target is from the measured pose, leaving out the axes that stay force
@@ -93,6 +94,7 @@ Jump targetJump(const CartesianCommand& incoming, const MeasuredPose& measured,
     }
     jump.distance = std::max(jump.distance, linear.stableNorm());
     jump.angle = std::max(jump.angle, angular.norm());
+    jump.force_axes_left_out = true;
   }
   return jump;
 }
@@ -144,14 +146,14 @@ Verdict validateCommand(CartesianCommand& incoming, const ValidationConfig& limi
   if (!verdict.accepted || !has(incoming.fields, CommandField::kPosition) || !measured.valid) {
     return verdict;
   }
-  const auto [distance, angle] = targetJump(incoming, measured, in_force);
+  const auto [distance, angle, left_out] = targetJump(incoming, measured, in_force);
   if (distance > limits.max_position_jump_m || angle > limits.max_orientation_jump_rad) {
     const NumberTexts position = numbersApart(distance, limits.max_position_jump_m);
     const NumberTexts orientation = numbersApart(angle, limits.max_orientation_jump_rad);
     std::ostringstream text;
     text << "target is " << position.value << " m / " << orientation.value
-         << " rad from the measured pose (limits " << position.limit << " m / " << orientation.limit
-         << " rad)";
+         << " rad from the measured pose" << (left_out ? " off the force axes" : "") << " (limits "
+         << position.limit << " m / " << orientation.limit << " rad)";
     return reject(RejectionReason::kPoseJump, text.str());
   }
   return verdict;
