@@ -44,5 +44,10 @@ void stopMotion(CommandBus& bus) noexcept;
 /// The measured pose held and nothing pushed: seedFromMeasured() and the feedforward wrench and
 /// torque to zero (what a reset leaves in force).
 void holdMeasured(CommandBus& bus, const MeasuredPose& measured) noexcept;
+/// A Cartesian bus's reference along the force axes it selects onto the measured pose (task
+/// frame; pipeline::anchorForceAxes), so that wherever those axes end (a command merged, the
+/// watchdog, a chunk stopped) the arm is held where it is, not sprung back to a reference that was
+/// never checked along them. A joint bus is left as it is.
+void anchorForceAxes(CommandBus& bus, const MeasuredPose& measured) noexcept;
 
 }  // namespace comply::pipeline

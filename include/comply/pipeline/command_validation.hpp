@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -39,17 +40,32 @@ std::string stampText(std::int64_t stamp_ns);
 /// The pose at joint positions `position` from a model update that computed the pose.
 MeasuredPose measuredPoseFrom(const JointVector& position, const model::Data& data) noexcept;
 
+/// Force axes in force where a command is checked: the selection (1 = force) and its task frame.
+struct ForceSelection {
+  Vector6d axes = Vector6d::Zero();
+  Eigen::Quaterniond task_frame = Eigen::Quaterniond::Identity();
+};
+
 /// Checks `incoming` without merging: stamp (finite, not older than `last_stamp_s`), the fields of
 /// the groups it sets (schema::checkFields: sizes, finiteness, unit quaternions, gains) and the
 /// jump of its target from `measured`. Renormalises its quaternions in place.
+///
+/// Along a force axis the reference is not where the arm goes (the force stage puts it on the
+/// measured pose every cycle), so the jump check leaves out the target's components along the
+/// axes that stay force axes with this command: its own selection when it sets the force group,
+/// else each of `in_force`'s (none when empty), in its own task frame when it sets one, else that
+/// selection's. Translational and rotational axes alike (the rotation as a rotation vector in the
+/// task frame). With several selections in force (the cycle's and the intake's), each is checked
+/// and the largest jump counts. An axis a command turns off is checked in full.
 Verdict validateCommand(CartesianCommand& incoming, const ValidationConfig& limits, int dof,
-                        const MeasuredPose& measured, double last_stamp_s);
+                        const MeasuredPose& measured, double last_stamp_s,
+                        std::span<const ForceSelection> in_force = {});
 Verdict validateCommand(JointCommand& incoming, const ValidationConfig& limits, int dof,
                         const MeasuredPose& measured, double last_stamp_s);
 
 /// validateCommand() and, on success, writes into `merged` the last accepted command updated
 /// with the field groups `incoming` sets (quaternions renormalised), carrying every group. On
-/// rejection `merged` is untouched.
+/// rejection `merged` is untouched. The force axes in force are `merged`'s.
 Verdict validateAndMerge(const CartesianCommand& incoming, const ValidationConfig& limits, int dof,
                          const MeasuredPose& measured, CartesianCommand& merged);
 Verdict validateAndMerge(const JointCommand& incoming, const ValidationConfig& limits, int dof,

@@ -41,6 +41,13 @@
 
 namespace comply::pipeline {
 
+/// Moves `bus`'s reference along the force axes it selects (its task frame, translational and
+/// rotational) onto the measured pose `position`, `orientation`, as the stage does every cycle;
+/// along the other axes the pose error is unchanged. Called wherever force axes may end, so an
+/// axis leaving force control holds the arm where it is. Real-time.
+void anchorForceAxes(comply_cartesian_command& bus, const Eigen::Vector3d& position,
+                     const Eigen::Quaterniond& orientation) noexcept;
+
 /// Which wrench estimate the force loop reads.
 enum class ForceSource : std::uint8_t {
   kAuto,      ///< the state's: the momentum observer when it runs, else the wrist sensor

@@ -39,9 +39,15 @@ void Controller::takeCommands() noexcept {
 void Controller::takeCommand(const IntakeMessage& message) noexcept {
   const std::uint32_t sets =
       std::visit([](const auto& bus) noexcept { return bus.fields; }, message.command);
-  if ((sets & chunks_.fields()) != 0) {
+  const bool stops_chunk = (sets & chunks_.fields()) != 0;
+  if (stops_chunk) {
     (void)chunks_.play(time_s_, active_);
     chunks_.stop();
+  }
+  // A force axis this command (or the chunk's stop) ends holds the arm where it is: the reference
+  // along the axes in force is the measured pose (force_axes.hpp), unless the command sets one.
+  anchorForceAxes(active_, currentPose());
+  if (stops_chunk) {
     stopMotion(active_);
   }
   mergeInto(active_, message.command);
@@ -66,6 +72,7 @@ void Controller::playChunk() noexcept {
     // A reset resumes from the reference where the fault left it, not from wherever the chunk
     // would have carried it meanwhile.
     chunks_.stop();
+    anchorForceAxes(active_, currentPose());
     stopMotion(active_);
     return;
   }
@@ -102,6 +109,9 @@ void Controller::watchdog() noexcept {
     }
   } else {
     // Holding the last reference means holding its pose: a velocity reference would keep pulling.
+    // The force axes end holding the measured pose along them, not springing back to a reference
+    // the arm has left (force_axes.hpp).
+    anchorForceAxes(active_, currentPose());
     stopMotion(active_);
   }
   publishInForce();

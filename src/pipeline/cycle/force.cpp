@@ -1,9 +1,12 @@
 // Stage "force": force along the task axes a command selects, and the contact-force limit
 // (force_axes.hpp), on what the gain stage let through. Only a Cartesian law has task axes; a
 // command that selects none, without a limit configured, costs one branch and a scan of six
-// numbers, and the law reads the gain stage's command itself.
+// numbers, and the law reads the gain stage's command itself. What the stage commands (the force
+// loop's push and the feedforward) is kept within what the arm exerts at this pose
+// (wrench_bound.hpp).
 
 #include "comply/pipeline/controller.hpp"
+#include "comply/pipeline/wrench_bound.hpp"
 
 namespace comply::pipeline {
 
@@ -23,6 +26,7 @@ void Controller::applyForce() noexcept {
   tcp_twist.noalias() = data_.jacobian.leftCols(n) * state_.velocity.head(n);
   force_.apply(*in, data_, tcp_twist, contactWrench(parameters_.force_control.source), period_s_,
                *out);
+  (void)boundWrench(data_.jacobian, out->wrench_feedforward, parameters_.effort_limit, dof_);
   force_active_ = true;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <iterator>
 
+#include "comply/pipeline/force_axes.hpp"
 #include "comply/schema/schema.hpp"
 
 namespace comply::pipeline {
@@ -47,6 +48,12 @@ void holdMeasured(CommandBus& bus, const MeasuredPose& measured) noexcept {
         std::fill(std::begin(typed.torque_feedforward), std::end(typed.torque_feedforward), 0.0);
       },
       bus);
+}
+
+void anchorForceAxes(CommandBus& bus, const MeasuredPose& measured) noexcept {
+  if (auto* cartesian = std::get_if<comply_cartesian_command>(&bus)) {
+    anchorForceAxes(*cartesian, measured.tcp_position, measured.tcp_orientation);
+  }
 }
 
 }  // namespace comply::pipeline

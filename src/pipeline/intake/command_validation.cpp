@@ -1,9 +1,12 @@
 #include "comply/pipeline/command_validation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <type_traits>
 
 #include "comply/core/number_text.hpp"
+#include "comply/core/rotation.hpp"
 #include "comply/schema/schema.hpp"
 
 namespace comply::pipeline {
@@ -53,11 +56,60 @@ Verdict checkStampAndFields(Command& incoming, const ValidationConfig& limits, i
   return {};
 }
 
+struct Jump {
+  double distance = 0.0;  ///< [m]
+  double angle = 0.0;     ///< [rad]
+  bool force_axes_left_out = false;
+};
+
+/// How far `incoming`'s target is from the measured pose, leaving out the axes that stay force
+/// axes with it (validateCommand): the largest over the selections in force.
+Jump targetJump(const CartesianCommand& incoming, const MeasuredPose& measured,
+                std::span<const ForceSelection> in_force) {
+  // stableNorm: a target 1e300 m away is reported as that, not as an overflowed infinity.
+  const Jump full{(incoming.position - measured.tcp_position).stableNorm(),
+                  incoming.orientation.angularDistance(measured.tcp_orientation)};
+  if (in_force.empty() && !has(incoming.fields, CommandField::kForce)) {
+    return full;
+  }
+  const ForceSelection none;
+  Jump jump;
+  for (const ForceSelection& base : in_force.empty() ? std::span(&none, 1) : in_force) {
+    const Vector6d& axes =
+        has(incoming.fields, CommandField::kForce) ? incoming.force_axes : base.axes;
+    if ((axes.array() == 0.0).all()) {
+      return full;  // no force axis with this selection: the whole jump counts
+    }
+    const Eigen::Quaterniond frame =
+        has(incoming.fields, CommandField::kTaskFrame) ? incoming.task_frame : base.task_frame;
+    // A bus never written (before activation) has a zero quaternion: the base frame.
+    const Eigen::Matrix3d task =
+        frame.norm() > 0.5 ? frame.normalized().toRotationMatrix() : Eigen::Matrix3d::Identity();
+    Eigen::Vector3d linear = task.transpose() * (incoming.position - measured.tcp_position);
+    Eigen::Vector3d angular =
+        task.transpose() * orientationError(measured.tcp_orientation, incoming.orientation);
+    for (int i = 0; i < 3; ++i) {
+      linear[i] = axes[i] != 0.0 ? 0.0 : linear[i];
+      angular[i] = axes[i + 3] != 0.0 ? 0.0 : angular[i];
+    }
+    jump.distance = std::max(jump.distance, linear.stableNorm());
+    jump.angle = std::max(jump.angle, angular.norm());
+    jump.force_axes_left_out = true;
+  }
+  return jump;
+}
+
 template <typename Command>
 Verdict validateAndMergeAny(const Command& incoming, const ValidationConfig& limits, int dof,
                             const MeasuredPose& measured, Command& merged) {
   Command checked = incoming;
-  Verdict verdict = validateCommand(checked, limits, dof, measured, merged.stamp_s);
+  Verdict verdict;
+  if constexpr (std::is_same_v<Command, CartesianCommand>) {
+    const ForceSelection in_force{merged.force_axes, merged.task_frame};
+    verdict = validateCommand(checked, limits, dof, measured, merged.stamp_s, {&in_force, 1});
+  } else {
+    verdict = validateCommand(checked, limits, dof, measured, merged.stamp_s);
+  }
   if (verdict.accepted) {
     schema::merge(merged, checked);
     merged.fields = CommandField::kAll;  // the plugin reads every group
@@ -88,21 +140,20 @@ std::string_view toString(RejectionReason reason) {
 }
 
 Verdict validateCommand(CartesianCommand& incoming, const ValidationConfig& limits, int dof,
-                        const MeasuredPose& measured, double last_stamp_s) {
+                        const MeasuredPose& measured, double last_stamp_s,
+                        std::span<const ForceSelection> in_force) {
   Verdict verdict = checkStampAndFields(incoming, limits, dof, last_stamp_s);
   if (!verdict.accepted || !has(incoming.fields, CommandField::kPosition) || !measured.valid) {
     return verdict;
   }
-  // stableNorm: a target 1e300 m away is reported as that, not as an overflowed infinity.
-  const double distance = (incoming.position - measured.tcp_position).stableNorm();
-  const double angle = incoming.orientation.angularDistance(measured.tcp_orientation);
+  const auto [distance, angle, left_out] = targetJump(incoming, measured, in_force);
   if (distance > limits.max_position_jump_m || angle > limits.max_orientation_jump_rad) {
     const NumberTexts position = numbersApart(distance, limits.max_position_jump_m);
     const NumberTexts orientation = numbersApart(angle, limits.max_orientation_jump_rad);
     std::ostringstream text;
     text << "target is " << position.value << " m / " << orientation.value
-         << " rad from the measured pose (limits " << position.limit << " m / " << orientation.limit
-         << " rad)";
+         << " rad from the measured pose" << (left_out ? " off the force axes" : "") << " (limits "
+         << position.limit << " m / " << orientation.limit << " rad)";
     return reject(RejectionReason::kPoseJump, text.str());
   }
   return verdict;

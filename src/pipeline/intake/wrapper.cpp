@@ -5,6 +5,7 @@
 #include <string>
 
 #include "comply/pipeline/command_bus.hpp"
+#include "comply/pipeline/force_intake.hpp"
 #include "comply/schema/schema.hpp"
 
 namespace comply::pipeline {
@@ -146,8 +147,8 @@ Verdict Wrapper<Command>::submitStamped(const Command& command, const IntakeStam
   const MeasuredPose measured = controller_.measuredPose();
   Command checked = Command::zero(dof);
   checked.stamp_s = -std::numeric_limits<double>::infinity();  // the floor is checked above
-  Verdict verdict =
-      validateAndMerge(command, controller_.resolved().config.validation, dof, measured, checked);
+  // validateAndMerge() and, Cartesian, the force axes in force and the wrench bound.
+  Verdict verdict = validateAtIntake(command, controller_, measured, intakeGains(), checked);
   Command gains = Command::zero(dof);
   if (verdict.accepted) {
     verdict = checkGains(command, command.fields, intakeGains(), measured.period_s, gains);

@@ -29,7 +29,52 @@ void toBase(const Matrix3d& rotation, const Vector6d& task, double* base) noexce
   angular.noalias() = rotation * task.tail<3>();
 }
 
+/// The pose error (reference - measured) of `in` at the measured pose, in the task frame `task`.
+Vector6d poseError(const Matrix3d& task, const comply_cartesian_command& in,
+                   const Vector3d& position, const Eigen::Quaterniond& orientation) noexcept {
+  Vector6d error;
+  error.head<3>().noalias() = task.transpose() * (Map<const Vector3d>(in.position) - position);
+  error.tail<3>().noalias() =
+      task.transpose() * orientationError(orientation, schema::fromXyzw(in.orientation));
+  return error;
+}
+
+/// The reference of `out` = the measured pose plus `error` (task frame), block by block where
+/// `error` differs from `unchanged` (the other block keeps the reference as it is, bit for bit).
+void writeReference(const Matrix3d& task, const Vector6d& error, const Vector6d& unchanged,
+                    const Vector3d& position, const Eigen::Quaterniond& orientation,
+                    comply_cartesian_command& out) noexcept {
+  if (error.head<3>() != unchanged.head<3>()) {
+    Map<Vector3d>(out.position) = position + task * error.head<3>();
+  }
+  if (error.tail<3>() != unchanged.tail<3>()) {
+    const Vector3d rotation = task * error.tail<3>();
+    const double angle = rotation.norm();
+    const Eigen::Quaterniond moved =
+        angle > 0.0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, rotation / angle)) * orientation
+                    : orientation;
+    schema::toXyzw(moved, out.orientation);
+  }
+}
+
 }  // namespace
+
+void anchorForceAxes(comply_cartesian_command& bus, const Vector3d& position,
+                     const Eigen::Quaterniond& orientation) noexcept {
+  const Map<const Vector6d> selected(bus.force_axes);
+  if ((selected.array() == 0.0).all()) {
+    return;
+  }
+  const Matrix3d task = schema::fromXyzw(bus.task_frame).normalized().toRotationMatrix();
+  Vector6d error = poseError(task, bus, position, orientation);
+  const Vector6d unchanged = error;
+  for (int axis = 0; axis < 6; ++axis) {
+    if (selected[axis] != 0.0) {
+      error[axis] = 0.0;
+    }
+  }
+  writeReference(task, error, unchanged, position, orientation, bus);
+}
 
 void ForceAxes::configure(const ForceControlConfig& config) noexcept {
   config_ = config;
@@ -58,14 +103,10 @@ void ForceAxes::apply(const comply_cartesian_command& in, const model::Data& dat
   const Map<const Vector6d> selected(in.force_axes);
   out = in;
   const Matrix3d task = schema::fromXyzw(in.task_frame).normalized().toRotationMatrix();
-  const Eigen::Quaterniond reference = schema::fromXyzw(in.orientation);
 
   // Everything in the task frame: the pose error (reference - measured), the command's rates and
   // feedforward, the measured twist and the wrench the TCP exerts (minus the one it receives).
-  Vector6d error;
-  error.head<3>().noalias() =
-      task.transpose() * (Map<const Vector3d>(in.position) - data.tip_position);
-  error.tail<3>().noalias() = task.transpose() * orientationError(data.tip_orientation, reference);
+  Vector6d error = poseError(task, in, data.tip_position, data.tip_orientation);
   Vector6d twist = toTask(task, in.twist);
   Vector6d acceleration = toTask(task, in.acceleration);
   Vector6d feedforward = toTask(task, in.wrench_feedforward);
@@ -103,18 +144,7 @@ void ForceAxes::apply(const comply_cartesian_command& in, const model::Data& dat
     }
   }
 
-  if (error.head<3>() != unchanged.head<3>()) {
-    Map<Vector3d>(out.position) = data.tip_position + task * error.head<3>();
-  }
-  if (error.tail<3>() != unchanged.tail<3>()) {
-    const Vector3d rotation = task * error.tail<3>();
-    const double angle = rotation.norm();
-    const Eigen::Quaterniond moved =
-        angle > 0.0
-            ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, rotation / angle)) * data.tip_orientation
-            : data.tip_orientation;
-    schema::toXyzw(moved, out.orientation);
-  }
+  writeReference(task, error, unchanged, data.tip_position, data.tip_orientation, out);
   toBase(task, twist, out.twist);
   toBase(task, acceleration, out.acceleration);
   toBase(task, feedforward, out.wrench_feedforward);
