@@ -4,7 +4,8 @@
 // 1.5 rad away was taken (no jump limit), reaching 1.03-1.08x the joint speed limit.
 //   joint_pd            the torque mode's bound, and the drives' kp_i = J_i^T K J_i, kd_i at the
 //                       cycle's period on each joint's lightest inertia;
-//   position, velocity  the bound on the virtual arm's inertia (the arm's plus the added).
+//   position, velocity  the bound on the virtual arm's inertia (the arm's plus the added), along
+//                       translation only (the virtual arm carries no rotor inertias).
 
 #include <gtest/gtest.h>
 
@@ -99,32 +100,41 @@ TEST_P(OutputModeBoundOn, JointPdRefusesTheRedTeamsStiffnessWithItsNumbers) {
   }
 }
 
-TEST_P(OutputModeBoundOn, AdmittanceBoundsTheVirtualArm) {
+TEST_P(OutputModeBoundOn, AdmittanceBoundsTheVirtualArmAlongTranslation) {
   for (const OutputMode mode : {OutputMode::kPosition, OutputMode::kVelocity}) {
     pipeline::WrapperConfig config = outputModeConfig(GetParam(), mode);
     expectInitialRefused(config, "virtual arm");
     const auto plain = pipeline::resolveController(config);
     config.output.admittance.added_mass_kg.setConstant(5.0);
-    config.output.admittance.added_inertia_kg_m2.setConstant(0.05);
     const auto added = pipeline::resolveController(config);
     const pipeline::GainBound& bound = added->gain_bound;
     ASSERT_TRUE(bound.enabled());
     EXPECT_FALSE(bound.drive_gains);
-    // The added inertia makes the virtual arm heavier, so stiffer gains are taken.
+    // The added mass makes the virtual arm heavier, so stiffer gains are taken.
     EXPECT_GT(bound.translational_mass_kg, plain->gain_bound.translational_mass_kg + 1.0);
-    EXPECT_GT(bound.rotational_inertia_kg_m2, plain->gain_bound.rotational_inertia_kg_m2);
+    // Rotation and the joints are not bounded: the virtual arm has no rotor inertias, and its
+    // bare wrist would refuse the default 300 N m/rad (printed below).
+    EXPECT_TRUE(std::isinf(bound.rotational_inertia_kg_m2));
+    EXPECT_TRUE(std::isinf(bound.joint_inertia.maxCoeff()));
+    const pipeline::GainBound bare = pipeline::lightestInertias(*plain->model, {});
+    const double rate = square(bound.max_wn_period / kRigPeriodS);
     std::printf(
         "%s %s: virtual arm's lightest TCP mass %.3f kg (%.3f with 5 kg added) -> %.4g "
-        "N/m at 1 kHz\n",
+        "N/m at 1 kHz; its bare rotational inertia %.3g kg m^2 would bound rotation at "
+        "%.3g N m/rad\n",
         GetParam().c_str(), std::string(toString(mode)).c_str(),
         plain->gain_bound.translational_mass_kg, bound.translational_mass_kg,
-        plain->gain_bound.translational_mass_kg * square(bound.max_wn_period / kRigPeriodS));
+        plain->gain_bound.translational_mass_kg * rate, bare.rotational_inertia_kg_m2,
+        bare.rotational_inertia_kg_m2 * rate);
     OutputModeRig<> rig(outputModeConfig(GetParam(), mode), plantOf(mode));
     ASSERT_TRUE(rig.cycle());
     const pipeline::Verdict refused = rig.wrapper.submit(stiffness(rig.wrapper, 1e6, 1.0));
     EXPECT_EQ(refused.reason, pipeline::RejectionReason::kInvalidGains) << refused.message;
     EXPECT_NE(refused.message.find("virtual arm"), std::string::npos) << refused.message;
     EXPECT_FALSE(refused.accepted);
+    const double limit = plain->gain_bound.translational_mass_kg * rate;
+    EXPECT_FALSE(rig.wrapper.submit(stiffness(rig.wrapper, 1.01 * limit, 2.0)).accepted);
+    EXPECT_TRUE(rig.wrapper.submit(stiffness(rig.wrapper, 0.99 * limit, 3.0)).accepted);
   }
 }
 

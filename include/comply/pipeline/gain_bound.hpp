@@ -30,8 +30,13 @@
 //              M_ii taken as the lightest inertia).
 //   position,  the virtual arm the admittance law drives (virtual_arm.hpp), integrated once a
 //   velocity   cycle: the arm's inertia without the rotor inertias (the virtual arm has none)
-//              plus output.admittance.added_*, each block's smallest entry taken isotropically
-//              (the task frame turns), J^T A J joined to M at every sample.
+//              plus output.admittance.added_* (each block's smallest entry along every axis, the
+//              task frame turns; J^T A J joined to M at every sample). Along translation only:
+//              without rotors the virtual wrist is the bare links' (the FR3's lightest rotational
+//              inertia 1.0e-4 kg m^2, 0.040 with its rotors), and a bound there would refuse every
+//              robot's default 300 N m/rad; rotation and the joints stay unbounded (infinite
+//              inertias), held by the virtual arm's own acceleration, speed and drift bounds.
+
 #include <string>
 
 #include "comply/core/capacity.hpp"

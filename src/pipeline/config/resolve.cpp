@@ -160,9 +160,12 @@ void adaptToOutputMode(ResolvedController& resolved) {
   parameters.observer.enabled = false;
 }
 
-/// The inertia the output mode's gains act on (gain_bound.hpp): the arm's with its rotor
-/// inertias (torque, joint_pd, whose drives' own gains are checked too with a Cartesian law), or
-/// the admittance modes' virtual arm (no rotor inertias; the added inertia joined).
+/// The gain bound of the output mode (gain_bound.hpp): the arm's inertias with its rotor inertias
+/// (torque; joint_pd, whose drives' own gains are checked too with a Cartesian law), or the
+/// admittance modes' virtual arm, bounded along translation only: it carries no rotor inertias,
+/// so its lightest rotational and joint inertias are the bare links' (the FR3's wrist 1e-4 kg m^2
+/// against 0.074 with its rotor), and a bound on them would refuse every robot's default
+/// rotational stiffness.
 GainBound modeBound(const ResolvedController& resolved) {
   const WrapperConfig& config = resolved.config;
   const model::Model& model = *resolved.model;
@@ -172,6 +175,9 @@ GainBound modeBound(const ResolvedController& resolved) {
     bound = lightestInertias(
         model, {}, 2000,
         {admittance.added_mass_kg.minCoeff(), admittance.added_inertia_kg_m2.minCoeff()});
+    constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+    bound.rotational_inertia_kg_m2 = kUnbounded;
+    bound.joint_inertia.setConstant(resolved.dof, kUnbounded);
     bound.robot = resolved.robot.name + " virtual arm";
   } else {
     bound = lightestInertias(model, declaredArmature(resolved.robot, model));
