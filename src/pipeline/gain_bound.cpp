@@ -89,9 +89,46 @@ Verdict checkRatio(const std::string& field, double ratio, double stiffness, dou
                     ", zeta w_n T <= " + number(bound.max_wn_period));
 }
 
+/// joint_pd with a Cartesian law: the drive gains kp_i = J_i^T K J_i, kd_i = J_i^T D J_i at their
+/// largest over the workspace, against joint i's lightest inertia (gain_bound.hpp).
+Verdict checkDriveGains(const CartesianCommand& command, const GainBound& bound, double period_s) {
+  const bool stiffness = has(command.fields, CommandField::kStiffness);
+  const bool damping = has(command.fields, CommandField::kDamping);
+  const double k_translational = largestEigenvalue(command.stiffness_translational);
+  const double k_rotational = largestEigenvalue(command.stiffness_rotational);
+  const bool ratio = command.damping_mode == DampingMode::kRatio;
+  for (Eigen::Index i = 0; i < bound.joint_inertia.size(); ++i) {
+    const std::string joint = std::to_string(i + 1);
+    const double lever = bound.joint_lever_sq[i];
+    const double axis = bound.joint_axis_sq[i];
+    const double kp = k_translational * lever + k_rotational * axis;
+    Verdict verdict;
+    if (stiffness) {
+      verdict = checkStiffness("joint_pd drive kp of joint " + joint + " (J^T K J at most)", kp,
+                               "N m/rad", bound.joint_inertia[i], kJointInertia, bound, period_s);
+    }
+    if (verdict.accepted && damping && !ratio) {
+      const double kd = largestEigenvalue(command.damping_translational) * lever +
+                        largestEigenvalue(command.damping_rotational) * axis;
+      verdict = checkDamping("joint_pd drive kd of joint " + joint + " (J^T D J at most)", kd,
+                             "N m s/rad", bound.joint_inertia[i], kJointInertia, bound, period_s);
+    }
+    if (verdict.accepted && (stiffness || damping) && ratio) {
+      verdict =
+          checkRatio("damping_ratio (mean, joint_pd drive of joint " + joint + ")",
+                     command.damping_ratio.mean(), kp, bound.joint_inertia[i], bound, period_s);
+    }
+    if (!verdict.accepted) {
+      return verdict;
+    }
+  }
+  return {};
+}
+
 }  // namespace
 
-GainBound lightestInertias(const model::Model& model, const JointVector& armature, int samples) {
+GainBound lightestInertias(const model::Model& model, const JointVector& armature, int samples,
+                           AddedInertia added) {
   const int dof = model.dof();
   GainBound bound;
   JointVector lower(dof);
@@ -111,6 +148,12 @@ GainBound lightestInertias(const model::Model& model, const JointVector& armatur
   double max_translational = 0.0;
   double max_rotational = 0.0;
   JointVector max_joint = JointVector::Zero(dof);
+  JointVector max_lever_sq = JointVector::Zero(dof);
+  JointVector max_axis_sq = JointVector::Zero(dof);
+  Vector6d added_diagonal;
+  added_diagonal << Eigen::Vector3d::Constant(added.mass_kg),
+      Eigen::Vector3d::Constant(added.inertia_kg_m2);
+  const bool adds = added.mass_kg > 0.0 || added.inertia_kg_m2 > 0.0;
   JointVector q(dof);
   const JointVector zero = JointVector::Zero(dof);
   for (int sample = 0; sample <= samples; ++sample) {
@@ -128,6 +171,13 @@ GainBound lightestInertias(const model::Model& model, const JointVector& armatur
     if (armature.size() == dof) {
       inertia.diagonal() += armature;
     }
+    if (adds) {
+      inertia.noalias() += data.jacobian.transpose() * added_diagonal.asDiagonal() * data.jacobian;
+    }
+    max_lever_sq =
+        max_lever_sq.cwiseMax(data.jacobian.topRows<3>().colwise().squaredNorm().transpose());
+    max_axis_sq =
+        max_axis_sq.cwiseMax(data.jacobian.bottomRows<3>().colwise().squaredNorm().transpose());
     const JointMatrix inverse = inertia.llt().solve(JointMatrix::Identity(dof, dof));
     const Eigen::Matrix<double, 6, 6> mobility =
         data.jacobian * inverse * data.jacobian.transpose();
@@ -143,6 +193,8 @@ GainBound lightestInertias(const model::Model& model, const JointVector& armatur
   bound.translational_mass_kg = 1.0 / max_translational;
   bound.rotational_inertia_kg_m2 = 1.0 / max_rotational;
   bound.joint_inertia = max_joint.cwiseInverse();
+  bound.joint_lever_sq = max_lever_sq;
+  bound.joint_axis_sq = max_axis_sq;
   return bound;
 }
 
@@ -197,7 +249,9 @@ Verdict checkRenderable(const CartesianCommand& command, const GainBound& bound,
       return std::move(verdict);
     }
   }
-  return {};
+  return bound.drive_gains && bound.joint_lever_sq.size() == bound.joint_inertia.size()
+             ? checkDriveGains(command, bound, period_s)
+             : Verdict{};
 }
 
 Verdict checkRenderable(const JointCommand& command, const GainBound& bound, double period_s) {

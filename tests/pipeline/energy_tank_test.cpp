@@ -100,6 +100,34 @@ TEST_F(EnergyTankTest, TheNullspaceHasItsOwnAccount) {
   EXPECT_EQ(tank_.task().energy_j, 1.0);
 }
 
+TEST_F(EnergyTankTest, AMoveOfTheNullspaceTargetIsPaidFromTheNullspaceAccount) {
+  comply_cartesian_command law{};
+  law.dof = 1;
+  law.nullspace_stiffness[0] = 40.0;
+  // 0 -> 0.1 rad from the arm at 0: 1/2 40 0.1^2 = 0.2 J of the nullspace's 0.5 J.
+  EXPECT_EQ(tank_.payNullspaceMove(law, state_, one(0.1)), 1.0);
+  EXPECT_NEAR(tank_.nullspace().energy_j, 0.3, 1e-15);
+  EXPECT_EQ(tank_.task().energy_j, 1.0);
+  // 0.1 -> 0.2 rad: 1/2 40 (0.2^2 - 0.1^2) = 0.6 J, more than the 0.29 J it can spend; the
+  // fraction beta injects 0.4 beta + 0.2 beta^2 (convex), and the secant's beta = 0.29 / 0.6
+  // is payable.
+  tank_.beginCycle();
+  law.nullspace_position[0] = 0.1;
+  const double beta = tank_.payNullspaceMove(law, state_, one(0.2));
+  EXPECT_NEAR(beta, 0.29 / 0.6, 1e-15);
+  const double paid = 0.4 * beta + 0.2 * beta * beta;
+  EXPECT_NEAR(tank_.nullspace().energy_j, 0.3 - paid, 1e-15);
+  EXPECT_NEAR(tank_.refused(), 0.6 - paid, 1e-15);
+  // Back onto the arm, 0.1 -> 0: the 0.2 J the spring held come back (all of it was paid).
+  tank_.beginCycle();
+  EXPECT_EQ(tank_.payNullspaceMove(law, state_, one(0.0)), 1.0);
+  EXPECT_NEAR(tank_.nullspace().energy_j, 0.5 - paid, 1e-15);
+  // Without a spring a move costs nothing.
+  law.nullspace_stiffness[0] = 0.0;
+  EXPECT_EQ(tank_.payNullspaceMove(law, state_, one(3.0)), 1.0);
+  EXPECT_NEAR(tank_.nullspace().energy_j, 0.5 - paid, 1e-15);
+}
+
 TEST_F(EnergyTankTest, TurningTheFrameOfAnAnisotropicSpringIsPaidFor) {
   comply_cartesian_command law{};
   law.dof = 1;

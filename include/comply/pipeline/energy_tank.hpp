@@ -3,7 +3,9 @@
 // task frame injects into the springs at the current error, dV = 1/2 e^T (K_base,new -
 // K_base,old) e with K_base = R K R^T (Ferraguti et al., T-RO 2015; task_stiffness.hpp). When it
 // cannot pay, the change made this cycle is scaled back to what it can pay: the gains stay where
-// they are and go on as the tank refills, never falling back. A decrease is always allowed; the
+// they are and go on as the tank refills, never falling back. A move of the nullspace target is
+// paid the same way, from the nullspace account: the springs' potential change at the measured
+// joints (payNullspaceMove). A decrease is always allowed; the
 // energy it releases is credited only up to what the tank paid and has not had back, so a
 // decrease cannot fill the tank with energy it never held. The nullspace has its own account
 // (Dietrich et al., RA-L 2017).
@@ -76,6 +78,12 @@ class EnergyTank {
   /// The nullspace stiffness, to `candidate` (one entry a joint).
   double payNullspaceChange(const comply_cartesian_command& law, const JointState& state,
                             const JointVector& candidate) noexcept;
+  /// The nullspace target, from `law`'s to `candidate`, at `law`'s nullspace stiffness: the
+  /// springs' potential change at the measured joints, 1/2 sum k_i ((q_i - q'_ns,i)^2 -
+  /// (q_i - q_ns,i)^2), from the nullspace account. An upper bound of what the projected spring
+  /// injects (the projection only takes away).
+  double payNullspaceMove(const comply_cartesian_command& law, const JointState& state,
+                          const JointVector& candidate) noexcept;
   /// The joint stiffness under joint control, to `candidate`, from the task account.
   double payJointChange(const comply_joint_command& law, const JointState& state,
                         const JointVector& candidate) noexcept;

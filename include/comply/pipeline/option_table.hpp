@@ -44,6 +44,8 @@
          "target vs measured TCP orientation")                                                     \
   NUMBER(max_joint_jump_rad, "validation.max_joint_jump_rad", 0.50, kAbove, 0.0, kNoLimit,         \
          "joint target vs measured position (joint commands)")                                     \
+  NUMBER(max_nullspace_jump_rad, "validation.max_nullspace_jump_rad", 0.50, kAbove, 0.0, kNoLimit, \
+         "nullspace target vs measured position, joints with nullspace stiffness (Cartesian)")     \
   NUMBER(max_wn_period, "validation.max_wn_period", 0.35, kAtLeast, 0.0, 0.43,                     \
          "largest w_n T a stiffness or damping may give on the arm's lightest inertia (0: no "     \
          "bound)")                                                                                 \

@@ -160,29 +160,58 @@ void adaptToOutputMode(ResolvedController& resolved) {
   parameters.observer.enabled = false;
 }
 
-/// Step 4: the robot-dependent gain bound (torque output), which the initial command must keep,
-/// and the joint inertias the stability guard's energy rule weighs speeds with.
+/// The gain bound of the output mode (gain_bound.hpp): the arm's inertias with its rotor inertias
+/// (torque; joint_pd, whose drives' own gains are checked too with a Cartesian law), or the
+/// admittance modes' virtual arm, bounded along translation only: it carries no rotor inertias,
+/// so its lightest rotational and joint inertias are the bare links' (the FR3's wrist 1e-4 kg m^2
+/// against 0.074 with its rotor), and a bound on them would refuse every robot's default
+/// rotational stiffness.
+GainBound modeBound(const ResolvedController& resolved) {
+  const WrapperConfig& config = resolved.config;
+  const model::Model& model = *resolved.model;
+  GainBound bound;
+  if (isAdmittance(config.output.mode)) {
+    const AdmittanceConfig& admittance = config.output.admittance;
+    bound = lightestInertias(
+        model, {}, 2000,
+        {admittance.added_mass_kg.minCoeff(), admittance.added_inertia_kg_m2.minCoeff()});
+    constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+    bound.rotational_inertia_kg_m2 = kUnbounded;
+    bound.joint_inertia.setConstant(resolved.dof, kUnbounded);
+    bound.robot = resolved.robot.name + " virtual arm";
+  } else {
+    bound = lightestInertias(model, declaredArmature(resolved.robot, model));
+    bound.robot = resolved.robot.name;
+    bound.drive_gains = config.output.mode == OutputMode::kJointPd && resolved.cartesian();
+  }
+  bound.max_wn_period = config.validation.max_wn_period;
+  return bound;
+}
+
+/// Step 4: the robot-dependent gain bound of the output mode, which the initial command must
+/// keep, and the joint inertias the stability guard's energy rule weighs speeds with.
 void boundGains(ResolvedController& resolved) {
   const WrapperConfig& config = resolved.config;
   const model::Model& model = *resolved.model;
-  if (config.output.mode == OutputMode::kTorque && config.validation.max_wn_period > 0.0) {
-    resolved.gain_bound = lightestInertias(model, declaredArmature(resolved.robot, model));
-    resolved.gain_bound.max_wn_period = config.validation.max_wn_period;
-    resolved.gain_bound.robot = resolved.robot.name;
+  if (config.validation.max_wn_period > 0.0) {
+    resolved.gain_bound = modeBound(resolved);
     // The initial command is checked at 1 kHz: the period is the host's, known at the first cycle.
     const Verdict verdict =
         resolved.cartesian() ? checkRenderable(config.initial_cartesian, resolved.gain_bound, 1e-3)
                              : checkRenderable(config.initial_joint, resolved.gain_bound, 1e-3);
     if (!verdict.accepted) {
       throw InputError(InputErrc::kOutOfRange, config.name, "initial",
-                       verdict.message + " at 1 kHz; lower it, or set validation.max_wn_period");
+                       verdict.message + " at 1 kHz (output.mode " +
+                           std::string(toString(config.output.mode)) +
+                           "); lower it, or set validation.max_wn_period");
     }
   }
-  // The lightest joint inertias weigh the energy rule and bound the governor's and the stop's
-  // damping (deadbeat on the lightest inertia is stable on every heavier one).
-  const GainBound lightest = resolved.gain_bound.enabled()
-                                ? resolved.gain_bound
-                                : lightestInertias(model, declaredArmature(resolved.robot, model));
+  // The lightest joint inertias (the arm's, rotor inertias included; an admittance's bound is
+  // its virtual arm's) weigh the energy rule and bound the governor's and the stop's damping
+  // (deadbeat on the lightest inertia is stable on every heavier one).
+  const GainBound lightest = resolved.gain_bound.enabled() && !isAdmittance(config.output.mode)
+                                 ? resolved.gain_bound
+                                 : lightestInertias(model, declaredArmature(resolved.robot, model));
   resolved.parameters.joint_inertia = lightest.joint_inertia;
   resolved.parameters.tcp_mass_kg = lightest.translational_mass_kg;
   resolved.parameters.tcp_inertia_kg_m2 = lightest.rotational_inertia_kg_m2;

@@ -117,6 +117,34 @@ Verdict validateAndMergeAny(const Command& incoming, const ValidationConfig& lim
   return verdict;
 }
 
+/// The nullspace target against the measured joints (infinity norm), over the joints whose
+/// nullspace spring pulls (stiffness above zero): a jump there moves the arm as fast as a joint
+/// target's would. Skipped when `measured` carries no joint position (a chunk's later waypoint).
+Verdict checkNullspaceJump(const CartesianCommand& incoming, const ValidationConfig& limits,
+                           const MeasuredPose& measured) {
+  const Eigen::Index count = incoming.nullspace_position.size();
+  if (measured.position.size() != count || incoming.nullspace_stiffness.size() != count) {
+    return {};
+  }
+  double jump = 0.0;
+  Eigen::Index joint = 0;
+  for (Eigen::Index i = 0; i < count; ++i) {
+    const double apart = std::abs(incoming.nullspace_position[i] - measured.position[i]);
+    if (incoming.nullspace_stiffness[i] > 0.0 && apart > jump) {
+      jump = apart;
+      joint = i;
+    }
+  }
+  if (jump <= limits.max_nullspace_jump_rad) {
+    return {};
+  }
+  const NumberTexts texts = numbersApart(jump, limits.max_nullspace_jump_rad);
+  std::ostringstream text;
+  text << "nullspace_position is " << texts.value << " rad from the measured position at joint "
+       << joint + 1 << " (limit " << texts.limit << " rad, validation.max_nullspace_jump_rad)";
+  return reject(RejectionReason::kPoseJump, text.str());
+}
+
 }  // namespace
 
 std::string stampText(std::int64_t stamp_ns) {
@@ -143,7 +171,13 @@ Verdict validateCommand(CartesianCommand& incoming, const ValidationConfig& limi
                         const MeasuredPose& measured, double last_stamp_s,
                         std::span<const ForceSelection> in_force) {
   Verdict verdict = checkStampAndFields(incoming, limits, dof, last_stamp_s);
-  if (!verdict.accepted || !has(incoming.fields, CommandField::kPosition) || !measured.valid) {
+  if (!verdict.accepted || !measured.valid) {
+    return verdict;
+  }
+  if (has(incoming.fields, CommandField::kNullspace)) {
+    verdict = checkNullspaceJump(incoming, limits, measured);
+  }
+  if (!verdict.accepted || !has(incoming.fields, CommandField::kPosition)) {
     return verdict;
   }
   const auto [distance, angle, left_out] = targetJump(incoming, measured, in_force);

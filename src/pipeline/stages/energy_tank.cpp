@@ -149,6 +149,26 @@ double EnergyTank::payNullspaceChange(const Cartesian& law, const JointState& st
                      state.position.data(), static_cast<int>(candidate.size()));
 }
 
+double EnergyTank::payNullspaceMove(const Cartesian& law, const JointState& state,
+                                    const JointVector& candidate) noexcept {
+  const auto count = candidate.size();
+  const auto injection = [&](double fraction) noexcept {
+    double energy = 0.0;
+    for (Eigen::Index i = 0; i < count; ++i) {
+      const double from = law.nullspace_position[i] - state.position[i];
+      const double to = from + fraction * (candidate[i] - law.nullspace_position[i]);
+      energy += 0.5 * law.nullspace_stiffness[i] * (to * to - from * from);
+    }
+    return energy;
+  };
+  // Convex in the fraction and 0 at 0: the secant's first step is already payable.
+  const double full = injection(1.0);
+  const double beta = payableFraction(full, nullspace_.spendable(), injection);
+  const double injected = beta == 1.0 ? full : injection(beta);
+  settle(nullspace_, full, injected);
+  return beta;
+}
+
 double EnergyTank::payJointChange(const Joint& law, const JointState& state,
                                   const JointVector& candidate) noexcept {
   return payDiagonal(task_, law.stiffness, candidate.data(), law.position, state.position.data(),

@@ -151,6 +151,9 @@ void GainGuard::takeCommand(const CommandBus& command) noexcept {
           copy(law.task_frame, in_force.task_frame, 4);
           copy(law.nullspace_stiffness, in_force.nullspace_stiffness, COMPLY_MAX_DOF);
           copy(law.nullspace_damping, in_force.nullspace_damping, COMPLY_MAX_DOF);
+          if (passivity_.enabled) {  // the tank pays for a move of the target (update())
+            copy(law.nullspace_position, in_force.nullspace_position, COMPLY_MAX_DOF);
+          }
         } else {
           copy(law.stiffness, in_force.stiffness, COMPLY_MAX_DOF);
           copy(law.damping, in_force.damping, COMPLY_MAX_DOF);
@@ -211,7 +214,17 @@ bool GainGuard::updateCartesian(const Cartesian& target, const model::Data& data
     nullspace_beta = tank_.payNullspaceChange(law, state, nullspace_candidate);
   }
   applyStiffness(law, target, in_force, candidate, beta, nullspace_candidate, nullspace_beta);
-  return arrived && beta == 1.0 && nullspace_beta == 1.0;
+  // Then a move of the nullspace target, at the nullspace stiffness now in force; a target that
+  // has not moved costs nothing and touches nothing.
+  double move_beta = 1.0;
+  const int dof = target.dof;
+  if (passivity_.enabled && !std::equal(law.nullspace_position, law.nullspace_position + dof,
+                                        target.nullspace_position)) {
+    const JointVector to = Eigen::Map<const JointVector>(target.nullspace_position, dof);
+    move_beta = tank_.payNullspaceMove(law, state, to);
+    blend(law.nullspace_position, to.data(), dof, move_beta);
+  }
+  return arrived && beta == 1.0 && nullspace_beta == 1.0 && move_beta == 1.0;
 }
 
 bool GainGuard::updateJoint(const Joint& target, const JointState& state,
