@@ -27,7 +27,8 @@
 //                URDF speed, nor the TCP its speeds; braking past them (motion_governor.*)
 //   shape        low-pass, finite check, torque-rate limit, effort limit (torque_shaper.*); a
 //                joint held at its effort limit too long         -> FAULT (stability_guard.*)
-//   write        torque out; in FAULT the safe hold's torque instead (safe_hold.*)
+//   write        torque out; in FAULT the controlled stop's torque instead (safe_hold.*); a
+//                reset holds the measured pose (commands.cpp)
 //
 // activate() seeds the command in force from the measured state and resets every stage, in one
 // list (controller.cpp).

@@ -6,7 +6,7 @@ namespace comply::pipeline {
 enum class CycleStatus {
   kOk,
   kInactive,  ///< not activated: torque output untouched
-  kFault,     ///< in FAULT: the safe holding torque was written
+  kFault,     ///< in FAULT: the controlled stop's torque was written
 };
 
 }  // namespace comply::pipeline

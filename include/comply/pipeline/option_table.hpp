@@ -95,7 +95,7 @@
   CHOICE(effort_saturation, "effort_saturation", EffortSaturation, kClip,                       \
          "clip: each joint on its own; scale: the law's torque as a whole, its direction kept") \
   PER_JOINT(fault_damping, "fault_damping", 5.0, kAtLeast, 0.0,                                 \
-            "N m s/rad of the FAULT holding torque (gravity + damping)")                        \
+            "N m s/rad: the least braking of the FAULT's controlled stop (safety.md)")          \
   NUMBER(frozen_state_timeout_s, "frozen_state_timeout_s", 0.1, kAtLeast, 0.0, 10.0,            \
          "stale sensor -> FAULT: state bit-identical this long, torque moved > 1 N m; 0: never")
 
@@ -163,15 +163,15 @@
 // URDF speed or the TCP nears its speeds, and a joint or the TCP past them is braked; the
 // overspeed FAULT (stability_guard.velocity_factor) stays as the last line. Chunks are checked
 // against the same speeds at the intake.
-#define COMPLY_GOVERNOR_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)           \
-  FLAG(enabled, "governor.enabled", true,                                                            \
-       "no accepted command drives a joint or the TCP past the speeds below")                        \
-  NUMBER(velocity_fraction, "governor.velocity_fraction", 0.8, kAbove, 0.0, 1.0,                     \
-         "share of each joint's URDF velocity limit no joint passes; below "                         \
-         "stability_guard.velocity_factor")                                                          \
-  NUMBER(tcp_speed_m_per_s, "governor.tcp_speed_m_per_s", 1.0, kAtLeast, 0.0, 10.0,                  \
-         "m/s the TCP does not pass (Cartesian laws); 0: no bound")                                  \
-  NUMBER(tcp_angular_speed_rad_per_s, "governor.tcp_angular_speed_rad_per_s", 2.5, kAtLeast, 0.0,    \
+#define COMPLY_GOVERNOR_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)        \
+  FLAG(enabled, "governor.enabled", true,                                                         \
+       "no accepted command drives a joint or the TCP past the speeds below")                     \
+  NUMBER(velocity_fraction, "governor.velocity_fraction", 0.8, kAbove, 0.0, 1.0,                  \
+         "share of each joint's URDF velocity limit no joint passes; below "                      \
+         "stability_guard.velocity_factor")                                                       \
+  NUMBER(tcp_speed_m_per_s, "governor.tcp_speed_m_per_s", 1.0, kAtLeast, 0.0, 10.0,               \
+         "m/s the TCP does not pass (Cartesian laws); 0: no bound")                               \
+  NUMBER(tcp_angular_speed_rad_per_s, "governor.tcp_angular_speed_rad_per_s", 2.5, kAtLeast, 0.0, \
          20.0, "rad/s the TCP does not pass (Cartesian laws); 0: no bound")
 
 // The external wrench estimated from the joints' momentum (ObserverConfig).

@@ -233,8 +233,7 @@ void checkConsistency(const ResolvedController& resolved) {
   // would fault on motion the governor allows.
   const GovernorConfig& governor = parameters.governor;
   const StabilityGuardConfig& guard = parameters.stability_guard;
-  if (governor.enabled && guard.enabled &&
-      governor.velocity_fraction >= guard.velocity_factor) {
+  if (governor.enabled && guard.enabled && governor.velocity_fraction >= guard.velocity_factor) {
     throw InputError(InputErrc::kInconsistent, config.name, "governor.velocity_fraction",
                      std::to_string(governor.velocity_fraction) +
                          " is not below stability_guard.velocity_factor (" +
