@@ -81,6 +81,51 @@ TEST_P(LiveHostOn, PlaysAChunkOnTheHostsClockAndRefusesALateOne) {
   EXPECT_EQ(host.outcomes()[command_stamp].front().outcome, transport::Outcome::kApplied);
 }
 
+/// A chunk waiting for its start (its first waypoint still ahead) whose sender then leaves: the
+/// red team's chunk 5 s ahead left every other sender's commands without an outcome until its
+/// time. Another sender's commands are applied at once, and the waiting chunk is released (the
+/// reference does not move to it when its time comes).
+TEST_P(LiveHostOn, AChunkWaitingForItsStartDoesNotHoldAnotherSendersCommands) {
+  HostHarness& host = *host_;
+  const auto state = host.startConnected("waiting", 1);
+  ASSERT_TRUE(state);
+  ASSERT_TRUE(host.connectChunks(1));
+
+  // Within the lead limit (validation.max_stamp_lead_s, 1 s): 0.8 s ahead, 3.5 cm along y.
+  const double now_s = transport::Stamp::now().seconds();
+  const transport::CartesianChunkMessage chunk = chunkAlongY(*state, now_s + 0.8, 0.05, 8);
+  ASSERT_TRUE(host.send(chunk, 1));
+  const std::int64_t stamp = chunk.header.stamp.nanoseconds();
+  ASSERT_TRUE(host.poll(5s, [&](const auto&) { return host.outcomes().count(stamp) > 0; }));
+  ASSERT_EQ(host.outcomes()[stamp].front().outcome, transport::Outcome::kApplied)
+      << host.outcomes()[stamp].front().message;
+
+  host.close(1);
+  // A second sender, connected after the first left: its probes (commands with no field group,
+  // which leave a chunk playing) are accounted while the chunk would still wait.
+  ASSERT_TRUE(host.connect(2, static_cast<int>(state->position.size())));
+  EXPECT_LT(transport::Stamp::now().seconds(), now_s + 0.8)
+      << "accounted only once the waiting chunk's time had come";
+
+  // After the chunk's last waypoint: the reference did not move to the departed sender's chunk.
+  std::this_thread::sleep_until(std::chrono::system_clock::time_point(
+      std::chrono::duration_cast<std::chrono::system_clock::duration>(
+          std::chrono::duration<double>(now_s + 1.5))));
+  const auto after = host.state(2s);
+  ASSERT_TRUE(after);
+  // It was dropped where the blend toward its lead-in (2.5 mm behind its first waypoint) had got;
+  // played, it would have gone 35 mm.
+  EXPECT_NEAR(after->reference_position[1], state->reference_position[1], 0.003)
+      << "the departed sender's chunk played";
+  const transport::Stamp command_stamp = transport::Stamp::now();
+  ASSERT_TRUE(host.send(poseCommand(*state, Eigen::Vector3d::Zero(), command_stamp), 2));
+  ASSERT_TRUE(host.poll(
+      5s, [&](const auto&) { return host.outcomes().count(command_stamp.nanoseconds()) > 0; }));
+  const transport::CommandOutcomeMessage& outcome =
+      host.outcomes()[command_stamp.nanoseconds()].front();
+  EXPECT_EQ(outcome.outcome, transport::Outcome::kApplied) << outcome.message;
+}
+
 // `comply send --file` with chunks among commands: each chunk's times are seconds after it is
 // sent; commands and chunks are all applied, and the arm ends on the last chunk's last waypoint.
 TEST(LiveHost, CommandSendSendsChunksFromAFile) {

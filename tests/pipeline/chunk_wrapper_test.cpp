@@ -11,6 +11,7 @@
 #include <string>
 #include <thread>
 
+#include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/schema/schema.hpp"
 #include "wrapper_support.hpp"
@@ -19,13 +20,20 @@ namespace comply::pipeline::test {
 namespace {
 
 constexpr double kHostStart = 1000.0;  // s: the host's clock at activation (any timebase)
+constexpr std::int64_t kSecondNs = 1'000'000'000;
 
 class CartesianChunks : public ::testing::Test {
  protected:
+  // A 20 ms blend, short for the tests' timing: blending a chunk's lead-in in over it asks 14 to
+  // 50 m/s^2 of the reference, and the takeover and skipped-waypoint tests step it 2 to 3 cm in
+  // it (1 to 2 m/s), above the intake's 13 m/s^2 and 1 m/s. Those limits are off here; they have
+  // their own tests (chunk_limits_test.cpp).
   CartesianChunks()
       : wrapper(fr3Config(
             kCartesianImpedancePlugin,
             "command_timeout_s: 0.05\nchunk_blend_time_s: 0.02\nfrozen_state_timeout_s: 0\n"
+            "validation:\n  max_chunk_acceleration_m_per_s2: 0\n"
+            "governor:\n  tcp_speed_m_per_s: 0\n"
             "torque_rate_limit_nm_per_s: " +
                 std::to_string(kNoRateLimit) + "\n")) {}
 
@@ -231,7 +239,8 @@ TEST_F(CartesianChunks, AWaypointAlreadyPastIsSkippedAndNotComparedWithTheArm) {
   // The policy acted on an old observation: its first waypoints are behind the host's clock and
   // 3 cm away, where the arm no longer is; the first one still ahead is checked and played.
   CartesianChunk c = chunk(6, -0.12, 0.05);
-  ASSERT_TRUE(wrapper.submitChunk(c, hostTime()).accepted);
+  const Verdict verdict = wrapper.submitChunk(c, hostTime());
+  ASSERT_TRUE(verdict.accepted) << verdict.message;
   cycles(200);
   EXPECT_LT((reference() - c.waypoints.back().command.position).norm(), 1e-12);
 }
@@ -310,7 +319,8 @@ TEST_F(CartesianChunks, ANewChunkTakesOverWithoutAJump) {
     back.waypoints[k].command.position =
         last + Eigen::Vector3d(-0.01 * static_cast<double>(k), 0.02, 0.0);
   }
-  ASSERT_TRUE(wrapper.submitChunk(back, hostTime()).accepted);
+  const Verdict verdict = wrapper.submitChunk(back, hostTime());
+  ASSERT_TRUE(verdict.accepted) << verdict.message;
   // Across the takeover and the 20 ms blend (a 2 cm step taken in 20 ms: up to 1.9 m/s), every
   // cycle's step in position is what the reported velocities carry it (to 2 % of the largest
   // step), and no step in velocity exceeds what the reported accelerations allow: no jump in
@@ -337,6 +347,76 @@ TEST_F(CartesianChunks, ANewChunkTakesOverWithoutAJump) {
   EXPECT_LT(position_mismatch, 4e-5) << "m";
   EXPECT_LT(velocity_mismatch, 1.05) << "velocity step / (period * acceleration)";
   EXPECT_LT((reference() - back.waypoints.back().command.position).norm(), 1e-12);
+}
+
+// A chunk waiting for its start, through the command gate as every host passes it: the red team's
+// chunk 5 s ahead, its sender gone, left every other sender's commands without an outcome until its
+// time. Another sender's commands are applied by the next cycle each while it waits; its sender's
+// departure (CommandGate::releasePublisher, then Wrapper::dropWaitingChunk) drops it, as a reset
+// does: the reference never moves to it.
+TEST_F(CartesianChunks, AWaitingChunkHoldsNoOneAndGoesWithItsSenderOrAReset) {
+  CommandGate gate({.kind = CommandKind::kCartesian, .publisher_timeout_s = 0.05});
+  constexpr std::uint64_t kChunkSender = 0xA;
+  constexpr std::uint64_t kOtherSender = 0xB;
+  const auto offerOf = [](std::uint64_t publisher, std::int64_t stamp_ns, bool chunk) {
+    Offer offer;
+    offer.stamp_ns = stamp_ns;
+    offer.publisher = publisher;
+    offer.chunk = chunk;
+    return offer;
+  };
+  const auto settled = [&] {
+    gate.noteCycle(cycle_count, wrapper.controller().idInForce(), [] { return 0; });
+    gate.settle();
+    return gate.takeOutcomes();
+  };
+  const auto offerChunk = [&](std::int64_t stamp_ns) {
+    CartesianChunk waiting = chunk(5, 0.8);  // within validation.max_stamp_lead_s
+    return gate.offer(offerOf(kChunkSender, stamp_ns, true), true, [&](std::int64_t ns) {
+      return wrapper.submitChunk(waiting, hostTime(), ns);
+    });
+  };
+  const Eigen::Vector3d before = reference();
+  ASSERT_EQ(offerChunk(kSecondNs), CommandReason::kNone);
+  cycles(1);
+  std::vector<CommandOutcome> outcomes = settled();
+  ASSERT_EQ(outcomes.size(), 1U);
+  EXPECT_TRUE(outcomes[0].applied);
+  const std::uint64_t chunk_sequence = outcomes[0].sequence;
+  ASSERT_TRUE(wrapper.controller().chunks().playing());
+
+  EXPECT_EQ(gate.releasePublisher(kChunkSender), chunk_sequence) << "the departed sender's chunk";
+  EXPECT_EQ(gate.releasePublisher(kChunkSender), 0U) << "named once";
+  for (int k = 1; k <= 3; ++k) {
+    CartesianCommand probe = CartesianCommand::zero(kFr3Dof);
+    probe.fields = CommandField::kNone;
+    ASSERT_EQ(gate.offer(offerOf(kOtherSender, kSecondNs + k, false), true,
+                         [&](std::int64_t ns) { return wrapper.submit(probe, ns); }),
+              CommandReason::kNone);
+    cycles(1);
+    outcomes = settled();
+    ASSERT_EQ(outcomes.size(), 1U) << "the other sender's command waits for the chunk";
+    EXPECT_TRUE(outcomes[0].applied) << outcomes[0].message;
+  }
+  EXPECT_TRUE(wrapper.controller().chunks().playing()) << "a command on no group leaves it";
+  wrapper.dropWaitingChunk(chunk_sequence);
+  cycles(1);
+  EXPECT_FALSE(wrapper.controller().chunks().playing());
+  cycles(1200);  // past the chunk's last waypoint, 1 s from its start
+  EXPECT_LT((reference() - before).norm(), 0.006) << "the departed sender's chunk played";
+  EXPECT_EQ(Eigen::Map<const Vector6d>(law().twist).norm(), 0.0);
+
+  // A reset drops a waiting chunk too (the stamp floor goes with it).
+  const Eigen::Vector3d held = reference();
+  gate.releasePublisher(kOtherSender);
+  ASSERT_EQ(offerChunk(3 * kSecondNs), CommandReason::kNone);
+  cycles(1);
+  ASSERT_TRUE(wrapper.controller().chunks().playing());
+  wrapper.reset();
+  cycles(1);
+  EXPECT_FALSE(wrapper.controller().chunks().playing());
+  cycles(1200);
+  EXPECT_LT((reference() - held).norm(), 0.006);
 }
 
 }  // namespace

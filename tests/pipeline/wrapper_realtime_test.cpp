@@ -346,8 +346,13 @@ CartesianChunk movingChunk(const model::Data& measured, double now_s, double sta
 // Chunks taking over from each other and from single commands, played with the gain stage and the
 // observer on, a command on the chunk's groups ending one, the watchdog after the last.
 TEST(WrapperRealtime, PlayingChunksNeitherAllocatesNorLocks) {
+  // Each chunk is planned around where the replayed arm, moving on its own, is measured: its
+  // 1 mm zigzag and the blends from the chunk before ask 13 m/s^2 and 25 rad/s^2 of the reference,
+  // at the intake's limits (chunk_limits_test.cpp has them), which are off here.
   CartesianWrapper wrapper(
-      fr3Config(kCartesianImpedancePlugin, realtimeLines("hold") + kGuardedLines));
+      fr3Config(kCartesianImpedancePlugin, realtimeLines("hold") + kGuardedLines +
+                                               "validation:\n  max_chunk_acceleration_m_per_s2: 0\n"
+                                               "  max_chunk_angular_acceleration_rad_per_s2: 0\n"));
   wrapper.activate(movingState(fr3Home(), 0));
   int chunks = 0;
   expectRealtimeLoop(wrapper, [&](int cycle) {

@@ -16,9 +16,11 @@
   X(kStaleStamp, stale_stamp, "stamp not newer than the last accepted command") \
   X(kPoseJump, pose_jump, "target too far from the measured pose / joint position") \
   X(kQueueFull, queue_full, "the cycle has not taken the commands queued before (sender too fast)") \
-  X(kOutOfRange, out_of_range, "a rate or feedforward entry above the limit of its unit for any arm") \
+  X(kOutOfRange, out_of_range, \
+    "a rate or feedforward entry above the limit of its unit for any arm; a chunk faster than the arm's speeds or accelerations") \
   X(kLateChunk, late_chunk, "a chunk whose last waypoint is already past on the host's clock") \
-  X(kInvalidChunk, invalid_chunk, "a chunk's shape: waypoint count, times, field groups, damping modes")
+  X(kInvalidChunk, invalid_chunk, \
+    "a chunk's shape: waypoint count, times (a start more than max_stamp_lead_s ahead), field groups, damping modes")
 
 #define COMPLY_GATE_REJECTION_REASONS(X) \
   X(kOtherPublisher, other_publisher, "another sender holds the command topics") \

@@ -47,9 +47,10 @@ class ChunkPlayer {
   // ---- intake (non-real-time) ------------------------------------------------------------------
   /// Copies a validated chunk into a free slot, its times moved onto the controller's clock by
   /// `host_to_controller_s` (controller time = host time + it), and derives the waypoint
-  /// velocities. Returns the slot, or -1 when every slot is in use (the sender is too fast).
-  int load(const CartesianChunk& chunk, double host_to_controller_s);
-  int load(const JointChunk& chunk, double host_to_controller_s);
+  /// velocities; `sequence` is its number (CommandId), for dropWaiting(). Returns the slot, or -1
+  /// when every slot is in use (the sender is too fast).
+  int load(const CartesianChunk& chunk, double host_to_controller_s, std::uint64_t sequence = 0);
+  int load(const JointChunk& chunk, double host_to_controller_s, std::uint64_t sequence = 0);
   /// A loaded slot that will never be started (its intake message was refused or dropped).
   void release(int slot) noexcept;
 
@@ -64,6 +65,10 @@ class ChunkPlayer {
   bool play(double now_s, CommandBus& active) noexcept;
   /// Releases the running chunk; `active` keeps what play() last wrote.
   void stop() noexcept;
+  /// Stops the running chunk if it is numbered `sequence` (0: whichever) and its first waypoint
+  /// is still ahead of `now_s`: a chunk waiting for its start whose sender left, or on a reset.
+  /// True when it stopped one.
+  bool dropWaiting(std::uint64_t sequence, double now_s) noexcept;
 
   [[nodiscard]] bool playing() const noexcept { return playing_ >= 0; }
   /// The groups the running chunk drives (COMPLY_FIELD_*), 0 when none plays.

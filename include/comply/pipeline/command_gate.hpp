@@ -111,6 +111,7 @@ struct Offer {
   /// for Python's Sim, the node's clock under ROS 2); 0: none, no lead rule.
   std::int64_t clock_ns = 0;
   std::uint32_t nanosec = 0;  ///< header.stamp.nanosec as it came (must be below 1e9)
+  bool chunk = false;         ///< a timed chunk (releasePublisher() names the last one)
 };
 
 class CommandGate {
@@ -156,8 +157,10 @@ class CommandGate {
   /// Else false with `why` set: another process may not stop the arm of the one commanding it.
   bool admitRequest(std::uint64_t participant, std::int64_t now_ns, std::string& why);
   /// `publisher`'s writers went away: if it held the command topics, the next writer may take
-  /// them at once (a clean exit need not wait out publisher_timeout_s).
-  void releasePublisher(std::uint64_t publisher);
+  /// them at once (a clean exit need not wait out publisher_timeout_s). Returns the number of the
+  /// last chunk accepted from it (0: none), which the host drops if it still waits for its start
+  /// (Wrapper::dropWaitingChunk): no motion starts for a sender that is gone.
+  std::uint64_t releasePublisher(std::uint64_t publisher);
 
   /// A refusal outside the command stream (a request the host could not carry out): the newest
   /// rejection in counts() from now on. admitRequest() notes its own.
@@ -190,6 +193,8 @@ class CommandGate {
   std::uint64_t holder_ = 0;
   std::uint64_t holder_participant_ = 0;
   std::int64_t holder_heard_ns_ = 0;
+  std::uint64_t chunk_publisher_ = 0;  // who sent the last accepted chunk, and its number
+  std::uint64_t chunk_sequence_ = 0;
   std::deque<Pending> pending_;
   std::vector<CommandOutcome> settled_;
   // The control thread's side.
@@ -210,6 +215,10 @@ CommandReason CommandGate::offer(const Offer& offer, bool active, Submit&& submi
     return rejectLocked(outcome, commandReason(verdict.reason), verdict.message);
   }
   acceptLocked(verdict.sequence, outcome);
+  if (offer.chunk) {
+    chunk_publisher_ = offer.publisher;
+    chunk_sequence_ = verdict.sequence;
+  }
   return CommandReason::kNone;
 }
 

@@ -13,6 +13,7 @@
 #include "comply/core/command_reasons.hpp"
 #include "comply/core/commands.hpp"
 #include "comply/core/state.hpp"
+#include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/config.hpp"
 
 namespace comply::pipeline {
@@ -71,15 +72,41 @@ Verdict validateAndMerge(const CartesianCommand& incoming, const ValidationConfi
 Verdict validateAndMerge(const JointCommand& incoming, const ValidationConfig& limits, int dof,
                          const MeasuredPose& measured, JointCommand& merged);
 
-/// Checks a timed chunk as a whole at the intake (chunk_validation.cpp): 1 to kMaxChunkWaypoints
-/// waypoints; groups within kChunkFields and kPosition among them; finite, strictly increasing
-/// times; the last one after `host_time_s` (the host's clock, the times' timebase); one damping
-/// mode; and every waypoint as a command (validateCommand: stamp, fields), the first waypoint not
-/// yet past against the measured pose and each later one against the one before it, with the
-/// jump limits. Renormalises quaternions in place. The message names the waypoint.
+/// What a chunk's reference may ask of the arm beyond the fixed limits (validateChunk): the
+/// speeds are the motion governor's (governor.*), applied whether or not the governor runs in the
+/// cycle; the accelerations are ValidationConfig's max_chunk_*. 0, or an empty vector: no bound.
+struct ChunkLimits {
+  double tcp_speed_m_per_s = 0.0;            ///< governor.tcp_speed_m_per_s (Cartesian chunks)
+  double tcp_angular_speed_rad_per_s = 0.0;  ///< governor.tcp_angular_speed_rad_per_s
+  /// Per joint (joint chunks): governor.velocity_fraction x the URDF velocity limit [rad/s | m/s].
+  JointVector joint_speed;
+  /// chunk_blend_time_s: how long the blend from the reference in force lasts (0: none).
+  double blend_time_s = 0.0;
+};
+
+/// Checks a timed chunk as a whole at the intake (chunk_validation.cpp), the message naming the
+/// waypoint, the number and the limit:
+/// - shape: 1 to kMaxChunkWaypoints waypoints; groups within kChunkFields and kPosition among
+///   them; finite, strictly increasing times; one damping mode (invalid_chunk, non_finite);
+/// - time: the last waypoint after `host_time_s` (the host's clock, the times' timebase;
+///   late_chunk), the first not more than limits.max_stamp_lead_s after it (invalid_chunk: a
+///   chunk waiting that long would hold the arm for a sender that may be gone);
+/// - every waypoint as a command (validateCommand: stamp, fields), the first waypoint not yet
+///   past against the measured pose and each later one against the one before it, with the jump
+///   limits;
+/// - motion (chunk_motion.cpp; out_of_range), over the part of the chunk still to play: each
+///   waypoint's given velocity, each segment's chord speed (distance over time), the chord from
+///   the measured pose to the first waypoint ahead (over its time, at least the blend's), and
+///   the curve the cycle will play (the cubic Hermite through the waypoints, its lead-in, and the
+///   blend from `in_force`, the reference in force, over arm.blend_time_s), sampled, against the
+///   speeds of `arm` and the accelerations of `limits`. Cartesian chunks are held to the TCP's
+///   speeds, joint chunks to each joint's.
+/// Renormalises quaternions in place. `in_force` null: no blend is checked.
 Verdict validateChunk(CartesianChunk& chunk, const ValidationConfig& limits, int dof,
-                      const MeasuredPose& measured, double last_stamp_s, double host_time_s);
+                      const MeasuredPose& measured, double last_stamp_s, double host_time_s,
+                      const ChunkLimits& arm = {}, const CommandBus* in_force = nullptr);
 Verdict validateChunk(JointChunk& chunk, const ValidationConfig& limits, int dof,
-                      const MeasuredPose& measured, double last_stamp_s, double host_time_s);
+                      const MeasuredPose& measured, double last_stamp_s, double host_time_s,
+                      const ChunkLimits& arm = {}, const CommandBus* in_force = nullptr);
 
 }  // namespace comply::pipeline

@@ -75,11 +75,13 @@ namespace comply::pipeline {
 
 /// One entry of the intake queue.
 struct IntakeMessage {
-  enum class Type : std::uint8_t { kCommand, kReset, kChunk, kTare };
+  /// kDropChunk: the chunk numbered id.sequence is dropped if it still waits for its first
+  /// waypoint (its sender left).
+  enum class Type : std::uint8_t { kCommand, kReset, kChunk, kTare, kDropChunk };
   Type type = Type::kCommand;
   CommandBus command;   ///< kCommand: a validated command with its field mask
   int chunk_slot = -1;  ///< kChunk: the ChunkPlayer slot the intake loaded it into
-  CommandId id;         ///< kCommand, kChunk: which command it is
+  CommandId id;         ///< kCommand, kChunk, kDropChunk: which command it is
 };
 
 class Controller {

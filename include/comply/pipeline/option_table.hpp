@@ -50,7 +50,17 @@
          "largest w_n T a stiffness or damping may give on the arm's lightest inertia (0: no "     \
          "bound)")                                                                                 \
   NUMBER(max_stamp_lead_s, "validation.max_stamp_lead_s", 1.0, kAbove, 0.0, kNoLimit,              \
-         "s a command's stamp may be ahead of the host's clock (clock skew)")
+         "s a command's stamp, or a chunk's first waypoint, may be ahead of the host's clock")     \
+  NUMBER(max_chunk_acceleration_m_per_s2, "validation.max_chunk_acceleration_m_per_s2", 13.0,      \
+         kAtLeast, 0.0, kNoLimit,                                                                  \
+         "m/s^2 a chunk's curve may ask of the TCP (FR3 datasheet: 13); 0: no bound")              \
+  NUMBER(max_chunk_angular_acceleration_rad_per_s2,                                                \
+         "validation.max_chunk_angular_acceleration_rad_per_s2", 25.0, kAtLeast, 0.0, kNoLimit,    \
+         "rad/s^2 a chunk's curve may ask of the TCP (FR3 datasheet: 25); 0: no bound")            \
+  NUMBER(max_chunk_joint_acceleration_rad_per_s2,                                                  \
+         "validation.max_chunk_joint_acceleration_rad_per_s2", 10.0, kAtLeast, 0.0, kNoLimit,      \
+         "rad/s^2 a joint chunk's curve may ask of each joint (FR3 datasheet: 10 to 20; the low "  \
+         "end); 0: no bound")
 
 // Model-based torques added to the law's: gravity and a held payload (WrapperConfig).
 #define COMPLY_COMPENSATION_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET) \

@@ -51,8 +51,12 @@ class Wrapper final : public hardware::CycleController {
   void deactivate() noexcept { controller_.deactivate(); }
   /// Any thread. Asks the cycle to leave FAULT; the law runs again from the next cycle with a
   /// usable state (ignored outside FAULT). Clears the stamp floor either way: the next command
-  /// may carry any stamp.
+  /// may carry any stamp; and a chunk still waiting for its first waypoint is dropped.
   void reset();
+  /// Any thread. The next cycle drops the chunk numbered `sequence` (Verdict::sequence) if it
+  /// still waits for its first waypoint: its sender left (CommandGate::releasePublisher), and a
+  /// motion no one is there to follow up must not start later. A reset drops any waiting chunk.
+  void dropWaitingChunk(std::uint64_t sequence);
   /// Any thread. The next cycle takes the wrist sensor's reading, less the declared tool's
   /// weight, as its zero (Controller::sensorWrench; wrist_sensor.hpp). Returns why not, empty
   /// when queued: the hardware has never given a reading, or the intake queue is full.

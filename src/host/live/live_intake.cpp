@@ -43,6 +43,8 @@ void offerSample(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gat
   offer.now_ns = monotonicNanoseconds();
   offer.clock_ns = wallClockNanoseconds();  // senders stamp with their wall clock (ROS 2 time)
   offer.nanosec = sample.message.header.stamp.nanosec;
+  offer.chunk = std::is_same_v<Message, transport::CartesianChunkMessage> ||
+                std::is_same_v<Message, transport::JointChunkMessage>;
   const bool active = wrapper.diagnostics().state != pipeline::WrapperState::kInactive;
   gate.offer(offer, active, [&](std::int64_t stamp_ns) {
     return submitSample(wrapper, sample.message, stamp_ns, offer.clock_ns);
@@ -96,7 +98,10 @@ void Intake<Command>::take(const transport::Inbox& inbox) {
     handleRequest(sample);
   }
   for (const std::uint64_t publisher : inbox.departed) {
-    gate_.releasePublisher(publisher);
+    // A chunk of a sender that left does not start later, when no one is there to follow it up.
+    if (const std::uint64_t chunk = gate_.releasePublisher(publisher); chunk != 0) {
+      wrapper_.dropWaitingChunk(chunk);
+    }
   }
 }
 

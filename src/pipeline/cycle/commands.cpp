@@ -9,14 +9,18 @@ namespace comply::pipeline {
 
 void Controller::takeCommands() noexcept {
   bool changed = false;
+  bool dropped = false;
   for (const IntakeMessage* message = intake_.front(); message != nullptr;
        message = intake_.front()) {
     if (message->type == IntakeMessage::Type::kTare) {
       wrist_.tare(data_);
     } else if (message->type == IntakeMessage::Type::kReset) {
       // Only a fault present when the request arrives can be reset: a request must not stay armed
-      // and clear a later fault unasked.
+      // and clear a later fault unasked. A chunk still waiting for its start does not outlive it.
       reset_pending_ = diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kFault;
+      dropped = chunks_.dropWaiting(0, time_s_) || dropped;
+    } else if (message->type == IntakeMessage::Type::kDropChunk) {
+      dropped = chunks_.dropWaiting(message->id.sequence, time_s_) || dropped;
     } else if (message->type == IntakeMessage::Type::kChunk) {
       takeChunk(*message);
       changed = true;
@@ -29,9 +33,12 @@ void Controller::takeCommands() noexcept {
   if (changed) {
     watchdog_.heard(time_s_);
   }
+  if (dropped) {
+    stopMotion(active_);  // where the blend toward it had got, at rest
+  }
   const bool chunk_ran = chunks_.playing();
   playChunk();
-  if (changed || chunk_ran) {
+  if (changed || chunk_ran || dropped) {
     publishInForce();
   }
 }

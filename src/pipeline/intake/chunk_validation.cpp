@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "chunk_motion.hpp"
 #include "comply/pipeline/command_validation.hpp"
 #include "comply/schema/schema.hpp"
 
@@ -40,9 +41,9 @@ std::string groupNames(CommandField fields) {
   return names;
 }
 
-/// The rules of a chunk's shape; kNone-like (accepted) when they hold.
+/// The rules of a chunk's shape and time; accepted when they hold.
 template <typename Command>
-Verdict checkShape(const Chunk<Command>& chunk, double host_time_s) {
+Verdict checkShape(const Chunk<Command>& chunk, double host_time_s, double max_lead_s) {
   const std::size_t count = chunk.waypoints.size();
   if (count == 0 || count > static_cast<std::size_t>(kMaxChunkWaypoints)) {
     return reject(RejectionReason::kInvalidChunk,
@@ -81,16 +82,25 @@ Verdict checkShape(const Chunk<Command>& chunk, double host_time_s) {
                                                    " s ago on the host's clock; nothing of it is "
                                                    "left to play");
   }
+  const double lead_s = chunk.waypoints.front().time_s - host_time_s;
+  if (std::isfinite(host_time_s) && lead_s > max_lead_s) {
+    // A chunk waiting that long holds the arm's reference for a sender that may be gone.
+    std::ostringstream ahead;
+    ahead << "waypoint 0 is due " << lead_s << " s ahead of the host's clock (at most "
+          << max_lead_s << " s: validation.max_stamp_lead_s)";
+    return reject(RejectionReason::kInvalidChunk, ahead.str());
+  }
   return {};
 }
 
 template <typename Command>
 Verdict validateChunkAny(Chunk<Command>& chunk, const ValidationConfig& limits, int dof,
-                         const MeasuredPose& measured, double last_stamp_s, double host_time_s) {
+                         const MeasuredPose& measured, double last_stamp_s, double host_time_s,
+                         const ChunkLimits& arm, const CommandBus* in_force) {
   if (!std::isfinite(chunk.stamp_s)) {
     return reject(RejectionReason::kNonFinite, "stamp");
   }
-  if (Verdict shape = checkShape(chunk, host_time_s); !shape.accepted) {
+  if (Verdict shape = checkShape(chunk, host_time_s, limits.max_stamp_lead_s); !shape.accepted) {
     return shape;
   }
   bool compared_with_measured = false;
@@ -120,19 +130,21 @@ Verdict validateChunkAny(Chunk<Command>& chunk, const ValidationConfig& limits, 
       }
     }
   }
-  return {};
+  return checkChunkMotion(chunk, dof, limits, arm, measured, host_time_s, in_force);
 }
 
 }  // namespace
 
 Verdict validateChunk(CartesianChunk& chunk, const ValidationConfig& limits, int dof,
-                      const MeasuredPose& measured, double last_stamp_s, double host_time_s) {
-  return validateChunkAny(chunk, limits, dof, measured, last_stamp_s, host_time_s);
+                      const MeasuredPose& measured, double last_stamp_s, double host_time_s,
+                      const ChunkLimits& arm, const CommandBus* in_force) {
+  return validateChunkAny(chunk, limits, dof, measured, last_stamp_s, host_time_s, arm, in_force);
 }
 
 Verdict validateChunk(JointChunk& chunk, const ValidationConfig& limits, int dof,
-                      const MeasuredPose& measured, double last_stamp_s, double host_time_s) {
-  return validateChunkAny(chunk, limits, dof, measured, last_stamp_s, host_time_s);
+                      const MeasuredPose& measured, double last_stamp_s, double host_time_s,
+                      const ChunkLimits& arm, const CommandBus* in_force) {
+  return validateChunkAny(chunk, limits, dof, measured, last_stamp_s, host_time_s, arm, in_force);
 }
 
 }  // namespace comply::pipeline

@@ -3,6 +3,7 @@
 #include "comply/pipeline/command_gate.hpp"
 
 #include <sstream>
+#include <utility>
 
 #include "comply/core/clock.hpp"
 
@@ -140,11 +141,16 @@ void CommandGate::noteRefusal(std::string why) {
   counts_.last_rejection = std::move(why);
 }
 
-void CommandGate::releasePublisher(std::uint64_t publisher) {
+std::uint64_t CommandGate::releasePublisher(std::uint64_t publisher) {
   const std::lock_guard<std::mutex> lock(mutex_);
   if (holder_ == publisher) {
     holder_ = 0;
   }
+  if (chunk_publisher_ != publisher || publisher == 0) {
+    return 0;
+  }
+  chunk_publisher_ = 0;
+  return std::exchange(chunk_sequence_, 0);
 }
 
 std::vector<CommandOutcome> CommandGate::takeOutcomes() {

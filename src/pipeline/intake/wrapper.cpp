@@ -33,6 +33,16 @@ Verdict queueFull(const std::string& full) {
               "; the sender is faster than the control rate"};
 }
 
+/// What a chunk may ask of this arm: the governor's speeds (applied at the intake whether or not
+/// the governor runs in the cycle) and the blend a chunk starts with.
+ChunkLimits chunkLimits(const ResolvedController& resolved) {
+  const CycleParameters& p = resolved.parameters;
+  return {.tcp_speed_m_per_s = p.governor.tcp_speed_m_per_s,
+          .tcp_angular_speed_rad_per_s = p.governor.tcp_angular_speed_rad_per_s,
+          .joint_speed = p.governor.velocity_fraction * p.velocity_limit,
+          .blend_time_s = p.chunk_blend_time_s};
+}
+
 std::string commandsWaiting() {
   return std::to_string(Controller::kIntakeCapacity) + " commands already wait for the cycle";
 }
@@ -55,6 +65,17 @@ void Wrapper<Command>::reset() {
   message.type = IntakeMessage::Type::kReset;
   message.command = emptyBus(kKind<Command>);
   (void)controller_.enqueue(message);  // a full queue is taken next cycle; a reset can be resent
+}
+
+template <typename Command>
+void Wrapper<Command>::dropWaitingChunk(std::uint64_t sequence) {
+  const std::lock_guard<std::mutex> lock(intake_mutex_);
+  IntakeMessage message;
+  message.type = IntakeMessage::Type::kDropChunk;
+  message.command = emptyBus(kKind<Command>);
+  message.id.sequence = sequence;
+  // A full queue loses it: the chunk then starts, at most validation.max_stamp_lead_s late.
+  (void)controller_.enqueue(message);
 }
 
 template <typename Command>
@@ -208,9 +229,11 @@ Verdict Wrapper<Command>::submitChunkStamped(const Chunk<Command>& chunk, double
   const int dof = controller_.dof();
   const MeasuredPose measured = controller_.measuredPose();
   Chunk<Command> checked = chunk;
-  Verdict verdict =
-      validateChunk(checked, controller_.resolved().config.validation, dof, measured,
-                    -std::numeric_limits<double>::infinity(), host_time_s);  // floor: above
+  const ResolvedController& resolved = controller_.resolved();
+  const CommandBus in_force = controller_.commandInForce();
+  Verdict verdict = validateChunk(checked, resolved.config.validation, dof, measured,
+                                  -std::numeric_limits<double>::infinity(),  // floor: above
+                                  host_time_s, chunkLimits(resolved), &in_force);
   // Each waypoint's gains as the chunk reaches them, merged into what is in force before it.
   Command gains = intakeGains();
   for (const ChunkWaypoint<Command>& waypoint : checked.waypoints) {
@@ -228,8 +251,8 @@ Verdict Wrapper<Command>::submitChunkStamped(const Chunk<Command>& chunk, double
     IntakeMessage message;
     message.type = IntakeMessage::Type::kChunk;
     message.command = emptyBus(kKind<Command>);
-    message.chunk_slot = chunks.load(checked, host_to_controller_s);
     message.id = nextId(stamp);
+    message.chunk_slot = chunks.load(checked, host_to_controller_s, message.id.sequence);
     if (message.chunk_slot < 0) {
       verdict =
           queueFull("all " + std::to_string(ChunkPlayer::kSlots) +

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <type_traits>
 
+#include "chunk_blend.hpp"
 #include "chunk_curve.hpp"
 #include "chunk_track.hpp"
 #include "comply/core/rotation.hpp"
@@ -71,47 +72,6 @@ void fadeSettings(const Joint& from, const Joint& chunk, std::uint32_t fields, d
   }
 }
 
-/// The difference between the reference in force and the chunk when the chunk starts, in value,
-/// velocity and acceleration, which the blend lets decay to zero.
-struct CartesianOffset {
-  Vector3d position[3];
-  Vector3d rotation[3];  ///< rotation vector (base frame) from the chunk's orientation to the old
-};
-struct JointOffset {
-  JointVector position[3];
-};
-
-CartesianOffset offsetAt(const Cartesian& from, const CartesianMotion& chunk) noexcept {
-  CartesianOffset offset;
-  offset.position[0] = ConstVector3Map(from.position) - chunk.position;
-  offset.position[1] = ConstVector3Map(from.twist) - chunk.velocity;
-  offset.position[2] = ConstVector3Map(from.acceleration) - chunk.acceleration;
-  // orientationError(a, b) is the base-frame rotation vector taking a to b.
-  offset.rotation[0] = orientationError(chunk.orientation, fromXyzw(from.orientation));
-  offset.rotation[1] = ConstVector3Map(from.twist + 3) - chunk.angular_velocity;
-  offset.rotation[2] = ConstVector3Map(from.acceleration + 3) - chunk.angular_acceleration;
-  return offset;
-}
-
-JointOffset offsetAt(const Joint& from, const JointMotion& chunk) noexcept {
-  const int dof = from.dof;
-  JointOffset offset;
-  offset.position[0] = Eigen::Map<const Eigen::VectorXd>(from.position, dof) - chunk.position;
-  offset.position[1] = Eigen::Map<const Eigen::VectorXd>(from.velocity, dof) - chunk.velocity;
-  offset.position[2] =
-      Eigen::Map<const Eigen::VectorXd>(from.acceleration, dof) - chunk.acceleration;
-  return offset;
-}
-
-/// value, d/dt, d^2/dt^2 of a decaying offset `e` at blend fraction s of a blend of `length_s`.
-template <typename Value>
-void decay(const Value (&e)[3], const curve::QuinticWeights& w, double length_s, Value (&out)[3]) {
-  const double t = length_s;
-  out[0] = w.value[0] * e[0] + t * w.value[1] * e[1] + t * t * w.value[2] * e[2];
-  out[1] = (w.first[0] * e[0] + t * w.first[1] * e[1] + t * t * w.first[2] * e[2]) / t;
-  out[2] = (w.second[0] * e[0] + t * w.second[1] * e[1] + t * t * w.second[2] * e[2]) / (t * t);
-}
-
 void writeMotion(const CartesianMotion& m, Cartesian& to) noexcept {
   Vector3Map(to.position) = m.position;
   toXyzw(m.orientation, to.orientation);
@@ -125,35 +85,6 @@ void writeMotion(const JointMotion& m, Joint& to) noexcept {
   std::copy_n(m.velocity.data(), dof, to.velocity);
   std::copy_n(m.acceleration.data(), dof, to.acceleration);
 }
-
-void addOffset(const CartesianOffset& e, const curve::QuinticWeights& w, double length_s,
-               CartesianMotion& m) noexcept {
-  Vector3d position[3];
-  Vector3d rotation[3];
-  decay(e.position, w, length_s, position);
-  decay(e.rotation, w, length_s, rotation);
-  m.position += position[0];
-  m.velocity += position[1];
-  m.acceleration += position[2];
-  // The rotation's rates add as vectors, which holds to first order in the offset's angle (the
-  // exact rate of Exp(e) q has Jacobian terms in e): the offset is small when a chunk continues
-  // the one before it, and the orientation itself stays continuous whatever its size.
-  m.orientation = (quaternionExp(rotation[0]) * m.orientation).normalized();
-  m.angular_velocity += rotation[1];
-  m.angular_acceleration += rotation[2];
-}
-
-void addOffset(const JointOffset& e, const curve::QuinticWeights& w, double length_s,
-               JointMotion& m) noexcept {
-  JointVector position[3];
-  decay(e.position, w, length_s, position);
-  m.position += position[0];
-  m.velocity += position[1];
-  m.acceleration += position[2];
-}
-
-template <typename Bus>
-using OffsetOf = std::conditional_t<std::is_same_v<Bus, Cartesian>, CartesianOffset, JointOffset>;
 
 /// The typed half of the player: its slots and the running chunk's blend.
 template <typename Bus>
@@ -190,7 +121,7 @@ namespace {
 
 template <typename Bus, typename Command>
 int loadInto(ChunkPlayer::Slots& slots, Engine<Bus>& engine, const Chunk<Command>& chunk,
-             double host_to_controller_s) {
+             double host_to_controller_s, std::uint64_t sequence) {
   const int slot = slots.acquire();
   if (slot < 0) {
     return -1;
@@ -199,6 +130,7 @@ int loadInto(ChunkPlayer::Slots& slots, Engine<Bus>& engine, const Chunk<Command
   track.count = static_cast<int>(chunk.waypoints.size()) + 1;  // after the lead-in
   track.fields = static_cast<std::uint32_t>(chunk.fields);
   track.stamp_s = chunk.stamp_s;
+  track.sequence = sequence;
   for (int k = 1; k < track.count; ++k) {
     const ChunkWaypoint<Command>& waypoint = chunk.waypoints[k - 1];
     track.time_s[k] = waypoint.time_s + host_to_controller_s;
@@ -227,12 +159,7 @@ bool playIn(Engine<Bus>& engine, int slot, double blend_time_s, double now_s,
   auto motion = motionAt(track, place);
   const double since_start = now_s - engine.start_s;
   const bool blending = blend_time_s > 0.0 && since_start < blend_time_s;
-  double fraction = 1.0;
-  if (blending) {
-    const curve::QuinticWeights w = curve::quinticDecay(std::max(0.0, since_start) / blend_time_s);
-    addOffset(engine.offset, w, blend_time_s, motion);
-    fraction = 1.0 - w.value[0];
-  }
+  const double fraction = blendInto(engine.offset, blend_time_s, since_start, motion);
   writeMotion(motion, active);
   const std::uint32_t settings = track.fields & ~(COMPLY_FIELD_POSITION | COMPLY_FIELD_VELOCITY);
   if (settings != 0) {
@@ -259,13 +186,17 @@ ChunkPlayer::ChunkPlayer(int command_kind, int dof, double blend_time_s)
 
 ChunkPlayer::~ChunkPlayer() = default;
 
-int ChunkPlayer::load(const CartesianChunk& chunk, double host_to_controller_s) {
-  return slots_->cartesian ? loadInto(*slots_, *slots_->cartesian, chunk, host_to_controller_s)
-                           : -1;
+int ChunkPlayer::load(const CartesianChunk& chunk, double host_to_controller_s,
+                      std::uint64_t sequence) {
+  return slots_->cartesian
+             ? loadInto(*slots_, *slots_->cartesian, chunk, host_to_controller_s, sequence)
+             : -1;
 }
 
-int ChunkPlayer::load(const JointChunk& chunk, double host_to_controller_s) {
-  return slots_->joint ? loadInto(*slots_, *slots_->joint, chunk, host_to_controller_s) : -1;
+int ChunkPlayer::load(const JointChunk& chunk, double host_to_controller_s,
+                      std::uint64_t sequence) {
+  return slots_->joint ? loadInto(*slots_, *slots_->joint, chunk, host_to_controller_s, sequence)
+                       : -1;
 }
 
 void ChunkPlayer::release(int slot) noexcept {
@@ -311,6 +242,21 @@ bool ChunkPlayer::play(double now_s, CommandBus& active) noexcept {
 void ChunkPlayer::stop() noexcept {
   release(playing_);
   playing_ = -1;
+}
+
+bool ChunkPlayer::dropWaiting(std::uint64_t sequence, double now_s) noexcept {
+  if (playing_ < 0) {
+    return false;
+  }
+  const auto waits = [&](const auto& track) {
+    return (sequence == 0 || track.sequence == sequence) && now_s < track.time_s[1];
+  };
+  const bool waiting = slots_->cartesian ? waits(slots_->cartesian->tracks[playing_])
+                                         : waits(slots_->joint->tracks[playing_]);
+  if (waiting) {
+    stop();
+  }
+  return waiting;
 }
 
 std::uint32_t ChunkPlayer::fields() const noexcept {

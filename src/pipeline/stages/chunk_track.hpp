@@ -56,6 +56,7 @@ struct Track {
   int count = 0;  ///< the chunk's waypoints plus the lead-in
   std::uint32_t fields = 0;
   double stamp_s = 0.0;
+  std::uint64_t sequence = 0;  ///< its number (CommandId), 0: not known
   std::array<double, kTrackWaypoints> time_s{};
   /// Each waypoint's bus; its twist (velocity) holds the waypoint's velocity, given or implied.
   std::array<Bus, kTrackWaypoints> waypoints{};
