@@ -180,7 +180,7 @@ TEST(ChunkLimits, AJointChunkIsHeldToEachJointsShareOfItsLimit) {
   const Verdict verdict = validateChunk(fast, validation, kJoints, measured,
                                         -std::numeric_limits<double>::infinity(), kNow, limits);
   expectRefused(verdict, RejectionReason::kOutOfRange,
-                "waypoint 0 to 1 in 0.1 s: joint 2 at 2 rad/s, above 1.6 rad/s");
+                "waypoint 0 to 1 in 0.1 s: joint 3 at 2 rad/s, above 1.6 rad/s");
   limits.joint_speed[2] = 0.8 * 4.0;  // its last segment peaks at 4/3 of 2 rad/s
   JointChunk slow = chunk;
   const Verdict accepted = validateChunk(slow, validation, kJoints, measured,

@@ -170,11 +170,13 @@ class Controller {
   [[nodiscard]] bool sensorSeen() const noexcept { return wrist_.seen(); }
   /// The output stage (output.mode; the virtual arm of an admittance mode).
   [[nodiscard]] const OutputStage& output() const noexcept { return output_stage_; }
-  /// In FAULT once the controlled stop has brought the arm to rest, or at once on a frozen sensor
-  /// stream (the hold's gravity is that of a pose the arm may have left): the hardware's own hold
-  /// (brakes) is asked for as well (CycleController::wantsHold).
+  /// In FAULT once the controlled stop has brought the arm to rest, or at once on a frozen or
+  /// unusable state (the hold's gravity is that of a pose the arm may have left): the hardware's
+  /// own hold (brakes) is asked for as well (CycleController::wantsHold). Not in admittance,
+  /// whose position drives stop the arm themselves and whose law state is the virtual arm's.
   [[nodiscard]] bool holdRequested() const noexcept {
-    return (frozen_.frozen() || safe_hold_.atRest()) &&
+    const bool stopped = safe_hold_.atRest() && !isAdmittance(parameters_.output.mode);
+    return (frozen_.frozen() || !state_usable_ || stopped) &&
            diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kFault;
   }
   /// Benchmark protocol, the law's cost alone: measureOnly() runs the measure stage at `state`
@@ -201,6 +203,8 @@ class Controller {
   void takeChunk(const IntakeMessage& message) noexcept;
   void playChunk() noexcept;
   void watchdog() noexcept;
+  bool takeReset() noexcept;
+  bool dropWaitingChunk(std::uint64_t sequence) noexcept;
   void resumeAfterReset() noexcept;
   void guardGains() noexcept;  // gains.cpp
   void applyForce() noexcept;  // force.cpp
@@ -256,7 +260,8 @@ class Controller {
   bool state_usable_ = false;      // this cycle's state passed measure(), so input_ is current
   bool in_force_changed_ = false;  // active_ changed since the gain stage last saw it
   bool reset_pending_ = false;
-  bool torque_clipped_ = false;  // the last cycle's torque was rate or effort limited
+  bool torque_clipped_ = false;  // the last cycle's torque was rate or effort limited or governed
+  bool governed_ = false;        // the governor acted this cycle
   comply_input input_{};
   comply_output law_output_{};  // the plugin's output this cycle
   JointVector torque_;

@@ -31,6 +31,9 @@
 // at 0.85 of it; past 0.85 of it the TCP is braked through J^T with the lightest apparent mass
 // (inertia) at the TCP over 2 T as the damping.
 //
+// In the admittance modes the law drives a virtual arm whose speed is bounded by its own
+// velocity_factor; there the stage scales but does not brake.
+//
 // Normal tracking is untouched: while no joint passes 0.2 w_i with more push than the bounds allow
 // and the TCP stays below half its limits, s = 1 exactly and the torque is the law's, bit for bit.
 //
@@ -77,6 +80,7 @@ class MotionGovernor {
 
   bool enabled_ = false;
   bool tcp_ = false;
+  bool brake_ = true;  // off in admittance (the constructor says why)
   int dof_ = 0;
   JointVector governed_speed_;      // w_i
   JointVector inertia_;             // m_i

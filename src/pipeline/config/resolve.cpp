@@ -163,9 +163,9 @@ void adaptToOutputMode(ResolvedController& resolved) {
 /// The gain bound of the output mode (gain_bound.hpp): the arm's inertias with its rotor inertias
 /// (torque; joint_pd, whose drives' own gains are checked too with a Cartesian law), or the
 /// admittance modes' virtual arm, bounded along translation only: it carries no rotor inertias,
-/// so its lightest rotational and joint inertias are the bare links' (the FR3's wrist 1e-4 kg m^2
-/// against 0.074 with its rotor), and a bound on them would refuse every robot's default
-/// rotational stiffness.
+/// so its lightest rotational and joint inertias are the bare links' (the FR3's lightest rotational
+/// inertia at the TCP 1.0e-4 kg m^2, against 0.040 with its rotors), and a bound on them would
+/// refuse every robot's default rotational stiffness.
 GainBound modeBound(const ResolvedController& resolved) {
   const WrapperConfig& config = resolved.config;
   const model::Model& model = *resolved.model;

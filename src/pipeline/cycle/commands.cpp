@@ -9,18 +9,14 @@ namespace comply::pipeline {
 
 void Controller::takeCommands() noexcept {
   bool changed = false;
-  bool dropped = false;
   for (const IntakeMessage* message = intake_.front(); message != nullptr;
        message = intake_.front()) {
     if (message->type == IntakeMessage::Type::kTare) {
       wrist_.tare(data_);
     } else if (message->type == IntakeMessage::Type::kReset) {
-      // Only a fault present when the request arrives can be reset: a request must not stay armed
-      // and clear a later fault unasked. A chunk still waiting for its start does not outlive it.
-      reset_pending_ = diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kFault;
-      dropped = chunks_.dropWaiting(0, time_s_) || dropped;
+      changed = takeReset() || changed;
     } else if (message->type == IntakeMessage::Type::kDropChunk) {
-      dropped = chunks_.dropWaiting(message->id.sequence, time_s_) || dropped;
+      changed = dropWaitingChunk(message->id.sequence) || changed;
     } else if (message->type == IntakeMessage::Type::kChunk) {
       takeChunk(*message);
       changed = true;
@@ -33,14 +29,38 @@ void Controller::takeCommands() noexcept {
   if (changed) {
     watchdog_.heard(time_s_);
   }
-  if (dropped) {
-    stopMotion(active_);  // where the blend toward it had got, at rest
-  }
   const bool chunk_ran = chunks_.playing();
   playChunk();
-  if (changed || chunk_ran || dropped) {
+  if (changed || chunk_ran) {
     publishInForce();
   }
+}
+
+bool Controller::takeReset() noexcept {
+  // A chunk still waiting for its start does not outlive a reset.
+  const bool dropped = dropWaitingChunk(0);
+  // Only a fault present when the request arrives can be reset: a request must not stay armed
+  // and clear a later fault unasked.
+  reset_pending_ = diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kFault;
+  if (reset_pending_) {
+    // The command in force may be what caused the fault (a target the arm could not reach, a
+    // feedforward it could not carry), and the arm has moved since: the measured pose is held,
+    // with the gains and task frame in force. Here, so that what the intake queued after the
+    // request builds on it (resumeAfterReset() restarts the stages if the reset is taken).
+    chunks_.stop();
+    holdMeasured(active_, currentPose());
+  }
+  return dropped || reset_pending_;
+}
+
+bool Controller::dropWaitingChunk(std::uint64_t sequence) noexcept {
+  if (!chunks_.dropWaiting(sequence, time_s_)) {
+    return false;
+  }
+  // Where the blend toward it had got, at rest; a force axis ends holding the arm where it is.
+  anchorForceAxes(active_, currentPose());
+  stopMotion(active_);
+  return true;
 }
 
 void Controller::takeCommand(const IntakeMessage& message) noexcept {
@@ -76,8 +96,7 @@ void Controller::playChunk() noexcept {
     return;
   }
   if (diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kFault) {
-    // A reset resumes from the reference where the fault left it, not from wherever the chunk
-    // would have carried it meanwhile.
+    // The chunk ends with the fault; a reset then holds the measured pose (takeReset()).
     chunks_.stop();
     anchorForceAxes(active_, currentPose());
     stopMotion(active_);
@@ -89,11 +108,8 @@ void Controller::playChunk() noexcept {
 }
 
 void Controller::resumeAfterReset() noexcept {
-  // The command in force may be what caused the fault (a target the arm could not reach, a
-  // feedforward it could not carry), and the arm has moved since: the measured pose is held, with
-  // the gains and task frame in force, and the stages that integrate start again from here.
-  chunks_.stop();
-  holdMeasured(active_, currentPose());
+  // The command in force holds the measured pose since the request (takeReset()); the stages that
+  // integrate start again from here.
   frozen_.reset();  // it did not judge the state the hardware's hold kept still
   publishInForce();
   guard_.reset();

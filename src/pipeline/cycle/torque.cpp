@@ -27,7 +27,8 @@ void Controller::compensate() noexcept {
 }
 
 void Controller::govern() noexcept {
-  if (governor_.apply(state_, data_, period_s_, law_torque_, torque_).acted()) {
+  governed_ = governor_.apply(state_, data_, period_s_, law_torque_, torque_).acted();
+  if (governed_) {
     diagnostics_.governor_hits.fetch_add(1, std::memory_order_relaxed);
   }
 }
@@ -70,7 +71,8 @@ bool Controller::shape() noexcept {
   }
   diagnostics_.rate_limit_hits.fetch_add(shaped.rate_limited, std::memory_order_relaxed);
   diagnostics_.effort_limit_hits.fetch_add(shaped.effort_limited, std::memory_order_relaxed);
-  torque_clipped_ = shaped.rate_limited + shaped.effort_limited > 0;
+  // The energy tank learns from the torque that acted: not the law's when clipped or governed.
+  torque_clipped_ = shaped.rate_limited + shaped.effort_limited > 0 || governed_;
   return true;
 }
 
@@ -84,7 +86,9 @@ CycleStatus Controller::write(std::span<double> torque) noexcept {
 CycleStatus Controller::hold(std::span<double> torque) noexcept {
   force_active_ = false;  // no law runs: what it would read is the command in force
   // The state is the last usable one when this cycle's was not.
-  safe_hold_.torque(state_, frozen_.frozen(), period_s_, torque_);
+  // A stale velocity (a frozen stream, or this cycle's state unusable: state_ is the last usable
+  // one) would brake against a motion the arm may no longer have.
+  safe_hold_.torque(state_, frozen_.frozen() || !state_usable_, period_s_, torque_);
   const ShapingResult shaped = shaper_.apply(torque_, period_s_, /*filter=*/false);
   if (!shaped.finite) {
     // Nothing finite to hold with (no usable state was ever measured): command no torque rather

@@ -63,7 +63,7 @@ std::string tooFast(const JointVector& velocity, const ChunkLimits& arm) {
     std::string why = above(std::abs(velocity[i]), arm.joint_speed[i], "rad/s",
                             "governor.velocity_fraction of its URDF velocity limit");
     if (!why.empty()) {
-      return "joint " + std::to_string(i) + " at " + why;
+      return "joint " + std::to_string(i + 1) + " at " + why;
     }
   }
   return {};
@@ -85,7 +85,7 @@ std::string tooQuick(const chunk::JointMotion& m, const ValidationConfig& limits
         above(std::abs(m.acceleration[i]), limits.max_chunk_joint_acceleration_rad_per_s2,
               "rad/s^2", "validation.max_chunk_joint_acceleration_rad_per_s2");
     if (!why.empty()) {
-      return "joint " + std::to_string(i) + " at " + why;
+      return "joint " + std::to_string(i + 1) + " at " + why;
     }
   }
   return {};

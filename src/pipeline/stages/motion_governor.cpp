@@ -32,6 +32,10 @@ MotionGovernor::MotionGovernor(const ResolvedController& resolved, bool tcp) : d
   rate_limit_ = parameters.torque_rate_limit;
   effort_limit_ = parameters.effort_limit;
   tcp_ = tcp && enabled_;
+  // An admittance's virtual arm is no heavier than the arm without its rotors, for which a brake
+  // sized on the rotors' inertia is far past deadbeat; its speed is bounded by the virtual arm
+  // itself (output.admittance.velocity_factor, below the brakes' 0.85 x velocity_fraction).
+  brake_ = !isAdmittance(parameters.output.mode);
   tcp_speed_ = config.tcp_speed_m_per_s;
   tcp_angular_speed_ = config.tcp_angular_speed_rad_per_s;
   tcp_mass_kg_ = parameters.tcp_mass_kg;
@@ -52,8 +56,9 @@ double MotionGovernor::jointShare(const JointState& state, double period_s,
     const double velocity = state.velocity[i];
     const double own = velocity > 0.0 ? law_torque[i] : -law_torque[i];
     // A slow joint is left alone: a law holding a contact pushes at rest, and what a push from
-    // slow can add is what the margin above kJointFrom is for.
-    if (std::abs(velocity) < kJointFrom * governed_speed_[i]) {
+    // slow can add is what the margin above kJointFrom is for. A URDF without a velocity limit
+    // (0) bounds nothing, as for the stability guard.
+    if (!(governed_speed_[i] > 0.0) || std::abs(velocity) < kJointFrom * governed_speed_[i]) {
       continue;
     }
     const double push = std::max(own, 0.0) + root_inertia_[i] * coupled - std::abs(law_torque[i]);
@@ -86,7 +91,7 @@ bool MotionGovernor::brakeJoints(const JointState& state, double period_s,
   for (int i = 0; i < dof_; ++i) {
     const double velocity = state.velocity[i];
     const double excess = std::abs(velocity) - kBrakeFrom * governed_speed_[i];
-    if (excess <= 0.0) {
+    if (!(governed_speed_[i] > 0.0) || !(excess > 0.0)) {
       continue;
     }
     const double brake = std::min(inertia_[i] / (2.0 * period_s) * excess, effort_limit_[i]);
@@ -135,9 +140,11 @@ GovernorResult MotionGovernor::apply(const JointState& state, const model::Data&
     torque -= (1.0 - result.share) * law_torque;
     law_torque *= result.share;
   }
-  result.braked = brakeJoints(state, period_s, torque);
-  if (tcp_) {
-    result.braked = brakeTcp(tcp_twist, data, period_s, torque) || result.braked;
+  if (brake_) {
+    result.braked = brakeJoints(state, period_s, torque);
+    if (tcp_) {
+      result.braked = brakeTcp(tcp_twist, data, period_s, torque) || result.braked;
+    }
   }
   return result;
 }
