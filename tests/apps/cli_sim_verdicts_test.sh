@@ -16,8 +16,9 @@ step "$work/huge.yaml" 1.0e300 0.5
 step "$work/step.yaml" 0.02 1.5
 sed 's/stiffness_translational: 3000.0/stiffness_translational: 9.0e5/' \
   "$source/config/sim/cartesian_impedance.yaml" >"$work/stiff.yaml"
-# The same with the gain bound off: what stops such gains then is the stability guard.
-sed 's/command_timeout_s: 0.5/command_timeout_s: 0.5\n    validation: {max_wn_period: 0.0}/' \
+# The same with the gain bound and the governor off: what stops such gains then is the stability
+# guard (tests/sim/stop_means_stop_test.cpp has the governor keeping them below the speeds).
+sed 's/command_timeout_s: 0.5/command_timeout_s: 0.5\n    validation: {max_wn_period: 0.0}\n    governor: {enabled: false}/' \
   "$work/stiff.yaml" >"$work/stiff_unbounded.yaml"
 sed 's/stiffness_translational: 3000.0/stiffness_translational: 1.0e9/' \
   "$source/config/sim/cartesian_impedance.yaml" >"$work/absurd.yaml"

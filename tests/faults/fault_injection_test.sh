@@ -36,6 +36,8 @@ fault_test:
       damping: 20.0
     stability_guard:
       enabled: false  # these are the law's own faults; a chasing arm would overspeed first
+    governor:
+      enabled: false  # and the governor would take a saturating law's torque back first
     plugin_parameters:
       fault: $1
       at_step: 200

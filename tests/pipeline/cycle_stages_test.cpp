@@ -1,7 +1,8 @@
 // The cycle's own stage objects alone (frozen_state.hpp, command_watchdog.hpp, safe_hold.hpp,
 // motion_governor.hpp): each keeps its state between cycles and forgets it in reset(), which
-// activation calls for every stage (Controller::resetStages). Their effect inside a running cycle is covered by the
-// wrapper tests (wrapper_frozen_state_test, wrapper_watchdog_test, wrapper_fault_test).
+// activation calls for every stage (Controller::resetStages). Their effect inside a running cycle
+// is covered by the wrapper tests (wrapper_frozen_state_test, wrapper_watchdog_test,
+// wrapper_fault_test).
 
 #include <gtest/gtest.h>
 
@@ -132,12 +133,13 @@ TEST(SafeHold, StopsEveryJointWithinItsEffortLimitThenHoldsWhereItCameToRest) {
         std::max(parameters.fault_damping[i], parameters.joint_inertia[i] / (2.0 * kPeriodS));
     const double available = parameters.effort_limit[i] - std::abs(gravity[i]);
     EXPECT_DOUBLE_EQ(torque[i], gravity[i] - std::min(gain * 0.2, available)) << i;
-    EXPECT_GT(gain, 10.0 * parameters.fault_damping[i]) << "a stop, not the old light damping";
+    EXPECT_GT(gain, 5.0 * parameters.fault_damping[i]) << "a stop, not the old light damping";
   }
-  moving.velocity.setConstant(50.0);  // far past every limit: each joint brakes at its effort
+  moving.velocity.setConstant(50.0);  // far past every limit: each joint brakes with all it has
   hold.torque(moving, false, kPeriodS, torque);
   for (int i = 0; i < kFr3Dof; ++i) {
-    EXPECT_NEAR(std::abs(torque[i]), parameters.effort_limit[i], 1e-9) << i;
+    EXPECT_NEAR(torque[i], gravity[i] - (parameters.effort_limit[i] - std::abs(gravity[i])), 1e-9)
+        << i;
   }
 
   // At rest: held where it stopped, a spring back to that pose.
@@ -234,15 +236,14 @@ TEST(MotionGovernor, BrakesATcpPastItsSpeed) {
   // A joint velocity that moves the TCP at 1.5 m/s along base x, slow on every joint's scale.
   const Eigen::Matrix<double, 3, Eigen::Dynamic> linear = data.jacobian.topRows(3);
   JointState fast = state;
-  fast.velocity = linear.transpose() * (linear * linear.transpose()).ldlt().solve(
-                                           Eigen::Vector3d(1.5, 0.0, 0.0));
+  fast.velocity = linear.transpose() *
+                  (linear * linear.transpose()).ldlt().solve(Eigen::Vector3d(1.5, 0.0, 0.0));
   JointVector law = JointVector::Zero(kFr3Dof);
   JointVector torque = JointVector::Zero(kFr3Dof);
   const GovernorResult result = governor.apply(fast, data, 0.001, law, torque);
   ASSERT_TRUE(result.braked);
-  const Eigen::Vector3d force = (linear * linear.transpose())
-                                    .ldlt()
-                                    .solve(linear * torque.head(kFr3Dof));  // J^T F = torque
+  const Eigen::Vector3d force =
+      (linear * linear.transpose()).ldlt().solve(linear * torque.head(kFr3Dof));  // J^T F = torque
   EXPECT_LT(force.x(), 0.0) << "braked against the TCP's motion";
   EXPECT_LT(fast.velocity.dot(torque), 0.0) << "the brake takes energy out";
 }

@@ -73,7 +73,9 @@ TEST(AdmittanceFault, HoldsTheMeasuredPositionUntilAReset) {
   rig.wrapper.reset();
   cycles(1000);
   EXPECT_EQ(rig.wrapper.diagnostics().state, pipeline::WrapperState::kActive);
-  EXPECT_NEAR(tcp_y() - held, 0.01, 2e-3) << "after the reset the arm yields to the push again";
+  // The reset holds the pose the arm was held at (not the reference of before the fault): from
+  // there the arm yields to the whole 60 N, 2 cm on 3000 N/m.
+  EXPECT_NEAR(tcp_y() - held, 0.02, 2e-3) << "after the reset the arm yields to the push again";
 }
 
 }  // namespace

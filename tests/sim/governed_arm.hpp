@@ -72,9 +72,8 @@ inline CartesianCommand stiffStep(const Arm<>& arm, const Eigen::Vector3d& offse
   target.fields = CommandField::kPosition | CommandField::kStiffness;
   const MeasuredPose measured = arm.wrapper.measuredPose();
   target.position = measured.tcp_position + offset_m;
-  target.orientation =
-      Eigen::Quaterniond(Eigen::AngleAxisd(angle_rad, Eigen::Vector3d::UnitZ())) *
-      measured.tcp_orientation;
+  target.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(angle_rad, Eigen::Vector3d::UnitZ())) *
+                       measured.tcp_orientation;
   target.stiffness_translational = stiffness_n_per_m * Eigen::Matrix3d::Identity();
   target.stiffness_rotational = (angle_rad == 0.0 ? 200.0 : 4000.0) * Eigen::Matrix3d::Identity();
   return target;

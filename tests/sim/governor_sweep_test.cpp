@@ -19,7 +19,7 @@
 namespace comply::testing {
 namespace {
 
-constexpr int kRunCycles = 2000;       // 2 s at 1 kHz: the step and its settling
+constexpr int kRunCycles = 2000;         // 2 s at 1 kHz: the step and its settling
 constexpr double kStopDistanceM = 0.12;  // docs/safety.md: the TCP's stopping distance bound
 
 /// The largest translational stiffness the gain bound accepts at 1 kHz [N/m], a hair below it.

@@ -11,11 +11,11 @@
 #include <memory>
 #include <string>
 
-#include "scratch.hpp"
 #include "comply/sim/image.hpp"
 #include "comply/sim/renderer.hpp"
 #include "comply/sim/sim_error.hpp"
 #include "comply/sim/viewer.hpp"
+#include "scratch.hpp"
 
 namespace comply::sim {
 namespace {

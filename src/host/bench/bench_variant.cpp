@@ -2,6 +2,7 @@
 
 #include "bench_variant.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -16,11 +17,15 @@ namespace {
 CartesianChunk benchChunk(const MeasuredPose& measured, double run_s, int dof) {
   CartesianChunk chunk;
   chunk.fields = CommandField::kPosition | CommandField::kStiffness | CommandField::kTaskFrame;
+  // The waypoints zigzag within what the intake accepts of an arm however short the run: the
+  // amplitude shrinks with the square of their spacing, so speeds and accelerations stay low.
+  const double spacing_s = run_s / (kMaxChunkWaypoints - 1);
+  const double amplitude_m = std::min(0.01, 1.0 * spacing_s * spacing_s);
   for (int k = 0; k < kMaxChunkWaypoints; ++k) {
-    const double t = run_s * k / (kMaxChunkWaypoints - 1);
+    const double t = spacing_s * k;
     ChunkWaypoint<CartesianCommand> waypoint{t, CartesianCommand::zero(dof)};
     waypoint.command.position =
-        measured.tcp_position + 0.01 * Eigen::Vector3d(std::sin(k), std::cos(k), 0.0);
+        measured.tcp_position + amplitude_m * Eigen::Vector3d(std::sin(k), std::cos(k), 0.0);
     waypoint.command.orientation = measured.tcp_orientation;
     waypoint.command.stiffness_translational = (500.0 + 20.0 * k) * Eigen::Matrix3d::Identity();
     waypoint.command.stiffness_rotational = 30.0 * Eigen::Matrix3d::Identity();
