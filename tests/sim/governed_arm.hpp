@@ -27,12 +27,17 @@ struct Arm {
     start_tcp = wrapper.measuredPose().tcp_position;
   }
 
-  /// One cycle; the largest joint speed over its URDF limit and the TCP speed are kept.
-  void cycle() {
+  /// One cycle; the largest joint speed over its URDF limit and the TCP speed are kept. With
+  /// `bad_sample`, the wrapper reads a NaN joint position this cycle (a FAULT).
+  void cycle(bool bad_sample = false) {
     plant.read(state);
-    if (wrapper.cycle(state, plant.controlPeriod(), command)) {
+    JointState read = state;
+    if (bad_sample) {
+      read.position[0] = std::nan("");
+    }
+    if (wrapper.cycle(read, plant.controlPeriod(), command)) {
       plant.writeCommand(command);
-      if (wrapper.wantsHold()) {
+      if (brakes && wrapper.wantsHold()) {
         held = plant.hold() || held;
       }
     }
@@ -61,6 +66,7 @@ struct Arm {
   double worst_ratio = 0.0;
   double worst_tcp_speed = 0.0;
   bool held = false;
+  bool brakes = true;  ///< the plant's hold when the wrapper asks for it (false: torques alone)
 };
 
 /// A stiff target `offset_m` from the measured TCP, rotated by `angle_rad` about base z, at

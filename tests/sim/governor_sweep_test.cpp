@@ -1,9 +1,9 @@
-// The governor's sweep on every robot (label long: about a minute): stiffness from 1e3 N/m up to
-// the largest the gain bound accepts, steps up to the 0.1 m jump limit along six directions and
+// The governor's sweep on every robot (label long: about half a minute): stiffness from 1e3 N/m up
+// to the largest the gain bound accepts, steps up to the 0.1 m jump limit along six directions and
 // turns up to the 0.6 rad limit. No joint may pass the governor's share of its URDF speed in any
-// run, nor the TCP its speed. Then, with the governor off so that the arm runs into the overspeed
-// FAULT, every controlled stop must end at rest within the stopping distance docs/safety.md
-// states. Each run's figures go to the test's XML properties (ctest --output-junit).
+// run, nor the TCP its speed. A FAULT at full speed must end at rest within the stopping distance
+// docs/safety.md states; one from an overspeed (the governor off) must end at rest. Each run's
+// figures go to the test's XML properties (ctest --output-junit).
 
 #include <gtest/gtest.h>
 
@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "comply/model/robot_description.hpp"
 #include "governed_arm.hpp"
@@ -20,7 +21,7 @@ namespace comply::testing {
 namespace {
 
 constexpr int kRunCycles = 2000;         // 2 s at 1 kHz: the step and its settling
-constexpr double kStopDistanceM = 0.12;  // docs/safety.md: the TCP's stopping distance bound
+constexpr double kStopDistanceM = 0.03;  // docs/safety.md: the TCP's stopping distance bound
 
 /// The largest translational stiffness the gain bound accepts at 1 kHz [N/m], a hair below it.
 double largestAccepted(const pipeline::WrapperConfig& config) {
@@ -80,7 +81,62 @@ TEST_P(GovernorSweep, NoAcceptedStepPassesTheGovernedSpeed) {
                                             std::to_string(worst_tcp) + " m/s");
 }
 
+/// Runs `arm` until it stops (every joint below the rest speed) or `cycles` pass; the TCP's travel
+/// [m] and the time it took [ms].
+std::pair<double, int> runToRest(Arm<>& arm, int cycles) {
+  const Eigen::Vector3d at_fault = arm.tcp();
+  int stop_ms = 0;
+  for (; stop_ms < cycles && arm.fastestJoint() >= pipeline::SafeHold::kRestSpeed; ++stop_ms) {
+    arm.cycle();
+  }
+  return {(arm.tcp() - at_fault).norm(), stop_ms};
+}
+
+// A FAULT at full (governed) speed: the largest accepted stiffness on a 10 cm step, and one bad
+// joint sample once a joint passes half its URDF speed. The stop is the controlled stop's torques
+// alone (the plant's brakes, which the wrapper asks for at rest, would pin the joints at once).
 TEST_P(GovernorSweep, EveryStopFromFullSpeedEndsAtRestWithinTheStatedDistance) {
+  const pipeline::WrapperConfig config = simCartesianConfig(GetParam());
+  const double largest = largestAccepted(config);
+  double longest_m = 0.0;
+  int longest_ms = 0;
+  int faults = 0;
+  for (const Eigen::Vector3d& offset :
+       {Eigen::Vector3d(0.1, 0.0, 0.0), Eigen::Vector3d(0.0, 0.1, 0.0),
+        Eigen::Vector3d(0.0, 0.0, -0.1), Eigen::Vector3d(-0.1, 0.0, 0.0)}) {
+    Arm<> arm(config);
+    arm.brakes = false;
+    if (!arm.wrapper.submit(stiffStep(arm, offset, 0.0, largest)).accepted) {
+      continue;
+    }
+    double fastest = 0.0;
+    for (int cycle = 0; cycle < kRunCycles && fastest < 0.5; ++cycle) {
+      arm.cycle();
+      fastest = arm.worst_ratio;
+    }
+    if (fastest < 0.5) {
+      continue;  // this step never reaches half speed
+    }
+    arm.cycle(/*bad_sample=*/true);
+    ASSERT_TRUE(arm.faulted());
+    ++faults;
+    const auto [distance_m, stop_ms] = runToRest(arm, kRunCycles);
+    EXPECT_LT(stop_ms, kRunCycles) << offset.transpose() << ": not at rest";
+    longest_m = std::max(longest_m, distance_m);
+    longest_ms = std::max(longest_ms, stop_ms);
+  }
+  EXPECT_GE(faults, 1) << "no step reached half speed: the test tests nothing";
+  EXPECT_LE(longest_m, kStopDistanceM);
+  RecordProperty(GetParam() + "_stops", std::to_string(faults) + " stops: longest " +
+                                            std::to_string(longest_m * 100.0) + " cm, " +
+                                            std::to_string(longest_ms) + " ms");
+}
+
+// The red team's case, past full speed: the governor off and 1e4 to 1e5 N/m on 10 cm, so the arm
+// runs into the overspeed FAULT at up to several times its joints' limits. Every stop ends at rest
+// (the distance is reported, not bounded: it is the rate-limited turn of a torque at the effort
+// limit into braking, docs/safety.md).
+TEST_P(GovernorSweep, EveryStopFromAnOverspeedEndsAtRest) {
   pipeline::WrapperConfig config = simCartesianConfig(GetParam());
   config.governor.enabled = false;
   config.validation.max_wn_period = 0.0;
@@ -92,6 +148,7 @@ TEST_P(GovernorSweep, EveryStopFromFullSpeedEndsAtRestWithinTheStatedDistance) {
          {Eigen::Vector3d(0.1, 0.0, 0.0), Eigen::Vector3d(0.0, 0.1, 0.0),
           Eigen::Vector3d(0.0, 0.0, -0.1)}) {
       Arm<> arm(config);
+      arm.brakes = false;
       ASSERT_TRUE(arm.wrapper.submit(stiffStep(arm, offset, 0.0, stiffness)).accepted);
       for (int cycle = 0; cycle < kRunCycles && !arm.faulted(); ++cycle) {
         arm.cycle();
@@ -100,22 +157,16 @@ TEST_P(GovernorSweep, EveryStopFromFullSpeedEndsAtRestWithinTheStatedDistance) {
         continue;
       }
       ++faults;
-      const Eigen::Vector3d at_fault = arm.tcp();
-      int stop_ms = 0;
-      for (; stop_ms < kRunCycles && arm.fastestJoint() >= pipeline::SafeHold::kRestSpeed;
-           ++stop_ms) {
-        arm.cycle();
-      }
+      const auto [distance_m, stop_ms] = runToRest(arm, kRunCycles);
       EXPECT_LT(stop_ms, kRunCycles) << stiffness << " N/m: not at rest";
-      longest_m = std::max(longest_m, (arm.tcp() - at_fault).norm());
+      longest_m = std::max(longest_m, distance_m);
       longest_ms = std::max(longest_ms, stop_ms);
     }
   }
   EXPECT_GE(faults, 3) << "too few runs reached the FAULT to test the stop";
-  EXPECT_LE(longest_m, kStopDistanceM);
-  RecordProperty(GetParam() + "_stops", std::to_string(faults) + " stops: longest " +
-                                            std::to_string(longest_m * 100.0) + " cm, " +
-                                            std::to_string(longest_ms) + " ms");
+  RecordProperty(GetParam() + "_overspeed_stops", std::to_string(faults) + " stops: longest " +
+                                                      std::to_string(longest_m * 100.0) + " cm, " +
+                                                      std::to_string(longest_ms) + " ms");
 }
 
 INSTANTIATE_TEST_SUITE_P(Robots, GovernorSweep, ::testing::ValuesIn(model::availableRobots()),
