@@ -25,7 +25,10 @@ double tcpSpeedShare(double speed, double limit) noexcept {
 MotionGovernor::MotionGovernor(const ResolvedController& resolved, bool tcp) : dof_(resolved.dof) {
   const CycleParameters& parameters = resolved.parameters;
   const GovernorConfig& config = parameters.governor;
-  enabled_ = config.enabled && parameters.joint_inertia.size() == dof_;
+  // Every bound below divides by or scales with a joint's inertia: a model without one (a massless
+  // joint) is not governed rather than governed to a standstill.
+  enabled_ = config.enabled && parameters.joint_inertia.size() == dof_ &&
+             (parameters.joint_inertia.array() > 0.0).all();
   governed_speed_ = config.velocity_fraction * parameters.velocity_limit;
   inertia_ = enabled_ ? parameters.joint_inertia : JointVector::Ones(dof_);
   root_inertia_ = inertia_.cwiseSqrt();
