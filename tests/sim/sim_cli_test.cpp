@@ -130,6 +130,8 @@ TEST_F(SimCli, GoodRunWritesLogSnapshotsAndSummary) {
   EXPECT_EQ(outcome.exit_code, 0) << outcome.output;
   EXPECT_NE(outcome.output.find("final pose error"), std::string::npos) << outcome.output;
   EXPECT_NE(outcome.output.find("rate-limit hits"), std::string::npos) << outcome.output;
+  // Output to a pipe is a log: no progress bar in it.
+  EXPECT_EQ(outcome.output.find("sim fr3 ["), std::string::npos) << outcome.output;
   for (const char* file :
        {"log.csv", "start.png", "end.png", "snapshot_000100ms.png", "snapshot_000200ms.png"}) {
     EXPECT_TRUE(fs::exists(folder_ / "out" / file)) << file << "\n" << outcome.output;

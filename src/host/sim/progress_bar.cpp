@@ -17,12 +17,12 @@ ProgressBar::ProgressBar(std::ostream* out, std::string label, double total)
       terminal_(out == &std::cerr && isatty(STDERR_FILENO) != 0) {}
 
 void ProgressBar::update(double done, double wall_s) {
-  if (out_ == nullptr || finished_ || total_ <= 0.0) {
+  // Only on a terminal: in a log, a line per update is noise between the lines that matter.
+  if (out_ == nullptr || !terminal_ || finished_ || total_ <= 0.0) {
     return;
   }
   const int percent = std::clamp(static_cast<int>(100.0 * done / total_), 0, 100);
-  const int step = terminal_ ? 1 : 10;
-  if (percent / step == last_percent_ / step && last_percent_ >= 0) {
+  if (percent == last_percent_) {
     return;
   }
   last_percent_ = percent;
@@ -33,13 +33,13 @@ void ProgressBar::draw(double done, double wall_s) {
   constexpr int kWidth = 30;
   const int filled = kWidth * last_percent_ / 100;
   std::ostream& out = *out_;
-  out << (terminal_ ? "\r" : "") << label_ << " [" << std::string(filled, '#')
+  out << "\r" << label_ << " [" << std::string(filled, '#')
       << std::string(kWidth - filled, '.') << "] " << std::setw(3) << last_percent_ << "%  "
       << std::fixed << std::setprecision(2) << done << "/" << total_ << " s";
   if (wall_s > 0.0) {
     out << "  " << std::setprecision(1) << done / wall_s << "x real time";
   }
-  out << (terminal_ ? "" : "\n") << std::flush;
+  out << std::flush;
 }
 
 void ProgressBar::finish() {

@@ -1,5 +1,6 @@
 #pragma once
-// A progress bar for long runs: redrawn in place on a terminal, a line per 10 % otherwise (logs).
+// A progress bar for long runs: redrawn in place on a terminal (stderr), nothing otherwise (a log
+// or a file gets the results, not a line per update).
 
 #include <iosfwd>
 #include <string>
