@@ -177,6 +177,7 @@ TEST(MotionGovernor, LeavesSlowJointsAloneAndScalesThePushOfFastOnes) {
     EXPECT_DOUBLE_EQ(governed[i], 0.8 * parameters.velocity_limit[i]);
   }
   constexpr double kPeriodS = 0.001;
+  const Vector6d kNoTwist = Vector6d::Zero();  // the TCP is not governed here
   const JointVector compensation = JointVector::Constant(kFr3Dof, 3.0);
 
   // Slow (below 0.2 w): the law's torque passes bit for bit, however large (a contact push).
@@ -184,7 +185,8 @@ TEST(MotionGovernor, LeavesSlowJointsAloneAndScalesThePushOfFastOnes) {
   slow.velocity = 0.1 * governed;
   JointVector law = JointVector::Constant(kFr3Dof, 80.0);
   JointVector torque = compensation + law;
-  GovernorResult result = governor.apply(slow, controller.modelData(), kPeriodS, law, torque);
+  GovernorResult result =
+      governor.apply(slow, kNoTwist, controller.modelData(), kPeriodS, law, torque);
   EXPECT_FALSE(result.acted());
   EXPECT_EQ(torque, compensation + JointVector::Constant(kFr3Dof, 80.0));
 
@@ -193,7 +195,7 @@ TEST(MotionGovernor, LeavesSlowJointsAloneAndScalesThePushOfFastOnes) {
   fast.velocity = 0.6 * governed;
   law = JointVector::Constant(kFr3Dof, 10.0);
   torque = compensation + law;
-  result = governor.apply(fast, controller.modelData(), kPeriodS, law, torque);
+  result = governor.apply(fast, kNoTwist, controller.modelData(), kPeriodS, law, torque);
   ASSERT_LT(result.share, 1.0);
   EXPECT_GT(result.share, 0.0);
   EXPECT_FALSE(result.braked);
@@ -208,7 +210,7 @@ TEST(MotionGovernor, LeavesSlowJointsAloneAndScalesThePushOfFastOnes) {
   law = JointVector::Zero(kFr3Dof);
   law[3] = -20.0;
   torque = compensation + law;
-  result = governor.apply(one_fast, controller.modelData(), kPeriodS, law, torque);
+  result = governor.apply(one_fast, kNoTwist, controller.modelData(), kPeriodS, law, torque);
   EXPECT_FALSE(result.acted());
   EXPECT_EQ(law[3], -20.0);
 
@@ -217,7 +219,7 @@ TEST(MotionGovernor, LeavesSlowJointsAloneAndScalesThePushOfFastOnes) {
   over.velocity = 0.95 * governed;
   law = JointVector::Constant(kFr3Dof, 5.0);
   torque = compensation + law;
-  result = governor.apply(over, controller.modelData(), kPeriodS, law, torque);
+  result = governor.apply(over, kNoTwist, controller.modelData(), kPeriodS, law, torque);
   EXPECT_EQ(result.share, 0.0);
   EXPECT_TRUE(result.braked);
   for (int i = 0; i < kFr3Dof; ++i) {
@@ -240,7 +242,8 @@ TEST(MotionGovernor, BrakesATcpPastItsSpeed) {
                   (linear * linear.transpose()).ldlt().solve(Eigen::Vector3d(1.5, 0.0, 0.0));
   JointVector law = JointVector::Zero(kFr3Dof);
   JointVector torque = JointVector::Zero(kFr3Dof);
-  const GovernorResult result = governor.apply(fast, data, 0.001, law, torque);
+  const Vector6d twist = data.jacobian * fast.velocity;
+  const GovernorResult result = governor.apply(fast, twist, data, 0.001, law, torque);
   ASSERT_TRUE(result.braked);
   const Eigen::Vector3d force =
       (linear * linear.transpose()).ldlt().solve(linear * torque.head(kFr3Dof));  // J^T F = torque

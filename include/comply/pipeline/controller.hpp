@@ -267,6 +267,7 @@ class Controller {
   JointVector torque_;
   JointVector law_torque_;  // this cycle's law output, before compensation
   JointVector scratch_;
+  Vector6d tcp_twist_ = Vector6d::Zero();  // J dq at this cycle's state (Cartesian laws)
   double period_s_ = 0.001;
   double time_s_ = 0.0;
 };

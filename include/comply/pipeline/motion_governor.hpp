@@ -63,12 +63,15 @@ class MotionGovernor {
   [[nodiscard]] bool enabled() const noexcept { return enabled_; }
   /// Governs `torque` (compensation + law) at `state`: the law's share of it, `law_torque`, is
   /// scaled in both (so later stages see the governed law), and braking is added to `torque`.
-  /// `data` holds this state's Jacobian when the TCP is governed.
-  GovernorResult apply(const JointState& state, const model::Data& data, double period_s,
-                       JointVector& law_torque, JointVector& torque) const noexcept;
+  /// When the TCP is governed, `tcp_twist` is this state's J dq and `data` holds its Jacobian.
+  GovernorResult apply(const JointState& state, const Vector6d& tcp_twist, const model::Data& data,
+                       double period_s, JointVector& law_torque,
+                       JointVector& torque) const noexcept;
 
   /// The speed each joint is governed to [rad/s | m/s] (velocity_fraction x URDF).
-  [[nodiscard]] const JointVector& governedSpeed() const noexcept { return governed_speed_; }
+  [[nodiscard]] const JointVector& governedSpeed() const noexcept {
+    return parameters_.governed_speed;
+  }
 
  private:
   [[nodiscard]] double jointShare(const JointState& state, double period_s,
@@ -78,19 +81,14 @@ class MotionGovernor {
   bool brakeTcp(const Vector6d& tcp_twist, const model::Data& data, double period_s,
                 JointVector& torque) const noexcept;
 
+  // w_i (governed_speed), m_i (joint_inertia), rho_i (torque_rate_limit), the effort limits and
+  // the TCP's speeds and lightest inertias are the resolved parameters'.
+  const CycleParameters& parameters_;
   bool enabled_ = false;
   bool tcp_ = false;
   bool brake_ = true;  // off in admittance (the constructor says why)
   int dof_ = 0;
-  JointVector governed_speed_;      // w_i
-  JointVector inertia_;             // m_i
-  JointVector root_inertia_;        // sqrt(m_i)
-  JointVector rate_limit_;          // rho_i [N m/s]
-  JointVector effort_limit_;        // [N m]
-  double tcp_speed_ = 0.0;          // [m/s], 0: none
-  double tcp_angular_speed_ = 0.0;  // [rad/s], 0: none
-  double tcp_mass_kg_ = 0.0;        // lightest apparent mass at the TCP
-  double tcp_inertia_kg_m2_ = 0.0;  // lightest apparent rotational inertia at the TCP
+  JointVector root_inertia_;  // sqrt(m_i), once
 };
 
 }  // namespace comply::pipeline

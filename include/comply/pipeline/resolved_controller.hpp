@@ -68,6 +68,9 @@ struct CycleParameters {
   /// (its weight in the torque) is off in admittance, this is not.
   bool payload_on_sensor = false;
   JointVector velocity_limit;  ///< URDF [rad/s | m/s], for the stability guard and admittance
+  /// governor.velocity_fraction x velocity_limit: what the governor keeps each joint below and
+  /// what a joint chunk may ask [rad/s | m/s]; 0 where the URDF gives no limit.
+  JointVector governed_speed;
   /// Each joint's lightest inertia [kg m^2 | kg] over the workspace (the declared rotor inertias
   /// included; gain_bound.hpp): the energy rule's weights, the governor's and the controlled
   /// stop's bound on a joint's damping.

@@ -133,6 +133,7 @@ void compileParameters(ResolvedController& resolved) {
   for (int i = 0; i < dof; ++i) {
     parameters.velocity_limit[i] = model.limits(i).velocity;
   }
+  parameters.governed_speed = config.governor.velocity_fraction * parameters.velocity_limit;
   parameters.fault_damping = toJointVector(config.fault_damping, dof);
   parameters.frozen_state_timeout_s = config.frozen_state_timeout_s;
   parameters.output = config.output;

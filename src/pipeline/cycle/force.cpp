@@ -21,10 +21,7 @@ void Controller::applyForce() noexcept {
     force_.reset();
     return;
   }
-  const auto n = static_cast<Eigen::Index>(dof_);
-  Vector6d tcp_twist;
-  tcp_twist.noalias() = data_.jacobian.leftCols(n) * state_.velocity.head(n);
-  force_.apply(*in, data_, tcp_twist, contactWrench(parameters_.force_control.source), period_s_,
+  force_.apply(*in, data_, tcp_twist_, contactWrench(parameters_.force_control.source), period_s_,
                *out);
   (void)boundWrench(data_.jacobian, out->wrench_feedforward, parameters_.effort_limit, dof_);
   force_active_ = true;

@@ -36,6 +36,9 @@ bool Controller::measure(const JointState& state) noexcept {
     return false;
   }
   state_ = state;
+  if (resolved_->cartesian()) {  // the force stage and the governor read it
+    tcp_twist_.noalias() = data_.jacobian.leftCols(dof_) * state_.velocity.head(dof_);
+  }
   observe();
   wrist_.sense(state, data_, period_s_);
   safe_hold_.keepGravity(data_);

@@ -27,7 +27,7 @@ void Controller::compensate() noexcept {
 }
 
 void Controller::govern() noexcept {
-  governed_ = governor_.apply(state_, data_, period_s_, law_torque_, torque_).acted();
+  governed_ = governor_.apply(state_, tcp_twist_, data_, period_s_, law_torque_, torque_).acted();
   if (governed_) {
     diagnostics_.governor_hits.fetch_add(1, std::memory_order_relaxed);
   }

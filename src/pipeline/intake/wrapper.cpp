@@ -39,7 +39,7 @@ ChunkLimits chunkLimits(const ResolvedController& resolved) {
   const CycleParameters& p = resolved.parameters;
   return {.tcp_speed_m_per_s = p.governor.tcp_speed_m_per_s,
           .tcp_angular_speed_rad_per_s = p.governor.tcp_angular_speed_rad_per_s,
-          .joint_speed = p.governor.velocity_fraction * p.velocity_limit,
+          .joint_speed = p.governed_speed,
           .blend_time_s = p.chunk_blend_time_s};
 }
 
