@@ -13,6 +13,7 @@
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/sim/simulated_robot.hpp"
+#include "governed_arm.hpp"
 #include "sim_support.hpp"
 
 namespace comply::testing {
@@ -57,24 +58,11 @@ class ChunkLimitsOn : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ChunkLimitsOn, TheRedTeamsChunksAreRefusedAndALegalOnePlaysWithinTheJointSpeeds) {
   const pipeline::WrapperConfig config = simCartesianConfig(GetParam());
-  sim::SimulatedRobot plant(*config.robot_description, sim::PlantOptions{});
-  pipeline::CartesianWrapper wrapper(config);
-  const int dof = wrapper.dof();
-  const model::Model& model = wrapper.controller().model();
-  JointState state = JointState::zero(dof);
-  plant.read(state);
-  wrapper.activate(state);
-  JointVector torque = JointVector::Zero(dof);
-  double worst_ratio = 0.0;  // largest |dq| / URDF velocity limit
-  const auto run = [&](int cycles) {
+  Arm<> arm(config);  // keeps the largest |dq| / URDF velocity limit
+  pipeline::CartesianWrapper& wrapper = arm.wrapper;
+  const auto run = [&arm](int cycles) {
     for (int cycle = 0; cycle < cycles; ++cycle) {
-      plant.read(state);
-      wrapper.update(state, plant.controlPeriod(), {torque.data(), static_cast<std::size_t>(dof)});
-      plant.write({torque.data(), static_cast<std::size_t>(dof)});
-      plant.step();
-      for (int i = 0; i < dof; ++i) {
-        worst_ratio = std::max(worst_ratio, std::abs(state.velocity[i]) / model.limits(i).velocity);
-      }
+      arm.cycle();
     }
   };
   run(300);  // settle
@@ -97,14 +85,14 @@ TEST_P(ChunkLimitsOn, TheRedTeamsChunksAreRefusedAndALegalOnePlaysWithinTheJoint
   const pipeline::Verdict played =
       wrapper.submitChunk(alongY(start, now_s, legal, 0.05, 0.05, 3.0), now_s);
   ASSERT_TRUE(played.accepted) << played.message;
-  worst_ratio = 0.0;
+  arm.worst_ratio = 0.0;
   run(1000);
   EXPECT_EQ(wrapper.diagnostics().state, pipeline::WrapperState::kActive)
       << wrapper.diagnostics().last_fault;
-  EXPECT_LT(worst_ratio, config.governor.velocity_fraction);
+  EXPECT_LT(arm.worst_ratio, config.governor.velocity_fraction);
   const double travelled = wrapper.measuredPose().tcp_position.y() - start.tcp_position.y();
   EXPECT_NEAR(travelled, 0.12, 0.01) << "the legal chunk did not play";
-  RecordProperty(GetParam() + "_worst_speed_ratio", std::to_string(worst_ratio));
+  RecordProperty(GetParam() + "_worst_speed_ratio", std::to_string(arm.worst_ratio));
 }
 
 INSTANTIATE_TEST_SUITE_P(Robots, ChunkLimitsOn, ::testing::ValuesIn(model::availableRobots()),
