@@ -48,12 +48,7 @@ void writeReference(const Matrix3d& task, const Vector6d& error, const Vector6d&
     Map<Vector3d>(out.position) = position + task * error.head<3>();
   }
   if (error.tail<3>() != unchanged.tail<3>()) {
-    const Vector3d rotation = task * error.tail<3>();
-    const double angle = rotation.norm();
-    const Eigen::Quaterniond moved =
-        angle > 0.0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, rotation / angle)) * orientation
-                    : orientation;
-    schema::toXyzw(moved, out.orientation);
+    schema::toXyzw(quaternionExp(task * error.tail<3>()) * orientation, out.orientation);
   }
 }
 
