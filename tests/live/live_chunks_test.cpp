@@ -87,13 +87,18 @@ TEST_P(LiveHostOn, PlaysAChunkOnTheHostsClockAndRefusesALateOne) {
 /// reference does not move to it when its time comes).
 TEST_P(LiveHostOn, AChunkWaitingForItsStartDoesNotHoldAnotherSendersCommands) {
   HostHarness& host = *host_;
+  // A lead limit of 6 s (validation.max_stamp_lead_s) and a chunk 4 s ahead: ample time for a
+  // second sender's discovery on a busy machine before the chunk's time comes.
+  host.setConfigFile(
+      hostConfigWith("waiting.yaml", "    validation:\n      max_stamp_lead_s: 6.0\n"));
   const auto state = host.startConnected("waiting", 1);
   ASSERT_TRUE(state);
   ASSERT_TRUE(host.connectChunks(1));
 
-  // Within the lead limit (validation.max_stamp_lead_s, 1 s): 0.8 s ahead, 3.5 cm along y.
+  // 4 s ahead, 3.5 cm along y.
+  constexpr double kLeadS = 4.0;
   const double now_s = transport::Stamp::now().seconds();
-  const transport::CartesianChunkMessage chunk = chunkAlongY(*state, now_s + 0.8, 0.05, 8);
+  const transport::CartesianChunkMessage chunk = chunkAlongY(*state, now_s + kLeadS, 0.05, 8);
   ASSERT_TRUE(host.send(chunk, 1));
   const std::int64_t stamp = chunk.header.stamp.nanoseconds();
   ASSERT_TRUE(host.poll(5s, [&](const auto&) { return host.outcomes().count(stamp) > 0; }));
@@ -104,13 +109,13 @@ TEST_P(LiveHostOn, AChunkWaitingForItsStartDoesNotHoldAnotherSendersCommands) {
   // A second sender, connected after the first left: its probes (commands with no field group,
   // which leave a chunk playing) are accounted while the chunk would still wait.
   ASSERT_TRUE(host.connect(2, static_cast<int>(state->position.size())));
-  EXPECT_LT(transport::Stamp::now().seconds(), now_s + 0.8)
+  EXPECT_LT(transport::Stamp::now().seconds(), now_s + kLeadS)
       << "accounted only once the waiting chunk's time had come";
 
   // After the chunk's last waypoint: the reference did not move to the departed sender's chunk.
   std::this_thread::sleep_until(std::chrono::system_clock::time_point(
       std::chrono::duration_cast<std::chrono::system_clock::duration>(
-          std::chrono::duration<double>(now_s + 1.5))));
+          std::chrono::duration<double>(now_s + kLeadS + 0.7))));
   const auto after = host.state(2s);
   ASSERT_TRUE(after);
   // It was dropped where the blend toward its lead-in (2.5 mm behind its first waypoint) had got;

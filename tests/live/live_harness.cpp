@@ -29,6 +29,9 @@ class DdsHarness final : public HostHarness {
     domain_ = domain;
     name_ = name;
     std::vector<std::string> args = hostArgs(domain, name);
+    if (!config_file_.empty()) {
+      args.at(2) = config_file_;  // after "run", "--config"
+    }
     if (!record_path_.empty()) {
       args.insert(args.end(), {"--record", record_path_});
     }
@@ -119,7 +122,7 @@ class InProcessHarness final : public HostHarness {
     // Before the host starts: the bus lives while either end holds it.
     bus_ = transport::InProcessBus::named(name);
     host::LiveHostOptions options;
-    options.config_file = kHostConfig;
+    options.config_file = config_file_.empty() ? kHostConfig : config_file_;
     options.robot = "fr3";
     options.sim = true;
     options.hardware = "sim";

@@ -36,6 +36,8 @@ class HostHarness {
   void setHardwareOptions(std::vector<std::string> options) {
     hardware_options_ = std::move(options);
   }
+  /// Before start(): the controller file instead of config/sim/cartesian_impedance.yaml.
+  void setConfigFile(std::string path) { config_file_ = std::move(path); }
   void setRecording(std::string path, double duration_s) {
     record_path_ = std::move(path);
     duration_s_ = duration_s;
@@ -83,6 +85,7 @@ class HostHarness {
 
  protected:
   std::string record_path_;
+  std::string config_file_;  ///< empty: config/sim/cartesian_impedance.yaml
   std::vector<std::string> hardware_options_;
   double duration_s_ = 0.0;
   /// Makes `publisher`'s writers and waits until they matched the host; false on timeout.

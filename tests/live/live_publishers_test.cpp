@@ -53,9 +53,12 @@ TEST(LiveHost, WatchdogHoldsWithinTheTimeoutOfAKilledSender) {
   sender.signal(SIGKILL);
   const auto killed = Clock::now();
   ASSERT_TRUE(live.client.poll(3s, [&](const auto& d) { return d.watchdog_timeouts > timeouts; }));
+  // Fired within the 3 s poll, and not before the timeout: a lower bound on the wall clock holds
+  // on any machine (a busy one only makes it later), an upper one would time the machine.
   const double after_s = std::chrono::duration<double>(Clock::now() - killed).count();
-  EXPECT_LE(after_s, kCommandTimeoutS + 0.25) << "the watchdog took too long";
   EXPECT_GE(after_s, kCommandTimeoutS - 0.2) << "the watchdog fired before the timeout";
+  std::printf("watchdog held %.3f s after the sender was killed (timeout %.1f s)\n", after_s,
+              kCommandTimeoutS);
   // Holding: the reference stays where the last command left it.
   const auto first = live.client.state(1s);
   std::this_thread::sleep_for(200ms);
@@ -69,6 +72,9 @@ TEST(LiveHost, WatchdogHoldsWithinTheTimeoutOfAKilledSender) {
 /// after it used to be refused as other_publisher for the whole command_timeout_s.
 TEST_P(LiveHostOn, APublisherThatLeavesReleasesTheCommandTopicsAtOnce) {
   HostHarness& host = *host_;
+  // A publisher timeout (command_timeout_s) far longer than the test: a second publisher let in
+  // at all was let in by the first's departure, not by its silence.
+  host.setConfigFile(hostConfigWith("departure.yaml", "    command_timeout_s: 60.0\n"));
   // Publisher 1 takes the command topics, 2 is refused while 1 is there.
   const auto state = host.startConnected("departure", 2);
   ASSERT_TRUE(state);
@@ -81,7 +87,6 @@ TEST_P(LiveHostOn, APublisherThatLeavesReleasesTheCommandTopicsAtOnce) {
 
   host.close(1);
   const auto closed = Clock::now();
-  // Within a tenth of the 0.5 s timeout, the second publisher's commands apply.
   std::optional<transport::CommandOutcomeMessage> applied;
   while (!applied && Clock::now() - closed < 5s) {
     std::this_thread::sleep_for(10ms);
@@ -93,9 +98,10 @@ TEST_P(LiveHostOn, APublisherThatLeavesReleasesTheCommandTopicsAtOnce) {
       applied = outcomes.front();
     }
   }
-  ASSERT_TRUE(applied) << "the second publisher was never let in";
-  EXPECT_LT(std::chrono::duration<double>(Clock::now() - closed).count(), 0.4)
-      << "let in only after the first's silence timed out";
+  ASSERT_TRUE(applied) << "the second publisher was let in neither on the first's departure "
+                          "nor within 5 s of it";
+  std::printf("second publisher applied %.3f s after the first closed\n",
+              std::chrono::duration<double>(Clock::now() - closed).count());
 }
 
 TEST_P(LiveHostOn, SecondPublisherIsRefusedUntilTheFirstGoesSilent) {

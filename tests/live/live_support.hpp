@@ -16,6 +16,7 @@
 #include <map>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -103,6 +104,23 @@ class Process {
 inline std::string scratchFile(const std::string& name) {
   static const testing::ScratchDir folder("live");
   return (folder.path() / name).string();
+}
+
+/// The host's controller file with `lines` (YAML, indented as the options under ros__parameters)
+/// added after its command_timeout_s, written to scratch file `name`: options of the test's own
+/// (later keys override earlier ones of the same name).
+inline std::string hostConfigWith(const std::string& name, const std::string& lines) {
+  std::ifstream source(kHostConfig);
+  std::string text((std::istreambuf_iterator<char>(source)), std::istreambuf_iterator<char>());
+  const std::string anchor = "    command_timeout_s: 0.5\n";
+  const std::size_t at = text.find(anchor);
+  if (at == std::string::npos) {
+    throw std::runtime_error(kHostConfig + " has no line '" + anchor + "'");
+  }
+  text.insert(at + anchor.size(), lines);
+  const std::string path = scratchFile(name);
+  std::ofstream(path) << text;
+  return path;
 }
 
 inline std::vector<std::string> hostArgs(int domain, const std::string& name) {

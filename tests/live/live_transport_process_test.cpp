@@ -32,8 +32,9 @@ namespace {
 const std::string kUpstreamCrash =
     kSourceDir + "/tests/fuzz/upstream/dds_sample/xcdr2-big-endian-overrun";
 /// Until the transport is back and a command is applied again: the restart delay (0.5 s), the
-/// process's start and DDS discovery, with room for a loaded machine.
-constexpr auto kBackWithin = 5s;
+/// process's start and DDS discovery. A bound for "never came back", with room for a machine
+/// busy with a parallel build; the time it took is printed, not asserted.
+constexpr auto kBackWithin = 20s;
 
 std::vector<std::uint8_t> readBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

