@@ -20,12 +20,11 @@ TEST(StepResponse, SettlesWithoutSustainedOscillationWithinTheTorqueRateLimit) {
   ASSERT_EQ(result.summary.faults, 0U);
   ASSERT_EQ(result.summary.rejections, 0U);
   ASSERT_GT(log.size(), 2500U);
-  // The controller's cost is kept for every cycle and summarised: positive, and far below the
-  // period (a loose bound: this is a shared test machine, not a benchmark).
+  // The controller's cost is kept for every cycle and summarised (how large it is belongs to
+  // `comply bench`, not to a test on a shared machine).
   ASSERT_EQ(log.cycle_cost_us.size(), log.size());
   EXPECT_GT(result.summary.cycle_cost.p50_us, 0.0);
   EXPECT_LE(result.summary.cycle_cost.p50_us, result.summary.cycle_cost.p99_us);
-  EXPECT_LT(result.summary.cycle_cost.p50_us, 500.0);
 
   // The step is there: 30 mm of error right after it.
   const auto step_row = static_cast<std::size_t>(0.5 / 0.001) + 1;
