@@ -2,17 +2,14 @@
 
 #include "comply/host/live_host.hpp"
 
-#include <pthread.h>
-#include <sched.h>
-
 #include <cmath>
-#include <cstring>
 #include <iomanip>
 #include <mutex>
 #include <ostream>
 #include <sstream>
 #include <thread>
 
+#include "comply/core/realtime_scheduling.hpp"
 #include "comply/hardware/control_loop.hpp"
 #include "comply/host/diagnostics_message.hpp"
 #include "comply/host/hardware_backends.hpp"
@@ -21,6 +18,7 @@
 #include "comply/transport/host_transport.hpp"
 #include "live_intake.hpp"
 #include "live_observer.hpp"
+#include "realtime_grant.hpp"
 
 namespace comply::host {
 namespace {
@@ -132,14 +130,20 @@ void printRecording(const HostRecording& recording, std::ostream& out) {
   out.unsetf(std::ios::floatfield);
 }
 
-/// Its receiving runs just below the control thread: a command waits for it, not the scheduler.
-std::unique_ptr<transport::HostTransport> openHostTransport(const LiveHostOptions& options) {
-  return transport::makeHostTransport(
-      options.transport, {.name = options.name,
-                          .domain_id = options.domain_id,
-                          .network = options.network,
-                          .receive_priority = options.priority > 1 ? options.priority - 1 : 0,
-                          .security = options.security});
+/// Just below `priority`, the control thread's: a command waits for the threads that receive it,
+/// not for the scheduler.
+int receivePriority(int priority) {
+  return priority > 1 ? priority - 1 : 0;
+}
+
+std::unique_ptr<transport::HostTransport> openHostTransport(const LiveHostOptions& options,
+                                                            int priority) {
+  return transport::makeHostTransport(options.transport,
+                                      {.name = options.name,
+                                       .domain_id = options.domain_id,
+                                       .network = options.network,
+                                       .receive_priority = receivePriority(priority),
+                                       .security = options.security});
 }
 
 /// The recording of --record; none without it.
@@ -160,8 +164,8 @@ std::unique_ptr<HostRecording> openRecording(
 template <typename Command>
 int runWith(const LiveHostOptions& options,
             const std::shared_ptr<const pipeline::ResolvedController>& resolved,
-            HardwareBackend& backend, const std::atomic<bool>& stop, std::ostream& out,
-            std::ostream& err) {
+            HardwareBackend& backend, int priority, const std::atomic<bool>& stop,
+            std::ostream& out, std::ostream& err) {
   hardware::HardwareInterface& robot = *backend.hardware;
   pipeline::Wrapper<Command> wrapper(resolved);
   JointState state = JointState::zero(wrapper.dof());
@@ -170,7 +174,7 @@ int runWith(const LiveHostOptions& options,
     return 1;
   }
   wrapper.activate(state);
-  const std::unique_ptr<transport::HostTransport> transport = openHostTransport(options);
+  const std::unique_ptr<transport::HostTransport> transport = openHostTransport(options, priority);
 
   const double period_s = 1.0 / options.rate_hz;
   pipeline::CommandGate gate(pipeline::gateOptions(resolved->config, resolved->cartesian()));
@@ -190,15 +194,14 @@ int runWith(const LiveHostOptions& options,
   std::atomic<bool> loop_running{true};
   std::atomic<bool> io_running{true};
   std::thread control([&] {
-    if (const std::string why = makeRealtime(options.priority); !why.empty()) {
+    if (const std::string why = makeRealtime(priority); !why.empty()) {
       err << "comply run: warning: " << why << "\n";
     }
     loop.run();
     loop_running = false;
   });
   std::thread reader([&] {
-    // Just below the control thread: a command waits for the reader, not for the scheduler.
-    makeRealtime(options.priority > 1 ? options.priority - 1 : 0);
+    makeThreadRealtime(receivePriority(priority));  // granted: the control thread's is
     readerThread(*transport, intake, io_running);
   });
   PublisherContext<Command> context{options, *resolved,  wrapper,  observer,
@@ -234,18 +237,13 @@ int runWith(const LiveHostOptions& options,
 }  // namespace
 
 std::string makeRealtime(int priority) {
-  if (priority <= 0) {
+  const std::string refusal = makeThreadRealtime(priority);
+  if (refusal.empty()) {
     return {};
   }
-  sched_param parameters{};
-  parameters.sched_priority = priority;
-  const int error = pthread_setschedparam(pthread_self(), SCHED_FIFO, &parameters);
-  if (error != 0) {
-    return std::string("no SCHED_FIFO for the control thread (") + std::strerror(error) +
-           "): it runs at normal priority and its timing will show it; run as root, or grant "
-           "rtprio in /etc/security/limits.conf (or CAP_SYS_NICE)";
-  }
-  return {};
+  return "no real-time scheduling for the control thread (" + refusal +
+         "): it runs at normal priority and its timing will show it; to grant it, " +
+         kRealtimeGrantAdvice;
 }
 
 int runLiveHost(const LiveHostOptions& options, pipeline::WrapperConfig config,
@@ -256,6 +254,7 @@ int runLiveHost(const LiveHostOptions& options, pipeline::WrapperConfig config,
     pipeline::completeForRobot(config, std::make_shared<const model::RobotDescription>(
                                            model::loadRobotDescription(config.robot)));
   }
+  const int priority = grantRealtime(options, err);
   HardwareBackend backend =
       makeHardware(options.hardware, config,
                    backendContext(config, 1.0 / options.rate_hz, options.hardware_options));
@@ -274,8 +273,8 @@ int runLiveHost(const LiveHostOptions& options, pipeline::WrapperConfig config,
   const std::shared_ptr<const pipeline::ResolvedController> resolved =
       pipeline::resolveController(config);
   return resolved->cartesian()
-             ? runWith<CartesianCommand>(options, resolved, backend, stop, out, err)
-             : runWith<JointCommand>(options, resolved, backend, stop, out, err);
+             ? runWith<CartesianCommand>(options, resolved, backend, priority, stop, out, err)
+             : runWith<JointCommand>(options, resolved, backend, priority, stop, out, err);
 }
 
 }  // namespace comply::host
