@@ -1,12 +1,9 @@
-// `comply run`: options, memory locking and signals around the host (live_host.cpp).
+// `comply run`: options and signals around the host (live_host.cpp).
 
 #include "run_command.hpp"
 
-#include <sys/mman.h>
-
 #include <atomic>
 #include <csignal>
-#include <cstring>
 #include <ostream>
 
 #include "comply/host/controller_setup.hpp"
@@ -60,14 +57,11 @@ int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) 
   }
   const pipeline::WrapperConfig config =
       host::simControllerConfig(options.robot, "", options.config_file);
-  // Page faults in the control loop are latency: keep everything resident when allowed.
-  if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
-    err << "comply run: warning: mlockall failed (" << std::strerror(errno)
-        << "): memory may be paged; raise memlock in /etc/security/limits.conf\n";
-  }
   stop_requested = false;
   installSignalHandlers();
-  return host::runLiveHost(options, config, stop_requested, out, err);
+  RunOptions locked = options;
+  locked.lock_memory = true;
+  return host::runLiveHost(locked, config, stop_requested, out, err);
 }
 
 }  // namespace comply::app

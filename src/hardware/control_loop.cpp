@@ -1,5 +1,6 @@
 #include "comply/hardware/control_loop.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -54,6 +55,11 @@ bool ControlLoop::runOnce() {
   if (stop_requested_.load(std::memory_order_relaxed)) {
     return false;
   }
+  if (next_index_ == 0) {
+    // The schedule starts with the first cycle, not when the loop was built: the host's set-up
+    // in between is no backlog to catch up on.
+    start_s_ = clock_.now();
+  }
   const double scheduled_s = nextCycleTime();
   if (options_.warm_ahead_s > 0.0 && stats_.cycles > 0 && clock_.passesByItself()) {
     clock_.waitUntil(scheduled_s - options_.warm_ahead_s);
@@ -63,7 +69,7 @@ bool ControlLoop::runOnce() {
     }
   }
   clock_.waitUntil(scheduled_s);
-  const double started_s = clock_.now();
+  const double start_lateness_s = clock_.lateness(scheduled_s);
   if (observer_ != nullptr) {
     observer_->beforeCycle(next_index_, scheduled_s - start_s_);
   }
@@ -72,7 +78,7 @@ bool ControlLoop::runOnce() {
   record.index = next_index_++;
   record.time_s = scheduled_s - start_s_;
   record.period_s = options_.period_s;
-  record.start_lateness_s = started_s - scheduled_s;
+  record.start_lateness_s = start_lateness_s;
   const auto compute_start = SteadyClock::now();
   if (hardware_.read(state_)) {
     state_.wrench_valid = hardware_.readWrench(state_.wrench);
@@ -96,7 +102,9 @@ bool ControlLoop::runOnce() {
     ++stats_.read_failures;
   }
   record.compute_s = secondsBetween(compute_start, SteadyClock::now());
-  record.overrun = record.compute_s > options_.period_s;
+  // Its deadline is the next cycle's start: a cycle that started late (a stall of the thread
+  // before it, wherever it was) misses it with less computing than a whole period.
+  record.overrun = std::max(record.start_lateness_s, 0.0) + record.compute_s > options_.period_s;
   record.state = &state_;
   record.torque = lastTorque();
   record.command = &command_;
@@ -104,6 +112,7 @@ bool ControlLoop::runOnce() {
   ++stats_.cycles;
   stats_.overruns += record.overrun ? 1 : 0;
   stats_.max_compute_s = std::max(stats_.max_compute_s, record.compute_s);
+  stats_.max_start_lateness_s = std::max(stats_.max_start_lateness_s, record.start_lateness_s);
   if (observer_ != nullptr) {
     observer_->afterCycle(record);
   }

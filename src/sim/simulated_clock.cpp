@@ -4,23 +4,39 @@
 
 namespace comply::sim {
 
+namespace {
+
+using SteadyClock = std::chrono::steady_clock;
+
+SteadyClock::duration steadyDuration(double seconds) {
+  return std::chrono::duration_cast<SteadyClock::duration>(std::chrono::duration<double>(seconds));
+}
+
+}  // namespace
+
 SimulatedClock::SimulatedClock(SimulatedRobot& robot, bool pace_to_wall_clock)
-    : robot_(robot),
-      pace_(pace_to_wall_clock),
-      origin_s_(robot.simTime()),
-      wall_start_(std::chrono::steady_clock::now()) {}
+    : robot_(robot), pace_(pace_to_wall_clock), origin_s_(robot.simTime()) {}
 
 void SimulatedClock::waitUntil(double time_s) noexcept {
+  if (pace_ && !anchored_) {
+    wall_start_ = SteadyClock::now() - steadyDuration(now());
+    anchored_ = true;
+  }
   // Half a period of slack: floating-point sums of the period must not skip or add a step.
   const double tolerance_s = 0.5 * robot_.controlPeriod();
   while (now() < time_s - tolerance_s) {
     robot_.step();
   }
   if (pace_) {
-    std::this_thread::sleep_until(wall_start_ +
-                                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                      std::chrono::duration<double>(now())));
+    std::this_thread::sleep_until(wall_start_ + steadyDuration(now()));
   }
+}
+
+double SimulatedClock::lateness(double time_s) noexcept {
+  if (!pace_ || !anchored_) {
+    return now() - time_s;
+  }
+  return std::chrono::duration<double>(SteadyClock::now() - wall_start_).count() - time_s;
 }
 
 }  // namespace comply::sim

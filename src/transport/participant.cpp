@@ -6,10 +6,13 @@
 #include <dlfcn.h>
 
 #include <array>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <map>
 #include <mutex>
+
+#include "comply/core/realtime_scheduling.hpp"
 
 namespace comply::transport {
 namespace {
@@ -26,11 +29,27 @@ std::map<int, DomainUse>& domains() {
   return table;
 }
 
+/// `options` with no receive priority where this process may not have it: CycloneDDS gives up
+/// on a domain whose receive threads it cannot start as configured.
+ParticipantOptions withGrantedPriority(ParticipantOptions options) {
+  if (const std::string refusal = realtimeRefusal(options.receive_priority); !refusal.empty()) {
+    std::fprintf(stderr,
+                 "comply: DDS: warning: no real-time scheduling for the receive threads (%s): "
+                 "they run at normal priority; to grant it, %s\n",
+                 refusal.c_str(), kRealtimeGrantAdvice);
+    options.receive_priority = 0;
+  }
+  return options;
+}
+
 void acquireDomain(const ParticipantOptions& options) {
   const std::lock_guard<std::mutex> lock(domains_mutex);
   DomainUse& use = domains()[options.domain_id];
-  const std::string config = cycloneConfig(options);
-  if (use.users++ > 0 || config.empty()) {
+  if (use.users++ > 0) {
+    return;
+  }
+  const std::string config = cycloneConfig(withGrantedPriority(options));
+  if (config.empty()) {
     return;
   }
   use.domain = dds_create_domain(static_cast<dds_domainid_t>(options.domain_id), config.c_str());

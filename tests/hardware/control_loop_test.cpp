@@ -1,12 +1,16 @@
 // The loop's contract with the hardware: a cycle whose controller writes a torque reaches
 // write(); a cycle without output (an inactive controller) asks the hardware to hold the arm
-// instead of leaving the last torque on the motors.
+// instead of leaving the last torque on the motors. A cycle that starts late misses its deadline
+// even when its computing is short.
 
 #include "comply/hardware/control_loop.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
+#include <thread>
+#include <vector>
 
 #include "comply/hardware/loop_clock.hpp"
 
@@ -146,6 +150,45 @@ TEST(ControlLoop, WarmAheadWarmsTheControllerBeforeEachCycleOnAWallClockOnly) {
     ASSERT_TRUE(replay.runOnce());
   }
   EXPECT_EQ(simulated.warms, 0);
+}
+
+/// Keeps each cycle's lateness and overrun; after cycle `stall_after` it sleeps 15 ms: the loop's
+/// thread stalled between two cycles (the scheduler, a page fault), outside any cycle's compute.
+class StallingObserver final : public LoopObserver {
+ public:
+  explicit StallingObserver(std::uint64_t stall_after) : stall_after_(stall_after) {}
+  void afterCycle(const CycleRecord& record) override {
+    lateness_s.push_back(record.start_lateness_s);
+    overrun.push_back(record.overrun);
+    if (record.index == stall_after_) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(15));
+    }
+  }
+  std::vector<double> lateness_s;
+  std::vector<bool> overrun;
+
+ private:
+  std::uint64_t stall_after_;
+};
+
+TEST(ControlLoop, ACycleThatStartsLateAfterAStallIsAnOverrun) {
+  RecordingHardware hardware(true);
+  SwitchedController controller;
+  controller.active = true;
+  WallClock wall;
+  ControlLoop loop(hardware, controller, wall, {.period_s = 0.001, .cycles = 30});
+  StallingObserver observer(10);
+  loop.setObserver(&observer);
+  const LoopStats stats = loop.run();
+  ASSERT_EQ(observer.lateness_s.size(), 30U);
+  // Cycle 11 was due 1 ms after cycle 10 started and began 15 ms or more after that (a sleep
+  // never returns early): 14 ms late, past its own deadline before it computed anything.
+  EXPECT_GE(observer.lateness_s[11], 0.014);
+  EXPECT_TRUE(observer.overrun[11]) << "a cycle that starts after its deadline overran it";
+  EXPECT_GE(stats.overruns, 1U);
+  EXPECT_GE(stats.max_start_lateness_s, 0.014);
+  EXPECT_EQ(stats.max_start_lateness_s,
+            *std::max_element(observer.lateness_s.begin(), observer.lateness_s.end()));
 }
 
 /// Position drives with a wrist force/torque sensor: takes position commands only.

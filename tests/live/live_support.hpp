@@ -41,10 +41,12 @@ inline int randomDomain() {
 }
 
 /// A child process running `comply` with `args`; killed (SIGKILL) if still running at the end.
-/// With `output`, its stdout and stderr go to that file (else to this process's).
+/// With `output`, its stdout and stderr go to that file (else to this process's). `before_exec`
+/// runs in the child just before it starts comply (system calls only: this process has threads).
 class Process {
  public:
-  explicit Process(const std::vector<std::string>& args, const std::string& output = {}) {
+  explicit Process(const std::vector<std::string>& args, const std::string& output = {},
+                   void (*before_exec)() = nullptr) {
     pid_ = fork();
     if (pid_ == 0) {
       // A host outlives a test that ctest killed on its timeout: as an orphan at SCHED_FIFO with
@@ -65,6 +67,9 @@ class Process {
         argv.push_back(arg.data());
       }
       argv.push_back(nullptr);
+      if (before_exec != nullptr) {
+        before_exec();
+      }
       execv(program.c_str(), argv.data());
       _exit(127);
     }

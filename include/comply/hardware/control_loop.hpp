@@ -45,15 +45,19 @@ class CycleController {
 
 /// What the observer learns about one cycle.
 struct CycleRecord {
-  std::uint64_t index = 0;      ///< 0 for the first cycle
-  double time_s = 0.0;          ///< scheduled start on the loop's clock [s]
-  double period_s = 0.0;        ///< nominal period [s]
-  double start_lateness_s = 0;  ///< actual start minus scheduled start on the clock [s]
-  double compute_s = 0.0;       ///< wall time from read() to the end of write() [s]
-  double controller_s = 0.0;    ///< wall time of the controller's cycle alone [s]
-  bool wrote = false;           ///< a torque was written
-  bool held = false;            ///< no torque: the hardware held the arm (HardwareInterface::hold)
-  bool overrun = false;         ///< compute_s exceeded the period
+  std::uint64_t index = 0;  ///< 0 for the first cycle
+  double time_s = 0.0;      ///< scheduled start on the loop's clock [s]
+  double period_s = 0.0;    ///< nominal period [s]
+  /// Actual start minus scheduled start [s]: on the wall clock where the loop's clock keeps to
+  /// real time, a paced simulation's too (LoopClock::lateness).
+  double start_lateness_s = 0;
+  double compute_s = 0.0;     ///< wall time from read() to the end of write() [s]
+  double controller_s = 0.0;  ///< wall time of the controller's cycle alone [s]
+  bool wrote = false;         ///< a torque was written
+  bool held = false;          ///< no torque: the hardware held the arm (HardwareInterface::hold)
+  /// The cycle ended after its deadline, the next cycle's start: start_lateness_s (when late)
+  /// plus compute_s exceeded the period.
+  bool overrun = false;
   const JointState* state = nullptr;
   /// The effort of the cycle's command (ActuatorCommand::effort: the torque in torque mode).
   std::span<const double> torque;
@@ -80,11 +84,12 @@ struct LoopOptions {
 
 struct LoopStats {
   std::uint64_t cycles = 0;
-  std::uint64_t overruns = 0;        ///< cycles whose compute time exceeded the period
+  std::uint64_t overruns = 0;        ///< cycles that ended after their deadline (CycleRecord)
   std::uint64_t read_failures = 0;   ///< cycles skipped: the hardware had no valid measurement
   std::uint64_t write_failures = 0;  ///< torques the hardware refused
   std::uint64_t held_cycles = 0;     ///< cycles without controller output, the arm held
   double max_compute_s = 0.0;
+  double max_start_lateness_s = 0.0;  ///< CycleRecord::start_lateness_s, the largest [s]
 };
 
 class ControlLoop {
@@ -112,7 +117,8 @@ class ControlLoop {
   }
   /// The last cycle's whole command, in the controller's output mode.
   [[nodiscard]] const ActuatorCommand& lastCommand() const noexcept { return command_; }
-  /// Scheduled time of the next cycle on the loop's clock [s].
+  /// Scheduled time of the next cycle on the loop's clock [s]; the first cycle's is its clock's
+  /// time when it runs.
   [[nodiscard]] double nextCycleTime() const noexcept;
 
  private:

@@ -17,6 +17,11 @@ class LoopClock {
   virtual void waitUntil(double time_s) noexcept = 0;
   /// True when time passes by itself (a wall clock): a loop may then spin until a time.
   [[nodiscard]] virtual bool passesByItself() const noexcept { return false; }
+  /// How late [s] it is now for `time_s` on this clock. A clock kept to real time (the wall
+  /// clock; a simulation paced to it) says it on the wall clock, so a stall of the thread shows
+  /// however the time of the clock itself goes on; one that is not (a simulation run as fast as
+  /// it can) on its own time: now() - time_s.
+  [[nodiscard]] virtual double lateness(double time_s) noexcept { return now() - time_s; }
 };
 
 /// The monotonic wall clock; waitUntil() sleeps with an absolute deadline (no drift).

@@ -28,7 +28,12 @@ struct LiveHostOptions {
   /// DDS Security: an enclave folder (transport/participant.hpp); empty: off.
   std::string security;
   std::string name = "comply";
-  int priority = 80;  ///< SCHED_FIFO priority of the control thread; 0: normal scheduling
+  /// SCHED_FIFO priority of the control thread (the command reader and the transport's receive
+  /// threads run one below); 0: normal scheduling. A process that may not have it runs at normal
+  /// priority and says so once.
+  int priority = 80;
+  /// mlockall before the threads start (comply run); a refusal is a warning, not an error.
+  bool lock_memory = false;
   /// Wake this long [us] before each cycle, warm the caches and spin to its start
   /// (hardware::LoopOptions::warm_ahead_s); 0: sleep to the start. Only for a sleeping clock.
   double warm_ahead_us = 0.0;
@@ -46,7 +51,8 @@ int runLiveHost(const LiveHostOptions& options, pipeline::WrapperConfig config,
 /// Registers the transports built into comply ("dds", "in_process"); runLiveHost() does it once.
 void registerBuiltinTransports();
 
-/// Makes the calling thread SCHED_FIFO at `priority`; "" on success, else why not.
+/// Makes the calling thread SCHED_FIFO at `priority` (0: leaves it); "" on success, else why not
+/// and what it costs.
 std::string makeRealtime(int priority);
 
 }  // namespace comply::host

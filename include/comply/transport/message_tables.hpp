@@ -96,7 +96,9 @@
   X(Header, header, header, {}, "stamp: host wall-clock time; frame_id: the host's name") \
   X(HostState, state, state, HostState::kInactive, "ControllerState.STATE_*") \
   X(std::uint64_t, cycles, cycles, 0, "[-] control cycles run") \
-  X(std::uint64_t, overruns, overruns, 0, "[-] cycles whose compute time exceeded the period") \
+  X(std::uint64_t, overruns, overruns, 0, \
+    "[-] cycles that missed their deadline: ended after the next one's start (comply run), " \
+    "update() longer than the period (ros2_control)") \
   X(double, period_s, period, 0.0, "[s] control period") \
   X(std::uint64_t, commands_received, commands_received, 0, \
     "[-] commands taken from both command topics") \

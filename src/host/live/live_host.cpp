@@ -2,17 +2,14 @@
 
 #include "comply/host/live_host.hpp"
 
-#include <pthread.h>
-#include <sched.h>
-
 #include <cmath>
-#include <cstring>
 #include <iomanip>
 #include <mutex>
 #include <ostream>
 #include <sstream>
 #include <thread>
 
+#include "comply/core/realtime_scheduling.hpp"
 #include "comply/hardware/control_loop.hpp"
 #include "comply/host/diagnostics_message.hpp"
 #include "comply/host/hardware_backends.hpp"
@@ -21,6 +18,7 @@
 #include "comply/transport/host_transport.hpp"
 #include "live_intake.hpp"
 #include "live_observer.hpp"
+#include "realtime_grant.hpp"
 
 namespace comply::host {
 namespace {
@@ -111,9 +109,11 @@ void printSummary(const LoopCounters& counters, const pipeline::GateCounts& coun
       << " overruns, " << stats.read_failures << " read failures, " << stats.write_failures
       << " write failures; cycle start lateness p50 "
       << us(histogramQuantile(counters.lateness, 0.5)) << " us, p99 "
-      << us(histogramQuantile(counters.lateness, 0.99)) << " us; compute p50 "
+      << us(histogramQuantile(counters.lateness, 0.99)) << " us, max "
+      << us(stats.max_start_lateness_s) << " us; compute p50 "
       << us(histogramQuantile(counters.compute, 0.5)) << " us, p99 "
-      << us(histogramQuantile(counters.compute, 0.99)) << " us (10 us bins)\n"
+      << us(histogramQuantile(counters.compute, 0.99)) << " us, max " << us(stats.max_compute_s)
+      << " us (10 us bins, max exact)\n"
       << "comply run: commands received " << counts.received << ", applied " << counts.applied
       << ", rejected " << counts.rejected << "; malformed samples dropped by the transport "
       << transport.malformedSamples() << "; transport restarts " << transport.restarts() << "\n";
@@ -132,14 +132,20 @@ void printRecording(const HostRecording& recording, std::ostream& out) {
   out.unsetf(std::ios::floatfield);
 }
 
-/// Its receiving runs just below the control thread: a command waits for it, not the scheduler.
-std::unique_ptr<transport::HostTransport> openHostTransport(const LiveHostOptions& options) {
-  return transport::makeHostTransport(
-      options.transport, {.name = options.name,
-                          .domain_id = options.domain_id,
-                          .network = options.network,
-                          .receive_priority = options.priority > 1 ? options.priority - 1 : 0,
-                          .security = options.security});
+/// Just below `priority`, the control thread's: a command waits for the threads that receive it,
+/// not for the scheduler.
+int receivePriority(int priority) {
+  return priority > 1 ? priority - 1 : 0;
+}
+
+std::unique_ptr<transport::HostTransport> openHostTransport(const LiveHostOptions& options,
+                                                            int priority) {
+  return transport::makeHostTransport(options.transport,
+                                      {.name = options.name,
+                                       .domain_id = options.domain_id,
+                                       .network = options.network,
+                                       .receive_priority = receivePriority(priority),
+                                       .security = options.security});
 }
 
 /// The recording of --record; none without it.
@@ -160,8 +166,8 @@ std::unique_ptr<HostRecording> openRecording(
 template <typename Command>
 int runWith(const LiveHostOptions& options,
             const std::shared_ptr<const pipeline::ResolvedController>& resolved,
-            HardwareBackend& backend, const std::atomic<bool>& stop, std::ostream& out,
-            std::ostream& err) {
+            HardwareBackend& backend, int priority, const std::atomic<bool>& stop,
+            std::ostream& out, std::ostream& err) {
   hardware::HardwareInterface& robot = *backend.hardware;
   pipeline::Wrapper<Command> wrapper(resolved);
   JointState state = JointState::zero(wrapper.dof());
@@ -170,11 +176,11 @@ int runWith(const LiveHostOptions& options,
     return 1;
   }
   wrapper.activate(state);
-  const std::unique_ptr<transport::HostTransport> transport = openHostTransport(options);
+  const std::unique_ptr<transport::HostTransport> transport = openHostTransport(options, priority);
 
   const double period_s = 1.0 / options.rate_hz;
   pipeline::CommandGate gate(pipeline::gateOptions(resolved->config, resolved->cartesian()));
-  LiveObserver<Command> observer(wrapper, gate, hardware::monotonicSeconds());
+  LiveObserver<Command> observer(wrapper, gate);
   const auto cycles = static_cast<std::uint64_t>(std::llround(options.duration_s / period_s));
   hardware::ControlLoop loop(
       robot, wrapper, *backend.clock,
@@ -190,15 +196,14 @@ int runWith(const LiveHostOptions& options,
   std::atomic<bool> loop_running{true};
   std::atomic<bool> io_running{true};
   std::thread control([&] {
-    if (const std::string why = makeRealtime(options.priority); !why.empty()) {
+    if (const std::string why = makeRealtime(priority); !why.empty()) {
       err << "comply run: warning: " << why << "\n";
     }
     loop.run();
     loop_running = false;
   });
   std::thread reader([&] {
-    // Just below the control thread: a command waits for the reader, not for the scheduler.
-    makeRealtime(options.priority > 1 ? options.priority - 1 : 0);
+    makeThreadRealtime(receivePriority(priority));  // granted: the control thread's is
     readerThread(*transport, intake, io_running);
   });
   PublisherContext<Command> context{options, *resolved,  wrapper,  observer,
@@ -234,18 +239,13 @@ int runWith(const LiveHostOptions& options,
 }  // namespace
 
 std::string makeRealtime(int priority) {
-  if (priority <= 0) {
+  const std::string refusal = makeThreadRealtime(priority);
+  if (refusal.empty()) {
     return {};
   }
-  sched_param parameters{};
-  parameters.sched_priority = priority;
-  const int error = pthread_setschedparam(pthread_self(), SCHED_FIFO, &parameters);
-  if (error != 0) {
-    return std::string("no SCHED_FIFO for the control thread (") + std::strerror(error) +
-           "): it runs at normal priority and its timing will show it; run as root, or grant "
-           "rtprio in /etc/security/limits.conf (or CAP_SYS_NICE)";
-  }
-  return {};
+  return "no real-time scheduling for the control thread (" + refusal +
+         "): it runs at normal priority and its timing will show it; to grant it, " +
+         kRealtimeGrantAdvice;
 }
 
 int runLiveHost(const LiveHostOptions& options, pipeline::WrapperConfig config,
@@ -256,6 +256,7 @@ int runLiveHost(const LiveHostOptions& options, pipeline::WrapperConfig config,
     pipeline::completeForRobot(config, std::make_shared<const model::RobotDescription>(
                                            model::loadRobotDescription(config.robot)));
   }
+  const int priority = grantRealtime(options, err);
   HardwareBackend backend =
       makeHardware(options.hardware, config,
                    backendContext(config, 1.0 / options.rate_hz, options.hardware_options));
@@ -274,8 +275,8 @@ int runLiveHost(const LiveHostOptions& options, pipeline::WrapperConfig config,
   const std::shared_ptr<const pipeline::ResolvedController> resolved =
       pipeline::resolveController(config);
   return resolved->cartesian()
-             ? runWith<CartesianCommand>(options, resolved, backend, stop, out, err)
-             : runWith<JointCommand>(options, resolved, backend, stop, out, err);
+             ? runWith<CartesianCommand>(options, resolved, backend, priority, stop, out, err)
+             : runWith<JointCommand>(options, resolved, backend, priority, stop, out, err);
 }
 
 }  // namespace comply::host

@@ -5,15 +5,9 @@
 #include <ctime>
 
 #include "comply/core/clock.hpp"
-#include "comply/hardware/loop_clock.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
 
 namespace comply::host {
-namespace {
-
-using hardware::monotonicSeconds;
-
-}  // namespace
 
 double histogramQuantile(const std::array<std::atomic<std::uint64_t>, LoopCounters::kBins>& bins,
                          double p) {
@@ -37,8 +31,8 @@ double histogramQuantile(const std::array<std::atomic<std::uint64_t>, LoopCounte
 
 template <typename Command>
 LiveObserver<Command>::LiveObserver(pipeline::Wrapper<Command>& wrapper,
-                                    pipeline::CommandGate& gate, double wall_origin_s)
-    : wrapper_(wrapper), wall_origin_s_(wall_origin_s), gate_(gate), sampler_(wrapper) {
+                                    pipeline::CommandGate& gate)
+    : wrapper_(wrapper), gate_(gate), sampler_(wrapper) {
   const int dof = wrapper.dof();
   sample_.joints = JointState::zero(dof);
   sample_.torque.setZero(dof);
@@ -47,8 +41,7 @@ LiveObserver<Command>::LiveObserver(pipeline::Wrapper<Command>& wrapper,
 }
 
 template <typename Command>
-void LiveObserver<Command>::beforeCycle(std::uint64_t /*index*/, double time_s) {
-  LoopCounters::count(counters_.lateness, monotonicSeconds() - wall_origin_s_ - time_s);
+void LiveObserver<Command>::beforeCycle(std::uint64_t /*index*/, double /*time_s*/) {
   const auto request = static_cast<transport::RequestType>(
       lifecycle_request_.exchange(0, std::memory_order_acq_rel));
   // Lifecycle transitions run between cycles on this thread; they are rare operator requests,
@@ -66,6 +59,8 @@ void LiveObserver<Command>::beforeCycle(std::uint64_t /*index*/, double time_s) 
 
 template <typename Command>
 void LiveObserver<Command>::afterCycle(const hardware::CycleRecord& record) {
+  // The loop's lateness, on the wall clock even for a paced simulation: what a recording keeps.
+  LoopCounters::count(counters_.lateness, record.start_lateness_s);
   counters_.countCycle(record.compute_s, record.overrun);
   if (record.state != nullptr) {
     last_state_ = *record.state;

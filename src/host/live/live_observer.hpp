@@ -1,6 +1,7 @@
 #pragma once
 // The control thread's side of `comply run`: after every cycle it records the timing (overruns,
-// histograms of compute time and of cycle-start lateness against the wall clock), notices when
+// histograms of compute time and of cycle-start lateness as the loop measures it: against the
+// wall clock, a paced simulation's too), notices when
 // the cycle took new commands (the stamp of the command in force moved) and publishes a fixed-size
 // state sample. Everything it shares is lock-free and preallocated (atomics, an SPSC queue, a
 // triple buffer), so the cycle neither allocates nor waits for the DDS threads. Lifecycle
@@ -31,9 +32,7 @@ double histogramQuantile(const std::array<std::atomic<std::uint64_t>, LoopCounte
 template <typename Command>
 class LiveObserver final : public hardware::LoopObserver {
  public:
-  /// `wall_origin_s`: the CLOCK_MONOTONIC time [s] at which the loop's clock reads 0.
-  LiveObserver(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gate,
-               double wall_origin_s);
+  LiveObserver(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gate);
 
   void beforeCycle(std::uint64_t index, double time_s) override;
   void afterCycle(const hardware::CycleRecord& record) override;
@@ -52,7 +51,6 @@ class LiveObserver final : public hardware::LoopObserver {
   void fillSample(const hardware::CycleRecord& record) noexcept;
 
   pipeline::Wrapper<Command>& wrapper_;
-  double wall_origin_s_;
   LoopCounters counters_;
   pipeline::CommandGate& gate_;
   TripleBuffer<StateSample> state_;

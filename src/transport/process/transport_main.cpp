@@ -6,8 +6,6 @@
 //   comply-transport --fd N --transport dds --name NAME --domain ID --network loopback|all
 //                    --priority P --security ENCLAVE_FOLDER (empty: none)
 
-#include <pthread.h>
-#include <sched.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -29,6 +27,7 @@
 #include <thread>
 #include <vector>
 
+#include "comply/core/realtime_scheduling.hpp"
 #include "comply/transport/cdr.hpp"
 #include "comply/transport/dds_host_transport.hpp"
 #include "frames.hpp"
@@ -295,12 +294,10 @@ int main(int argc, char** argv) {
   Forwarder forwarder(link, *transport);
   const bool called_back = transport->notifyOnInput([&forwarder] { forwarder.forward(0.0); });
   std::thread forwarding([&] {
-    // At the priority of DDS's receive threads: a command waits for neither on its way.
-    if (options.receive_priority > 0) {
-      sched_param parameters{};
-      parameters.sched_priority = options.receive_priority;
-      pthread_setschedparam(pthread_self(), SCHED_FIFO, &parameters);
-    }
+    // At the priority of DDS's receive threads: a command waits for neither on its way. Refused
+    // (the participant said so: capabilities are given per program, so this process may have
+    // less than its host), it forwards at normal priority.
+    comply::makeThreadRealtime(options.receive_priority);
     forwardToHost(forwarder, called_back, running);
   });
   Outbox outbox;
