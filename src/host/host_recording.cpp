@@ -3,7 +3,6 @@
 #include "comply/host/host_recording.hpp"
 
 #include <cstring>
-#include <filesystem>
 
 #include "comply/schema/schema.hpp"
 #include "comply/transport/cdr.hpp"
@@ -15,14 +14,8 @@ namespace {
 constexpr std::size_t kSideLaneBytes = std::size_t{4} << 20;
 
 record::RecorderOptions recorderOptions(const std::string& path) {
-  // `--record runs/today/a.mcap` makes its folder, as `--out` does.
-  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-  if (!folder.empty()) {
-    std::error_code ignored;  // an uncreatable folder shows as the file's own error
-    std::filesystem::create_directories(folder, ignored);
-  }
   record::RecorderOptions options;
-  options.path = path;
+  options.path = path;  // its folder must exist: a mistyped path makes no folders
   return options;
 }
 

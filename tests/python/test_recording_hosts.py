@@ -1,7 +1,8 @@
 """record= on comply.Sim and comply.Client, read back with comply.read_recording: the Sim's
 episodes (every cycle, the commands sent, one outcome each, the state the Sim returned), and what
-a client sent to and saw from a `comply run --sim` host. Usage: test_recording_hosts.py
-COMPLY_CLI SOURCE_DIR (the build's python/ on PYTHONPATH)."""
+a client sent to and saw from a `comply run --sim` host. A record= path in a missing folder is
+refused, and the folder not made. Usage: test_recording_hosts.py COMPLY_CLI SOURCE_DIR (the
+build's python/ on PYTHONPATH)."""
 
 import os
 import re
@@ -101,8 +102,24 @@ def check_sim_commands(rec, episodes):
             assert outcomes["message"][row] == info["message"], outcomes["message"][row]
 
 
+def expect_missing_folder(make, folder):
+    """make(path) with a path in the missing `folder` raises OSError naming it; nothing is made."""
+    try:
+        make(os.path.join(folder, "deeper", "run.mcap"))
+    except OSError as error:
+        missing = os.path.join(folder, "deeper")
+        assert f"the folder '{missing}' does not exist (create it first" in str(error), error
+    else:
+        raise AssertionError("a recording in a missing folder was accepted")
+    assert not os.path.exists(folder), folder
+
+
 def check_sim(source, folder):
-    path = os.path.join(folder, "runs", "sim.mcap")  # its folder is made
+    config = f"{source}/config/sim/cartesian_impedance.yaml"
+    expect_missing_folder(lambda path: comply.Sim(config, robot="fr3", record=path),
+                          os.path.join(folder, "missing"))
+    os.mkdir(os.path.join(folder, "runs"))
+    path = os.path.join(folder, "runs", "sim.mcap")
     sim = comply.Sim(f"{source}/config/sim/cartesian_impedance.yaml", robot="fr3",
                      steps_per_action=STEPS_PER_ACTION, record=path)
     episodes = [run_episode(sim) for _ in range(EPISODES)]
@@ -126,6 +143,9 @@ def check_client(cli, source, folder):
 
     path = os.path.join(folder, "client.mcap")
     with running_host(cli, source, "pyrec") as (_, domain):
+        expect_missing_folder(
+            lambda path: comply.Client(name="pyrec", domain=domain, timeout=30.0, record=path),
+            os.path.join(folder, "missing"))
         client = comply.Client(name="pyrec", domain=domain, timeout=30.0, record=path)
         state = client.state()
         assert state is not None

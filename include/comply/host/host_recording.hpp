@@ -123,8 +123,9 @@ class CycleRecorder {
 
 class HostRecording {
  public:
-  /// Creates `path` (throws record::McapError naming it) and starts the writer thread.
-  /// `metadata`: what the file says about the run besides the counts (robot, controller, ...).
+  /// Creates `path` (throws record::McapError naming it, or its missing folder: none is made)
+  /// and starts the writer thread. `metadata`: what the file says about the run besides the
+  /// counts (robot, controller, ...).
   HostRecording(const std::string& path,
                 std::shared_ptr<const pipeline::ResolvedController> resolved,
                 const std::string& name, record::StringMap metadata);

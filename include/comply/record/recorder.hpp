@@ -144,7 +144,8 @@ struct RecorderStats {
 
 class Recorder {
  public:
-  /// Creates the file (throws McapError: "cannot record to <path>: <reason>").
+  /// Creates the file (throws McapError: "cannot record to <path>: <reason>", its folder
+  /// missing included: no folder is made).
   explicit Recorder(RecorderOptions options);
   ~Recorder();
   Recorder(const Recorder&) = delete;

@@ -252,6 +252,9 @@ int runLiveHost(const LiveHostOptions& options, pipeline::WrapperConfig config,
                 const std::atomic<bool>& stop, std::ostream& out, std::ostream& err) {
   static std::once_flag registered;
   std::call_once(registered, registerBuiltinTransports);
+  if (!options.record_path.empty()) {
+    record::checkRecordingFolder(options.record_path);  // before the hardware is touched
+  }
   if (!config.robot_description) {
     pipeline::completeForRobot(config, std::make_shared<const model::RobotDescription>(
                                            model::loadRobotDescription(config.robot)));
