@@ -13,6 +13,9 @@ constexpr std::size_t kLaneBytes = std::size_t{16} << 20;
 record::RecorderOptions recorderOptions(const std::filesystem::path& path) {
   record::RecorderOptions options;
   options.path = path.string();  // its folder must exist, as for the hosts' --record
+  // The client talks to a live host: a full lane drops (and counts) rather than hold up the
+  // commands the caller sends.
+  options.when_full = record::WhenFull::kDrop;
   return options;
 }
 

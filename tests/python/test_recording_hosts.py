@@ -1,8 +1,8 @@
 """record= on comply.Sim and comply.Client, read back with comply.read_recording: the Sim's
-episodes (every cycle, the commands sent, one outcome each, the state the Sim returned), and what
-a client sent to and saw from a `comply run --sim` host. A record= path in a missing folder is
-refused, and the folder not made. Usage: test_recording_hosts.py COMPLY_CLI SOURCE_DIR (the
-build's python/ on PYTHONPATH)."""
+episodes (every cycle, the commands sent, one outcome each, the state the Sim returned; the Sim
+waits for a busy disk rather than drop), and what a client sent to and saw from a `comply run
+--sim` host. A record= path in a missing folder is refused, and the folder not made. Usage:
+test_recording_hosts.py COMPLY_CLI SOURCE_DIR (the build's python/ on PYTHONPATH)."""
 
 import os
 import re
@@ -132,6 +132,8 @@ def check_sim(source, folder):
     assert stats["error"] == "" and stats["dropped"] == 0, stats
     assert stats["written"] == sum(rec.message_counts.values()), (stats, rec.message_counts)
     assert rec.metadata["comply_run"]["host"] == "comply.Sim"
+    # Offline: a full lane waits for the writer, so every cycle is in the file (the count below).
+    assert rec.metadata["comply_recording"]["when_full"] == "wait", rec.metadata
     check_sim_cycles(rec, episodes, config_stiffness(source))
     check_sim_commands(rec, episodes)
     assert comply.Sim(f"{source}/config/sim/cartesian_impedance.yaml").recording_stats() is None
@@ -164,6 +166,7 @@ def check_client(cli, source, folder):
     assert not rec.truncated and stats["error"] == "" and stats["dropped"] == 0, stats
     assert rec.metadata["comply_client"] == {"host": "pyrec", "domain": str(domain),
                                              "network": "loopback"}, rec.metadata
+    assert rec.metadata["comply_recording"]["when_full"] == "drop", rec.metadata
     commands = rec["/pyrec/cartesian_command"]
     sent_stamps = stamps(commands, "header.stamp")
     assert np.array_equal(commands.log_time, sent_stamps)  # logged when sent, at its stamp

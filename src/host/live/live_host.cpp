@@ -154,7 +154,9 @@ std::unique_ptr<HostRecording> openRecording(
       options.record_path, resolved, options.name,
       record::StringMap{{"host", "comply run"},
                         {"rate_hz", (std::ostringstream() << options.rate_hz).str()},
-                        {"hardware", backend.description}});
+                        {"hardware", backend.description}},
+      // The control thread never waits for the disk: a full lane drops, and counts.
+      HostRecordingOptions{.when_full = record::WhenFull::kDrop});
 }
 
 template <typename Command>
