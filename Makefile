@@ -119,6 +119,7 @@ bench: build
 # The cross-platform check in simulation: four robots, one plugin, one command, one target.
 DEMO_OUT ?= out/cross-platform
 demo: build
+	@mkdir -p $(dir $(DEMO_OUT))
 	@$(BUILD_DIR)/apps/comply/comply experiment cross-platform --out $(DEMO_OUT)
 
 format:

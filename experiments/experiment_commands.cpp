@@ -1,10 +1,13 @@
 #include "experiment_commands.hpp"
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
+#include <initializer_list>
 #include <memory>
 #include <utility>
 
 #include "chunks/chunk_experiment.hpp"
+#include "comply/core/output_folder.hpp"
 #include "connector_mating/connector_mating_experiment.hpp"
 #include "cross_platform/cross_platform_experiment.hpp"
 #include "output_modes/output_modes_experiment.hpp"
@@ -30,10 +33,28 @@ struct Commands::State {
 
 namespace {
 
+/// Where the default output folders are: out/<experiment> in the working folder.
+const std::filesystem::path kDefaultOutRoot = "out";
+
+void addOutOption(CLI::App& command, std::filesystem::path& out_dir) {
+  command.add_option("--out", out_dir, "output folder, made if missing (its parent must exist)")
+      ->capture_default_str();
+}
+
+/// The parsed experiment without --out writes to its default, out/<experiment>: out/ is made
+/// for it. A folder given with --out is made only as its last folder, by the experiment.
+void makeDefaultOutRoot(std::initializer_list<const CLI::App*> commands) {
+  for (const CLI::App* command : commands) {
+    if (command->parsed() && command->count("--out") == 0) {
+      makeOutputFolder(kDefaultOutRoot);
+    }
+  }
+}
+
 CLI::App* addCrossPlatform(CLI::App& experiment, CrossPlatformOptions& options) {
   CLI::App* command = experiment.add_subcommand("cross-platform",
                                                 "one plugin, one command, four robots, one target");
-  command->add_option("--out", options.out_dir, "output folder")->capture_default_str();
+  addOutOption(*command, options.out_dir);
   command
       ->add_option("--duration", options.duration_s,
                    "simulated seconds per robot (default: the task's)")
@@ -45,7 +66,7 @@ CLI::App* addCrossPlatform(CLI::App& experiment, CrossPlatformOptions& options) 
 CLI::App* addSurfaceFollowing(CLI::App& experiment, SurfaceFollowingOptions& options) {
   CLI::App* command = experiment.add_subcommand(
       "surface-following", "probe along a curved fixture: fixed-frame vs task-aligned gains");
-  command->add_option("--out", options.out_dir, "output folder")->capture_default_str();
+  addOutOption(*command, options.out_dir);
   command->add_option("--speed", options.speed_m_per_s, "traverse speed [m/s]")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
@@ -59,7 +80,7 @@ CLI::App* addSurfaceFollowing(CLI::App& experiment, SurfaceFollowingOptions& opt
 CLI::App* addConnectorMating(CLI::App& experiment, ConnectorMatingOptions& options) {
   CLI::App* command = experiment.add_subcommand(
       "connector-mating", "peg into a tilted socket: TCP-fixed vs task-aligned compliance");
-  command->add_option("--out", options.out_dir, "output folder")->capture_default_str();
+  addOutOption(*command, options.out_dir);
   command->add_option("--offsets", options.offsets_deg, "angular offsets [deg]")
       ->capture_default_str();
   command
@@ -97,7 +118,7 @@ CLI::App* addConnectorMating(CLI::App& experiment, ConnectorMatingOptions& optio
 CLI::App* addPassivity(CLI::App& experiment, PassivityOptions& options) {
   CLI::App* command = experiment.add_subcommand(
       "passivity", "adversarially streamed gains: no gain stage vs ramps vs energy tank");
-  command->add_option("--out", options.out_dir, "output folder")->capture_default_str();
+  addOutOption(*command, options.out_dir);
   command
       ->add_option("--duration", options.duration_s,
                    "simulated seconds of each adversarial scenario (the normal task takes 3 s)")
@@ -120,14 +141,14 @@ CLI::App* addPassivity(CLI::App& experiment, PassivityOptions& options) {
 CLI::App* addOutputModes(CLI::App& experiment, OutputModesOptions& options) {
   CLI::App* command = experiment.add_subcommand(
       "output-modes", "one law on torque, position and velocity drives: stiffness, contact, tool");
-  command->add_option("--out", options.out_dir, "output folder")->capture_default_str();
+  addOutOption(*command, options.out_dir);
   return command;
 }
 
 CLI::App* addChunks(CLI::App& experiment, ChunkOptions& options) {
   CLI::App* command = experiment.add_subcommand(
       "chunks", "a circle from a policy's actions: stepped setpoints vs timed chunks");
-  command->add_option("--out", options.out_dir, "output folder")->capture_default_str();
+  addOutOption(*command, options.out_dir);
   command->add_option("--duration", options.settings.duration_s, "simulated seconds per run")
       ->capture_default_str()
       ->check(CLI::Range(2.0, 600.0));
@@ -165,6 +186,9 @@ bool Commands::parsed() const {
 }
 
 int Commands::run(std::ostream& out, std::ostream& err) const {
+  makeDefaultOutRoot({state_->cross_platform_command, state_->surface_command,
+                      state_->mating_command, state_->passivity_command, state_->chunks_command,
+                      state_->output_modes_command});
   if (state_->mating_command->parsed()) {
     return connectorMatingCommand(state_->mating, out, err);
   }

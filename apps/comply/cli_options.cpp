@@ -90,9 +90,12 @@ CLI::App* addSimCommand(CLI::App& app, SimOptions& options) {
       ->add_option("--duration", options.duration_s,
                    "simulated seconds (default: the task's; at most 600)")
       ->check(finiteIn(1e-3, host::kMaxSimDurationS));
-  command->add_option("--out", options.out_dir, "output folder (default out/sim-<robot>)");
+  command->add_option("--out", options.out_dir,
+                      "output folder, made if missing (its parent must exist; default "
+                      "out/sim-<robot>)");
   command->add_option("--record", options.record_path,
-                      "also record every cycle, command and outcome to this MCAP file");
+                      "also record every cycle, command and outcome to this MCAP file (its "
+                      "folder must exist)");
   command
       ->add_option("--snapshot-every", options.snapshot_every_ms,
                    "also a PNG every N ms of simulated time (default: the task's)")
@@ -131,7 +134,9 @@ CLI::App* addCodegenCommand(CLI::App& app, CodegenOptions& options) {
   command->require_subcommand(1);
   CLI::App* simulink = command->add_subcommand(
       "simulink", "Simulink buses, template model and Embedded Coder adapter from the plugin ABI");
-  simulink->add_option("--out", options.out, "output folder")->capture_default_str();
+  simulink
+      ->add_option("--out", options.out, "output folder, made if missing (its parent must exist)")
+      ->capture_default_str();
   return simulink;
 }
 
@@ -147,7 +152,8 @@ CLI::App* addPluginCommand(CLI::App& app, PluginNewOptions& options) {
   // Required for a law; pluginNewCommand says so, since a hardware backend takes none.
   create->add_option("--lang", options.language, "cpp (the C++ SDK) or c (abi.h alone)")
       ->check(CLI::IsMember({"cpp", "c"}));
-  create->add_option("--out", options.out, "project folder, new or empty (default ./NAME)");
+  create->add_option("--out", options.out,
+                     "project folder, new (its parent must exist) or empty (default ./NAME)");
   return create;
 }
 

@@ -68,9 +68,13 @@ LogSpan logSpan(const std::map<std::uint16_t, ChannelTally>& tallies) {
 void printMetadata(const record::McapContents& contents, std::ostream& out) {
   for (const auto& [name, map] : contents.metadata) {
     if (name == "comply_recording") {
+      // Recordings from before the choice existed say nothing of it: they dropped.
+      const auto when_full = map.find("when_full");
+      const bool waited = when_full != map.end() && when_full->second == "wait";
       out << "\ndropped records: " << map.at("records_dropped") << " (written "
-          << map.at("records_written") << "); writer thread CPU " << map.at("writer_cpu_s")
-          << " s\n";
+          << map.at("records_written") << "; a full lane "
+          << (waited ? "waited for the writer" : "dropped") << "); writer thread CPU "
+          << map.at("writer_cpu_s") << " s\n";
     } else {
       out << "\n" << name << ":";
       for (const auto& [key, value] : map) {

@@ -77,7 +77,8 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions* run) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 500.0));
   run_command->add_option("--record", run->record_path,
-                          "record every cycle, command and outcome to this MCAP file");
+                          "record every cycle, command and outcome to this MCAP file (its folder "
+                          "must exist)");
   return run_command;
 }
 

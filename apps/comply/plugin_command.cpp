@@ -5,6 +5,7 @@
 #include <string>
 
 #include "comply/codegen/plugin.hpp"
+#include "comply/core/output_folder.hpp"
 
 namespace comply::app {
 namespace {
@@ -49,6 +50,7 @@ int pluginNewCommand(const PluginNewOptions& options, std::ostream& out, std::os
   }
   const auto files =
       codegen::pluginFiles({.name = options.name, .kind = options.kind, .language = language});
+  makeOutputFolder(folder);  // its parent must exist; the project's own subfolders are made
   codegen::writeFiles(folder, files);
   for (const auto& file : files) {
     out << (folder / file.path).string() << "\n";

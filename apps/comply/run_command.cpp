@@ -6,6 +6,7 @@
 #include <csignal>
 #include <ostream>
 
+#include "comply/core/output_folder.hpp"
 #include "comply/host/controller_setup.hpp"
 #include "comply/host/live_host.hpp"
 #include "comply/pipeline/config.hpp"
@@ -44,6 +45,11 @@ std::string checkOptions(const RunOptions& options) {
   }
   if (options.network != "loopback" && options.network != "all") {
     return "--network must be loopback or all";
+  }
+  if (!options.record_path.empty()) {
+    if (const std::string why = missingFolderOf(options.record_path); !why.empty()) {
+      return "cannot record to " + options.record_path + ": " + why;
+    }
   }
   return {};
 }

@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "comply/core/output_folder.hpp"
 #include "comply/host/controller_setup.hpp"
 #include "comply/host/plot_script.hpp"
 #include "comply/host/sim_session.hpp"
@@ -20,6 +21,13 @@ int simCommand(const SimOptions& options, std::ostream& out, std::ostream& err) 
   if (options.task_file.empty()) {
     err << "comply sim: --task is required\n";
     return 2;
+  }
+  // Before anything runs: a long run must not fail at its end for want of a folder.
+  if (!options.record_path.empty()) {
+    if (const std::string why = missingFolderOf(options.record_path); !why.empty()) {
+      err << "comply sim: cannot record to " << options.record_path << ": " << why << "\n";
+      return 2;
+    }
   }
   if (options.view && !sim::Viewer::displayAvailable()) {
     err << "comply sim: --view needs a display, and none is reachable (DISPLAY and "
@@ -43,9 +51,12 @@ int simCommand(const SimOptions& options, std::ostream& out, std::ostream& err) 
   run.duration_s = options.duration_s;
   run.realtime = options.realtime;
   run.view = options.view;
-  run.out_dir = options.out_dir.empty()
-                    ? std::filesystem::path("out") / ("sim-" + run.resolved->robot.name)
-                    : std::filesystem::path(options.out_dir);
+  if (options.out_dir.empty()) {
+    makeOutputFolder("out");  // the default's own parent, in the working folder
+    run.out_dir = std::filesystem::path("out") / ("sim-" + run.resolved->robot.name);
+  } else {
+    run.out_dir = options.out_dir;  // made by the run, as its last folder only
+  }
   run.progress = &err;
   run.record_path = options.record_path;
 

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "comply/core/number_text.hpp"
+#include "comply/core/output_folder.hpp"
 
 namespace comply::experiments {
 
@@ -27,7 +28,7 @@ std::vector<ChunkRow> runChunks(const ChunkOptions& options) {
   for (const std::string& name : options.conditions) {
     conditions.push_back(chunkConditionOf(name));  // all refused before the first run
   }
-  std::filesystem::create_directories(options.out_dir);
+  makeOutputFolder(options.out_dir);  // its parent must exist
   std::vector<ChunkRow> rows;
   for (const chunks::Condition& condition : conditions) {
     if (options.progress != nullptr) {

@@ -5,6 +5,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "comply/core/output_folder.hpp"
 #include "comply/host/controller_setup.hpp"
 #include "comply/host/sim_session.hpp"
 #include "comply/host/task_file.hpp"
@@ -76,7 +77,7 @@ ConnectorMatingRow runTrial(const Trial& trial, double offset_deg,
 }  // namespace
 
 std::vector<ConnectorMatingRow> runConnectorMating(const ConnectorMatingOptions& options) {
-  std::filesystem::create_directories(options.out_dir);
+  makeOutputFolder(options.out_dir);  // its parent must exist
   const host::TcpPose home = host::homeTcpPose("fr3");
   const std::filesystem::path peg_file = options.out_dir / "peg.xml";
   std::ofstream(peg_file) << connector_mating::pegFragment();

@@ -3,6 +3,7 @@
 #include <iostream>
 #include <ostream>
 
+#include "comply/core/output_folder.hpp"
 #include "comply/host/controller_setup.hpp"
 #include "comply/host/plot_script.hpp"
 #include "comply/host/sim_session.hpp"
@@ -64,7 +65,7 @@ std::vector<CrossPlatformRow> runCrossPlatform(const CrossPlatformOptions& optio
       sourcePathOr(options.config_file, "config/sim/cartesian_impedance.yaml");
   const std::filesystem::path task_file =
       sourcePathOr(options.task_file, "examples/sim/cross_platform.yaml");
-  std::filesystem::create_directories(options.out_dir);
+  makeOutputFolder(options.out_dir);  // its parent must exist
 
   std::vector<CrossPlatformRow> rows;
   std::vector<sim::Image> pictures;

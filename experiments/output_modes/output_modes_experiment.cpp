@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "comply/core/output_folder.hpp"
 #include "comply/host/controller_setup.hpp"
 #include "comply/host/plot_script.hpp"
 #include "output_modes/output_mode_rig.hpp"
@@ -251,7 +252,7 @@ ToolStepResult heavyToolStep(bool declared) {
 
 std::vector<OutputModesRow> runOutputModes(const OutputModesOptions& options,
                                            std::array<ToolStepResult, 2>* tool) {
-  std::filesystem::create_directories(options.out_dir);
+  makeOutputFolder(options.out_dir);  // its parent must exist
   std::ostream& progress = options.progress != nullptr ? *options.progress : std::cerr;
   std::vector<OutputModesRow> rows;
   for (const OutputMode mode : options.modes) {

@@ -4,6 +4,8 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "comply/core/output_folder.hpp"
+
 namespace comply::experiments {
 namespace {
 
@@ -28,6 +30,7 @@ std::vector<PassivityRow> runPassivity(const PassivityOptions& options) {
   for (const std::string& name : options.conditions) {
     conditions.push_back(passivity::conditionOf(name));
   }
+  makeOutputFolder(options.out_dir);  // its parent must exist
   std::vector<PassivityRow> rows;
   for (const auto& [scenario, scenario_name] : passivity::kScenarios) {
     const std::filesystem::path folder = options.out_dir / scenario_name;

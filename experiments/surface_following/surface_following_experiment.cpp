@@ -4,6 +4,7 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "comply/core/output_folder.hpp"
 #include "comply/host/controller_setup.hpp"
 #include "comply/host/sim_session.hpp"
 #include "comply/host/task_file.hpp"
@@ -89,7 +90,7 @@ std::vector<SurfaceFollowingRow> runSurfaceFollowing(const SurfaceFollowingOptio
     throw std::runtime_error(
         "surface-following: speed must be > 0 and the path fraction in (0, 1]");
   }
-  std::filesystem::create_directories(options.out_dir);
+  makeOutputFolder(options.out_dir);  // its parent must exist
   const host::TcpPose home = host::homeTcpPose("fr3");
   const task::Path tip_path(surface_following::nominalTipPoints(options.path_fraction));
   surface_following::writeFixtureCsv(options.out_dir / "fixture.csv");

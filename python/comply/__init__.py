@@ -15,8 +15,8 @@ truncated, info). frenet_frame() and darboux_frame() build task frames (x y z w)
                                   stiffness_translational=[3000, 3000, 500])
     print(client.outcome(stamp))
 
-Both record to MCAP with record="path.mcap" (close() finishes the file; recording_stats() gives
-its counts). Client(..., record=...) keeps what it sent (its commands and requests, at their
+Both record to MCAP with record="path.mcap", in a folder that exists (close() finishes the file;
+recording_stats() gives its counts). Client(..., record=...) keeps what it sent (its commands and requests, at their
 stamps) and every state and diagnostics message it took. Sim(..., record=...) keeps every cycle,
 command and outcome of every episode in one file, as `comply sim --record` does, on a simulated
 clock that runs on across episodes; an episode starts where the cycle index is 0 again:

@@ -35,7 +35,9 @@ constexpr const char* kClientDoc =
     "diagnostics message it takes (logged when taken) on /<name>/cartesian_command, "
     "/<name>/joint_command, /<name>/cartesian_chunk, /<name>/joint_chunk, /<name>/request, "
     "/<name>/state and /<name>/diagnostics; "
-    "comply.read_recording() reads it. close() finishes the file (also on destruction).";
+    "comply.read_recording() reads it. close() finishes the file (also on destruction). The "
+    "file's folder must exist (OSError naming it otherwise). Should the disk fall behind, "
+    "records are dropped and counted (recording_stats()), never the commands held up.";
 
 constexpr const char* kSimDoc =
     "Sim(config, robot='', steps_per_action=50, max_time=0.0, record=None): the controller on an "
@@ -46,7 +48,8 @@ constexpr const char* kSimDoc =
     "(state.cycle) is 0 again. The file's clock is simulated time since the Sim was made: each "
     "episode starts where the one before it stopped, so log times never go back; commands keep "
     "the stamps they were sent with (the episode's time). close() finishes the file (also on "
-    "destruction); the Sim carries on unrecorded.";
+    "destruction); the Sim carries on unrecorded. The file's folder must exist (OSError naming "
+    "it otherwise). Nothing is dropped: a step waits for a busy disk.";
 
 constexpr const char* kCloseDoc =
     "Stop the recording and finish its file; idempotent (a no-op without record=)";

@@ -11,13 +11,11 @@ namespace {
 constexpr std::size_t kLaneBytes = std::size_t{16} << 20;
 
 record::RecorderOptions recorderOptions(const std::filesystem::path& path) {
-  // record="runs/today/a.mcap" makes its folder, as the hosts' --record does.
-  if (path.has_parent_path()) {
-    std::error_code ignored;  // an uncreatable folder shows as the file's own error
-    std::filesystem::create_directories(path.parent_path(), ignored);
-  }
   record::RecorderOptions options;
-  options.path = path.string();
+  options.path = path.string();  // its folder must exist, as for the hosts' --record
+  // The client talks to a live host: a full lane drops (and counts) rather than hold up the
+  // commands the caller sends.
+  options.when_full = record::WhenFull::kDrop;
   return options;
 }
 

@@ -26,8 +26,9 @@ namespace comply::python {
 
 class ClientRecording {
  public:
-  /// Creates `path` (throws record::McapError naming it) and starts the writer thread; `name`,
-  /// `domain` and `network` are the host the client talks to (metadata "comply_client").
+  /// Creates `path` (throws record::McapError naming it, or its missing folder: none is made)
+  /// and starts the writer thread; `name`, `domain` and `network` are the host the client talks
+  /// to (metadata "comply_client").
   ClientRecording(const std::filesystem::path& path, const std::string& name, int domain,
                   const std::string& network);
 

@@ -192,7 +192,9 @@ Sim::Sim(const std::string& config, const std::string& robot, int steps_per_acti
         record->string(), resolved_, "comply",
         record::StringMap{{"host", "comply.Sim"},
                           {"clock", "simulated"},
-                          {"steps_per_action", std::to_string(steps_per_action)}});
+                          {"steps_per_action", std::to_string(steps_per_action)}},
+        // Simulated time has no deadline: a step waits for a busy disk, no cycle is lost.
+        host::HostRecordingOptions{.when_full = record::WhenFull::kWait});
     recording_open_ = true;
   }
 }

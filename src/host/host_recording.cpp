@@ -3,7 +3,6 @@
 #include "comply/host/host_recording.hpp"
 
 #include <cstring>
-#include <filesystem>
 
 #include "comply/schema/schema.hpp"
 #include "comply/transport/cdr.hpp"
@@ -14,15 +13,11 @@ namespace {
 // The command and publishing lanes see a few hundred records a second.
 constexpr std::size_t kSideLaneBytes = std::size_t{4} << 20;
 
-record::RecorderOptions recorderOptions(const std::string& path) {
-  // `--record runs/today/a.mcap` makes its folder, as `--out` does.
-  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-  if (!folder.empty()) {
-    std::error_code ignored;  // an uncreatable folder shows as the file's own error
-    std::filesystem::create_directories(folder, ignored);
-  }
+record::RecorderOptions recorderOptions(const std::string& path, const HostRecordingOptions& host) {
   record::RecorderOptions options;
-  options.path = path;
+  options.path = path;  // its folder must exist: a mistyped path makes no folders
+  options.writer_period_s = host.writer_period_s;
+  options.when_full = host.when_full;
   return options;
 }
 
@@ -65,10 +60,11 @@ SenderChannels::SenderChannels(record::Recorder& recorder, const std::string& pr
 
 HostRecording::HostRecording(const std::string& path,
                              std::shared_ptr<const pipeline::ResolvedController> resolved,
-                             const std::string& name, record::StringMap metadata)
+                             const std::string& name, record::StringMap metadata,
+                             HostRecordingOptions options)
     : resolved_(std::move(resolved)),
-      recorder_(recorderOptions(path)),
-      control_(recorder_.addLane("control", kControlLaneBytes)),
+      recorder_(recorderOptions(path, options)),
+      control_(recorder_.addLane("control", options.control_lane_bytes)),
       intake_(recorder_.addLane("commands", kSideLaneBytes)),
       publisher_(recorder_.addLane("publisher", kSideLaneBytes)) {
   const std::string prefix = "/" + name + "/";

@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <cstring>
 
+#include "comply/core/output_folder.hpp"
 #include "mcap_format.hpp"
 #include "mcap_records.hpp"
 
@@ -25,8 +26,15 @@ std::string_view toString(Compression compression) {
   return compression == Compression::kZstd ? "zstd" : "";
 }
 
+void checkRecordingFolder(const std::string& path) {
+  if (const std::string why = missingFolderOf(path); !why.empty()) {
+    throw McapError("cannot record to " + path + ": " + why);
+  }
+}
+
 McapWriter::McapWriter(const std::string& path, McapWriterOptions options)
     : path_(path), options_(std::move(options)) {
+  checkRecordingFolder(path);
   fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd_ < 0) {
     throw McapError("cannot record to " + path + ": " + std::strerror(errno));

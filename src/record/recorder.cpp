@@ -34,6 +34,10 @@ double threadCpuSeconds() {
 
 }  // namespace
 
+const char* toString(WhenFull when_full) noexcept {
+  return when_full == WhenFull::kWait ? "wait" : "drop";
+}
+
 RecordLane::RecordLane(std::string name, std::size_t bytes) : name_(std::move(name)) {
   std::size_t size = 4096;
   while (size < bytes) {
@@ -57,9 +61,18 @@ void* RecordLane::reserve(std::uint16_t channel, std::int64_t log_time_ns,
   const std::size_t at = tail & mask_;
   const std::size_t to_end = capacity - at;
   const std::size_t total = need <= to_end ? need : to_end + need;
-  if (need > capacity / 2 || total > capacity - (tail - head_.load(std::memory_order_acquire))) {
-    dropped_.fetch_add(1, std::memory_order_relaxed);
+  if (need > capacity / 2) {
+    dropped_.fetch_add(1, std::memory_order_relaxed);  // no wait would make room for it
     return nullptr;
+  }
+  while (total > capacity - (tail - head_.load(std::memory_order_acquire))) {
+    if (waits_on_ == nullptr) {
+      dropped_.fetch_add(1, std::memory_order_relaxed);
+      return nullptr;
+    }
+    if (!waits_on_->waitForRoom(*this, total)) {
+      return nullptr;  // stopped while waiting: not recording
+    }
   }
   std::size_t write_at = at;
   if (need > to_end) {
@@ -152,6 +165,9 @@ std::uint16_t Recorder::addInternal(
 RecordLane& Recorder::addLane(std::string name, std::size_t bytes) {
   lanes_.push_back(std::make_unique<RecordLane>(std::move(name), bytes));
   lanes_.back()->accepting_ = &accepting_;
+  if (options_.when_full == WhenFull::kWait) {
+    lanes_.back()->waits_on_ = this;
+  }
   return *lanes_.back();
 }
 
@@ -180,6 +196,15 @@ void Recorder::failed(const std::string& error) {
   // anything appended now would follow it. A reader stops at the torn record.
   writer_->abandon();
   writer_.reset();
+}
+
+bool Recorder::waitForRoom(const RecordLane& lane, std::size_t bytes) {
+  std::unique_lock lock(wake_mutex_);
+  waiting_.fetch_add(1);
+  wake_.notify_all();  // a writer asleep for its period would leave the producer waiting
+  room_.wait(lock, [&] { return !accepting_.load() || lane.freeBytes() >= bytes; });
+  waiting_.fetch_sub(1);
+  return accepting_.load();
 }
 
 bool Recorder::drainLanes() {
@@ -223,6 +248,12 @@ bool Recorder::drainLanes() {
   if (writer_ != nullptr) {
     bytes_.store(writer_->bytesWritten(), std::memory_order_relaxed);
   }
+  if (waiting_.load() > 0) {
+    // Under the lock: a producer that found no room is then either still before its check (and
+    // sees the room) or already waiting (and is woken).
+    { const std::lock_guard lock(wake_mutex_); }
+    room_.notify_all();
+  }
   return count > 0;
 }
 
@@ -245,9 +276,10 @@ void Recorder::writerLoop() {
     }
     writer_cpu_s_.store(threadCpuSeconds() - start_cpu, std::memory_order_relaxed);
     if (!any) {
-      // Woken early by stop(): a long period must not delay it.
+      // Woken early by stop() or by a producer waiting for room: a long period must delay
+      // neither.
       std::unique_lock lock(wake_mutex_);
-      wake_.wait_for(lock, idle, [this] { return stopping_.load(); });
+      wake_.wait_for(lock, idle, [this] { return stopping_.load() || waiting_.load() > 0; });
     }
   }
   drainLanes();
@@ -265,6 +297,7 @@ void Recorder::stop() {
     stopping_.store(true);
   }
   wake_.notify_all();
+  room_.notify_all();  // a producer waiting for room records no more
   if (thread_.joinable()) {
     thread_.join();
   } else {
@@ -283,6 +316,7 @@ void Recorder::stop() {
   }
   counts["records_written"] = std::to_string(written_.load());
   counts["records_dropped"] = std::to_string(dropped);
+  counts["when_full"] = toString(options_.when_full);
   counts["writer_cpu_s"] = std::to_string(writer_cpu_s_.load());
   writer_->addMetadata("comply_recording", std::move(counts));
   try {

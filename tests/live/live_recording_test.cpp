@@ -177,6 +177,8 @@ TEST_P(LiveHostOn, RecordsEveryCycleCommandAndOutcome) {
   EXPECT_GE(channels.command_stamps.size(), received);
   EXPECT_EQ(channels.outcome_stamps.size(), channels.command_stamps.size());
   EXPECT_EQ(channels.recording.at("records_dropped"), "0");
+  // A live host's full lane drops (and counts): its control thread never waits for the disk.
+  EXPECT_EQ(channels.recording.at("when_full"), "drop");
   EXPECT_GT(channels.counts.at(prefix + "/diagnostics"), 0U);
   // `comply inspect` lists the same counts and the drops.
   const auto [inspect_code, inspect_text] = inspect(path);

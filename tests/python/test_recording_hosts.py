@@ -1,7 +1,8 @@
 """record= on comply.Sim and comply.Client, read back with comply.read_recording: the Sim's
-episodes (every cycle, the commands sent, one outcome each, the state the Sim returned), and what
-a client sent to and saw from a `comply run --sim` host. Usage: test_recording_hosts.py
-COMPLY_CLI SOURCE_DIR (the build's python/ on PYTHONPATH)."""
+episodes (every cycle, the commands sent, one outcome each, the state the Sim returned; the Sim
+waits for a busy disk rather than drop), and what a client sent to and saw from a `comply run
+--sim` host. A record= path in a missing folder is refused, and the folder not made. Usage:
+test_recording_hosts.py COMPLY_CLI SOURCE_DIR (the build's python/ on PYTHONPATH)."""
 
 import os
 import re
@@ -101,8 +102,24 @@ def check_sim_commands(rec, episodes):
             assert outcomes["message"][row] == info["message"], outcomes["message"][row]
 
 
+def expect_missing_folder(make, folder):
+    """make(path) with a path in the missing `folder` raises OSError naming it; nothing is made."""
+    try:
+        make(os.path.join(folder, "deeper", "run.mcap"))
+    except OSError as error:
+        missing = os.path.join(folder, "deeper")
+        assert f"the folder '{missing}' does not exist (create it first" in str(error), error
+    else:
+        raise AssertionError("a recording in a missing folder was accepted")
+    assert not os.path.exists(folder), folder
+
+
 def check_sim(source, folder):
-    path = os.path.join(folder, "runs", "sim.mcap")  # its folder is made
+    config = f"{source}/config/sim/cartesian_impedance.yaml"
+    expect_missing_folder(lambda path: comply.Sim(config, robot="fr3", record=path),
+                          os.path.join(folder, "missing"))
+    os.mkdir(os.path.join(folder, "runs"))
+    path = os.path.join(folder, "runs", "sim.mcap")
     sim = comply.Sim(f"{source}/config/sim/cartesian_impedance.yaml", robot="fr3",
                      steps_per_action=STEPS_PER_ACTION, record=path)
     episodes = [run_episode(sim) for _ in range(EPISODES)]
@@ -115,6 +132,8 @@ def check_sim(source, folder):
     assert stats["error"] == "" and stats["dropped"] == 0, stats
     assert stats["written"] == sum(rec.message_counts.values()), (stats, rec.message_counts)
     assert rec.metadata["comply_run"]["host"] == "comply.Sim"
+    # Offline: a full lane waits for the writer, so every cycle is in the file (the count below).
+    assert rec.metadata["comply_recording"]["when_full"] == "wait", rec.metadata
     check_sim_cycles(rec, episodes, config_stiffness(source))
     check_sim_commands(rec, episodes)
     assert comply.Sim(f"{source}/config/sim/cartesian_impedance.yaml").recording_stats() is None
@@ -126,6 +145,9 @@ def check_client(cli, source, folder):
 
     path = os.path.join(folder, "client.mcap")
     with running_host(cli, source, "pyrec") as (_, domain):
+        expect_missing_folder(
+            lambda path: comply.Client(name="pyrec", domain=domain, timeout=30.0, record=path),
+            os.path.join(folder, "missing"))
         client = comply.Client(name="pyrec", domain=domain, timeout=30.0, record=path)
         state = client.state()
         assert state is not None
@@ -144,6 +166,7 @@ def check_client(cli, source, folder):
     assert not rec.truncated and stats["error"] == "" and stats["dropped"] == 0, stats
     assert rec.metadata["comply_client"] == {"host": "pyrec", "domain": str(domain),
                                              "network": "loopback"}, rec.metadata
+    assert rec.metadata["comply_recording"]["when_full"] == "drop", rec.metadata
     commands = rec["/pyrec/cartesian_command"]
     sent_stamps = stamps(commands, "header.stamp")
     assert np.array_equal(commands.log_time, sent_stamps)  # logged when sent, at its stamp

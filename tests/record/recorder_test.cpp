@@ -1,7 +1,7 @@
 // The recorder: every pushed record reaches the file in order, across lane wrap-arounds; a full
 // lane drops whole records and counts them (in stats() and in the file); a push never allocates;
-// an unwritable path is refused at once; a file-size limit stops the recording with a named
-// error while the producer goes on pushing.
+// an unwritable path is refused at once, a missing folder named and not made; a file-size limit
+// stops the recording with a named error while the producer goes on pushing.
 
 #include "comply/record/recorder.hpp"
 
@@ -14,6 +14,7 @@
 #include <array>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include "allocation_counter.hpp"
@@ -220,6 +221,36 @@ TEST(Recorder, AnUnwritablePathIsRefusedAtOnce) {
     EXPECT_NE(std::string(error.what()).find("cannot record to /proc/"), std::string::npos)
         << error.what();
   }
+}
+
+TEST(Recorder, AMissingFolderIsNamedAndNotMade) {
+  const fs::path missing = scratch("missing");
+  const fs::path path = missing / "deeper" / "run.mcap";
+  try {
+    Recorder recorder({.path = path.string(), .mcap = {}});
+    FAIL() << "a recorder opened a file in a missing folder";
+  } catch (const McapError& error) {
+    const std::string text = error.what();
+    EXPECT_NE(text.find("cannot record to " + path.string() + ": the folder '" +
+                        (missing / "deeper").string() +
+                        "' does not exist (create it first: "
+                        "mkdir -p '" +
+                        (missing / "deeper").string() + "')"),
+              std::string::npos)
+        << text;
+  }
+  EXPECT_FALSE(fs::exists(missing));
+  // A file where its folder should be is named as such.
+  std::ofstream(missing.string()) << "a file";
+  try {
+    Recorder recorder({.path = (missing / "run.mcap").string(), .mcap = {}});
+    FAIL() << "a recorder opened a file under a file";
+  } catch (const McapError& error) {
+    EXPECT_NE(std::string(error.what()).find("'" + missing.string() + "' is not a folder"),
+              std::string::npos)
+        << error.what();
+  }
+  fs::remove(missing);
 }
 
 // In a child process, so the file-size limit binds only there.

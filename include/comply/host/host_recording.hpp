@@ -15,6 +15,10 @@
 // 1 KB) and, when it changed, of the command in force (CycleRecorder);
 // command() and request() by the thread that takes commands, outcome() and diagnostics() by the
 // one that publishes (these encode where they are called: they are off the control thread).
+//
+// A full lane (the disk busy, the writer behind) is the host's to decide
+// (HostRecordingOptions::when_full): `comply run` drops and counts, its control thread never
+// waits; `comply sim` and comply.Sim have no deadline and wait, so their recordings are whole.
 
 #include <cstdint>
 #include <cstring>
@@ -82,6 +86,16 @@ class SenderChannels {
 /// disk), and stays in the control core's L2 cache: a 16 MiB lane made every push miss it.
 inline constexpr std::size_t kControlLaneBytes = std::size_t{1} << 20;
 
+/// How a host records, besides where.
+struct HostRecordingOptions {
+  /// A full lane: record::WhenFull::kDrop for a host with a deadline (comply run),
+  /// record::WhenFull::kWait for one without (comply sim, comply.Sim). Every host names its own.
+  record::WhenFull when_full;
+  std::size_t control_lane_bytes = kControlLaneBytes;
+  /// The writer's sleep when it found nothing to write (record::RecorderOptions).
+  double writer_period_s = 0.005;
+};
+
 /// One cycle as the recording's control lane holds it.
 struct RecordedCycle {
   StateSample state;
@@ -100,8 +114,9 @@ class CycleRecorder {
                 std::uint16_t in_force_channel)
       : lane_(lane), cycle_channel_(cycle_channel), in_force_channel_(in_force_channel) {}
 
-  /// Wait-free, no allocation; a full lane drops the record (and a dropped command in force is
-  /// pushed again with the next cycle).
+  /// No allocation; wait-free with WhenFull::kDrop, where a full lane drops the record (and a
+  /// dropped command in force is pushed again with the next cycle); with WhenFull::kWait a full
+  /// lane waits for the writer.
   void push(const StateSample& state, const pipeline::BusOf<Command>& in_force, double compute_s,
             double start_lateness_s) noexcept {
     const std::int64_t time_ns = state.wall.nanoseconds();
@@ -123,17 +138,19 @@ class CycleRecorder {
 
 class HostRecording {
  public:
-  /// Creates `path` (throws record::McapError naming it) and starts the writer thread.
-  /// `metadata`: what the file says about the run besides the counts (robot, controller, ...).
+  /// Creates `path` (throws record::McapError naming it, or its missing folder: none is made)
+  /// and starts the writer thread. `metadata`: what the file says about the run besides the
+  /// counts (robot, controller, ...).
   HostRecording(const std::string& path,
                 std::shared_ptr<const pipeline::ResolvedController> resolved,
-                const std::string& name, record::StringMap metadata);
+                const std::string& name, record::StringMap metadata, HostRecordingOptions options);
   ~HostRecording();
   HostRecording(const HostRecording&) = delete;
   HostRecording& operator=(const HostRecording&) = delete;
 
   /// The control thread, after a cycle: `state` (filled for this cycle), the command the law
-  /// used and the cycle's timing. Wait-free, no allocation; a full lane drops the record.
+  /// used and the cycle's timing. No allocation; a full lane drops the record (wait-free) or
+  /// waits for room, by HostRecordingOptions::when_full.
   template <typename Command>
   void cycle(const StateSample& state, const pipeline::BusOf<Command>& in_force, double compute_s,
              double start_lateness_s) noexcept {

@@ -51,9 +51,16 @@ struct McapWriterOptions {
 
 using StringMap = std::map<std::string, std::string>;
 
+/// Throws McapError when the folder `path` would be created in does not exist ("cannot record
+/// to runs/today/a.mcap: the folder 'runs/today' does not exist (create it first: mkdir -p
+/// 'runs/today')"). Makes no folder: a mistyped path is an error, not a new tree of folders.
+/// Hosts call it before their run starts; McapWriter checks again when it creates the file.
+void checkRecordingFolder(const std::string& path);
+
 class McapWriter {
  public:
-  /// Creates (or truncates) `path` and writes the magic and the header; throws McapError.
+  /// Creates (or truncates) `path` and writes the magic and the header; throws McapError (its
+  /// folder missing: checkRecordingFolder()'s message).
   McapWriter(const std::string& path, McapWriterOptions options);
   /// Closes the file if close() was not called; errors are swallowed there (call close()).
   ~McapWriter();

@@ -11,9 +11,12 @@
 //   control.push(cycles, wall_ns, sample);  // in the cycle: wait-free, no allocation, no syscall
 //   recorder.stop();                        // drains, writes the counts, closes the file
 //
-// A lane that is full drops the whole record and counts it; the counts are in the file (metadata
-// record "comply_recording") and in stats(). An I/O error (unwritable path, disk full, file size
-// limit) stops the recording with the error in stats(); producers are never told and never wait.
+// What a push into a full lane does is the host's choice (RecorderOptions::when_full): a host
+// with a deadline (a live control thread) drops the whole record and counts it; a host without
+// one (a simulation) waits for the writer to drain room, and loses nothing. The counts and the
+// choice are in the file (metadata record "comply_recording") and in stats(). An I/O error
+// (unwritable path, disk full, file size limit) stops the recording with the error in stats();
+// producers are never told (the writer goes on draining, so none waits for it forever).
 
 #include <atomic>
 #include <condition_variable>
@@ -33,6 +36,18 @@
 
 namespace comply::record {
 
+class Recorder;
+
+/// What a push does when its lane has no room for the record.
+enum class WhenFull : std::uint8_t {
+  /// The record is dropped and counted: the producer never waits (a live control thread).
+  kDrop,
+  /// The producer waits until the writer has drained room, and no record is lost: for a
+  /// producer without a deadline (a simulation). A wait takes a lock: never on a real-time thread.
+  kWait,
+};
+[[nodiscard]] const char* toString(WhenFull when_full) noexcept;  ///< "drop" or "wait"
+
 /// One producer thread's ring of records (single producer, the writer thread consumes).
 class RecordLane {
  public:
@@ -41,8 +56,10 @@ class RecordLane {
   RecordLane& operator=(const RecordLane&) = delete;
 
   /// Producer thread only: `size` bytes as one record of `channel` at `log_time_ns` (wall clock).
-  /// Wait-free, never allocates, never makes a system call; false when the record was dropped
-  /// (the lane full: counted in dropped()) or the recorder is not recording.
+  /// Never allocates. WhenFull::kDrop: wait-free, no system call; false when the record was
+  /// dropped (the lane full: counted in dropped()). WhenFull::kWait: a full lane blocks until the
+  /// writer has drained room. False too when the recorder is not recording (or stops while the
+  /// push waits), and for a record larger than half the lane (counted in dropped()).
   bool push(std::uint16_t channel, std::int64_t log_time_ns, const void* data,
             std::size_t size) noexcept;
   template <typename T>
@@ -85,7 +102,8 @@ class RecordLane {
  private:
   friend class Recorder;
   static constexpr std::size_t kAlignment = 64;  ///< of every record's bytes in the lane
-  /// Room for a record of `size` bytes with its head written, or nullptr (a drop, counted).
+  /// Room for a record of `size` bytes with its head written, or nullptr (a drop, counted; or
+  /// not recording). Waits for room with WhenFull::kWait.
   void* reserve(std::uint16_t channel, std::int64_t log_time_ns, std::size_t size) noexcept;
   /// Publishes the record reserve() made room for.
   void commit() noexcept;
@@ -108,6 +126,7 @@ class RecordLane {
   std::uint64_t reserved_tail_ = 0;  // the producer's: the tail once the reserved record commits
   std::size_t last_size_ = 0;        // the producer's: bytes of the last record, head included
   std::atomic<bool>* accepting_ = nullptr;          // the recorder's flag
+  Recorder* waits_on_ = nullptr;                    // set with WhenFull::kWait
   alignas(64) std::atomic<std::uint64_t> head_{0};  // bytes consumed; written by the writer
   alignas(64) std::atomic<std::uint64_t> tail_{0};  // bytes produced; written by the producer
   std::atomic<std::uint64_t> pushed_{0};
@@ -130,11 +149,13 @@ struct RecorderOptions {
   McapWriterOptions mcap;
   double writer_period_s = 0.005;  ///< the writer sleeps this long when the lanes are empty
   double flush_period_s = 0.5;     ///< an open chunk is written at least this often (wall clock)
+  /// A live host drops (its control thread never waits); an offline one waits, and keeps all.
+  WhenFull when_full = WhenFull::kDrop;
 };
 
 struct RecorderStats {
   std::uint64_t written = 0;  ///< messages in the file
-  std::uint64_t dropped = 0;  ///< records a full lane refused
+  std::uint64_t dropped = 0;  ///< records a full lane refused (0 with WhenFull::kWait)
   std::uint64_t lost = 0;     ///< records pushed after an I/O error stopped the recording
   std::uint64_t bytes = 0;    ///< file size so far
   double writer_cpu_s = 0.0;  ///< CPU time of the writer thread
@@ -144,7 +165,8 @@ struct RecorderStats {
 
 class Recorder {
  public:
-  /// Creates the file (throws McapError: "cannot record to <path>: <reason>").
+  /// Creates the file (throws McapError: "cannot record to <path>: <reason>", its folder
+  /// missing included: no folder is made).
   explicit Recorder(RecorderOptions options);
   ~Recorder();
   Recorder(const Recorder&) = delete;
@@ -171,6 +193,10 @@ class Recorder {
   [[nodiscard]] const std::string& path() const noexcept { return path_; }
 
  private:
+  friend class RecordLane;
+  /// A producer of `lane` (WhenFull::kWait): wakes the writer and waits until the lane has
+  /// `bytes` free or the recording stops accepting; false then.
+  bool waitForRoom(const RecordLane& lane, std::size_t bytes);
   void writerLoop();
   bool drainLanes();
   void failed(const std::string& error);
@@ -194,8 +220,12 @@ class Recorder {
   std::atomic<double> writer_cpu_s_{0.0};
   std::atomic<bool> failed_{false};
   mutable std::mutex error_mutex_;  // the writer thread and stats(); never a producer
-  std::mutex wake_mutex_;           // the writer thread and stop(); never a producer
-  std::condition_variable wake_;
+  // The writer thread, stop() and a producer waiting for room (WhenFull::kWait); never a
+  // producer that drops.
+  std::mutex wake_mutex_;
+  std::condition_variable wake_;  // the writer's: stop(), or a producer waits for room
+  std::condition_variable room_;  // the waiting producers': the writer drained, or stop()
+  std::atomic<int> waiting_{0};   // producers in waitForRoom()
   std::string error_;
   std::vector<std::uint8_t> message_;  // the writer thread's scratch
   std::thread thread_;

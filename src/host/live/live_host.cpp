@@ -160,7 +160,9 @@ std::unique_ptr<HostRecording> openRecording(
       options.record_path, resolved, options.name,
       record::StringMap{{"host", "comply run"},
                         {"rate_hz", (std::ostringstream() << options.rate_hz).str()},
-                        {"hardware", backend.description}});
+                        {"hardware", backend.description}},
+      // The control thread never waits for the disk: a full lane drops, and counts.
+      HostRecordingOptions{.when_full = record::WhenFull::kDrop});
 }
 
 template <typename Command>
@@ -252,6 +254,9 @@ int runLiveHost(const LiveHostOptions& options, pipeline::WrapperConfig config,
                 const std::atomic<bool>& stop, std::ostream& out, std::ostream& err) {
   static std::once_flag registered;
   std::call_once(registered, registerBuiltinTransports);
+  if (!options.record_path.empty()) {
+    record::checkRecordingFolder(options.record_path);  // before the hardware is touched
+  }
   if (!config.robot_description) {
     pipeline::completeForRobot(config, std::make_shared<const model::RobotDescription>(
                                            model::loadRobotDescription(config.robot)));

@@ -8,6 +8,7 @@
 #include <memory>
 #include <sstream>
 
+#include "comply/core/output_folder.hpp"
 #include "comply/hardware/control_loop.hpp"
 #include "comply/host/host_recording.hpp"
 #include "comply/host/task_source.hpp"
@@ -320,9 +321,11 @@ SimResult runWith(const SimRunOptions& options,
   loop.setObserver(&recorder);
   std::unique_ptr<HostRecording> recording;
   if (!options.record_path.empty()) {
+    // Simulated time has no deadline: a busy disk slows the run instead of thinning the file.
     recording = std::make_unique<HostRecording>(
         options.record_path.string(), resolved, "comply",
-        record::StringMap{{"host", "comply sim"}, {"clock", "simulated"}});
+        record::StringMap{{"host", "comply sim"}, {"clock", "simulated"}},
+        HostRecordingOptions{.when_full = record::WhenFull::kWait});
     recorder.setRecording(recording.get(), resolved->robot.base_frame);
   }
   runGuarded(options, *resolved, recorder, loop, result);
@@ -349,15 +352,14 @@ SimResult runWith(const SimRunOptions& options,
 }  // namespace
 
 SimResult runSimulation(const SimRunOptions& options) {
+  // Both refused before anything runs, rather than at the end of a long run.
+  if (!options.record_path.empty()) {
+    record::checkRecordingFolder(options.record_path.string());
+  }
   const auto resolved =
       options.resolved ? options.resolved : pipeline::resolveController(options.config);
   if (!options.out_dir.empty()) {
-    std::error_code error;
-    std::filesystem::create_directories(options.out_dir, error);
-    if (error) {
-      throw std::runtime_error("cannot create the output folder '" + options.out_dir.string() +
-                               "': " + error.message());
-    }
+    makeOutputFolder(options.out_dir);  // its parent must exist
   }
   SimResult result = resolved->cartesian() ? runWith<CartesianCommand>(options, resolved)
                                            : runWith<JointCommand>(options, resolved);
