@@ -163,7 +163,9 @@ PressRun pressThroughTheLimit(PressRig setup, double drift_n = 0.0) {
   double settled_sum = 0.0;
   int settled = 0;
   int touch = -1;
-  for (int cycle = 0; cycle < 2500; ++cycle) {
+  int fault = -1;
+  // Until 2.5 s, or 0.5 s after a FAULT (the hold keeps the arm where it stopped).
+  for (int cycle = 0; cycle < 2500 && (fault < 0 || cycle < fault + 500); ++cycle) {
     CartesianCommand command = CartesianCommand::zero(rig.wrapper.dof());
     command.stamp_s = (cycle + 1) * experiments::kRigPeriodS;
     command.fields = CommandField::kPosition | CommandField::kTaskFrame;
@@ -190,7 +192,10 @@ PressRun pressThroughTheLimit(PressRig setup, double drift_n = 0.0) {
     if (touch >= 0 && cycle > touch + 300) {
       run.peak_n = std::max(run.peak_n, table_n);
     }
-    run.faulted = run.faulted || rig.wrapper.diagnostics().state == WrapperState::kFault;
+    if (fault < 0 && rig.wrapper.diagnostics().state == WrapperState::kFault) {
+      fault = cycle;
+      run.faulted = true;
+    }
     if (cycle >= 2200) {
       settled_sum += table_n;
       ++settled;
@@ -199,7 +204,7 @@ PressRun pressThroughTheLimit(PressRig setup, double drift_n = 0.0) {
         std::max(run.tcp_travel_m,
                  (rig.plant.tcpPose().translation() - Eigen::Vector3d(home.tcp_position)).norm());
   }
-  run.settled_n = settled_sum / settled;
+  run.settled_n = settled > 0 ? settled_sum / settled : 0.0;
   const pipeline::DiagnosticsSnapshot diagnostics = rig.wrapper.diagnostics();
   run.faulted = diagnostics.faults > 0;
   run.fault = diagnostics.last_fault;
