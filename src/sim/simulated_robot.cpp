@@ -180,6 +180,9 @@ void SimulatedRobot::setJointPositions(std::span<const double> position) {
         std::clamp(data_->qfrc_bias[dof_address_[i]], -effort_limit_[i], effort_limit_[i]);
     data_->qfrc_applied[dof_address_[i]] = applied_[i];
   }
+  // Held, not falling: the accelerations (and the wrist sensor's first reading, the tool's weight
+  // on the flange) are those of the arm at rest before the first step.
+  forward();
   link_torque_sensed_ = false;  // at rest again: the sensors read the drives' hold
 }
 

@@ -433,7 +433,11 @@ TEST(WrapperRealtime, EveryOutputModeNeitherAllocatesNorLocks) {
           realtimeLines("hold") +
           "  payload:\n    enabled: true\n    mass_kg: 1.5\n    com_m: [0.0, 0.0, 0.05]\n"
           "output:\n  mode: " +
-          mode + "\n  admittance:\n    added_mass_kg: [1.0, 2.0, 3.0]\n";
+          mode +
+          "\n  admittance:\n    added_mass_kg: [1.0, 2.0, 3.0]\n"
+          // The reading below carries no tool: the rest check (counted in its own test below) is
+          // given room.
+          "wrench_sensor:\n  rest_force_tolerance_n: 100.0\n  rest_torque_tolerance_n_m: 10.0\n";
       const auto run = [&](auto& wrapper) {
         const JointVector home = fr3Home();
         wrapper.activate(movingState(home, 0));
@@ -473,6 +477,49 @@ TEST(WrapperRealtime, EveryOutputModeNeitherAllocatesNorLocks) {
       }
     }
   }
+}
+
+// The wrist sensor's checks (sensor_check.hpp) in counted cycles: the rest check's FAULT with its
+// message, the cycles after a tare and a reset pass it, and the comparison with the momentum
+// observer up to its own FAULT.
+TEST(WrapperRealtime, TheWristSensorChecksNeitherAllocateNorLock) {
+  RealtimeProbe probe;
+  TorqueBuffer torque;
+  const auto cycles = [&](auto& wrapper, const JointState& state, int count) {
+    int faults = 0;
+    for (int cycle = 0; cycle < count; ++cycle) {
+      faults += probe.measure([&] { return wrapper.update(state, kPeriod, torque.span()); }) ==
+                CycleStatus::kFault;
+    }
+    return faults;
+  };
+  {
+    CartesianWrapper wrapper(fr3Config(kCartesianImpedancePlugin,
+                                       "compensation:\n  payload:\n    enabled: true\n"
+                                       "    mass_kg: 1.5\n    com_m: [0.0, 0.0, 0.05]\n"));
+    JointState state = restingAt(wrapper.controller(), fr3Home());
+    state.wrench_valid = true;  // zero: the declared tool is not on the sensor
+    wrapper.activate(state);
+    EXPECT_EQ(cycles(wrapper, state, 10), 10);
+    ASSERT_EQ(wrapper.tare(), "");  // uncounted: the intake's side
+    EXPECT_EQ(cycles(wrapper, state, 1), 1);
+    wrapper.reset();
+    EXPECT_EQ(cycles(wrapper, state, 100), 0);
+  }
+  {
+    CartesianWrapper wrapper(fr3Config(kCartesianImpedancePlugin,
+                                       "observer:\n  enabled: true\n  measured_torque: true\n"
+                                       "wrench_sensor:\n  observer_tolerance_n: 1.0\n"));
+    JointState state = restingAt(wrapper.controller(), fr3Home());
+    state.wrench_valid = true;
+    state.wrench[1] = 5.0;  // a bias the observer does not see
+    wrapper.activate(state);
+    EXPECT_GT(cycles(wrapper, state, 1000), 500);
+    EXPECT_NE(wrapper.diagnostics().last_fault.find("momentum observer"), std::string::npos)
+        << wrapper.diagnostics().last_fault;
+  }
+  EXPECT_EQ(probe.allocations, 0U);
+  EXPECT_EQ(probe.locks, 0U);
 }
 
 // ---- FAULT ------------------------------------------------------------------------------------

@@ -18,6 +18,8 @@
 //   commands     take every command the intake queued, merged by field mask; a timed chunk
 //                starts, and the running one writes its reference at this cycle's time
 //   watchdog     no command for command_timeout_s: hold (stop the motion) or re-anchor
+//   sensor       the wrist sensor's reading at rest after activation near zero, and in agreement
+//                with the momentum observer (sensor_check.*)    -> FAULT
 //   gains        ramps and the energy tank between the commanded gains and the law's (optional)
 //   force        force along the task axes a command selects, the contact-force limit
 //                (force_axes.hpp; Cartesian laws)
@@ -66,6 +68,7 @@
 #include "comply/pipeline/output_stage.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/pipeline/safe_hold.hpp"
+#include "comply/pipeline/sensor_check.hpp"
 #include "comply/pipeline/stability_guard.hpp"
 #include "comply/pipeline/torque_shaper.hpp"
 #include "comply/pipeline/wrist_sensor.hpp"
@@ -206,8 +209,9 @@ class Controller {
   bool takeReset() noexcept;
   bool dropWaitingChunk(std::uint64_t sequence) noexcept;
   void resumeAfterReset() noexcept;
-  void guardGains() noexcept;  // gains.cpp
-  void applyForce() noexcept;  // force.cpp
+  bool checkSensor() noexcept;  // sensor.cpp
+  void guardGains() noexcept;   // gains.cpp
+  void applyForce() noexcept;   // force.cpp
   [[nodiscard]] const CommandBus& guardedBus() const noexcept {
     return gains_.enabled() ? gains_.lawBus() : active_;
   }
@@ -246,6 +250,7 @@ class Controller {
   CommandId id_in_force_;       //   and which command it is
   ChunkPlayer chunks_;          //   the timed chunks
   CommandWatchdog watchdog_;    // watchdog
+  SensorCheck sensor_check_;    // sensor
   GainGuard gains_;             // gains
   ForceAxes force_;             // force
   CommandBus force_bus_;        //   the law's command when the force stage acts (Cartesian)

@@ -197,9 +197,19 @@
        "use the measured joint torque (torque-sensing arms) instead of the commanded one")
 
 // The wrist force/torque sensor's reading (WrenchSensorConfig; wrist_sensor.hpp).
-#define COMPLY_WRENCH_SENSOR_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET) \
-  NUMBER(filter_hz, "wrench_sensor.filter_hz", 0.0, kAtLeast, 0.0, 1e4,                         \
-         "Hz: first-order low-pass on the wrist sensor's reading (tool weight off); 0: off")
+#define COMPLY_WRENCH_SENSOR_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)  \
+  NUMBER(filter_hz, "wrench_sensor.filter_hz", 0.0, kAtLeast, 0.0, 1e4,                          \
+         "Hz: first-order low-pass on the wrist sensor's reading (tool weight off); 0: off")     \
+  NUMBER(rest_force_tolerance_n, "wrench_sensor.rest_force_tolerance_n", 2.0, kAbove, 0.0, 1e4,  \
+         "N the reading at rest may keep at activation (tool and tare off), where it moves the " \
+         "arm; above: FAULT")                                                                    \
+  NUMBER(rest_torque_tolerance_n_m, "wrench_sensor.rest_torque_tolerance_n_m", 0.2, kAbove, 0.0, \
+         1e3, "N m: the same, of its torque")                                                    \
+  NUMBER(rest_payload_fraction, "wrench_sensor.rest_payload_fraction", 0.1, kAtLeast, 0.0, 1.0,  \
+         "share of the declared tool's weight (and its moment) added to both tolerances")        \
+  NUMBER(observer_tolerance_n, "wrench_sensor.observer_tolerance_n", 0.0, kAtLeast, 0.0, 1e4,    \
+         "N the force may differ from the momentum observer's for 0.1 s (both running); 0: "     \
+         "not compared")
 
 // Force along task axes and the contact-force limit (ForceControlConfig; force_axes.hpp).
 #define COMPLY_FORCE_CONTROL_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET) \

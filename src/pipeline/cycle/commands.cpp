@@ -114,6 +114,7 @@ void Controller::resumeAfterReset() noexcept {
   publishInForce();
   guard_.reset();
   watchdog_.heard(time_s_);
+  sensor_check_.restart();  // a rest check that failed stays armed: this cycle checks again
   gains_.reset(active_, data_, state_, diagnostics_);
   force_.reset();
   force_active_ = false;

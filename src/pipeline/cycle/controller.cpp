@@ -37,6 +37,7 @@ Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
       active_(initialBus(*resolved_)),
       chunks_(resolved_->command_kind, dof_, parameters_.chunk_blend_time_s),
       watchdog_(parameters_.command_timeout_s),
+      sensor_check_(*resolved_),
       gains_(parameters_.gain_ramps, parameters_.passivity),
       force_bus_(emptyBus(resolved_->command_kind)),
       governor_(*resolved_, resolved_->cartesian()),
@@ -140,6 +141,7 @@ void Controller::resetStages() noexcept {
   wrist_.reset();     // its low-pass starts from the next reading; the tare stays
   guard_.reset();
   watchdog_.reset();
+  sensor_check_.reset();  // the first reading at rest is checked
   gains_.reset(active_, data_, state_, diagnostics_);
   force_.reset();
   force_active_ = false;

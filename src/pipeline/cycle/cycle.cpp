@@ -43,6 +43,9 @@ CycleStatus Controller::update(const JointState& state, double period_s,
     diagnostics_.state.store(WrapperState::kActive, std::memory_order_relaxed);
   }
   reset_pending_ = false;
+  if (!checkSensor()) {  // sensor.cpp; before anything the reading can move
+    return hold(torque);
+  }
   guardGains();     // gains.cpp
   applyForce();     // force.cpp
   if (!runLaw()) {  // law.cpp
