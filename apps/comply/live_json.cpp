@@ -34,7 +34,19 @@ nlohmann::json toJson(const transport::DiagnosticsMessage& d) {
 std::string outcomeLine(const transport::CommandOutcomeMessage& outcome) {
   char stamp[32];
   std::snprintf(stamp, sizeof(stamp), "%d.%09u", outcome.stamp.sec, outcome.stamp.nanosec);
-  if (outcome.outcome == transport::Outcome::kApplied) {
+  const bool applied = outcome.outcome == transport::Outcome::kApplied;
+  if (outcome.command_kind == transport::WireCommandKind::kRequest) {
+    // A request is carried out by the host, not by a cycle; one it could not carry out has no
+    // reason of the command rules, only why.
+    if (applied) {
+      return std::string("request carried out ") + stamp;
+    }
+    const std::string reason = outcome.reason == transport::Reason::kNone
+                                   ? std::string()
+                                   : std::string(toString(outcome.reason)) + ": ";
+    return std::string("request refused ") + stamp + ": " + reason + outcome.message;
+  }
+  if (applied) {
     return std::string("applied ") + stamp + " by cycle " + std::to_string(outcome.cycle);
   }
   return std::string("rejected ") + stamp + ": " + std::string(toString(outcome.reason)) + ": " +

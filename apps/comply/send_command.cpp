@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <thread>
 #include <type_traits>
+#include <utility>
 
 #include "comply/core/input_error.hpp"
 #include "comply/core/text_file.hpp"
@@ -88,9 +89,10 @@ transport::Stamp nextStamp(transport::Stamp& last) {
 /// reported commands as lost that had been applied.
 class OutcomeCollector {
  public:
+  /// `noun`: what was sent, as the count of those without an outcome names them.
   OutcomeCollector(transport::Reader<transport::DiagnosticsMessage>& diagnostics,
-                   const transport::Gid& sender)
-      : diagnostics_(diagnostics), sender_(sender) {}
+                   const transport::Gid& sender, std::string noun = "commands")
+      : diagnostics_(diagnostics), sender_(sender), noun_(std::move(noun)) {}
 
   void expect(std::int64_t stamp_ns) { sent_.emplace(stamp_ns, false); }
   /// Takes what has arrived; prints the outcomes of commands sent.
@@ -119,8 +121,8 @@ class OutcomeCollector {
       drain(out);
     }
     if (settled_ < sent_.size()) {
-      out << (sent_.size() - settled_) << " of " << sent_.size()
-          << " commands without an outcome\n";
+      out << (sent_.size() - settled_) << " of " << sent_.size() << " " << noun_
+          << " without an outcome\n";
     }
     return all_applied_ && settled_ == sent_.size();
   }
@@ -129,15 +131,17 @@ class OutcomeCollector {
  private:
   transport::Reader<transport::DiagnosticsMessage>& diagnostics_;
   transport::Gid sender_;
+  std::string noun_;
   std::map<std::int64_t, bool> sent_;
   std::vector<transport::Sample<transport::DiagnosticsMessage>> samples_;
   std::size_t settled_ = 0;
   bool all_applied_ = true;
 };
 
-/// Sends empty commands (no field group: the host accounts them and changes nothing) until one
-/// has an outcome: the host's reader has then discovered this writer, so no later command is
-/// dropped by discovery (a reader drops samples of a writer it does not know yet).
+/// Sends probes until one has an outcome: the host's reader has then discovered this writer, so
+/// no later message is dropped by discovery (a reader drops samples of a writer it does not know
+/// yet). A command's probe has no field group (the host accounts it and changes nothing); a
+/// request's is REQUEST_PROBE (nor does it take the command topics).
 template <typename Message>
 bool handshake(transport::Writer<Message>& writer,
                transport::Reader<transport::DiagnosticsMessage>& diagnostics, int dof,
@@ -146,8 +150,12 @@ bool handshake(transport::Writer<Message>& writer,
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   while (std::chrono::steady_clock::now() < deadline) {
     Message probe;
-    probe.command = decltype(probe.command)::zero(dof);
-    probe.command.fields = CommandField::kNone;
+    if constexpr (std::is_same_v<Message, transport::RequestMessage>) {
+      probe.request = transport::RequestType::kProbe;
+    } else {
+      probe.command = decltype(probe.command)::zero(dof);
+      probe.command.fields = CommandField::kNone;
+    }
     probe.header.stamp = nextStamp(last);
     writer.write(probe);
     const auto wait_until = std::chrono::steady_clock::now() + std::chrono::milliseconds(100);
@@ -267,22 +275,36 @@ int sendAll(Participant& participant, const SendOptions& options,
   return outcomes.finish(options.client.timeout_s, out) ? 0 : 1;
 }
 
+/// A request, once the host has answered a probe from the same writer; then its outcome: carried
+/// out (0), or refused with the reason or unanswered (1).
 int sendRequest(Participant& participant, const SendOptions& options, std::ostream& out) {
-  transport::Writer<transport::RequestMessage> writer(participant, options.client.name);
-  if (!writer.waitForMatch(1, options.client.timeout_s)) {
-    throw transport::TransportError("the host's request reader did not match");
-  }
-  transport::RequestMessage message;
-  message.header.stamp = transport::Stamp::now();
   const auto request = valueIn(transport::kRequestTypeNames, options.request);
   if (!request) {
     throw std::invalid_argument("unknown request '" + options.request + "'");
   }
+  transport::Writer<transport::RequestMessage> writer(participant, options.client.name);
+  transport::Reader<transport::DiagnosticsMessage> diagnostics(participant, options.client.name,
+                                                               transport::kKeepAll);
+  if (!writer.waitForMatch(1, options.client.timeout_s)) {
+    throw transport::TransportError("the host's request reader did not match");
+  }
+  diagnostics.waitForMatch(1, options.client.timeout_s);
+  transport::Stamp last;
+  if (!handshake(writer, diagnostics, 0, participant.gid(), last, options.client.timeout_s)) {
+    throw transport::TransportError("the host did not account a probe request");
+  }
+  transport::RequestMessage message;
+  message.header.stamp = nextStamp(last);
   message.request = *request;
+  OutcomeCollector outcomes(diagnostics, participant.gid(), "requests");
+  outcomes.expect(message.header.stamp.nanoseconds());
   writer.write(message);
   writer.flush(options.client.timeout_s);
   out << "sent request " << options.request << "\n";
-  return 0;
+  if (options.no_wait) {
+    return 0;
+  }
+  return outcomes.finish(options.client.timeout_s, out) ? 0 : 1;
 }
 
 }  // namespace

@@ -68,9 +68,17 @@ transport::ControllerStateMessage stateMessage(const StateSample& sample,
 transport::CommandOutcomeMessage outcomeMessage(const pipeline::CommandOutcome& outcome) {
   transport::CommandOutcomeMessage message;
   message.stamp = transport::Stamp::fromNanoseconds(outcome.stamp_ns);
-  message.command_kind = outcome.kind == pipeline::CommandKind::kCartesian
-                             ? transport::WireCommandKind::kCartesian
-                             : transport::WireCommandKind::kJoint;
+  switch (outcome.kind) {
+    case pipeline::CommandKind::kCartesian:
+      message.command_kind = transport::WireCommandKind::kCartesian;
+      break;
+    case pipeline::CommandKind::kJoint:
+      message.command_kind = transport::WireCommandKind::kJoint;
+      break;
+    case pipeline::CommandKind::kRequest:
+      message.command_kind = transport::WireCommandKind::kRequest;
+      break;
+  }
   message.outcome = outcome.applied ? transport::Outcome::kApplied : transport::Outcome::kRejected;
   message.reason = static_cast<transport::Reason>(outcome.reason);
   message.cycle = outcome.cycle;

@@ -38,7 +38,9 @@ MessageText commandOutcome() {
   MessageText message{"CommandOutcome",
                       "comply_msgs/CommandOutcome: what became of one command (an entry of "
                       "Diagnostics.outcomes).\nEvery command the host receives gets exactly one: "
-                      "applied by a control cycle, or rejected with\na reason.",
+                      "applied by a control cycle, or rejected with\na reason. So does every "
+                      "request (command_kind COMMAND_KIND_REQUEST): applied when the host\n"
+                      "carried it out, or rejected.",
                       {},
                       fieldTexts<CommandOutcomeMessage>()};
   addConstants(message.constants, "OUTCOME_", kOutcomeNames);
@@ -53,7 +55,8 @@ MessageText commandOutcome() {
 
 MessageText diagnostics() {
   return {"Diagnostics",
-          "comply_msgs/Diagnostics: the host's counters and the outcome of every command, on\n"
+          "comply_msgs/Diagnostics: the host's counters and the outcome of every command and "
+          "request, on\n"
           "/<name>/diagnostics (reliable, volatile, keep last 100), whenever outcomes are waiting "
           "(at most\nevery 10 ms) and once a second otherwise. Counters run from the host's "
           "start.",

@@ -53,7 +53,9 @@ constexpr CommandReason commandReason(RejectionReason reason) noexcept {
 }
 std::string_view toString(CommandReason reason);
 
-enum class CommandKind : std::uint8_t { kCartesian = 0, kJoint = 1 };
+/// What an outcome accounts for: a command of either kind, or an operator request (admitRequest,
+/// settleRequest). A controller takes Cartesian or joint commands.
+enum class CommandKind : std::uint8_t { kCartesian = 0, kJoint = 1, kRequest = 2 };
 
 /// Who sent a command, as every reader of the outcomes can tell: the sending participant's DDS
 /// GUID (the writer's GUID prefix with the participant's entity id 0x000001c1). All zero when the
@@ -156,6 +158,13 @@ class CommandGate {
   /// the holder is silent for publisher_timeout_s, or when it comes from the holder's own process.
   /// Else false with `why` set: another process may not stop the arm of the one commanding it.
   bool admitRequest(std::uint64_t participant, std::int64_t now_ns, std::string& why);
+  /// What became of a request (of kind kRequest, stamped `stamp_ns`, from `sender`): carried out
+  /// when `refusal` is empty, else refused for `reason` (kOtherPublisher when admitRequest()
+  /// refused it; kNone when the host could not carry it out, `refusal` saying why). Settled with
+  /// the commands' outcomes (takeOutcomes()), not counted among the commands; a request never
+  /// takes the command topics.
+  void settleRequest(std::int64_t stamp_ns, const SenderId& sender, CommandReason reason,
+                     std::string refusal);
   /// `publisher`'s writers went away: if it held the command topics, the next writer may take
   /// them at once (a clean exit need not wait out publisher_timeout_s). Returns the number of the
   /// last chunk accepted from it (0: none), which the host drops if it still waits for its start

@@ -80,13 +80,17 @@
   X(WireCommandKind, command_kind, command_kind, WireCommandKind::kCartesian, \
     "ControllerState.COMMAND_KIND_*: the topic it came on") \
   X(Outcome, outcome, outcome, Outcome::kApplied, "OUTCOME_*") \
-  X(Reason, reason, reason, Reason::kNone, "REASON_*; REASON_NONE when applied") \
+  X(Reason, reason, reason, Reason::kNone, \
+    "REASON_*; REASON_NONE when applied, or for a request the host could not carry out (the " \
+    "message says why)") \
   X(std::uint64_t, cycle, cycle, 0, "[-] index of the control cycle that took it (applied)") \
   X(std::uint64_t, sequence_number, sequence_number, 0, \
     "[-] the host's number for it, in the order it accepted commands (applied; " \
     "ControllerState.reference_sequence names the one in force)") \
   X(Stamp, received, received, {}, "host wall clock when the host's reader took it") \
-  X(Stamp, applied, applied, {}, "host wall clock at the end of that cycle (applied)") \
+  X(Stamp, applied, applied, {}, \
+    "host wall clock at the end of that cycle (applied; a request: when the host carried it " \
+    "out)") \
   X(std::string, message, message, {}, "why, naming the field (rejected)") \
   X(Gid, sender, sender, {}, \
     "the sending participant's DDS GUID (the command writer's GUID prefix, entity id " \
@@ -129,7 +133,7 @@
   X(std::string, recording, recording, {}, \
     "the file being recorded to, or why its recording stopped (\"\" when none)") \
   X(Outcomes, outcomes, outcomes, {}, \
-    "every command accounted since the previous message, in arrival order")
+    "every command and request accounted since the previous message, in arrival order")
 // clang-format on
 
 /// The members of a message struct from its table, and `visit(self, f)`, which calls

@@ -89,10 +89,13 @@ inline constexpr EnumNames<WrenchSource, 3> kWrenchSourceNames{
      {WrenchSource::kObserver, "observer"},
      {WrenchSource::kSensor, "sensor"}}};
 std::string_view toString(WrenchSource source);
-/// ControllerState.COMMAND_KIND_*.
-enum class WireCommandKind : std::uint8_t { kCartesian = 0, kJoint = 1 };
-inline constexpr EnumNames<WireCommandKind, 2> kWireCommandKindNames{
-    {{WireCommandKind::kCartesian, "cartesian"}, {WireCommandKind::kJoint, "joint"}}};
+/// ControllerState.COMMAND_KIND_*. kRequest: the request topic, which only an outcome names (a
+/// controller takes Cartesian or joint commands).
+enum class WireCommandKind : std::uint8_t { kCartesian = 0, kJoint = 1, kRequest = 2 };
+inline constexpr EnumNames<WireCommandKind, 3> kWireCommandKindNames{
+    {{WireCommandKind::kCartesian, "cartesian"},
+     {WireCommandKind::kJoint, "joint"},
+     {WireCommandKind::kRequest, "request"}}};
 std::string_view toString(WireCommandKind kind);
 
 /// The field types of the message tables (message_tables.hpp).
@@ -157,10 +160,19 @@ struct DiagnosticsMessage {
 
 /// Request.REQUEST_*.
 /// kTare: the wrist force/torque sensor's reading becomes its zero (pipeline::Wrapper::tare).
-enum class RequestType : std::uint8_t { kActivate = 1, kDeactivate = 2, kReset = 3, kTare = 4 };
+/// kProbe: nothing; its outcome tells a client the host has discovered its writers. It neither
+/// takes the command topics nor is refused by their publisher rule.
+enum class RequestType : std::uint8_t {
+  kProbe = 0,
+  kActivate = 1,
+  kDeactivate = 2,
+  kReset = 3,
+  kTare = 4
+};
 /// The names `comply send --request` takes.
-inline constexpr EnumNames<RequestType, 4> kRequestTypeNames{
-    {{RequestType::kActivate, "activate"},
+inline constexpr EnumNames<RequestType, 5> kRequestTypeNames{
+    {{RequestType::kProbe, "probe"},
+     {RequestType::kActivate, "activate"},
      {RequestType::kDeactivate, "deactivate"},
      {RequestType::kReset, "reset"},
      {RequestType::kTare, "tare"}}};

@@ -110,12 +110,29 @@ void Intake<Command>::handleRequest(const transport::Sample<transport::RequestMe
   if (recording_ != nullptr && sample.malformed.empty()) {
     recording_->received(sample.message, transport::Stamp::now());
   }
-  // The publisher rule holds for requests too: while one process commands the arm, another
-  // cannot deactivate or reset it. A refusal is the diagnostics' last rejection.
-  std::string why;
-  if (!gate_.admitRequest(sample.participant, monotonicNanoseconds(), why)) {
+  // Every request has an outcome, as every command has: its sender learns whether it was carried
+  // out or why not.
+  const auto settle = [&](pipeline::CommandReason reason, std::string refusal) {
+    gate_.settleRequest(sample.message.header.stamp.nanoseconds(), sample.sender, reason,
+                        std::move(refusal));
+  };
+  if (!sample.malformed.empty()) {
+    settle(pipeline::CommandReason::kNone, sample.malformed);
     return;
   }
+  if (sample.message.request == transport::RequestType::kProbe) {
+    // Nothing to do, and nothing to refuse: a client that only reads sends it too.
+    settle(pipeline::CommandReason::kNone, "");
+    return;
+  }
+  // The publisher rule holds for requests too: while one process commands the arm, another
+  // cannot deactivate or reset it. A refusal is also the diagnostics' last rejection.
+  std::string why;
+  if (!gate_.admitRequest(sample.participant, monotonicNanoseconds(), why)) {
+    settle(pipeline::CommandReason::kOtherPublisher, why);
+    return;
+  }
+  std::string refused;
   switch (sample.message.request) {
     case transport::RequestType::kActivate:
     case transport::RequestType::kDeactivate:
@@ -125,11 +142,15 @@ void Intake<Command>::handleRequest(const transport::Sample<transport::RequestMe
       wrapper_.reset();  // clears the stamp floor too
       break;
     case transport::RequestType::kTare:
-      if (const std::string refused = wrapper_.tare(); !refused.empty()) {
-        gate_.noteRefusal("tare: " + refused);
+      if (const std::string why_not = wrapper_.tare(); !why_not.empty()) {
+        refused = "tare: " + why_not;
+        gate_.noteRefusal(refused);
       }
       break;
+    case transport::RequestType::kProbe:
+      break;  // answered above
   }
+  settle(pipeline::CommandReason::kNone, refused);
 }
 
 template class Intake<CartesianCommand>;

@@ -136,6 +136,21 @@ bool CommandGate::admitRequest(std::uint64_t participant, std::int64_t now_ns, s
   return false;
 }
 
+void CommandGate::settleRequest(std::int64_t stamp_ns, const SenderId& sender, CommandReason reason,
+                                std::string refusal) {
+  CommandOutcome outcome;
+  outcome.stamp_ns = stamp_ns;
+  outcome.kind = CommandKind::kRequest;
+  outcome.sender = sender;
+  outcome.received_ns = wallClockNanoseconds();
+  outcome.applied = refusal.empty();
+  outcome.reason = outcome.applied ? CommandReason::kNone : reason;
+  outcome.applied_ns = outcome.applied ? outcome.received_ns : 0;
+  outcome.message = std::move(refusal);
+  const std::lock_guard<std::mutex> lock(mutex_);
+  settled_.push_back(std::move(outcome));
+}
+
 void CommandGate::noteRefusal(std::string why) {
   const std::lock_guard<std::mutex> lock(mutex_);
   counts_.last_rejection = std::move(why);
