@@ -15,6 +15,10 @@ truncated, info). frenet_frame() and darboux_frame() build task frames (x y z w)
                                   stiffness_translational=[3000, 3000, 500])
     print(client.outcome(stamp))
 
+A Client may be shared by threads (one reading the state, another sending); close(), or leaving
+a `with comply.Client(...) as client:` block, disconnects it and lets the host release its
+command topics at once. A Client that only reads never holds them.
+
 Both record to MCAP with record="path.mcap", in a folder that exists (close() finishes the file;
 recording_stats() gives its counts). Client(..., record=...) keeps what it sent (its commands and requests, at their
 stamps) and every state and diagnostics message it took. Sim(..., record=...) keeps every cycle,

@@ -30,11 +30,18 @@ constexpr const char* kClientDoc =
     "keystore (scripts/create-keystore.sh, SROS2's layout): the host must run with "
     "--security and a keystore of the same CA. A process's participants on one domain are all "
     "secure or all not.\n\n"
+    "Constructing it and reading state() and diagnostics() never takes the host's command "
+    "topics (its discovery probe is a request, REQUEST_PROBE): a dashboard locks no sender out. "
+    "The first command or chunk sent makes it the publisher; close() (or leaving a `with` "
+    "block) deletes its DDS participant, and the host lets another sender in at once.\n\n"
+    "Threads: every method may be called from any thread, also at once (a policy reading the "
+    "state on one thread and sending on another): commands from several threads leave in the "
+    "order of their stamps, and a state or outcome taken by one thread's call is seen by the "
+    "others'. Blocking calls release the GIL.\n\n"
     "record='path.mcap' records what the client sends (commands, requests and the discovery "
-    "probe, a command with no field group, logged at their stamps) and every state and "
-    "diagnostics message it takes (logged when taken) on /<name>/cartesian_command, "
-    "/<name>/joint_command, /<name>/cartesian_chunk, /<name>/joint_chunk, /<name>/request, "
-    "/<name>/state and /<name>/diagnostics; "
+    "probe, logged at their stamps) and every state and diagnostics message it takes (logged "
+    "when taken) on /<name>/cartesian_command, /<name>/joint_command, /<name>/cartesian_chunk, "
+    "/<name>/joint_chunk, /<name>/request, /<name>/state and /<name>/diagnostics; "
     "comply.read_recording() reads it. close() finishes the file (also on destruction). The "
     "file's folder must exist (OSError naming it otherwise). Should the disk fall behind, "
     "records are dropped and counted (recording_stats()), never the commands held up.";
@@ -53,6 +60,15 @@ constexpr const char* kSimDoc =
 
 constexpr const char* kCloseDoc =
     "Stop the recording and finish its file; idempotent (a no-op without record=)";
+constexpr const char* kClientCloseDoc =
+    "Disconnect: delete the client's DDS participant (its writers with it, so the host releases "
+    "the command topics at once, without waiting out command_timeout_s) and finish the "
+    "recording, if any. Idempotent; afterwards every call but recording_stats() raises "
+    "RuntimeError";
+// A request's stamp names its outcome: outcome(stamp) says whether the host carried it out or
+// refused it (other_publisher: another process holds the command topics).
+#define COMPLY_REQUEST_RETURNS \
+  "; returns its stamp [ns], whose outcome() says carried out or refused"
 constexpr const char* kStatsDoc =
     "The recording's counts: dict(written, dropped, bytes, writer_cpu_s, error), or None "
     "without record=";
@@ -95,14 +111,25 @@ void bindClient(py::module_& m) {
       .def("diagnostics", &Client::diagnostics, py::arg("timeout") = 1.0)
       .def("outcome", &Client::outcome, py::arg("stamp"), py::arg("timeout") = 1.0)
       .def("wait_until", &Client::waitUntil, py::arg("predicate"), py::arg("timeout") = 10.0)
-      .def("activate", [](Client& c) { c.request(comply::transport::RequestType::kActivate); })
-      .def("deactivate", [](Client& c) { c.request(comply::transport::RequestType::kDeactivate); })
-      .def("reset", [](Client& c) { c.request(comply::transport::RequestType::kReset); })
       .def(
-          "tare", [](Client& c) { c.request(comply::transport::RequestType::kTare); },
+          "activate",
+          [](Client& c) { return c.request(comply::transport::RequestType::kActivate); },
+          "Ask the host to activate" COMPLY_REQUEST_RETURNS)
+      .def(
+          "deactivate",
+          [](Client& c) { return c.request(comply::transport::RequestType::kDeactivate); },
+          "Ask the host to deactivate" COMPLY_REQUEST_RETURNS)
+      .def(
+          "reset", [](Client& c) { return c.request(comply::transport::RequestType::kReset); },
+          "Ask the host to reset (leave FAULT, clear the stamp floor)" COMPLY_REQUEST_RETURNS)
+      .def(
+          "tare", [](Client& c) { return c.request(comply::transport::RequestType::kTare); },
           "Take the wrist force/torque sensor's reading (less the declared tool's weight) as its "
-          "zero, from the host's next cycle")
-      .def("close", &Client::close, kCloseDoc)
+          "zero, from the host's next cycle" COMPLY_REQUEST_RETURNS)
+      .def("close", &Client::close, kClientCloseDoc)
+      .def(
+          "__enter__", [](Client& c) -> Client& { return c; }, py::return_value_policy::reference)
+      .def("__exit__", [](Client& c, const py::args& /*exception*/) { c.close(); })
       .def("recording_stats", &Client::recordingStats, kStatsDoc)
       .def_property_readonly("dof", &Client::dof)
       .def_property_readonly("cartesian", &Client::cartesian);

@@ -1,4 +1,5 @@
-// comply.Client (see py_client.hpp).
+// comply.Client (see py_client.hpp): connecting, sending and closing; py_client_receive.cpp takes
+// what the host sends back.
 
 #include "py_client.hpp"
 
@@ -12,9 +13,8 @@ namespace comply::python {
 namespace {
 
 using SteadyClock = std::chrono::steady_clock;
-constexpr std::size_t kOutcomesKept = 100000;
 // Round trips the clock estimate keeps: the one with the least delay of them gives the offset.
-constexpr std::size_t kClockSamples = 64;
+constexpr std::size_t kAwaitedRoundTrips = 64;
 // The writers keep every unacknowledged command: a write waits while the commands before it fill
 // the writer's history and fails when the host acknowledges none of them within the reliability's
 // 0.1 s blocking time.
@@ -24,101 +24,111 @@ constexpr const char* kRefused =
     "DDS refused the message: the host acknowledged none of the messages sent before it on this "
     "topic within 0.1 s (is comply run stopped or stalled?)";
 
-SteadyClock::time_point deadlineAfter(double seconds) {
-  return SteadyClock::now() +
-         std::chrono::duration_cast<SteadyClock::duration>(std::chrono::duration<double>(seconds));
+double secondsUntil(SteadyClock::time_point deadline) {
+  return std::chrono::duration<double>(deadline - SteadyClock::now()).count();
 }
 
-/// Every sample taken, once, at the wall clock when it was taken (a malformed one holds no
-/// message to record).
-template <typename Message>
-void recordTaken(ClientRecording& recording,
-                 const std::vector<transport::Sample<Message>>& samples) {
-  const transport::Stamp taken = transport::Stamp::now();
-  for (const transport::Sample<Message>& sample : samples) {
-    if (sample.malformed.empty()) {
-      recording.seen(sample.message, taken);
-    }
-  }
+transport::ParticipantOptions participantOptions(
+    int domain, const std::string& network, const std::optional<std::filesystem::path>& security) {
+  return {.domain_id = domain,
+          .network = network == "all" ? transport::Network::kAll : transport::Network::kLoopback,
+          .security = security.value_or(std::filesystem::path())};
 }
 
 }  // namespace
+
+Client::Link::Link(const transport::ParticipantOptions& options, const std::string& name)
+    : participant(options),
+      cartesian(participant, name, transport::kKeepAll),
+      joint(participant, name, transport::kKeepAll),
+      cartesian_chunk(participant, name, transport::kKeepAll),
+      joint_chunk(participant, name, transport::kKeepAll),
+      request(participant, name),
+      state(participant, name),
+      diagnostics(participant, name, 10000) {}
 
 Client::Client(const std::string& name, int domain, const std::string& network, double timeout_s,
                const std::optional<std::filesystem::path>& record,
                const std::optional<std::filesystem::path>& security)
     : name_(name),
-      participant_(
-          {.domain_id = domain,
-           .network = network == "all" ? transport::Network::kAll : transport::Network::kLoopback,
-           .security = security.value_or(std::filesystem::path())}),
-      sender_(participant_.gid()),
-      // A sender faster than the host waits for room instead of losing its oldest command.
-      cartesian_writer_(participant_, name, transport::kKeepAll),
-      joint_writer_(participant_, name, transport::kKeepAll),
-      cartesian_chunk_writer_(participant_, name, transport::kKeepAll),
-      joint_chunk_writer_(participant_, name, transport::kKeepAll),
-      request_writer_(participant_, name),
-      state_reader_(participant_, name),
-      diagnostics_reader_(participant_, name, 10000) {
+      link_(std::make_unique<Link>(participantOptions(domain, network, security), name)) {
+  sender_ = link_->participant.gid();
   if (record) {  // before the first state is taken: that one is recorded too
     recording_ = std::make_unique<ClientRecording>(*record, name, domain, network);
   }
-  const auto deadline = deadlineAfter(timeout_s);
+  const auto deadline =
+      SteadyClock::now() + std::chrono::duration_cast<SteadyClock::duration>(
+                               std::chrono::duration<double>(std::max(timeout_s, 0.0)));
+  bool found = false;
   {
     const py::gil_scoped_release release;
-    while (!state_ && SteadyClock::now() < deadline) {
-      poll(0.05);
-    }
+    found = receiveUntil([this] { return state_.has_value(); }, timeout_s, 0.05);
   }
-  if (!state_) {
+  if (!found) {
     throw py::value_error("no comply host named '" + name + "' on domain " +
                           std::to_string(domain) + " (is `comply run` up?)");
   }
+  // No other thread has the client yet.
   dof_ = static_cast<int>(state_->position.size());
   cartesian_ = state_->command_kind == transport::WireCommandKind::kCartesian;
-  handshake(std::chrono::duration<double>(deadline - SteadyClock::now()).count() + 1.0);
+  handshake(secondsUntil(deadline) + 1.0);
 }
 
 void Client::handshake(double timeout_s) {
   const py::gil_scoped_release release;
-  const auto deadline = deadlineAfter(timeout_s);
+  const auto deadline = SteadyClock::now() + std::chrono::duration_cast<SteadyClock::duration>(
+                                                 std::chrono::duration<double>(timeout_s));
   while (SteadyClock::now() < deadline) {
-    const transport::Stamp stamp = nextStamp();
-    if (cartesian_) {
-      transport::CartesianCommandMessage probe{{stamp, ""}, CartesianCommand::zero(dof_)};
-      probe.command.fields = CommandField::kNone;
-      write(cartesian_writer_, probe);
-    } else {
-      transport::JointCommandMessage probe{{stamp, ""}, JointCommand::zero(dof_)};
-      probe.command.fields = CommandField::kNone;
-      write(joint_writer_, probe);
+    transport::RequestMessage probe;
+    probe.request = transport::RequestType::kProbe;
+    {
+      const std::lock_guard<std::mutex> sending(sending_);
+      probe.header.stamp = nextStamp();
+      write(link().request, probe);
     }
-    const auto wait_until = deadlineAfter(0.1);
-    while (SteadyClock::now() < wait_until) {
-      poll(0.02);
-      if (outcomes_.count(stamp.nanoseconds()) > 0) {
-        return;
-      }
+    const std::int64_t stamp = probe.header.stamp.nanoseconds();
+    if (receiveUntil([&] { return outcomes_.count(stamp) > 0; }, 0.1, 0.02)) {
+      return;
     }
   }
-  throw std::runtime_error("the host '" + name_ + "' did not account a probe command");
+  throw std::runtime_error("the host '" + name_ +
+                           "' did not account a probe request (a host older than this client "
+                           "does not answer one)");
+}
+
+Client::Link& Client::link() const {
+  if (!link_) {
+    throw std::runtime_error("this comply.Client is closed");
+  }
+  return *link_;
 }
 
 template <typename Message>
 bool Client::write(transport::Writer<Message>& writer, const Message& message) {
-  if (!writer.write(message)) {
+  // Only this client's own commands time a round trip: another sender's stamps are on its clock.
+  // Awaited before the write: another thread may take the outcome before write() returns.
+  constexpr bool kTimed = !std::is_same_v<Message, transport::RequestMessage>;
+  const std::int64_t stamp = message.header.stamp.nanoseconds();
+  if constexpr (kTimed) {
+    const std::lock_guard<std::mutex> data(data_);
+    awaiting_.push_back(stamp);
+    if (awaiting_.size() > kAwaitedRoundTrips) {
+      awaiting_.pop_front();
+    }
+  }
+  const bool written = writer.write(message);
+  const std::lock_guard<std::mutex> data(data_);
+  if (!written) {
+    if constexpr (kTimed) {
+      const auto it = std::find(awaiting_.begin(), awaiting_.end(), stamp);
+      if (it != awaiting_.end()) {
+        awaiting_.erase(it);
+      }
+    }
     return false;
   }
   if (recording_) {
     recording_->sent(message);
-  }
-  if constexpr (!std::is_same_v<Message, transport::RequestMessage>) {
-    // Only this client's own commands time a round trip: another sender's stamps are on its clock.
-    awaiting_.push_back(message.header.stamp.nanoseconds());
-    if (awaiting_.size() > kClockSamples) {
-      awaiting_.pop_front();
-    }
   }
   return true;
 }
@@ -142,199 +152,91 @@ transport::Stamp Client::nextStamp() {
   return now;
 }
 
-bool Client::poll(double wait_s) {
-  std::vector<transport::Sample<transport::ControllerStateMessage>> states;
-  std::vector<transport::Sample<transport::DiagnosticsMessage>> diagnostics;
-  if (wait_s > 0.0) {
-    state_reader_.wait(wait_s);
-  }
-  state_reader_.take(states);
-  diagnostics_reader_.take(diagnostics, nullptr, 100000);
-  if (recording_) {
-    recordTaken(*recording_, states);
-    recordTaken(*recording_, diagnostics);
-  }
-  if (!states.empty()) {
-    state_ = std::move(states.back().message);
-    state_received_ = SteadyClock::now();
-  }
-  const std::int64_t taken_ns = transport::Stamp::now().nanoseconds();
-  for (auto& sample : diagnostics) {
-    const std::int64_t published_ns = sample.message.header.stamp.nanoseconds();
-    for (const auto& outcome : sample.message.outcomes) {
-      if (!transport::sentBy(outcome, sender_)) {
-        continue;  // another sender's command, which may carry one of this client's stamps
-      }
-      const std::int64_t stamp = outcome.stamp.nanoseconds();
-      if (outcomes_.emplace(stamp, outcome).second) {
-        outcome_order_.push_back(stamp);
-        // Sent at `stamp` here, received by the host, published by it, taken here.
-        const std::int64_t received_ns = outcome.received.nanoseconds();
-        const auto mine = std::find(awaiting_.begin(), awaiting_.end(), stamp);
-        if (mine != awaiting_.end() && received_ns > 0) {
-          awaiting_.erase(mine);
-          clock_samples_.push_back({(taken_ns - stamp) - (published_ns - received_ns),
-                                    ((received_ns - stamp) + (published_ns - taken_ns)) / 2});
-          if (clock_samples_.size() > kClockSamples) {
-            clock_samples_.pop_front();
-          }
-        }
-      }
-    }
-    sample.message.outcomes.clear();
-    diagnostics_ = std::move(sample.message);
-  }
-  while (outcome_order_.size() > kOutcomesKept) {
-    outcomes_.erase(outcome_order_.front());
-    outcome_order_.pop_front();
-  }
-  return !states.empty();
-}
-
 template <typename Command>
 Command Client::referenceInForce() const {
   // Keywords a group leaves out keep the reference in force (position alone keeps orientation).
+  const std::lock_guard<std::mutex> data(data_);
   return state_ ? transport::referenceInForce<Command>(*state_, dof_) : Command::zero(dof_);
 }
 
 template <typename Message>
-std::int64_t Client::sendCommand(transport::Writer<Message>& writer, const py::kwargs& kwargs) {
+std::int64_t Client::sendCommand(transport::Writer<Message> Link::*writer,
+                                 const py::kwargs& kwargs) {
   using Command = decltype(Message::command);
+  // Read with the GIL; stamped and written under sending_ without it, so that the commands of two
+  // threads leave in the order of their stamps.
   Message message{{{}, ""}, commandFromKwargs<Command>(kwargs, dof_, referenceInForce<Command>())};
+  const py::gil_scoped_release release;
+  const std::lock_guard<std::mutex> sending(sending_);
   message.header.stamp = nextStamp();
-  publish(writer, message);
+  publish(link().*writer, message);
   return message.header.stamp.nanoseconds();
 }
 
 std::int64_t Client::sendCartesian(const py::kwargs& kwargs) {
-  return sendCommand(cartesian_writer_, kwargs);
+  return sendCommand(&Link::cartesian, kwargs);
 }
 
 std::int64_t Client::sendJoint(const py::kwargs& kwargs) {
-  return sendCommand(joint_writer_, kwargs);
+  return sendCommand(&Link::joint, kwargs);
 }
 
 std::int64_t Client::sendChunk(const py::object& chunk, const py::object& relative_to) {
-  const transport::Stamp stamp = nextStamp();
   double origin_s = 0.0;
-  if (relative_to.is_none()) {
-    const std::optional<ClockSample> best = bestClockSample();
-    origin_s = stampSeconds(stamp.nanoseconds() + (best ? best->offset_ns : 0));
+  if (relative_to.is_none()) {  // the host's clock now, as estimated
+    std::int64_t offset_ns = 0;
+    {
+      const std::lock_guard<std::mutex> data(data_);
+      const std::optional<ClockSample> best = bestClockSample();
+      offset_ns = best ? best->offset_ns : 0;
+    }
+    origin_s = stampSeconds(transport::Stamp::now().nanoseconds() + offset_ns);
   } else {
     origin_s = relative_to.cast<double>();
   }
-  const auto send = [&](auto& writer, auto message) {
+  const auto send = [&](auto writer, auto message) {  // writer: a member of Link
     using Command = decltype(message.chunk.waypoints[0].command);
-    message.header.stamp = stamp;
     message.chunk =
         chunkFromPython(chunk, dof_, origin_s, std::optional(referenceInForce<Command>()));
-    message.chunk.stamp_s = stamp.seconds();
-    publish(writer, message);
+    const py::gil_scoped_release release;
+    const std::lock_guard<std::mutex> sending(sending_);
+    message.header.stamp = nextStamp();
+    message.chunk.stamp_s = message.header.stamp.seconds();
+    publish(link().*writer, message);
+    return message.header.stamp.nanoseconds();
   };
-  if (cartesian_) {
-    send(cartesian_chunk_writer_, transport::CartesianChunkMessage{});
-  } else {
-    send(joint_chunk_writer_, transport::JointChunkMessage{});
-  }
-  return stamp.nanoseconds();
+  return cartesian_ ? send(&Link::cartesian_chunk, transport::CartesianChunkMessage{})
+                    : send(&Link::joint_chunk, transport::JointChunkMessage{});
 }
 
-std::optional<Client::ClockSample> Client::bestClockSample() const {
-  if (clock_samples_.empty()) {
-    return std::nullopt;
-  }
-  return *std::min_element(
-      clock_samples_.begin(), clock_samples_.end(),
-      [](const ClockSample& a, const ClockSample& b) { return a.delay_ns < b.delay_ns; });
-}
-
-py::object Client::clock() const {
-  const std::optional<ClockSample> best = bestClockSample();
-  if (!best) {
-    return py::none();
-  }
-  py::dict d;
-  d["offset"] = 1e-9 * static_cast<double>(best->offset_ns);
-  d["round_trip"] = 1e-9 * static_cast<double>(best->delay_ns);
-  d["one_way_latency"] = 0.5e-9 * static_cast<double>(best->delay_ns);
-  d["samples"] = clock_samples_.size();
-  return d;
-}
-
-void Client::request(transport::RequestType request) {
+std::int64_t Client::request(transport::RequestType request) {
+  const py::gil_scoped_release release;
+  const std::lock_guard<std::mutex> sending(sending_);
   transport::RequestMessage message;
   message.header.stamp = nextStamp();
   message.request = request;
-  publish(request_writer_, message);
+  publish(link().request, message);
+  return message.header.stamp.nanoseconds();
 }
 
 void Client::close() {
+  const py::gil_scoped_release release;
+  {
+    // No thread sends or reads meanwhile; the participant's writers go with it, which the host
+    // sees as the sender gone.
+    const std::scoped_lock both(sending_, reading_);
+    link_.reset();
+  }
+  const std::lock_guard<std::mutex> data(data_);
+  closed_ = true;
   if (recording_) {
     recording_->stop();
   }
+  arrived_.notify_all();
 }
 
 py::object Client::recordingStats() const {
   return recording_ ? py::object(toDict(recording_->stats())) : py::object(py::none());
-}
-
-py::object Client::state(double timeout_s) {
-  bool fresh = false;
-  {
-    const py::gil_scoped_release release;
-    const auto deadline = deadlineAfter(timeout_s);
-    fresh = poll(0.0);
-    while (!fresh && SteadyClock::now() < deadline) {
-      fresh = poll(0.01);
-    }
-  }
-  // A host that stopped publishing, or whose writer is gone (a state it sent before it stopped
-  // can still be waiting here), is gone or stalled: no state, rather than its last one.
-  if (!fresh || !state_ || state_reader_.matched() == 0) {
-    return py::none();
-  }
-  py::dict state = toDict(*state_);
-  state["age"] = std::chrono::duration<double>(SteadyClock::now() - state_received_).count();
-  return state;
-}
-
-py::object Client::diagnostics(double timeout_s) {
-  {
-    const py::gil_scoped_release release;
-    const auto deadline = deadlineAfter(timeout_s);
-    do {
-      poll(0.01);
-    } while (!diagnostics_ && SteadyClock::now() < deadline);
-  }
-  return diagnostics_ ? py::object(toDict(*diagnostics_)) : py::object(py::none());
-}
-
-py::object Client::outcome(std::int64_t stamp, double timeout_s) {
-  {
-    const py::gil_scoped_release release;
-    const auto deadline = deadlineAfter(timeout_s);
-    poll(0.0);
-    while (outcomes_.count(stamp) == 0 && SteadyClock::now() < deadline) {
-      poll(0.01);
-    }
-  }
-  const auto found = outcomes_.find(stamp);
-  return found != outcomes_.end() ? py::object(toDict(found->second)) : py::object(py::none());
-}
-
-bool Client::waitUntil(const py::function& predicate, double timeout_s) {
-  const auto deadline = deadlineAfter(timeout_s);
-  while (SteadyClock::now() < deadline) {
-    bool fresh = false;
-    {
-      const py::gil_scoped_release release;
-      fresh = poll(0.05);
-    }
-    if (fresh && predicate(toDict(*state_)).cast<bool>()) {
-      return true;
-    }
-  }
-  return false;
 }
 
 }  // namespace comply::python

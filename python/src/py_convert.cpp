@@ -171,13 +171,17 @@ py::dict toDict(const transport::ControllerStateMessage& s) {
 py::dict toDict(const transport::CommandOutcomeMessage& o) {
   py::dict d;
   d["stamp"] = o.stamp.nanoseconds();
+  // "cartesian" or "joint" (a command), "request" (applied: the host carried it out).
+  d["command_kind"] = std::string(toString(o.command_kind));
   d["applied"] = o.outcome == transport::Outcome::kApplied;
   d["reason"] = std::string(toString(o.reason));
   d["cycle"] = o.cycle;
   d["message"] = o.message;
   d["sender"] = transport::toHex(o.sender);
-  // Send (the stamp) to the end of the cycle that applied it; one clock only on one machine.
-  d["latency_s"] = o.outcome == transport::Outcome::kApplied
+  // Send (the stamp) to the end of the cycle that applied it; one clock only on one machine. A
+  // request is carried out by the host, not a cycle.
+  const bool by_cycle = o.command_kind != transport::WireCommandKind::kRequest;
+  d["latency_s"] = o.outcome == transport::Outcome::kApplied && by_cycle
                        ? py::object(py::float_(1e-9 * static_cast<double>(o.applied.nanoseconds() -
                                                                           o.stamp.nanoseconds())))
                        : py::object(py::none());

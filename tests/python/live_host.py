@@ -8,10 +8,11 @@ import subprocess
 
 
 @contextlib.contextmanager
-def running_host(cli, source, name, extra=()):
-    """Yields (host process, domain); `extra`: more arguments for `comply run`."""
+def running_host(cli, source, name, extra=(), config=None):
+    """Yields (host process, domain); `extra`: more arguments for `comply run`; `config`: the
+    controller file instead of config/sim/cartesian_impedance.yaml."""
     domain = random.randint(1, 230)
-    config = f"{source}/config/sim/cartesian_impedance.yaml"
+    config = config or f"{source}/config/sim/cartesian_impedance.yaml"
     host = subprocess.Popen([cli, "run", "--config", config, "--robot", "fr3", "--sim",
                              "--domain", str(domain), "--name", name, *extra],
                             start_new_session=True)  # a group of its own: it and its transport

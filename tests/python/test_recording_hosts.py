@@ -156,7 +156,8 @@ def check_client(cli, source, folder):
             position = state["tcp_position"] + [0.0, 0.0, -0.001 * k]
             stamp = client.send_cartesian(position=position, orientation=state["tcp_orientation"])
             sent[stamp] = position
-        client.activate()  # already active: accounted, harmless
+        activated = client.activate()  # already active: carried out, harmless
+        assert client.outcome(activated, timeout=5.0)["applied"]
         assert all(client.outcome(stamp, timeout=5.0)["applied"] for stamp in sent)
         assert client.state() is not None and client.diagnostics() is not None
         client.close()
@@ -170,13 +171,15 @@ def check_client(cli, source, folder):
     commands = rec["/pyrec/cartesian_command"]
     sent_stamps = stamps(commands, "header.stamp")
     assert np.array_equal(commands.log_time, sent_stamps)  # logged when sent, at its stamp
-    # Besides the commands sent: the discovery probes (no field group) sent before them.
-    probes = commands["fields"] == 0
-    assert probes.any() and sent_stamps[probes].max() < min(sent), commands["fields"]
-    assert sent_stamps[~probes].tolist() == list(sent)
-    assert np.array_equal(commands["position"][~probes], list(sent.values()))
+    assert sent_stamps.tolist() == list(sent)
+    assert np.array_equal(commands["position"], list(sent.values()))
+    # Besides the request sent: the discovery probes (REQUEST_PROBE) sent before the commands.
     requests = rec["/pyrec/request"]
-    assert requests["request"].tolist() == [constant(requests, "REQUEST_ACTIVATE")]
+    request_stamps = stamps(requests, "header.stamp")
+    probes = requests["request"] == constant(requests, "REQUEST_PROBE")
+    assert probes.any() and request_stamps[probes].max() < min(sent), requests["request"]
+    assert requests["request"][~probes].tolist() == [constant(requests, "REQUEST_ACTIVATE")]
+    assert request_stamps[~probes].tolist() == [activated]
     states, diagnostics = rec["/pyrec/state"], rec["/pyrec/diagnostics"]
     assert states.count >= 1 and diagnostics.count >= 1, rec.message_counts
     assert states["position"].shape == (states.count, 7)
