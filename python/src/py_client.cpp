@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <type_traits>
 
 #include "py_convert.hpp"
@@ -27,6 +30,31 @@ constexpr const char* kRefused =
 SteadyClock::time_point deadlineAfter(double seconds) {
   return SteadyClock::now() +
          std::chrono::duration_cast<SteadyClock::duration>(std::chrono::duration<double>(seconds));
+}
+
+/// A waypoint time a stamp cannot carry (not finite, or outside int32 seconds) would reach the
+/// host as another time: refused before it is sent, in the words the host uses for a chunk it
+/// refuses, naming the time as given. `host_now_s`: the host's clock as estimated [s].
+template <typename Command>
+void checkWaypointTimes(const Chunk<Command>& chunk, double host_now_s) {
+  for (std::size_t k = 0; k < chunk.waypoints.size(); ++k) {
+    const double time_s = chunk.waypoints[k].time_s;
+    const std::string waypoint = "waypoint " + std::to_string(k);
+    if (!std::isfinite(time_s)) {
+      throw py::value_error("non_finite: " + waypoint + " time is not finite");
+    }
+    if (!transport::Stamp::holds(time_s)) {
+      const double away_s = time_s - host_now_s;
+      std::ostringstream text;
+      text << std::fixed << std::setprecision(3) << "invalid_chunk: " << waypoint << " at "
+           << time_s << " s is due " << std::defaultfloat << std::setprecision(6)
+           << std::abs(away_s) << (away_s > 0.0 ? " s ahead of" : " s before")
+           << " the host's clock (estimated at " << std::fixed << std::setprecision(3) << host_now_s
+           << " s), outside what a stamp holds (int32 seconds: 1901-12-13 to "
+           << "2038-01-19)";
+      throw py::value_error(text.str());
+    }
+  }
 }
 
 /// Every sample taken, once, at the wall clock when it was taken (a malformed one holds no
@@ -183,6 +211,7 @@ bool Client::poll(double wait_s) {
     }
     sample.message.outcomes.clear();
     diagnostics_ = std::move(sample.message);
+    diagnostics_received_ = SteadyClock::now();
   }
   while (outcome_order_.size() > kOutcomesKept) {
     outcomes_.erase(outcome_order_.front());
@@ -216,18 +245,15 @@ std::int64_t Client::sendJoint(const py::kwargs& kwargs) {
 
 std::int64_t Client::sendChunk(const py::object& chunk, const py::object& relative_to) {
   const transport::Stamp stamp = nextStamp();
-  double origin_s = 0.0;
-  if (relative_to.is_none()) {
-    const std::optional<ClockSample> best = bestClockSample();
-    origin_s = stampSeconds(stamp.nanoseconds() + (best ? best->offset_ns : 0));
-  } else {
-    origin_s = relative_to.cast<double>();
-  }
+  const std::optional<ClockSample> best = bestClockSample();
+  const double host_now_s = stampSeconds(stamp.nanoseconds() + (best ? best->offset_ns : 0));
+  const double origin_s = relative_to.is_none() ? host_now_s : relative_to.cast<double>();
   const auto send = [&](auto& writer, auto message) {
     using Command = decltype(message.chunk.waypoints[0].command);
     message.header.stamp = stamp;
     message.chunk =
         chunkFromPython(chunk, dof_, origin_s, std::optional(referenceInForce<Command>()));
+    checkWaypointTimes(message.chunk, host_now_s);
     message.chunk.stamp_s = stamp.seconds();
     publish(writer, message);
   };
@@ -299,14 +325,23 @@ py::object Client::state(double timeout_s) {
 }
 
 py::object Client::diagnostics(double timeout_s) {
+  const auto fresh_since = deadlineAfter(-std::max(timeout_s, 0.0));
+  const auto fresh = [&] { return diagnostics_ && diagnostics_received_ >= fresh_since; };
   {
     const py::gil_scoped_release release;
     const auto deadline = deadlineAfter(timeout_s);
     do {
       poll(0.01);
-    } while (!diagnostics_ && SteadyClock::now() < deadline);
+    } while (!fresh() && SteadyClock::now() < deadline);
   }
-  return diagnostics_ ? py::object(toDict(*diagnostics_)) : py::object(py::none());
+  // As state(): a host that stopped publishing, or whose writer is gone, is gone or stalled.
+  if (!fresh() || diagnostics_reader_.matched() == 0) {
+    return py::none();
+  }
+  py::dict diagnostics = toDict(*diagnostics_);
+  diagnostics["age"] =
+      std::chrono::duration<double>(SteadyClock::now() - diagnostics_received_).count();
+  return diagnostics;
 }
 
 py::object Client::outcome(std::int64_t stamp, double timeout_s) {
