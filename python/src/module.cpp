@@ -103,12 +103,17 @@ void bindClient(py::module_& m) {
            "Send a timed chunk: a list of dicts, each with a 'time' [s] and schema keywords (a "
            "key given once holds for the waypoints after it). Times are relative to "
            "`relative_to` [s on the host's clock, e.g. the 'stamp' of the state the policy "
-           "acted on], or to the host's clock now as clock() estimates it. Returns the stamp [ns]")
+           "acted on], or to the host's clock now as clock() estimates it. Returns the stamp [ns]. "
+           "ValueError for a time a stamp cannot carry (not finite, or past 2038); the host "
+           "answers every other refusal in outcome()")
       .def("clock", &Client::clock,
            "The host's clock from the commands' round trips: dict(offset [s, host minus this "
            "machine], one_way_latency [s], round_trip [s], samples), or None")
       .def("state", &Client::state, py::arg("timeout") = 1.0)
-      .def("diagnostics", &Client::diagnostics, py::arg("timeout") = 1.0)
+      .def("diagnostics", &Client::diagnostics, py::arg("timeout") = 1.0,
+           "The newest diagnostics (dict, with 'age' [s]) if taken within the last `timeout` s "
+           "or within the next; None when none came (the host is gone or stalled: it publishes "
+           "them at least once a second) or their writer is gone")
       .def("outcome", &Client::outcome, py::arg("stamp"), py::arg("timeout") = 1.0)
       .def("wait_until", &Client::waitUntil, py::arg("predicate"), py::arg("timeout") = 10.0)
       .def(

@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <type_traits>
 
 #include "py_convert.hpp"
@@ -26,6 +29,31 @@ constexpr const char* kRefused =
 
 double secondsUntil(SteadyClock::time_point deadline) {
   return std::chrono::duration<double>(deadline - SteadyClock::now()).count();
+}
+
+/// A waypoint time a stamp cannot carry (not finite, or outside int32 seconds) would reach the
+/// host as another time: refused before it is sent, in the words the host uses for a chunk it
+/// refuses, naming the time as given. `host_now_s`: the host's clock as estimated [s].
+template <typename Command>
+void checkWaypointTimes(const Chunk<Command>& chunk, double host_now_s) {
+  for (std::size_t k = 0; k < chunk.waypoints.size(); ++k) {
+    const double time_s = chunk.waypoints[k].time_s;
+    const std::string waypoint = "waypoint " + std::to_string(k);
+    if (!std::isfinite(time_s)) {
+      throw py::value_error("non_finite: " + waypoint + " time is not finite");
+    }
+    if (!transport::Stamp::holds(time_s)) {
+      const double away_s = time_s - host_now_s;
+      std::ostringstream text;
+      text << std::fixed << std::setprecision(3) << "invalid_chunk: " << waypoint << " at "
+           << time_s << " s is due " << std::defaultfloat << std::setprecision(6)
+           << std::abs(away_s) << (away_s > 0.0 ? " s ahead of" : " s before")
+           << " the host's clock (estimated at " << std::fixed << std::setprecision(3) << host_now_s
+           << " s), outside what a stamp holds (int32 seconds: 1901-12-13 to "
+           << "2038-01-19)";
+      throw py::value_error(text.str());
+    }
+  }
 }
 
 transport::ParticipantOptions participantOptions(
@@ -182,22 +210,19 @@ std::int64_t Client::sendJoint(const py::kwargs& kwargs) {
 }
 
 std::int64_t Client::sendChunk(const py::object& chunk, const py::object& relative_to) {
-  double origin_s = 0.0;
-  if (relative_to.is_none()) {  // the host's clock now, as estimated
-    std::int64_t offset_ns = 0;
-    {
-      const std::lock_guard<std::mutex> data(data_);
-      const std::optional<ClockSample> best = bestClockSample();
-      offset_ns = best ? best->offset_ns : 0;
-    }
-    origin_s = stampSeconds(transport::Stamp::now().nanoseconds() + offset_ns);
-  } else {
-    origin_s = relative_to.cast<double>();
+  std::int64_t offset_ns = 0;
+  {
+    const std::lock_guard<std::mutex> data(data_);
+    const std::optional<ClockSample> best = bestClockSample();
+    offset_ns = best ? best->offset_ns : 0;
   }
+  const double host_now_s = stampSeconds(transport::Stamp::now().nanoseconds() + offset_ns);
+  const double origin_s = relative_to.is_none() ? host_now_s : relative_to.cast<double>();
   const auto send = [&](auto writer, auto message) {  // writer: a member of Link
     using Command = decltype(message.chunk.waypoints[0].command);
     message.chunk =
         chunkFromPython(chunk, dof_, origin_s, std::optional(referenceInForce<Command>()));
+    checkWaypointTimes(message.chunk, host_now_s);
     const py::gil_scoped_release release;
     const std::lock_guard<std::mutex> sending(sending_);
     message.header.stamp = nextStamp();

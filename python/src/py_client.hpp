@@ -70,7 +70,10 @@ class Client {
   /// A new state (dict of numpy arrays, with "age": seconds since it arrived), waiting up to
   /// `timeout_s` for one; None when none arrived: the host is gone or stalled.
   py::object state(double timeout_s);
-  /// The newest diagnostics (dict), or None.
+  /// The newest diagnostics (dict, with "age": seconds since it arrived), when it arrived within
+  /// the last `timeout_s` or arrives within `timeout_s` (the host publishes them at least once a
+  /// second); None otherwise, or when their writer is gone: as state(), a stopped or stalled
+  /// host is never shown by its last message.
   py::object diagnostics(double timeout_s);
   /// What became of the command or request sent with `stamp`: a dict, or None after `timeout_s`.
   py::object outcome(std::int64_t stamp, double timeout_s);
@@ -162,6 +165,7 @@ class Client {
   bool host_matched_ = false;       // a host's state writer matched at the last poll
   std::chrono::steady_clock::time_point state_received_;
   std::optional<transport::DiagnosticsMessage> diagnostics_;
+  std::chrono::steady_clock::time_point diagnostics_received_;
   std::map<std::int64_t, transport::CommandOutcomeMessage> outcomes_;
   std::deque<std::int64_t> outcome_order_;  // oldest first, to bound outcomes_
   std::deque<ClockSample> clock_samples_;   // the newest kClockSamples

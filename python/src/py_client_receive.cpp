@@ -94,6 +94,7 @@ void Client::pollLocked(double wait_s) {
       takeOutcomes(sample.message, taken_ns);
       sample.message.outcomes.clear();
       diagnostics_ = std::move(sample.message);
+      diagnostics_received_ = SteadyClock::now();
     }
     while (outcome_order_.size() > kOutcomesKept) {
       outcomes_.erase(outcome_order_.front());
@@ -186,15 +187,27 @@ py::object Client::state(double timeout_s) {
 }
 
 py::object Client::diagnostics(double timeout_s) {
+  const auto fresh_since = SteadyClock::now() - durationOf(std::max(timeout_s, 0.0));
   std::optional<transport::DiagnosticsMessage> newest;
+  double age_s = 0.0;
   {
     const py::gil_scoped_release release;
-    if (receiveUntil([this] { return diagnostics_.has_value(); }, timeout_s, 0.01)) {
+    const auto fresh = [&] { return diagnostics_ && diagnostics_received_ >= fresh_since; };
+    if (receiveUntil(fresh, timeout_s, 0.01)) {
       const std::lock_guard<std::mutex> data(data_);
-      newest = diagnostics_;
+      // As state(): a host that stopped publishing, or whose writer is gone, is gone or stalled.
+      if (host_matched_) {
+        newest = diagnostics_;
+        age_s = std::chrono::duration<double>(SteadyClock::now() - diagnostics_received_).count();
+      }
     }
   }
-  return newest ? py::object(toDict(*newest)) : py::object(py::none());
+  if (!newest) {
+    return py::none();
+  }
+  py::dict diagnostics = toDict(*newest);
+  diagnostics["age"] = age_s;
+  return diagnostics;
 }
 
 py::object Client::outcome(std::int64_t stamp, double timeout_s) {

@@ -65,9 +65,24 @@ transport::ControllerStateMessage stateMessage(const StateSample& sample,
   return message;
 }
 
+namespace {
+
+/// The stamp as its sender wrote it: one whose nanosec is out of range (refused as invalid_stamp)
+/// keeps its two fields, or the sender, matching them, would never find the outcome.
+transport::Stamp sentStamp(const pipeline::CommandOutcome& outcome) {
+  constexpr std::int64_t kSecond = 1'000'000'000;
+  if (outcome.nanosec < kSecond) {
+    return transport::Stamp::fromNanoseconds(outcome.stamp_ns);
+  }
+  return {static_cast<std::int32_t>((outcome.stamp_ns - outcome.nanosec) / kSecond),
+          outcome.nanosec};
+}
+
+}  // namespace
+
 transport::CommandOutcomeMessage outcomeMessage(const pipeline::CommandOutcome& outcome) {
   transport::CommandOutcomeMessage message;
-  message.stamp = transport::Stamp::fromNanoseconds(outcome.stamp_ns);
+  message.stamp = sentStamp(outcome);
   switch (outcome.kind) {
     case pipeline::CommandKind::kCartesian:
       message.command_kind = transport::WireCommandKind::kCartesian;

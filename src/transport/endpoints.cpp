@@ -178,7 +178,7 @@ std::size_t Reader<Message>::take(std::vector<Sample<Message>>& out,
       const Sender sender = senderOf(infos[i].publication_handle);
       sample.participant = sender.participant;
       sample.sender = sender.gid;
-      wire::Wire<Message>::read(samples[i], sample.message, sample.malformed);
+      wire::Wire<Message>::read(samples[i], sample);
       ++taken;
     }
     dds_return_loan(entity_, samples, count);

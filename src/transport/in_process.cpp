@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cstring>
 #include <map>
+#include <string>
+#include <utility>
 
 namespace comply::transport {
 namespace {
@@ -49,12 +51,19 @@ std::shared_ptr<InProcessBus> InProcessBus::named(const std::string& name) {
 template <typename Message>
 void InProcessBus::post(std::vector<Sample<Message>>& list, const Message& message,
                         std::uint64_t publisher) {
+  // One publisher is one process here: its number is its participant and names it as a sender.
+  Gid sender{};
+  std::memcpy(sender.data(), &publisher, sizeof(publisher));
+  Sample<Message> sample{message, publisher, {}, publisher, sender};
+  // Held to the bound a DDS reader holds it to: refused, the text not kept.
+  if (std::string refusal = frameIdRefusal("header.frame_id", message.header.frame_id.size());
+      !refusal.empty()) {
+    sample.message.header.frame_id = std::string();
+    sample.refuse(Reason::kTooLarge, std::move(refusal));
+  }
   {
     const std::lock_guard<std::mutex> lock(mutex_);
-    // One publisher is one process here: its number is its participant and names it as a sender.
-    Gid sender{};
-    std::memcpy(sender.data(), &publisher, sizeof(publisher));
-    list.push_back({message, publisher, {}, publisher, sender});
+    list.push_back(std::move(sample));
   }
   host_wakeup_.notify_all();
 }

@@ -2,6 +2,8 @@
 
 #include "comply/transport/messages.hpp"
 
+#include <algorithm>
+
 #include "comply/core/clock.hpp"
 
 namespace comply::transport {
@@ -11,8 +13,33 @@ Stamp Stamp::now() noexcept {
 }
 
 Stamp Stamp::fromNanoseconds(std::int64_t nanoseconds) noexcept {
-  const StampParts parts = splitStamp(nanoseconds);
+  const StampParts parts = splitStamp(std::clamp(nanoseconds, kMinNanoseconds, kMaxNanoseconds));
   return {static_cast<std::int32_t>(parts.sec), static_cast<std::uint32_t>(parts.nanosec)};
+}
+
+namespace {
+constexpr double kSecondsEnd = 2147483648.0;  // 2^31: int32 seconds end just before it
+}  // namespace
+
+Stamp Stamp::fromSeconds(double seconds) noexcept {
+  // Clamped before it becomes an integer: llround of a double past int64's range has no value.
+  if (!(seconds >= -kSecondsEnd)) {  // NaN too
+    return fromNanoseconds(kMinNanoseconds);
+  }
+  return seconds < kSecondsEnd ? fromNanoseconds(stampNanoseconds(seconds))
+                               : fromNanoseconds(kMaxNanoseconds);
+}
+
+bool Stamp::holds(double seconds) noexcept {
+  return seconds >= -kSecondsEnd && seconds < kSecondsEnd;  // false for NaN
+}
+
+std::string frameIdRefusal(std::string_view field, std::size_t bytes) {
+  if (bytes <= static_cast<std::size_t>(kMaxFrameIdBytes)) {
+    return {};
+  }
+  return std::string(field) + " is " + std::to_string(bytes) + " bytes, more than " +
+         std::to_string(kMaxFrameIdBytes) + " (a frame's name)";
 }
 
 std::int64_t Stamp::nanoseconds() const noexcept {

@@ -5,7 +5,9 @@
 #include <dds/dds.h>
 
 #include <cstdint>
+#include <cstring>
 #include <string>
+#include <string_view>
 
 #include "comply/transport/messages.hpp"
 
@@ -16,24 +18,25 @@ struct Wire {
   static const dds_topic_descriptor_t* descriptor();
   /// dds_write of `message` on `writer`; the DDS return code.
   static dds_return_t write(dds_entity_t writer, const Message& message);
-  /// `sample` (the generated C struct) into `message`; `malformed` names what did not fit.
-  static void read(const void* sample, Message& message, std::string& malformed);
+  /// `in` (the generated C struct) into `sample.message`; what no message may carry refuses the
+  /// sample (Sample::refuse), its header.stamp still read.
+  static void read(const void* in, Sample<Message>& sample);
 };
 
 /// Wire<Message>: the idlc descriptor DESCRIPTOR, write() through WRITE(writer, message), read()
-/// through READ(sample, message, malformed).
-#define COMPLY_WIRE_MESSAGE(Message, DESCRIPTOR, WRITE, READ)                              \
-  template <>                                                                              \
-  const dds_topic_descriptor_t* Wire<Message>::descriptor() {                              \
-    return &DESCRIPTOR;                                                                    \
-  }                                                                                        \
-  template <>                                                                              \
-  dds_return_t Wire<Message>::write(dds_entity_t writer, const Message& message) {         \
-    return WRITE(writer, message);                                                         \
-  }                                                                                        \
-  template <>                                                                              \
-  void Wire<Message>::read(const void* sample, Message& message, std::string& malformed) { \
-    READ(sample, message, malformed);                                                      \
+/// through READ(in, sample).
+#define COMPLY_WIRE_MESSAGE(Message, DESCRIPTOR, WRITE, READ)                      \
+  template <>                                                                      \
+  const dds_topic_descriptor_t* Wire<Message>::descriptor() {                      \
+    return &DESCRIPTOR;                                                            \
+  }                                                                                \
+  template <>                                                                      \
+  dds_return_t Wire<Message>::write(dds_entity_t writer, const Message& message) { \
+    return WRITE(writer, message);                                                 \
+  }                                                                                \
+  template <>                                                                      \
+  void Wire<Message>::read(const void* in, Sample<Message>& sample) {              \
+    READ(in, sample);                                                              \
   }
 
 // Helpers shared by the conversion files.
@@ -44,6 +47,23 @@ template <typename WireTime>
 void toWireStamp(const Stamp& stamp, WireTime& out) {
   out.sec = stamp.sec;
   out.nanosec = stamp.nanosec;
+}
+
+/// A std_msgs/Header from the wire: its stamp as sent, its frame_id only within
+/// kMaxFrameIdBytes (a longer one refuses `sample` as too_large and is not copied: a sender's
+/// megabytes go no further than the deserialised sample DDS lends). `where` names a waypoint.
+template <typename WireHeader, typename Message>
+Header headerFromWire(const WireHeader& in, Sample<Message>& sample, std::string_view where = "") {
+  Header header;
+  header.stamp = fromWireStamp(in.stamp.sec, in.stamp.nanosec);
+  const std::size_t bytes = in.frame_id != nullptr ? std::strlen(in.frame_id) : 0;
+  if (const std::string refusal = frameIdRefusal(std::string(where) + "header.frame_id", bytes);
+      !refusal.empty()) {
+    sample.refuse(Reason::kTooLarge, refusal);
+  } else if (bytes > 0) {
+    header.frame_id.assign(in.frame_id, bytes);
+  }
+  return header;
 }
 
 }  // namespace comply::transport::wire

@@ -40,6 +40,9 @@ void toWire(const Value& value, WireValue& out) {
 
 template <FieldKind K, typename WireValue, typename Value>
 void fromWire(const WireValue& in, Value& value, const char* name, std::string& malformed) {
+  if (!malformed.empty()) {
+    return;  // the first thing wrong is the one named
+  }
   if constexpr (K == FieldKind::kQuaternion) {
     value = schema::fromXyzw(in);
   } else if constexpr (K == FieldKind::kBlock3) {
@@ -67,12 +70,6 @@ void headerToWire(const Header& header, WireHeader& out) {
   out.frame_id = const_cast<char*>(header.frame_id.c_str());
 }
 
-template <typename WireHeader>
-void headerFromWire(const WireHeader& in, Header& header) {
-  header.stamp = fromWireStamp(in.stamp.sec, in.stamp.nanosec);
-  header.frame_id = in.frame_id != nullptr ? in.frame_id : "";
-}
-
 #define COMPLY_WIRE_TO(name, group, kind, type, unit, constraint, role, init, doc) \
   toWire<FieldKind::kind>(command.name, out.name);
 #define COMPLY_WIRE_FROM(name, group, kind, type, unit, constraint, role, init, doc) \
@@ -90,6 +87,7 @@ void commandToWire(const JointCommand& command, WireJoint& out) {
   out.fields = static_cast<std::uint32_t>(command.fields);
   COMPLY_JOINT_COMMAND_FIELDS(COMPLY_WIRE_TO)
 }
+/// `malformed`: the first field no command may hold (a joint vector longer than kMaxDof).
 void commandFromWire(const WireCartesian& in, CartesianCommand& command, std::string& malformed) {
   command.fields = static_cast<CommandField>(in.fields);
   COMPLY_CARTESIAN_COMMAND_FIELDS(COMPLY_WIRE_FROM)
@@ -108,11 +106,16 @@ dds_return_t writeCommand(dds_entity_t writer, const Message& message) {
 }
 
 template <typename WireCommand, typename Message>
-void readCommand(const void* sample, Message& message, std::string& malformed) {
-  const auto& in = *static_cast<const WireCommand*>(sample);
-  headerFromWire(in.header, message.header);
+void readCommand(const void* wire, Sample<Message>& sample) {
+  const auto& in = *static_cast<const WireCommand*>(wire);
+  Message& message = sample.message;
+  message.header = headerFromWire(in.header, sample);
   message.command.stamp_s = message.header.stamp.seconds();
+  std::string malformed;
   commandFromWire(in, message.command, malformed);
+  if (!malformed.empty()) {
+    sample.refuse(Reason::kDofMismatch, malformed);
+  }
 }
 
 /// A chunk: each waypoint a command whose header.stamp is its time.
@@ -135,26 +138,34 @@ dds_return_t writeChunk(dds_entity_t writer, const Message& message) {
   return dds_write(writer, &out);
 }
 
+/// The wire does not bound the waypoints (a bound there made DDS drop a longer chunk unanswered):
+/// a chunk of more than kMaxChunkWaypoints is refused here, as validation words it, none of its
+/// waypoints read.
 template <typename WireChunk, typename Message>
-void readChunk(const void* sample, Message& message, std::string& malformed) {
-  const auto& in = *static_cast<const WireChunk*>(sample);
-  headerFromWire(in.header, message.header);
+void readChunk(const void* wire, Sample<Message>& sample) {
+  const auto& in = *static_cast<const WireChunk*>(wire);
+  Message& message = sample.message;
+  message.header = headerFromWire(in.header, sample);
   message.chunk.stamp_s = message.header.stamp.seconds();
   message.chunk.fields = static_cast<CommandField>(in.fields);
   if (in.waypoints._length > static_cast<std::uint32_t>(kMaxChunkWaypoints)) {
-    malformed = "waypoints has " + std::to_string(in.waypoints._length) +
-                " entries, more than a chunk may carry (" + std::to_string(kMaxChunkWaypoints) +
-                ")";
+    sample.refuse(Reason::kInvalidChunk,
+                  "a chunk carries 1 to " + std::to_string(kMaxChunkWaypoints) +
+                      " waypoints, this one " + std::to_string(in.waypoints._length));
     return;
   }
   message.chunk.waypoints.resize(in.waypoints._length);
   for (std::uint32_t k = 0; k < in.waypoints._length; ++k) {
-    const auto& wire = in.waypoints._buffer[k];
+    const auto& waypoint_in = in.waypoints._buffer[k];
     auto& waypoint = message.chunk.waypoints[k];
-    waypoint.time_s = fromWireStamp(wire.header.stamp.sec, wire.header.stamp.nanosec).seconds();
-    commandFromWire(wire, waypoint.command, malformed);
+    const std::string where = "waypoint " + std::to_string(k) + ": ";
+    waypoint.time_s = headerFromWire(waypoint_in.header, sample, where).stamp.seconds();
+    std::string malformed;
+    commandFromWire(waypoint_in, waypoint.command, malformed);
     if (!malformed.empty()) {
-      malformed = "waypoint " + std::to_string(k) + ": " + malformed;
+      sample.refuse(Reason::kDofMismatch, where + malformed);
+    }
+    if (!sample.malformed.empty()) {
       return;
     }
   }

@@ -9,19 +9,20 @@
 namespace comply::transport::wire {
 
 /// A message of the tables, member by member: write and read through the table TABLE.
-#define COMPLY_WIRE_TABLE_MESSAGE(Message, Dds, TABLE)                                   \
-  namespace {                                                                            \
-  dds_return_t write##Message(dds_entity_t writer, const Message& message) {             \
-    Dds out{};                                                                           \
-    Borrowed borrowed;                                                                   \
-    TABLE(COMPLY_TO_WIRE)                                                                \
-    return dds_write(writer, &out);                                                      \
-  }                                                                                      \
-  void read##Message(const void* sample, Message& message, std::string& /*malformed*/) { \
-    const auto& in = *static_cast<const Dds*>(sample);                                   \
-    TABLE(COMPLY_FROM_WIRE)                                                              \
-  }                                                                                      \
-  }                                                                                      \
+#define COMPLY_WIRE_TABLE_MESSAGE(Message, Dds, TABLE)                       \
+  namespace {                                                                \
+  dds_return_t write##Message(dds_entity_t writer, const Message& message) { \
+    Dds out{};                                                               \
+    Borrowed borrowed;                                                       \
+    TABLE(COMPLY_TO_WIRE)                                                    \
+    return dds_write(writer, &out);                                          \
+  }                                                                          \
+  void read##Message(const void* wire, Sample<Message>& sample) {            \
+    const auto& in = *static_cast<const Dds*>(wire);                         \
+    Message& message = sample.message;                                       \
+    TABLE(COMPLY_FROM_WIRE)                                                  \
+  }                                                                          \
+  }                                                                          \
   COMPLY_WIRE_MESSAGE(Message, Dds##_desc, write##Message, read##Message)
 
 COMPLY_WIRE_TABLE_MESSAGE(ControllerStateMessage, comply_msgs_msg_dds__ControllerState_,
@@ -44,13 +45,14 @@ dds_return_t Wire<RequestMessage>::write(dds_entity_t writer, const RequestMessa
 }
 
 template <>
-void Wire<RequestMessage>::read(const void* sample, RequestMessage& message,
-                                std::string& malformed) {
-  const auto& in = *static_cast<const comply_msgs_msg_dds__Request_*>(sample);
-  fromWire(in.header, message.header);
+void Wire<RequestMessage>::read(const void* wire, Sample<RequestMessage>& sample) {
+  const auto& in = *static_cast<const comply_msgs_msg_dds__Request_*>(wire);
+  RequestMessage& message = sample.message;
+  message.header = headerFromWire(in.header, sample);
   message.request = static_cast<RequestType>(in.request);
   if (nameIn(kRequestTypeNames, message.request, "").empty()) {
-    malformed = "request " + std::to_string(in.request) + " is none of REQUEST_*";
+    sample.refuse(Reason::kOutOfRange,
+                  "request " + std::to_string(in.request) + " is none of REQUEST_*");
   }
 }
 

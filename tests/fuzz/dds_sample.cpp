@@ -95,11 +95,10 @@ void decode(const std::uint8_t* data, std::size_t size) {
   dds_istream_init(&stream, body_size, bytes, xcdr_version);
   dds_stream_read(&stream, static_cast<char*>(sample), descriptor->m_ops);
 
-  Message message;
-  std::string malformed;
-  comply::transport::wire::Wire<Message>::read(sample, message, malformed);
-  if (malformed.empty()) {
-    check(message);
+  comply::transport::Sample<Message> read;
+  comply::transport::wire::Wire<Message>::read(sample, read);
+  if (read.malformed.empty()) {
+    check(read.message);
   }
   dds_stream_free_sample(sample, descriptor->m_ops);
   std::free(sample);

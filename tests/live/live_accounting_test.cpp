@@ -215,6 +215,11 @@ TEST_F(LiveHostInProcess, AStampFromTheFutureOrOutOfRangeIsRefusedAndLocksNoOneO
   EXPECT_EQ(toString(future.reason), "future_stamp") << future.message;
   const transport::CommandOutcomeMessage& invalid = outcomesOf(out_of_range).front();
   EXPECT_EQ(toString(invalid.reason), "invalid_stamp") << invalid.message;
+  // Answered under the stamp as sent, not its sum's normal form, which its sender never sent.
+  EXPECT_EQ(invalid.stamp.sec, out_of_range.sec);
+  EXPECT_EQ(invalid.stamp.nanosec, out_of_range.nanosec);
+  EXPECT_NE(invalid.message.find("nanosec 4000000000 is out of range"), std::string::npos)
+      << invalid.message;
   const transport::CommandOutcomeMessage& applied = outcomesOf(next).front();
   EXPECT_EQ(applied.outcome, transport::Outcome::kApplied) << applied.message;
 }

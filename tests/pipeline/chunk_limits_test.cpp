@@ -152,8 +152,13 @@ TEST(ChunkLimits, AChunkStartingFurtherAheadThanTheStampLeadIsRefused) {
   for (const double ahead_s : {5.0, 3600.0}) {
     SCOPED_TRACE(ahead_s);
     expectRefused(check(alongX({0, 0.01}, ahead_s, 0.1)), RejectionReason::kInvalidChunk,
-                  "ahead of the host's clock (at most 1 s: validation.max_stamp_lead_s)");
+                  "ahead of the host's clock (at most 1 s: validation.max_stamp_lead_s;");
   }
+  // 1e9 s ahead (past 2038, where int32 seconds end): refused as ahead, naming the time as sent
+  // (it once wrapped into the past and was refused as due 3.29e9 s ago).
+  expectRefused(check(alongX({0, 0.01}, 1e9, 0.1)), RejectionReason::kInvalidChunk,
+                "waypoint 0 at 1000000100.000 s is due 1e+09 s ahead of the host's clock (at most "
+                "1 s: validation.max_stamp_lead_s; the host's clock is at 100.000 s)");
   const Verdict within = check(alongX({0, 0.01}, 0.9, 0.1));
   EXPECT_TRUE(within.accepted) << within.message;
 }

@@ -140,7 +140,7 @@ TEST_F(CartesianChunks, ALateOrMalformedChunkIsRefusedWithItsReasonAndChangesNot
        [](CartesianChunk& c) { c.fields = c.fields | CommandField::kAcceleration; }},
       {"NaN in a waypoint", RejectionReason::kNonFinite, "waypoint 3: non_finite",
        [nan](CartesianChunk& c) { c.waypoints[3].command.position.y() = nan; }},
-      {"NaN time", RejectionReason::kNonFinite, "waypoint 1: time",
+      {"NaN time", RejectionReason::kNonFinite, "waypoint 1 time is not finite",
        [nan](CartesianChunk& c) { c.waypoints[1].time_s = nan; }},
       {"gains not PSD", RejectionReason::kInvalidGains, "waypoint 4",
        [](CartesianChunk& c) { c.waypoints[4].command.stiffness_translational(1, 1) = -5.0; }},

@@ -169,15 +169,22 @@ TEST_F(CommandGateTest, WrongKindMalformedAndInactiveAreRefusedBeforeTheWrapperI
   malformed.malformed = "position has 40 entries (at most 16)";
   gate_.offer(malformed, true, submit);
   gate_.offer(offerAt(3 * kSecond), false, submit);
+  // Refused with the reason the transport named: a chunk longer than a chunk may be.
+  Offer long_chunk = offerAt(4 * kSecond);
+  long_chunk.malformed = "a chunk carries 1 to 64 waypoints, this one 65";
+  long_chunk.malformed_reason = commandReason(RejectionReason::kInvalidChunk);
+  EXPECT_EQ(gate_.offer(long_chunk, true, submit), commandReason(RejectionReason::kInvalidChunk));
   EXPECT_EQ(asked, 0);
   const std::vector<CommandOutcome> outcomes = gate_.takeOutcomes();
-  ASSERT_EQ(outcomes.size(), 3U);
+  ASSERT_EQ(outcomes.size(), 4U);
   EXPECT_EQ(outcomes[0].reason, CommandReason::kWrongKind);
   EXPECT_EQ(outcomes[0].kind, CommandKind::kJoint);
   EXPECT_EQ(outcomes[1].reason, commandReason(RejectionReason::kDofMismatch));
   EXPECT_EQ(outcomes[1].message, "position has 40 entries (at most 16)");
   EXPECT_EQ(outcomes[2].reason, CommandReason::kInactive);
   EXPECT_EQ(toString(outcomes[2].reason), "inactive");
+  EXPECT_EQ(toString(outcomes[3].reason), "invalid_chunk");
+  EXPECT_EQ(outcomes[3].message, long_chunk.malformed);
 }
 
 TEST_F(CommandGateTest, EveryCommandIsAccountedExactlyOnce) {
@@ -237,7 +244,10 @@ TEST_F(CommandGateTest, NanosecondsOutOfRangeAreAnInvalidStamp) {
   std::vector<CommandOutcome> outcomes = offer(invalid);
   ASSERT_EQ(outcomes.size(), 1U);
   EXPECT_EQ(outcomes[0].reason, CommandReason::kInvalidStamp);
-  EXPECT_NE(outcomes[0].message.find("nanosec is 4000000000"), std::string::npos);
+  EXPECT_EQ(outcomes[0].nanosec, 4'000'000'000U) << "the stamp as sent, for its outcome";
+  EXPECT_NE(outcomes[0].message.find("header.stamp.nanosec 4000000000 is out of range"),
+            std::string::npos)
+      << outcomes[0].message;
   Offer valid = offerAt(5 * kSecond);
   valid.nanosec = 999'999'999U;
   EXPECT_TRUE(offer(valid).empty());

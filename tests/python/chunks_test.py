@@ -46,13 +46,17 @@ def check_sim(source, recording):
     _, _, _, _, info = sim.step([{"time": 0.1, "position": obs["tcp_position"]},
                                  {"time": 0.1, "position": obs["tcp_position"]}])
     assert info["reason"] == "invalid_chunk" and "waypoint 1's time" in info["message"], info
+    _, _, _, _, info = sim.step([{"time": 0.1, "position": obs["tcp_position"]},
+                                 {"time": float("nan"), "position": obs["tcp_position"]}])
+    assert info["reason"] == "non_finite", info
+    assert "waypoint 1 time is not finite" in info["message"], info
     sim.close()
 
     # The recording holds every chunk as sent, each waypoint's time its header stamp.
     chunks = comply.read_recording(recording)["/comply/cartesian_chunk"]
-    # The played one, the late one, the one with two equal times (the one without a time never
-    # became a chunk).
-    assert chunks.count == 3, chunks
+    # The played one, the late one, the one with two equal times, the one with a time that is not
+    # a number (the one without a time never became a chunk).
+    assert chunks.count == 4, chunks
     first = chunks["waypoints"][0]
     assert len(first) == 16 and first[0]["stiffness_translational"][0] == 1500.0, first[0]
     assert [w["header"]["stamp"]["nanosec"] for w in first[:3]] == [50_000_000, 100_000_000,
@@ -98,6 +102,38 @@ def check_client(cli, source):
                                           0.05), relative_to=state["stamp"] - 5.0)
         late = client.outcome(stamp, timeout=2.0)
         assert late is not None and late["reason"] == "late_chunk", late
+        check_refusals(client, client.state())
+
+
+def check_refusals(client, state):
+    """Chunks the host refuses are answered with their reason, never as another chunk or with no
+    answer: one of 65 waypoints (the host's outcome), and times the wire's stamps cannot carry
+    (refused before they are sent: a time that is not a number, one past 2038)."""
+    position, orientation = state["tcp_position"], state["tcp_orientation"]
+    stamp = client.send_chunk(along_y(position, orientation, 65, 0.01, first=0.1, step=1e-4),
+                              relative_to=state["stamp"])
+    outcome = client.outcome(stamp, timeout=2.0)
+    assert outcome is not None and outcome["reason"] == "invalid_chunk", outcome
+    assert "1 to 64 waypoints, this one 65" in outcome["message"], outcome
+
+    nan_time = along_y(position, orientation, 2, 0.05, first=0.1)
+    nan_time[1]["time"] = float("nan")
+    try:
+        client.send_chunk(nan_time, relative_to=state["stamp"])
+    except ValueError as error:
+        assert "waypoint 1 time is not finite" in str(error), error
+    else:
+        raise AssertionError("a chunk with a time that is not a number was sent")
+
+    far = state["stamp"] + 1e9
+    try:
+        client.send_chunk(along_y(position, orientation, 2, 0.05), relative_to=far)
+    except ValueError as error:
+        text = str(error)
+        assert "invalid_chunk" in text and "ahead of the host's clock" in text, text
+        assert str(int(far)) in text, text  # the time as sent, not wrapped into the past
+    else:
+        raise AssertionError("a chunk 1e9 s ahead was sent")
 
 
 def main():

@@ -102,17 +102,21 @@ def force_axes(client):
 
 
 def dead_host(cli, source):
-    """A client whose host stops: state() says so (None) instead of repeating the last state, and
-    a send raises instead of vanishing."""
+    """A client whose host stops: state() and diagnostics() say so (None) instead of repeating the
+    last ones (diagnostics() once did), and a send raises instead of vanishing."""
     with running_host(cli, source, "gone") as (host, domain):
         client = comply.Client(name="gone", domain=domain, timeout=30.0)
         state = client.state()
         assert state is not None and 0.0 <= state["age"] < 0.5, state
+        diagnostics = client.diagnostics()
+        assert diagnostics is not None and 0.0 <= diagnostics["age"] < 1.5, diagnostics
         pose = dict(position=state["tcp_position"], orientation=state["tcp_orientation"])
         assert client.outcome(client.send_cartesian(**pose), timeout=5.0)["applied"]
         host.send_signal(signal.SIGTERM)
         assert host.wait(timeout=10) == 0
         assert client.state(timeout=0.5) is None, "a stopped host's last state was returned"
+        assert client.diagnostics(timeout=0.5) is None, \
+            "a stopped host's last diagnostics were returned"
         deadline = time.monotonic() + 10.0
         while True:  # the host's reader unmatches once its process has gone
             try:

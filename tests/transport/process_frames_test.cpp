@@ -23,6 +23,7 @@ Sample<CartesianCommandMessage> someSample() {
   sample.participant = 42;
   sample.sender = {0x01, 0x10, 0xaa, 0x55, 1, 2, 3, 4, 5, 6, 7, 8, 0, 0, 1, 0xc1};
   sample.malformed = "torque_feedforward has 13 entries";
+  sample.malformed_reason = Reason::kInvalidChunk;
   return sample;
 }
 
@@ -54,6 +55,7 @@ TEST(TransportProcessFrames, ComeOutWholeHoweverTheStreamIsCut) {
     EXPECT_EQ(sample.participant, sent.participant);
     EXPECT_EQ(sample.sender, sent.sender);
     EXPECT_EQ(sample.malformed, sent.malformed);
+    EXPECT_EQ(sample.malformed_reason, sent.malformed_reason);
     EXPECT_EQ(sample.message.header.stamp, sent.message.header.stamp);
     EXPECT_EQ(sample.message.header.frame_id, sent.message.header.frame_id);
     EXPECT_EQ(sample.message.command.fields, sent.message.command.fields);
@@ -96,6 +98,7 @@ TEST(TransportProcessFrames, AMessageTooLargeForAFrameTravelsAsMalformed) {
   EXPECT_EQ(received.message.header.stamp, sample.message.header.stamp);  // still accounted
   EXPECT_NE(received.malformed.find("more than a comply message can be"), std::string::npos)
       << received.malformed;
+  EXPECT_EQ(received.malformed_reason, Reason::kTooLarge);
 }
 
 TEST(TransportProcessFrames, ALengthNoFrameCanHaveStopsTheStream) {

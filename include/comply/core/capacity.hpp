@@ -9,6 +9,11 @@ namespace comply {
 /// Largest number of controlled joints of one controller (a 7-DOF arm on a 3-DOF base + 2 spare).
 inline constexpr int kMaxDof = 12;
 
+/// Longest header.frame_id a command, chunk or request may carry [bytes]: a frame's name, never
+/// data. A transport refuses a longer one where it reads the sample (reason too_large), so that
+/// no sender's megabytes travel further than that read.
+inline constexpr int kMaxFrameIdBytes = 256;
+
 /// Per-joint vector with run-time size <= kMaxDof and inline storage (never touches the heap).
 using JointVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxDof, 1>;
 

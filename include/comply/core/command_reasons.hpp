@@ -20,14 +20,16 @@
     "a rate or feedforward entry above the limit of its unit for any arm; a chunk faster than the arm's speeds or accelerations") \
   X(kLateChunk, late_chunk, "a chunk whose last waypoint is already past on the host's clock") \
   X(kInvalidChunk, invalid_chunk, \
-    "a chunk's shape: waypoint count, times (a start more than max_stamp_lead_s ahead), field groups, damping modes")
+    "a chunk's shape: waypoint count (1 to 64), times (a start more than max_stamp_lead_s ahead), field groups, damping modes")
 
 #define COMPLY_GATE_REJECTION_REASONS(X) \
   X(kOtherPublisher, other_publisher, "another sender holds the command topics") \
   X(kWrongKind, wrong_kind, "a joint command to a Cartesian controller, or the reverse") \
   X(kInactive, inactive, "the controller is not active (or the host stopped before a cycle took it)") \
   X(kFutureStamp, future_stamp, "stamped more than max_stamp_lead_s ahead of the host's clock") \
-  X(kInvalidStamp, invalid_stamp, "header.stamp.nanosec not below 1e9")
+  X(kInvalidStamp, invalid_stamp, "header.stamp.nanosec not below 1e9") \
+  X(kTooLarge, too_large, \
+    "a field over its bound where the transport reads it: header.frame_id over 256 bytes, a message over 16 MB")
 
 #define COMPLY_REJECTION_REASONS(X) \
   COMPLY_WRAPPER_REJECTION_REASONS(X) \

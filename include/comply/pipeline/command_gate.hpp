@@ -4,7 +4,9 @@
 // index and wall-clock time of the cycle that took it, or rejected with a reason.
 //
 // A command passes, in order:
-//   1. well-formed: nothing the C++ type could not hold (a joint vector longer than kMaxDof)
+//   1. well-formed: nothing the C++ type could not hold or its bounds refuse (a joint vector
+//      longer than kMaxDof, a chunk longer than kMaxChunkWaypoints, a header.frame_id longer
+//      than kMaxFrameIdBytes), refused with the reason the transport names
 //   2. the controller's kind (Cartesian or joint)
 //   3. the publisher rule: the first sender holds the command topics until it is silent for
 //      `publisher_timeout_s` (the controller's command_timeout_s, when the watchdog holds); a
@@ -66,6 +68,9 @@ using SenderId = std::array<std::uint8_t, 16>;
 /// What became of one command.
 struct CommandOutcome {
   std::int64_t stamp_ns = 0;  ///< the command's stamp (header.stamp), exact
+  /// header.stamp.nanosec as it came (Offer::nanosec): with one of 1e9 or more (invalid_stamp)
+  /// the outcome names the stamp as sent, whose sum stamp_ns is, not that sum's normal form.
+  std::uint32_t nanosec = 0;
   CommandKind kind = CommandKind::kCartesian;
   bool applied = false;
   CommandReason reason = CommandReason::kNone;  ///< kNone when applied
@@ -108,7 +113,9 @@ struct Offer {
   std::uint64_t participant = 0;  ///< the sending process (0: unknown), for the request rule
   SenderId sender{};           ///< the sending process as the outcome names it (all zero: unknown)
   std::string_view malformed;  ///< non-empty: what the wire held that the type cannot
-  std::int64_t now_ns = 0;     ///< the intake's steady clock [ns], for the publisher rule
+  /// What a malformed command is refused as (the transport's Sample::malformed_reason).
+  CommandReason malformed_reason = commandReason(RejectionReason::kDofMismatch);
+  std::int64_t now_ns = 0;  ///< the intake's steady clock [ns], for the publisher rule
   /// The host's clock in the stamps' timebase [ns] (wall clock for `comply run`, simulated time
   /// for Python's Sim, the node's clock under ROS 2); 0: none, no lead rule.
   std::int64_t clock_ns = 0;

@@ -6,10 +6,12 @@
 
 #include <array>
 #include <compare>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "comply/core/chunk.hpp"
@@ -26,13 +28,22 @@ struct Stamp {
   std::int32_t sec = 0;
   std::uint32_t nanosec = 0;
 
+  /// The first and last time a stamp holds [ns since the epoch]: int32 seconds, 1901-12-13 to
+  /// 2038-01-19T03:14:07.999999999Z.
+  static constexpr std::int64_t kMinNanoseconds = -(std::int64_t{1} << 31) * 1'000'000'000;
+  static constexpr std::int64_t kMaxNanoseconds =
+      ((std::int64_t{1} << 31) - 1) * 1'000'000'000 + 999'999'999;
+
   /// The wall clock (CLOCK_REALTIME), as ROS time is.
   static Stamp now() noexcept;
+  /// A time outside [kMinNanoseconds, kMaxNanoseconds] saturates at the nearer end, never wraps
+  /// into another time (a time 1e9 s ahead once arrived as one 3.29e9 s ago).
   static Stamp fromNanoseconds(std::int64_t nanoseconds) noexcept;
-  /// `seconds` since the epoch, to the nearest nanosecond (a command's stamp_s, simulated time).
-  static Stamp fromSeconds(double seconds) noexcept {
-    return fromNanoseconds(stampNanoseconds(seconds));
-  }
+  /// `seconds` since the epoch, to the nearest nanosecond (a command's stamp_s, simulated time);
+  /// saturates as fromNanoseconds() (NaN: at the first time).
+  static Stamp fromSeconds(double seconds) noexcept;
+  /// Whether `seconds` since the epoch is a time a stamp holds (finite, within its range).
+  static bool holds(double seconds) noexcept;
   [[nodiscard]] std::int64_t nanoseconds() const noexcept;
   /// What a command's stamp_s becomes [s].
   [[nodiscard]] double seconds() const noexcept;
@@ -196,19 +207,36 @@ CartesianCommand referenceInForce(const ControllerStateMessage& state, int dof);
 template <>
 JointCommand referenceInForce(const ControllerStateMessage& state, int dof);
 
+/// Why a header.frame_id of `bytes` bytes is refused: "" within kMaxFrameIdBytes. `field` names
+/// it ("header.frame_id", "waypoint 3: header.frame_id").
+std::string frameIdRefusal(std::string_view field, std::size_t bytes);
+
 /// A received message and who wrote it.
 template <typename Message>
 struct Sample {
   Message message;
   std::uint64_t publisher = 0;  ///< the writer's instance handle
-  /// Non-empty when the wire held something the C++ type cannot (a joint vector longer than
-  /// kMaxDof): names the field. The message is then not to be used.
+  /// Non-empty when the wire held something no command may carry (a joint vector longer than
+  /// kMaxDof, more waypoints than kMaxChunkWaypoints, a header.frame_id longer than
+  /// kMaxFrameIdBytes): names the field. The message is then not to be used, but for its
+  /// header.stamp, which the refusal's outcome names.
   std::string malformed;
   /// The sending process's participant (0: unknown): one client's command and request writers
   /// share it, so requests can be held to the publisher rule.
   std::uint64_t participant = 0;
   /// The sending participant's GUID (all zero: unknown): what the outcome names the sender by.
   Gid sender{};
+  /// What a malformed sample is refused as (CommandOutcome.REASON_*).
+  Reason malformed_reason = Reason::kDofMismatch;
+
+  /// Marks the sample malformed for `reason`, unless something before already did: the first
+  /// thing wrong is the one named.
+  void refuse(Reason reason, std::string why) {
+    if (malformed.empty()) {
+      malformed = std::move(why);
+      malformed_reason = reason;
+    }
+  }
 };
 
 }  // namespace comply::transport

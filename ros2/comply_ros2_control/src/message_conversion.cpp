@@ -74,8 +74,9 @@ comply::JointCommand fromMessage(const comply_msgs::msg::JointCommand& message,
 
 namespace {
 
-/// A chunk's waypoints are commands whose header.stamp is their time. The wire bounds them at
-/// comply::kMaxChunkWaypoints; validation checks the count again.
+/// A chunk's waypoints are commands whose header.stamp is their time. The wire does not bound
+/// them (a bound there drops a longer chunk unanswered): validation refuses more than
+/// comply::kMaxChunkWaypoints as invalid_chunk.
 template <typename Command, typename Message>
 comply::Chunk<Command> chunkFromMessage(const Message& message, std::string& malformed) {
   comply::Chunk<Command> chunk;

@@ -40,6 +40,7 @@ void offerSample(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gat
   offer.participant = sample.participant;
   offer.sender = sample.sender;
   offer.malformed = sample.malformed;
+  offer.malformed_reason = static_cast<pipeline::CommandReason>(sample.malformed_reason);
   offer.now_ns = monotonicNanoseconds();
   offer.clock_ns = wallClockNanoseconds();  // senders stamp with their wall clock (ROS 2 time)
   offer.nanosec = sample.message.header.stamp.nanosec;
@@ -107,7 +108,12 @@ void Intake<Command>::take(const transport::Inbox& inbox) {
 
 template <typename Command>
 void Intake<Command>::handleRequest(const transport::Sample<transport::RequestMessage>& sample) {
-  if (recording_ != nullptr && sample.malformed.empty()) {
+  if (!sample.malformed.empty()) {
+    // A request has no outcome: its refusal is the diagnostics' last rejection.
+    gate_.noteRefusal("request refused: " + sample.malformed);
+    return;
+  }
+  if (recording_ != nullptr) {
     recording_->received(sample.message, transport::Stamp::now());
   }
   // Every request has an outcome, as every command has: its sender learns whether it was carried

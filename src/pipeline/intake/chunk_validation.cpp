@@ -2,6 +2,7 @@
 // reach the cycle, so a chunk with one bad waypoint changes nothing.
 
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include "chunk_motion.hpp"
@@ -41,6 +42,13 @@ std::string groupNames(CommandField fields) {
   return names;
 }
 
+/// A time on the host's clock [s], to the millisecond.
+std::string timeText(double time_s) {
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(3) << time_s << " s";
+  return text.str();
+}
+
 /// The rules of a chunk's shape and time; accepted when they hold.
 template <typename Command>
 Verdict checkShape(const Chunk<Command>& chunk, double host_time_s, double max_lead_s) {
@@ -66,7 +74,8 @@ Verdict checkShape(const Chunk<Command>& chunk, double host_time_s, double max_l
   for (std::size_t k = 0; k < count; ++k) {
     const double t = chunk.waypoints[k].time_s;
     if (!std::isfinite(t)) {
-      return reject(RejectionReason::kNonFinite, "waypoint " + std::to_string(k) + ": time");
+      return reject(RejectionReason::kNonFinite,
+                    "waypoint " + std::to_string(k) + " time is not finite");
     }
     if (k > 0 && !(t > chunk.waypoints[k - 1].time_s)) {
       return reject(RejectionReason::kInvalidChunk,
@@ -86,8 +95,10 @@ Verdict checkShape(const Chunk<Command>& chunk, double host_time_s, double max_l
   if (std::isfinite(host_time_s) && lead_s > max_lead_s) {
     // A chunk waiting that long holds the arm's reference for a sender that may be gone.
     std::ostringstream ahead;
-    ahead << "waypoint 0 is due " << lead_s << " s ahead of the host's clock (at most "
-          << max_lead_s << " s: validation.max_stamp_lead_s)";
+    ahead << "waypoint 0 at " << timeText(chunk.waypoints.front().time_s) << " is due " << lead_s
+          << " s ahead of the host's clock (at most " << max_lead_s
+          << " s: validation.max_stamp_lead_s; the host's clock is at " << timeText(host_time_s)
+          << ")";
     return reject(RejectionReason::kInvalidChunk, ahead.str());
   }
   return {};

@@ -23,12 +23,12 @@ CommandGate::CommandGate(GateOptions options) : options_(options) {}
 CommandReason CommandGate::admitLocked(const Offer& offer, bool active, CommandOutcome& outcome) {
   ++counts_.received;
   outcome.stamp_ns = offer.stamp_ns;
+  outcome.nanosec = offer.nanosec;
   outcome.kind = offer.kind;
   outcome.sender = offer.sender;
   outcome.received_ns = wallClockNanoseconds();
   if (!offer.malformed.empty()) {
-    return rejectLocked(outcome, commandReason(RejectionReason::kDofMismatch),
-                        std::string(offer.malformed));
+    return rejectLocked(outcome, offer.malformed_reason, std::string(offer.malformed));
   }
   if (offer.kind != options_.kind) {
     return rejectLocked(outcome, CommandReason::kWrongKind,
@@ -56,9 +56,9 @@ CommandReason CommandGate::admitLocked(const Offer& offer, bool active, CommandO
                         "the controller is inactive (send an activate request)");
   }
   if (offer.nanosec >= 1'000'000'000U) {
-    return rejectLocked(
-        outcome, CommandReason::kInvalidStamp,
-        "header.stamp.nanosec is " + std::to_string(offer.nanosec) + ", not below 1000000000");
+    return rejectLocked(outcome, CommandReason::kInvalidStamp,
+                        "header.stamp.nanosec " + std::to_string(offer.nanosec) +
+                            " is out of range (0 to 999999999)");
   }
   const double lead_s = 1e-9 * static_cast<double>(offer.stamp_ns - offer.clock_ns);
   if (offer.clock_ns != 0 && lead_s > options_.max_stamp_lead_s) {

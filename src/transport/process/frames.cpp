@@ -95,18 +95,19 @@ void appendSampleFrame(FrameKind kind, const Sample<Message>& sample,
     refused.participant = sample.participant;
     refused.sender = sample.sender;
     refused.message.header.stamp = sample.message.header.stamp;
-    refused.malformed = "the message is " + std::to_string(scratch.size() >> 20U) +
-                        " MB, more than a comply message can be (" +
-                        std::to_string(kMaxFrameBytes >> 20U) + " MB)";
+    refused.refuse(Reason::kTooLarge, "the message is " + std::to_string(scratch.size() >> 20U) +
+                                          " MB, more than a comply message can be (" +
+                                          std::to_string(kMaxFrameBytes >> 20U) + " MB)");
     appendSampleFrame(kind, refused, scratch, out);
     return;
   }
   const std::size_t payload =
-      8 + 8 + sample.sender.size() + 4 + sample.malformed.size() + scratch.size();
+      8 + 8 + sample.sender.size() + 1 + 4 + sample.malformed.size() + scratch.size();
   appendHead(kind, payload, out);
   appendRaw(sample.publisher, out);
   appendRaw(sample.participant, out);
   appendRaw(sample.sender, out);
+  appendRaw(static_cast<std::uint8_t>(sample.malformed_reason), out);
   appendRaw(static_cast<std::uint32_t>(sample.malformed.size()), out);
   out.insert(out.end(), sample.malformed.begin(), sample.malformed.end());
   out.insert(out.end(), scratch.begin(), scratch.end());
@@ -114,12 +115,14 @@ void appendSampleFrame(FrameKind kind, const Sample<Message>& sample,
 
 template <typename Message>
 bool readSampleFrame(std::span<const std::uint8_t> payload, Sample<Message>& sample) {
+  std::uint8_t reason = 0;
   std::uint32_t malformed_bytes = 0;
   if (!readRaw(payload, sample.publisher) || !readRaw(payload, sample.participant) ||
-      !readRaw(payload, sample.sender) || !readRaw(payload, malformed_bytes) ||
-      payload.size() < malformed_bytes) {
+      !readRaw(payload, sample.sender) || !readRaw(payload, reason) ||
+      !readRaw(payload, malformed_bytes) || payload.size() < malformed_bytes) {
     return false;
   }
+  sample.malformed_reason = static_cast<Reason>(reason);
   sample.malformed.assign(payload.begin(), payload.begin() + malformed_bytes);
   return decodeCdr(payload.subspan(malformed_bytes), sample.message);
 }

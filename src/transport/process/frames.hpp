@@ -75,7 +75,8 @@ class FrameReader {
   bool broken_ = false;
 };
 
-/// A received sample as a frame: the writer, its participant, what did not fit, the CDR bytes.
+/// A received sample as a frame: the writer, its participant and sender, what did not fit and the
+/// reason it is refused with, the CDR bytes.
 template <typename Message>
 void appendSampleFrame(FrameKind kind, const Sample<Message>& sample,
                        std::vector<std::uint8_t>& scratch, std::vector<std::uint8_t>& out);
