@@ -150,10 +150,21 @@ void bindSim(py::module_& m) {
       .def("tare", &Sim::tare,
            "Take the wrist force/torque sensor's reading (less the declared tool's weight) as its "
            "zero, from the next cycle")
-      .def("step", &Sim::step, py::arg("command") = py::none(),
+      .def("step", &Sim::step, py::arg("command") = py::none(), py::kw_only(),
+           py::arg("relative_to") = py::none(), py::arg("keep") = py::none(),
+           py::arg("steps") = py::none(),
            "Hold `command` (a dict of schema keywords, or a timed chunk: a list of such dicts "
-           "each with a 'time' [s] after this observation, see docs/chunks.md) for "
-           "steps_per_action cycles; returns (observation, reward, terminated, truncated, info)")
+           "each with a 'time' [s] after this observation, or after `relative_to`, see "
+           "docs/chunks.md) for steps_per_action cycles (or `steps`); `keep`=m: the chunk takes "
+           "over at its waypoint m, the running chunk plays until then (docs/policies.md). "
+           "Returns (observation, reward, terminated, truncated, info); info['chunks'] holds "
+           "the timing records of the chunks that took over, were superseded or dropped")
+      .def("committed", &Sim::committed, py::arg("observation_time"), py::arg("dt"),
+           py::arg("n"),
+           "The reference the arm will execute at observation_time + k*dt (k < n) if no new "
+           "command arrives, from the host's own chunk player: a dict of arrays ('time', "
+           "'position', ... one row per time); 'known' is False when a time before the running "
+           "chunk could no longer be answered (those rows' position NaN)")
       .def("close", &Sim::close, kCloseDoc)
       .def("recording_stats", &Sim::recordingStats, kStatsDoc)
       .def_property_readonly("dof", &Sim::dof)

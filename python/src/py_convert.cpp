@@ -4,6 +4,10 @@
 
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <array>
+#include <type_traits>
+
 #include "comply/core/input_error.hpp"
 #include "comply/schema/json.hpp"
 
@@ -206,6 +210,105 @@ py::dict toDict(const record::RecorderStats& stats) {
   d["bytes"] = stats.bytes;
   d["writer_cpu_s"] = stats.writer_cpu_s;
   d["error"] = stats.error;
+  return d;
+}
+
+namespace {
+
+/// One field of every command, stacked: the values' own shape after the row.
+struct Stack {
+  std::vector<py::ssize_t> shape;
+  std::vector<double> values;
+};
+
+void append(const Eigen::Quaterniond& value, Stack& to) {
+  to.shape = {4};
+  to.values.insert(to.values.end(), value.coeffs().data(), value.coeffs().data() + 4);
+}
+void append(const Eigen::Matrix3d& value, Stack& to) {
+  to.shape = {3, 3};
+  for (int row = 0; row < 3; ++row) {
+    for (int col = 0; col < 3; ++col) {
+      to.values.push_back(value(row, col));
+    }
+  }
+}
+template <typename Vector>
+void append(const Vector& value, Stack& to) {
+  to.shape = {static_cast<py::ssize_t>(value.size())};
+  to.values.insert(to.values.end(), value.data(), value.data() + value.size());
+}
+
+py::array_t<double> arrayOf(const Stack& stack, std::size_t rows) {
+  std::vector<py::ssize_t> shape{static_cast<py::ssize_t>(rows)};
+  shape.insert(shape.end(), stack.shape.begin(), stack.shape.end());
+  py::array_t<double> out(shape);
+  std::copy(stack.values.begin(), stack.values.end(), out.mutable_data());
+  return out;
+}
+
+template <typename Command, typename T>
+void stackField(py::dict& d, const char* name, const std::vector<Command>& commands,
+                T Command::*member) {
+  if constexpr (std::is_same_v<T, DampingMode>) {
+    py::list modes;
+    for (const Command& command : commands) {
+      modes.append(command.*member == DampingMode::kRatio ? "ratio" : "absolute");
+    }
+    d[name] = modes;
+  } else {
+    Stack stack;
+    for (const Command& command : commands) {
+      append(command.*member, stack);
+    }
+    d[name] = arrayOf(stack, commands.size());
+  }
+}
+
+#define COMPLY_STACK_FIELD(name, group, kind, type, unit, constraint, role, init, description) \
+  stackField(d, #name, commands, &Command::name);
+
+}  // namespace
+
+py::dict toArrays(const std::vector<CartesianCommand>& commands) {
+  using Command = CartesianCommand;
+  py::dict d;
+  COMPLY_CARTESIAN_COMMAND_FIELDS(COMPLY_STACK_FIELD)
+  return d;
+}
+
+py::dict toArrays(const std::vector<JointCommand>& commands) {
+  using Command = JointCommand;
+  py::dict d;
+  COMPLY_JOINT_COMMAND_FIELDS(COMPLY_STACK_FIELD)
+  return d;
+}
+
+#undef COMPLY_STACK_FIELD
+
+py::dict toDict(const pipeline::ChunkTiming& timing, double controller_minus_host_s,
+                std::uint64_t cycle) {
+  static constexpr std::array<const char*, 3> kEnds{"took_over", "superseded", "dropped"};
+  const auto host = [&](double controller_s) { return controller_s - controller_minus_host_s; };
+  py::dict d;
+  d["sequence"] = timing.sequence;
+  d["end"] = kEnds.at(static_cast<std::size_t>(timing.end));
+  d["observation"] = host(timing.observation_s);
+  d["received"] = host(timing.received_s);
+  d["takeover"] = host(timing.takeover_s);
+  d["takeover_cycle"] = timing.end == pipeline::ChunkEnd::kTookOver ? py::object(py::int_(cycle))
+                                                                     : py::object(py::none());
+  d["requested_takeover"] = host(timing.requested_takeover_s);
+  d["first_waypoint"] = host(timing.first_waypoint_s);
+  d["last_waypoint"] = host(timing.last_waypoint_s);
+  d["waypoints"] = timing.waypoints;
+  d["waypoints_past"] = timing.waypoints_past;
+  d["position_jump"] = timing.position_jump;
+  d["rotation_jump"] = timing.rotation_jump;
+  d["velocity_jump"] = timing.velocity_jump;
+  d["angular_velocity_jump"] = timing.angular_velocity_jump;
+  d["starved"] = timing.starved;
+  d["rest"] = timing.rest_s;
   return d;
 }
 

@@ -11,6 +11,7 @@
 
 #include "comply/core/chunk.hpp"
 #include "comply/core/commands.hpp"
+#include "comply/pipeline/chunk_timing.hpp"
 #include "comply/pipeline/diagnostics.hpp"
 #include "comply/record/recorder.hpp"
 #include "comply/transport/messages.hpp"
@@ -39,6 +40,16 @@ Chunk<Command> chunkFromPython(const py::handle& chunk, int dof, double time_ori
                                const std::optional<Command>& base = std::nullopt);
 /// Whether `value` is a chunk (a list, or a dict with "chunk") rather than one command.
 bool isChunk(const py::handle& value);
+
+/// Commands as one dict of arrays, a row per command and a key per schema field ("position"
+/// (n, 3), "stiffness_translational" (n, 3, 3), quaternions x y z w, "damping_mode" a list of
+/// names), for predicted references (ChunkPlayer::predict).
+py::dict toArrays(const std::vector<CartesianCommand>& commands);
+py::dict toArrays(const std::vector<JointCommand>& commands);
+/// A chunk's timing record (chunk_timing.hpp) with its times on the host's clock: controller
+/// time - `controller_minus_host_s`; `cycle`: the takeover cycle's index.
+py::dict toDict(const pipeline::ChunkTiming& timing, double controller_minus_host_s,
+                std::uint64_t cycle);
 
 py::array_t<double> array(const double* values, std::size_t size);
 template <typename Container>

@@ -39,6 +39,10 @@ struct Episode final : hardware::LoopObserver {
 
   void afterCycle(const hardware::CycleRecord& record) override {
     const transport::Stamp now = clockAt(record.time_s);
+    const pipeline::Controller& controller = wrapper.controller();
+    for (const pipeline::ChunkTiming& timing : controller.chunks().events()) {
+      chunk_events.push_back({timing, controller.time() - record.time_s, record.index});
+    }
     // The gate's clock is the recording's, so an outcome's applied time is the cycle's.
     gate->noteCycle(record.index, wrapper.controller().idInForce(),
                     [&] { return now.nanoseconds(); });
@@ -62,7 +66,16 @@ struct Episode final : hardware::LoopObserver {
     return transport::Stamp::fromNanoseconds(start_ns + stampNanoseconds(t_s));
   }
 
+  /// A chunk's timing record, with the offset of the controller's clock from the simulated one
+  /// in its cycle and that cycle's index.
+  struct ChunkEvent {
+    pipeline::ChunkTiming timing;
+    double controller_minus_host_s;
+    std::uint64_t cycle;
+  };
+
   pipeline::Wrapper<Command> wrapper;
+  std::vector<ChunkEvent> chunk_events;  // since the last step() took them
   pipeline::CommandGate* gate = nullptr;
   std::int64_t start_ns;  ///< the recording's clock when the episode started
   host::HostRecording* recording = nullptr;
@@ -272,9 +285,43 @@ void Sim::tare() {
   }
 }
 
-py::tuple Sim::step(const py::object& command) {
+double Sim::lastCycleTime() const noexcept {
+  // The observation is taken at the next cycle's start; the last cycle ran one period before.
+  return session_->plant.simTime() - session_->plant.controlPeriod();
+}
+
+py::dict Sim::committed(double observation_time_s, double dt_s, int count) {
+  if (!session_) {
+    throw std::runtime_error("call reset() before committed()");
+  }
+  if (!(dt_s > 0.0) || !std::isfinite(dt_s) || !std::isfinite(observation_time_s) || count < 1) {
+    throw py::value_error("committed() needs a finite observation time, dt > 0 and n >= 1");
+  }
+  std::vector<double> times(static_cast<std::size_t>(count));
+  for (int k = 0; k < count; ++k) {
+    times[static_cast<std::size_t>(k)] = observation_time_s + k * dt_s;
+  }
+  return std::visit(
+      [&](auto& e) {
+        using Command = std::remove_cvref_t<decltype(e->wrapper.lastAccepted())>;
+        std::vector<Command> commands;
+        const bool known = e->wrapper.predict(times, lastCycleTime(), commands);
+        py::dict d = toArrays(commands);
+        d["time"] = array(times);
+        d["known"] = known;
+        return d;
+      },
+      session_->episode);
+}
+
+py::tuple Sim::step(const py::object& command, const py::object& relative_to,
+                    const py::object& keep, const py::object& steps) {
   if (!session_) {
     throw std::runtime_error("call reset() before step()");
+  }
+  const int cycles = steps.is_none() ? steps_per_action_ : steps.cast<int>();
+  if (cycles < 1) {
+    throw py::value_error("steps must be >= 1");
   }
   py::dict info;
   info["accepted"] = true;
@@ -298,15 +345,29 @@ py::tuple Sim::step(const py::object& command) {
                                          resolved_->robot.base_frame};
           const bool active = e->wrapper.diagnostics().state != pipeline::WrapperState::kInactive;
           if (chunk) {
+            const double origin_s = relative_to.is_none() ? now_s : relative_to.cast<double>();
             Chunk<Command> c =
-                chunkFromPython<Command>(command, dof(), now_s, e->wrapper.lastAccepted());
+                chunkFromPython<Command>(command, dof(), origin_s, e->wrapper.lastAccepted());
             c.stamp_s = stampSeconds(*stamp_ns);
+            c.observation_s = origin_s;
+            if (!keep.is_none()) {
+              const int m = keep.cast<int>();
+              if (m < 0 || m >= static_cast<int>(c.waypoints.size())) {
+                throw py::value_error("keep=" + std::to_string(m) + ": a chunk of " +
+                                      std::to_string(c.waypoints.size()) +
+                                      " waypoints takes over at one of them (0 to " +
+                                      std::to_string(c.waypoints.size() - 1) + ")");
+              }
+              c.takeover_s = c.waypoints[static_cast<std::size_t>(m)].time_s;
+            }
             if (host::HostRecording* to = recording()) {
               to->received(transport::ChunkMessageOf<Command>{header, c},
                            e->clockAt(session_->plant.simTime()));
             }
             session_->gate.offer(offer, active, [&](std::int64_t wire_stamp_ns) {
-              return e->wrapper.submitChunk(c, stampSeconds(*stamp_ns), wire_stamp_ns);
+              // The host's clock at the last cycle: the chunk's times then fall on the cycles
+              // that run at them.
+              return e->wrapper.submitChunk(c, lastCycleTime(), wire_stamp_ns);
             });
             return;
           }
@@ -325,7 +386,7 @@ py::tuple Sim::step(const py::object& command) {
   }
   {
     const py::gil_scoped_release release;
-    session_->run(steps_per_action_);
+    session_->run(cycles);
   }
   session_->gate.settle();
   for (const pipeline::CommandOutcome& outcome : session_->gate.takeOutcomes()) {
@@ -344,6 +405,16 @@ py::tuple Sim::step(const py::object& command) {
       std::visit([](auto& e) { return e->wrapper.diagnostics(); }, session_->episode);
   const bool terminated = d.state == pipeline::WrapperState::kFault;
   const bool truncated = max_time_s_ > 0.0 && session_->plant.simTime() >= max_time_s_;
+  py::list chunks;
+  std::visit(
+      [&](auto& e) {
+        for (const auto& event : e->chunk_events) {
+          chunks.append(toDict(event.timing, event.controller_minus_host_s, event.cycle));
+        }
+        e->chunk_events.clear();
+      },
+      session_->episode);
+  info["chunks"] = chunks;
   info["state"] = std::string(toString(d.state));
   info["last_fault"] = d.last_fault;
   return py::make_tuple(session_->observation(), 0.0, terminated, truncated, info);

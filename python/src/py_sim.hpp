@@ -42,7 +42,17 @@ class Sim {
   /// `command`: a dict of schema keywords, or a timed chunk (a list of such dicts, each with a
   /// "time" [s] after this step's observation), or None: no new command. Never raises on a
   /// rejected command: info["accepted"] is False and info["reason"] says why.
-  py::tuple step(const py::object& command);
+  /// `relative_to`: the simulated time a chunk's times count from (an earlier observation's
+  /// "time"; default this step's), also reported as the chunk's observation; `keep`: the chunk
+  /// takes over at its waypoint `keep` (the running chunk plays until then); `steps`: cycles
+  /// to run instead of steps_per_action. info["chunks"]: the timing records of the chunks that
+  /// took over, were superseded or dropped during the step.
+  py::tuple step(const py::object& command, const py::object& relative_to, const py::object& keep,
+                 const py::object& steps);
+  /// The reference the cycle will execute at observation_time + k dt (k < count) if no new
+  /// command arrives (pipeline::Wrapper::predict): a dict of arrays, "time" and the command's
+  /// fields; "known" false when a time before the running chunk could not be answered.
+  py::dict committed(double observation_time_s, double dt_s, int count);
 
   [[nodiscard]] int dof() const noexcept;
   [[nodiscard]] bool cartesian() const noexcept;
@@ -61,6 +71,9 @@ class Sim {
   void recordOutcome(const pipeline::CommandOutcome& outcome);
   /// Settles the episode's commands no cycle took (recorded as rejected) before it goes.
   void endEpisode();
+  /// The simulated time of the last cycle (the wrapper's host clock, so chunk times fall on
+  /// cycles).
+  [[nodiscard]] double lastCycleTime() const noexcept;
 
   std::shared_ptr<const pipeline::ResolvedController> resolved_;
   std::unique_ptr<host::HostRecording> recording_;

@@ -70,7 +70,7 @@ TEST(ChunkPlayer, ReproducesACubicThroughGivenVelocitiesAndARotationAtConstantRa
   const int slot = player.load(chunk, offset_s);
   ASSERT_GE(slot, 0);
   CommandBus active = cartesianBus();
-  player.start(slot, active, offset_s);
+  player.take(slot, active, offset_s);
   for (double t = 0.0; t < 0.5; t += 0.0037) {
     ASSERT_TRUE(player.play(offset_s + t, active));
     const Cartesian& bus = std::get<Cartesian>(active);
@@ -100,7 +100,7 @@ TEST(ChunkPlayer, ImpliesVelocitiesFromNeighboursComesInFromRestAndEndsAtRest) {
   ChunkPlayer player(COMPLY_COMMAND_JOINT, kDof, 0.0);
   const int slot = player.load(chunk, 0.0);
   CommandBus active = schema::toBus(JointCommand::zero(kDof), kDof);
-  player.start(slot, active, -1.0);
+  player.take(slot, active, -1.0);
   const auto velocityAt = [&](double t) {
     player.play(t, active);
     return std::get<Joint>(active).velocity[3];
@@ -149,7 +149,7 @@ TEST(ChunkPlayer, BlendsInFromTheReferenceInForceWithoutAJumpInPositionVelocityO
   ChunkPlayer player(COMPLY_COMMAND_CARTESIAN, kDof, blend_s);
   const int slot = player.load(chunk, 0.0);
   CommandBus active = from;
-  player.start(slot, from, start_s);
+  player.take(slot, from, start_s);
   player.play(start_s, active);
   const Cartesian& now = std::get<Cartesian>(active);
   EXPECT_LT((positionOf(active) - positionOf(from)).norm(), 1e-12);
@@ -213,7 +213,7 @@ TEST(ChunkPlayer, GainsReachTheirValuesAtTheirTimesAndStayPositiveSemiDefiniteBe
     ChunkPlayer player(COMPLY_COMMAND_CARTESIAN, kDof, 0.0);
     const int slot = player.load(chunk, 0.0);
     CommandBus active = cartesianBus();
-    player.start(slot, active, 0.0);
+    player.take(slot, active, 0.0);
     for (int step = 0; step <= 20; ++step) {
       const double t = 0.01 * step;
       player.play(t, active);
@@ -250,8 +250,8 @@ TEST(ChunkPlayer, SlotsRunOutWhenTheSenderOutpacesTheCycleAndAreFreedWhenTheCycl
   }
   EXPECT_EQ(player.load(chunk, 0.0), -1);
   CommandBus active = schema::toBus(JointCommand::zero(kDof), kDof);
-  player.start(slots[0], active, 0.0);
-  player.start(slots[1], active, 0.0);  // the first is done: its slot is free again
+  player.take(slots[0], active, 0.0);
+  player.take(slots[1], active, 0.0);  // the first is done: its slot is free again
   EXPECT_EQ(player.load(chunk, 0.0), slots[0]);
   EXPECT_EQ(player.load(CartesianChunk{}, 0.0), -1) << "a joint player takes no Cartesian chunk";
 }

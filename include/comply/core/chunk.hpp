@@ -5,6 +5,7 @@
 // frames interpolated between waypoints, a C2 blend from the reference in force when it starts.
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "comply/core/commands.hpp"
@@ -34,6 +35,12 @@ struct Chunk {
   /// keeps the value in force.
   CommandField fields = CommandField::kPosition;
   std::vector<ChunkWaypoint<Command>> waypoints;  ///< strictly increasing times
+  /// The stamp of the observation the sender planned the chunk for, on the host's clock [s]; NaN:
+  /// not said. Only reported back (the chunk's timing record): its waypoints carry its times.
+  double observation_s = std::numeric_limits<double>::quiet_NaN();
+  /// When the chunk takes over from the one playing, on the host's clock [s] (a waypoint's time:
+  /// "keep the running chunk until my waypoint m"); NaN: at once.
+  double takeover_s = std::numeric_limits<double>::quiet_NaN();
 };
 
 using CartesianChunk = Chunk<CartesianCommand>;

@@ -19,24 +19,44 @@
 // zero, so the reference has no jump in position, velocity or acceleration; the gains, the task
 // frame and the feedforward fade from their values in force to the chunk's along the same curve.
 //
-// Threads. load() on the intake thread (one producer at a time) writes into a free slot; start(),
-// play() and stop() on the real-time thread. A slot is free again when the cycle has finished with
-// it. No allocation after construction, no locks.
+// Takeover. A chunk may name the time it takes over (RTC's frozen prefix: "keep the running
+// chunk's first actions, replace the rest"): while a chunk plays, it waits until the first cycle
+// at or after that time (a nanosecond's tolerance) and the running chunk plays on; a newer chunk
+// supersedes one still waiting. With no chunk playing it starts at once.
+//
+// Prediction. predict() evaluates off the cycle what the cycle will write at given times if no
+// new chunk arrives, with the same code on the same data: the running chunk's start (published by
+// the cycle whenever it changes) and its slot, which no load() overwrites while the intake's lock
+// is held.
+//
+// Threads. load() and predict() on the intake thread (one at a time, under the intake's lock)
+// write into a free slot or read; start(), play() and stop() on the real-time thread. A slot is
+// free again when the cycle has finished with it. No allocation after construction, no locks.
 
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <limits>
 #include <memory>
+#include <span>
 
 #include "comply/core/chunk.hpp"
+#include "comply/pipeline/chunk_timing.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
 
 namespace comply::pipeline {
 
 class ChunkPlayer {
  public:
-  /// Slots: one playing, one or two waiting in the intake queue, one being written.
-  static constexpr int kSlots = 4;
+  /// Slots: one playing, one waiting for its takeover, one or two waiting in the intake queue,
+  /// one being written.
+  static constexpr int kSlots = 5;
+  /// Timing records one cycle can produce: a waiting chunk superseded or dropped, and one taking
+  /// over (twice: the waiting one at its time, then a newer one at once).
+  static constexpr int kEventsPerCycle = 4;
+  /// A takeover time is met by the first cycle no more than this before it [s]: chunk times that
+  /// are cycle times up to rounding take over in that cycle, not the next.
+  static constexpr double kTakeoverTolerance_s = 1e-9;
 
   /// `command_kind`: COMPLY_COMMAND_*; `blend_time_s` >= 0 (0: the chunk starts at once).
   ChunkPlayer(int command_kind, int dof, double blend_time_s);
@@ -44,34 +64,64 @@ class ChunkPlayer {
   ChunkPlayer(const ChunkPlayer&) = delete;
   ChunkPlayer& operator=(const ChunkPlayer&) = delete;
 
-  // ---- intake (non-real-time) ------------------------------------------------------------------
-  /// Copies a validated chunk into a free slot, its times moved onto the controller's clock by
-  /// `host_to_controller_s` (controller time = host time + it), and derives the waypoint
-  /// velocities; `sequence` is its number (CommandId), for dropWaiting(). Returns the slot, or -1
-  /// when every slot is in use (the sender is too fast).
-  int load(const CartesianChunk& chunk, double host_to_controller_s, std::uint64_t sequence = 0);
-  int load(const JointChunk& chunk, double host_to_controller_s, std::uint64_t sequence = 0);
+  // ---- intake (non-real-time, under the intake's lock) ---------------------------------------
+  /// Copies a validated chunk into a free slot, its times (waypoints, observation, takeover)
+  /// moved onto the controller's clock by `host_to_controller_s` (controller time = host time +
+  /// it), and derives the waypoint velocities; `sequence` is its number (CommandId), for
+  /// dropWaiting() and its timing record; `received_s`: when the intake accepted it, on the
+  /// controller's clock. Returns the slot, or -1 when every slot is in use (the sender is too
+  /// fast).
+  int load(const CartesianChunk& chunk, double host_to_controller_s, std::uint64_t sequence = 0,
+           double received_s = ChunkTiming::kNone);
+  int load(const JointChunk& chunk, double host_to_controller_s, std::uint64_t sequence = 0,
+           double received_s = ChunkTiming::kNone);
   /// A loaded slot that will never be started (its intake message was refused or dropped).
   void release(int slot) noexcept;
 
+  /// The reference the cycle will write at each of `times_s` (controller clock, increasing) if no
+  /// new chunk arrives: `out[k]` holds the command in force on entry (the groups no chunk drives
+  /// keep it) and the running chunk's reference at that time on return, or the waiting chunk's
+  /// once it takes over, in the cycle of the grid `last_cycle_s` + j `period_s` (j >= 1) where
+  /// the cycle takes it over. A time before the running chunk started is answered from the chunk
+  /// before it while its slot still holds it; otherwise that entry's position is NaN and the
+  /// return is false. Allocation-free; the intake's thread (not the cycle's).
+  bool predict(std::span<const double> times_s, double last_cycle_s, double period_s,
+               std::span<CommandBus> out);
+
   // ---- real-time --------------------------------------------------------------------------------
-  /// Starts the chunk in `slot` at controller time `now_s`, blending in from `in_force` (the
-  /// reference of this same cycle). The chunk played before it, if any, is released.
-  void start(int slot, const CommandBus& in_force, double now_s) noexcept;
+  /// Takes the chunk in `slot` in the cycle at `now_s`: it starts now, blending in from
+  /// `in_force` (the reference of this same cycle), or, when it names a takeover still ahead and
+  /// a chunk plays, waits for it (a chunk already waiting is superseded). The chunk played
+  /// before, if any, is released. Returns true when it started.
+  bool take(int slot, const CommandBus& in_force, double now_s) noexcept;
+  /// A waiting chunk whose takeover time has come starts now: `active` must hold the reference
+  /// of this cycle so far (the running chunk's is written first). Returns its number, 0 when none
+  /// started.
+  std::uint64_t takeOverDue(double now_s, CommandBus& active) noexcept;
   /// Writes the running chunk's reference at `now_s` into `active` (position, velocity,
   /// acceleration and the groups the chunk drives). Returns false once the chunk has ended (past
   /// its last waypoint and its blend): it is then released and `active` holds the last waypoint
   /// at rest.
   bool play(double now_s, CommandBus& active) noexcept;
-  /// Releases the running chunk; `active` keeps what play() last wrote.
+  /// Releases the running chunk and a waiting one (recorded as dropped); `active` keeps what
+  /// play() last wrote.
   void stop() noexcept;
   /// Stops the running chunk if it is numbered `sequence` (0: whichever) and its first waypoint
-  /// is still ahead of `now_s`: a chunk waiting for its start whose sender left, or on a reset.
-  /// True when it stopped one.
+  /// is still ahead of `now_s`, and drops a waiting chunk so numbered: a chunk waiting for its
+  /// start whose sender left, or on a reset. True when it stopped the running one.
   bool dropWaiting(std::uint64_t sequence, double now_s) noexcept;
 
+  /// The timing records of the chunks that took over, were superseded or dropped since the last
+  /// clearEvents() (the cycle clears them as it starts).
+  [[nodiscard]] std::span<const ChunkTiming> events() const noexcept {
+    return {events_.data(), static_cast<std::size_t>(event_count_)};
+  }
+  void clearEvents() noexcept { event_count_ = 0; }
+
   [[nodiscard]] bool playing() const noexcept { return playing_ >= 0; }
-  /// The groups the running chunk drives (COMPLY_FIELD_*), 0 when none plays.
+  [[nodiscard]] bool waiting() const noexcept { return waiting_ >= 0; }
+  /// The groups the running chunk drives and those the waiting one will (COMPLY_FIELD_*), 0 when
+  /// none.
   [[nodiscard]] std::uint32_t fields() const noexcept;
   /// The stamp [s] of the running chunk.
   [[nodiscard]] double stamp() const noexcept;
@@ -79,8 +129,19 @@ class ChunkPlayer {
   struct Slots;  // chunk_player.cpp
 
  private:
+  void begin(int slot, const CommandBus& in_force, double now_s) noexcept;
+  void endWaiting(ChunkEnd end) noexcept;
+  void publish() noexcept;
+  ChunkTiming* newEvent() noexcept;
+
   std::unique_ptr<Slots> slots_;
   int playing_ = -1;
+  int waiting_ = -1;
+  /// When the last chunk ran out (controller time), NaN when none did or a command ended it.
+  double ran_out_s_ = std::numeric_limits<double>::quiet_NaN();
+  double last_play_s_ = 0.0;  ///< the time play() last wrote at (controller clock)
+  std::array<ChunkTiming, kEventsPerCycle> events_{};
+  int event_count_ = 0;
 };
 
 }  // namespace comply::pipeline

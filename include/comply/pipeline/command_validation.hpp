@@ -84,6 +84,14 @@ struct ChunkLimits {
   double blend_time_s = 0.0;
 };
 
+/// Where a chunk that waits for its takeover time starts from: the reference the cycle will write
+/// then (ChunkPlayer::predict), in place of the measured pose and the reference in force now.
+struct ChunkTakeover {
+  double time_s = 0.0;  ///< the takeover, on the host's clock [s]
+  MeasuredPose pose;    ///< the reference's pose then, as a measured pose
+  CommandBus reference;
+};
+
 /// Checks a timed chunk as a whole at the intake (chunk_validation.cpp), the message naming the
 /// waypoint, the number and the limit:
 /// - shape: 1 to kMaxChunkWaypoints waypoints; groups within kChunkFields and kPosition among
@@ -101,12 +109,17 @@ struct ChunkLimits {
 ///   blend from `in_force`, the reference in force, over arm.blend_time_s), sampled, against the
 ///   speeds of `arm` and the accelerations of `limits`. Cartesian chunks are held to the TCP's
 ///   speeds, joint chunks to each joint's.
+/// - a takeover time (Chunk::takeover_s), when given: finite, from the first waypoint to the last,
+///   not more than limits.max_stamp_lead_s ahead; such a chunk is held to the motion from
+///   `takeover` (the reference the cycle will write then) rather than from now.
 /// Renormalises quaternions in place. `in_force` null: no blend is checked.
 Verdict validateChunk(CartesianChunk& chunk, const ValidationConfig& limits, int dof,
                       const MeasuredPose& measured, double last_stamp_s, double host_time_s,
-                      const ChunkLimits& arm = {}, const CommandBus* in_force = nullptr);
+                      const ChunkLimits& arm = {}, const CommandBus* in_force = nullptr,
+                      const ChunkTakeover* takeover = nullptr);
 Verdict validateChunk(JointChunk& chunk, const ValidationConfig& limits, int dof,
                       const MeasuredPose& measured, double last_stamp_s, double host_time_s,
-                      const ChunkLimits& arm = {}, const CommandBus* in_force = nullptr);
+                      const ChunkLimits& arm = {}, const CommandBus* in_force = nullptr,
+                      const ChunkTakeover* takeover = nullptr);
 
 }  // namespace comply::pipeline

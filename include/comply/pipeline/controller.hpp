@@ -123,6 +123,7 @@ class Controller {
   /// The timed chunks' slots: the intake loads a validated chunk here and then enqueues a
   /// kChunk message naming its slot.
   [[nodiscard]] ChunkPlayer& chunks() noexcept { return chunks_; }
+  [[nodiscard]] const ChunkPlayer& chunks() const noexcept { return chunks_; }
   /// The pose the cycle last measured (reader: the intake, under its mutex).
   [[nodiscard]] MeasuredPose measuredPose();
   /// The command in force as of the last cycle (same reader).
@@ -146,6 +147,9 @@ class Controller {
   /// Which command is in force (the last the cycle took, or the chunk playing): what the command
   /// gate is told after a cycle (CommandGate::noteCycle) and what state and recordings report.
   [[nodiscard]] const CommandId& idInForce() const noexcept { return id_in_force_; }
+  /// The controller's clock at the last cycle [s since activation]; the real-time thread's (an
+  /// observer's after the cycle), as the chunk timing records that cycle wrote.
+  [[nodiscard]] double time() const noexcept { return time_s_; }
   /// What the law reads: the command in force with the gains the gain stage let through (the
   /// command in force itself when the stage is off), and force axes turned into reference and
   /// feedforward by the force stage. Real-time thread, or between cycles.
@@ -248,6 +252,7 @@ class Controller {
   StabilityGuard guard_;        // guard (motion, energy; saturation after shaping)
   CommandBus active_;           // commands: the command in force
   CommandId id_in_force_;       //   and which command it is
+  CommandId waiting_chunk_id_;  //   the chunk waiting for its takeover time, if any
   ChunkPlayer chunks_;          //   the timed chunks
   CommandWatchdog watchdog_;    // watchdog
   SensorCheck sensor_check_;    // sensor

@@ -21,6 +21,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "comply/core/chunk.hpp"
 #include "comply/core/commands.hpp"
@@ -78,6 +79,14 @@ class Wrapper final : public hardware::CycleController {
   Verdict submitChunk(const Chunk<Command>& chunk, double host_time_s);
   /// The same for a chunk named by its exact wire stamp (see submit()).
   Verdict submitChunk(const Chunk<Command>& chunk, double host_time_s, std::int64_t wire_stamp_ns);
+  /// Any non-RT thread. The reference the cycle will write at each of `times_s` (the host's clock,
+  /// increasing) if no new command or chunk arrives: the command in force, the running chunk's
+  /// curve, or a waiting chunk's from its takeover (ChunkPlayer::predict), evaluated with the
+  /// player's own code. `host_time_s` is the host's clock now, mapped onto the controller's as a
+  /// chunk's times are: times on the cycle's grid then fall on cycles. `out` gets one command per
+  /// time (the groups no chunk drives as in force); an entry whose position is NaN could not be
+  /// answered (a time before the running chunk whose slot is reused). False when one could not.
+  bool predict(std::span<const double> times_s, double host_time_s, std::vector<Command>& out);
   /// The command in force (merged) as of the last cycle.
   [[nodiscard]] Command lastAccepted() const;
   /// The pose the cycle last measured (what commands are validated against).
@@ -127,6 +136,11 @@ class Wrapper final : public hardware::CycleController {
   Verdict submitStamped(const Command& command, const IntakeStamp& stamp);
   Verdict submitChunkStamped(const Chunk<Command>& chunk, double host_time_s,
                              const IntakeStamp& stamp);
+  /// predict() under the intake's lock, on buses.
+  bool predictLocked(std::span<const double> times_s, double host_time_s,
+                     const MeasuredPose& measured, std::vector<CommandBus>& out);
+  /// Where a chunk taking over at `takeover_s` (host clock) starts from.
+  ChunkTakeover takeoverAt(double takeover_s, double host_time_s, const MeasuredPose& measured);
   /// The number and stamp the command queued next will carry.
   [[nodiscard]] CommandId nextId(const IntakeStamp& stamp) const noexcept {
     return {.sequence = last_sequence_ + 1, .stamp_ns = stamp.ns};

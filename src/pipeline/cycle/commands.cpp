@@ -29,7 +29,7 @@ void Controller::takeCommands() noexcept {
   if (changed) {
     watchdog_.heard(time_s_);
   }
-  const bool chunk_ran = chunks_.playing();
+  const bool chunk_ran = chunks_.playing() || chunks_.waiting();
   playChunk();
   if (changed || chunk_ran) {
     publishInForce();
@@ -85,14 +85,18 @@ void Controller::takeChunk(const IntakeMessage& message) noexcept {
   if (chunks_.playing()) {
     (void)chunks_.play(time_s_, active_);  // the running chunk's reference at this time
   }
-  chunks_.start(message.chunk_slot, active_, time_s_);
+  if (!chunks_.take(message.chunk_slot, active_, time_s_)) {
+    // It waits for its takeover time; until then the running chunk and its number stay in force.
+    waiting_chunk_id_ = message.id;
+    return;
+  }
   // Taken, whatever happens to it next (FAULT stops it at once): its stamp is in force.
   std::visit([this](auto& bus) noexcept { bus.stamp_s = chunks_.stamp(); }, active_);
   id_in_force_ = message.id;
 }
 
 void Controller::playChunk() noexcept {
-  if (!chunks_.playing()) {
+  if (!chunks_.playing() && !chunks_.waiting()) {
     return;
   }
   if (diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kFault) {
@@ -101,6 +105,10 @@ void Controller::playChunk() noexcept {
     anchorForceAxes(active_, currentPose());
     stopMotion(active_);
     return;
+  }
+  if (chunks_.takeOverDue(time_s_, active_) != 0) {
+    std::visit([this](auto& bus) noexcept { bus.stamp_s = chunks_.stamp(); }, active_);
+    id_in_force_ = waiting_chunk_id_;
   }
   (void)chunks_.play(time_s_, active_);
   // A chunk is a command that lasts: the watchdog counts from its end.

@@ -18,6 +18,7 @@ bool Controller::cycle(const JointState& state, double period_s,
 
 CycleStatus Controller::update(const JointState& state, double period_s,
                                std::span<double> torque) noexcept {
+  chunks_.clearEvents();  // the observer has read the last cycle's
   advanceClock(period_s);
   if (diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kInactive) {
     return CycleStatus::kInactive;

@@ -49,6 +49,37 @@ std::string timeText(double time_s) {
   return text.str();
 }
 
+/// The takeover time, when given, and the observation's: times a stamp can carry; the takeover
+/// one of the chunk's own and not further ahead than a chunk may start.
+template <typename Command>
+Verdict checkTakeover(const Chunk<Command>& chunk, double host_time_s, double max_lead_s) {
+  if (std::isinf(chunk.observation_s)) {
+    return reject(RejectionReason::kNonFinite, "the observation time is not finite");
+  }
+  const double takeover_s = chunk.takeover_s;
+  if (std::isnan(takeover_s)) {
+    return {};
+  }
+  if (!std::isfinite(takeover_s)) {
+    return reject(RejectionReason::kNonFinite, "the takeover time is not finite");
+  }
+  const double first_s = chunk.waypoints.front().time_s;
+  const double last_s = chunk.waypoints.back().time_s;
+  if (takeover_s < first_s || takeover_s > last_s) {
+    return reject(RejectionReason::kInvalidChunk,
+                  "its takeover at " + timeText(takeover_s) + " is outside its waypoints (" +
+                      timeText(first_s) + " to " + timeText(last_s) + ")");
+  }
+  if (std::isfinite(host_time_s) && takeover_s - host_time_s > max_lead_s) {
+    std::ostringstream ahead;
+    ahead << "its takeover at " << timeText(takeover_s) << " is " << takeover_s - host_time_s
+          << " s ahead of the host's clock (at most " << max_lead_s
+          << " s: validation.max_stamp_lead_s)";
+    return reject(RejectionReason::kInvalidChunk, ahead.str());
+  }
+  return {};
+}
+
 /// The rules of a chunk's shape and time; accepted when they hold.
 template <typename Command>
 Verdict checkShape(const Chunk<Command>& chunk, double host_time_s, double max_lead_s) {
@@ -91,6 +122,9 @@ Verdict checkShape(const Chunk<Command>& chunk, double host_time_s, double max_l
                                                    " s ago on the host's clock; nothing of it is "
                                                    "left to play");
   }
+  if (Verdict takeover = checkTakeover(chunk, host_time_s, max_lead_s); !takeover.accepted) {
+    return takeover;
+  }
   const double lead_s = chunk.waypoints.front().time_s - host_time_s;
   if (std::isfinite(host_time_s) && lead_s > max_lead_s) {
     // A chunk waiting that long holds the arm's reference for a sender that may be gone.
@@ -107,22 +141,27 @@ Verdict checkShape(const Chunk<Command>& chunk, double host_time_s, double max_l
 template <typename Command>
 Verdict validateChunkAny(Chunk<Command>& chunk, const ValidationConfig& limits, int dof,
                          const MeasuredPose& measured, double last_stamp_s, double host_time_s,
-                         const ChunkLimits& arm, const CommandBus* in_force) {
+                         const ChunkLimits& arm, const CommandBus* in_force,
+                         const ChunkTakeover* takeover) {
   if (!std::isfinite(chunk.stamp_s)) {
     return reject(RejectionReason::kNonFinite, "stamp");
   }
   if (Verdict shape = checkShape(chunk, host_time_s, limits.max_stamp_lead_s); !shape.accepted) {
     return shape;
   }
+  // A chunk that waits for its takeover is held to the motion from there.
+  const MeasuredPose& from = takeover != nullptr ? takeover->pose : measured;
+  const double from_s = takeover != nullptr ? takeover->time_s : host_time_s;
+  const CommandBus* reference = takeover != nullptr ? &takeover->reference : in_force;
   bool compared_with_measured = false;
   for (std::size_t k = 0; k < chunk.waypoints.size(); ++k) {
     ChunkWaypoint<Command>& waypoint = chunk.waypoints[k];
     waypoint.command.stamp_s = chunk.stamp_s;
     waypoint.command.fields = chunk.fields;
-    const bool past = waypoint.time_s <= host_time_s;
+    const bool past = waypoint.time_s <= from_s;
     MeasuredPose against;  // invalid: no jump check (a past waypoint after a past one)
     if (!past && !compared_with_measured) {
-      against = measured;
+      against = from;
       compared_with_measured = true;
     } else if (k > 0) {
       against = poseOf(chunk.waypoints[k - 1].command);
@@ -141,21 +180,25 @@ Verdict validateChunkAny(Chunk<Command>& chunk, const ValidationConfig& limits, 
       }
     }
   }
-  return checkChunkMotion(chunk, dof, limits, arm, measured, host_time_s, in_force);
+  return checkChunkMotion(chunk, dof, limits, arm, from, from_s, reference);
 }
 
 }  // namespace
 
 Verdict validateChunk(CartesianChunk& chunk, const ValidationConfig& limits, int dof,
                       const MeasuredPose& measured, double last_stamp_s, double host_time_s,
-                      const ChunkLimits& arm, const CommandBus* in_force) {
-  return validateChunkAny(chunk, limits, dof, measured, last_stamp_s, host_time_s, arm, in_force);
+                      const ChunkLimits& arm, const CommandBus* in_force,
+                      const ChunkTakeover* takeover) {
+  return validateChunkAny(chunk, limits, dof, measured, last_stamp_s, host_time_s, arm, in_force,
+                          takeover);
 }
 
 Verdict validateChunk(JointChunk& chunk, const ValidationConfig& limits, int dof,
                       const MeasuredPose& measured, double last_stamp_s, double host_time_s,
-                      const ChunkLimits& arm, const CommandBus* in_force) {
-  return validateChunkAny(chunk, limits, dof, measured, last_stamp_s, host_time_s, arm, in_force);
+                      const ChunkLimits& arm, const CommandBus* in_force,
+                      const ChunkTakeover* takeover) {
+  return validateChunkAny(chunk, limits, dof, measured, last_stamp_s, host_time_s, arm, in_force,
+                          takeover);
 }
 
 }  // namespace comply::pipeline

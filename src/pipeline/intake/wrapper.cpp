@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "comply/pipeline/command_bus.hpp"
@@ -231,9 +232,15 @@ Verdict Wrapper<Command>::submitChunkStamped(const Chunk<Command>& chunk, double
   Chunk<Command> checked = chunk;
   const ResolvedController& resolved = controller_.resolved();
   const CommandBus in_force = controller_.commandInForce();
+  // A chunk that waits for its takeover starts from the reference the cycle will write then.
+  std::optional<ChunkTakeover> takeover;
+  if (std::isfinite(checked.takeover_s) && checked.takeover_s > host_time_s) {
+    takeover = takeoverAt(checked.takeover_s, host_time_s, measured);
+  }
   Verdict verdict = validateChunk(checked, resolved.config.validation, dof, measured,
                                   -std::numeric_limits<double>::infinity(),  // floor: above
-                                  host_time_s, chunkLimits(resolved), &in_force);
+                                  host_time_s, chunkLimits(resolved), &in_force,
+                                  takeover ? &*takeover : nullptr);
   // Each waypoint's gains as the chunk reaches them, merged into what is in force before it.
   Command gains = intakeGains();
   for (const ChunkWaypoint<Command>& waypoint : checked.waypoints) {
@@ -252,7 +259,8 @@ Verdict Wrapper<Command>::submitChunkStamped(const Chunk<Command>& chunk, double
     message.type = IntakeMessage::Type::kChunk;
     message.command = emptyBus(kKind<Command>);
     message.id = nextId(stamp);
-    message.chunk_slot = chunks.load(checked, host_to_controller_s, message.id.sequence);
+    message.chunk_slot =
+        chunks.load(checked, host_to_controller_s, message.id.sequence, measured.time_s);
     if (message.chunk_slot < 0) {
       verdict =
           queueFull("all " + std::to_string(ChunkPlayer::kSlots) +
@@ -265,6 +273,51 @@ Verdict Wrapper<Command>::submitChunkStamped(const Chunk<Command>& chunk, double
     }
   }
   return account(std::move(verdict), stamp);
+}
+
+template <typename Command>
+bool Wrapper<Command>::predict(std::span<const double> times_s, double host_time_s,
+                               std::vector<Command>& out) {
+  const std::lock_guard<std::mutex> lock(intake_mutex_);
+  std::vector<CommandBus> buses;
+  const bool known = predictLocked(times_s, host_time_s, controller_.measuredPose(), buses);
+  out.clear();
+  out.reserve(buses.size());
+  for (const CommandBus& bus : buses) {
+    out.push_back(schema::fromBus(std::get<BusOf<Command>>(bus)));
+  }
+  return known;
+}
+
+template <typename Command>
+bool Wrapper<Command>::predictLocked(std::span<const double> times_s, double host_time_s,
+                                     const MeasuredPose& measured, std::vector<CommandBus>& out) {
+  const double host_to_controller_s = measured.time_s - host_time_s;
+  std::vector<double> controller_s(times_s.begin(), times_s.end());
+  for (double& t : controller_s) {
+    t += host_to_controller_s;
+  }
+  out.assign(times_s.size(), controller_.commandInForce());
+  return controller_.chunks().predict(controller_s, measured.time_s, measured.period_s, out);
+}
+
+template <typename Command>
+ChunkTakeover Wrapper<Command>::takeoverAt(double takeover_s, double host_time_s,
+                                           const MeasuredPose& measured) {
+  std::vector<CommandBus> reference;
+  (void)predictLocked(std::span<const double>(&takeover_s, 1), host_time_s, measured, reference);
+  ChunkTakeover takeover;
+  takeover.time_s = takeover_s;
+  takeover.reference = reference.front();
+  takeover.pose = measured;
+  const auto& bus = std::get<BusOf<Command>>(takeover.reference);
+  if constexpr (std::is_same_v<Command, CartesianCommand>) {
+    takeover.pose.tcp_position = Eigen::Map<const Eigen::Vector3d>(bus.position);
+    takeover.pose.tcp_orientation = schema::fromXyzw(bus.orientation);
+  } else {
+    takeover.pose.position = Eigen::Map<const Eigen::VectorXd>(bus.position, bus.dof);
+  }
+  return takeover;
 }
 
 template <typename Command>

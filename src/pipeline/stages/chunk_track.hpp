@@ -57,6 +57,10 @@ struct Track {
   std::uint32_t fields = 0;
   double stamp_s = 0.0;
   std::uint64_t sequence = 0;  ///< its number (CommandId), 0: not known
+  // On the controller's clock [s], NaN when not given (chunk_timing.hpp).
+  double observation_s = 0.0;
+  double received_s = 0.0;
+  double takeover_s = 0.0;  ///< NaN: at once
   std::array<double, kTrackWaypoints> time_s{};
   /// Each waypoint's bus; its twist (velocity) holds the waypoint's velocity, given or implied.
   std::array<Bus, kTrackWaypoints> waypoints{};
