@@ -159,8 +159,7 @@ void bindSim(py::module_& m) {
            "over at its waypoint m, the running chunk plays until then (docs/policies.md). "
            "Returns (observation, reward, terminated, truncated, info); info['chunks'] holds "
            "the timing records of the chunks that took over, were superseded or dropped")
-      .def("committed", &Sim::committed, py::arg("observation_time"), py::arg("dt"),
-           py::arg("n"),
+      .def("committed", &Sim::committed, py::arg("observation_time"), py::arg("dt"), py::arg("n"),
            "The reference the arm will execute at observation_time + k*dt (k < n) if no new "
            "command arrives, from the host's own chunk player: a dict of arrays ('time', "
            "'position', ... one row per time); 'known' is False when a time before the running "

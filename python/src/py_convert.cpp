@@ -297,7 +297,7 @@ py::dict toDict(const pipeline::ChunkTiming& timing, double controller_minus_hos
   d["received"] = host(timing.received_s);
   d["takeover"] = host(timing.takeover_s);
   d["takeover_cycle"] = timing.end == pipeline::ChunkEnd::kTookOver ? py::object(py::int_(cycle))
-                                                                     : py::object(py::none());
+                                                                    : py::object(py::none());
   d["requested_takeover"] = host(timing.requested_takeover_s);
   d["first_waypoint"] = host(timing.first_waypoint_s);
   d["last_waypoint"] = host(timing.last_waypoint_s);

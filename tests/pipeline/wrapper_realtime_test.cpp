@@ -343,8 +343,9 @@ CartesianChunk movingChunk(const model::Data& measured, double now_s, double sta
   return chunk;
 }
 
-// Chunks taking over from each other and from single commands, played with the gain stage and the
-// observer on, a command on the chunk's groups ending one, the watchdog after the last.
+// Chunks taking over from each other and from single commands, every other one at its waypoint 3
+// (waiting for it), played with the gain stage and the observer on, a command on the chunk's
+// groups ending one, the watchdog after the last; the intake predicting between cycles.
 TEST(WrapperRealtime, PlayingChunksNeitherAllocatesNorLocks) {
   // Each chunk is planned around where the replayed arm, moving on its own, is measured: its
   // 1 mm zigzag and the blends from the chunk before ask 13 m/s^2 and 25 rad/s^2 of the reference,
@@ -355,13 +356,32 @@ TEST(WrapperRealtime, PlayingChunksNeitherAllocatesNorLocks) {
                                                "  max_chunk_angular_acceleration_rad_per_s2: 0\n"));
   wrapper.activate(movingState(fr3Home(), 0));
   int chunks = 0;
+  int deferred_takeovers = 0;
+  std::vector<CartesianCommand> predicted;
+  const std::vector<double> ahead_s{0.0, 0.01, 0.02, 0.03};
   expectRealtimeLoop(wrapper, [&](int cycle) {
     const double now_s = cycle * kPeriod;  // the host's clock: the controller's since activation
     const model::Data& measured = wrapper.controller().modelData();
+    for (const ChunkTiming& timing : wrapper.controller().chunks().events()) {
+      deferred_takeovers +=
+          timing.end == ChunkEnd::kTookOver && std::isfinite(timing.requested_takeover_s) ? 1 : 0;
+    }
     if (cycle < kCycles - 1000 && cycle % 150 == 75) {
-      const Verdict verdict = wrapper.submitChunk(movingChunk(measured, now_s, now_s), now_s);
+      CartesianChunk chunk = movingChunk(measured, now_s, now_s);
+      if (chunks % 2 == 1) {
+        chunk.takeover_s = chunk.waypoints[3].time_s;
+      }
+      const Verdict verdict = wrapper.submitChunk(chunk, now_s);
       ASSERT_TRUE(verdict.accepted) << "cycle " << cycle << ": " << verdict.message;
       ++chunks;
+    }
+    if (cycle % 50 == 0) {
+      std::vector<double> times;
+      for (const double dt : ahead_s) {
+        times.push_back(now_s + dt);
+      }
+      (void)wrapper.predict(times, now_s, predicted);
+      ASSERT_EQ(predicted.size(), times.size());
     }
     if (cycle % 1000 == 500) {  // the chunk's own group: ends it
       CartesianCommand command = CartesianCommand::zero(kFr3Dof);
@@ -375,6 +395,7 @@ TEST(WrapperRealtime, PlayingChunksNeitherAllocatesNorLocks) {
   const DiagnosticsSnapshot diagnostics = wrapper.diagnostics();
   EXPECT_EQ(diagnostics.commands_accepted, static_cast<std::uint64_t>(chunks + kCycles / 1000));
   EXPECT_GE(diagnostics.watchdog_timeouts, 1U) << "the watchdog never followed a chunk's end";
+  EXPECT_GE(deferred_takeovers, 3) << "no chunk took over at its waypoint";
   expectTheGuardWorked(diagnostics);
 }
 

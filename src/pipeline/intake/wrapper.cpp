@@ -237,10 +237,10 @@ Verdict Wrapper<Command>::submitChunkStamped(const Chunk<Command>& chunk, double
   if (std::isfinite(checked.takeover_s) && checked.takeover_s > host_time_s) {
     takeover = takeoverAt(checked.takeover_s, host_time_s, measured);
   }
-  Verdict verdict = validateChunk(checked, resolved.config.validation, dof, measured,
-                                  -std::numeric_limits<double>::infinity(),  // floor: above
-                                  host_time_s, chunkLimits(resolved), &in_force,
-                                  takeover ? &*takeover : nullptr);
+  Verdict verdict =
+      validateChunk(checked, resolved.config.validation, dof, measured,
+                    -std::numeric_limits<double>::infinity(),  // floor: above
+                    host_time_s, chunkLimits(resolved), &in_force, takeover ? &*takeover : nullptr);
   // Each waypoint's gains as the chunk reaches them, merged into what is in force before it.
   Command gains = intakeGains();
   for (const ChunkWaypoint<Command>& waypoint : checked.waypoints) {

@@ -100,7 +100,7 @@ struct Start {
 /// What predict() reads of the cycle's player, published whenever it changes.
 template <typename Bus>
 struct View {
-  Start<Bus> running;   ///< sequence 0: none plays
+  Start<Bus> running;  ///< sequence 0: none plays
   /// The chunk that played before (sequence 0: none), until `previous_end_s`: taken over, run out
   /// or stopped.
   Start<Bus> previous;
@@ -294,12 +294,12 @@ bool predictIn(Engine<Bus>& engine, double blend_time_s, std::span<const double>
   };
   const bool running = intact(view.running);
   const bool previous = intact(view.previous);
-  const bool waiting = view.waiting_slot >= 0 &&
-                       engine.tracks[view.waiting_slot].sequence == view.waiting_sequence;
+  const bool waiting =
+      view.waiting_slot >= 0 && engine.tracks[view.waiting_slot].sequence == view.waiting_sequence;
   double waiting_start_s = std::numeric_limits<double>::infinity();
   if (waiting) {
-    waiting_start_s = takeoverCycle(engine.tracks[view.waiting_slot].takeover_s, last_cycle_s,
-                                    period_s);
+    waiting_start_s =
+        takeoverCycle(engine.tracks[view.waiting_slot].takeover_s, last_cycle_s, period_s);
   }
   bool known = true;
   int cursor = 0;
@@ -372,11 +372,11 @@ int ChunkPlayer::load(const CartesianChunk& chunk, double host_to_controller_s,
                            : -1;
 }
 
-int ChunkPlayer::load(const JointChunk& chunk, double host_to_controller_s,
-                      std::uint64_t sequence, double received_s) {
-  return slots_->joint ? loadInto(*slots_, *slots_->joint, chunk, host_to_controller_s, sequence,
-                                  received_s)
-                       : -1;
+int ChunkPlayer::load(const JointChunk& chunk, double host_to_controller_s, std::uint64_t sequence,
+                      double received_s) {
+  return slots_->joint
+             ? loadInto(*slots_, *slots_->joint, chunk, host_to_controller_s, sequence, received_s)
+             : -1;
 }
 
 void ChunkPlayer::release(int slot) noexcept {
@@ -390,11 +390,10 @@ bool ChunkPlayer::predict(std::span<const double> times_s, double last_cycle_s, 
   if (!(period_s > 0.0)) {
     return false;
   }
-  return slots_->cartesian
-             ? predictIn(*slots_->cartesian, slots_->blend_time_s, times_s, last_cycle_s,
-                         period_s, out)
-             : predictIn(*slots_->joint, slots_->blend_time_s, times_s, last_cycle_s, period_s,
-                         out);
+  return slots_->cartesian ? predictIn(*slots_->cartesian, slots_->blend_time_s, times_s,
+                                       last_cycle_s, period_s, out)
+                           : predictIn(*slots_->joint, slots_->blend_time_s, times_s, last_cycle_s,
+                                       period_s, out);
 }
 
 ChunkTiming* ChunkPlayer::newEvent() noexcept {
