@@ -168,7 +168,8 @@ void bindSim(py::module_& m) {
       .def("recording_stats", &Sim::recordingStats, kStatsDoc)
       .def_property_readonly("dof", &Sim::dof)
       .def_property_readonly("cartesian", &Sim::cartesian)
-      .def_property_readonly("time", &Sim::time);
+      .def_property_readonly("time", &Sim::time)
+      .def_property_readonly("period", &Sim::period, "The control period [s]");
 }
 
 void bindTaskFrames(py::module_& m) {

@@ -263,6 +263,13 @@ double Sim::time() const noexcept {
   return session_ ? session_->plant.simTime() : 0.0;
 }
 
+double Sim::period() const {
+  if (!session_) {
+    throw std::runtime_error("call reset() before reading the period");
+  }
+  return session_->plant.controlPeriod();
+}
+
 py::dict Sim::reset() {
   std::int64_t start_ns = 0;
   if (session_) {

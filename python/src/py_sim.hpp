@@ -57,6 +57,8 @@ class Sim {
   [[nodiscard]] int dof() const noexcept;
   [[nodiscard]] bool cartesian() const noexcept;
   [[nodiscard]] double time() const noexcept;
+  /// The control period [s]; raises before reset().
+  [[nodiscard]] double period() const;
 
   /// Stops the recording: the file is complete when this returns. Idempotent; the Sim carries
   /// on unrecorded.

@@ -21,8 +21,8 @@
 //
 // Takeover. A chunk may name the time it takes over (RTC's frozen prefix: "keep the running
 // chunk's first actions, replace the rest"): while a chunk plays, it waits until the first cycle
-// at or after that time (a nanosecond's tolerance) and the running chunk plays on; a newer chunk
-// supersedes one still waiting. With no chunk playing it starts at once.
+// at or after that time (a nanosecond's tolerance) while the running chunk plays on (or, with none
+// playing, the reference in force holds); a newer chunk supersedes one still waiting.
 //
 // Prediction. predict() evaluates off the cycle what the cycle will write at given times if no
 // new chunk arrives, with the same code on the same data: the running chunk's start (published by
@@ -90,9 +90,9 @@ class ChunkPlayer {
 
   // ---- real-time --------------------------------------------------------------------------------
   /// Takes the chunk in `slot` in the cycle at `now_s`: it starts now, blending in from
-  /// `in_force` (the reference of this same cycle), or, when it names a takeover still ahead and
-  /// a chunk plays, waits for it (a chunk already waiting is superseded). The chunk played
-  /// before, if any, is released. Returns true when it started.
+  /// `in_force` (the reference of this same cycle), or, when it names a takeover still ahead,
+  /// waits for it (a chunk already waiting is superseded). The chunk played before, if any, is
+  /// released. Returns true when it started.
   bool take(int slot, const CommandBus& in_force, double now_s) noexcept;
   /// A waiting chunk whose takeover time has come starts now: `active` must hold the reference
   /// of this cycle so far (the running chunk's is written first). Returns its number, 0 when none

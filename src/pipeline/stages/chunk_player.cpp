@@ -452,7 +452,9 @@ bool ChunkPlayer::take(int slot, const CommandBus& in_force, double now_s) noexc
   if (waiting_ >= 0) {
     endWaiting(ChunkEnd::kSuperseded);
   }
-  if (playing_ >= 0 && takeover_s - kTakeoverTolerance_s > now_s) {
+  // It waits even when none plays (the reference in force holds): the intake checked it from
+  // the reference at its takeover, which is this one.
+  if (takeover_s - kTakeoverTolerance_s > now_s) {
     waiting_ = slot;
     publish();
     return false;

@@ -1,0 +1,191 @@
+"""Run a chunking policy on a comply host: observe, infer in the background, send the chunk
+relative to its observation, and hand the next inference what only the host knows, the delay it
+measured in the policy's own steps and the actions it has committed to (docs/policies.md).
+
+    import comply
+    from comply.policy import PolicyRunner
+
+    def policy(ctx):                        # ctx: observation, dt, horizon, delay_steps, committed
+        obs = ctx["observation"]
+        return [{"time": k * ctx["dt"], "position": ..., "orientation": ...}
+                for k in range(ctx["horizon"])]
+
+    runner = PolicyRunner(comply.Sim("config/sim/cartesian_impedance.yaml", robot="fr3"),
+                          policy, dt=1 / 30, horizon=16, inference_delay=lambda: 0.15)
+    runner.run(seconds=5.0)
+    print(runner.delays())                  # the host's count per chunk
+
+On a `Sim` the inference runs in simulated time: the chunk reaches the host `inference_delay()`
+seconds after its observation (a number or a callable, e.g. with jitter), and the arm moves on
+meanwhile. On a `Client` the policy runs in a background thread on the wall clock, and the chunk
+is sent when it returns.
+
+Modes (`mode`):
+- "replace" (default): each chunk replaces the last from the cycle it arrives in; the host blends
+  the seam over chunk_blend_time_s.
+- "frozen": real-time chunking (Black, Galliker, Levine 2025): the policy is given the host's
+  committed actions for the expected delay (ctx["committed"], from the host's own chunk player)
+  to keep, and the chunk takes over at waypoint `delay_steps` (the host's newest count, at least
+  1), so the takeover point is explicit.
+- "ensemble": temporal ensembling (ACT, Zhao et al. 2023): each sent chunk is the exponentially
+  weighted mean (weight exp(-ensemble_decay * i), i = 0 for the oldest) of every chunk's action
+  for the same time, the new one's where it alone plans.
+"""
+
+import math
+import threading
+
+import numpy as np
+
+_MODES = ("replace", "frozen", "ensemble")
+
+
+class PolicyRunner:
+    def __init__(self, host, policy, *, dt, horizon, mode="replace", inference_delay=0.0,
+                 replan_steps=None, ensemble_decay=0.01):
+        if mode not in _MODES:
+            raise ValueError(f"mode {mode!r}: one of {', '.join(_MODES)}")
+        if not dt > 0.0 or horizon < 2:
+            raise ValueError("dt > 0 and a horizon of at least 2 actions")
+        self.host = host
+        self.policy = policy
+        self.dt = float(dt)
+        self.horizon = int(horizon)
+        self.mode = mode
+        self.replan_steps = int(replan_steps) if replan_steps else max(1, self.horizon // 2)
+        self.ensemble_decay = float(ensemble_decay)
+        self._delay = inference_delay if callable(inference_delay) else (lambda: inference_delay)
+        self._simulated = hasattr(host, "committed") and hasattr(host, "reset")
+        self.records = []  # one per chunk: sent, and the host's timing record once known
+        self._delay_steps = 0
+        self._ensemble = []  # (times, positions) of the chunks sent, for "ensemble"
+
+    # ---- what a policy author reads ------------------------------------------------------------
+    def delays(self):
+        """The host's count of waypoints already past when each chunk took over (None while it
+        has not)."""
+        return [r["timing"]["waypoints_past"] if r.get("timing") else None for r in self.records]
+
+    # ---- the loop --------------------------------------------------------------------------------
+    def run(self, seconds, observation=None):
+        """Runs for `seconds` of the host's time from `observation` (a Sim's reset() by default)."""
+        if self._simulated:
+            return self._run_sim(seconds, observation)
+        return self._run_client(seconds)
+
+    def _context(self, observation, observation_time):
+        ctx = {"observation": observation, "time": observation_time, "dt": self.dt,
+               "horizon": self.horizon, "delay_steps": self._delay_steps, "committed": None}
+        if self.mode == "frozen":
+            ctx["committed"] = self._committed(observation_time)
+        return ctx
+
+    def _committed(self, observation_time):
+        if self._simulated:
+            return self.host.committed(observation_time, self.dt, self.horizon)
+        if hasattr(self.host, "committed"):
+            return self.host.committed(observation_time, self.dt, self.horizon)
+        return None
+
+    def _chunk_to_send(self, chunk, observation_time):
+        """The chunk as sent, and the waypoint it takes over at (None: at once)."""
+        keep = None
+        if self.mode == "frozen":
+            keep = min(max(1, self._delay_steps), len(chunk) - 1)
+        elif self.mode == "ensemble":
+            chunk = self._ensembled(chunk, observation_time)
+        return chunk, keep
+
+    def _ensembled(self, chunk, observation_time):
+        times = np.array([observation_time + w["time"] for w in chunk])
+        positions = np.array([np.asarray(w["position"], dtype=float) for w in chunk])
+        self._ensemble = [(t, p) for t, p in self._ensemble if t[-1] >= times[0] - 1e-9]
+        self._ensemble.append((times, positions))
+        out = []
+        for k, waypoint in enumerate(chunk):
+            total, weight = np.zeros_like(positions[k]), 0.0
+            for age, (t, p) in enumerate(self._ensemble):  # oldest first: i = 0
+                match = np.flatnonzero(np.abs(t - times[k]) < 1e-6)
+                if match.size:
+                    w = math.exp(-self.ensemble_decay * age)
+                    total, weight = total + w * p[match[0]], weight + w
+            out.append(dict(waypoint, position=total / weight))
+        return out
+
+    def _note(self, stamp, observation_time, chunk, keep, sent_at, info=None):
+        record = {"stamp": stamp, "observation": observation_time, "sent_at": sent_at,
+                  "waypoints": len(chunk), "keep": keep, "timing": None}
+        self.records.append(record)
+        if info is not None:
+            self._take_timings(info.get("chunks", []))
+        return record
+
+    def _take_timings(self, timings):
+        """Timing records from the host, each matched to the chunk sent on its observation."""
+        for timing in timings:
+            for record in self.records:
+                if record["timing"] is None and abs(record["observation"] -
+                                                    timing["observation"]) < 1e-6:
+                    record["timing"] = timing
+                    if timing["end"] == "took_over":
+                        self._delay_steps = timing["waypoints_past"]
+                    break
+
+    # ---- Sim: simulated time ---------------------------------------------------------------------
+    def _run_sim(self, seconds, observation):
+        sim = self.host
+        obs = observation if observation is not None else sim.reset()
+        period = sim.period
+        end = obs["time"] + seconds
+        while obs["time"] < end - 1e-9:
+            observation_time = obs["time"]
+            ctx = self._context(obs, observation_time)
+            chunk = self.policy(ctx)
+            wait = max(0, int(round(max(0.0, float(self._delay())) / period)))
+            if wait > 0:
+                obs, _, terminated, _, info = sim.step(None, steps=wait)
+                self._take_timings(info.get("chunks", []))
+                if terminated:
+                    return obs
+            sent, keep = self._chunk_to_send(chunk, observation_time)
+            # Until the next observation: replan_steps of the policy's steps after this one's,
+            # but at least one cycle from now.
+            next_observation = observation_time + self.replan_steps * self.dt
+            cycles = max(1, int(round((next_observation - obs["time"]) / period)))
+            sent_at = obs["time"]
+            obs, _, terminated, _, info = sim.step(sent, relative_to=observation_time, keep=keep,
+                                                   steps=cycles)
+            self._note(None, observation_time, sent, keep, sent_at, info)
+            if not info["accepted"]:
+                self.records[-1]["refused"] = f'{info["reason"]}: {info["message"]}'
+            if terminated:
+                break
+        return obs
+
+    # ---- Client: wall clock, inference in a thread ---------------------------------------------
+    def _run_client(self, seconds):
+        client = self.host
+        state = client.state(1.0)
+        if state is None:
+            raise RuntimeError("no state from the host within 1 s: is comply run up?")
+        end = state["stamp"] + seconds
+        result = {}
+        while state is not None and state["stamp"] < end:
+            observation_time = state["stamp"]
+            ctx = self._context(state, observation_time)
+            worker = threading.Thread(target=lambda c=ctx: result.update(chunk=self.policy(c)))
+            worker.start()
+            while worker.is_alive():  # the arm moves on the last chunk meanwhile
+                worker.join(0.005)
+            sent, keep = self._chunk_to_send(result.pop("chunk"), observation_time)
+            stamp = client.send_chunk(sent, relative_to=observation_time, keep=keep)
+            record = self._note(stamp, observation_time, sent, keep, None)
+            outcome = client.outcome(stamp, 0.5)
+            if outcome is not None and outcome.get("chunk"):
+                record["timing"] = outcome["chunk"]
+                self._delay_steps = outcome["chunk"]["waypoints_past"]
+            next_observation = observation_time + self.replan_steps * self.dt
+            state = client.state(1.0)
+            while state is not None and state["stamp"] < next_observation:
+                state = client.state(1.0)
+        return state

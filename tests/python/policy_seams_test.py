@@ -1,0 +1,267 @@
+"""Seams between chunks of a policy that infers while the arm moves, on the in-process Sim.
+
+A synthetic flow-like policy (a smooth random curve, each chunk sampled with its own offset and
+per-action noise) runs under comply.policy.PolicyRunner at 15, 30 and 50 Hz, with chunks of 16
+and 50 actions, inference delays of 0 to 20 steps with +-30 % jitter and a 0.7 s first inference,
+plainly replacing chunks and with the host's frozen prefix (mode "frozen"). For every chunk:
+
+- the committed prefix the host gave at its observation (Sim.committed, every cycle of the chunk
+  before) equals the reference the cycles then executed (from the recording) to 1e-9, up to the
+  next takeover;
+- the host's count of waypoints already past equals the one worked out here from when the chunk
+  was sent and where it takes over (0 steps of error);
+- the reference's per-cycle velocity change, measured against the same change of the chunks'
+  own curves (a cubic Hermite through each chunk, evaluated here independently of the player);
+
+and LeRobot PR #4223's start: from standstill, a 0.7 s warm-up, 30 actions at 30 Hz: the host
+counts 21 actions past and the reference meets every action after its blend. Prints the table.
+Usage: policy_seams_test.py SOURCE_DIR."""
+
+import math
+import os
+import sys
+import tempfile
+
+import numpy as np
+
+import comply
+from comply.policy import PolicyRunner
+
+BLEND_S = 0.1  # chunk_blend_time_s of the controller file
+
+
+class FlowLikePolicy:
+    """A smooth random curve (two sines per axis, up to 0.1 m/s) planned from the observed
+    reference, sampled with noise: each chunk its own offset (1 mm) and every action its own
+    (0.1 mm), as samples of a flow policy disagree."""
+
+    def __init__(self, start, orientation, seed):
+        rng = np.random.default_rng(seed)
+        self.start, self.orientation, self.rng = start, orientation, rng
+        self.amplitude = rng.uniform(0.005, 0.015, (3, 2))
+        self.omega = 2 * math.pi * rng.uniform(0.2, 0.5, (3, 2))
+        self.phase = rng.uniform(0, 2 * math.pi, (3, 2))
+
+    def plan(self, t):
+        wave = self.amplitude * (np.sin(self.omega * t + self.phase) - np.sin(self.phase))
+        return self.start + wave.sum(axis=1)
+
+    def __call__(self, ctx):
+        # Planned from where the observation says the reference is.
+        offset = (ctx["observation"]["reference_position"] - self.plan(ctx["time"]) +
+                  self.rng.normal(0.0, 0.001, 3))
+        chunk = []
+        committed = ctx["committed"]
+        keep = min(max(1, ctx["delay_steps"]), ctx["horizon"] - 1)
+        frozen = committed is not None and committed["known"]
+        if frozen:  # inpainted: from the kept actions back onto the plan over half the rest
+            t_keep = ctx["time"] + keep * ctx["dt"]
+            gap = committed["position"][keep] - (self.plan(t_keep) + offset)
+            fade = max(5, (ctx["horizon"] - keep) // 2)
+        for k in range(ctx["horizon"]):
+            t = ctx["time"] + k * ctx["dt"]
+            if frozen and k <= keep:
+                position = committed["position"][k]  # what the host will execute: kept
+            else:
+                position = self.plan(t) + offset + self.rng.normal(0.0, 0.0001, 3)
+                if frozen:
+                    position = position + gap * max(0.0, 1.0 - (k - keep) / fade)
+            chunk.append({"time": k * ctx["dt"], "position": position,
+                          "orientation": self.orientation})
+        return chunk
+
+
+def hermite_velocity(times, points, t):
+    """The chunk's curve's velocity at `t` (docs/chunks.md's rules: interval-weighted mean of the
+    neighbouring secants, the secant at the first waypoint, zero at the last; holds outside)."""
+    n = len(times)
+    if t < times[0] or t >= times[-1]:
+        return np.zeros(3)
+    secants = np.diff(points, axis=0) / np.diff(times)[:, None]
+    slopes = np.zeros_like(points)
+    slopes[0] = secants[0]
+    for k in range(1, n - 1):
+        h0, h1 = times[k] - times[k - 1], times[k + 1] - times[k]
+        slopes[k] = (h1 * secants[k - 1] + h0 * secants[k]) / (h0 + h1)
+    k = np.searchsorted(times, t, side="right") - 1
+    h = times[k + 1] - times[k]
+    s = (t - times[k]) / h
+    d00, d10, d01, d11 = 6 * s * s - 6 * s, 3 * s * s - 4 * s + 1, -6 * s * s + 6 * s, 3 * s * s - 2 * s
+    return (d00 * points[k] + d10 * h * slopes[k] + d01 * points[k + 1] + d11 * h * slopes[k + 1]) / h
+
+
+def expected_past(record, dt, horizon, period):
+    """Waypoints before the cycle that takes the chunk over, worked out from when it was sent."""
+    takeover = record["sent_at"]
+    if record["keep"] is not None:
+        wanted = record["observation"] + record["keep"] * dt - 1e-9
+        cycles = math.ceil((wanted - record["sent_at"]) / period)
+        takeover = record["sent_at"] + max(0, cycles) * period
+    times = record["observation"] + dt * np.arange(horizon)
+    return int(np.sum(times < takeover - 1e-9))
+
+
+def run_scenario(source, rate_hz, horizon, delay_steps, mode, seed, seconds=3.0, first_s=0.7):
+    dt = 1.0 / rate_hz
+    rng = np.random.default_rng(seed)
+    inferences = []
+    delays = []
+
+    def delay():
+        delays.append(first_s if not delays else delay_steps * dt * (1.0 + rng.uniform(-0.3, 0.3)))
+        return delays[-1]
+
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, "seams.mcap")
+        sim = comply.Sim(f"{source}/config/sim/cartesian_impedance.yaml", robot="fr3",
+                         record=path)
+        obs = sim.reset()
+        policy = FlowLikePolicy(obs["tcp_position"].copy(), obs["tcp_orientation"].copy(), seed)
+        period = sim.period
+
+        def observed(ctx):
+            # What the host commits to from this observation on, every cycle of the chunk before.
+            cycles = int(round(horizon * dt / period))
+            inferences.append(sim.committed(ctx["time"], period, cycles))
+            return policy(ctx)
+
+        runner = PolicyRunner(sim, observed, dt=dt, horizon=horizon, mode=mode,
+                              inference_delay=delay)
+        runner.run(seconds, observation=obs)
+        sim.close()
+        cycles = comply.read_recording(path)["/comply/cycle"]
+        stamp = cycles["state.header.stamp.sec"] + 1e-9 * cycles["state.header.stamp.nanosec"]
+        reference = cycles["cartesian_in_force.position"]
+        twist = cycles["cartesian_in_force.twist"][:, :3]
+    return evaluate(runner, inferences, stamp, reference, twist, dt, horizon, period)
+
+
+def evaluate(runner, inferences, stamp, reference, twist, dt, horizon, period):
+    index = {round(t / period): i for i, t in enumerate(stamp)}
+    records = runner.records
+    took = [r for r in records if r["timing"] and r["timing"]["end"] == "took_over"]
+    takeovers = sorted(r["timing"]["takeover"] for r in took)
+    prefix_error = 0.0
+    for committed, record in zip(inferences, records):
+        later = [t for t in takeovers if t >= record["observation"] - 1e-9]
+        until = later[0] if later else math.inf
+        for t, p in zip(committed["time"], committed["position"]):
+            i = index.get(round(t / period))
+            if t < until - 1e-9 and i is not None and t <= stamp[-1]:
+                prefix_error = max(prefix_error, float(np.abs(p - reference[i]).max()))
+    delay_error = max((abs(r["timing"]["waypoints_past"] -
+                           expected_past(r, dt, horizon, period)) for r in took), default=0)
+    # The first chunk after the warm-up starts from rest: its seam is reported apart.
+    steady = took[1:]
+    # Per-cycle velocity change from the second takeover on: the reference's, and each chunk's own
+    # curve's where it is in force.
+    reference_step = plan_step = 0.0
+    if steady:
+        start = index.get(round(steady[0]["timing"]["takeover"] / period), len(stamp))
+        if start + 1 < len(stamp):
+            reference_step = float(np.abs(np.diff(twist[start:], axis=0)).max())
+    for r, nxt in zip(steady, steady[1:] + [None]):
+        times = r["observation"] + dt * np.arange(horizon)
+        points = np.array([w for w in r["positions"]])
+        end = nxt["timing"]["takeover"] if nxt else stamp[-1]
+        grid = np.arange(r["timing"]["takeover"], end, period)
+        v = np.array([hermite_velocity(times, points, t) for t in grid])
+        if len(v) > 1:
+            plan_step = max(plan_step, float(np.abs(np.diff(v, axis=0)).max()))
+    return {"chunks": len(records), "took_over": len(took),
+            "refused": sum(1 for r in records if r.get("refused")),
+            "prefix_error": prefix_error, "delay_error": delay_error,
+            "first": took[0]["timing"] if took else None,
+            "position_jump": max((r["timing"]["position_jump"] for r in steady), default=0.0),
+            "velocity_jump": max((r["timing"]["velocity_jump"] for r in steady), default=0.0),
+            "reference_dv": reference_step, "plan_dv": plan_step,
+            "delays": [r["timing"]["waypoints_past"] for r in took],
+            "reference": (stamp, reference)}
+
+
+def check_warm_start(source):
+    """LeRobot PR #4223: from standstill a 0.7 s first inference, 30 actions at 30 Hz. The host
+    counts the 21 actions whose time passed during the warm-up, blends in from rest, and the
+    reference then meets every action it reaches (to 1e-9) until the next chunk takes over."""
+    dt, horizon = 1.0 / 30.0, 30
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, "warm.mcap")
+        sim = comply.Sim(f"{source}/config/sim/cartesian_impedance.yaml", robot="fr3",
+                         record=path)
+        obs = sim.reset()
+        start = obs["tcp_position"].copy()
+
+        def policy(ctx):  # 2 cm/s along y from where the observation's reference is
+            origin = ctx["observation"]["reference_position"]
+            return [{"time": k * dt, "position": origin + [0.0, 0.02 * k * dt, 0.0],
+                     "orientation": obs["tcp_orientation"]} for k in range(horizon)]
+
+        delays = iter([0.7] + [0.3] * 100)
+        runner = PolicyRunner(sim, policy, dt=dt, horizon=horizon, replan_steps=15,
+                              inference_delay=lambda: next(delays))
+        runner.run(1.5, observation=obs)
+        sim.close()
+        cycles = comply.read_recording(path)["/comply/cycle"]
+    period = 0.001
+    stamp = cycles["state.header.stamp.sec"] + 1e-9 * cycles["state.header.stamp.nanosec"]
+    reference = cycles["cartesian_in_force.position"]
+    first, second = runner.records[0], runner.records[1]
+    assert first["timing"]["waypoints_past"] == 21, first["timing"]
+    assert abs(first["timing"]["takeover"] - 0.7) < 1e-9, first["timing"]
+    met = 0
+    for k in range(horizon):
+        t = first["observation"] + k * dt
+        i = int(round(t / period))
+        on_grid = abs(stamp[i] - t) < 1e-9
+        if on_grid and 0.7 + BLEND_S <= t < second["timing"]["takeover"] - 1e-9:
+            action = start + [0.0, 0.02 * k * dt, 0.0]
+            assert np.abs(reference[i] - action).max() < 1e-9, (k, reference[i], action)
+            met += 1
+    assert met >= 2, met
+    print(f"warm start: {first['timing']['waypoints_past']} of 30 actions past at "
+          f"{first['timing']['takeover']:.3f} s, seam {1000 * first['timing']['position_jump']:.2f}"
+          f" mm, then {met} actions on the cycle grid met to 1e-9")
+
+
+def main():
+    source = sys.argv[1]
+    check_warm_start(source)
+    # The runner keeps what it sent; the evaluation needs the positions.
+    original_note = PolicyRunner._note
+
+    def note(self, stamp, observation_time, chunk, keep, sent_at, info=None):
+        record = original_note(self, stamp, observation_time, chunk, keep, sent_at, info)
+        record["positions"] = [np.asarray(w["position"]) for w in chunk]
+        return record
+    PolicyRunner._note = note
+
+    print("| rate [Hz] | actions | delay [steps] | mode | chunks | took over | refused | "
+          "prefix error [m] | delay error [steps] | max seam jump [mm] | max seam velocity jump "
+          "[m/s] | reference dv/cycle [m/s] | plan dv/cycle [m/s] | delays (host) |")
+    print("|" + "---|" * 14)
+    failures = []
+    for rate in (15, 30, 50):
+        for horizon in (16, 50):
+            for delay_steps in (0, 5, 10, 20):
+                for mode in ("replace", "frozen"):
+                    r = run_scenario(source, rate, horizon, delay_steps, mode, seed=rate + horizon)
+                    print(f"| {rate} | {horizon} | {delay_steps} | {mode} | {r['chunks']} | "
+                          f"{r['took_over']} | {r['refused']} | {r['prefix_error']:.1e} | "
+                          f"{r['delay_error']} | {1000 * r['position_jump']:.2f} | "
+                          f"{r['velocity_jump']:.3f} | {r['reference_dv']:.5f} | "
+                          f"{r['plan_dv']:.5f} | {sorted(set(r['delays']))[:6]} |")
+                    if r["prefix_error"] > 1e-9:
+                        failures.append(f"{rate} Hz {horizon} {delay_steps} {mode}: prefix "
+                                        f"{r['prefix_error']:.2e}")
+                    if r["delay_error"] != 0:
+                        failures.append(f"{rate} Hz {horizon} {delay_steps} {mode}: delay off by "
+                                        f"{r['delay_error']}")
+    for failure in failures:
+        print("FAIL", failure)
+    if failures:
+        sys.exit(1)
+    print("ok")
+
+
+if __name__ == "__main__":
+    main()
