@@ -18,6 +18,7 @@
 #include <optional>
 #include <string>
 
+#include "comply/core/chunk.hpp"
 #include "comply/host/host_recording.hpp"
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
@@ -73,6 +74,14 @@ class Sim {
   void recordOutcome(const pipeline::CommandOutcome& outcome);
   /// Settles the episode's commands no cycle took (recorded as rejected) before it goes.
   void endEpisode();
+  /// Offers `command` (a dict, or a chunk) through the gate at this step's time; its stamp.
+  std::optional<std::int64_t> offer(const py::object& command, const py::object& relative_to,
+                                    const py::object& keep);
+  /// A chunk's takeover for keep=m: its waypoint m's time; raises for an m it does not have.
+  template <typename Command>
+  static double takeoverOf(const Chunk<Command>& chunk, const py::object& keep);
+  /// The chunks' timing records since the last step, as dicts on the simulated clock.
+  py::list takeChunkTimings();
   /// The simulated time of the last cycle (the wrapper's host clock, so chunk times fall on
   /// cycles).
   [[nodiscard]] double lastCycleTime() const noexcept;

@@ -2,171 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <type_traits>
+#include <limits>
 
-#include "chunk_blend.hpp"
-#include "chunk_curve.hpp"
-#include "chunk_track.hpp"
-#include "comply/core/rotation.hpp"
-#include "comply/core/triple_buffer.hpp"
-#include "comply/schema/schema.hpp"
+#include "chunk_engine.hpp"
 
 namespace comply::pipeline {
 namespace {
 
 using namespace chunk;  // NOLINT(google-build-using-namespace): the track's types and helpers
-
-constexpr std::uint8_t kFree = 0;
-constexpr std::uint8_t kLoaded = 1;
-
-/// Fades the groups `fields` of `chunk` in from `from` (fraction 0: all `from`, 1: all chunk)
-/// into `active`.
-void fadeSettings(const Cartesian& from, const Cartesian& chunk, std::uint32_t fields,
-                  double fraction, Cartesian& active) noexcept {
-  const int dof = active.dof;
-  if ((fields & COMPLY_FIELD_STIFFNESS) != 0) {
-    lerp(from.stiffness_translational, chunk.stiffness_translational, fraction, 9,
-         active.stiffness_translational);
-    lerp(from.stiffness_rotational, chunk.stiffness_rotational, fraction, 9,
-         active.stiffness_rotational);
-  }
-  if ((fields & COMPLY_FIELD_DAMPING) != 0) {
-    // Blocks of two modes mean different things: a change of mode takes effect at once.
-    const double f = from.damping_mode == chunk.damping_mode ? fraction : 1.0;
-    lerp(from.damping_translational, chunk.damping_translational, f, 9,
-         active.damping_translational);
-    lerp(from.damping_rotational, chunk.damping_rotational, f, 9, active.damping_rotational);
-    lerp(from.damping_ratio, chunk.damping_ratio, f, 6, active.damping_ratio);
-    active.damping_mode = chunk.damping_mode;
-  }
-  if ((fields & COMPLY_FIELD_TASK_FRAME) != 0) {
-    toXyzw(slerpShort(fromXyzw(from.task_frame), fromXyzw(chunk.task_frame), fraction),
-           active.task_frame);
-  }
-  if ((fields & COMPLY_FIELD_WRENCH_FEEDFORWARD) != 0) {
-    lerp(from.wrench_feedforward, chunk.wrench_feedforward, fraction, 6, active.wrench_feedforward);
-  }
-  if ((fields & COMPLY_FIELD_TORQUE_FEEDFORWARD) != 0) {
-    lerp(from.torque_feedforward, chunk.torque_feedforward, fraction, dof,
-         active.torque_feedforward);
-  }
-  if ((fields & COMPLY_FIELD_NULLSPACE) != 0) {
-    lerp(from.nullspace_position, chunk.nullspace_position, fraction, dof,
-         active.nullspace_position);
-    lerp(from.nullspace_stiffness, chunk.nullspace_stiffness, fraction, dof,
-         active.nullspace_stiffness);
-    lerp(from.nullspace_damping, chunk.nullspace_damping, fraction, dof, active.nullspace_damping);
-  }
-}
-
-void fadeSettings(const Joint& from, const Joint& chunk, std::uint32_t fields, double fraction,
-                  Joint& active) noexcept {
-  if ((fields & COMPLY_FIELD_STIFFNESS) != 0) {
-    lerp(from.stiffness, chunk.stiffness, fraction, active.dof, active.stiffness);
-  }
-  if ((fields & COMPLY_FIELD_DAMPING) != 0) {
-    lerp(from.damping, chunk.damping, fraction, active.dof, active.damping);
-  }
-  if ((fields & COMPLY_FIELD_TORQUE_FEEDFORWARD) != 0) {
-    lerp(from.torque_feedforward, chunk.torque_feedforward, fraction, active.dof,
-         active.torque_feedforward);
-  }
-}
-
-void writeMotion(const CartesianMotion& m, Cartesian& to) noexcept {
-  Vector3Map(to.position) = m.position;
-  toXyzw(m.orientation, to.orientation);
-  Eigen::Map<Vector6d>(to.twist) << m.velocity, m.angular_velocity;
-  Eigen::Map<Vector6d>(to.acceleration) << m.acceleration, m.angular_acceleration;
-}
-
-void writeMotion(const JointMotion& m, Joint& to) noexcept {
-  const int dof = to.dof;
-  std::copy_n(m.position.data(), dof, to.position);
-  std::copy_n(m.velocity.data(), dof, to.velocity);
-  std::copy_n(m.acceleration.data(), dof, to.acceleration);
-}
-
-/// How the running chunk started: what the cycle and predict() evaluate it from.
-template <typename Bus>
-struct Start {
-  std::uint64_t sequence = 0;  ///< 0: no chunk
-  int slot = -1;
-  Bus from{};  ///< the reference in force when it started
-  OffsetOf<Bus> offset{};
-  double start_s = 0.0;
-};
-
-/// What predict() reads of the cycle's player, published whenever it changes.
-template <typename Bus>
-struct View {
-  Start<Bus> running;  ///< sequence 0: none plays
-  /// The chunk that played before (sequence 0: none), until `previous_end_s`: taken over, run out
-  /// or stopped.
-  Start<Bus> previous;
-  double previous_end_s = 0.0;
-  int waiting_slot = -1;
-  std::uint64_t waiting_sequence = 0;
-};
-
-/// The typed half of the player: its slots and the running chunk's blend.
-template <typename Bus>
-struct Engine {
-  std::array<Track<Bus>, ChunkPlayer::kSlots> tracks;
-  Start<Bus> running;
-  Start<Bus> previous;
-  double previous_end_s = 0.0;
-  int cursor = 0;
-  Bus settings{};  // scratch: the chunk's settings at this cycle's place
-  TripleBuffer<View<Bus>> view;
-  // predict()'s own, so that it allocates nothing.
-  Bus predicted_settings{};
-  Start<Bus> predicted_start;
-};
-
-}  // namespace
-
-struct ChunkPlayer::Slots {
-  int kind = COMPLY_COMMAND_CARTESIAN;
-  int dof = 0;
-  double blend_time_s = 0.0;
-  std::array<std::atomic<std::uint8_t>, kSlots> state{};
-  std::unique_ptr<Engine<Cartesian>> cartesian;
-  std::unique_ptr<Engine<Joint>> joint;
-
-  [[nodiscard]] std::uint64_t sequenceOf(int slot) const noexcept {
-    return cartesian ? cartesian->tracks[slot].sequence : joint->tracks[slot].sequence;
-  }
-  [[nodiscard]] double takeoverOf(int slot) const noexcept {
-    return cartesian ? cartesian->tracks[slot].takeover_s : joint->tracks[slot].takeover_s;
-  }
-  /// The running chunk, if any, becomes the previous one, ended at `now_s`.
-  void retire(double now_s) noexcept {
-    const auto retireIn = [&](auto& engine) {
-      if (engine.running.sequence != 0) {
-        engine.previous = engine.running;
-        engine.previous_end_s = now_s;
-        engine.running = {};
-      }
-    };
-    if (cartesian) {
-      retireIn(*cartesian);
-    } else {
-      retireIn(*joint);
-    }
-  }
-
-  int acquire() noexcept {
-    for (int slot = 0; slot < kSlots; ++slot) {
-      if (state[slot].load(std::memory_order_acquire) == kFree) {
-        return slot;
-      }
-    }
-    return -1;
-  }
-};
-
-namespace {
 
 template <typename Bus, typename Command>
 int loadInto(ChunkPlayer::Slots& slots, Engine<Bus>& engine, const Chunk<Command>& chunk,
@@ -193,39 +36,6 @@ int loadInto(ChunkPlayer::Slots& slots, Engine<Bus>& engine, const Chunk<Command
   return slot;
 }
 
-template <typename Bus>
-Start<Bus> startOf(const Track<Bus>& track, int slot, const Bus& in_force, double now_s) noexcept {
-  Start<Bus> start;
-  start.sequence = track.sequence == 0 ? 1 : track.sequence;  // 0 means none
-  start.slot = slot;
-  start.from = in_force;
-  start.start_s = now_s;
-  int cursor = 0;
-  start.offset = offsetAt(in_force, motionAt(track, placeOf(track, now_s, cursor)));
-  return start;
-}
-
-/// The running chunk's reference at `now_s` into `active`; returns whether the chunk still runs
-/// after it. The cycle's play() and predict() both evaluate it here.
-template <typename Bus>
-bool evaluate(const Track<Bus>& track, const Start<Bus>& start, double blend_time_s, double now_s,
-              int& cursor, Bus& settings_scratch, Bus& active) noexcept {
-  const Place place = placeOf(track, now_s, cursor);
-  auto motion = motionAt(track, place);
-  const double since_start = now_s - start.start_s;
-  const bool blending = blend_time_s > 0.0 && since_start < blend_time_s;
-  const double fraction = blendInto(start.offset, blend_time_s, since_start, motion);
-  writeMotion(motion, active);
-  const std::uint32_t settings = track.fields & ~(COMPLY_FIELD_POSITION | COMPLY_FIELD_VELOCITY);
-  if (settings != 0) {
-    settingsAt(track, place, settings_scratch);
-    fadeSettings(start.from, settings_scratch, settings, fraction, active);
-  }
-  active.stamp_s = track.stamp_s;
-  return blending || now_s < track.time_s[track.count - 1];
-}
-
-/// The seam of a chunk starting with `start` (chunk_timing.hpp).
 void measureSeam(const CartesianOffset& offset, ChunkTiming& timing) noexcept {
   timing.position_jump = offset.position[0].norm();
   timing.velocity_jump = offset.position[1].norm();
@@ -275,80 +85,6 @@ void publishView(Engine<Bus>& engine, int waiting_slot) noexcept {
   view.waiting_sequence = waiting_slot >= 0 ? engine.tracks[waiting_slot].sequence : 0;
   engine.view.publishFromSoleWriter(view);
 }
-
-/// The first cycle of the grid `last_cycle_s` + j `period_s` (j >= 1) that meets `takeover_s`.
-double takeoverCycle(double takeover_s, double last_cycle_s, double period_s) noexcept {
-  const double wanted = takeover_s - ChunkPlayer::kTakeoverTolerance_s;
-  const double steps = std::ceil((wanted - last_cycle_s) / period_s);
-  return last_cycle_s + std::max(1.0, steps) * period_s;
-}
-
-template <typename Bus>
-bool predictIn(Engine<Bus>& engine, double blend_time_s, std::span<const double> times_s,
-               double last_cycle_s, double period_s, std::span<CommandBus> out) noexcept {
-  engine.view.update();
-  const View<Bus>& view = engine.view.read();
-  // A slot holds a chunk's data until a load() reuses it, which the caller's lock excludes.
-  const auto intact = [&](const Start<Bus>& start) {
-    return start.sequence != 0 && engine.tracks[start.slot].sequence == start.sequence;
-  };
-  const bool running = intact(view.running);
-  const bool previous = intact(view.previous);
-  const bool waiting =
-      view.waiting_slot >= 0 && engine.tracks[view.waiting_slot].sequence == view.waiting_sequence;
-  double waiting_start_s = std::numeric_limits<double>::infinity();
-  if (waiting) {
-    waiting_start_s =
-        takeoverCycle(engine.tracks[view.waiting_slot].takeover_s, last_cycle_s, period_s);
-  }
-  bool known = true;
-  int cursor = 0;
-  bool waiting_started = false;
-  for (std::size_t k = 0; k < times_s.size() && k < out.size(); ++k) {
-    Bus* bus = std::get_if<Bus>(&out[k]);
-    if (bus == nullptr) {
-      return false;
-    }
-    const double t = times_s[k];
-    if (waiting && t >= waiting_start_s) {
-      if (!waiting_started) {
-        // The waiting chunk starts from the reference the cycle writes at its takeover.
-        Bus from = *bus;
-        if (running) {
-          int c = 0;
-          (void)evaluate(engine.tracks[view.running.slot], view.running, blend_time_s,
-                         waiting_start_s, c, engine.predicted_settings, from);
-        }
-        engine.predicted_start =
-            startOf(engine.tracks[view.waiting_slot], view.waiting_slot, from, waiting_start_s);
-        waiting_started = true;
-        cursor = 0;
-      }
-      (void)evaluate(engine.tracks[view.waiting_slot], engine.predicted_start, blend_time_s, t,
-                     cursor, engine.predicted_settings, *bus);
-    } else if (view.running.sequence != 0 && t >= view.running.start_s) {
-      if (running) {
-        (void)evaluate(engine.tracks[view.running.slot], view.running, blend_time_s, t, cursor,
-                       engine.predicted_settings, *bus);
-      } else {
-        bus->position[0] = std::numeric_limits<double>::quiet_NaN();
-        known = false;
-      }
-    } else if (view.previous.sequence != 0 && t < view.previous_end_s) {
-      // Before the last change (a time already past): what the chunk before played then.
-      if (previous && t >= view.previous.start_s) {
-        int c = 0;
-        (void)evaluate(engine.tracks[view.previous.slot], view.previous, blend_time_s, t, c,
-                       engine.predicted_settings, *bus);
-      } else {
-        bus->position[0] = std::numeric_limits<double>::quiet_NaN();
-        known = false;
-      }
-    }
-  }
-  return known;
-}
-
 }  // namespace
 
 ChunkPlayer::ChunkPlayer(int command_kind, int dof, double blend_time_s)
@@ -383,17 +119,6 @@ void ChunkPlayer::release(int slot) noexcept {
   if (slot >= 0 && slot < kSlots) {
     slots_->state[slot].store(kFree, std::memory_order_release);
   }
-}
-
-bool ChunkPlayer::predict(std::span<const double> times_s, double last_cycle_s, double period_s,
-                          std::span<CommandBus> out) {
-  if (!(period_s > 0.0)) {
-    return false;
-  }
-  return slots_->cartesian ? predictIn(*slots_->cartesian, slots_->blend_time_s, times_s,
-                                       last_cycle_s, period_s, out)
-                           : predictIn(*slots_->joint, slots_->blend_time_s, times_s, last_cycle_s,
-                                       period_s, out);
 }
 
 ChunkTiming* ChunkPlayer::newEvent() noexcept {
