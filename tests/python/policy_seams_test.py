@@ -223,8 +223,29 @@ def check_warm_start(source):
           f" mm, then {met} actions on the cycle grid met to 1e-9")
 
 
+def check_runner_options():
+    """Temporal ensembling averages the chunks' actions for the same time, the oldest weighted
+    exp(0), the next exp(-m); a mode that does not exist is refused."""
+    runner = PolicyRunner(object(), None, dt=0.1, horizon=3, mode="ensemble", ensemble_decay=0.5)
+    first = [{"time": 0.1 * k, "position": [1.0 * k, 0.0, 0.0]} for k in range(3)]
+    runner._ensembled(first, 0.0)
+    second = [{"time": 0.1 * k, "position": [10.0, 0.0, 0.0]} for k in range(3)]
+    sent = runner._ensembled(second, 0.1)  # at 0.1 and 0.2 both planned, at 0.3 only the new
+    w = math.exp(-0.5)
+    assert abs(sent[0]["position"][0] - (1.0 + w * 10.0) / (1.0 + w)) < 1e-12, sent
+    assert abs(sent[1]["position"][0] - (2.0 + w * 10.0) / (1.0 + w)) < 1e-12, sent
+    assert sent[2]["position"][0] == 10.0, sent
+    try:
+        PolicyRunner(object(), None, dt=0.1, horizon=3, mode="average")
+    except ValueError as error:
+        assert "replace, frozen, ensemble" in str(error), error
+    else:
+        raise AssertionError("an unknown mode was taken")
+
+
 def main():
     source = sys.argv[1]
+    check_runner_options()
     check_warm_start(source)
     # The runner keeps what it sent; the evaluation needs the positions.
     original_note = PolicyRunner._note
