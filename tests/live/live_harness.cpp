@@ -59,6 +59,9 @@ class DdsHarness final : public HostHarness {
   bool request(transport::RequestType /*request*/, int /*publisher*/) override {
     return false;  // `comply send --request` is the DDS side's requester (tests/apps)
   }
+  bool send(const transport::RequestMessage& /*message*/, int /*publisher*/) override {
+    return false;
+  }
   void close(int publisher) override { writers_.erase(publisher); }
   std::optional<transport::ControllerStateMessage> state(
       std::chrono::milliseconds timeout) override {
@@ -166,6 +169,9 @@ class InProcessHarness final : public HostHarness {
     transport::RequestMessage message;
     message.header.stamp = transport::Stamp::now();
     message.request = request;
+    return send(message, publisher);
+  }
+  bool send(const transport::RequestMessage& message, int publisher) override {
     bus_->send(message, static_cast<std::uint64_t>(publisher));
     return true;
   }

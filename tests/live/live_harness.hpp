@@ -67,6 +67,8 @@ class HostHarness {
   /// An operator request (activate, deactivate, reset) from `publisher`; false where the harness
   /// cannot send one.
   virtual bool request(transport::RequestType request, int publisher) = 0;
+  /// A request as given (its header too); false where the harness cannot send one.
+  virtual bool send(const transport::RequestMessage& message, int publisher) = 0;
 
   /// The newest state, waiting up to `timeout` for one.
   virtual std::optional<transport::ControllerStateMessage> state(

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <thread>
 
 #include "live_harness.hpp"
@@ -117,6 +118,73 @@ TEST_F(LiveHostInProcess, EveryRequestHasAnOutcome) {
   EXPECT_EQ(carried_out.outcome, transport::Outcome::kApplied) << carried_out.message;
   EXPECT_EQ(carried_out.reason, transport::Reason::kNone);
   EXPECT_EQ(host.last().commands_received, received) << "a request counted as a command";
+}
+
+/// A request is reported carried out once it was: the diagnostics that bring a deactivate's or
+/// an activate's outcome already show the state it led to (they were reported at once, before
+/// the control thread acted, and two in one batch left one undone). A reset with no fault to
+/// leave is carried out too (it clears the stamp floor).
+TEST_F(LiveHostInProcess, ARequestIsReportedCarriedOutOnceItWas) {
+  HostHarness& host = *host_;
+  const auto state = host.startConnected("carried_out", 1);
+  ASSERT_TRUE(state);
+  ASSERT_TRUE(host.send(poseCommand(*state, Eigen::Vector3d::Zero(), transport::Stamp::now()), 1));
+  ASSERT_TRUE(host.poll(5s, [](const auto& d) { return d.commands_applied > 0; }));
+  const auto stateWithOutcome = [&](transport::RequestType request) {
+    host.outcomes().clear();
+    EXPECT_TRUE(host.request(request, 1));
+    std::optional<transport::HostState> seen;
+    EXPECT_TRUE(host.poll(5s, [&](const transport::DiagnosticsMessage& d) {
+      const auto found = requestOutcomes(host);
+      if (found.empty()) {
+        return false;
+      }
+      EXPECT_EQ(found.front().outcome, transport::Outcome::kApplied) << found.front().message;
+      seen = d.state;
+      return true;
+    }));
+    return seen;
+  };
+  for (int round = 0; round < 5; ++round) {
+    SCOPED_TRACE(round);
+    EXPECT_EQ(stateWithOutcome(transport::RequestType::kDeactivate),
+              transport::HostState::kInactive);
+    EXPECT_EQ(stateWithOutcome(transport::RequestType::kActivate), transport::HostState::kActive);
+  }
+  EXPECT_EQ(stateWithOutcome(transport::RequestType::kReset), transport::HostState::kActive);
+}
+
+/// A request the host cannot read in full still names its stamp and sender: it is answered,
+/// refused for what it held (a frame_id over its bound; a nanosec out of range, under the stamp
+/// as sent), and changes nothing.
+TEST_F(LiveHostInProcess, AMalformedRequestIsAnsweredWithItsReason) {
+  HostHarness& host = *host_;
+  const auto state = host.startConnected("malformed_request", 1);
+  ASSERT_TRUE(state);
+  host.outcomes().clear();
+  transport::RequestMessage large;
+  large.header.stamp = transport::Stamp::now();
+  large.header.frame_id = std::string(4096, 'x');
+  large.request = transport::RequestType::kDeactivate;
+  ASSERT_TRUE(host.send(large, 1));
+  ASSERT_TRUE(host.poll(5s, [&](const auto&) { return requestOutcomes(host).size() == 1; }));
+  const transport::CommandOutcomeMessage too_large = requestOutcomes(host).front();
+  EXPECT_EQ(too_large.outcome, transport::Outcome::kRejected);
+  EXPECT_EQ(toString(too_large.reason), "too_large") << too_large.message;
+  EXPECT_EQ(too_large.stamp, large.header.stamp);
+
+  host.outcomes().clear();
+  transport::RequestMessage odd;
+  odd.header.stamp = {static_cast<std::int32_t>(transport::Stamp::now().sec), 1'500'000'000U};
+  odd.request = transport::RequestType::kDeactivate;
+  ASSERT_TRUE(host.send(odd, 1));
+  ASSERT_TRUE(host.poll(5s, [&](const auto&) { return requestOutcomes(host).size() == 1; }));
+  const transport::CommandOutcomeMessage invalid = requestOutcomes(host).front();
+  EXPECT_EQ(invalid.outcome, transport::Outcome::kRejected);
+  EXPECT_EQ(toString(invalid.reason), "invalid_stamp") << invalid.message;
+  EXPECT_EQ(invalid.stamp.sec, odd.header.stamp.sec);
+  EXPECT_EQ(invalid.stamp.nanosec, odd.header.stamp.nanosec) << "not the stamp as sent";
+  EXPECT_EQ(host.last().state, transport::HostState::kActive) << "a refused request was done";
 }
 
 }  // namespace

@@ -170,8 +170,9 @@ class CommandGate {
   /// refused it; kNone when the host could not carry it out, `refusal` saying why). Settled with
   /// the commands' outcomes (takeOutcomes()), not counted among the commands; a request never
   /// takes the command topics.
+  /// `nanosec`: header.stamp.nanosec as it came, so that one out of range is named as sent.
   void settleRequest(std::int64_t stamp_ns, const SenderId& sender, CommandReason reason,
-                     std::string refusal);
+                     std::string refusal, std::uint32_t nanosec = 0);
   /// `publisher`'s writers went away: if it held the command topics, the next writer may take
   /// them at once (a clean exit need not wait out publisher_timeout_s). Returns the number of the
   /// last chunk accepted from it (0: none), which the host drops if it still waits for its start

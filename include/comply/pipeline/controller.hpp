@@ -84,7 +84,20 @@ struct IntakeMessage {
   Type type = Type::kCommand;
   CommandBus command;   ///< kCommand: a validated command with its field mask
   int chunk_slot = -1;  ///< kChunk: the ChunkPlayer slot the intake loaded it into
-  CommandId id;         ///< kCommand, kChunk, kDropChunk: which command it is
+  CommandId id;         ///< kCommand, kChunk, kDropChunk: which command it is; kReset: its number
+};
+
+/// What became of a reset request (IntakeMessage kReset, numbered by its id.sequence), decided by
+/// the cycle that took it.
+struct ResetResult {
+  enum class End : std::uint8_t {
+    kNoFault,        ///< there was no fault to leave (the intake cleared the stamp floor)
+    kLeftFault,      ///< the controller left FAULT, holding the measured pose
+    kStateUnusable,  ///< in FAULT with a measured state it cannot hold: the fault stays
+    kInactive,       ///< taken at activation, which starts afresh anyway
+  };
+  std::uint64_t number = 0;
+  End end = End::kNoFault;
 };
 
 class Controller {
@@ -147,6 +160,17 @@ class Controller {
   /// Which command is in force (the last the cycle took, or the chunk playing): what the command
   /// gate is told after a cycle (CommandGate::noteCycle) and what state and recordings report.
   [[nodiscard]] const CommandId& idInForce() const noexcept { return id_in_force_; }
+  /// One non-real-time thread: what became of the next reset request the cycle decided; false
+  /// when none is waiting.
+  bool takeResetResult(ResetResult& result) noexcept {
+    const ResetResult* front = reset_results_.front();
+    if (front == nullptr) {
+      return false;
+    }
+    result = *front;
+    reset_results_.pop();
+    return true;
+  }
   /// The controller's clock at the last cycle [s since activation]; the real-time thread's (an
   /// observer's after the cycle), as the chunk timing records that cycle wrote.
   [[nodiscard]] double time() const noexcept { return time_s_; }
@@ -210,7 +234,7 @@ class Controller {
   void takeChunk(const IntakeMessage& message) noexcept;
   void playChunk() noexcept;
   void watchdog() noexcept;
-  bool takeReset() noexcept;
+  bool takeReset(std::uint64_t number) noexcept;
   bool dropWaitingChunk(std::uint64_t sequence) noexcept;
   void resumeAfterReset() noexcept;
   bool checkSensor() noexcept;  // sensor.cpp
@@ -270,6 +294,8 @@ class Controller {
   bool state_usable_ = false;      // this cycle's state passed measure(), so input_ is current
   bool in_force_changed_ = false;  // active_ changed since the gain stage last saw it
   bool reset_pending_ = false;
+  std::uint64_t reset_number_ = 0;            // the pending reset's number
+  SpscQueue<ResetResult> reset_results_{16};  // to one non-real-time reader
   bool torque_clipped_ = false;  // the last cycle's torque was rate or effort limited or governed
   bool governed_ = false;        // the governor acted this cycle
   comply_input input_{};

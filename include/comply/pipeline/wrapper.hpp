@@ -53,7 +53,9 @@ class Wrapper final : public hardware::CycleController {
   /// Any thread. Asks the cycle to leave FAULT; the law runs again from the next cycle with a
   /// usable state (ignored outside FAULT). Clears the stamp floor either way: the next command
   /// may carry any stamp; and a chunk still waiting for its first waypoint is dropped.
-  void reset();
+  /// Returns the request's number, which the cycle's ResetResult names
+  /// (Controller::takeResetResult), or 0 when the intake queue was full and it was not queued.
+  std::uint64_t reset();
   /// Any thread. The next cycle drops the chunk numbered `sequence` (Verdict::sequence) if it
   /// still waits for its first waypoint: its sender left (CommandGate::releasePublisher), and a
   /// motion no one is there to follow up must not start later. A reset drops any waiting chunk.
@@ -136,6 +138,7 @@ class Wrapper final : public hardware::CycleController {
   Verdict submitStamped(const Command& command, const IntakeStamp& stamp);
   Verdict submitChunkStamped(const Chunk<Command>& chunk, double host_time_s,
                              const IntakeStamp& stamp);
+  std::uint64_t resets_ = 0;  // reset requests numbered so far
   /// predict() under the intake's lock, on buses.
   bool predictLocked(std::span<const double> times_s, double host_time_s,
                      const MeasuredPose& measured, std::vector<CommandBus>& out);

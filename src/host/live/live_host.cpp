@@ -75,6 +75,7 @@ void publisherThread(PublisherContext<Command> c, const std::atomic<bool>& runni
   auto last_diagnostics = Clock::now() - std::chrono::seconds(1);
   std::uint64_t events_seen = 0;
   while (running.load()) {
+    c.observer.settleRequests(c.gate);  // activations, deactivations, resets the cycle decided
     c.gate.settle();
     const auto now = Clock::now();
     if (now >= next_state) {

@@ -108,22 +108,28 @@ void Intake<Command>::take(const transport::Inbox& inbox) {
 
 template <typename Command>
 void Intake<Command>::handleRequest(const transport::Sample<transport::RequestMessage>& sample) {
-  if (!sample.malformed.empty()) {
-    // A request has no outcome: its refusal is the diagnostics' last rejection.
-    gate_.noteRefusal("request refused: " + sample.malformed);
-    return;
-  }
-  if (recording_ != nullptr) {
+  if (recording_ != nullptr && sample.malformed.empty()) {
     recording_->received(sample.message, transport::Stamp::now());
   }
   // Every request has an outcome, as every command has: its sender learns whether it was carried
   // out or why not.
+  const std::int64_t stamp_ns = sample.message.header.stamp.nanoseconds();
+  const std::uint32_t nanosec = sample.message.header.stamp.nanosec;
   const auto settle = [&](pipeline::CommandReason reason, std::string refusal) {
-    gate_.settleRequest(sample.message.header.stamp.nanoseconds(), sample.sender, reason,
-                        std::move(refusal));
+    gate_.settleRequest(stamp_ns, sample.sender, reason, std::move(refusal), nanosec);
   };
+  // A malformed request (a frame_id over its bound, a type no host knows) still names its stamp
+  // and sender: it is answered, refused for what it held, and is the last rejection too.
   if (!sample.malformed.empty()) {
-    settle(pipeline::CommandReason::kNone, sample.malformed);
+    gate_.noteRefusal("request refused: " + sample.malformed);
+    settle(static_cast<pipeline::CommandReason>(sample.malformed_reason), sample.malformed);
+    return;
+  }
+  if (nanosec >= 1'000'000'000U) {
+    const std::string why = "invalid_stamp: header.stamp.nanosec " + std::to_string(nanosec) +
+                            " is out of range (0 to 999999999)";
+    gate_.noteRefusal("request refused: " + why);
+    settle(pipeline::CommandReason::kInvalidStamp, why);
     return;
   }
   if (sample.message.request == transport::RequestType::kProbe) {
@@ -142,10 +148,21 @@ void Intake<Command>::handleRequest(const transport::Sample<transport::RequestMe
   switch (sample.message.request) {
     case transport::RequestType::kActivate:
     case transport::RequestType::kDeactivate:
-      observer_.requestLifecycle(sample.message.request);
+      // Settled once the control thread carried it out (or the activation failed).
+      if (observer_.requestLifecycle(sample.message.request, stamp_ns, sample.sender)) {
+        return;
+      }
+      refused = "too many activations and deactivations wait for the control thread";
+      gate_.noteRefusal(refused);
       break;
     case transport::RequestType::kReset:
-      wrapper_.reset();  // clears the stamp floor too
+      // Clears the stamp floor now; settled once the cycle has decided it.
+      if (const std::uint64_t number = wrapper_.reset(); number != 0) {
+        observer_.noteReset(number, stamp_ns, sample.sender);
+        return;
+      }
+      refused = "reset: the intake queue is full, send it again";
+      gate_.noteRefusal(refused);
       break;
     case transport::RequestType::kTare:
       if (const std::string why_not = wrapper_.tare(); !why_not.empty()) {

@@ -2,7 +2,10 @@
 
 #include "live_observer.hpp"
 
+#include <algorithm>
+#include <cstdio>
 #include <ctime>
+#include <string>
 
 #include "comply/core/clock.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
@@ -42,18 +45,26 @@ LiveObserver<Command>::LiveObserver(pipeline::Wrapper<Command>& wrapper,
 
 template <typename Command>
 void LiveObserver<Command>::beforeCycle(std::uint64_t /*index*/, double /*time_s*/) {
-  const auto request = static_cast<transport::RequestType>(
-      lifecycle_request_.exchange(0, std::memory_order_acq_rel));
   // Lifecycle transitions run between cycles on this thread; they are rare operator requests,
-  // not part of the cycle's real-time budget.
-  if (request == transport::RequestType::kActivate) {
-    try {
-      wrapper_.activate(last_state_);
-    } catch (const std::exception& error) {
-      activation_error_.write("activation failed: ", error.what(), 1);
+  // not part of the cycle's real-time budget. Each is carried out in order and its outcome
+  // handed to the publisher's thread; a request waits while that hand-over is full.
+  for (const LifecycleRequest* request = lifecycle_requests_.front(); request != nullptr;
+       request = lifecycle_requests_.front()) {
+    LifecycleResult result{.request = *request};
+    if (request->request == transport::RequestType::kActivate) {
+      try {
+        wrapper_.activate(last_state_);
+      } catch (const std::exception& error) {
+        std::snprintf(result.refusal.data(), result.refusal.size(), "activation failed: %s",
+                      error.what());
+      }
+    } else if (request->request == transport::RequestType::kDeactivate) {
+      wrapper_.deactivate();
     }
-  } else if (request == transport::RequestType::kDeactivate) {
-    wrapper_.deactivate();
+    if (!lifecycle_results_.push(result)) {
+      return;  // carried out; its outcome is lost only if 64 wait unsettled
+    }
+    lifecycle_requests_.pop();
   }
 }
 
@@ -83,13 +94,50 @@ void LiveObserver<Command>::fillSample(const hardware::CycleRecord& record) noex
 }
 
 template <typename Command>
-void LiveObserver<Command>::requestLifecycle(transport::RequestType request) noexcept {
-  lifecycle_request_.store(static_cast<std::uint8_t>(request), std::memory_order_release);
+bool LiveObserver<Command>::requestLifecycle(transport::RequestType request, std::int64_t stamp_ns,
+                                             const pipeline::SenderId& sender) noexcept {
+  return lifecycle_requests_.push({request, stamp_ns, sender});
 }
 
 template <typename Command>
-std::string LiveObserver<Command>::activationError() const {
-  return activation_error_.read().first;
+void LiveObserver<Command>::noteReset(std::uint64_t number, std::int64_t stamp_ns,
+                                      const pipeline::SenderId& sender) {
+  const std::lock_guard<std::mutex> lock(resets_mutex_);
+  pending_resets_.push_back({number, stamp_ns, sender});
+}
+
+template <typename Command>
+void LiveObserver<Command>::settleRequests(pipeline::CommandGate& gate) {
+  for (const LifecycleResult* result = lifecycle_results_.front(); result != nullptr;
+       result = lifecycle_results_.front()) {
+    const std::string refusal(result->refusal.data());
+    if (!refusal.empty()) {
+      gate.noteRefusal(refusal);
+    }
+    gate.settleRequest(result->request.stamp_ns, result->request.sender,
+                       pipeline::CommandReason::kNone, refusal);
+    lifecycle_results_.pop();
+  }
+  pipeline::ResetResult reset;
+  while (wrapper_.controller().takeResetResult(reset)) {
+    PendingReset pending{};
+    {
+      const std::lock_guard<std::mutex> lock(resets_mutex_);
+      const auto it = std::find_if(pending_resets_.begin(), pending_resets_.end(),
+                                   [&](const PendingReset& p) { return p.number == reset.number; });
+      if (it == pending_resets_.end()) {
+        continue;  // a reset no request of this host's asked for
+      }
+      pending = *it;
+      pending_resets_.erase(it);
+    }
+    std::string refusal;
+    if (reset.end == pipeline::ResetResult::End::kStateUnusable) {
+      refusal = "reset refused: the measured state is not usable, the fault stays";
+      gate.noteRefusal(refusal);
+    }
+    gate.settleRequest(pending.stamp_ns, pending.sender, pipeline::CommandReason::kNone, refusal);
+  }
 }
 
 template <typename Command>

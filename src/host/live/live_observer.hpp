@@ -10,6 +10,8 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <deque>
+#include <mutex>
 #include <string>
 
 #include "comply/core/spsc_queue.hpp"
@@ -39,10 +41,17 @@ class LiveObserver final : public hardware::LoopObserver {
 
   /// Before the loop runs: every cycle is recorded there (nullptr: none).
   void setRecording(HostRecording* recording) noexcept { recording_ = recording; }
-  /// Any thread: activate or deactivate before the next cycle.
-  void requestLifecycle(transport::RequestType request) noexcept;
-  /// Why the last activation failed ("" if it did not); any thread.
-  [[nodiscard]] std::string activationError() const;
+  /// The intake's thread: activate or deactivate before the next cycle; the request (`stamp_ns`,
+  /// `sender`) is settled when it was carried out or failed (settleRequests()). False when too
+  /// many wait (the caller refuses it).
+  bool requestLifecycle(transport::RequestType request, std::int64_t stamp_ns,
+                        const pipeline::SenderId& sender) noexcept;
+  /// The intake's thread: the reset numbered `number` (Wrapper::reset()) from `sender` is
+  /// settled when the cycle has decided it.
+  void noteReset(std::uint64_t number, std::int64_t stamp_ns, const pipeline::SenderId& sender);
+  /// The publisher's thread: settles the lifecycle requests the control thread carried out or
+  /// failed, and the resets the cycle decided, with `gate`.
+  void settleRequests(pipeline::CommandGate& gate);
   /// The publisher thread: the newest state sample; false when none is new.
   bool takeState(StateSample& sample);
   [[nodiscard]] const LoopCounters& counters() const noexcept { return counters_; }
@@ -58,8 +67,24 @@ class LiveObserver final : public hardware::LoopObserver {
   JointState last_state_;
   StateSampler<Command> sampler_;
   HostRecording* recording_ = nullptr;
-  std::atomic<std::uint8_t> lifecycle_request_{0};
-  pipeline::MessageSlot activation_error_;
+  struct LifecycleRequest {
+    transport::RequestType request = transport::RequestType::kProbe;
+    std::int64_t stamp_ns = 0;
+    pipeline::SenderId sender{};
+  };
+  struct LifecycleResult {
+    LifecycleRequest request;
+    std::array<char, 240> refusal{};  // empty: carried out
+  };
+  struct PendingReset {
+    std::uint64_t number;
+    std::int64_t stamp_ns;
+    pipeline::SenderId sender;
+  };
+  SpscQueue<LifecycleRequest> lifecycle_requests_{32};  // intake -> control thread
+  SpscQueue<LifecycleResult> lifecycle_results_{64};    // control -> publisher thread
+  std::mutex resets_mutex_;                             // intake and publisher threads only
+  std::deque<PendingReset> pending_resets_;
 };
 
 extern template class LiveObserver<CartesianCommand>;

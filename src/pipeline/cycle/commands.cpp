@@ -14,7 +14,7 @@ void Controller::takeCommands() noexcept {
     if (message->type == IntakeMessage::Type::kTare) {
       wrist_.tare(data_);
     } else if (message->type == IntakeMessage::Type::kReset) {
-      changed = takeReset() || changed;
+      changed = takeReset(message->id.sequence) || changed;
     } else if (message->type == IntakeMessage::Type::kDropChunk) {
       changed = dropWaitingChunk(message->id.sequence) || changed;
     } else if (message->type == IntakeMessage::Type::kChunk) {
@@ -36,12 +36,16 @@ void Controller::takeCommands() noexcept {
   }
 }
 
-bool Controller::takeReset() noexcept {
+bool Controller::takeReset(std::uint64_t number) noexcept {
   // A chunk still waiting for its start does not outlive a reset.
   const bool dropped = dropWaitingChunk(0);
   // Only a fault present when the request arrives can be reset: a request must not stay armed
   // and clear a later fault unasked.
   reset_pending_ = diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kFault;
+  reset_number_ = number;
+  if (!reset_pending_) {
+    (void)reset_results_.push({number, ResetResult::End::kNoFault});  // full: no one reads them
+  }
   if (reset_pending_) {
     // The command in force may be what caused the fault (a target the arm could not reach, a
     // feedforward it could not carry), and the arm has moved since: the measured pose is held,

@@ -107,6 +107,8 @@ void Controller::activate(const JointState& state) {
       id_in_force_ = message->id;
     } else if (message->type == IntakeMessage::Type::kChunk) {
       chunks_.release(message->chunk_slot);  // a chunk's times were for the cycle that ran
+    } else if (message->type == IntakeMessage::Type::kReset) {
+      (void)reset_results_.push({message->id.sequence, ResetResult::End::kInactive});
     }
     intake_.pop();
   }

@@ -36,6 +36,10 @@ CycleStatus Controller::update(const JointState& state, double period_s,
   if (diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kFault) {
     // A reset is consumed either way: one refused for a bad state is not carried to a later cycle.
     const bool reset = reset_pending_ && state_usable_;
+    if (reset_pending_) {
+      (void)reset_results_.push(
+          {reset_number_, reset ? ResetResult::End::kLeftFault : ResetResult::End::kStateUnusable});
+    }
     reset_pending_ = false;
     if (!reset) {
       return hold(torque);  // torque.cpp

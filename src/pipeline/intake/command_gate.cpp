@@ -137,9 +137,10 @@ bool CommandGate::admitRequest(std::uint64_t participant, std::int64_t now_ns, s
 }
 
 void CommandGate::settleRequest(std::int64_t stamp_ns, const SenderId& sender, CommandReason reason,
-                                std::string refusal) {
+                                std::string refusal, std::uint32_t nanosec) {
   CommandOutcome outcome;
   outcome.stamp_ns = stamp_ns;
+  outcome.nanosec = nanosec;
   outcome.kind = CommandKind::kRequest;
   outcome.sender = sender;
   outcome.received_ns = wallClockNanoseconds();

@@ -58,14 +58,18 @@ template <typename Command>
 Wrapper<Command>::Wrapper(const WrapperConfig& config) : Wrapper(resolveController(config)) {}
 
 template <typename Command>
-void Wrapper<Command>::reset() {
+std::uint64_t Wrapper<Command>::reset() {
   const std::lock_guard<std::mutex> lock(intake_mutex_);
   floor_ns_ = 0;  // a stamp that ran ahead locks no one out
   accepted_any_ = false;
   IntakeMessage message;
   message.type = IntakeMessage::Type::kReset;
   message.command = emptyBus(kKind<Command>);
-  (void)controller_.enqueue(message);  // a full queue is taken next cycle; a reset can be resent
+  message.id.sequence = resets_ + 1;
+  if (!controller_.enqueue(message)) {
+    return 0;  // a full queue: the sender may send it again
+  }
+  return ++resets_;
 }
 
 template <typename Command>
