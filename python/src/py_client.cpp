@@ -252,10 +252,17 @@ void Client::close() {
     const std::scoped_lock both(sending_, reading_);
     link_.reset();
   }
-  const std::lock_guard<std::mutex> data(data_);
-  closed_ = true;
+  {
+    // Every later call sees the client closed and records nothing more...
+    const std::scoped_lock all(sending_, reading_, data_);
+    closed_ = true;
+    if (recording_) {
+      recording_->close();
+    }
+  }
+  // ...while the file is finished without a lock: other threads wait on data_ with the GIL held.
   if (recording_) {
-    recording_->stop();
+    recording_->finish();
   }
   arrived_.notify_all();
 }

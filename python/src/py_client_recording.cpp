@@ -64,8 +64,7 @@ void ClientRecording::seen(const transport::DiagnosticsMessage& message, transpo
   push(diagnostics_channel_, message, taken);
 }
 
-void ClientRecording::stop() {
-  open_ = false;
+void ClientRecording::finish() {
   recorder_.stop();
 }
 

@@ -38,8 +38,15 @@ class ClientRecording {
   void seen(const transport::ControllerStateMessage& message, transport::Stamp taken);
   void seen(const transport::DiagnosticsMessage& message, transport::Stamp taken);
 
-  /// Drains, writes the counts and closes the file; idempotent. Later records are ignored.
-  void stop();
+  /// Later records are ignored (under the client's locks, which guard every record).
+  void close() noexcept { open_ = false; }
+  /// Drains, writes the counts and closes the file; idempotent. Needs no lock of the client's.
+  void finish();
+  /// close() and finish().
+  void stop() {
+    close();
+    finish();
+  }
   [[nodiscard]] record::RecorderStats stats() const { return recorder_.stats(); }
 
  private:
