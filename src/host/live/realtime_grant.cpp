@@ -3,9 +3,11 @@
 #include "realtime_grant.hpp"
 
 #include <sys/mman.h>
+#include <sys/resource.h>
 
 #include <cerrno>
 #include <cstring>
+#include <fstream>
 #include <ostream>
 #include <string>
 
@@ -13,11 +15,40 @@
 
 namespace comply::host {
 
+namespace {
+
+/// Whether memory mapped from now on may be locked without a limit: with a finite memlock limit,
+/// MCL_FUTURE makes every later allocation, thread stack and DDS buffer past it fail (mlockall(2)),
+/// the pthread_create failure of an unprivileged transport over again.
+bool mayLockFuture() {
+  rlimit limit{};
+  if (getrlimit(RLIMIT_MEMLOCK, &limit) == 0 && limit.rlim_cur == RLIM_INFINITY) {
+    return true;
+  }
+  // CAP_IPC_LOCK (bit 14 of the effective set) lifts the limit.
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);) {
+    if (line.rfind("CapEff:", 0) == 0) {
+      const unsigned long long effective = std::stoull(line.substr(7), nullptr, 16);
+      return ((effective >> 14U) & 1ULL) != 0;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
 int grantRealtime(const LiveHostOptions& options, std::ostream& err) {
   std::string memory_refusal;
-  // Page faults in the control loop are latency: keep everything resident when allowed.
-  if (options.lock_memory && mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
-    memory_refusal = std::string("mlockall: ") + std::strerror(errno);
+  // Page faults in the control loop are latency: keep everything resident when allowed. What is
+  // mapped later is locked only where no limit can make the mapping fail.
+  if (options.lock_memory) {
+    const int flags = mayLockFuture() ? (MCL_CURRENT | MCL_FUTURE) : MCL_CURRENT;
+    if (mlockall(flags) != 0) {
+      memory_refusal = std::string("mlockall: ") + std::strerror(errno);
+    } else if ((flags & MCL_FUTURE) == 0) {
+      memory_refusal = "memory mapped after start-up is not locked (the memlock limit is finite)";
+    }
   }
   const std::string scheduling_refusal = realtimeRefusal(options.priority);
   if (scheduling_refusal.empty() && memory_refusal.empty()) {
@@ -35,7 +66,8 @@ int grantRealtime(const LiveHostOptions& options, std::ostream& err) {
     err << (scheduling_refusal.empty() ? "" : ". Also ") << "memory is not locked ("
         << memory_refusal
         << "), so a page fault may delay a cycle; raise the memlock limit (`ulimit -l`; `USER - "
-           "memlock unlimited` in /etc/security/limits.conf) or run as root";
+           "memlock unlimited` in /etc/security/limits.conf), give comply CAP_IPC_LOCK (`setcap "
+           "cap_sys_nice,cap_ipc_lock+ep`) or run as root";
   }
   err << "\n";
   return scheduling_refusal.empty() ? options.priority : 0;
