@@ -232,5 +232,28 @@ TEST(SensorCheck, TheObserverComparisonFaultsOnADisagreementThatLasts) {
   EXPECT_NE(detail.find("observer_tolerance_n 3"), std::string::npos) << detail;
 }
 
+TEST(SensorCheck, AResetInContactComparesFromTheObserversEstimate) {
+  // A slow observer (5/s): a filter started from zero would trail the 10 N it reads by more than
+  // the tolerance for 0.24 s.
+  const auto resolved =
+      resolveController(fr3Config(kCartesianImpedancePlugin,
+                                  "observer:\n  enabled: true\n  gain_per_s: 5\n"
+                                  "wrench_sensor:\n  observer_tolerance_n: 3.0\n"));
+  SensorCheck check(*resolved);
+  Vector6d sensor = Vector6d::Zero();
+  sensor[2] = 10.0;
+  // In contact a while: the observer and the filter both at 10 N.
+  for (int cycle = 0; cycle < 3000; ++cycle) {
+    Vector6d observer = sensor * (1.0 - std::exp(-5.0 * kPeriod * (cycle + 1)));
+    ASSERT_TRUE(check.compareWithObserver(sensor, observer, kPeriod)) << cycle;
+  }
+  // A reset: the observer keeps its estimate (it is reset only at activation), and the
+  // comparison starts again from it: no FAULT while both read 10 N.
+  check.restart();
+  for (int cycle = 0; cycle < 1000; ++cycle) {
+    ASSERT_TRUE(check.compareWithObserver(sensor, sensor, kPeriod)) << cycle;
+  }
+}
+
 }  // namespace
 }  // namespace comply::pipeline::test

@@ -75,6 +75,7 @@ class SensorCheck {
   double observer_gain_per_s_ = 0.0;  // 0: not compared
   double observer_tolerance_n_ = 0.0;
   Eigen::Vector3d sensor_filtered_n_ = Eigen::Vector3d::Zero();
+  bool from_observer_ = false;  // the next comparison seeds the filter from the observer
   double disagreeing_s_ = 0.0;
   char detail_[240] = {};  // with "wrist sensor: ", within a diagnostics message (256)
 };

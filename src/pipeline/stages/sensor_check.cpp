@@ -46,11 +46,14 @@ SensorCheck::SensorCheck(const ResolvedController& resolved) noexcept {
 
 void SensorCheck::reset() noexcept {
   armed_ = at_rest_;
-  restart();
+  sensor_filtered_n_.setZero();  // the observer starts from zero too (activation)
+  from_observer_ = false;
+  disagreeing_s_ = 0.0;
 }
 
 void SensorCheck::restart() noexcept {
-  sensor_filtered_n_.setZero();
+  // After a reset the observer keeps its estimate: the sensor's filter starts from it.
+  from_observer_ = true;
   disagreeing_s_ = 0.0;
 }
 
@@ -98,6 +101,10 @@ bool SensorCheck::compareWithObserver(const Vector6d& sensor, const Vector6d& ob
   }
   // The observer's residual follows the external torque as dr/dt = K_O (tau_ext - r) from zero
   // at activation: the sensor's force through the same filter, from zero, lags alike.
+  if (from_observer_) {
+    sensor_filtered_n_ = observer.head<3>();
+    from_observer_ = false;
+  }
   const double alpha = 1.0 - std::exp(-observer_gain_per_s_ * period_s);
   sensor_filtered_n_ += alpha * (sensor.head<3>() - sensor_filtered_n_);
   const double disagreement_n = (sensor_filtered_n_ - observer.head<3>()).norm();
