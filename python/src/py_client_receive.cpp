@@ -214,10 +214,16 @@ py::object Client::outcome(std::int64_t stamp, double timeout_s) {
   std::optional<transport::CommandOutcomeMessage> found;
   {
     const py::gil_scoped_release release;
-    if (receiveUntil([&] { return outcomes_.count(stamp) > 0; }, timeout_s, 0.01)) {
-      const std::lock_guard<std::mutex> data(data_);
-      found = outcomes_.at(stamp);
-    }
+    // Copied where it is found, under the lock: the oldest outcomes are dropped as new arrive.
+    (void)receiveUntil(
+        [&] {
+          const auto it = outcomes_.find(stamp);
+          if (it != outcomes_.end()) {
+            found = it->second;
+          }
+          return found.has_value();
+        },
+        timeout_s, 0.01);
   }
   return found ? py::object(toDict(*found)) : py::object(py::none());
 }
