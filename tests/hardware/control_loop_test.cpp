@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "comply/hardware/loop_clock.hpp"
+#include "stalling_observer.hpp"
 
 namespace comply::hardware {
 namespace {
@@ -152,32 +153,13 @@ TEST(ControlLoop, WarmAheadWarmsTheControllerBeforeEachCycleOnAWallClockOnly) {
   EXPECT_EQ(simulated.warms, 0);
 }
 
-/// Keeps each cycle's lateness and overrun; after cycle `stall_after` it sleeps 15 ms: the loop's
-/// thread stalled between two cycles (the scheduler, a page fault), outside any cycle's compute.
-class StallingObserver final : public LoopObserver {
- public:
-  explicit StallingObserver(std::uint64_t stall_after) : stall_after_(stall_after) {}
-  void afterCycle(const CycleRecord& record) override {
-    lateness_s.push_back(record.start_lateness_s);
-    overrun.push_back(record.overrun);
-    if (record.index == stall_after_) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(15));
-    }
-  }
-  std::vector<double> lateness_s;
-  std::vector<bool> overrun;
-
- private:
-  std::uint64_t stall_after_;
-};
-
 TEST(ControlLoop, ACycleThatStartsLateAfterAStallIsAnOverrun) {
   RecordingHardware hardware(true);
   SwitchedController controller;
   controller.active = true;
   WallClock wall;
   ControlLoop loop(hardware, controller, wall, {.period_s = 0.001, .cycles = 30});
-  StallingObserver observer(10);
+  testing::StallingObserver observer(10);
   loop.setObserver(&observer);
   const LoopStats stats = loop.run();
   ASSERT_EQ(observer.lateness_s.size(), 30U);

@@ -16,6 +16,7 @@
 #include "comply/sim/simulated_clock.hpp"
 #include "comply/sim/simulated_robot.hpp"
 #include "sim_support.hpp"
+#include "stalling_observer.hpp"
 
 namespace comply::testing {
 namespace {
@@ -23,23 +24,8 @@ namespace {
 constexpr std::uint64_t kStallAfter = 10;
 constexpr std::uint64_t kCycles = 30;
 
-/// Keeps each cycle's lateness and overrun; after cycle kStallAfter it sleeps 15 ms: the host's
-/// thread stalled between two cycles.
-class StallingObserver final : public hardware::LoopObserver {
- public:
-  void afterCycle(const hardware::CycleRecord& record) override {
-    lateness_s.push_back(record.start_lateness_s);
-    overrun.push_back(record.overrun);
-    if (record.index == kStallAfter) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(15));
-    }
-  }
-  std::vector<double> lateness_s;
-  std::vector<bool> overrun;
-};
-
 struct StalledRun {
-  StallingObserver observer;
+  testing::StallingObserver observer{kStallAfter};
   hardware::LoopStats stats;
 };
 
