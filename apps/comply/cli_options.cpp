@@ -125,7 +125,7 @@ CLI::App* addSchemaCommand(CLI::App& app, SchemaOptions& options) {
   command
       ->add_option("--message", options.message,
                    "a host message instead of a command (--format msg or idl)")
-      ->check(CLI::IsMember({"ControllerState", "CommandOutcome", "Diagnostics"}));
+      ->check(CLI::IsMember({"ControllerState", "CommandOutcome", "ChunkTiming", "Diagnostics"}));
   return command;
 }
 

@@ -196,6 +196,8 @@ void writeChunk(transport::Writer<transport::ChunkMessageOf<Command>>& writer,
   for (ChunkWaypoint<Command>& waypoint : message.chunk.waypoints) {
     waypoint.time_s += stamp.seconds();
   }
+  message.chunk.observation_s += stamp.seconds();  // NaN (not given) stays NaN
+  message.chunk.takeover_s += stamp.seconds();
   writer.write(message);
 }
 

@@ -100,12 +100,15 @@ void bindClient(py::module_& m) {
       .def("send_joint", &Client::sendJoint,
            "Send a joint command; returns its stamp [ns]. Waits and raises as send_cartesian")
       .def("send_chunk", &Client::sendChunk, py::arg("chunk"), py::arg("relative_to") = py::none(),
+           py::arg("keep") = py::none(),
            "Send a timed chunk: a list of dicts, each with a 'time' [s] and schema keywords (a "
            "key given once holds for the waypoints after it). Times are relative to "
            "`relative_to` [s on the host's clock, e.g. the 'stamp' of the state the policy "
-           "acted on], or to the host's clock now as clock() estimates it. Returns the stamp [ns]. "
-           "ValueError for a time a stamp cannot carry (not finite, or past 2038); the host "
-           "answers every other refusal in outcome()")
+           "acted on], or to the host's clock now as clock() estimates it; that time travels as "
+           "the chunk's observation. `keep`=m: the chunk takes over at its waypoint m, the "
+           "running chunk plays until then. Returns the stamp [ns]. ValueError for a time a "
+           "stamp cannot carry (not finite, or past 2038) or an m outside 0..n-1; the host "
+           "answers every other refusal in outcome(), whose 'chunk' holds the timing record")
       .def("clock", &Client::clock,
            "The host's clock from the commands' round trips: dict(offset [s, host minus this "
            "machine], one_way_latency [s], round_trip [s], samples), or None")

@@ -59,7 +59,8 @@ class Client {
   /// A timed chunk (chunkFromPython: a list of dicts with "time" and schema keywords), its times
   /// relative to `relative_to` [s on the host's clock: the "stamp" of the state the policy acted
   /// on], or, when None, to the host's clock now as estimated (clock()). The stamp [ns].
-  std::int64_t sendChunk(const py::object& chunk, const py::object& relative_to);
+  std::int64_t sendChunk(const py::object& chunk, const py::object& relative_to,
+                         const py::object& keep);
   /// The host's clock as estimated from the commands' round trips (NTP's way: sent, received by
   /// the host, published, taken): offset [s] (host minus this machine), one-way latency [s], round
   /// trip [s], samples; None before any command came back.

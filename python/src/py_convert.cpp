@@ -172,6 +172,36 @@ py::dict toDict(const transport::ControllerStateMessage& s) {
   return d;
 }
 
+namespace {
+
+/// An outcome's chunk timing record under the names of Sim.step()'s info["chunks"] (times [s] on
+/// the host's clock, NaN where the record has none).
+py::dict chunkDict(const transport::ChunkTimingMessage& timing) {
+  py::dict d;
+  d["sequence"] = timing.sequence;
+  d["end"] = std::string(toString(timing.end));
+  d["observation"] = transport::secondsOrNaN(timing.observation);
+  d["received"] = transport::secondsOrNaN(timing.received);
+  d["takeover"] = transport::secondsOrNaN(timing.takeover);
+  d["takeover_cycle"] = timing.end == transport::ChunkEnd::kTookOver
+                            ? py::object(py::int_(timing.takeover_cycle))
+                            : py::object(py::none());
+  d["requested_takeover"] = transport::secondsOrNaN(timing.requested_takeover);
+  d["first_waypoint"] = transport::secondsOrNaN(timing.first_waypoint);
+  d["last_waypoint"] = transport::secondsOrNaN(timing.last_waypoint);
+  d["waypoints"] = timing.waypoints;
+  d["waypoints_past"] = timing.waypoints_past;
+  d["position_jump"] = timing.position_jump;
+  d["rotation_jump"] = timing.rotation_jump;
+  d["velocity_jump"] = timing.velocity_jump;
+  d["angular_velocity_jump"] = timing.angular_velocity_jump;
+  d["starved"] = timing.starved;
+  d["rest"] = timing.rest_s;
+  return d;
+}
+
+}  // namespace
+
 py::dict toDict(const transport::CommandOutcomeMessage& o) {
   py::dict d;
   d["stamp"] = o.stamp.nanoseconds();
@@ -189,6 +219,8 @@ py::dict toDict(const transport::CommandOutcomeMessage& o) {
                        ? py::object(py::float_(1e-9 * static_cast<double>(o.applied.nanoseconds() -
                                                                           o.stamp.nanoseconds())))
                        : py::object(py::none());
+  // A chunk's timing record (docs/chunks.md); None for a command or request.
+  d["chunk"] = o.chunk.empty() ? py::object(py::none()) : py::object(chunkDict(o.chunk.front()));
   return d;
 }
 

@@ -31,6 +31,7 @@ struct Episode final : hardware::LoopObserver {
     const pipeline::Controller& controller = wrapper.controller();
     for (const pipeline::ChunkTiming& timing : controller.chunks().events()) {
       chunk_events.push_back({timing, controller.time() - record.time_s, record.index});
+      gate->noteChunk(record.index, timing, controller.time(), now.nanoseconds());
     }
     // The gate's clock is the recording's, so an outcome's applied time is the cycle's.
     gate->noteCycle(record.index, wrapper.controller().idInForce(),

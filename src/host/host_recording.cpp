@@ -92,6 +92,8 @@ HostRecording::HostRecording(const std::string& path,
   senders_ = SenderChannels(recorder_, prefix);
   outcome_channel_ =
       addMessageChannel<transport::CommandOutcomeMessage>(recorder_, prefix + "outcome");
+  chunk_timing_channel_ =
+      addMessageChannel<transport::ChunkTimingMessage>(recorder_, prefix + "chunk_timing");
   diagnostics_channel_ =
       addMessageChannel<transport::DiagnosticsMessage>(recorder_, prefix + "diagnostics");
   metadata["robot"] = controller.robot.name;
@@ -121,6 +123,10 @@ void HostRecording::outcome(const transport::CommandOutcomeMessage& message) {
   const transport::Stamp time =
       message.outcome == transport::Outcome::kApplied ? message.applied : message.received;
   push(publisher_, outcome_channel_, message, time, publisher_bytes_);
+  for (const transport::ChunkTimingMessage& timing : message.chunk) {
+    push(publisher_, chunk_timing_channel_, timing,
+         timing.takeover != transport::Stamp{} ? timing.takeover : time, publisher_bytes_);
+  }
 }
 
 void HostRecording::diagnostics(const transport::DiagnosticsMessage& message) {

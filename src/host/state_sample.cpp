@@ -3,6 +3,7 @@
 #include "comply/host/state_sample.hpp"
 
 #include <cmath>
+#include <optional>
 
 #include "comply/model/update.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
@@ -80,6 +81,33 @@ transport::Stamp sentStamp(const pipeline::CommandOutcome& outcome) {
 
 }  // namespace
 
+transport::ChunkTimingMessage chunkTimingMessage(const pipeline::NotedChunk& noted) {
+  const pipeline::ChunkTiming& timing = noted.timing;
+  const auto host = [&](double controller_s) {
+    const std::optional<std::int64_t> ns = noted.hostNs(controller_s);
+    return ns ? transport::Stamp::fromNanoseconds(*ns) : transport::Stamp{};
+  };
+  transport::ChunkTimingMessage message;
+  message.sequence = timing.sequence;
+  message.end = static_cast<transport::ChunkEnd>(timing.end);
+  message.observation = host(timing.observation_s);
+  message.received = host(timing.received_s);
+  message.takeover = host(timing.takeover_s);
+  message.takeover_cycle = noted.cycle;
+  message.requested_takeover = host(timing.requested_takeover_s);
+  message.first_waypoint = host(timing.first_waypoint_s);
+  message.last_waypoint = host(timing.last_waypoint_s);
+  message.waypoints = static_cast<std::uint32_t>(timing.waypoints);
+  message.waypoints_past = static_cast<std::uint32_t>(timing.waypoints_past);
+  message.position_jump = timing.position_jump;
+  message.rotation_jump = timing.rotation_jump;
+  message.velocity_jump = timing.velocity_jump;
+  message.angular_velocity_jump = timing.angular_velocity_jump;
+  message.starved = timing.starved;
+  message.rest_s = timing.rest_s;
+  return message;
+}
+
 transport::CommandOutcomeMessage outcomeMessage(const pipeline::CommandOutcome& outcome) {
   transport::CommandOutcomeMessage message;
   message.stamp = sentStamp(outcome);
@@ -102,6 +130,9 @@ transport::CommandOutcomeMessage outcomeMessage(const pipeline::CommandOutcome& 
   message.applied = transport::Stamp::fromNanoseconds(outcome.applied_ns);
   message.message = outcome.message;
   message.sender = outcome.sender;
+  if (outcome.chunk) {
+    message.chunk.push_back(chunkTimingMessage(*outcome.chunk));
+  }
   return message;
 }
 

@@ -1,6 +1,7 @@
 // chunkFromJson (schema/json.hpp): a chunk is a list of commands with times.
 
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "comply/core/input_error.hpp"
 #include "comply/schema/json.hpp"
@@ -20,12 +21,26 @@ Chunk<Command> chunkFromJson(const nlohmann::json& object, int dof, double time_
                      "a chunk is {\"chunk\": [{\"time\": s, <command keys>}, ...]}");
   }
   for (const auto& [key, value] : object.items()) {
-    if (key != "chunk" && key != "stamp") {
+    if (key != "chunk" && key != "stamp" && key != "observation" && key != "takeover") {
       throw InputError(InputErrc::kUnknownKey, options.source, options.key_prefix + key,
-                       "a chunk has only `chunk` (and `stamp`); each waypoint carries its keys");
+                       "a chunk has only `chunk` (and `stamp`, `observation`, `takeover`); each "
+                       "waypoint carries its keys");
     }
   }
   Chunk<Command> chunk;
+  // Optional times [s] on the waypoints' origin: the observation it was planned for, and when it
+  // takes over from the running chunk (absent: not said, at once).
+  for (const auto& [key, time_s] :
+       {std::pair{"observation", &chunk.observation_s}, std::pair{"takeover", &chunk.takeover_s}}) {
+    if (!object.contains(key)) {
+      continue;
+    }
+    if (!object.at(key).is_number()) {
+      throw InputError(InputErrc::kWrongType, options.source, options.key_prefix + key,
+                       "a time [s] (a number), on the waypoints' origin");
+    }
+    *time_s = time_origin_s + object.at(key).template get<double>();
+  }
   chunk.fields = CommandField::kNone;
   ReadOptions<Command> read = options;
   if (!read.base) {

@@ -87,6 +87,12 @@ void getChunk(Reader& r, Message& message) {
   message.header = getHeader(r);
   message.chunk.stamp_s = message.header.stamp.seconds();
   message.chunk.fields = static_cast<CommandField>(r.get<std::uint32_t>());
+  Stamp observation;
+  Stamp takeover;
+  cdr::getField(r, observation);
+  cdr::getField(r, takeover);
+  message.chunk.observation_s = secondsOrNaN(observation);
+  message.chunk.takeover_s = secondsOrNaN(takeover);
   message.chunk.waypoints.resize(r.getCount(kHeaderBytes + 4, kMaxChunkWaypoints));
   for (auto& waypoint : message.chunk.waypoints) {
     waypoint.time_s = getHeader(r).stamp.seconds();

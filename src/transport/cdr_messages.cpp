@@ -65,6 +65,8 @@ template <typename Command, typename CommandMessage, typename Message, typename 
 void putChunk(Writer& w, const Message& message, Put&& put) {
   putHeader(w, message.header);
   w.put(static_cast<std::uint32_t>(message.chunk.fields));
+  cdr::putField(w, stampOrZero(message.chunk.observation_s));
+  cdr::putField(w, stampOrZero(message.chunk.takeover_s));
   w.putCount(message.chunk.waypoints.size());
   CommandMessage waypoint{{Stamp{}, message.header.frame_id}, Command{}};
   for (const ChunkWaypoint<Command>& from : message.chunk.waypoints) {
@@ -112,6 +114,7 @@ void putCycleRecord(Writer& w, const CycleRecordMessage& message) {
   }
 COMPLY_ENCODE_CDR(ControllerStateMessage, cdr::putFields)
 COMPLY_ENCODE_CDR(CommandOutcomeMessage, cdr::putFields)
+COMPLY_ENCODE_CDR(ChunkTimingMessage, cdr::putFields)
 COMPLY_ENCODE_CDR(DiagnosticsMessage, cdr::putFields)
 COMPLY_ENCODE_CDR(CartesianCommandMessage, putCartesian)
 COMPLY_ENCODE_CDR(JointCommandMessage, putJoint)
@@ -128,6 +131,7 @@ COMPLY_ENCODE_CDR(CycleRecordMessage, putCycleRecord)
   }
 COMPLY_ROS_TYPE_NAME(ControllerStateMessage, "ControllerState")
 COMPLY_ROS_TYPE_NAME(CommandOutcomeMessage, "CommandOutcome")
+COMPLY_ROS_TYPE_NAME(ChunkTimingMessage, "ChunkTiming")
 COMPLY_ROS_TYPE_NAME(DiagnosticsMessage, "Diagnostics")
 COMPLY_ROS_TYPE_NAME(CartesianCommandMessage, "CartesianCommand")
 COMPLY_ROS_TYPE_NAME(JointCommandMessage, "JointCommand")

@@ -53,6 +53,19 @@ MessageText commandOutcome() {
   return message;
 }
 
+MessageText chunkTiming() {
+  MessageText message{"ChunkTiming",
+                      "comply_msgs/ChunkTiming: what became of one accepted chunk in the cycle "
+                      "(docs/chunks.md): when it\ntook over, how many of its waypoints were "
+                      "already past, how far the reference jumped at the\nseam. In its "
+                      "CommandOutcome.chunk, and one per chunk on a recording's /<name>/"
+                      "chunk_timing.\nTimes on the host's clock (its state's header.stamp).",
+                      {},
+                      fieldTexts<ChunkTimingMessage>()};
+  addConstants(message.constants, "END_", kChunkEndNames);
+  return message;
+}
+
 MessageText diagnostics() {
   return {"Diagnostics",
           "comply_msgs/Diagnostics: the host's counters and the outcome of every command and "
@@ -137,15 +150,18 @@ MessageText hostMessageText(std::string_view name) {
   if (name == "CommandOutcome") {
     return commandOutcome();
   }
+  if (name == "ChunkTiming") {
+    return chunkTiming();
+  }
   if (name == "Diagnostics") {
     return diagnostics();
   }
   throw std::out_of_range("no host message named " + std::string(name) +
-                          " (ControllerState, CommandOutcome, Diagnostics)");
+                          " (ControllerState, CommandOutcome, ChunkTiming, Diagnostics)");
 }
 
 std::vector<std::string_view> hostMessageNames() {
-  return {"ControllerState", "CommandOutcome", "Diagnostics"};
+  return {"ControllerState", "CommandOutcome", "ChunkTiming", "Diagnostics"};
 }
 
 }  // namespace comply::transport

@@ -3,6 +3,8 @@
 #include "comply/transport/messages.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "comply/core/clock.hpp"
 
@@ -50,6 +52,14 @@ double Stamp::seconds() const noexcept {
   return stampSeconds(nanoseconds());
 }
 
+Stamp stampOrZero(double seconds) noexcept {
+  return std::isnan(seconds) ? Stamp{} : Stamp::fromSeconds(seconds);
+}
+
+double secondsOrNaN(const Stamp& stamp) noexcept {
+  return stamp == Stamp{} ? std::numeric_limits<double>::quiet_NaN() : stamp.seconds();
+}
+
 bool sentBy(const CommandOutcomeMessage& outcome, const Gid& sender) noexcept {
   return outcome.sender == sender || outcome.sender == Gid{};
 }
@@ -75,6 +85,10 @@ std::string_view toString(WireCommandKind kind) {
 
 std::string_view toString(Outcome outcome) {
   return nameIn(kOutcomeNames, outcome);
+}
+
+std::string_view toString(ChunkEnd end) {
+  return nameIn(kChunkEndNames, end);
 }
 
 std::string_view toString(RequestType request) {

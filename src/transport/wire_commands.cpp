@@ -132,6 +132,8 @@ dds_return_t writeChunk(dds_entity_t writer, const Message& message) {
   WireChunk out{};
   headerToWire(message.header, out.header);
   out.fields = static_cast<std::uint32_t>(message.chunk.fields);
+  toWireStamp(stampOrZero(message.chunk.observation_s), out.observation);
+  toWireStamp(stampOrZero(message.chunk.takeover_s), out.takeover);
   out.waypoints._maximum = out.waypoints._length = static_cast<std::uint32_t>(waypoints.size());
   out.waypoints._buffer = wire_waypoints.data();
   out.waypoints._release = false;
@@ -148,6 +150,9 @@ void readChunk(const void* wire, Sample<Message>& sample) {
   message.header = headerFromWire(in.header, sample);
   message.chunk.stamp_s = message.header.stamp.seconds();
   message.chunk.fields = static_cast<CommandField>(in.fields);
+  message.chunk.observation_s =
+      secondsOrNaN(fromWireStamp(in.observation.sec, in.observation.nanosec));
+  message.chunk.takeover_s = secondsOrNaN(fromWireStamp(in.takeover.sec, in.takeover.nanosec));
   if (in.waypoints._length > static_cast<std::uint32_t>(kMaxChunkWaypoints)) {
     sample.refuse(Reason::kInvalidChunk,
                   "a chunk carries 1 to " + std::to_string(kMaxChunkWaypoints) +

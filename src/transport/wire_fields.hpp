@@ -37,11 +37,13 @@ inline std::string text(const char* value) {
 }
 
 using WireOutcome = comply_msgs_msg_dds__CommandOutcome_;
+using WireChunkTiming = comply_msgs_msg_dds__ChunkTiming_;
 
 /// What a message's wire form borrows, alive until dds_write returns.
 struct Borrowed {
   std::deque<std::vector<char*>> strings;
   std::deque<std::vector<WireOutcome>> outcomes;
+  std::deque<std::vector<WireChunkTiming>> chunk_timings;
 };
 
 // ---- to the idlc types ----
@@ -82,6 +84,18 @@ inline void toWire(const Strings& value, dds_sequence_string& out, Borrowed& bor
 }
 
 #define COMPLY_TO_WIRE(Type, member, wire, init, doc) toWire(message.member, out.wire, borrowed);
+
+inline void toWire(const ChunkTimingMessage& message, WireChunkTiming& out, Borrowed& borrowed) {
+  COMPLY_CHUNK_TIMING_FIELDS(COMPLY_TO_WIRE)
+}
+inline void toWire(const ChunkTimings& value, dds_sequence_comply_msgs_msg_dds__ChunkTiming_& out,
+                   Borrowed& borrowed) {
+  std::vector<WireChunkTiming>& timings = borrowed.chunk_timings.emplace_back(value.size());
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    toWire(value[i], timings[i], borrowed);
+  }
+  out = borrow<dds_sequence_comply_msgs_msg_dds__ChunkTiming_>(timings);
+}
 
 inline void toWire(const CommandOutcomeMessage& message, WireOutcome& out, Borrowed& borrowed) {
   COMPLY_COMMAND_OUTCOME_FIELDS(COMPLY_TO_WIRE)
@@ -130,6 +144,16 @@ inline void fromWire(const dds_sequence_string& in, Strings& value) {
 
 #define COMPLY_FROM_WIRE(Type, member, wire, init, doc) fromWire(in.wire, message.member);
 
+inline void fromWire(const WireChunkTiming& in, ChunkTimingMessage& message) {
+  COMPLY_CHUNK_TIMING_FIELDS(COMPLY_FROM_WIRE)
+}
+inline void fromWire(const dds_sequence_comply_msgs_msg_dds__ChunkTiming_& in,
+                     ChunkTimings& value) {
+  value.assign(in._length, ChunkTimingMessage{});
+  for (std::uint32_t i = 0; i < in._length; ++i) {
+    fromWire(in._buffer[i], value[i]);
+  }
+}
 inline void fromWire(const WireOutcome& in, CommandOutcomeMessage& message) {
   COMPLY_COMMAND_OUTCOME_FIELDS(COMPLY_FROM_WIRE)
 }

@@ -131,6 +131,85 @@ TEST_P(LiveHostOn, AChunkWaitingForItsStartDoesNotHoldAnotherSendersCommands) {
   EXPECT_EQ(outcome.outcome, transport::Outcome::kApplied) << outcome.message;
 }
 
+/// `count` waypoints `spacing_s` apart from `start_s` on the line chunkAlongY() moves along,
+/// 0.1 m/s from `line_start_s`: a chunk that continues one from there without a jump.
+transport::CartesianChunkMessage chunkOnLine(const transport::ControllerStateMessage& state,
+                                             double line_start_s, double start_s, double spacing_s,
+                                             int count) {
+  transport::CartesianChunkMessage message = chunkAlongY(state, start_s, spacing_s, count);
+  for (auto& waypoint : message.chunk.waypoints) {
+    waypoint.command.position.y() = state.tcp_position[1] + 0.1 * (waypoint.time_s - line_start_s);
+  }
+  return message;
+}
+
+/// A chunk planned on an observation that keeps the running chunk until its waypoint 3: its
+/// outcome, applied when it took over, carries its timing record on the host's clock: the
+/// observation and takeover it asked for, the cycle it took over in, and the waypoints already
+/// past then (3 or 4: waypoint 3 is due in that cycle).
+TEST_P(LiveHostOn, AChunksOutcomeCarriesItsTakeoverTiming) {
+  HostHarness& host = *host_;
+  const auto state = host.startConnected("chunk_timing", 1);
+  ASSERT_TRUE(state);
+  ASSERT_TRUE(host.connectChunks(1));
+
+  // A 1.5 s chunk that takes over at once, planned on an observation 10 ms ago.
+  const double start_s = transport::Stamp::now().seconds() + 0.05;
+  transport::CartesianChunkMessage running = chunkOnLine(*state, start_s, start_s, 0.05, 30);
+  running.chunk.observation_s = start_s - 0.06;
+  ASSERT_TRUE(host.send(running, 1));
+  const std::int64_t running_stamp = running.header.stamp.nanoseconds();
+  ASSERT_TRUE(host.poll(5s, [&](const auto&) { return host.outcomes().count(running_stamp) > 0; }));
+  const transport::CommandOutcomeMessage first = host.outcomes()[running_stamp].front();
+  ASSERT_EQ(first.outcome, transport::Outcome::kApplied) << first.message;
+  ASSERT_EQ(first.chunk.size(), 1U) << "the outcome of a chunk that took over has its record";
+  EXPECT_EQ(first.chunk[0].end, transport::ChunkEnd::kTookOver);
+  EXPECT_EQ(first.chunk[0].sequence, first.sequence_number);
+  EXPECT_EQ(first.chunk[0].requested_takeover, transport::Stamp{}) << "at once: none asked";
+  EXPECT_EQ(first.chunk[0].waypoints, 30U);
+
+  // The next one, planned on the observation now, its waypoint 0 there, 10 waypoints 50 ms apart
+  // on the same line; it keeps the running chunk until its waypoint 3.
+  constexpr int kKeep = 3;
+  constexpr double kSpacingS = 0.05;
+  const double observation_s = transport::Stamp::now().seconds();
+  transport::CartesianChunkMessage next =
+      chunkOnLine(*state, start_s, observation_s, kSpacingS, 10);
+  next.chunk.observation_s = observation_s;
+  next.chunk.takeover_s = next.chunk.waypoints[kKeep].time_s;
+  ASSERT_TRUE(host.send(next, 1));
+  const std::int64_t stamp = next.header.stamp.nanoseconds();
+  ASSERT_TRUE(host.poll(5s, [&](const auto&) { return host.outcomes().count(stamp) > 0; }));
+  const transport::CommandOutcomeMessage& outcome = host.outcomes()[stamp].front();
+  ASSERT_EQ(outcome.outcome, transport::Outcome::kApplied) << outcome.message;
+  ASSERT_EQ(outcome.chunk.size(), 1U);
+  const transport::ChunkTimingMessage& timing = outcome.chunk[0];
+  EXPECT_EQ(timing.end, transport::ChunkEnd::kTookOver);
+  EXPECT_EQ(timing.sequence, outcome.sequence_number);
+  EXPECT_EQ(timing.takeover_cycle, outcome.cycle) << "taken over in the cycle that applied it";
+  EXPECT_EQ(timing.waypoints, 10U);
+  // One offset maps the record's times onto the host's clock: their differences are the chunk's.
+  const double observed_s = transport::secondsOrNaN(timing.observation);
+  const double first_s = transport::secondsOrNaN(timing.first_waypoint);
+  const double requested_s = transport::secondsOrNaN(timing.requested_takeover);
+  const double takeover_s = transport::secondsOrNaN(timing.takeover);
+  EXPECT_NEAR(observed_s, observation_s, 0.25) << "on the host's (wall) clock";
+  EXPECT_NEAR(first_s - observed_s, 0.0, 1e-6);
+  EXPECT_NEAR(requested_s - first_s, kKeep * kSpacingS, 1e-6);
+  EXPECT_NEAR(transport::secondsOrNaN(timing.last_waypoint) - first_s, 9 * kSpacingS, 1e-6);
+  EXPECT_GE(takeover_s, requested_s - 1e-6) << "not before the takeover it asked for";
+  EXPECT_GE(timing.waypoints_past, static_cast<std::uint32_t>(kKeep));
+  // The waypoints before the takeover cycle are the ones counted past.
+  std::uint32_t before = 0;
+  std::uint32_t at_most = 0;
+  for (int k = 0; k < 10; ++k) {
+    before += first_s + k * kSpacingS < takeover_s - 1e-6 ? 1U : 0U;
+    at_most += first_s + k * kSpacingS < takeover_s + 1e-6 ? 1U : 0U;
+  }
+  EXPECT_GE(timing.waypoints_past, before);
+  EXPECT_LE(timing.waypoints_past, at_most);
+}
+
 // `comply send --file` with chunks among commands: each chunk's times are seconds after it is
 // sent; commands and chunks are all applied, and the arm ends on the last chunk's last waypoint.
 TEST(LiveHost, CommandSendSendsChunksFromAFile) {

@@ -123,6 +123,23 @@ TEST_P(LiveHostOn, RecordsEveryCycleCommandAndOutcome) {
   ASSERT_TRUE(host_->connect(1, 7));
   const auto state = host_->state(5s);
   ASSERT_TRUE(state.has_value());
+  // One chunk that holds the pose, played before the commands: its timing record has a channel
+  // of its own (a late chunk, refused, has none).
+  ASSERT_TRUE(host_->connectChunks(1));
+  transport::CartesianChunkMessage chunk;
+  chunk.header.stamp = transport::Stamp::now();
+  for (int k = 0; k < 3; ++k) {
+    chunk.chunk.waypoints.push_back(
+        {chunk.header.stamp.seconds() + 0.02 * (k + 1),
+         poseCommand(*state, Eigen::Vector3d::Zero(), chunk.header.stamp).command});
+  }
+  chunk.chunk.observation_s = chunk.header.stamp.seconds();
+  ASSERT_TRUE(host_->send(chunk, 1));
+  ASSERT_TRUE(host_->poll(5s, [&](const auto&) {
+    return host_->outcomes().count(chunk.header.stamp.nanoseconds()) > 0;
+  }));
+  ASSERT_EQ(host_->outcomes()[chunk.header.stamp.nanoseconds()].front().outcome,
+            transport::Outcome::kApplied);
 
   // Commands at 100 Hz until 0.5 s before the host stops: a 1 cm circle in x-y, every 10th
   // stamped in the past (rejected as stale), so both outcomes are in the file.
@@ -174,8 +191,13 @@ TEST_P(LiveHostOn, RecordsEveryCycleCommandAndOutcome) {
     EXPECT_EQ(channels.command_stamps.count(message.header.stamp.nanoseconds()), 1U);
     EXPECT_EQ(channels.outcome_stamps.count(message.header.stamp.nanoseconds()), 1U);
   }
-  EXPECT_GE(channels.command_stamps.size(), received);
-  EXPECT_EQ(channels.outcome_stamps.size(), channels.command_stamps.size());
+  EXPECT_GE(channels.command_stamps.size() + channels.counts.at(prefix + "/cartesian_chunk"),
+            received);
+  // The chunks' outcomes besides (the late one connectChunks() sent, the one played).
+  EXPECT_EQ(channels.outcome_stamps.size(),
+            channels.command_stamps.size() + channels.counts.at(prefix + "/cartesian_chunk"));
+  EXPECT_EQ(channels.counts.at(prefix + "/cartesian_chunk"), 2U);
+  EXPECT_EQ(channels.counts.at(prefix + "/chunk_timing"), 1U);
   EXPECT_EQ(channels.recording.at("records_dropped"), "0");
   // A live host's full lane drops (and counts): its control thread never waits for the disk.
   EXPECT_EQ(channels.recording.at("when_full"), "drop");
@@ -184,6 +206,7 @@ TEST_P(LiveHostOn, RecordsEveryCycleCommandAndOutcome) {
   const auto [inspect_code, inspect_text] = inspect(path);
   EXPECT_EQ(inspect_code, 0) << inspect_text;
   EXPECT_NE(inspect_text.find(prefix + "/cycle"), std::string::npos) << inspect_text;
+  EXPECT_NE(inspect_text.find(prefix + "/chunk_timing"), std::string::npos) << inspect_text;
   EXPECT_NE(inspect_text.find(std::to_string(cycles)), std::string::npos) << inspect_text;
   EXPECT_NE(inspect_text.find("dropped records: 0"), std::string::npos) << inspect_text;
   std::cerr << "recorded " << channels.contents.messages << " messages in "

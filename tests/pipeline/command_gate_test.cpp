@@ -53,6 +53,47 @@ class CommandGateTest : public ::testing::Test {
   std::uint64_t sequence_ = 0;
 };
 
+/// A chunk's timing record reaches its outcome when it was noted before the cycle that settles it
+/// (a chunk that took over), or while the outcome waits (one superseded while it waited); one
+/// noted after its outcome went is not attached to another's. Its times go onto the host's
+/// clock with the offset of its cycle.
+TEST_F(CommandGateTest, AChunksOutcomeCarriesTheTimingRecordNotedBeforeItsCycle) {
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_TRUE(offer(offerAt((9 + k) * kSecond)).empty());  // numbers 1, 2, 3
+  }
+  ChunkTiming took_over;
+  took_over.sequence = 1;
+  took_over.takeover_s = 2.5;
+  took_over.observation_s = 2.4;
+  took_over.waypoints_past = 3;
+  ASSERT_TRUE(gate_.noteChunk(40, took_over, 2.5, 7 * kSecond));
+  ASSERT_TRUE(noteCycle(40, 1, 7 * kSecond));
+  ChunkTiming superseded;
+  superseded.sequence = 2;
+  superseded.end = ChunkEnd::kSuperseded;
+  ASSERT_TRUE(gate_.noteChunk(41, superseded, 2.501, 7 * kSecond + 1'000'000));
+  gate_.settle();
+  std::vector<CommandOutcome> outcomes = gate_.takeOutcomes();
+  ASSERT_EQ(outcomes.size(), 1U);
+  ASSERT_TRUE(outcomes[0].chunk.has_value()) << "settled in the cycle its record came in";
+  EXPECT_EQ(outcomes[0].chunk->timing.waypoints_past, 3);
+  EXPECT_EQ(outcomes[0].chunk->cycle, 40U);
+  EXPECT_EQ(outcomes[0].chunk->hostNs(2.4), 7 * kSecond - 100'000'000);
+  EXPECT_FALSE(outcomes[0].chunk->hostNs(took_over.requested_takeover_s)) << "NaN: none";
+
+  ChunkTiming late = took_over;  // number 1's outcome has gone
+  ASSERT_TRUE(gate_.noteChunk(42, late, 2.502, 7 * kSecond + 2'000'000));
+  ASSERT_TRUE(noteCycle(42, 3, 7 * kSecond + 2'000'000));
+  gate_.settle();
+  outcomes = gate_.takeOutcomes();
+  ASSERT_EQ(outcomes.size(), 2U);
+  ASSERT_TRUE(outcomes[0].chunk.has_value())
+      << "the superseded one's record, noted while it waited";
+  EXPECT_EQ(outcomes[0].chunk->timing.end, ChunkEnd::kSuperseded);
+  EXPECT_EQ(outcomes[0].sequence, 2U);
+  EXPECT_FALSE(outcomes[1].chunk.has_value()) << "number 3 had no record";
+}
+
 TEST_F(CommandGateTest, AcceptedCommandsWaitForTheCycleThatTakesThem) {
   EXPECT_EQ(gate_.offer(offerAt(9 * kSecond), true, [this](std::int64_t) { return accepted(); }),
             CommandReason::kNone);

@@ -84,9 +84,24 @@ def check_client(cli, source):
         start = state["tcp_position"].copy()
         # Times after the observation the "policy" acted on: its stamp on the host's clock.
         chunk = along_y(start, state["tcp_orientation"], 8, 0.05, first=0.1)
+        try:
+            client.send_chunk(chunk, relative_to=state["stamp"], keep=8)
+        except ValueError as error:
+            assert "keep=8: a chunk of 8 waypoints takes over at one of them (0 to 7)" in str(
+                error), error
+        else:
+            raise AssertionError("keep=8 of 8 waypoints was sent")
         stamp = client.send_chunk(chunk, relative_to=state["stamp"])
         outcome = client.outcome(stamp, timeout=2.0)
         assert outcome is not None and outcome["applied"], outcome
+        # Its timing record: the observation it was planned for travelled with it (one offset
+        # maps the record onto the host's clock, so the times keep their differences).
+        timing = outcome["chunk"]
+        assert timing is not None and timing["end"] == "took_over", outcome
+        assert abs(timing["observation"] - state["stamp"]) < 0.25, timing
+        assert abs(timing["first_waypoint"] - timing["observation"] - 0.1) < 1e-6, timing
+        assert timing["waypoints"] == 8 and timing["requested_takeover"] != timing[
+            "requested_takeover"], timing  # NaN: at once
         deadline = state["stamp"] + 0.1 + 7 * 0.05 + 0.3
         while time.time() < deadline:
             time.sleep(0.02)
@@ -94,10 +109,15 @@ def check_client(cli, source):
         assert abs(state["reference_position"][1] - (start[1] + 0.035)) < 1e-6, state
         assert abs(state["tcp_position"][1] - (start[1] + 0.035)) < 0.01, state
 
-        # Relative to the host's clock now, as estimated; then one entirely past.
+        # Relative to the host's clock now, as estimated, asking to take over at its waypoint 2
+        # (none plays: it takes over at once); then one entirely past.
         stamp = client.send_chunk(along_y(state["tcp_position"], state["tcp_orientation"], 4,
-                                          0.05, first=0.05))
-        assert client.outcome(stamp, timeout=2.0)["applied"]
+                                          0.05, first=0.05), keep=2)
+        outcome = client.outcome(stamp, timeout=2.0)
+        assert outcome["applied"], outcome
+        timing = outcome["chunk"]
+        assert abs(timing["requested_takeover"] - timing["first_waypoint"] - 0.1) < 1e-6, timing
+        assert timing["takeover"] < timing["requested_takeover"], timing
         stamp = client.send_chunk(along_y(state["tcp_position"], state["tcp_orientation"], 4,
                                           0.05), relative_to=state["stamp"] - 5.0)
         late = client.outcome(stamp, timeout=2.0)

@@ -1,6 +1,6 @@
 """record= on comply.Sim and comply.Client, read back with comply.read_recording: the Sim's
 episodes (every cycle, the commands sent, one outcome each, the state the Sim returned; the Sim
-waits for a busy disk rather than drop), and what a client sent to and saw from a `comply run
+waits for a busy disk rather than drop; a timing record per chunk), and what a client sent to and saw from a `comply run
 --sim` host. A record= path in a missing folder is refused, and the folder not made. Usage:
 test_recording_hosts.py COMPLY_CLI SOURCE_DIR (the build's python/ on PYTHONPATH)."""
 
@@ -140,6 +140,72 @@ def check_sim(source, folder):
     print(f"sim: {EPISODES} episodes, {stats['written']} messages recorded")
 
 
+def check_sim_chunks(source, folder):
+    """Chunks that took over, one superseded and one dropped while they waited for their
+    takeover: /comply/chunk_timing holds one row per chunk, with the numbers step() gave in
+    info["chunks"] (times on the recording's clock, which starts at the Sim's time 0)."""
+    path = os.path.join(folder, "runs", "chunks.mcap")
+    sim = comply.Sim(f"{source}/config/sim/cartesian_impedance.yaml", robot="fr3",
+                     steps_per_action=50, record=path)
+    obs = sim.reset()
+    origin, start, orientation = obs["time"], obs["tcp_position"].copy(), obs["tcp_orientation"]
+
+    def on_line(count, keep=None):
+        """`count` waypoints 50 ms apart from now on one line along y (0.1 m/s from the
+        origin): each chunk continues the one before without a jump."""
+        now = obs["time"]
+        chunk = [{"time": 0.05 * k, "orientation": orientation,
+                  "position": start + [0.0, 0.1 * (now + 0.05 * k - origin), 0.0]}
+                 for k in range(count)]
+        return sim.step(chunk, keep=keep)
+
+    records = []
+    # Steps of 50 ms: a chunk kept to its waypoint 2 takes over two steps later; one kept to its
+    # waypoint 5 is superseded by the next, and one kept to its waypoint 4 dropped by a command.
+    plan = [(40, None), (20, 2), (None, None), (None, None), (20, 5), (20, 2), (None, None),
+            (None, None), (20, 4), ("command", None), (None, None)]
+    for count, keep in plan:
+        if count is None:
+            obs, _, _, _, info = sim.step(None)
+        elif count == "command":
+            obs, _, _, _, info = sim.step({"position": obs["tcp_position"]})
+        else:
+            obs, _, _, _, info = on_line(count, keep)
+            assert info["accepted"], info
+        records += info["chunks"]
+    sim.close()
+    ends = sorted(record["end"] for record in records)
+    assert ends == ["dropped", "superseded", "took_over", "took_over", "took_over"], records
+
+    rows = comply.read_recording(path)["/comply/chunk_timing"]
+    assert rows.count == len(records), (rows.count, records)
+    end_codes = {name: constant(rows, f"END_{name.upper()}")
+                 for name in ("took_over", "superseded", "dropped")}
+    by_sequence = {int(sequence): row for row, sequence in enumerate(rows["sequence_number"])}
+    assert sorted(by_sequence) == sorted(record["sequence"] for record in records)
+    times = ("observation", "received", "takeover", "requested_takeover", "first_waypoint",
+             "last_waypoint")
+    numbers = ("waypoints", "waypoints_past", "position_jump", "rotation_jump", "velocity_jump",
+               "angular_velocity_jump", "starved", "rest")
+    for record in records:
+        row = by_sequence[record["sequence"]]
+        assert rows["end"][row] == end_codes[record["end"]], (row, record)
+        for name in numbers:
+            assert rows[name][row] == record[name], (name, rows[name][row], record)
+        for name in times:
+            got = stamps(rows, name)[row]
+            if np.isnan(record[name]):
+                assert got == 0, (name, got, record)  # all zero: not said, or never
+            else:
+                assert abs(got - record[name] * 1e9) <= 1.0, (name, got, record)
+        if record["end"] == "took_over":
+            assert rows["takeover_cycle"][row] == record["takeover_cycle"], record
+    kept = [record for record in records
+            if record["end"] == "took_over" and not np.isnan(record["requested_takeover"])]
+    assert kept and all(record["waypoints_past"] >= 2 for record in kept), kept
+    print(f"sim: {rows.count} chunk timing records, ends {ends}")
+
+
 def check_client(cli, source, folder):
     from live_host import running_host  # beside this file
 
@@ -192,6 +258,7 @@ def main():
     cli, source = sys.argv[1], sys.argv[2]
     with tempfile.TemporaryDirectory() as folder:
         check_sim(source, folder)
+        check_sim_chunks(source, folder)
         if not os.access(cli, os.X_OK):
             print(f"skip: the Sim's recording passed; the host {cli} is not built, so the "
                   f"client's is not tested")

@@ -16,6 +16,9 @@ namespace comply::transport::testing {
 
 // The ROS 2 side read by its wire names, in table order as flatten() reads the host's messages.
 #define BY_WIRE_NAME(Type, member, wire, init, doc) flatten(message.wire, flat);
+void flatten(const ros_like::ChunkTiming& message, Flat& flat) {
+  COMPLY_CHUNK_TIMING_FIELDS(BY_WIRE_NAME)
+}
 void flatten(const ros_like::CommandOutcome& message, Flat& flat) {
   COMPLY_COMMAND_OUTCOME_FIELDS(BY_WIRE_NAME)
 }

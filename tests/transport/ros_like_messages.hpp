@@ -24,6 +24,7 @@ struct Header {
 };
 
 struct CommandOutcome;
+struct ChunkTiming;
 
 /// The rosidl type of a table row's C++ type.
 template <typename T, typename = void>
@@ -43,6 +44,10 @@ struct Of<transport::Header> {
   using type = Header;
 };
 template <>
+struct Of<ChunkTimings> {
+  using type = std::vector<ChunkTiming>;
+};
+template <>
 struct Of<Outcomes> {
   using type = std::vector<CommandOutcome>;
 };
@@ -50,6 +55,9 @@ struct Of<Outcomes> {
 #define COMPLY_ROS_LIKE_MEMBER(Type, member, wire, init, doc) \
   typename ::comply::transport::ros_like::Of<Type>::type wire{};
 
+struct ChunkTiming {
+  COMPLY_CHUNK_TIMING_FIELDS(COMPLY_ROS_LIKE_MEMBER)
+};
 struct CommandOutcome {
   COMPLY_COMMAND_OUTCOME_FIELDS(COMPLY_ROS_LIKE_MEMBER)
 };

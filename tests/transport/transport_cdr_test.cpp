@@ -7,6 +7,7 @@
 #include <dds/ddsi/ddsi_serdata.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <random>
@@ -194,6 +195,17 @@ TEST(TransportCdrEncoder, ChunksMatchTheWire) {
     cartesian.chunk.waypoints.push_back(waypoint);
   }
   expectEncoderMatchesTheWire(cartesian);
+  // The observation it was planned for and its takeover (at waypoint 2) travel as stamps; a chunk
+  // that gives neither reads back NaN (all zero on the wire).
+  cartesian.chunk.observation_s = 100.25;
+  cartesian.chunk.takeover_s = cartesian.chunk.waypoints[2].time_s;
+  expectEncoderMatchesTheWire(cartesian);
+  std::vector<std::uint8_t> bytes;
+  encodeCdr(cartesian, bytes);
+  CartesianChunkMessage decoded;
+  ASSERT_TRUE(decodeCdr(bytes, decoded));
+  EXPECT_EQ(decoded.chunk.observation_s, 100.25);
+  EXPECT_NEAR(decoded.chunk.takeover_s, cartesian.chunk.takeover_s, 1e-9);
 
   JointChunkMessage joint;
   joint.header = {{-1, 1}, ""};
@@ -201,6 +213,11 @@ TEST(TransportCdrEncoder, ChunksMatchTheWire) {
   joint.chunk.waypoints.push_back({3.5, JointCommand::zero(2)});
   joint.chunk.waypoints.front().command.velocity.resize(0);
   expectEncoderMatchesTheWire(joint);
+  encodeCdr(joint, bytes);
+  JointChunkMessage joint_decoded;
+  ASSERT_TRUE(decodeCdr(bytes, joint_decoded));
+  EXPECT_TRUE(std::isnan(joint_decoded.chunk.observation_s));
+  EXPECT_TRUE(std::isnan(joint_decoded.chunk.takeover_s));
 }
 
 // Every table field set (message_values.hpp): sequences of 1 to 3 elements and strings of

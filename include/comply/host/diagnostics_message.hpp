@@ -23,6 +23,8 @@ struct LoopCounters {
   std::atomic<std::uint64_t> cycles{0};
   std::atomic<std::uint64_t> overruns{0};
   std::atomic<std::uint64_t> applied_deferred{0};  ///< applied events the gate had no room for yet
+  /// Chunk timing records the gate had no room for (their outcomes and the recording go without).
+  std::atomic<std::uint64_t> chunk_timings_lost{0};
   std::array<std::atomic<std::uint64_t>, kBins> compute{};
   std::array<std::atomic<std::uint64_t>, kBins> lateness{};
 

@@ -8,6 +8,7 @@
 //   /<name>/joint_chunk        comply_msgs/JointChunk        every chunk as received
 //   /<name>/request            comply_msgs/Request       every request as received
 //   /<name>/outcome            comply_msgs/CommandOutcome   one per command
+//   /<name>/chunk_timing       comply_msgs/ChunkTiming   one per chunk: its outcome's chunk entry
 //   /<name>/diagnostics        comply_msgs/Diagnostics   as published
 //
 // Messages are the CDR bytes of the wire. Each group of channels has its own lane with one
@@ -163,7 +164,8 @@ class HostRecording {
   // The command thread: a command or chunk of either kind, or a request, as received.
   template <typename Message>
   void received(const Message& message, transport::Stamp received_at);
-  // The publishing thread.
+  // The publishing thread. An outcome's chunk timing record goes on chunk_timing too, at its
+  // takeover (or, never taken over, at the outcome's time).
   void outcome(const transport::CommandOutcomeMessage& message);
   void diagnostics(const transport::DiagnosticsMessage& message);
 
@@ -178,6 +180,7 @@ class HostRecording {
   pipeline::CommandBus in_force_;  // the writer thread's: the one cycles are encoded with
   SenderChannels senders_;
   std::uint16_t outcome_channel_ = 0;
+  std::uint16_t chunk_timing_channel_ = 0;
   std::uint16_t diagnostics_channel_ = 0;
   record::RecordLane& control_;
   record::RecordLane& intake_;

@@ -63,6 +63,9 @@ transport::ControllerStateMessage stateMessage(const StateSample& sample,
 
 /// A command gate's outcome as the wire's CommandOutcome.
 transport::CommandOutcomeMessage outcomeMessage(const pipeline::CommandOutcome& outcome);
+/// A chunk's timing record as a ChunkTiming message, its times on the host's clock (zero for a
+/// time not said, or never reached).
+transport::ChunkTimingMessage chunkTimingMessage(const pipeline::NotedChunk& noted);
 /// Gate outcomes (CommandGate::takeOutcomes()) as the wire's CommandOutcomes, in order.
 std::vector<transport::CommandOutcomeMessage> outcomeMessages(
     const std::vector<pipeline::CommandOutcome>& outcomes);

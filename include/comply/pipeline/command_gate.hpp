@@ -23,19 +23,26 @@
 // reports the number in force after every cycle, and the gate settles every pending command up
 // to it as applied: two commands are told apart however close their stamps.
 //
-// Threads: offer() on the intake thread (any non-real-time thread), noteCycle() on the control
-// thread after each cycle (wait-free, no allocation), settle()/takeOutcomes() on any non-real-time
-// thread. The intake and the settling share one mutex, which the control thread never takes.
+// A chunk's outcome carries its timing record (chunk_timing.hpp) when the record came while the
+// outcome was pending: the control thread notes each record (noteChunk) before the cycle
+// (noteCycle), so the outcome of a chunk that took over in a cycle is settled with its record.
+//
+// Threads: offer() on the intake thread (any non-real-time thread), noteChunk() and noteCycle() on
+// the control thread after each cycle (wait-free, no allocation), settle()/takeOutcomes() on any
+// non-real-time thread. The intake and the settling share one mutex, which the control thread never
+// takes.
 
 #include <array>
 #include <cstdint>
 #include <deque>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "comply/core/spsc_queue.hpp"
+#include "comply/pipeline/chunk_timing.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/command_validation.hpp"
 #include "comply/pipeline/config.hpp"
@@ -65,6 +72,18 @@ enum class CommandKind : std::uint8_t { kCartesian = 0, kJoint = 1, kRequest = 2
 /// together name one command.
 using SenderId = std::array<std::uint8_t, 16>;
 
+/// A chunk's timing record as the control thread noted it, with the clocks of the cycle it came
+/// in: its times are on the controller's clock, which hostNs() puts on the host's.
+struct NotedChunk {
+  ChunkTiming timing;
+  std::uint64_t cycle = 0;    ///< the index of the cycle that wrote it
+  double controller_s = 0.0;  ///< the controller's clock in that cycle (Controller::time())
+  std::int64_t host_ns = 0;   ///< the host's clock in that cycle [ns]
+
+  /// A time of the record on the host's clock [ns]; nullopt for NaN (not said, never).
+  [[nodiscard]] std::optional<std::int64_t> hostNs(double controller_time_s) const noexcept;
+};
+
 /// What became of one command.
 struct CommandOutcome {
   std::int64_t stamp_ns = 0;  ///< the command's stamp (header.stamp), exact
@@ -80,6 +99,9 @@ struct CommandOutcome {
   std::int64_t applied_ns = 0;   ///< applied: wall clock at the end of that cycle
   std::string message;           ///< rejected: why, naming the field or the rule
   SenderId sender{};             ///< who sent it (Offer::sender)
+  /// A chunk's timing record, when one came while the outcome was pending (the chunk took over,
+  /// or was superseded or dropped while it waited for its takeover).
+  std::optional<NotedChunk> chunk;
 };
 
 struct GateCounts {
@@ -153,6 +175,16 @@ class CommandGate {
     return true;
   }
 
+  /// The control thread, after a cycle and before its noteCycle(): a chunk's timing record of
+  /// that cycle (Controller::chunks().events()), `controller_s` the controller's clock and
+  /// `host_ns` the host's in that cycle. settle() gives it to the chunk's outcome if that is
+  /// still pending (else it is dropped: the outcome went without it). Wait-free and
+  /// allocation-free; false when the queue was full (the record is lost).
+  bool noteChunk(std::uint64_t cycle, const ChunkTiming& timing, double controller_s,
+                 std::int64_t host_ns) noexcept {
+    return chunks_.push({timing, cycle, controller_s, host_ns});
+  }
+
   /// Any non-real-time thread: settles the commands the noted cycles took.
   void settle();
   /// Outcomes settled since the last call, in the order they were settled.
@@ -203,6 +235,8 @@ class CommandGate {
   /// Settles `outcome` as rejected for `reason`; returns `reason`.
   CommandReason rejectLocked(CommandOutcome& outcome, CommandReason reason, std::string message);
   void acceptLocked(std::uint64_t sequence, CommandOutcome& outcome);
+  /// Gives the noted timing records to the pending outcomes of their chunks.
+  void attachChunksLocked();
 
   GateOptions options_;
   mutable std::mutex mutex_;
@@ -216,6 +250,7 @@ class CommandGate {
   std::vector<CommandOutcome> settled_;
   // The control thread's side.
   SpscQueue<Applied> applied_{4096};
+  SpscQueue<NotedChunk> chunks_{256};
   std::uint64_t last_noted_sequence_ = 0;
 };
 

@@ -18,6 +18,7 @@ namespace comply::transport {
 /// `out` is cleared and then holds the message's CDR bytes.
 void encodeCdr(const ControllerStateMessage& message, std::vector<std::uint8_t>& out);
 void encodeCdr(const CommandOutcomeMessage& message, std::vector<std::uint8_t>& out);
+void encodeCdr(const ChunkTimingMessage& message, std::vector<std::uint8_t>& out);
 void encodeCdr(const DiagnosticsMessage& message, std::vector<std::uint8_t>& out);
 void encodeCdr(const CartesianCommandMessage& message, std::vector<std::uint8_t>& out);
 void encodeCdr(const JointCommandMessage& message, std::vector<std::uint8_t>& out);

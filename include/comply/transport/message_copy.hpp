@@ -6,7 +6,8 @@
 // The target's members: the wire name of each row; numbers and enums as any arithmetic type;
 // strings as std::string; fixed arrays as anything indexable; sequences with resize() and
 // operator[]; builtin_interfaces/Time with sec and nanosec; std_msgs/Header with stamp and
-// frame_id; a nested message (Diagnostics' outcomes) as that message's own target type.
+// frame_id; a nested message (Diagnostics' outcomes, an outcome's chunk) as that message's own
+// target type.
 
 #include <array>
 #include <cstddef>
@@ -76,6 +77,7 @@ void copyField(const std::vector<In>& in, Out& out) {
   }
 
 COMPLY_MESSAGE_COPY(ControllerStateMessage, COMPLY_CONTROLLER_STATE_FIELDS)
+COMPLY_MESSAGE_COPY(ChunkTimingMessage, COMPLY_CHUNK_TIMING_FIELDS)
 COMPLY_MESSAGE_COPY(CommandOutcomeMessage, COMPLY_COMMAND_OUTCOME_FIELDS)
 COMPLY_MESSAGE_COPY(DiagnosticsMessage, COMPLY_DIAGNOSTICS_FIELDS)
 

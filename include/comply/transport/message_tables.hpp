@@ -1,6 +1,6 @@
 #pragma once
-// The host's messages declared once: ControllerState, CommandOutcome and Diagnostics, a row per
-// field in wire order. Everything else follows from these rows:
+// The host's messages declared once: ControllerState, CommandOutcome (and its ChunkTiming) and
+// Diagnostics, a row per field in wire order. Everything else follows from these rows:
 //   the C++ structs (messages.hpp)                    COMPLY_MESSAGE_BODY
 //   CDR both ways (cdr_messages.cpp, cdr_decode.cpp)   Message::visit + cdr_fields.hpp
 //   the DDS types idlc builds (wire_state.cpp)         the rows, member by member
@@ -94,7 +94,41 @@
   X(std::string, message, message, {}, "why, naming the field (rejected)") \
   X(Gid, sender, sender, {}, \
     "the sending participant's DDS GUID (the command writer's GUID prefix, entity id " \
-    "0x000001c1); with the stamp it names the command; all zero: not known")
+    "0x000001c1); with the stamp it names the command; all zero: not known") \
+  X(ChunkTimings, chunk, chunk, {}, \
+    "a chunk's timing record (0 or 1 entries): one when the chunk took over, or was superseded " \
+    "or dropped while it waited for its takeover, before its outcome was sent; none for a " \
+    "command, a request, a refused chunk")
+
+#define COMPLY_CHUNK_TIMING_FIELDS(X) \
+  X(std::uint64_t, sequence, sequence_number, 0, \
+    "[-] the chunk's number (CommandOutcome.sequence_number; `sequence` is an IDL keyword)") \
+  X(ChunkEnd, end, end, ChunkEnd::kTookOver, "END_*: how its time in the cycle ended") \
+  X(Stamp, observation, observation, {}, \
+    "the observation the sender planned it for (the chunk's observation); zero: not given") \
+  X(Stamp, received, received, {}, "when the controller's intake accepted it") \
+  X(Stamp, takeover, takeover, {}, "the cycle it took over in; zero: it never did") \
+  X(std::uint64_t, takeover_cycle, takeover_cycle, 0, \
+    "[-] index of that cycle (END_TOOK_OVER), else of the cycle that ended its wait") \
+  X(Stamp, requested_takeover, requested_takeover, {}, \
+    "the takeover it asked for (the chunk's takeover); zero: at once") \
+  X(Stamp, first_waypoint, first_waypoint, {}, "its first waypoint's time") \
+  X(Stamp, last_waypoint, last_waypoint, {}, "its last waypoint's time") \
+  X(std::uint32_t, waypoints, waypoints, 0, "[-] its waypoints") \
+  X(std::uint32_t, waypoints_past, waypoints_past, 0, \
+    "[-] waypoints already past in the takeover cycle: with waypoint 0 at the observation, the " \
+    "delay in the chunk's own steps") \
+  X(double, position_jump, position_jump, 0.0, \
+    "[m | rad] the reference's jump at the seam: TCP position (joint control: the largest " \
+    "joint's)") \
+  X(double, rotation_jump, rotation_jump, 0.0, "[rad] TCP orientation (0 under joint control)") \
+  X(double, velocity_jump, velocity_jump, 0.0, \
+    "[m/s | rad/s] TCP velocity (joint control: the largest joint's)") \
+  X(double, angular_velocity_jump, angular_velocity_jump, 0.0, \
+    "[rad/s] TCP angular velocity (0 under joint control)") \
+  X(bool, starved, starved, false, \
+    "the chunk before it had run out before it took over (the reference came to rest)") \
+  X(double, rest_s, rest, 0.0, "[s] how long the reference had been at rest then (starved)")
 
 #define COMPLY_DIAGNOSTICS_FIELDS(X) \
   X(Header, header, header, {}, "stamp: host wall-clock time; frame_id: the host's name") \

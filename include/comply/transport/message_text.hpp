@@ -81,6 +81,9 @@ FieldText spelling() {
   } else if constexpr (std::is_same_v<T, CommandOutcomeMessage>) {
     return named("CommandOutcome", "comply_msgs::msg::dds_::CommandOutcome_",
                  "comply_msgs/msg/CommandOutcome.idl");
+  } else if constexpr (std::is_same_v<T, ChunkTimingMessage>) {
+    return named("ChunkTiming", "comply_msgs::msg::dds_::ChunkTiming_",
+                 "comply_msgs/msg/ChunkTiming.idl");
   } else if constexpr (kIsStdArray<T>) {
     FieldText element = spelling<typename T::value_type>();
     const std::string bound = "[" + std::to_string(std::tuple_size_v<T>) + "]";
@@ -118,8 +121,8 @@ std::string rosMessageText(const MessageText& message);
 /// src/transport/idl/comply_msgs/msg/NAME.idl: as ROS 2's rosidl puts it on the wire.
 std::string ddsIdlText(const MessageText& message);
 
-/// ControllerState, CommandOutcome and Diagnostics, from their tables; throws std::out_of_range
-/// for another name.
+/// ControllerState, CommandOutcome, ChunkTiming and Diagnostics, from their tables; throws
+/// std::out_of_range for another name.
 MessageText hostMessageText(std::string_view name);
 /// Their names.
 std::vector<std::string_view> hostMessageNames();

@@ -50,6 +50,11 @@ struct Stamp {
   friend auto operator<=>(const Stamp&, const Stamp&) = default;
 };
 
+/// A time a message may leave out (a chunk's observation and takeover, a ChunkTiming's times): all
+/// zero on the wire stands for "not given", NaN in C++.
+Stamp stampOrZero(double seconds) noexcept;
+double secondsOrNaN(const Stamp& stamp) noexcept;
+
 /// std_msgs/Header.
 struct Header {
   Stamp stamp;
@@ -153,6 +158,20 @@ std::string_view toString(Reason reason);
 using Gid = std::array<std::uint8_t, 16>;
 /// 32 lower-case hex digits, as `ros2 topic echo` prints nothing better and logs can compare.
 std::string toHex(const Gid& gid);
+
+/// ChunkTiming.END_*: how a chunk's time in the cycle ended (pipeline::ChunkEnd, same numbers).
+enum class ChunkEnd : std::uint8_t { kTookOver = 0, kSuperseded = 1, kDropped = 2 };
+inline constexpr EnumNames<ChunkEnd, 3> kChunkEndNames{{{ChunkEnd::kTookOver, "took_over"},
+                                                        {ChunkEnd::kSuperseded, "superseded"},
+                                                        {ChunkEnd::kDropped, "dropped"}}};
+std::string_view toString(ChunkEnd end);
+
+/// comply_msgs/ChunkTiming (message_tables.hpp): a chunk's timing record (pipeline::ChunkTiming)
+/// with its times on the host's clock, in its outcome and in a recording's chunk_timing channel.
+struct ChunkTimingMessage {
+  COMPLY_MESSAGE_BODY(COMPLY_CHUNK_TIMING_FIELDS)
+};
+using ChunkTimings = std::vector<ChunkTimingMessage>;
 
 /// comply_msgs/CommandOutcome (message_tables.hpp).
 struct CommandOutcomeMessage {

@@ -371,6 +371,12 @@ controller_interface::return_type ComplyController<Command>::update(
       }
     }
   }
+  // The chunks' timing records before the cycle, so that its outcomes carry their own; the
+  // node's clock is the host's.
+  const comply::pipeline::Controller& controller = wrapper_->controller();
+  for (const comply::pipeline::ChunkTiming& timing : controller.chunks().events()) {
+    gate_->noteChunk(cycle_, timing, controller.time(), time.nanoseconds());
+  }
   gate_->noteCycle(cycle_, wrapper_->controller().idInForce(),
                    [&time] { return time.nanoseconds(); });
   afterCycle(time, wrote, start_s);

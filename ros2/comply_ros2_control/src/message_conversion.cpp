@@ -5,6 +5,7 @@
 
 #include "comply/schema/schema.hpp"
 #include "comply/schema/table.hpp"
+#include "comply/transport/messages.hpp"
 
 namespace comply_ros2_control {
 namespace {
@@ -82,6 +83,11 @@ comply::Chunk<Command> chunkFromMessage(const Message& message, std::string& mal
   comply::Chunk<Command> chunk;
   chunk.stamp_s = seconds(message.header.stamp);
   chunk.fields = static_cast<comply::CommandField>(message.fields);
+  // All zero: not given (NaN), as the host's own transport reads them.
+  chunk.observation_s =
+      comply::transport::secondsOrNaN({message.observation.sec, message.observation.nanosec});
+  chunk.takeover_s =
+      comply::transport::secondsOrNaN({message.takeover.sec, message.takeover.nanosec});
   for (std::size_t k = 0; k < message.waypoints.size() && malformed.empty(); ++k) {
     const auto& waypoint = message.waypoints[k];
     chunk.waypoints.push_back({seconds(waypoint.header.stamp), fromMessage(waypoint, malformed)});

@@ -76,7 +76,17 @@ void LiveObserver<Command>::afterCycle(const hardware::CycleRecord& record) {
   if (record.state != nullptr) {
     last_state_ = *record.state;
   }
-  if (!gate_.noteCycle(record.index, wrapper_.controller().idInForce(), wallClockNanoseconds)) {
+  // The chunks' timing records first, so that the outcome the cycle settles carries its own.
+  const pipeline::Controller& controller = wrapper_.controller();
+  if (const auto events = controller.chunks().events(); !events.empty()) {
+    const std::int64_t now_ns = wallClockNanoseconds();
+    for (const pipeline::ChunkTiming& timing : events) {
+      if (!gate_.noteChunk(record.index, timing, controller.time(), now_ns)) {
+        counters_.chunk_timings_lost.fetch_add(1, std::memory_order_relaxed);
+      }
+    }
+  }
+  if (!gate_.noteCycle(record.index, controller.idInForce(), wallClockNanoseconds)) {
     counters_.applied_deferred.fetch_add(1, std::memory_order_relaxed);
   }
   fillSample(record);

@@ -2,6 +2,7 @@
 
 #include "comply/pipeline/command_gate.hpp"
 
+#include <cmath>
 #include <sstream>
 #include <utility>
 
@@ -92,10 +93,32 @@ CommandReason CommandGate::rejectLocked(CommandOutcome& outcome, CommandReason r
   return reason;
 }
 
+std::optional<std::int64_t> NotedChunk::hostNs(double controller_time_s) const noexcept {
+  if (std::isnan(controller_time_s)) {
+    return std::nullopt;
+  }
+  return host_ns + stampNanoseconds(controller_time_s - controller_s);
+}
+
+void CommandGate::attachChunksLocked() {
+  while (const NotedChunk* next = chunks_.front()) {
+    for (Pending& pending : pending_) {
+      if (pending.sequence == next->timing.sequence) {
+        pending.outcome.chunk = *next;
+        break;
+      }
+    }
+    chunks_.pop();
+  }
+}
+
 void CommandGate::settle() {
   const std::lock_guard<std::mutex> lock(mutex_);
   while (const Applied* next = applied_.front()) {
     const Applied event = *next;
+    // The records of that cycle and those before were noted before it (noteChunk first): the
+    // outcomes it settles take theirs with them.
+    attachChunksLocked();
     applied_.pop();
     while (!pending_.empty() && pending_.front().sequence <= event.sequence) {
       CommandOutcome& outcome = pending_.front().outcome;
@@ -108,6 +131,7 @@ void CommandGate::settle() {
       pending_.pop_front();
     }
   }
+  attachChunksLocked();  // a chunk superseded or dropped while it waited stays pending
 }
 
 void CommandGate::abandonPending(const std::string& why) {
