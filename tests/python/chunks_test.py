@@ -110,14 +110,17 @@ def check_client(cli, source):
         assert abs(state["tcp_position"][1] - (start[1] + 0.035)) < 0.01, state
 
         # Relative to the host's clock now, as estimated, asking to take over at its waypoint 2
-        # (none plays: it takes over at once); then one entirely past.
+        # (none plays: the reference holds until then); then one entirely past.
         stamp = client.send_chunk(along_y(state["tcp_position"], state["tcp_orientation"], 4,
                                           0.05, first=0.05), keep=2)
         outcome = client.outcome(stamp, timeout=2.0)
         assert outcome["applied"], outcome
         timing = outcome["chunk"]
         assert abs(timing["requested_takeover"] - timing["first_waypoint"] - 0.1) < 1e-6, timing
-        assert timing["takeover"] < timing["requested_takeover"], timing
+        # The first cycle at or after it (the record's times carry the cycle's scheduling
+        # jitter on the wall clock), its waypoints 0 and 1 past.
+        assert timing["takeover"] > timing["requested_takeover"] - 0.002, timing
+        assert timing["waypoints_past"] >= 2 and timing["starved"], timing
         stamp = client.send_chunk(along_y(state["tcp_position"], state["tcp_orientation"], 4,
                                           0.05), relative_to=state["stamp"] - 5.0)
         late = client.outcome(stamp, timeout=2.0)
