@@ -16,7 +16,8 @@ namespace comply::python {
 namespace {
 
 using SteadyClock = std::chrono::steady_clock;
-// Round trips the clock estimate keeps: the one with the least delay of them gives the offset.
+// Commands sent whose round trip is still awaited (the newest; an older one's outcome no longer
+// times the clock).
 constexpr std::size_t kAwaitedRoundTrips = 64;
 // The writers keep every unacknowledged command: a write waits while the commands before it fill
 // the writer's history and fails when the host acknowledges none of them within the reliability's

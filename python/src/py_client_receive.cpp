@@ -244,7 +244,10 @@ bool Client::waitUntil(const py::function& predicate, double timeout_s) {
       if (receiveUntil([&] { return states_taken_ != seen; }, left_s, 0.05)) {
         const std::lock_guard<std::mutex> data(data_);
         seen = states_taken_;
-        fresh = state_;
+        // As state(): a state of a host whose writer is gone is not judged.
+        if (host_matched_) {
+          fresh = state_;
+        }
       }
     }
     if (fresh && predicate(toDict(*fresh)).cast<bool>()) {
