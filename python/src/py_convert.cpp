@@ -9,6 +9,7 @@
 #include <type_traits>
 
 #include "comply/core/input_error.hpp"
+#include "comply/host/state_sample.hpp"
 #include "comply/schema/json.hpp"
 
 namespace comply::python {
@@ -174,21 +175,26 @@ py::dict toDict(const transport::ControllerStateMessage& s) {
 
 namespace {
 
-/// An outcome's chunk timing record under the names of Sim.step()'s info["chunks"] (times [s] on
-/// the host's clock, NaN where the record has none).
-py::dict chunkDict(const transport::ChunkTimingMessage& timing) {
+/// A chunk timing record's times [s] on the host's clock, NaN where it has none.
+struct ChunkTimes {
+  double observation, received, takeover, requested_takeover, first_waypoint, last_waypoint;
+};
+
+/// The record under the names of Sim.step()'s info["chunks"], its times given apart: the wire's
+/// stamps, or a simulated clock that starts at 0 (a time the wire's all-zero "none" would hide).
+py::dict chunkDict(const transport::ChunkTimingMessage& timing, const ChunkTimes& times) {
   py::dict d;
   d["sequence"] = timing.sequence;
   d["end"] = std::string(toString(timing.end));
-  d["observation"] = transport::secondsOrNaN(timing.observation);
-  d["received"] = transport::secondsOrNaN(timing.received);
-  d["takeover"] = transport::secondsOrNaN(timing.takeover);
+  d["observation"] = times.observation;
+  d["received"] = times.received;
+  d["takeover"] = times.takeover;
   d["takeover_cycle"] = timing.end == transport::ChunkEnd::kTookOver
                             ? py::object(py::int_(timing.takeover_cycle))
                             : py::object(py::none());
-  d["requested_takeover"] = transport::secondsOrNaN(timing.requested_takeover);
-  d["first_waypoint"] = transport::secondsOrNaN(timing.first_waypoint);
-  d["last_waypoint"] = transport::secondsOrNaN(timing.last_waypoint);
+  d["requested_takeover"] = times.requested_takeover;
+  d["first_waypoint"] = times.first_waypoint;
+  d["last_waypoint"] = times.last_waypoint;
   d["waypoints"] = timing.waypoints;
   d["waypoints_past"] = timing.waypoints_past;
   d["position_jump"] = timing.position_jump;
@@ -201,6 +207,24 @@ py::dict chunkDict(const transport::ChunkTimingMessage& timing) {
 }
 
 }  // namespace
+
+py::dict toDict(const transport::ChunkTimingMessage& timing) {
+  using transport::secondsOrNaN;
+  return chunkDict(timing,
+                   {secondsOrNaN(timing.observation), secondsOrNaN(timing.received),
+                    secondsOrNaN(timing.takeover), secondsOrNaN(timing.requested_takeover),
+                    secondsOrNaN(timing.first_waypoint), secondsOrNaN(timing.last_waypoint)});
+}
+
+py::dict toDict(const pipeline::NotedChunk& noted, double cycle_host_s) {
+  const pipeline::ChunkTiming& t = noted.timing;
+  const double controller_minus_host_s = noted.controller_s - cycle_host_s;
+  const auto host = [&](double controller_s) { return controller_s - controller_minus_host_s; };
+  return chunkDict(
+      host::chunkTimingMessage(noted),
+      {host(t.observation_s), host(t.received_s), host(t.takeover_s), host(t.requested_takeover_s),
+       host(t.first_waypoint_s), host(t.last_waypoint_s)});
+}
 
 py::dict toDict(const transport::CommandOutcomeMessage& o) {
   py::dict d;
@@ -220,7 +244,7 @@ py::dict toDict(const transport::CommandOutcomeMessage& o) {
                                                                           o.stamp.nanoseconds())))
                        : py::object(py::none());
   // A chunk's timing record (docs/chunks.md); None for a command or request.
-  d["chunk"] = o.chunk.empty() ? py::object(py::none()) : py::object(chunkDict(o.chunk.front()));
+  d["chunk"] = o.chunk.empty() ? py::object(py::none()) : py::object(toDict(o.chunk.front()));
   return d;
 }
 
@@ -317,31 +341,5 @@ py::dict toArrays(const std::vector<JointCommand>& commands) {
 }
 
 #undef COMPLY_STACK_FIELD
-
-py::dict toDict(const pipeline::ChunkTiming& timing, double controller_minus_host_s,
-                std::uint64_t cycle) {
-  static constexpr std::array<const char*, 3> kEnds{"took_over", "superseded", "dropped"};
-  const auto host = [&](double controller_s) { return controller_s - controller_minus_host_s; };
-  py::dict d;
-  d["sequence"] = timing.sequence;
-  d["end"] = kEnds.at(static_cast<std::size_t>(timing.end));
-  d["observation"] = host(timing.observation_s);
-  d["received"] = host(timing.received_s);
-  d["takeover"] = host(timing.takeover_s);
-  d["takeover_cycle"] = timing.end == pipeline::ChunkEnd::kTookOver ? py::object(py::int_(cycle))
-                                                                    : py::object(py::none());
-  d["requested_takeover"] = host(timing.requested_takeover_s);
-  d["first_waypoint"] = host(timing.first_waypoint_s);
-  d["last_waypoint"] = host(timing.last_waypoint_s);
-  d["waypoints"] = timing.waypoints;
-  d["waypoints_past"] = timing.waypoints_past;
-  d["position_jump"] = timing.position_jump;
-  d["rotation_jump"] = timing.rotation_jump;
-  d["velocity_jump"] = timing.velocity_jump;
-  d["angular_velocity_jump"] = timing.angular_velocity_jump;
-  d["starved"] = timing.starved;
-  d["rest"] = timing.rest_s;
-  return d;
-}
 
 }  // namespace comply::python

@@ -12,6 +12,7 @@
 #include "comply/core/chunk.hpp"
 #include "comply/core/commands.hpp"
 #include "comply/pipeline/chunk_timing.hpp"
+#include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/diagnostics.hpp"
 #include "comply/record/recorder.hpp"
 #include "comply/transport/messages.hpp"
@@ -46,10 +47,12 @@ bool isChunk(const py::handle& value);
 /// names), for predicted references (ChunkPlayer::predict).
 py::dict toArrays(const std::vector<CartesianCommand>& commands);
 py::dict toArrays(const std::vector<JointCommand>& commands);
-/// A chunk's timing record (chunk_timing.hpp) with its times on the host's clock: controller
-/// time - `controller_minus_host_s`; `cycle`: the takeover cycle's index.
-py::dict toDict(const pipeline::ChunkTiming& timing, double controller_minus_host_s,
-                std::uint64_t cycle);
+/// A chunk's timing record (comply_msgs/ChunkTiming): times [s] on the host's clock, NaN where
+/// the record has none.
+py::dict toDict(const transport::ChunkTimingMessage& timing);
+/// The same from the cycle's record (`noted`) on a clock that reads `cycle_host_s` [s] in its
+/// cycle, exactly (Sim.step()'s info, on the simulated clock).
+py::dict toDict(const pipeline::NotedChunk& noted, double cycle_host_s);
 
 py::array_t<double> array(const double* values, std::size_t size);
 template <typename Container>

@@ -30,7 +30,9 @@ struct Episode final : hardware::LoopObserver {
     const transport::Stamp now = clockAt(record.time_s);
     const pipeline::Controller& controller = wrapper.controller();
     for (const pipeline::ChunkTiming& timing : controller.chunks().events()) {
-      chunk_events.push_back({timing, controller.time() - record.time_s, record.index});
+      // step()'s info on the simulated clock, the outcome's on the recording's.
+      chunk_events.push_back(
+          {{timing, record.index, controller.time(), now.nanoseconds()}, record.time_s});
       gate->noteChunk(record.index, timing, controller.time(), now.nanoseconds());
     }
     // The gate's clock is the recording's, so an outcome's applied time is the cycle's.
@@ -56,15 +58,12 @@ struct Episode final : hardware::LoopObserver {
     return transport::Stamp::fromNanoseconds(start_ns + stampNanoseconds(t_s));
   }
 
-  /// A chunk's timing record, with the offset of the controller's clock from the simulated one
-  /// in its cycle and that cycle's index.
-  struct ChunkEvent {
-    pipeline::ChunkTiming timing;
-    double controller_minus_host_s;
-    std::uint64_t cycle;
-  };
-
   pipeline::Wrapper<Command> wrapper;
+  /// A cycle's chunk timing record and the simulated time of that cycle [s].
+  struct ChunkEvent {
+    pipeline::NotedChunk noted;
+    double cycle_s;
+  };
   std::vector<ChunkEvent> chunk_events;  // since the last step() took them
   pipeline::CommandGate* gate = nullptr;
   std::int64_t start_ns;  ///< the recording's clock when the episode started

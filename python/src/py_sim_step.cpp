@@ -113,7 +113,7 @@ py::list Sim::takeChunkTimings() {
   std::visit(
       [&](auto& e) {
         for (const auto& event : e->chunk_events) {
-          chunks.append(toDict(event.timing, event.controller_minus_host_s, event.cycle));
+          chunks.append(toDict(event.noted, event.cycle_s));
         }
         e->chunk_events.clear();
       },
