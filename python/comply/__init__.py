@@ -31,6 +31,9 @@ clock that runs on across episodes; an episode starts where the cycle index is 0
     cycles = comply.read_recording("sim.mcap")["/comply/cycle"]
     starts = np.flatnonzero(cycles["state.cycle"] == 0)  # each episode's first row
 
+comply.policy.PolicyRunner runs a chunking policy that infers while the arm moves, on a Sim or a
+Client, with the delay the host measured handed to each inference (docs/policies.md).
+
 read_recording(path) reads a recording (MCAP) into numpy columns per topic in pure Python
 (numpy, zstandard), so it works where the C++ extension is not built:
 
