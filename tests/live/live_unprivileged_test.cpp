@@ -19,6 +19,7 @@
 
 #include "frames.hpp"
 #include "live_support.hpp"
+#include "realtime_grant.hpp"
 #include "text_file.hpp"
 
 namespace comply::live_test {
@@ -99,6 +100,18 @@ TEST(LiveUnprivileged, AHostWithoutRealTimeRightsRunsAtNormalPriorityAndSaysSoOn
   }
   EXPECT_EQ(text.find("pthread_create"), std::string::npos) << text;
   EXPECT_EQ(linesWith(text, " cycles, ").size(), 1U) << "no summary:\n" << text;
+}
+
+/// A user whose rtprio limit is below the asked priority gets real-time scheduling up to the
+/// limit (before, it got none); one without a limit, or refused even at it, gets none. (The
+/// sandbox CI runs in cannot raise its own limit, so this is the decision alone.)
+TEST(LiveUnprivileged, AnRtprioLimitBelowTheAskedPriorityIsWhatTheHostRunsAt) {
+  const auto upTo = [](int limit) { return [limit](int p) { return p <= limit; }; };
+  EXPECT_EQ(host::grantablePriority(80, 99, upTo(99)), 80);
+  EXPECT_EQ(host::grantablePriority(80, 10, upTo(10)), 10);
+  EXPECT_EQ(host::grantablePriority(80, 0, upTo(0)), 0);
+  EXPECT_EQ(host::grantablePriority(80, 10, upTo(5)), 0) << "refused even at the limit";
+  EXPECT_EQ(host::grantablePriority(0, 10, upTo(10)), 0) << "asked for none";
 }
 
 /// comply-transport started as a host starts it, asked for receive threads at a priority this

@@ -5,6 +5,7 @@
 #include <sys/mman.h>
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -38,6 +39,18 @@ bool mayLockFuture() {
 
 }  // namespace
 
+int grantablePriority(int asked, long long rtprio_limit, const std::function<bool(int)>& granted) {
+  if (asked <= 0 || granted(asked)) {
+    return std::max(asked, 0);
+  }
+  // A user's rtprio limit grants real-time scheduling up to it: below the asked priority, the
+  // limit is still far better than none.
+  if (rtprio_limit > 0 && rtprio_limit < asked && granted(static_cast<int>(rtprio_limit))) {
+    return static_cast<int>(rtprio_limit);
+  }
+  return 0;
+}
+
 int grantRealtime(const LiveHostOptions& options, std::ostream& err) {
   std::string memory_refusal;
   // Page faults in the control loop are latency: keep everything resident when allowed. What is
@@ -50,11 +63,33 @@ int grantRealtime(const LiveHostOptions& options, std::ostream& err) {
       memory_refusal = "memory mapped after start-up is not locked (the memlock limit is finite)";
     }
   }
-  const std::string scheduling_refusal = realtimeRefusal(options.priority);
-  if (scheduling_refusal.empty() && memory_refusal.empty()) {
-    return options.priority;
+  int priority = options.priority;
+  std::string scheduling_refusal = realtimeRefusal(priority);
+  std::string clamped;
+  if (!scheduling_refusal.empty()) {
+    rlimit limit{};
+    const long long rtprio_limit =
+        getrlimit(RLIMIT_RTPRIO, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY
+            ? static_cast<long long>(limit.rlim_cur)
+            : 0;
+    const int lowered = grantablePriority(priority, rtprio_limit, [&](int p) {
+      return p == priority ? false : realtimeRefusal(p).empty();
+    });
+    if (lowered > 0) {
+      clamped = "SCHED_FIFO priority " + std::to_string(priority) +
+                " is above this user's rtprio limit (" + std::to_string(lowered) + ")";
+      priority = lowered;
+      scheduling_refusal.clear();
+    }
+  }
+  if (scheduling_refusal.empty() && memory_refusal.empty() && clamped.empty()) {
+    return priority;
   }
   err << "comply run: warning: ";
+  if (!clamped.empty()) {
+    err << clamped << ": the control, command and DDS receive threads run at priority " << priority
+        << " (raise the limit, or --priority " << priority << " says so quietly)";
+  }
   if (!scheduling_refusal.empty()) {
     err << "no real-time scheduling for this user (" << scheduling_refusal
         << "): the control, command and DDS receive threads run at normal priority, so other "
@@ -63,14 +98,14 @@ int grantRealtime(const LiveHostOptions& options, std::ostream& err) {
         << kRealtimeGrantAdvice << "; --priority 0 asks for none";
   }
   if (!memory_refusal.empty()) {
-    err << (scheduling_refusal.empty() ? "" : ". Also ") << "memory is not locked ("
-        << memory_refusal
+    err << (scheduling_refusal.empty() && clamped.empty() ? "" : ". Also ")
+        << "memory is not locked (" << memory_refusal
         << "), so a page fault may delay a cycle; raise the memlock limit (`ulimit -l`; `USER - "
            "memlock unlimited` in /etc/security/limits.conf), give comply CAP_IPC_LOCK (`setcap "
            "cap_sys_nice,cap_ipc_lock+ep`) or run as root";
   }
   err << "\n";
-  return scheduling_refusal.empty() ? options.priority : 0;
+  return scheduling_refusal.empty() ? priority : 0;
 }
 
 }  // namespace comply::host
