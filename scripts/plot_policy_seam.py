@@ -21,7 +21,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import comply  # noqa: E402
-from comply.policy import PolicyRunner  # noqa: E402
+from comply.policy import PolicyRunner, inpaint  # noqa: E402
 
 DT, HORIZON, DELAY_S = 1.0 / 30.0, 16, 0.15
 
@@ -39,32 +39,14 @@ def run(source, mode):
         def policy(ctx):
             origin = ctx["observation"]["reference_position"].copy()
             offset = rng.normal(0.0, 0.002)
-            keep = min(max(1, ctx["delay_steps"]), HORIZON - 1)
-            prefix = ctx["committed"]
             committed[ctx["time"]] = sim.committed(ctx["time"], DT, HORIZON)
-            chunk = []
-            for k in range(HORIZON):
-                t = ctx["time"] + k * DT
-                p = origin.copy()
-                p[1] += plan(t) - plan(ctx["time"]) + offset
-                if prefix is not None and k <= keep:
-                    p = prefix["position"][k]
-                elif prefix is not None:
-                    gap = prefix["position"][keep][1] - (origin[1] + plan(ctx["time"] + keep * DT)
-                                                         - plan(ctx["time"]) + offset)
-                    p[1] += gap * max(0.0, 1.0 - (k - keep) / 5.0)
-                chunk.append({"time": k * DT, "position": p, "orientation": orientation})
-            return chunk
+            planned = [origin + [0.0, plan(ctx["time"] + k * DT) - plan(ctx["time"]) + offset, 0.0]
+                       for k in range(HORIZON)]
+            return [{"time": k * DT, "position": p, "orientation": orientation}
+                    for k, p in enumerate(inpaint(planned, ctx))]
 
         runner = PolicyRunner(sim, policy, dt=DT, horizon=HORIZON, mode=mode,
                               inference_delay=lambda: DELAY_S)
-        original_note = runner._note
-
-        def note(*args, **kwargs):
-            record = original_note(*args, **kwargs)
-            record["chunk"] = args[2]
-            return record
-        runner._note = note
         runner.run(2.0, observation=obs)
         sim.close()
         cycles = comply.read_recording(path)["/comply/cycle"]

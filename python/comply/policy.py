@@ -40,6 +40,30 @@ import numpy as np
 _MODES = ("replace", "frozen", "ensemble")
 
 
+def keep_steps(ctx):
+    """The waypoint a chunk planned in `ctx` takes over at in mode "frozen": the host's delay
+    count, at least 1 and short of the chunk's end."""
+    return min(max(1, ctx["delay_steps"]), ctx["horizon"] - 1)
+
+
+def inpaint(planned, ctx, fade_steps=5):
+    """A chunk's positions (an array, a row per action) that keep the host's committed actions
+    up to waypoint keep_steps(ctx) and fade back onto `planned` over `fade_steps` actions after
+    it: a stand-in for the guided inpainting of real-time chunking, for policies that cannot
+    condition on the prefix. `planned` as is when ctx holds no committed prefix."""
+    planned = np.asarray(planned, dtype=float)
+    committed = ctx["committed"]
+    if committed is None or not committed["known"]:
+        return planned
+    keep = keep_steps(ctx)
+    out = planned.copy()
+    out[:keep + 1] = committed["position"][:keep + 1]
+    gap = committed["position"][keep] - planned[keep]
+    for k in range(keep + 1, len(out)):
+        out[k] += gap * max(0.0, 1.0 - (k - keep) / fade_steps)
+    return out
+
+
 class PolicyRunner:
     def __init__(self, host, policy, *, dt, horizon, mode="replace", inference_delay=0.0,
                  replan_steps=None, ensemble_decay=0.01):
@@ -81,17 +105,16 @@ class PolicyRunner:
         return ctx
 
     def _committed(self, observation_time):
-        if self._simulated:
-            return self.host.committed(observation_time, self.dt, self.horizon)
-        if hasattr(self.host, "committed"):
-            return self.host.committed(observation_time, self.dt, self.horizon)
-        return None
+        """The host's committed prefix at the observation, where the host answers it."""
+        if not hasattr(self.host, "committed"):
+            return None
+        return self.host.committed(observation_time, self.dt, self.horizon)
 
     def _chunk_to_send(self, chunk, observation_time):
         """The chunk as sent, and the waypoint it takes over at (None: at once)."""
         keep = None
         if self.mode == "frozen":
-            keep = min(max(1, self._delay_steps), len(chunk) - 1)
+            keep = min(max(1, self._delay_steps), len(chunk) - 1)  # keep_steps() of its context
         elif self.mode == "ensemble":
             chunk = self._ensembled(chunk, observation_time)
         return chunk, keep
@@ -114,7 +137,7 @@ class PolicyRunner:
 
     def _note(self, stamp, observation_time, chunk, keep, sent_at, info=None):
         record = {"stamp": stamp, "observation": observation_time, "sent_at": sent_at,
-                  "waypoints": len(chunk), "keep": keep, "timing": None}
+                  "chunk": chunk, "keep": keep, "timing": None}
         self.records.append(record)
         if info is not None:
             self._take_timings(info.get("chunks", []))

@@ -20,7 +20,7 @@ import time
 import numpy as np
 
 import comply
-from comply.policy import PolicyRunner
+from comply.policy import PolicyRunner, inpaint
 
 DT = 1.0 / 30.0  # the policy's step
 HORIZON = 16  # actions per chunk
@@ -48,20 +48,9 @@ class CirclePolicy:
             angle = 2 * math.pi * t / TURN_S
             return np.array([0.0, RADIUS_M * math.sin(angle), RADIUS_M * (1 - math.cos(angle))])
 
-        committed = ctx["committed"]
-        keep = min(max(1, ctx["delay_steps"]), HORIZON - 1)
-        kept = committed is not None and committed["known"]
-        chunk = []
-        for k in range(HORIZON):
-            t = t0 + k * DT
-            position = origin + circle(t) - circle(t0)
-            if kept and k <= keep:
-                position = committed["position"][k]
-            elif kept:
-                gap = committed["position"][keep] - (origin + circle(t0 + keep * DT) - circle(t0))
-                position = position + gap * max(0.0, 1.0 - (k - keep) / 5.0)
-            chunk.append({"time": k * DT, "position": position, "orientation": orientation})
-        return chunk
+        planned = [origin + circle(t0 + k * DT) - circle(t0) for k in range(HORIZON)]
+        return [{"time": k * DT, "position": position, "orientation": orientation}
+                for k, position in enumerate(inpaint(planned, ctx))]
 
 
 def report(runner):

@@ -25,7 +25,7 @@ import tempfile
 import numpy as np
 
 import comply
-from comply.policy import PolicyRunner
+from comply.policy import PolicyRunner, inpaint, keep_steps
 
 BLEND_S = 0.1  # chunk_blend_time_s of the controller file
 
@@ -50,25 +50,13 @@ class FlowLikePolicy:
         # Planned from where the observation says the reference is.
         offset = (ctx["observation"]["reference_position"] - self.plan(ctx["time"]) +
                   self.rng.normal(0.0, 0.001, 3))
-        chunk = []
-        committed = ctx["committed"]
-        keep = min(max(1, ctx["delay_steps"]), ctx["horizon"] - 1)
-        frozen = committed is not None and committed["known"]
-        if frozen:  # inpainted: from the kept actions back onto the plan over half the rest
-            t_keep = ctx["time"] + keep * ctx["dt"]
-            gap = committed["position"][keep] - (self.plan(t_keep) + offset)
-            fade = max(5, (ctx["horizon"] - keep) // 2)
-        for k in range(ctx["horizon"]):
-            t = ctx["time"] + k * ctx["dt"]
-            if frozen and k <= keep:
-                position = committed["position"][k]  # what the host will execute: kept
-            else:
-                position = self.plan(t) + offset + self.rng.normal(0.0, 0.0001, 3)
-                if frozen:
-                    position = position + gap * max(0.0, 1.0 - (k - keep) / fade)
-            chunk.append({"time": k * ctx["dt"], "position": position,
-                          "orientation": self.orientation})
-        return chunk
+        planned = [self.plan(ctx["time"] + k * ctx["dt"]) + offset + self.rng.normal(0.0, 0.0001, 3)
+                   for k in range(ctx["horizon"])]
+        # With a committed prefix (mode "frozen"): the kept actions, then back onto the plan over
+        # half the rest.
+        fade = max(5, (ctx["horizon"] - keep_steps(ctx)) // 2)
+        return [{"time": k * ctx["dt"], "position": position, "orientation": self.orientation}
+                for k, position in enumerate(inpaint(planned, ctx, fade))]
 
 
 def hermite_velocity(times, points, t):
@@ -162,7 +150,7 @@ def evaluate(runner, inferences, stamp, reference, twist, dt, horizon, period):
             reference_step = float(np.abs(np.diff(twist[start:], axis=0)).max())
     for r, nxt in zip(steady, steady[1:] + [None]):
         times = r["observation"] + dt * np.arange(horizon)
-        points = np.array([w for w in r["positions"]])
+        points = np.array([w["position"] for w in r["chunk"]])
         end = nxt["timing"]["takeover"] if nxt else stamp[-1]
         grid = np.arange(r["timing"]["takeover"], end, period)
         v = np.array([hermite_velocity(times, points, t) for t in grid])
@@ -247,14 +235,6 @@ def main():
     source = sys.argv[1]
     check_runner_options()
     check_warm_start(source)
-    # The runner keeps what it sent; the evaluation needs the positions.
-    original_note = PolicyRunner._note
-
-    def note(self, stamp, observation_time, chunk, keep, sent_at, info=None):
-        record = original_note(self, stamp, observation_time, chunk, keep, sent_at, info)
-        record["positions"] = [np.asarray(w["position"]) for w in chunk]
-        return record
-    PolicyRunner._note = note
 
     print("| rate [Hz] | actions | delay [steps] | mode | chunks | took over | refused | "
           "prefix error [m] | delay error [steps] | max seam jump [mm] | max seam velocity jump "
