@@ -41,17 +41,7 @@ void dropRealtimeRights() {
 /// Whether dropRealtimeRights() takes the right away here: a user has it only by an rtprio limit
 /// or a capability it may give up; root needs CAP_SETPCAP to narrow its bounding set.
 bool canDropRealtimeRights() {
-  if (geteuid() != 0) {
-    return true;
-  }
-  std::istringstream status(textOf("/proc/self/status"));
-  for (std::string line; std::getline(status, line);) {
-    if (line.starts_with("CapEff:")) {
-      const std::uint64_t effective = std::stoull(line.substr(7), nullptr, 16);
-      return (effective >> CAP_SETPCAP & 1U) != 0;
-    }
-  }
-  return false;
+  return geteuid() != 0 || host::hasEffectiveCapability(CAP_SETPCAP);
 }
 
 /// The lines of `text` that hold `word`.

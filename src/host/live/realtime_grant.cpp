@@ -2,6 +2,7 @@
 
 #include "realtime_grant.hpp"
 
+#include <linux/capability.h>
 #include <sys/mman.h>
 #include <sys/resource.h>
 
@@ -26,18 +27,21 @@ bool mayLockFuture() {
   if (getrlimit(RLIMIT_MEMLOCK, &limit) == 0 && limit.rlim_cur == RLIM_INFINITY) {
     return true;
   }
-  // CAP_IPC_LOCK (bit 14 of the effective set) lifts the limit.
+  return hasEffectiveCapability(CAP_IPC_LOCK);  // it lifts the limit
+}
+
+}  // namespace
+
+bool hasEffectiveCapability(int capability) {
   std::ifstream status("/proc/self/status");
   for (std::string line; std::getline(status, line);) {
     if (line.rfind("CapEff:", 0) == 0) {
       const unsigned long long effective = std::stoull(line.substr(7), nullptr, 16);
-      return ((effective >> 14U) & 1ULL) != 0;
+      return ((effective >> static_cast<unsigned>(capability)) & 1ULL) != 0;
     }
   }
   return false;
 }
-
-}  // namespace
 
 int grantablePriority(int asked, long long rtprio_limit, const std::function<bool(int)>& granted) {
   if (asked <= 0 || granted(asked)) {

@@ -15,6 +15,9 @@ namespace comply::host {
 /// once on `err`: what the host loses and how to grant it.
 int grantRealtime(const LiveHostOptions& options, std::ostream& err);
 
+/// Whether this process holds `capability` (CAP_*) in its effective set.
+bool hasEffectiveCapability(int capability);
+
 /// The SCHED_FIFO priority to run at when `asked` (> 0) may be had or not (`granted`): `asked`;
 /// else `rtprio_limit` (the user's RLIMIT_RTPRIO) when it is between 1 and `asked` and granted;
 /// else 0.
