@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "comply/pipeline/wrapper.hpp"
+#include "resting_fr3.hpp"
 #include "wrapper_support.hpp"
 
 namespace comply::pipeline::test {
@@ -19,31 +20,12 @@ namespace {
 constexpr double kHostStart = 500.0;  // s: the host's clock at activation
 constexpr double kSpeed_m_per_s = 0.2;
 
-class ChunkTakeoverThroughTheWrapper : public ::testing::Test {
+class ChunkTakeoverThroughTheWrapper : public RestingFr3 {
  protected:
   ChunkTakeoverThroughTheWrapper()
-      : wrapper(fr3Config(kCartesianImpedancePlugin,
-                          "frozen_state_timeout_s: 0\n"
-                          "torque_rate_limit_nm_per_s: " +
-                              std::to_string(kNoRateLimit) + "\n")) {}
-
-  void SetUp() override {
-    state = restingAt(wrapper.controller(), fr3Home());
-    wrapper.activate(state);
-    cycles(1);
-    home = wrapper.measuredPose().tcp_position;
-    orientation = wrapper.measuredPose().tcp_orientation;
-  }
-
-  [[nodiscard]] double hostTime() const { return kHostStart + cycle_count * kPeriod; }
-
-  void cycles(int count) {
-    for (int i = 0; i < count; ++i) {
-      ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk)
-          << wrapper.diagnostics().last_fault;
-      ++cycle_count;
-    }
-  }
+      : RestingFr3("frozen_state_timeout_s: 0\ntorque_rate_limit_nm_per_s: " +
+                       std::to_string(kNoRateLimit) + "\n",
+                   kHostStart) {}
 
   /// Waypoints every 50 ms from `from_s` to `to_s` (seconds from `origin_s`) along x at 0.2 m/s,
   /// on the line that starts at home at `origin_s`.
@@ -53,25 +35,14 @@ class ChunkTakeoverThroughTheWrapper : public ::testing::Test {
     c.fields = CommandField::kPosition;
     for (double t = from_s; t <= to_s + 1e-9; t += 0.05) {
       ChunkWaypoint<CartesianCommand> waypoint{origin_s + t, CartesianCommand::zero(kFr3Dof)};
-      waypoint.command.position = home + Eigen::Vector3d(kSpeed_m_per_s * t, 0.0, 0.0);
-      waypoint.command.orientation = orientation;
+      waypoint.command.position = home_position + Eigen::Vector3d(kSpeed_m_per_s * t, 0.0, 0.0);
+      waypoint.command.orientation = home_orientation;
       c.waypoints.push_back(waypoint);
     }
     return c;
   }
 
-  [[nodiscard]] Eigen::Vector3d reference() const {
-    return Eigen::Map<const Eigen::Vector3d>(
-        std::get<comply_cartesian_command>(wrapper.controller().lawBus()).position);
-  }
-
-  CartesianWrapper wrapper;
-  JointState state;
-  TorqueBuffer torque;
-  int cycle_count = 0;
   double stamp = 0.0;
-  Eigen::Vector3d home;
-  Eigen::Quaterniond orientation;
 };
 
 TEST_F(ChunkTakeoverThroughTheWrapper, IsCheckedFromTheReferenceAtItsTakeoverAndWaitsForIt) {

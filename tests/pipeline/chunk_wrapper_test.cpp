@@ -14,6 +14,7 @@
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/schema/schema.hpp"
+#include "resting_fr3.hpp"
 #include "wrapper_support.hpp"
 
 namespace comply::pipeline::test {
@@ -22,39 +23,20 @@ namespace {
 constexpr double kHostStart = 1000.0;  // s: the host's clock at activation (any timebase)
 constexpr std::int64_t kSecondNs = 1'000'000'000;
 
-class CartesianChunks : public ::testing::Test {
+class CartesianChunks : public RestingFr3 {
  protected:
   // A 20 ms blend, short for the tests' timing: blending a chunk's lead-in in over it asks 14 to
   // 50 m/s^2 of the reference, and the takeover and skipped-waypoint tests step it 2 to 3 cm in
   // it (1 to 2 m/s), above the intake's 13 m/s^2 and 1 m/s. Those limits are off here; they have
   // their own tests (chunk_limits_test.cpp).
   CartesianChunks()
-      : wrapper(fr3Config(
-            kCartesianImpedancePlugin,
+      : RestingFr3(
             "command_timeout_s: 0.05\nchunk_blend_time_s: 0.02\nfrozen_state_timeout_s: 0\n"
             "validation:\n  max_chunk_acceleration_m_per_s2: 0\n"
             "governor:\n  tcp_speed_m_per_s: 0\n"
             "torque_rate_limit_nm_per_s: " +
-                std::to_string(kNoRateLimit) + "\n")) {}
-
-  void SetUp() override {
-    state = restingAt(wrapper.controller(), fr3Home());
-    wrapper.activate(state);
-    cycles(1);
-    home_position = wrapper.measuredPose().tcp_position;
-    home_orientation = wrapper.measuredPose().tcp_orientation;
-  }
-
-  /// The host's clock now: activation at kHostStart, one period per cycle.
-  [[nodiscard]] double hostTime() const { return kHostStart + cycle_count * kPeriod; }
-
-  void cycles(int count) {
-    for (int i = 0; i < count; ++i) {
-      ASSERT_EQ(wrapper.update(state, kPeriod, torque.span()), CycleStatus::kOk)
-          << wrapper.diagnostics().last_fault;
-      ++cycle_count;
-    }
-  }
+                std::to_string(kNoRateLimit) + "\n",
+            kHostStart) {}
 
   /// `count` waypoints from now + `first_s`, `spacing_s` apart, moving 1 cm along x per waypoint
   /// with the stiffness along x rising 500 N/m per waypoint.
@@ -75,20 +57,7 @@ class CartesianChunks : public ::testing::Test {
     return c;
   }
 
-  [[nodiscard]] const comply_cartesian_command& law() const {
-    return std::get<comply_cartesian_command>(wrapper.controller().lawBus());
-  }
-  [[nodiscard]] Eigen::Vector3d reference() const {
-    return Eigen::Map<const Eigen::Vector3d>(law().position);
-  }
-
-  CartesianWrapper wrapper;
-  JointState state;
-  TorqueBuffer torque;
-  int cycle_count = 0;
   double stamp = 0.0;
-  Eigen::Vector3d home_position;
-  Eigen::Quaterniond home_orientation;
 };
 
 TEST_F(CartesianChunks, PlaysThroughItsWaypointsAtTheirTimesWithTheGainsOfEach) {
