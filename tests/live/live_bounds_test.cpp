@@ -16,24 +16,6 @@ namespace {
 
 using namespace std::chrono_literals;
 
-/// `count` waypoints from `start_s` on the host's clock, 10 ms apart, 0.1 mm along y each.
-transport::CartesianChunkMessage chunkOf(const transport::ControllerStateMessage& state,
-                                         double start_s, int count) {
-  transport::CartesianChunkMessage message;
-  message.header.stamp = transport::Stamp::now();
-  message.chunk.fields = CommandField::kPosition;
-  const int dof = static_cast<int>(state.position.size());
-  for (int k = 0; k < count; ++k) {
-    ChunkWaypoint<CartesianCommand> waypoint{start_s + 0.01 * k, CartesianCommand::zero(dof)};
-    waypoint.command.position = Eigen::Vector3d(
-        state.tcp_position[0], state.tcp_position[1] + 1e-4 * k, state.tcp_position[2]);
-    const auto& q = state.tcp_orientation;  // x y z w
-    waypoint.command.orientation = Eigen::Quaterniond(q[3], q[0], q[1], q[2]);
-    message.chunk.waypoints.push_back(waypoint);
-  }
-  return message;
-}
-
 TEST_P(LiveHostOn, AChunkOfMoreWaypointsThanAllowedIsAnsweredAsInvalid) {
   HostHarness& host = *host_;
   const auto state = host.startConnected("long_chunk", 1);
@@ -41,7 +23,7 @@ TEST_P(LiveHostOn, AChunkOfMoreWaypointsThanAllowedIsAnsweredAsInvalid) {
   ASSERT_TRUE(host.connectChunks(1));
 
   const transport::CartesianChunkMessage chunk =
-      chunkOf(*state, transport::Stamp::now().seconds() + 0.1, 65);
+      chunkAlongY(*state, transport::Stamp::now().seconds() + 0.1, 0.01, 65, 1e-4);
   ASSERT_TRUE(host.send(chunk, 1)) << "the sender's transport refused the chunk";
   const std::int64_t stamp = chunk.header.stamp.nanoseconds();
   ASSERT_TRUE(host.poll(5s, [&](const auto&) { return host.outcomes().count(stamp) > 0; }))

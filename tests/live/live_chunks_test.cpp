@@ -17,24 +17,6 @@ namespace {
 
 using namespace std::chrono_literals;
 
-/// `count` waypoints from `start_s` on the host's clock, `spacing_s` apart, 5 mm along y each.
-transport::CartesianChunkMessage chunkAlongY(const transport::ControllerStateMessage& state,
-                                             double start_s, double spacing_s, int count) {
-  transport::CartesianChunkMessage message;
-  message.header.stamp = transport::Stamp::now();
-  message.chunk.fields = CommandField::kPosition;
-  const int dof = static_cast<int>(state.position.size());
-  for (int k = 0; k < count; ++k) {
-    ChunkWaypoint<CartesianCommand> waypoint{start_s + spacing_s * k, CartesianCommand::zero(dof)};
-    waypoint.command.position = Eigen::Vector3d(
-        state.tcp_position[0], state.tcp_position[1] + 0.005 * k, state.tcp_position[2]);
-    const auto& q = state.tcp_orientation;  // x y z w
-    waypoint.command.orientation = Eigen::Quaterniond(q[3], q[0], q[1], q[2]);
-    message.chunk.waypoints.push_back(waypoint);
-  }
-  return message;
-}
-
 TEST_P(LiveHostOn, PlaysAChunkOnTheHostsClockAndRefusesALateOne) {
   HostHarness& host = *host_;
   const auto state = host.startConnected("chunks", 1);

@@ -258,6 +258,26 @@ bool handshake(transport::Writer<Message>& writer, Client& client, int dof) {
   return false;
 }
 
+/// `count` waypoints from `start_s` on the host's clock, `spacing_s` apart, `step_m` further along
+/// y each from the state's TCP, at its orientation.
+inline transport::CartesianChunkMessage chunkAlongY(const transport::ControllerStateMessage& state,
+                                                    double start_s, double spacing_s, int count,
+                                                    double step_m = 0.005) {
+  transport::CartesianChunkMessage message;
+  message.header.stamp = transport::Stamp::now();
+  message.chunk.fields = CommandField::kPosition;
+  const int dof = static_cast<int>(state.position.size());
+  for (int k = 0; k < count; ++k) {
+    ChunkWaypoint<CartesianCommand> waypoint{start_s + spacing_s * k, CartesianCommand::zero(dof)};
+    waypoint.command.position = Eigen::Vector3d(
+        state.tcp_position[0], state.tcp_position[1] + step_m * k, state.tcp_position[2]);
+    const auto& q = state.tcp_orientation;  // x y z w
+    waypoint.command.orientation = Eigen::Quaterniond(q[3], q[0], q[1], q[2]);
+    message.chunk.waypoints.push_back(waypoint);
+  }
+  return message;
+}
+
 /// A Cartesian command holding `state`'s TCP pose moved by `offset` [m].
 inline transport::CartesianCommandMessage poseCommand(
     const transport::ControllerStateMessage& state, const Eigen::Vector3d& offset,
