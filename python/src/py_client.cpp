@@ -57,19 +57,6 @@ void checkWaypointTimes(const Chunk<Command>& chunk, double host_now_s) {
   }
 }
 
-/// keep=m: the chunk takes over at its waypoint m's time (refused, as Sim.step() words it, for an
-/// m that names none).
-template <typename Command>
-double keepTime(const Chunk<Command>& chunk, int m) {
-  if (m < 0 || m >= static_cast<int>(chunk.waypoints.size())) {
-    throw py::value_error("keep=" + std::to_string(m) + ": a chunk of " +
-                          std::to_string(chunk.waypoints.size()) +
-                          " waypoints takes over at one of them (0 to " +
-                          std::to_string(chunk.waypoints.size() - 1) + ")");
-  }
-  return chunk.waypoints[static_cast<std::size_t>(m)].time_s;
-}
-
 transport::ParticipantOptions participantOptions(
     int domain, const std::string& network, const std::optional<std::filesystem::path>& security) {
   return {.domain_id = domain,
@@ -239,9 +226,7 @@ std::int64_t Client::sendChunk(const py::object& chunk, const py::object& relati
         chunkFromPython(chunk, dof_, origin_s, std::optional(referenceInForce<Command>()));
     checkWaypointTimes(message.chunk, host_now_s);
     message.chunk.observation_s = origin_s;
-    if (!keep.is_none()) {
-      message.chunk.takeover_s = keepTime(message.chunk, keep.cast<int>());
-    }
+    message.chunk.takeover_s = takeoverOfKeep(message.chunk, keep);
     const py::gil_scoped_release release;
     const std::lock_guard<std::mutex> sending(sending_);
     message.header.stamp = nextStamp();

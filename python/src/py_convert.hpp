@@ -6,8 +6,10 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string>
 
 #include "comply/core/chunk.hpp"
 #include "comply/core/commands.hpp"
@@ -41,6 +43,23 @@ Chunk<Command> chunkFromPython(const py::handle& chunk, int dof, double time_ori
                                const std::optional<Command>& base = std::nullopt);
 /// Whether `value` is a chunk (a list, or a dict with "chunk") rather than one command.
 bool isChunk(const py::handle& value);
+
+/// The takeover of keep=m (a Python int or None): waypoint m's time, NaN for None; raises
+/// ValueError for an m the chunk has no waypoint for.
+template <typename Command>
+double takeoverOfKeep(const Chunk<Command>& chunk, const py::object& keep) {
+  if (keep.is_none()) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  const int m = keep.cast<int>();
+  const auto count = static_cast<int>(chunk.waypoints.size());
+  if (m < 0 || m >= count) {
+    throw py::value_error("keep=" + std::to_string(m) + ": a chunk of " + std::to_string(count) +
+                          " waypoints takes over at one of them (0 to " +
+                          std::to_string(count - 1) + ")");
+  }
+  return chunk.waypoints[static_cast<std::size_t>(m)].time_s;
+}
 
 /// Commands as one dict of arrays, a row per command and a key per schema field ("position"
 /// (n, 3), "stiffness_translational" (n, 3, 3), quaternions x y z w, "damping_mode" a list of

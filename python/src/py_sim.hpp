@@ -77,9 +77,6 @@ class Sim {
   /// Offers `command` (a dict, or a chunk) through the gate at this step's time; its stamp.
   std::optional<std::int64_t> offer(const py::object& command, const py::object& relative_to,
                                     const py::object& keep);
-  /// A chunk's takeover for keep=m: its waypoint m's time; raises for an m it does not have.
-  template <typename Command>
-  static double takeoverOf(const Chunk<Command>& chunk, const py::object& keep);
   /// The chunks' timing records since the last step, as dicts on the simulated clock.
   py::list takeChunkTimings();
   /// The simulated time of the last cycle (the wrapper's host clock, so chunk times fall on

@@ -68,7 +68,7 @@ std::optional<std::int64_t> Sim::offer(const py::object& command, const py::obje
               chunkFromPython<Command>(command, dof(), origin_s, e->wrapper.lastAccepted());
           c.stamp_s = stampSeconds(stamp_ns);
           c.observation_s = origin_s;
-          c.takeover_s = takeoverOf(c, keep);
+          c.takeover_s = takeoverOfKeep(c, keep);
           if (host::HostRecording* to = recording()) {
             to->received(transport::ChunkMessageOf<Command>{header, c}, e->clockAt(now_s));
           }
@@ -91,21 +91,6 @@ std::optional<std::int64_t> Sim::offer(const py::object& command, const py::obje
       },
       session_->episode);
   return stamp_ns;
-}
-
-template <typename Command>
-double Sim::takeoverOf(const Chunk<Command>& chunk, const py::object& keep) {
-  if (keep.is_none()) {
-    return pipeline::ChunkTiming::kNone;
-  }
-  const int m = keep.cast<int>();
-  const auto count = static_cast<int>(chunk.waypoints.size());
-  if (m < 0 || m >= count) {
-    throw py::value_error("keep=" + std::to_string(m) + ": a chunk of " + std::to_string(count) +
-                          " waypoints takes over at one of them (0 to " +
-                          std::to_string(count - 1) + ")");
-  }
-  return chunk.waypoints[static_cast<std::size_t>(m)].time_s;
 }
 
 py::list Sim::takeChunkTimings() {
