@@ -118,6 +118,11 @@ void printSummary(const LoopCounters& counters, const pipeline::GateCounts& coun
       << "comply run: commands received " << counts.received << ", applied " << counts.applied
       << ", rejected " << counts.rejected << "; malformed samples dropped by the transport "
       << transport.malformedSamples() << "; transport restarts " << transport.restarts() << "\n";
+  if (const std::uint64_t lost = counters.chunk_timings_lost.load(); lost > 0) {
+    // Their chunks' outcomes went out without them, and the recording has no row for them.
+    out << "comply run: chunk timing records lost (more than the gate's queue held) " << lost
+        << "\n";
+  }
 }
 
 void printRecording(const HostRecording& recording, std::ostream& out) {
