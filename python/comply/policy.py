@@ -26,7 +26,10 @@ Modes (`mode`):
 - "frozen": real-time chunking (Black, Galliker, Levine 2025): the policy is given the host's
   committed actions for the expected delay (ctx["committed"], from the host's own chunk player)
   to keep, and the chunk takes over at waypoint `delay_steps` (the host's newest count, at least
-  1), so the takeover point is explicit.
+  1), so the takeover point is explicit. When inference ran past that waypoint, the runner keeps
+  the committed actions up to the first waypoint still ahead when the chunk reaches the host and
+  takes over there (inpaint()), so the seam stays on the committed curve. The first chunk's count
+  measures the warm-up from standstill, not the delay while the arm moves: it is not handed on.
 - "ensemble": temporal ensembling (ACT, Zhao et al. 2023): each sent chunk is the exponentially
   weighted mean (weight exp(-ensemble_decay * i), i = 0 for the oldest) of every chunk's action
   for the same time, the new one's where it alone plans.
@@ -34,6 +37,7 @@ Modes (`mode`):
 
 import math
 import threading
+import time
 
 import numpy as np
 
@@ -46,27 +50,40 @@ def keep_steps(ctx):
     return min(max(1, ctx["delay_steps"]), ctx["horizon"] - 1)
 
 
-def inpaint(planned, ctx, fade_steps=5):
+def inpaint(planned, ctx, fade_steps=5, keep=None):
     """A chunk's positions (an array, a row per action) that keep the host's committed actions
-    up to waypoint keep_steps(ctx) and fade back onto `planned` over `fade_steps` actions after
-    it: a stand-in for the guided inpainting of real-time chunking, for policies that cannot
-    condition on the prefix. `planned` as is when ctx holds no committed prefix."""
+    up to waypoint `keep` (default keep_steps(ctx)), where it takes over, and then ease back onto
+    `planned` over `fade_steps` actions, leaving the committed curve with its velocity there: a
+    stand-in for the guided inpainting of real-time chunking, for policies that cannot condition
+    on the prefix. `planned` as is when ctx holds no committed prefix.
+
+    The host joins a chunk that waits for its takeover to the reference's velocity at that
+    waypoint (docs/policies.md); a chunk that turned there within one step would ask the arm for
+    that turn in one step."""
     planned = np.asarray(planned, dtype=float)
     committed = ctx["committed"]
     if committed is None or not committed["known"]:
         return planned
-    keep = keep_steps(ctx)
+    keep = keep_steps(ctx) if keep is None else keep
+    dt = ctx["dt"]
+    velocity = committed["twist"][:, :3] if "twist" in committed else committed["velocity"]
     out = planned.copy()
     out[:keep + 1] = committed["position"][:keep + 1]
+    # The planned curve's velocity at the takeover: its central difference (one-sided at an end).
+    before, after = max(keep - 1, 0), min(keep + 1, len(planned) - 1)
+    planned_velocity = (planned[after] - planned[before]) / ((after - before) * dt)
     gap = committed["position"][keep] - planned[keep]
-    for k in range(keep + 1, len(out)):
-        out[k] += gap * max(0.0, 1.0 - (k - keep) / fade_steps)
+    gap_velocity = velocity[keep] - planned_velocity
+    length = fade_steps * dt
+    for k in range(keep + 1, min(len(out), keep + fade_steps)):
+        s = (k - keep) / fade_steps  # a cubic from the gap (and its rate) down to nothing
+        out[k] += (2 * s**3 - 3 * s**2 + 1) * gap + (s**3 - 2 * s**2 + s) * length * gap_velocity
     return out
 
 
 class PolicyRunner:
     def __init__(self, host, policy, *, dt, horizon, mode="replace", inference_delay=0.0,
-                 replan_steps=None, ensemble_decay=0.01):
+                 replan_steps=None, ensemble_decay=0.01, arrival_margin_s=0.005):
         if mode not in _MODES:
             raise ValueError(f"mode {mode!r}: one of {', '.join(_MODES)}")
         if not dt > 0.0 or horizon < 2:
@@ -78,6 +95,8 @@ class PolicyRunner:
         self.mode = mode
         self.replan_steps = int(replan_steps) if replan_steps else max(1, self.horizon // 2)
         self.ensemble_decay = float(ensemble_decay)
+        # Client: from the chunk's send to the host's intake (DDS, the transport process).
+        self.arrival_margin_s = float(arrival_margin_s)
         self._delay = inference_delay if callable(inference_delay) else (lambda: inference_delay)
         self._simulated = hasattr(host, "committed") and hasattr(host, "reset")
         self.records = []  # one per chunk: sent, and the host's timing record once known
@@ -110,14 +129,31 @@ class PolicyRunner:
             return None
         return self.host.committed(observation_time, self.dt, self.horizon)
 
-    def _chunk_to_send(self, chunk, observation_time):
-        """The chunk as sent, and the waypoint it takes over at (None: at once)."""
+    def _chunk_to_send(self, chunk, ctx, elapsed_s):
+        """The chunk as sent, and the waypoint it takes over at (None: at once). `elapsed_s`: how
+        long after its observation the chunk will reach the host."""
         keep = None
         if self.mode == "frozen":
-            keep = min(max(1, self._delay_steps), len(chunk) - 1)  # keep_steps() of its context
+            keep = min(keep_steps(ctx), len(chunk) - 1)
+            # The first waypoint still ahead when it arrives: a takeover before it would be one
+            # the host has already passed, and the seam would leave the committed curve.
+            # (Sent as planned when no chunk of this runner plays yet, the prefix then being the
+            # arm at rest, or when its last waypoint is due by then: the host blends it in or
+            # refuses it as late.)
+            due = math.ceil(elapsed_s / self.dt - 1e-9)
+            committed = ctx["committed"]
+            if (keep < due < len(chunk) - 1 and self._took_over() and committed is not None
+                    and committed["known"]):
+                positions = inpaint([w["position"] for w in chunk], ctx, keep=due)
+                chunk = [dict(w, position=p) for w, p in zip(chunk, positions)]
+                keep = due
         elif self.mode == "ensemble":
-            chunk = self._ensembled(chunk, observation_time)
+            chunk = self._ensembled(chunk, ctx["time"])
         return chunk, keep
+
+    def _took_over(self):
+        """Whether a chunk of this runner has taken over: its curve is what the host commits to."""
+        return any(r["timing"] and r["timing"]["end"] == "took_over" for r in self.records)
 
     def _ensembled(self, chunk, observation_time):
         times = np.array([observation_time + w["time"] for w in chunk])
@@ -149,10 +185,25 @@ class PolicyRunner:
             for record in self.records:
                 if record["timing"] is None and abs(record["observation"] -
                                                     timing["observation"]) < 1e-6:
-                    record["timing"] = timing
-                    if timing["end"] == "took_over":
-                        self._delay_steps = timing["waypoints_past"]
+                    self._hand_on(record, timing)
                     break
+
+    def _hand_on(self, record, timing):
+        """Keeps a chunk's timing record; its count becomes the next inference's delay_steps,
+        but for the first chunk's (the warm-up from standstill)."""
+        record["timing"] = timing
+        if timing["end"] == "took_over" and record is not self.records[0]:
+            self._delay_steps = timing["waypoints_past"]
+
+    def _next_observation(self, observation_time, keep, cycle_s=0.0):
+        """replan_steps after this observation, but not before the cycle that takes the chunk just
+        sent over has run (`cycle_s` after an observation on a Sim, which precedes its cycle): a
+        chunk sent while it waits would supersede it, and the committed prefix the next inference
+        keeps (which counts on its takeover) would not be executed."""
+        later = observation_time + self.replan_steps * self.dt
+        if keep is None:
+            return later
+        return max(later, observation_time + keep * self.dt + cycle_s)
 
     # ---- Sim: simulated time ---------------------------------------------------------------------
     def _run_sim(self, seconds, observation):
@@ -170,11 +221,11 @@ class PolicyRunner:
                 self._take_timings(info.get("chunks", []))
                 if terminated:
                     return obs
-            sent, keep = self._chunk_to_send(chunk, observation_time)
+            sent, keep = self._chunk_to_send(chunk, ctx, obs["time"] - observation_time)
             # Until the next observation: replan_steps of the policy's steps after this one's,
             # but at least one cycle from now.
-            next_observation = observation_time + self.replan_steps * self.dt
-            cycles = max(1, int(round((next_observation - obs["time"]) / period)))
+            next_observation = self._next_observation(observation_time, keep, period)
+            cycles = max(1, math.ceil((next_observation - obs["time"]) / period - 1e-9))
             sent_at = obs["time"]
             obs, _, terminated, _, info = sim.step(sent, relative_to=observation_time, keep=keep,
                                                    steps=cycles)
@@ -195,19 +246,20 @@ class PolicyRunner:
         result = {}
         while state is not None and state["stamp"] < end:
             observation_time = state["stamp"]
+            observed_at = time.monotonic()
             ctx = self._context(state, observation_time)
             worker = threading.Thread(target=lambda c=ctx: result.update(chunk=self.policy(c)))
             worker.start()
             while worker.is_alive():  # the arm moves on the last chunk meanwhile
                 worker.join(0.005)
-            sent, keep = self._chunk_to_send(result.pop("chunk"), observation_time)
+            elapsed = time.monotonic() - observed_at + self.arrival_margin_s
+            sent, keep = self._chunk_to_send(result.pop("chunk"), ctx, elapsed)
             stamp = client.send_chunk(sent, relative_to=observation_time, keep=keep)
             record = self._note(stamp, observation_time, sent, keep, None)
             outcome = client.outcome(stamp, 0.5)
             if outcome is not None and outcome.get("chunk"):
-                record["timing"] = outcome["chunk"]
-                self._delay_steps = outcome["chunk"]["waypoints_past"]
-            next_observation = observation_time + self.replan_steps * self.dt
+                self._hand_on(record, outcome["chunk"])
+            next_observation = self._next_observation(observation_time, keep)
             state = client.state(1.0)
             while state is not None and state["stamp"] < next_observation:
                 state = client.state(1.0)

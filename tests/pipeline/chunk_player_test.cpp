@@ -1,6 +1,7 @@
 // The chunk player on its own: the curve against closed forms (a cubic through given velocities, a
 // constant-rate rotation), implied velocities, the blend from the reference in force (no jump in
-// position, velocity or acceleration), gains at their times and positive semi-definite between.
+// position or velocity; a chunk that continues the curve in force plays its own curve exactly),
+// gains at their times and positive semi-definite between.
 
 #include "comply/pipeline/chunk_player.hpp"
 
@@ -120,7 +121,7 @@ TEST(ChunkPlayer, ImpliesVelocitiesFromNeighboursComesInFromRestAndEndsAtRest) {
   EXPECT_NEAR(velocityAt(0.4), 0.0, 1e-12);
 }
 
-TEST(ChunkPlayer, BlendsInFromTheReferenceInForceWithoutAJumpInPositionVelocityOrAcceleration) {
+TEST(ChunkPlayer, BlendsInFromTheReferenceInForceWithoutAJumpInPositionOrVelocity) {
   const Cubic cubic;
   CartesianChunk chunk;
   chunk.fields = CommandField::kPosition | CommandField::kVelocity;
@@ -155,10 +156,10 @@ TEST(ChunkPlayer, BlendsInFromTheReferenceInForceWithoutAJumpInPositionVelocityO
   EXPECT_LT((positionOf(active) - positionOf(from)).norm(), 1e-12);
   EXPECT_LT((Eigen::Map<const Vector6d>(now.twist) - Eigen::Map<const Vector6d>(old.twist)).norm(),
             1e-12);
-  EXPECT_LT(
-      (Eigen::Map<const Vector6d>(now.acceleration) - Eigen::Map<const Vector6d>(old.acceleration))
-          .norm(),
-      1e-12);
+  // The acceleration steps, as at a waypoint: the blend adds none where it starts, so the
+  // reference's is the chunk's own (the cubic's and, about z, the constant rate's zero).
+  EXPECT_LT((linearOf(now.acceleration) - cubic.curvature(start_s)).norm(), 1e-9);
+  EXPECT_LT(angularOf(now.acceleration).norm(), 1e-9);
   EXPECT_LT(orientationOf(active).angularDistance(old_orientation), 1e-12);
 
   // Along the blend the reference is smooth: the finite difference of the position matches the
@@ -179,6 +180,38 @@ TEST(ChunkPlayer, BlendsInFromTheReferenceInForceWithoutAJumpInPositionVelocityO
   player.play(0.25, active);
   EXPECT_LT((positionOf(active) - cubic.at(0.25)).norm(), 1e-12);
   EXPECT_LT((linearOf(now.twist) - cubic.rate(0.25)).norm(), 1e-11);
+}
+
+TEST(ChunkPlayer, AChunkThatContinuesTheCurveInForcePlaysItsOwnCurveFromItsFirstCycle) {
+  // The reference in force is on the cubic at 0.05 s, in position and velocity, but accelerates
+  // differently (as the chunk before would at its waypoint): the blend has nothing to take away,
+  // so the reference is the chunk's curve from the cycle it starts in, never rougher than it.
+  const Cubic cubic;
+  CartesianChunk chunk;
+  chunk.fields = CommandField::kPosition | CommandField::kVelocity;
+  for (double t : {0.0, 0.1, 0.2, 0.3}) {
+    ChunkWaypoint<CartesianCommand> waypoint{t, CartesianCommand::zero(kDof)};
+    waypoint.command.position = cubic.at(t);
+    waypoint.command.twist << cubic.rate(t), Eigen::Vector3d::Zero();
+    chunk.waypoints.push_back(waypoint);
+  }
+  const double start_s = 0.05;
+  CommandBus from = cartesianBus();
+  Cartesian& old = std::get<Cartesian>(from);
+  Eigen::Map<Eigen::Vector3d>(old.position) = cubic.at(start_s);
+  Eigen::Map<Vector6d>(old.twist) << cubic.rate(start_s), Eigen::Vector3d::Zero();
+  Eigen::Map<Vector6d>(old.acceleration) << -3.0, 2.0, 1.0, 0.0, 0.0, 0.0;
+  ChunkPlayer player(COMPLY_COMMAND_CARTESIAN, kDof, 0.1);
+  const int slot = player.load(chunk, 0.0);
+  CommandBus active = from;
+  player.take(slot, from, start_s);
+  const Cartesian& now = std::get<Cartesian>(active);
+  for (double t = start_s; t < 0.2; t += 1e-3) {
+    player.play(t, active);
+    EXPECT_LT((positionOf(active) - cubic.at(t)).norm(), 1e-12) << t;
+    EXPECT_LT((linearOf(now.twist) - cubic.rate(t)).norm(), 1e-11) << t;
+    EXPECT_LT((linearOf(now.acceleration) - cubic.curvature(t)).norm(), 1e-9) << t;
+  }
 }
 
 /// A random symmetric positive semi-definite 3x3 block, rank deficient one time in three.

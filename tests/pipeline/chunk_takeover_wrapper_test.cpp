@@ -2,7 +2,8 @@
 // on: it is checked from the reference the cycle will write at its takeover (a chunk continuing
 // the running one is accepted there, and the same chunk starting now is refused for the blend it
 // would ask), waits for that cycle, and a takeover it cannot have is refused with its reason and
-// changes nothing. Wrapper::predict() against the cycles that follow it.
+// changes nothing. Wrapper::predict() against the cycles that follow it. A chunk keeping the
+// committed prefix joins the curve at its takeover waypoint, between cycles, without a jump.
 
 #include <gtest/gtest.h>
 
@@ -84,6 +85,77 @@ TEST_F(ChunkTakeoverThroughTheWrapper, IsCheckedFromTheReferenceAtItsTakeoverAnd
   }
   // The request was at 0.5 s from the line's origin; 0.1 s of it had run when it was sent.
   EXPECT_EQ(took_over_at, 399);
+}
+
+TEST_F(ChunkTakeoverThroughTheWrapper, AChunkKeepingTheCommittedPrefixJoinsTheCurveBetweenCycles) {
+  // A policy at 30 Hz (its steps fall between the 1 ms cycles) on a curve; the next chunk keeps
+  // the committed prefix up to its waypoint 4 and then turns elsewhere. It starts at that
+  // waypoint's time, not at the cycle after, and there takes the reference's velocity: no jump in
+  // position or velocity, whatever its own waypoints imply there.
+  const double step_s = 1.0 / 30.0;
+  const auto curve = [&](double t) -> Eigen::Vector3d {
+    return home_position +
+           Eigen::Vector3d(0.05 * std::sin(2.0 * t), 0.03 * (1.0 - std::cos(3.0 * t)), 0.0);
+  };
+  const double origin_s = hostTime();
+  CartesianChunk first;
+  first.stamp_s = ++stamp;
+  first.fields = CommandField::kPosition;
+  for (int k = 0; k < 30; ++k) {
+    ChunkWaypoint<CartesianCommand> waypoint{origin_s + k * step_s,
+                                             CartesianCommand::zero(kFr3Dof)};
+    waypoint.command.position = curve(k * step_s);
+    waypoint.command.orientation = home_orientation;
+    first.waypoints.push_back(waypoint);
+  }
+  const Verdict started = wrapper.submitChunk(first, hostTime());
+  ASSERT_TRUE(started.accepted) << started.message;
+  cycles(300);
+
+  const double observation_s = hostTime() - 0.0004;  // between two cycles
+  constexpr int kKeep = 4;
+  std::vector<double> times;
+  for (int k = 0; k < 16; ++k) {
+    times.push_back(observation_s + k * step_s);
+  }
+  std::vector<CartesianCommand> committed;
+  ASSERT_TRUE(wrapper.predict(times, hostTime(), committed));
+  CartesianChunk next;
+  next.stamp_s = ++stamp;
+  next.fields = CommandField::kPosition;
+  for (int k = 0; k < 16; ++k) {
+    ChunkWaypoint<CartesianCommand> waypoint{times[k], CartesianCommand::zero(kFr3Dof)};
+    const double turned_m = k > kKeep ? 0.002 * (k - kKeep) : 0.0;  // off the curve in z
+    waypoint.command.position = committed[k].position + Eigen::Vector3d(0.0, 0.0, turned_m);
+    waypoint.command.orientation = home_orientation;
+    next.waypoints.push_back(waypoint);
+  }
+  next.takeover_s = times[kKeep];
+  const Verdict verdict = wrapper.submitChunk(next, hostTime());
+  ASSERT_TRUE(verdict.accepted) << verdict.message;
+
+  bool took_over = false;
+  Eigen::Vector3d last_velocity = Eigen::Map<const Eigen::Vector3d>(law().twist);
+  for (int i = 0; i < 200 && !took_over; ++i) {
+    cycles(1);
+    for (const ChunkTiming& timing : wrapper.controller().chunks().events()) {
+      if (timing.end != ChunkEnd::kTookOver) {
+        continue;
+      }
+      took_over = true;
+      EXPECT_EQ(timing.takeover_s, timing.requested_takeover_s) << "at its waypoint's time";
+      EXPECT_EQ(timing.waypoints_past, kKeep);
+      EXPECT_LT(timing.position_jump, 1e-12);
+      EXPECT_LT(timing.velocity_jump, 1e-12) << "its waypoint 4 takes the reference's velocity";
+      EXPECT_LT(timing.angular_velocity_jump, 1e-12);
+    }
+    // The reference's velocity moves in the takeover cycle as in any other: by what its
+    // acceleration allows, no blend pulling it.
+    const Eigen::Vector3d velocity = Eigen::Map<const Eigen::Vector3d>(law().twist);
+    EXPECT_LT((velocity - last_velocity).norm(), 1e-3) << i;
+    last_velocity = velocity;
+  }
+  EXPECT_TRUE(took_over);
 }
 
 TEST_F(ChunkTakeoverThroughTheWrapper, ATakeoverItCannotHaveIsRefusedAndChangesNothing) {

@@ -10,8 +10,14 @@ plainly replacing chunks and with the host's frozen prefix (mode "frozen"). For 
   next takeover;
 - the host's count of waypoints already past equals the one worked out here from when the chunk
   was sent and where it takes over (0 steps of error);
-- the reference's per-cycle velocity change, measured against the same change of the chunks'
-  own curves (a cubic Hermite through each chunk, evaluated here independently of the player);
+- the reference's per-cycle velocity change against the same change of the plan, cycle by
+  cycle: each chunk's own curve from its takeover to the next (a cubic Hermite through it,
+  evaluated here independently of the player, joined to the committed velocity where the chunk
+  waited for its takeover). Keeping the committed prefix (frozen), every seam joins and the
+  change never exceeds the plan's by more than 1e-6 m/s; a replaced chunk is blended in and the
+  excess is reported;
+- the tracking RMSE against the same chunks executed without latency (each from its
+  observation), reported;
 
 and LeRobot PR #4223's start: from standstill, a 0.7 s warm-up, 30 actions at 30 Hz: the host
 counts 21 actions past and the reference meets every action after its blend. Prints the table.
@@ -59,32 +65,59 @@ class FlowLikePolicy:
                 for k, position in enumerate(inpaint(planned, ctx, fade))]
 
 
-def hermite_velocity(times, points, t):
-    """The chunk's curve's velocity at `t` (docs/chunks.md's rules: interval-weighted mean of the
-    neighbouring secants, the secant at the first waypoint, zero at the last; holds outside)."""
+def hermite(times, points, t, joined=None):
+    """The chunk's curve's position and velocity at `t` (docs/chunks.md's rules: interval-weighted
+    mean of the neighbouring secants, the secant at the first waypoint, zero at the last; holds
+    outside). `joined`: (waypoint, velocity) where a chunk that waited for its takeover joins the
+    reference in force, which sets that waypoint's velocity."""
     n = len(times)
-    if t < times[0] or t >= times[-1]:
-        return np.zeros(3)
+    if t < times[0]:
+        return points[0], np.zeros(3)
+    if t >= times[-1]:
+        return points[-1], np.zeros(3)
     secants = np.diff(points, axis=0) / np.diff(times)[:, None]
     slopes = np.zeros_like(points)
     slopes[0] = secants[0]
     for k in range(1, n - 1):
         h0, h1 = times[k] - times[k - 1], times[k + 1] - times[k]
         slopes[k] = (h1 * secants[k - 1] + h0 * secants[k]) / (h0 + h1)
+    if joined is not None:
+        slopes[joined[0]] = joined[1]
     k = np.searchsorted(times, t, side="right") - 1
     h = times[k + 1] - times[k]
     s = (t - times[k]) / h
+    h00, h10, h01, h11 = 2 * s**3 - 3 * s**2 + 1, s**3 - 2 * s**2 + s, -2 * s**3 + 3 * s**2, s**3 - s**2
     d00, d10, d01, d11 = 6 * s * s - 6 * s, 3 * s * s - 4 * s + 1, -6 * s * s + 6 * s, 3 * s * s - 2 * s
-    return (d00 * points[k] + d10 * h * slopes[k] + d01 * points[k + 1] + d11 * h * slopes[k + 1]) / h
+    position = h00 * points[k] + h10 * h * slopes[k] + h01 * points[k + 1] + h11 * h * slopes[k + 1]
+    velocity = (d00 * points[k] + d10 * h * slopes[k] + d01 * points[k + 1] +
+                d11 * h * slopes[k + 1]) / h
+    return position, velocity
+
+
+def plan_velocity(took, contexts, records, dt, horizon, t):
+    """The velocity of the plan in force at `t`: the chunk that took over last at or before it,
+    on its own curve (joined to the committed velocity at its takeover waypoint if it waited)."""
+    r = None
+    for candidate in took:
+        if candidate["timing"]["takeover"] <= t + 1e-12:
+            r = candidate
+    times = r["observation"] + dt * np.arange(horizon)
+    points = np.array([w["position"] for w in r["chunk"]])
+    joined = None
+    timing = r["timing"]
+    if r["keep"] is not None and abs(timing["takeover"] - timing["requested_takeover"]) < 1e-9:
+        committed = contexts[records.index(r)]
+        joined = (r["keep"], committed["twist"][r["keep"]][:3])
+    return hermite(times, points, t, joined)[1]
 
 
 def expected_past(record, dt, horizon, period):
-    """Waypoints before the cycle that takes the chunk over, worked out from when it was sent."""
+    """Waypoints before the chunk's takeover, worked out from when it was sent: at once (the cycle
+    it reached), or, when it keeps the running chunk until its waypoint `keep` and arrived before
+    it, that waypoint's time."""
     takeover = record["sent_at"]
     if record["keep"] is not None:
-        wanted = record["observation"] + record["keep"] * dt - 1e-9
-        cycles = math.ceil((wanted - record["sent_at"]) / period)
-        takeover = record["sent_at"] + max(0, cycles) * period
+        takeover = max(takeover, record["observation"] + record["keep"] * dt)
     times = record["observation"] + dt * np.arange(horizon)
     return int(np.sum(times < takeover - 1e-9))
 
@@ -93,6 +126,7 @@ def run_scenario(source, rate_hz, horizon, delay_steps, mode, seed, seconds=3.0,
     dt = 1.0 / rate_hz
     rng = np.random.default_rng(seed)
     inferences = []
+    contexts = []  # the committed prefix at each observation, on the policy's steps
     delays = []
 
     def delay():
@@ -111,6 +145,7 @@ def run_scenario(source, rate_hz, horizon, delay_steps, mode, seed, seconds=3.0,
             # What the host commits to from this observation on, every cycle of the chunk before.
             cycles = int(round(horizon * dt / period))
             inferences.append(sim.committed(ctx["time"], period, cycles))
+            contexts.append(sim.committed(ctx["time"], dt, horizon))
             return policy(ctx)
 
         runner = PolicyRunner(sim, observed, dt=dt, horizon=horizon, mode=mode,
@@ -121,10 +156,10 @@ def run_scenario(source, rate_hz, horizon, delay_steps, mode, seed, seconds=3.0,
         stamp = cycles["state.header.stamp.sec"] + 1e-9 * cycles["state.header.stamp.nanosec"]
         reference = cycles["cartesian_in_force.position"]
         twist = cycles["cartesian_in_force.twist"][:, :3]
-    return evaluate(runner, inferences, stamp, reference, twist, dt, horizon, period)
+    return evaluate(runner, inferences, contexts, stamp, reference, twist, dt, horizon, period)
 
 
-def evaluate(runner, inferences, stamp, reference, twist, dt, horizon, period):
+def evaluate(runner, inferences, contexts, stamp, reference, twist, dt, horizon, period):
     index = {round(t / period): i for i, t in enumerate(stamp)}
     records = runner.records
     took = [r for r in records if r["timing"] and r["timing"]["end"] == "took_over"]
@@ -141,30 +176,31 @@ def evaluate(runner, inferences, stamp, reference, twist, dt, horizon, period):
                            expected_past(r, dt, horizon, period)) for r in took), default=0)
     # The first chunk after the warm-up starts from rest: its seam is reported apart.
     steady = took[1:]
-    # Per-cycle velocity change from the second takeover on: the reference's, and each chunk's own
-    # curve's where it is in force.
-    reference_step = plan_step = 0.0
+    # Per-cycle velocity change from the second takeover on: the reference's against the plan's
+    # (the chunks' own curves, each from its takeover to the next, evaluated here), cycle by cycle.
+    excess = velocity_error = plan_step = 0.0
     if steady:
         start = index.get(round(steady[0]["timing"]["takeover"] / period), len(stamp))
-        if start + 1 < len(stamp):
-            reference_step = float(np.abs(np.diff(twist[start:], axis=0)).max())
-    for r, nxt in zip(steady, steady[1:] + [None]):
-        times = r["observation"] + dt * np.arange(horizon)
-        points = np.array([w["position"] for w in r["chunk"]])
-        end = nxt["timing"]["takeover"] if nxt else stamp[-1]
-        grid = np.arange(r["timing"]["takeover"], end, period)
-        v = np.array([hermite_velocity(times, points, t) for t in grid])
-        if len(v) > 1:
-            plan_step = max(plan_step, float(np.abs(np.diff(v, axis=0)).max()))
+        plan = np.array([plan_velocity(took, contexts, records, dt, horizon, t)
+                         for t in stamp[start:]])
+        if len(plan) > 1:
+            reference_step = np.abs(np.diff(twist[start:], axis=0)).max(axis=1)
+            planned_step = np.abs(np.diff(plan, axis=0)).max(axis=1)
+            excess = float((reference_step - planned_step).max())
+            plan_step = float(planned_step.max())
+            velocity_error = float(np.abs(twist[start:] - plan).max())
     return {"chunks": len(records), "took_over": len(took),
             "refused": sum(1 for r in records if r.get("refused")),
             "prefix_error": prefix_error, "delay_error": delay_error,
             "first": took[0]["timing"] if took else None,
             "position_jump": max((r["timing"]["position_jump"] for r in steady), default=0.0),
             "velocity_jump": max((r["timing"]["velocity_jump"] for r in steady), default=0.0),
-            "reference_dv": reference_step, "plan_dv": plan_step,
+            "excess": excess, "plan_dv": plan_step, "velocity_error": velocity_error,
+            "joined": sum(1 for r in steady if r["keep"] is not None and
+                          abs(r["timing"]["takeover"] - r["timing"]["requested_takeover"]) < 1e-9),
+            "steady": len(steady),
             "delays": [r["timing"]["waypoints_past"] for r in took],
-            "reference": (stamp, reference)}
+            "reference": (stamp, reference), "records": records}
 
 
 def check_warm_start(source):
@@ -231,32 +267,60 @@ def check_runner_options():
         raise AssertionError("an unknown mode was taken")
 
 
+def tracking_rmse(r, dt, horizon):
+    """RMS distance [m] between the executed reference and the same chunks executed without
+    latency (each from its observation on, until the next one's observation), from the first
+    takeover plus the blend on: what acting on older observations cost."""
+    stamp, reference = r["reference"]
+    took = sorted((x for x in r["records"] if x["timing"] and x["timing"]["end"] == "took_over"),
+                  key=lambda x: x["observation"])
+    if not took:
+        return float("nan")
+    begin = int(np.searchsorted(stamp, took[0]["timing"]["takeover"] + BLEND_S))
+    squares = []
+    for t, executed in zip(stamp[begin:], reference[begin:]):
+        chunk = [x for x in took if x["observation"] <= t + 1e-12][-1]
+        times = chunk["observation"] + dt * np.arange(horizon)
+        points = np.array([w["position"] for w in chunk["chunk"]])
+        squares.append(np.sum((executed - hermite(times, points, t)[0]) ** 2))
+    return float(np.sqrt(np.mean(squares))) if squares else float("nan")
+
+
 def main():
     source = sys.argv[1]
     check_runner_options()
     check_warm_start(source)
 
     print("| rate [Hz] | actions | delay [steps] | mode | chunks | took over | refused | "
-          "prefix error [m] | delay error [steps] | max seam jump [mm] | max seam velocity jump "
-          "[m/s] | reference dv/cycle [m/s] | plan dv/cycle [m/s] | delays (host) |")
-    print("|" + "---|" * 14)
+          "prefix error [m] | delay error [steps] | seams joined | max seam jump [mm] | "
+          "max seam velocity jump [m/s] | dv/cycle over the plan's [m/s] | plan dv/cycle [m/s] | "
+          "RMSE vs no latency [mm] | delays (host) |")
+    print("|" + "---|" * 16)
     failures = []
     for rate in (15, 30, 50):
         for horizon in (16, 50):
             for delay_steps in (0, 5, 10, 20):
                 for mode in ("replace", "frozen"):
                     r = run_scenario(source, rate, horizon, delay_steps, mode, seed=rate + horizon)
+                    rmse = tracking_rmse(r, 1.0 / rate, horizon)
                     print(f"| {rate} | {horizon} | {delay_steps} | {mode} | {r['chunks']} | "
                           f"{r['took_over']} | {r['refused']} | {r['prefix_error']:.1e} | "
-                          f"{r['delay_error']} | {1000 * r['position_jump']:.2f} | "
-                          f"{r['velocity_jump']:.3f} | {r['reference_dv']:.5f} | "
-                          f"{r['plan_dv']:.5f} | {sorted(set(r['delays']))[:6]} |")
+                          f"{r['delay_error']} | {r['joined']}/{r['steady']} | "
+                          f"{1000 * r['position_jump']:.2f} | {r['velocity_jump']:.3f} | "
+                          f"{r['excess']:+.1e} | {r['plan_dv']:.5f} | {1000 * rmse:.2f} | "
+                          f"{sorted(set(r['delays']))[:6]} |", flush=True)
+                    name = f"{rate} Hz {horizon} {delay_steps} {mode}"
                     if r["prefix_error"] > 1e-9:
-                        failures.append(f"{rate} Hz {horizon} {delay_steps} {mode}: prefix "
-                                        f"{r['prefix_error']:.2e}")
+                        failures.append(f"{name}: prefix {r['prefix_error']:.2e}")
                     if r["delay_error"] != 0:
-                        failures.append(f"{rate} Hz {horizon} {delay_steps} {mode}: delay off by "
-                                        f"{r['delay_error']}")
+                        failures.append(f"{name}: delay off by {r['delay_error']}")
+                    # Keeping the committed prefix, every seam joins the curve in force and the
+                    # reference is never rougher than the plan (a replaced chunk is blended in).
+                    if mode == "frozen" and r["joined"] != r["steady"]:
+                        failures.append(f"{name}: {r['steady'] - r['joined']} seams not joined")
+                    if mode == "frozen" and r["excess"] > 1e-6:
+                        failures.append(f"{name}: velocity change {r['excess']:.2e} over the "
+                                        "plan's in a cycle")
     for failure in failures:
         print("FAIL", failure)
     if failures:

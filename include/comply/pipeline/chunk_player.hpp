@@ -69,12 +69,14 @@ class ChunkPlayer {
   /// moved onto the controller's clock by `host_to_controller_s` (controller time = host time +
   /// it), and derives the waypoint velocities; `sequence` is its number (CommandId), for
   /// dropWaiting() and its timing record; `received_s`: when the intake accepted it, on the
-  /// controller's clock. Returns the slot, or -1 when every slot is in use (the sender is too
-  /// fast).
+  /// controller's clock; `joins`: for a chunk that waits for its takeover, the reference the
+  /// cycle will write then (the intake's prediction), whose velocity the waypoint at that time
+  /// takes unless the chunk gives velocities (a C1 join). Returns the slot, or -1 when every
+  /// slot is in use (the sender is too fast).
   int load(const CartesianChunk& chunk, double host_to_controller_s, std::uint64_t sequence = 0,
-           double received_s = ChunkTiming::kNone);
+           double received_s = ChunkTiming::kNone, const CommandBus* joins = nullptr);
   int load(const JointChunk& chunk, double host_to_controller_s, std::uint64_t sequence = 0,
-           double received_s = ChunkTiming::kNone);
+           double received_s = ChunkTiming::kNone, const CommandBus* joins = nullptr);
   /// A loaded slot that will never be started (its intake message was refused or dropped).
   void release(int slot) noexcept;
 

@@ -25,17 +25,20 @@ struct ChunkTiming {
   // Times on the controller's clock [s] (hosts map them onto theirs).
   double observation_s = kNone;  ///< the observation the sender planned it for (NaN: not said)
   double received_s = kNone;     ///< when the intake accepted it
-  double takeover_s = kNone;     ///< the cycle it took over in (NaN: it never did)
+  /// When it took over (NaN: it never did): the cycle it took over in, or, for one that waited
+  /// for its takeover, that time itself (the curves join there; the next cycle is the first to
+  /// play it).
+  double takeover_s = kNone;
   double requested_takeover_s = kNone;  ///< the takeover it asked for (NaN: at once)
   double first_waypoint_s = kNone;
   double last_waypoint_s = kNone;
   int waypoints = 0;
-  /// Waypoints whose time was already past (by more than a nanosecond) in the takeover cycle:
-  /// for a chunk planned on an observation with waypoint 0 at the observation's time, the delay
-  /// in the chunk's own steps. The first of the rest is the one the cycle reached.
+  /// Waypoints whose time was already past (by more than a nanosecond) at its takeover: for a
+  /// chunk planned on an observation with waypoint 0 at the observation's time, the delay in the
+  /// chunk's own steps. The first of the rest is the one the reference reached (for `keep=m`: m).
   int waypoints_past = 0;
   /// The reference's jump at the seam: the difference between the reference in force and the
-  /// chunk's own curve in the takeover cycle, which the blend then lets decay. Cartesian:
+  /// chunk's own curve at its takeover, which the blend then lets decay. Cartesian:
   /// position [m], orientation [rad], velocity [m/s], angular velocity [rad/s]; joint: the largest
   /// joint's position [rad] and velocity [rad/s], the rotational pair 0.
   double position_jump = 0.0;

@@ -107,17 +107,20 @@
   X(Stamp, observation, observation, {}, \
     "the observation the sender planned it for (the chunk's observation); zero: not given") \
   X(Stamp, received, received, {}, "when the controller's intake accepted it") \
-  X(Stamp, takeover, takeover, {}, "the cycle it took over in; zero: it never did") \
+  X(Stamp, takeover, takeover, {}, \
+    "when it took over: the cycle it took over in, or the takeover it waited for (the next " \
+    "cycle played it); zero: it never did") \
   X(std::uint64_t, takeover_cycle, takeover_cycle, 0, \
-    "[-] index of that cycle (END_TOOK_OVER), else of the cycle that ended its wait") \
+    "[-] index of the first cycle that played it (END_TOOK_OVER), else of the cycle that " \
+    "ended its wait") \
   X(Stamp, requested_takeover, requested_takeover, {}, \
     "the takeover it asked for (the chunk's takeover); zero: at once") \
   X(Stamp, first_waypoint, first_waypoint, {}, "its first waypoint's time") \
   X(Stamp, last_waypoint, last_waypoint, {}, "its last waypoint's time") \
   X(std::uint32_t, waypoints, waypoints, 0, "[-] its waypoints") \
   X(std::uint32_t, waypoints_past, waypoints_past, 0, \
-    "[-] waypoints already past in the takeover cycle: with waypoint 0 at the observation, the " \
-    "delay in the chunk's own steps") \
+    "[-] waypoints already past at its takeover: with waypoint 0 at the observation, the delay " \
+    "in the chunk's own steps") \
   X(double, position_jump, position_jump, 0.0, \
     "[m | rad] the reference's jump at the seam: TCP position (joint control: the largest " \
     "joint's)") \

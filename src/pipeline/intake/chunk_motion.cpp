@@ -268,20 +268,22 @@ std::string firstExcess(const std::vector<Sample>& samples, const Reference<Bus>
 
 template <typename Command>
 Verdict checkCurve(const Chunk<Command>& chunk, int dof, const ValidationConfig& limits,
-                   const ChunkLimits& arm, double host_time_s, const CommandBus* in_force) {
+                   const ChunkLimits& arm, double host_time_s, const CommandBus* in_force,
+                   bool waits) {
   using Bus = BusOf<Command>;
   const auto track = std::make_unique<chunk::Track<Bus>>();  // large: not on the stack
   const int n = static_cast<int>(chunk.waypoints.size());
   track->count = n + 1;
   track->fields = static_cast<std::uint32_t>(chunk.fields);
   track->stamp_s = chunk.stamp_s;
+  track->takeover_s = chunk.takeover_s;
   for (int k = 0; k < n; ++k) {
     track->time_s[k + 1] = chunk.waypoints[k].time_s;
     track->waypoints[k + 1] = schema::toBus(chunk.waypoints[k].command, dof);
   }
-  chunk::derive(*track);
-  const Reference<Bus> reference(*track, in_force != nullptr ? std::get_if<Bus>(in_force) : nullptr,
-                                 arm.blend_time_s, host_time_s);
+  const Bus* from = in_force != nullptr ? std::get_if<Bus>(in_force) : nullptr;
+  chunk::derive(*track, waits ? from : nullptr);  // as the player will (ChunkPlayer::load)
+  const Reference<Bus> reference(*track, from, arm.blend_time_s, host_time_s);
   const std::vector<Sample> samples = samplesOf(*track, host_time_s, reference.blendS());
   std::size_t at = 0;
   const std::string why = firstExcess(samples, reference, track->count - 2, limits, arm, at);
@@ -300,7 +302,7 @@ Verdict checkCurve(const Chunk<Command>& chunk, int dof, const ValidationConfig&
 template <typename Command>
 Verdict checkAny(const Chunk<Command>& chunk, int dof, const ValidationConfig& limits,
                  const ChunkLimits& arm, const MeasuredPose& measured, double host_time_s,
-                 const CommandBus* in_force) {
+                 const CommandBus* in_force, bool waits) {
   const auto& w = chunk.waypoints;
   const int n = static_cast<int>(w.size());
   int ahead = 0;  // the first waypoint not yet past (there is one: the chunk is not late)
@@ -330,21 +332,21 @@ Verdict checkAny(const Chunk<Command>& chunk, int dof, const ValidationConfig& l
                         seconds(dt_s) + " s: " + why);
     }
   }
-  return checkCurve(chunk, dof, limits, arm, host_time_s, in_force);
+  return checkCurve(chunk, dof, limits, arm, host_time_s, in_force, waits);
 }
 
 }  // namespace
 
 Verdict checkChunkMotion(const CartesianChunk& chunk, int dof, const ValidationConfig& limits,
                          const ChunkLimits& arm, const MeasuredPose& measured, double host_time_s,
-                         const CommandBus* in_force) {
-  return checkAny(chunk, dof, limits, arm, measured, host_time_s, in_force);
+                         const CommandBus* in_force, bool waits) {
+  return checkAny(chunk, dof, limits, arm, measured, host_time_s, in_force, waits);
 }
 
 Verdict checkChunkMotion(const JointChunk& chunk, int dof, const ValidationConfig& limits,
                          const ChunkLimits& arm, const MeasuredPose& measured, double host_time_s,
-                         const CommandBus* in_force) {
-  return checkAny(chunk, dof, limits, arm, measured, host_time_s, in_force);
+                         const CommandBus* in_force, bool waits) {
+  return checkAny(chunk, dof, limits, arm, measured, host_time_s, in_force, waits);
 }
 
 }  // namespace comply::pipeline

@@ -11,11 +11,13 @@ namespace comply::pipeline {
 /// measured pose to the first waypoint ahead) and the curve the cycle will play, blend from
 /// `in_force` included (none when null), stay within `arm` and `limits`; else out_of_range with
 /// the waypoint, the number and the limit. `chunk` has passed the shape and command checks.
+/// `waits`: the chunk waits for its takeover at `host_time_s`, where `in_force` is the reference
+/// the cycle will write; its curve joins that reference there (ChunkPlayer::load).
 Verdict checkChunkMotion(const CartesianChunk& chunk, int dof, const ValidationConfig& limits,
                          const ChunkLimits& arm, const MeasuredPose& measured, double host_time_s,
-                         const CommandBus* in_force);
+                         const CommandBus* in_force, bool waits = false);
 Verdict checkChunkMotion(const JointChunk& chunk, int dof, const ValidationConfig& limits,
                          const ChunkLimits& arm, const MeasuredPose& measured, double host_time_s,
-                         const CommandBus* in_force);
+                         const CommandBus* in_force, bool waits = false);
 
 }  // namespace comply::pipeline

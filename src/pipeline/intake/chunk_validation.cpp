@@ -180,7 +180,7 @@ Verdict validateChunkAny(Chunk<Command>& chunk, const ValidationConfig& limits, 
       }
     }
   }
-  return checkChunkMotion(chunk, dof, limits, arm, from, from_s, reference);
+  return checkChunkMotion(chunk, dof, limits, arm, from, from_s, reference, takeover != nullptr);
 }
 
 }  // namespace

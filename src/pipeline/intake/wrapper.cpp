@@ -263,8 +263,8 @@ Verdict Wrapper<Command>::submitChunkStamped(const Chunk<Command>& chunk, double
     message.type = IntakeMessage::Type::kChunk;
     message.command = emptyBus(kKind<Command>);
     message.id = nextId(stamp);
-    message.chunk_slot =
-        chunks.load(checked, host_to_controller_s, message.id.sequence, measured.time_s);
+    message.chunk_slot = chunks.load(checked, host_to_controller_s, message.id.sequence,
+                                     measured.time_s, takeover ? &takeover->reference : nullptr);
     if (message.chunk_slot < 0) {
       verdict =
           queueFull("all " + std::to_string(ChunkPlayer::kSlots) +

@@ -1,8 +1,12 @@
 #pragma once
 // The blend that takes a new chunk over from the reference in force (chunk_player.hpp): the
-// difference between the two when the chunk starts, in value, velocity and acceleration, decays
-// along a quintic to zero. The player adds it every cycle of the blend; the intake evaluates the
-// same sum to check what the blend asks of the arm (chunk_motion.cpp). Real-time safe.
+// difference between the two when the chunk starts, in value and velocity, decays along a quintic
+// to zero. The acceleration is left to step, as it does at every waypoint of a chunk's C1 curve:
+// decaying it too would overshoot the chunk's own acceleration (the quintic's curvature term
+// swings past zero), so a chunk that continues the committed curve in position and velocity would
+// play rougher than its own curve instead of exactly on it. The player adds it every cycle of the
+// blend; the intake evaluates the same sum to check what the blend asks of the arm
+// (chunk_motion.cpp). Real-time safe.
 
 #include <algorithm>
 #include <type_traits>
@@ -13,25 +17,23 @@
 
 namespace comply::pipeline::chunk {
 
-/// The difference between the reference in force and the chunk when the chunk starts, in value,
-/// velocity and acceleration, which the blend lets decay to zero.
+/// The difference between the reference in force and the chunk when the chunk starts, in value
+/// and velocity, which the blend lets decay to zero.
 struct CartesianOffset {
-  Vector3d position[3];
-  Vector3d rotation[3];  ///< rotation vector (base frame) from the chunk's orientation to the old
+  Vector3d position[2];
+  Vector3d rotation[2];  ///< rotation vector (base frame) from the chunk's orientation to the old
 };
 struct JointOffset {
-  JointVector position[3];
+  JointVector position[2];
 };
 
 inline CartesianOffset offsetAt(const Cartesian& from, const CartesianMotion& chunk) noexcept {
   CartesianOffset offset;
   offset.position[0] = ConstVector3Map(from.position) - chunk.position;
   offset.position[1] = ConstVector3Map(from.twist) - chunk.velocity;
-  offset.position[2] = ConstVector3Map(from.acceleration) - chunk.acceleration;
   // orientationError(a, b) is the base-frame rotation vector taking a to b.
   offset.rotation[0] = orientationError(chunk.orientation, fromXyzw(from.orientation));
   offset.rotation[1] = ConstVector3Map(from.twist + 3) - chunk.angular_velocity;
-  offset.rotation[2] = ConstVector3Map(from.acceleration + 3) - chunk.angular_acceleration;
   return offset;
 }
 
@@ -40,19 +42,18 @@ inline JointOffset offsetAt(const Joint& from, const JointMotion& chunk) noexcep
   JointOffset offset;
   offset.position[0] = Eigen::Map<const Eigen::VectorXd>(from.position, dof) - chunk.position;
   offset.position[1] = Eigen::Map<const Eigen::VectorXd>(from.velocity, dof) - chunk.velocity;
-  offset.position[2] =
-      Eigen::Map<const Eigen::VectorXd>(from.acceleration, dof) - chunk.acceleration;
   return offset;
 }
 
-/// value, d/dt, d^2/dt^2 of a decaying offset `e` at blend fraction s of a blend of `length_s`.
+/// value, d/dt, d^2/dt^2 of a decaying offset `e` (value, velocity) at blend fraction s of a
+/// blend of `length_s`.
 template <typename Value>
-inline void decay(const Value (&e)[3], const curve::QuinticWeights& w, double length_s,
+inline void decay(const Value (&e)[2], const curve::QuinticWeights& w, double length_s,
                   Value (&out)[3]) {
   const double t = length_s;
-  out[0] = w.value[0] * e[0] + t * w.value[1] * e[1] + t * t * w.value[2] * e[2];
-  out[1] = (w.first[0] * e[0] + t * w.first[1] * e[1] + t * t * w.first[2] * e[2]) / t;
-  out[2] = (w.second[0] * e[0] + t * w.second[1] * e[1] + t * t * w.second[2] * e[2]) / (t * t);
+  out[0] = w.value[0] * e[0] + t * w.value[1] * e[1];
+  out[1] = (w.first[0] * e[0] + t * w.first[1] * e[1]) / t;
+  out[2] = (w.second[0] * e[0] + t * w.second[1] * e[1]) / (t * t);
 }
 
 inline void addOffset(const CartesianOffset& e, const curve::QuinticWeights& w, double length_s,

@@ -23,13 +23,13 @@ inline HermiteWeights hermite(double s) noexcept {
           {12 * s - 6, 6 * s - 4, -12 * s + 6, 6 * s - 2}};
 }
 
-/// The quintic that takes an offset with value, slope and curvature (e0, de0, dde0) at s = 0 to
-/// zero with zero slope and curvature at s = 1: e(s) = e0 w[0] + T de0 w[1] + T^2 dde0 w[2] for a
-/// blend of length T. `fade` is 1 - w[0]: 0 at the start, 1 at the end, flat at both.
+/// The quintic that takes an offset with value and slope (e0, de0) and no curvature at s = 0 to
+/// zero with zero slope and curvature at s = 1: e(s) = e0 w[0] + T de0 w[1] for a blend of length
+/// T. `fade` is 1 - w[0]: 0 at the start, 1 at the end, flat at both.
 struct QuinticWeights {
-  double value[3];
-  double first[3];   ///< d/ds
-  double second[3];  ///< d^2/ds^2
+  double value[2];
+  double first[2];   ///< d/ds
+  double second[2];  ///< d^2/ds^2
 };
 
 inline QuinticWeights quinticDecay(double s) noexcept {
@@ -37,12 +37,9 @@ inline QuinticWeights quinticDecay(double s) noexcept {
   const double s3 = s2 * s;
   const double s4 = s3 * s;
   const double s5 = s4 * s;
-  return {
-      {1 - 10 * s3 + 15 * s4 - 6 * s5, s - 6 * s3 + 8 * s4 - 3 * s5,
-       0.5 * s2 - 1.5 * s3 + 1.5 * s4 - 0.5 * s5},
-      {-30 * s2 + 60 * s3 - 30 * s4, 1 - 18 * s2 + 32 * s3 - 15 * s4,
-       s - 4.5 * s2 + 6 * s3 - 2.5 * s4},
-      {-60 * s + 180 * s2 - 120 * s3, -36 * s + 96 * s2 - 60 * s3, 1 - 9 * s + 18 * s2 - 10 * s3}};
+  return {{1 - 10 * s3 + 15 * s4 - 6 * s5, s - 6 * s3 + 8 * s4 - 3 * s5},
+          {-30 * s2 + 60 * s3 - 30 * s4, 1 - 18 * s2 + 32 * s3 - 15 * s4},
+          {-60 * s + 180 * s2 - 120 * s3, -36 * s + 96 * s2 - 60 * s3}};
 }
 
 }  // namespace comply::pipeline::curve

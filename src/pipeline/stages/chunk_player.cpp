@@ -13,7 +13,8 @@ using namespace chunk;  // NOLINT(google-build-using-namespace): the track's typ
 
 template <typename Bus, typename Command>
 int loadInto(ChunkPlayer::Slots& slots, Engine<Bus>& engine, const Chunk<Command>& chunk,
-             double host_to_controller_s, std::uint64_t sequence, double received_s) {
+             double host_to_controller_s, std::uint64_t sequence, double received_s,
+             const CommandBus* joins) {
   const int slot = slots.acquire();
   if (slot < 0) {
     return -1;
@@ -31,7 +32,7 @@ int loadInto(ChunkPlayer::Slots& slots, Engine<Bus>& engine, const Chunk<Command
     track.time_s[k] = waypoint.time_s + host_to_controller_s;
     track.waypoints[k] = schema::toBus(waypoint.command, slots.dof);
   }
-  derive(track);
+  derive(track, joins != nullptr ? std::get_if<Bus>(joins) : nullptr);
   slots.state[slot].store(kLoaded, std::memory_order_release);
   return slot;
 }
@@ -102,17 +103,17 @@ ChunkPlayer::ChunkPlayer(int command_kind, int dof, double blend_time_s)
 ChunkPlayer::~ChunkPlayer() = default;
 
 int ChunkPlayer::load(const CartesianChunk& chunk, double host_to_controller_s,
-                      std::uint64_t sequence, double received_s) {
+                      std::uint64_t sequence, double received_s, const CommandBus* joins) {
   return slots_->cartesian ? loadInto(*slots_, *slots_->cartesian, chunk, host_to_controller_s,
-                                      sequence, received_s)
+                                      sequence, received_s, joins)
                            : -1;
 }
 
 int ChunkPlayer::load(const JointChunk& chunk, double host_to_controller_s, std::uint64_t sequence,
-                      double received_s) {
-  return slots_->joint
-             ? loadInto(*slots_, *slots_->joint, chunk, host_to_controller_s, sequence, received_s)
-             : -1;
+                      double received_s, const CommandBus* joins) {
+  return slots_->joint ? loadInto(*slots_, *slots_->joint, chunk, host_to_controller_s, sequence,
+                                  received_s, joins)
+                       : -1;
 }
 
 void ChunkPlayer::release(int slot) noexcept {
@@ -197,11 +198,15 @@ std::uint64_t ChunkPlayer::takeOverDue(double now_s, CommandBus& active) noexcep
   }
   const int slot = waiting_;
   waiting_ = -1;
+  // It starts at its takeover time, which fell after the last cycle: from the running chunk's
+  // reference then, so a chunk that continues that curve there (a policy's committed prefix)
+  // continues it exactly, wherever the cycles fall; this cycle plays it from there.
+  const double start_s = std::min(slots_->takeoverOf(slot), now_s);
   if (playing_ >= 0) {
-    (void)play(now_s, active);  // the running chunk's reference at this time, where it starts
+    (void)play(start_s, active);
   }
   const std::uint64_t sequence = slots_->sequenceOf(slot);
-  begin(slot, active, now_s);
+  begin(slot, active, start_s);
   return sequence;
 }
 

@@ -48,15 +48,17 @@ bool predictIn(Engine<Bus>& engine, double blend_time_s, std::span<const double>
     const double t = times_s[k];
     if (waiting && t >= waiting_start_s) {
       if (!waiting_started) {
-        // The waiting chunk starts from the reference the cycle writes at its takeover.
+        // The waiting chunk starts at its takeover time (takeOverDue()), from the running
+        // chunk's reference then; the cycle that meets it is the first to play it.
+        const Track<Bus>& track = engine.tracks[view.waiting_slot];
+        const double start_s = std::min(track.takeover_s, waiting_start_s);
         Bus from = *bus;
         if (running) {
           int c = 0;
-          (void)evaluate(engine.tracks[view.running.slot], view.running, blend_time_s,
-                         waiting_start_s, c, engine.predicted_settings, from);
+          (void)evaluate(engine.tracks[view.running.slot], view.running, blend_time_s, start_s, c,
+                         engine.predicted_settings, from);
         }
-        engine.predicted_start =
-            startOf(engine.tracks[view.waiting_slot], view.waiting_slot, from, waiting_start_s);
+        engine.predicted_start = startOf(track, view.waiting_slot, from, start_s);
         waiting_started = true;
         cursor = 0;
       }

@@ -1,5 +1,6 @@
 #include "chunk_track.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "chunk_curve.hpp"
@@ -31,6 +32,18 @@ void impliedVelocities(const std::array<double, kTrackWaypoints>& time_s, int fi
   }
 }
 
+/// The waypoint at the track's takeover time, but the last (a chunk ends at rest); -1: none.
+template <typename Bus>
+int joiningWaypoint(const Track<Bus>& track) {
+  constexpr double kSameTime_s = 1e-9;  // the takeover is a waypoint's time, as the sender gave it
+  for (int k = 1; k + 1 < track.count; ++k) {
+    if (std::abs(track.time_s[k] - track.takeover_s) <= kSameTime_s) {
+      return k;
+    }
+  }
+  return -1;
+}
+
 /// The lead-in's time: one segment before the first waypoint (1 s for a chunk of one).
 template <typename Bus>
 double leadInTime(const Track<Bus>& track) {
@@ -40,7 +53,7 @@ double leadInTime(const Track<Bus>& track) {
 
 }  // namespace
 
-void derive(Track<Cartesian>& track) {
+void derive(Track<Cartesian>& track, const Cartesian* joins) {
   const int n = track.count;
   auto& w = track.waypoints;
   if ((track.fields & COMPLY_FIELD_VELOCITY) == 0) {
@@ -65,6 +78,9 @@ void derive(Track<Cartesian>& track) {
       }
       Eigen::Map<Vector6d> twist(w[k].twist);
       twist << linear[k], angular;
+    }
+    if (const int k = joiningWaypoint(track); joins != nullptr && k > 0) {
+      std::copy_n(joins->twist, 6, w[k].twist);
     }
   }
   // The lead-in: at rest, half a segment's travel at the first waypoint's velocity behind it.
@@ -93,7 +109,7 @@ void derive(Track<Cartesian>& track) {
   }
 }
 
-void derive(Track<Joint>& track) {
+void derive(Track<Joint>& track, const Joint* joins) {
   auto& w = track.waypoints;
   const int dof = w[1].dof;
   if ((track.fields & COMPLY_FIELD_VELOCITY) == 0) {
@@ -106,6 +122,9 @@ void derive(Track<Joint>& track) {
         velocity.data());
     for (int k = 1; k < track.count; ++k) {
       std::copy_n(velocity[k].data(), dof, w[k].velocity);
+    }
+    if (const int k = joiningWaypoint(track); joins != nullptr && k > 0) {
+      std::copy_n(joins->velocity, dof, w[k].velocity);
     }
   }
   const double lead_s = track.time_s[1] - leadInTime(track);

@@ -112,9 +112,13 @@ Place placeOf(const Track<Bus>& track, double t_s, int& cursor) noexcept {
 
 /// Fills the waypoints' velocities (unless the chunk gives them), the lead-in (index 0) and, for
 /// Cartesian chunks, the orientation segments; the intake calls it after writing waypoints
-/// 1..count-1. Allocates (non-real-time).
-void derive(Track<Cartesian>& track);
-void derive(Track<Joint>& track);
+/// 1..count-1. `joins`: the reference in force at the track's takeover time, for a chunk that
+/// waits for it; the waypoint at that time (but the last) then takes the reference's velocity
+/// instead of the implied one, so the chunk leaves the curve in force there without a kink: a
+/// policy's chunk that keeps the committed prefix up to that waypoint continues it in position
+/// and velocity, and its blend has nothing to take away. Allocates (non-real-time).
+void derive(Track<Cartesian>& track, const Cartesian* joins = nullptr);
+void derive(Track<Joint>& track, const Joint* joins = nullptr);
 
 /// The curve at a place (placeOf).
 CartesianMotion motionAt(const Track<Cartesian>& track, const Place& place) noexcept;
