@@ -3,7 +3,7 @@
 the FR3 on the in-process Sim, a 30 Hz policy of 16 actions along a smooth curve, each chunk off
 by its own 2 mm, inference taking 150 ms. Left: the new chunk replaces the old one when it
 arrives; right: it keeps the host's committed actions for the measured delay and takes over at
-the waypoint after them (mode "frozen"). Each panel shows the executed reference along y, the old
+the waypoint after them, joining the curve in force there (mode "frozen"). Each panel shows the executed reference along y, the old
 and new chunks' waypoints, the committed prefix the host gave at the new chunk's observation, and
 the observation, arrival and takeover.
 

@@ -214,6 +214,49 @@ TEST(ChunkPlayer, AChunkThatContinuesTheCurveInForcePlaysItsOwnCurveFromItsFirst
   }
 }
 
+TEST(ChunkPlayer, AChunkWaitingForItsTakeoverWaypointTakesTheVelocityItJoinsThere) {
+  // Joint points on a line at 0.2 rad/s taking over at waypoint 2 (0.2 s) from a reference moving
+  // at -0.1 rad/s there: that waypoint's velocity is the reference's, the others stay implied;
+  // the waypoint is where the chunk starts (the cycle after plays it from there), and a chunk
+  // that gives its own velocities keeps them.
+  JointChunk chunk;
+  for (int k = 0; k < 5; ++k) {
+    ChunkWaypoint<JointCommand> waypoint{0.1 * k, JointCommand::zero(kDof)};
+    waypoint.command.position.setConstant(0.02 * k);
+    chunk.waypoints.push_back(waypoint);
+  }
+  chunk.takeover_s = 0.2;
+  JointCommand joined = JointCommand::zero(kDof);
+  joined.position.setConstant(0.04);
+  joined.velocity.setConstant(-0.1);
+  const CommandBus joins = schema::toBus(joined, kDof);
+  ChunkPlayer player(COMPLY_COMMAND_JOINT, kDof, 0.1);
+  CommandBus active = joins;
+  ASSERT_FALSE(player.take(player.load(chunk, 0.0, 7, 0.0, &joins), active, 0.1995));
+  ASSERT_EQ(player.takeOverDue(0.2005, active), 7u);
+  ASSERT_EQ(player.events().size(), 1u);
+  EXPECT_EQ(player.events()[0].takeover_s, 0.2) << "at its waypoint, between the two cycles";
+  EXPECT_EQ(player.events()[0].waypoints_past, 2);
+  EXPECT_LT(player.events()[0].velocity_jump, 1e-12);
+  player.play(0.2005, active);
+  // On the Hermite segment from (0.04, -0.1 rad/s) at 0.2 s to (0.06, 0.2 rad/s) at 0.3 s.
+  const double s = 0.005;
+  const double h = 0.1;
+  const double expected = (6 * s * s - 6 * s) * 0.04 + (3 * s * s - 4 * s + 1) * h * -0.1 +
+                          (-6 * s * s + 6 * s) * 0.06 + (3 * s * s - 2 * s) * h * 0.2;
+  EXPECT_NEAR(std::get<Joint>(active).velocity[3], expected / h, 1e-12);
+
+  chunk.fields = CommandField::kPosition | CommandField::kVelocity;
+  for (auto& waypoint : chunk.waypoints) {
+    waypoint.command.velocity.setConstant(0.2);
+  }
+  ChunkPlayer given(COMPLY_COMMAND_JOINT, kDof, 0.1);
+  active = joins;
+  ASSERT_FALSE(given.take(given.load(chunk, 0.0, 8, 0.0, &joins), active, 0.1995));
+  ASSERT_EQ(given.takeOverDue(0.2005, active), 8u);
+  EXPECT_NEAR(given.events()[0].velocity_jump, 0.3, 1e-12) << "its own velocity stands";
+}
+
 /// A random symmetric positive semi-definite 3x3 block, rank deficient one time in three.
 Eigen::Matrix3d randomPsd(std::mt19937& random, double scale) {
   std::uniform_real_distribution<double> entry(-1.0, 1.0);

@@ -15,14 +15,18 @@
 // task frame by spherical interpolation.
 //
 // Preemption. A chunk starts from the reference in force: over `blend_time_s` the difference
-// between the two (position, velocity and acceleration at the start) decays along a quintic to
-// zero, so the reference has no jump in position, velocity or acceleration; the gains, the task
-// frame and the feedforward fade from their values in force to the chunk's along the same curve.
+// between the two (position and velocity at the start) decays along a quintic to zero, so the
+// reference has no jump in position or velocity (its acceleration steps, as at any waypoint of
+// the C1 curve); the gains, the task frame and the feedforward fade from their values in force to
+// the chunk's along the same curve.
 //
 // Takeover. A chunk may name the time it takes over (RTC's frozen prefix: "keep the running
-// chunk's first actions, replace the rest"): while a chunk plays, it waits until the first cycle
-// at or after that time (a nanosecond's tolerance) while the running chunk plays on (or, with none
-// playing, the reference in force holds); a newer chunk supersedes one still waiting.
+// chunk's first actions, replace the rest"): it waits until the first cycle at or after that time
+// (a nanosecond's tolerance) while the running chunk plays on (or, with none playing, the
+// reference in force holds), and starts at that time itself, from the running chunk's reference
+// then; its waypoint at that time takes that reference's velocity (load()'s `joins`). A chunk
+// that keeps the committed prefix thus continues the curve in force exactly. A newer chunk
+// supersedes one still waiting.
 //
 // Prediction. predict() evaluates off the cycle what the cycle will write at given times if no
 // new chunk arrives, with the same code on the same data: the running chunk's start (published by
