@@ -37,7 +37,7 @@ generated: build
 	@$(COMPLY_CLI) schema --format msg --kind joint > msg/JointCommand.msg
 	@$(COMPLY_CLI) schema --format idl --kind cartesian > $(IDL_DIR)/CartesianCommand.idl
 	@$(COMPLY_CLI) schema --format idl --kind joint > $(IDL_DIR)/JointCommand.idl
-	@for m in ControllerState CommandOutcome ChunkTiming Diagnostics; do \
+	@for m in ControllerState CommandOutcome ChunkTiming Diagnostics CommittedRequest; do \
 	  $(COMPLY_CLI) schema --format msg --message $$m > msg/$$m.msg; \
 	  $(COMPLY_CLI) schema --format idl --message $$m > $(IDL_DIR)/$$m.idl; \
 	done

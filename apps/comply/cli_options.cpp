@@ -125,7 +125,8 @@ CLI::App* addSchemaCommand(CLI::App& app, SchemaOptions& options) {
   command
       ->add_option("--message", options.message,
                    "a host message instead of a command (--format msg or idl)")
-      ->check(CLI::IsMember({"ControllerState", "CommandOutcome", "ChunkTiming", "Diagnostics"}));
+      ->check(CLI::IsMember(
+          {"ControllerState", "CommandOutcome", "ChunkTiming", "Diagnostics", "CommittedRequest"}));
   return command;
 }
 

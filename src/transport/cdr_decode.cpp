@@ -100,6 +100,25 @@ void getChunk(Reader& r, Message& message) {
   }
 }
 
+/// An answer: at most kMaxChunkWaypoints commands in either list, as a chunk's waypoints.
+void getCommitted(Reader& r, CommittedMessage& message) {
+  message.header = getHeader(r);
+  message.request_stamp = getStamp(r);
+  cdr::getField(r, message.sender);
+  message.command_kind = getEnum<WireCommandKind>(r);
+  message.answered = r.getBool();
+  message.known = r.getBool();
+  message.message = r.getString();
+  message.cartesian.resize(r.getCount(kHeaderBytes + 4, kMaxChunkWaypoints));
+  for (CartesianCommandMessage& command : message.cartesian) {
+    getCommandMessage(r, command);
+  }
+  message.joint.resize(r.getCount(kHeaderBytes + 4, kMaxChunkWaypoints));
+  for (JointCommandMessage& command : message.joint) {
+    getCommandMessage(r, command);
+  }
+}
+
 /// `get` reads the message from the bytes; whether they held one, to their end or not.
 template <typename Message, typename Get>
 bool decodeWith(std::span<const std::uint8_t> bytes, Message& message, Get get) {
@@ -139,6 +158,14 @@ bool decodeCdr(std::span<const std::uint8_t> bytes, RequestMessage& message) {
   message.header = getHeader(r);
   message.request = getEnum<RequestType>(r);
   return r.ok();
+}
+
+bool decodeCdr(std::span<const std::uint8_t> bytes, CommittedRequestMessage& message) {
+  return decodeWith(bytes, message, cdr::getFields<CommittedRequestMessage>);
+}
+
+bool decodeCdr(std::span<const std::uint8_t> bytes, CommittedMessage& message) {
+  return decodeWith(bytes, message, getCommitted);
 }
 
 }  // namespace comply::transport

@@ -104,6 +104,25 @@ void putCycleRecord(Writer& w, const CycleRecordMessage& message) {
   }
 }
 
+/// An answer: the commands of the controller's kind, each a command message stamped with its time.
+void putCommitted(Writer& w, const CommittedMessage& message) {
+  putHeader(w, message.header);
+  putStamp(w, message.request_stamp);
+  cdr::putField(w, message.sender);
+  w.put(static_cast<std::uint8_t>(message.command_kind));
+  w.putBool(message.answered);
+  w.putBool(message.known);
+  w.putString(message.message);
+  w.putCount(message.cartesian.size());
+  for (const CartesianCommandMessage& command : message.cartesian) {
+    putCartesian(w, command);
+  }
+  w.putCount(message.joint.size());
+  for (const JointCommandMessage& command : message.joint) {
+    putJoint(w, command);
+  }
+}
+
 }  // namespace
 
 #define COMPLY_ENCODE_CDR(Message, PUT)                                    \
@@ -122,6 +141,8 @@ COMPLY_ENCODE_CDR(CartesianChunkMessage, putCartesianChunk)
 COMPLY_ENCODE_CDR(JointChunkMessage, putJointChunk)
 COMPLY_ENCODE_CDR(RequestMessage, putRequest)
 COMPLY_ENCODE_CDR(CycleRecordMessage, putCycleRecord)
+COMPLY_ENCODE_CDR(CommittedRequestMessage, cdr::putFields)
+COMPLY_ENCODE_CDR(CommittedMessage, putCommitted)
 #undef COMPLY_ENCODE_CDR
 
 #define COMPLY_ROS_TYPE_NAME(Message, name) \
@@ -139,6 +160,8 @@ COMPLY_ROS_TYPE_NAME(CartesianChunkMessage, "CartesianChunk")
 COMPLY_ROS_TYPE_NAME(JointChunkMessage, "JointChunk")
 COMPLY_ROS_TYPE_NAME(RequestMessage, "Request")
 COMPLY_ROS_TYPE_NAME(CycleRecordMessage, "CycleRecord")
+COMPLY_ROS_TYPE_NAME(CommittedRequestMessage, "CommittedRequest")
+COMPLY_ROS_TYPE_NAME(CommittedMessage, "Committed")
 #undef COMPLY_ROS_TYPE_NAME
 
 }  // namespace comply::transport

@@ -31,14 +31,14 @@ class DdsHostTransport final : public HostTransport {
         cartesian_chunks_(participant_, options.name, kCommandDepth),
         joint_chunks_(participant_, options.name, kCommandDepth),
         request_(participant_, options.name),
+        committed_request_(participant_, options.name),
         state_(participant_, options.name),
         diagnostics_(participant_, options.name),
+        committed_(participant_, options.name),
         waitset_(participant_) {
-    waitset_.attach(cartesian_);
-    waitset_.attach(joint_);
-    waitset_.attach(cartesian_chunks_);
-    waitset_.attach(joint_chunks_);
-    waitset_.attach(request_);
+    for (const Endpoint* reader : readers()) {
+      waitset_.attach(*reader);
+    }
   }
 
   ~DdsHostTransport() override {
@@ -80,10 +80,12 @@ class DdsHostTransport final : public HostTransport {
     cartesian_chunks_.take(inbox.cartesian_chunks, &inbox.departed);
     joint_chunks_.take(inbox.joint_chunks, &inbox.departed);
     request_.take(inbox.requests);
+    committed_request_.take(inbox.committed_requests);
   }
   void wake() override { waitset_.trigger(); }
   void publish(const ControllerStateMessage& state) override { state_.write(state); }
   void publish(const DiagnosticsMessage& diagnostics) override { diagnostics_.write(diagnostics); }
+  void publish(const CommittedMessage& answer) override { committed_.write(answer); }
   bool flush(double timeout_s) override { return diagnostics_.flush(timeout_s); }
   [[nodiscard]] std::string describe() const override {
     return "topics rt/" + options_.name + "/* on domain " + std::to_string(options_.domain_id) +
@@ -94,8 +96,9 @@ class DdsHostTransport final : public HostTransport {
   [[nodiscard]] std::uint64_t malformedSamples() const override { return malformed_log_.total(); }
 
  private:
-  [[nodiscard]] std::array<const Endpoint*, 5> readers() const {
-    return {&cartesian_, &joint_, &cartesian_chunks_, &joint_chunks_, &request_};
+  [[nodiscard]] std::array<const Endpoint*, 6> readers() const {
+    return {&cartesian_,    &joint_,   &cartesian_chunks_,
+            &joint_chunks_, &request_, &committed_request_};
   }
 
   // First: in place before the participant sees a packet, and gone after it.
@@ -107,8 +110,10 @@ class DdsHostTransport final : public HostTransport {
   Reader<CartesianChunkMessage> cartesian_chunks_;
   Reader<JointChunkMessage> joint_chunks_;
   Reader<RequestMessage> request_;
+  Reader<CommittedRequestMessage> committed_request_;
   Writer<ControllerStateMessage> state_;
   Writer<DiagnosticsMessage> diagnostics_;
+  Writer<CommittedMessage> committed_;
   WaitSet waitset_;
   std::function<void()> on_input_;
 };

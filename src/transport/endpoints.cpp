@@ -285,6 +285,8 @@ template class Writer<JointChunkMessage>;
 template class Writer<RequestMessage>;
 template class Writer<ControllerStateMessage>;
 template class Writer<DiagnosticsMessage>;
+template class Writer<CommittedRequestMessage>;
+template class Writer<CommittedMessage>;
 template class Reader<CartesianCommandMessage>;
 template class Reader<JointCommandMessage>;
 template class Reader<CartesianChunkMessage>;
@@ -292,5 +294,7 @@ template class Reader<JointChunkMessage>;
 template class Reader<RequestMessage>;
 template class Reader<ControllerStateMessage>;
 template class Reader<DiagnosticsMessage>;
+template class Reader<CommittedRequestMessage>;
+template class Reader<CommittedMessage>;
 
 }  // namespace comply::transport

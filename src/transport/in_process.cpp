@@ -24,6 +24,7 @@ class InProcessHostTransport final : public HostTransport {
   void wake() override { bus_->wake(); }
   void publish(const ControllerStateMessage& state) override { bus_->publish(state); }
   void publish(const DiagnosticsMessage& diagnostics) override { bus_->publish(diagnostics); }
+  void publish(const CommittedMessage& answer) override { bus_->publish(answer); }
   bool flush(double /*timeout_s*/) override { return true; }  // delivered when published
   [[nodiscard]] std::string describe() const override {
     return "the in-process bus '" + name_ + "'";
@@ -88,6 +89,10 @@ void InProcessBus::send(const RequestMessage& message, std::uint64_t publisher) 
   post(inbox_.requests, message, publisher);
 }
 
+void InProcessBus::send(const CommittedRequestMessage& message, std::uint64_t publisher) {
+  post(inbox_.committed_requests, message, publisher);
+}
+
 void InProcessBus::depart(std::uint64_t publisher) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -103,14 +108,25 @@ std::optional<ControllerStateMessage> InProcessBus::state() const {
 
 bool InProcessBus::waitForDiagnostics(double timeout_s,
                                       const std::function<bool(const DiagnosticsMessage&)>& done) {
+  return waitFor(diagnostics_, timeout_s, done);
+}
+
+bool InProcessBus::waitForCommitted(double timeout_s,
+                                    const std::function<bool(const CommittedMessage&)>& done) {
+  return waitFor(committed_, timeout_s, done);
+}
+
+template <typename Message>
+bool InProcessBus::waitFor(std::deque<Message>& published, double timeout_s,
+                           const std::function<bool(const Message&)>& done) {
   const auto deadline =
       std::chrono::steady_clock::now() +
       std::chrono::duration_cast<std::chrono::steady_clock::duration>(seconds(timeout_s));
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
-    while (!diagnostics_.empty()) {
-      const DiagnosticsMessage message = std::move(diagnostics_.front());
-      diagnostics_.pop_front();
+    while (!published.empty()) {
+      const Message message = std::move(published.front());
+      published.pop_front();
       lock.unlock();
       const bool held = done(message);
       lock.lock();
@@ -118,8 +134,7 @@ bool InProcessBus::waitForDiagnostics(double timeout_s,
         return true;
       }
     }
-    if (client_wakeup_.wait_until(lock, deadline) == std::cv_status::timeout &&
-        diagnostics_.empty()) {
+    if (client_wakeup_.wait_until(lock, deadline) == std::cv_status::timeout && published.empty()) {
       return false;
     }
   }
@@ -139,6 +154,7 @@ void InProcessBus::receive(Inbox& inbox, double timeout_s) {
   move_into(inbox_.cartesian_chunks, inbox.cartesian_chunks);
   move_into(inbox_.joint_chunks, inbox.joint_chunks);
   move_into(inbox_.requests, inbox.requests);
+  move_into(inbox_.committed_requests, inbox.committed_requests);
   inbox.departed.insert(inbox.departed.end(), inbox_.departed.begin(), inbox_.departed.end());
   inbox_.clear();
 }
@@ -160,6 +176,14 @@ void InProcessBus::publish(const DiagnosticsMessage& diagnostics) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
     diagnostics_.push_back(diagnostics);
+  }
+  client_wakeup_.notify_all();
+}
+
+void InProcessBus::publish(const CommittedMessage& answer) {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    committed_.push_back(answer);
   }
   client_wakeup_.notify_all();
 }

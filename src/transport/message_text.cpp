@@ -77,6 +77,18 @@ MessageText diagnostics() {
           fieldTexts<DiagnosticsMessage>()};
 }
 
+MessageText committedRequest() {
+  return {"CommittedRequest",
+          "comply_msgs/CommittedRequest: asks the host for the reference its cycles will write "
+          "at\nobservation + k dt (k < count) if no new command or chunk arrives, on "
+          "/<name>/committed_request\n(reliable, volatile, keep last 10): the actions a policy's "
+          "next chunk may keep\n(docs/policies.md). The host answers each on /<name>/committed "
+          "(comply_msgs/Committed), or\nrefuses it there naming the field (a step not > 0, a "
+          "count of 0 or over 64).",
+          {},
+          fieldTexts<CommittedRequestMessage>()};
+}
+
 void comment(std::ostringstream& out, std::string_view text) {
   std::istringstream lines{std::string(text)};
   std::string line;
@@ -156,12 +168,16 @@ MessageText hostMessageText(std::string_view name) {
   if (name == "Diagnostics") {
     return diagnostics();
   }
-  throw std::out_of_range("no host message named " + std::string(name) +
-                          " (ControllerState, CommandOutcome, ChunkTiming, Diagnostics)");
+  if (name == "CommittedRequest") {
+    return committedRequest();
+  }
+  throw std::out_of_range(
+      "no host message named " + std::string(name) +
+      " (ControllerState, CommandOutcome, ChunkTiming, Diagnostics, CommittedRequest)");
 }
 
 std::vector<std::string_view> hostMessageNames() {
-  return {"ControllerState", "CommandOutcome", "ChunkTiming", "Diagnostics"};
+  return {"ControllerState", "CommandOutcome", "ChunkTiming", "Diagnostics", "CommittedRequest"};
 }
 
 }  // namespace comply::transport

@@ -64,6 +64,10 @@ bool sentBy(const CommandOutcomeMessage& outcome, const Gid& sender) noexcept {
   return outcome.sender == sender || outcome.sender == Gid{};
 }
 
+bool answers(const CommittedMessage& answer, const Stamp& stamp, const Gid& sender) noexcept {
+  return answer.request_stamp == stamp && (answer.sender == sender || answer.sender == Gid{});
+}
+
 std::string toHex(const Gid& gid) {
   static constexpr char kDigits[] = "0123456789abcdef";
   std::string text;

@@ -1,14 +1,18 @@
 // The command and chunk messages on the wire, field by field from the schema tables
 // (schema/table.hpp): the generated DDS structs have one member per table row with the same name,
-// so a new row needs no code here. A chunk's waypoints are commands.
+// so a new row needs no code here. A chunk's waypoints are commands, and so are the entries of a
+// committed request's answer (Committed).
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <iterator>
 #include <vector>
 
 #include "comply/schema/schema.hpp"
 #include "comply/schema/table.hpp"
 #include "comply_msgs/msg/CartesianChunk.h"
 #include "comply_msgs/msg/CartesianCommand.h"
+#include "comply_msgs/msg/Committed.h"
 #include "comply_msgs/msg/JointChunk.h"
 #include "comply_msgs/msg/JointCommand.h"
 #include "wire.hpp"
@@ -176,6 +180,80 @@ void readChunk(const void* wire, Sample<Message>& sample) {
   }
 }
 
+/// Commands as their wire structs; each points into its command's storage until dds_write.
+template <typename WireCommand, typename CommandMessage>
+std::vector<WireCommand> commandsToWire(const std::vector<CommandMessage>& commands) {
+  std::vector<WireCommand> out(commands.size());
+  for (std::size_t k = 0; k < commands.size(); ++k) {
+    headerToWire(commands[k].header, out[k].header);
+    commandToWire(commands[k].command, out[k]);
+  }
+  return out;
+}
+
+template <typename Sequence, typename WireCommand>
+Sequence borrowSequence(std::vector<WireCommand>& values) {
+  Sequence sequence{};
+  sequence._maximum = sequence._length = static_cast<std::uint32_t>(values.size());
+  sequence._buffer = values.data();
+  sequence._release = false;
+  return sequence;
+}
+
+dds_return_t writeCommitted(dds_entity_t writer, const CommittedMessage& message) {
+  std::vector<WireCartesian> cartesian = commandsToWire<WireCartesian>(message.cartesian);
+  std::vector<WireJoint> joint = commandsToWire<WireJoint>(message.joint);
+  comply_msgs_msg_dds__Committed_ out{};
+  headerToWire(message.header, out.header);
+  toWireStamp(message.request_stamp, out.request_stamp);
+  std::copy(message.sender.begin(), message.sender.end(), out.sender);
+  out.command_kind = static_cast<std::uint8_t>(message.command_kind);
+  out.answered = message.answered;
+  out.known = message.known;
+  out.message = const_cast<char*>(message.message.c_str());
+  out.cartesian = borrowSequence<dds_sequence_comply_msgs_msg_dds__CartesianCommand_>(cartesian);
+  out.joint = borrowSequence<dds_sequence_comply_msgs_msg_dds__JointCommand_>(joint);
+  return dds_write(writer, &out);
+}
+
+/// One list of an answer, at most kMaxChunkWaypoints commands (as a chunk's waypoints); `name`
+/// names it in the refusal.
+template <typename Sequence, typename CommandMessage>
+void commandsFromWire(const Sequence& in, std::vector<CommandMessage>& out, const char* name,
+                      Sample<CommittedMessage>& sample) {
+  if (in._length > static_cast<std::uint32_t>(kMaxChunkWaypoints)) {
+    sample.refuse(Reason::kInvalidChunk, std::string(name) + " has " + std::to_string(in._length) +
+                                             " entries, more than an answer holds (" +
+                                             std::to_string(kMaxChunkWaypoints) + ")");
+    return;
+  }
+  out.resize(in._length);
+  for (std::uint32_t k = 0; k < in._length && sample.malformed.empty(); ++k) {
+    const std::string where = std::string(name) + "[" + std::to_string(k) + "]: ";
+    out[k].header = headerFromWire(in._buffer[k].header, sample, where);
+    out[k].command.stamp_s = out[k].header.stamp.seconds();
+    std::string malformed;
+    commandFromWire(in._buffer[k], out[k].command, malformed);
+    if (!malformed.empty()) {
+      sample.refuse(Reason::kDofMismatch, where + malformed);
+    }
+  }
+}
+
+void readCommitted(const void* wire, Sample<CommittedMessage>& sample) {
+  const auto& in = *static_cast<const comply_msgs_msg_dds__Committed_*>(wire);
+  CommittedMessage& message = sample.message;
+  message.header = headerFromWire(in.header, sample);
+  message.request_stamp = fromWireStamp(in.request_stamp.sec, in.request_stamp.nanosec);
+  std::copy(std::begin(in.sender), std::end(in.sender), message.sender.begin());
+  message.command_kind = static_cast<WireCommandKind>(in.command_kind);
+  message.answered = in.answered;
+  message.known = in.known;
+  message.message = in.message != nullptr ? in.message : "";
+  commandsFromWire(in.cartesian, message.cartesian, "cartesian", sample);
+  commandsFromWire(in.joint, message.joint, "joint", sample);
+}
+
 }  // namespace
 
 COMPLY_WIRE_MESSAGE(CartesianCommandMessage, comply_msgs_msg_dds__CartesianCommand__desc,
@@ -188,5 +266,8 @@ COMPLY_WIRE_MESSAGE(CartesianChunkMessage, comply_msgs_msg_dds__CartesianChunk__
 COMPLY_WIRE_MESSAGE(JointChunkMessage, comply_msgs_msg_dds__JointChunk__desc,
                     (writeChunk<comply_msgs_msg_dds__JointChunk_, WireJoint>),
                     readChunk<comply_msgs_msg_dds__JointChunk_>)
+
+COMPLY_WIRE_MESSAGE(CommittedMessage, comply_msgs_msg_dds__Committed__desc, writeCommitted,
+                    readCommitted)
 
 }  // namespace comply::transport::wire

@@ -14,6 +14,7 @@
 #include <span>
 #include <vector>
 
+#include "committed_values.hpp"
 #include "comply/transport/cdr.hpp"
 #include "comply/transport/endpoints.hpp"
 #include "comply_msgs/msg/JointCommand.h"
@@ -242,6 +243,25 @@ TEST(TransportCdrEncoder, StateDiagnosticsAndRequestsMatchTheWire) {
   request.header = {{9, 10}, "client"};
   request.request = RequestType::kDeactivate;
   expectEncoderMatchesTheWire(request);
+}
+
+// The committed request and its answer, of either kind, with an unknown (NaN) entry, and a
+// refusal, which carries no entry.
+TEST(TransportCdrEncoder, CommittedRequestAndAnswersMatchTheWire) {
+  expectEncoderMatchesTheWire(testing::someCommittedRequest());
+  expectEncoderMatchesTheWire(testing::someCartesianAnswer(5));
+  expectEncoderMatchesTheWire(testing::someJointAnswer(3));
+  expectEncoderMatchesTheWire(testing::someJointAnswer(0));
+
+  std::vector<std::uint8_t> bytes;
+  encodeCdr(testing::someCartesianAnswer(kMaxChunkWaypoints), bytes);
+  CommittedMessage decoded;
+  ASSERT_TRUE(decodeCdr(bytes, decoded));
+  EXPECT_EQ(decoded.cartesian.size(), static_cast<std::size_t>(kMaxChunkWaypoints));
+  EXPECT_TRUE(std::isnan(decoded.cartesian.back().command.position.x()));
+  // One entry more than a chunk's waypoints: not an answer a host writes.
+  encodeCdr(testing::someCartesianAnswer(kMaxChunkWaypoints + 1), bytes);
+  EXPECT_FALSE(decodeCdr(bytes, decoded));
 }
 
 TEST(TransportCdrDecoder, RefusesWhatEncodeCdrDoesNotWrite) {

@@ -123,9 +123,9 @@ TEST(TransportMessages, HostMessagesAreGeneratedFromTheirTables) {
 }
 
 TEST(TransportMessages, EveryIdlStructMatchesItsMsg) {
-  for (const std::string name :
-       {"CartesianCommand", "JointCommand", "CartesianChunk", "JointChunk", "ControllerState",
-        "CommandOutcome", "ChunkTiming", "Diagnostics", "Request"}) {
+  for (const std::string name : {"CartesianCommand", "JointCommand", "CartesianChunk", "JointChunk",
+                                 "ControllerState", "CommandOutcome", "ChunkTiming", "Diagnostics",
+                                 "Request", "CommittedRequest", "Committed"}) {
     const std::vector<std::string> msg = msgMembers(kSourceDir / "msg" / (name + ".msg"));
     const std::vector<std::string> idl =
         idlMembers(kIdlDir / "comply_msgs" / "msg" / (name + ".idl"), name);

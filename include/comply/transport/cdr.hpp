@@ -26,11 +26,13 @@ void encodeCdr(const CartesianChunkMessage& message, std::vector<std::uint8_t>& 
 void encodeCdr(const JointChunkMessage& message, std::vector<std::uint8_t>& out);
 void encodeCdr(const RequestMessage& message, std::vector<std::uint8_t>& out);
 void encodeCdr(const CycleRecordMessage& message, std::vector<std::uint8_t>& out);
+void encodeCdr(const CommittedRequestMessage& message, std::vector<std::uint8_t>& out);
+void encodeCdr(const CommittedMessage& message, std::vector<std::uint8_t>& out);
 
 /// The message `bytes` hold, as encodeCdr writes it, into `message`. False when they hold none:
 /// another encoding, cut short, a count past the end, a joint vector longer than kMaxDof, a chunk
-/// longer than kMaxChunkWaypoints; `message` is then not to be used. (A DDS reader decodes with
-/// CycloneDDS; these read what comply's own processes hand each other.)
+/// (or an answer's list) longer than kMaxChunkWaypoints; `message` is then not to be used. (A DDS
+/// reader decodes with CycloneDDS; these read what comply's own processes hand each other.)
 bool decodeCdr(std::span<const std::uint8_t> bytes, ControllerStateMessage& message);
 bool decodeCdr(std::span<const std::uint8_t> bytes, DiagnosticsMessage& message);
 bool decodeCdr(std::span<const std::uint8_t> bytes, CartesianCommandMessage& message);
@@ -38,6 +40,8 @@ bool decodeCdr(std::span<const std::uint8_t> bytes, JointCommandMessage& message
 bool decodeCdr(std::span<const std::uint8_t> bytes, CartesianChunkMessage& message);
 bool decodeCdr(std::span<const std::uint8_t> bytes, JointChunkMessage& message);
 bool decodeCdr(std::span<const std::uint8_t> bytes, RequestMessage& message);
+bool decodeCdr(std::span<const std::uint8_t> bytes, CommittedRequestMessage& message);
+bool decodeCdr(std::span<const std::uint8_t> bytes, CommittedMessage& message);
 
 /// The ROS 2 type name of each message ("comply_msgs/msg/ControllerState").
 template <typename Message>

@@ -11,6 +11,8 @@
 //   /<name>/request             Request_                                   R
 //   /<name>/state               ControllerState_                           S
 //   /<name>/diagnostics         Diagnostics_                               D
+//   /<name>/committed_request   CommittedRequest_                          R
+//   /<name>/committed           Committed_                                 R
 //
 // R: ROS 2's default (reliable, volatile, keep last 10). S: the sensor-data profile (best effort,
 // volatile, keep last 5). D: reliable, volatile, keep last 100, so that a reader that keeps up
@@ -38,7 +40,9 @@ namespace comply::transport {
   X(kCartesianChunk, CartesianChunkMessage, "cartesian_chunk")       \
   X(kJointChunk, JointChunkMessage, "joint_chunk")                   \
   X(kState, ControllerStateMessage, "state")                         \
-  X(kDiagnostics, DiagnosticsMessage, "diagnostics")
+  X(kDiagnostics, DiagnosticsMessage, "diagnostics")                 \
+  X(kCommittedRequest, CommittedRequestMessage, "committed_request") \
+  X(kCommitted, CommittedMessage, "committed")
 // clang-format on
 
 #define COMPLY_TOPIC_ENUMERATOR(topic, Message, suffix) topic,
@@ -163,6 +167,8 @@ extern template class Writer<JointChunkMessage>;
 extern template class Writer<RequestMessage>;
 extern template class Writer<ControllerStateMessage>;
 extern template class Writer<DiagnosticsMessage>;
+extern template class Writer<CommittedRequestMessage>;
+extern template class Writer<CommittedMessage>;
 extern template class Reader<CartesianCommandMessage>;
 extern template class Reader<JointCommandMessage>;
 extern template class Reader<CartesianChunkMessage>;
@@ -170,5 +176,7 @@ extern template class Reader<JointChunkMessage>;
 extern template class Reader<RequestMessage>;
 extern template class Reader<ControllerStateMessage>;
 extern template class Reader<DiagnosticsMessage>;
+extern template class Reader<CommittedRequestMessage>;
+extern template class Reader<CommittedMessage>;
 
 }  // namespace comply::transport

@@ -1,9 +1,9 @@
 #pragma once
-// The seam between a live host and its middleware: commands and requests in, state and
-// diagnostics out, as the transport-neutral messages of messages.hpp. DDS (the ROS 2 wire) is one
-// implementation ("dds"), an in-process bus another ("in_process", for tests and for embedding a
-// host in a program). A new middleware is one folder implementing HostTransport plus one line in
-// the host's list of transports (src/host/live/transports.cpp).
+// The seam between a live host and its middleware: commands and requests in, state, diagnostics
+// and the answers to committed requests out, as the transport-neutral messages of messages.hpp.
+// DDS (the ROS 2 wire) is one implementation ("dds"), an in-process bus another ("in_process",
+// for tests and for embedding a host in a program). A new middleware is one folder implementing
+// HostTransport plus one line in the host's list of transports (src/host/live/transports.cpp).
 
 #include <cstdint>
 #include <filesystem>
@@ -30,6 +30,8 @@ struct Inbox {
   std::vector<Sample<CartesianChunkMessage>> cartesian_chunks;
   std::vector<Sample<JointChunkMessage>> joint_chunks;
   std::vector<Sample<RequestMessage>> requests;
+  /// Questions for the committed reference, answered off the cycle (publish(CommittedMessage)).
+  std::vector<Sample<CommittedRequestMessage>> committed_requests;
   /// Writers that went away (deleted, or their process ended cleanly): a publisher that held the
   /// command topics releases them at once rather than after its silence times out.
   std::vector<std::uint64_t> departed;
@@ -39,9 +41,11 @@ struct Inbox {
   [[nodiscard]] auto commandTopics() const {
     return std::tie(cartesian, joint, cartesian_chunks, joint_chunks);
   }
-  /// The same and the requests: every topic a host reads.
-  auto topics() { return std::tuple_cat(commandTopics(), std::tie(requests)); }
-  [[nodiscard]] auto topics() const { return std::tuple_cat(commandTopics(), std::tie(requests)); }
+  /// The same, the requests and the committed requests: every topic a host reads.
+  auto topics() { return std::tuple_cat(commandTopics(), std::tie(requests, committed_requests)); }
+  [[nodiscard]] auto topics() const {
+    return std::tuple_cat(commandTopics(), std::tie(requests, committed_requests));
+  }
 
   void clear();
   [[nodiscard]] bool empty() const;
@@ -99,6 +103,9 @@ class HostTransport {
   }
   virtual void publish(const ControllerStateMessage& state) = 0;
   virtual void publish(const DiagnosticsMessage& diagnostics) = 0;
+  /// The answer to a committed request (any thread but the cycle's). A middleware that carries no
+  /// committed requests has none to answer: the default drops it.
+  virtual void publish(const CommittedMessage& answer) { (void)answer; }
   /// Waits until the diagnostics written so far were delivered to every reader; false on timeout.
   virtual bool flush(double timeout_s) = 0;
   /// Where clients find the host, for its start-up line.

@@ -33,23 +33,31 @@ class InProcessBus {
   void send(const CartesianChunkMessage& message, std::uint64_t publisher);
   void send(const JointChunkMessage& message, std::uint64_t publisher);
   void send(const RequestMessage& message, std::uint64_t publisher);
+  void send(const CommittedRequestMessage& message, std::uint64_t publisher);
   /// The newest state the host published, if any.
   [[nodiscard]] std::optional<ControllerStateMessage> state() const;
   /// Takes diagnostics as they come until `done(message)` holds or `timeout_s` passed; true when
   /// it held. Every message taken is handed to `done` once, in publication order.
   bool waitForDiagnostics(double timeout_s,
                           const std::function<bool(const DiagnosticsMessage&)>& done);
+  /// The same for the answers to committed requests (every client's, as DDS delivers them).
+  bool waitForCommitted(double timeout_s, const std::function<bool(const CommittedMessage&)>& done);
 
   // The host's side (InProcessHostTransport).
   void receive(Inbox& inbox, double timeout_s);
   void wake();
   void publish(const ControllerStateMessage& state);
   void publish(const DiagnosticsMessage& diagnostics);
+  void publish(const CommittedMessage& answer);
 
  private:
   /// Appends `message` to one of the inbox's lists and wakes the host.
   template <typename Message>
   void post(std::vector<Sample<Message>>& list, const Message& message, std::uint64_t publisher);
+  /// Hands `done` what `published` holds, in order, until it holds (see waitForDiagnostics()).
+  template <typename Message>
+  bool waitFor(std::deque<Message>& published, double timeout_s,
+               const std::function<bool(const Message&)>& done);
 
   mutable std::mutex mutex_;
   std::condition_variable host_wakeup_;
@@ -58,6 +66,7 @@ class InProcessBus {
   bool woken_ = false;
   std::optional<ControllerStateMessage> state_;
   std::deque<DiagnosticsMessage> diagnostics_;
+  std::deque<CommittedMessage> committed_;
 };
 
 /// Registered as "in_process": the host's end of InProcessBus::named(options.name).

@@ -1,6 +1,7 @@
 #pragma once
-// The host's messages declared once: ControllerState, CommandOutcome (and its ChunkTiming) and
-// Diagnostics, a row per field in wire order. Everything else follows from these rows:
+// The host's messages declared once: ControllerState, CommandOutcome (and its ChunkTiming),
+// Diagnostics and the CommittedRequest a client asks with, a row per field in wire order.
+// Everything else follows from these rows:
 //   the C++ structs (messages.hpp)                    COMPLY_MESSAGE_BODY
 //   CDR both ways (cdr_messages.cpp, cdr_decode.cpp)   Message::visit + cdr_fields.hpp
 //   the DDS types idlc builds (wire_state.cpp)         the rows, member by member
@@ -132,6 +133,15 @@
   X(bool, starved, starved, false, \
     "the chunk before it had run out before it took over (the reference came to rest)") \
   X(double, rest_s, rest, 0.0, "[s] how long the reference had been at rest then (starved)")
+
+#define COMPLY_COMMITTED_REQUEST_FIELDS(X) \
+  X(Header, header, header, {}, \
+    "stamp: the sender's; with the sender, what names the request in its answer (Committed)") \
+  X(Stamp, observation, observation, {}, \
+    "the first time asked for, on the host's clock (a state's header.stamp, as a chunk's " \
+    "observation)") \
+  X(double, dt_s, dt, 0.0, "[s] step between the times asked for: observation + k dt, k < count") \
+  X(std::uint32_t, count, count, 0, "[-] times asked for: 1 to 64 (a chunk's most waypoints)")
 
 #define COMPLY_DIAGNOSTICS_FIELDS(X) \
   X(Header, header, header, {}, "stamp: host wall-clock time; frame_id: the host's name") \

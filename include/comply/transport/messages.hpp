@@ -214,6 +214,35 @@ struct RequestMessage {
   RequestType request = RequestType::kReset;
 };
 
+/// comply_msgs/CommittedRequest (message_tables.hpp): asks the host for the reference its cycles
+/// will write at observation + k dt (k < count) if no new command arrives (docs/policies.md).
+struct CommittedRequestMessage {
+  COMPLY_MESSAGE_BODY(COMPLY_COMMITTED_REQUEST_FIELDS)
+};
+
+/// comply_msgs/Committed: the answer to one CommittedRequest (msg/Committed.msg). The reference
+/// travels as the commands of the controller's kind, one per time asked for, each stamped with its
+/// time: the shape of a chunk's waypoints, and every group a command carries (pose or joint
+/// position, twist, the gains in force), so a policy reads it as it writes a chunk.
+struct CommittedMessage {
+  /// stamp: the host's clock when it answered (times before it were past); frame_id: base frame.
+  Header header;
+  Stamp request_stamp;  ///< the request's header.stamp
+  Gid sender{};         ///< the requesting participant's GUID (all zero: not known)
+  WireCommandKind command_kind = WireCommandKind::kCartesian;
+  bool answered = false;  ///< false: refused, `message` says why
+  /// False when a time before the running chunk could no longer be answered (those entries'
+  /// position NaN).
+  bool known = false;
+  std::string message;                             ///< why it was refused, naming the field
+  std::vector<CartesianCommandMessage> cartesian;  ///< Cartesian control: one per time
+  std::vector<JointCommandMessage> joint;          ///< joint control: one per time
+};
+
+/// Whether `answer` answers the request `sender` stamped `stamp` (a host that cannot tell the
+/// sender names none: then the stamp alone).
+bool answers(const CommittedMessage& answer, const Stamp& stamp, const Gid& sender) noexcept;
+
 /// The command in force as a host's `state` reports it: what a client completes a command given
 /// in part from. The wire carries whole field groups, so a sender that gives a position alone must
 /// send the orientation in force with it (or the group's default would be a jump); every client

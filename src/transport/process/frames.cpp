@@ -162,6 +162,7 @@ COMPLY_SAMPLE_FRAMES(JointCommandMessage)
 COMPLY_SAMPLE_FRAMES(CartesianChunkMessage)
 COMPLY_SAMPLE_FRAMES(JointChunkMessage)
 COMPLY_SAMPLE_FRAMES(RequestMessage)
+COMPLY_SAMPLE_FRAMES(CommittedRequestMessage)
 #undef COMPLY_SAMPLE_FRAMES
 
 }  // namespace comply::transport::process

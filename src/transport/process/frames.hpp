@@ -4,6 +4,7 @@
 // never runs a middleware's deserialiser on what the network sent: only comply's bounds-checked
 // decoder on what its own child encoded. Private to the transport.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -20,8 +21,8 @@ enum class FrameKind : std::uint8_t {
   // transport process -> host
   kReady = 1,   ///< started; payload: describe() text
   kFailed = 2,  ///< could not start; payload: why
-  // 3 to 7: a received sample (sample payload) of each of Inbox::topics(), in its order
-  // (sampleFrameKind)
+  // 3 to 7 and 11: a received sample (sample payload) of each of Inbox::topics(), in its order
+  // (kSampleFrameKinds). New kinds are appended, never renumbered.
   kCartesian = 3,
   kJoint = 4,
   kCartesianChunk = 5,
@@ -30,20 +31,24 @@ enum class FrameKind : std::uint8_t {
   kDeparted = 8,   ///< payload: u64 writer that went away
   kHeartbeat = 9,  ///< payload: u64 malformed samples so far
   kFlushed = 10,   ///< payload: u8 1 when every reader had the diagnostics in time
+  kCommittedRequest = 11,
   // host -> transport process
   kState = 20,        ///< payload: CDR
   kDiagnostics = 21,  ///< payload: CDR
   kFlush = 22,        ///< payload: f64 timeout [s]
+  kCommitted = 23,    ///< payload: CDR, the answer to a committed request
 };
 
-static_assert(std::tuple_size_v<decltype(Inbox{}.topics())> ==
-                  static_cast<int>(FrameKind::kRequest) - static_cast<int>(FrameKind::kCartesian) +
-                      1,
+/// The kind of frame that carries a sample of each of Inbox::topics(), in its order.
+inline constexpr std::array<FrameKind, 6> kSampleFrameKinds{
+    FrameKind::kCartesian,  FrameKind::kJoint,   FrameKind::kCartesianChunk,
+    FrameKind::kJointChunk, FrameKind::kRequest, FrameKind::kCommittedRequest};
+static_assert(std::tuple_size_v<decltype(Inbox{}.topics())> == kSampleFrameKinds.size(),
               "one sample frame kind per topic of the inbox");
 
 /// The kind of frame that carries a sample of topic `topic` of Inbox::topics().
 constexpr FrameKind sampleFrameKind(int topic) {
-  return static_cast<FrameKind>(static_cast<int>(FrameKind::kCartesian) + topic);
+  return kSampleFrameKinds.at(static_cast<std::size_t>(topic));
 }
 
 /// A frame larger than this is a broken peer, not a message (a 64-waypoint chunk is ~80 kB).

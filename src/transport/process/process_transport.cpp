@@ -50,6 +50,10 @@ class ProcessHostTransport final : public HostTransport {
     sendEncoded(FrameKind::kDiagnostics, diagnostics);
   }
 
+  void publish(const CommittedMessage& answer) override {
+    sendEncoded(FrameKind::kCommitted, answer);
+  }
+
   bool flush(double timeout_s) override {
     const std::lock_guard<std::mutex> lock(read_mutex_);
     child_.frames().expectFlushed();
@@ -96,6 +100,7 @@ class ProcessHostTransport final : public HostTransport {
     move_all(pending_.cartesian_chunks, inbox.cartesian_chunks);
     move_all(pending_.joint_chunks, inbox.joint_chunks);
     move_all(pending_.requests, inbox.requests);
+    move_all(pending_.committed_requests, inbox.committed_requests);
     move_all(pending_.departed, inbox.departed);
   }
 

@@ -69,7 +69,8 @@ class HostLink {
 /// What the host asked to publish, in order, for the publishing thread. The socket is always
 /// drained (serveHost never waits on DDS), so a subscriber that holds a reliable writer back
 /// cannot make the host's sends time out: the newest state replaces one not yet published, and
-/// beyond kMaxWaiting the oldest waiting diagnostics are dropped (counted, and said once).
+/// beyond kMaxWaiting the oldest waiting diagnostics (or answers) are dropped (counted, and said
+/// once).
 class Outbox {
  public:
   static constexpr std::size_t kMaxWaiting = 1000;
@@ -156,12 +157,16 @@ void serveHost(HostLink& link, Outbox& outbox) {
 void publishForHost(HostLink& link, HostTransport& transport, Outbox& outbox) {
   comply::transport::ControllerStateMessage state;
   comply::transport::DiagnosticsMessage diagnostics;
+  comply::transport::CommittedMessage answer;
   while (auto job = outbox.take()) {
     if (job->kind == FrameKind::kState && comply::transport::decodeCdr(job->payload, state)) {
       transport.publish(state);
     } else if (job->kind == FrameKind::kDiagnostics &&
                comply::transport::decodeCdr(job->payload, diagnostics)) {
       transport.publish(diagnostics);
+    } else if (job->kind == FrameKind::kCommitted &&
+               comply::transport::decodeCdr(job->payload, answer)) {
+      transport.publish(answer);
     } else if (job->kind == FrameKind::kFlush && job->payload.size() == sizeof(double)) {
       double timeout_s = 0.0;
       std::memcpy(&timeout_s, job->payload.data(), sizeof(double));
