@@ -113,18 +113,6 @@ TEST_P(LiveHostOn, AChunkWaitingForItsStartDoesNotHoldAnotherSendersCommands) {
   EXPECT_EQ(outcome.outcome, transport::Outcome::kApplied) << outcome.message;
 }
 
-/// `count` waypoints `spacing_s` apart from `start_s` on the line chunkAlongY() moves along,
-/// 0.1 m/s from `line_start_s`: a chunk that continues one from there without a jump.
-transport::CartesianChunkMessage chunkOnLine(const transport::ControllerStateMessage& state,
-                                             double line_start_s, double start_s, double spacing_s,
-                                             int count) {
-  transport::CartesianChunkMessage message = chunkAlongY(state, start_s, spacing_s, count);
-  for (auto& waypoint : message.chunk.waypoints) {
-    waypoint.command.position.y() = state.tcp_position[1] + 0.1 * (waypoint.time_s - line_start_s);
-  }
-  return message;
-}
-
 /// A chunk planned on an observation that keeps the running chunk until its waypoint 3: its
 /// outcome, applied when it took over, carries its timing record on the host's clock: the
 /// observation and takeover it asked for, the cycle it took over in, and the waypoints already

@@ -3,6 +3,7 @@
 
 #include "live_harness.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cstring>
 #include <iostream>
@@ -62,6 +63,31 @@ class DdsHarness final : public HostHarness {
   bool send(const transport::RequestMessage& /*message*/, int /*publisher*/) override {
     return false;
   }
+  std::optional<transport::CommittedMessage> committed(
+      const transport::CommittedRequestMessage& request, int publisher,
+      std::chrono::milliseconds timeout) override {
+    Writers& writers = *writers_.at(publisher);
+    const transport::Gid sender = writers.participant.gid();
+    const auto deadline = Clock::now() + timeout;
+    std::vector<transport::Sample<transport::CommittedMessage>> answers;
+    // Sent again while no answer comes: the host's writer may not have discovered this reader
+    // yet (discovery of readers and writers is not ordered), and a request is only a question.
+    while (Clock::now() < deadline) {
+      writers.committed_request.write(request);
+      const auto resend = std::min(deadline, Clock::now() + 250ms);
+      while (Clock::now() < resend) {
+        writers.committed.wait(0.05);
+        answers.clear();
+        writers.committed.take(answers);
+        for (const auto& answer : answers) {
+          if (transport::answers(answer.message, request.header.stamp, sender)) {
+            return answer.message;
+          }
+        }
+      }
+    }
+    return std::nullopt;
+  }
   void close(int publisher) override { writers_.erase(publisher); }
   std::optional<transport::ControllerStateMessage> state(
       std::chrono::milliseconds timeout) override {
@@ -89,7 +115,9 @@ class DdsHarness final : public HostHarness {
   bool open(int publisher) override {
     const auto& writers = writers_[publisher] = std::make_unique<Writers>(domain_, name_);
     return writers->cartesian.waitForMatch(1, 10.0) && writers->joint.waitForMatch(1, 10.0) &&
-           writers->chunk.waitForMatch(1, 10.0);
+           writers->chunk.waitForMatch(1, 10.0) &&
+           writers->committed_request.waitForMatch(1, 10.0) &&
+           writers->committed.waitForMatch(1, 10.0);
   }
 
  private:
@@ -98,11 +126,15 @@ class DdsHarness final : public HostHarness {
         : participant({domain, transport::Network::kLoopback}),
           cartesian(participant, name),
           joint(participant, name),
-          chunk(participant, name) {}
+          chunk(participant, name),
+          committed_request(participant, name),
+          committed(participant, name) {}
     transport::Participant participant;
     transport::Writer<transport::CartesianCommandMessage> cartesian;
     transport::Writer<transport::JointCommandMessage> joint;
     transport::Writer<transport::CartesianChunkMessage> chunk;
+    transport::Writer<transport::CommittedRequestMessage> committed_request;
+    transport::Reader<transport::CommittedMessage> committed;
   };
 
   std::string name_;
@@ -174,6 +206,21 @@ class InProcessHarness final : public HostHarness {
   bool send(const transport::RequestMessage& message, int publisher) override {
     bus_->send(message, static_cast<std::uint64_t>(publisher));
     return true;
+  }
+  std::optional<transport::CommittedMessage> committed(
+      const transport::CommittedRequestMessage& request, int publisher,
+      std::chrono::milliseconds timeout) override {
+    bus_->send(request, static_cast<std::uint64_t>(publisher));
+    std::optional<transport::CommittedMessage> found;
+    bus_->waitForCommitted(
+        std::chrono::duration<double>(timeout).count(),
+        [&](const transport::CommittedMessage& answer) {
+          if (transport::answers(answer, request.header.stamp, sender(publisher))) {
+            found = answer;
+          }
+          return found.has_value();
+        });
+    return found;
   }
   std::optional<transport::ControllerStateMessage> state(
       std::chrono::milliseconds timeout) override {

@@ -69,6 +69,11 @@ class HostHarness {
   virtual bool request(transport::RequestType request, int publisher) = 0;
   /// A request as given (its header too); false where the harness cannot send one.
   virtual bool send(const transport::RequestMessage& message, int publisher) = 0;
+  /// Asks the committed prefix from `publisher` (connected first) and waits up to `timeout` for
+  /// the answer to it: the one that names the request's stamp and the publisher as its sender.
+  virtual std::optional<transport::CommittedMessage> committed(
+      const transport::CommittedRequestMessage& request, int publisher,
+      std::chrono::milliseconds timeout) = 0;
 
   /// The newest state, waiting up to `timeout` for one.
   virtual std::optional<transport::ControllerStateMessage> state(

@@ -278,6 +278,18 @@ inline transport::CartesianChunkMessage chunkAlongY(const transport::ControllerS
   return message;
 }
 
+/// `count` waypoints `spacing_s` apart from `start_s` on the line chunkAlongY() moves along,
+/// 0.1 m/s from `line_start_s`: a chunk that continues one from there without a jump.
+inline transport::CartesianChunkMessage chunkOnLine(const transport::ControllerStateMessage& state,
+                                                    double line_start_s, double start_s,
+                                                    double spacing_s, int count) {
+  transport::CartesianChunkMessage message = chunkAlongY(state, start_s, spacing_s, count);
+  for (auto& waypoint : message.chunk.waypoints) {
+    waypoint.command.position.y() = state.tcp_position[1] + 0.1 * (waypoint.time_s - line_start_s);
+  }
+  return message;
+}
+
 /// A Cartesian command holding `state`'s TCP pose moved by `offset` [m].
 inline transport::CartesianCommandMessage poseCommand(
     const transport::ControllerStateMessage& state, const Eigen::Vector3d& offset,

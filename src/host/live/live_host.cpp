@@ -16,6 +16,7 @@
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/transport/host_transport.hpp"
+#include "live_committed.hpp"
 #include "live_intake.hpp"
 #include "live_observer.hpp"
 #include "realtime_grant.hpp"
@@ -25,14 +26,17 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+/// Takes what arrives: commands and requests into the intake, then answers the committed
+/// requests (after the commands of the same receive: an answer includes a chunk taken with it).
 template <typename Command>
 void readerThread(transport::HostTransport& transport, Intake<Command>& intake,
-                  const std::atomic<bool>& running) {
+                  CommittedAnswers<Command>& committed, const std::atomic<bool>& running) {
   transport::Inbox inbox;
   while (running.load()) {
     inbox.clear();
     transport.receive(inbox, 0.1);
     intake.take(inbox);
+    committed.answer(inbox.committed_requests, transport);
   }
 }
 
@@ -195,6 +199,7 @@ int runWith(const LiveHostOptions& options,
       {.period_s = period_s, .cycles = cycles, .warm_ahead_s = 1e-6 * options.warm_ahead_us});
   loop.setObserver(&observer);
   Intake<Command> intake(wrapper, observer, gate);
+  CommittedAnswers<Command> committed(wrapper, resolved->robot.base_frame);
   const std::unique_ptr<HostRecording> recording = openRecording(options, resolved, backend);
   if (recording != nullptr) {
     observer.setRecording(recording.get());
@@ -212,7 +217,7 @@ int runWith(const LiveHostOptions& options,
   });
   std::thread reader([&] {
     makeThreadRealtime(receivePriority(priority));  // granted: the control thread's is
-    readerThread(*transport, intake, io_running);
+    readerThread(*transport, intake, committed, io_running);
   });
   PublisherContext<Command> context{options, *resolved,  wrapper,  observer,
                                     gate,    *transport, period_s, recording.get()};
