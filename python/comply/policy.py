@@ -98,7 +98,8 @@ class PolicyRunner:
         # Client: from the chunk's send to the host's intake (DDS, the transport process).
         self.arrival_margin_s = float(arrival_margin_s)
         self._delay = inference_delay if callable(inference_delay) else (lambda: inference_delay)
-        self._simulated = hasattr(host, "committed") and hasattr(host, "reset")
+        # A Sim steps simulated time; a Client (which has committed() and reset() too) does not.
+        self._simulated = hasattr(host, "step")
         self.records = []  # one per chunk: sent, and the host's timing record once known
         self._delay_steps = 0
         self._ensemble = []  # (times, positions) of the chunks sent, for "ensemble"

@@ -118,6 +118,14 @@ void bindClient(py::module_& m) {
            "or within the next; None when none came (the host is gone or stalled: it publishes "
            "them at least once a second) or their writer is gone")
       .def("outcome", &Client::outcome, py::arg("stamp"), py::arg("timeout") = 1.0)
+      .def("committed", &Client::committed, py::arg("observation_time"), py::arg("dt"),
+           py::arg("n"), py::arg("timeout") = 1.0,
+           "The reference the arm will execute at observation_time + k*dt (k < n; the host's "
+           "clock, a state's 'stamp') if no new command arrives, from the host's own chunk "
+           "player: the dict Sim.committed() returns ('time', 'position', ..., 'known'). One "
+           "request on /<name>/committed_request, answered on /<name>/committed. ValueError when "
+           "the host refuses it (dt not > 0, n over 64: its words), TimeoutError when no answer "
+           "comes within `timeout` [s]")
       .def("wait_until", &Client::waitUntil, py::arg("predicate"), py::arg("timeout") = 10.0)
       .def(
           "activate",

@@ -72,9 +72,15 @@ Client::Link::Link(const transport::ParticipantOptions& options, const std::stri
       joint(participant, name, transport::kKeepAll),
       cartesian_chunk(participant, name, transport::kKeepAll),
       joint_chunk(participant, name, transport::kKeepAll),
+      committed_request(participant, name),
       request(participant, name),
       state(participant, name),
-      diagnostics(participant, name, 10000) {}
+      diagnostics(participant, name, 10000),
+      committed(participant, name),
+      arrivals(participant) {
+  arrivals.attach(state);
+  arrivals.attach(committed);
+}
 
 Client::Client(const std::string& name, int domain, const std::string& network, double timeout_s,
                const std::optional<std::filesystem::path>& record,

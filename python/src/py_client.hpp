@@ -15,8 +15,8 @@
 //   sending_   stamping and writing, so that stamps leave in the order they were taken
 //   reading_   the DDS readers: one thread at a time waits on and takes from them; the others
 //              wait for it to deliver (arrived_) rather than queue for the readers
-//   data_      what arrived (state, diagnostics, outcomes, the clock's round trips) and the
-//              recording (one lane: one writer at a time)
+//   data_      what arrived (state, diagnostics, outcomes, answers to committed requests, the
+//              clock's round trips) and the recording (one lane: one writer at a time)
 // The holders of sending_ and reading_ wait on DDS, so those two are taken with the GIL released;
 // no holder of data_ waits for anything, so it may be taken with the GIL held.
 //
@@ -67,6 +67,11 @@ class Client {
   [[nodiscard]] py::object clock() const;
   /// Sends `request`; its stamp [ns], which names its outcome in outcome().
   std::int64_t request(transport::RequestType request);
+  /// The reference the host's cycles will write at observation_time + k dt (k < n, the host's
+  /// clock) if no new command arrives: one request on /<name>/committed_request, its own answer
+  /// waited for up to `timeout_s` (py_client_committed.cpp). The same dict as Sim.committed().
+  /// Raises ValueError when the host refused the request (its words), TimeoutError without answer.
+  py::dict committed(double observation_time_s, double dt_s, int count, double timeout_s);
 
   /// A new state (dict of numpy arrays, with "age": seconds since it arrived), waiting up to
   /// `timeout_s` for one; None when none arrived: the host is gone or stalled.
@@ -103,9 +108,13 @@ class Client {
     transport::Writer<transport::JointCommandMessage> joint;
     transport::Writer<transport::CartesianChunkMessage> cartesian_chunk;
     transport::Writer<transport::JointChunkMessage> joint_chunk;
+    transport::Writer<transport::CommittedRequestMessage> committed_request;
     transport::Writer<transport::RequestMessage> request;
     transport::Reader<transport::ControllerStateMessage> state;
     transport::Reader<transport::DiagnosticsMessage> diagnostics;
+    transport::Reader<transport::CommittedMessage> committed;
+    /// A state or an answer to a committed request waits: what a poll waits for.
+    transport::WaitSet arrivals;
   };
   /// One round trip of a command: its delay (round trip less the host's time holding it) and the
   /// clock offset it implies [ns].
@@ -123,6 +132,8 @@ class Client {
   void pollLocked(double wait_s);
   /// Under data_: this client's outcomes among `diagnostics`, timing its own round trips.
   void takeOutcomes(transport::DiagnosticsMessage& diagnostics, std::int64_t taken_ns);
+  /// Under data_: this client's answers among `answers` (every client's), kept by stamp.
+  void takeAnswers(std::vector<transport::Sample<transport::CommittedMessage>>& answers);
   /// The round trip with the least delay among the newest, if any (under data_).
   [[nodiscard]] std::optional<ClockSample> bestClockSample() const;
   /// Raises when close() was called (under data_).
@@ -171,6 +182,8 @@ class Client {
   std::deque<std::int64_t> outcome_order_;  // oldest first, to bound outcomes_
   std::deque<ClockSample> clock_samples_;   // the newest kClockSamples
   std::deque<std::int64_t> awaiting_;       // stamps of the newest commands sent, not yet back
+  std::map<std::int64_t, transport::CommittedMessage> answers_;  // to committed(), by stamp
+  std::deque<std::int64_t> answer_order_;                        // oldest first, to bound them
   std::unique_ptr<ClientRecording> recording_;
 };
 

@@ -12,6 +12,8 @@ namespace {
 
 using SteadyClock = std::chrono::steady_clock;
 constexpr std::size_t kOutcomesKept = 100000;
+// Answers to committed requests kept for the thread that asked (one each; others' are not kept).
+constexpr std::size_t kAnswersKept = 64;
 // Round trips the clock estimate keeps: the one with the least delay of them gives the offset.
 constexpr std::size_t kClockSamples = 64;
 
@@ -71,11 +73,13 @@ void Client::pollLocked(double wait_s) {
   Link& link = this->link();
   std::vector<transport::Sample<transport::ControllerStateMessage>> states;
   std::vector<transport::Sample<transport::DiagnosticsMessage>> diagnostics;
+  std::vector<transport::Sample<transport::CommittedMessage>> answers;
   if (wait_s > 0.0) {
-    link.state.wait(wait_s);
+    link.arrivals.wait(wait_s);
   }
   link.state.take(states);
   link.diagnostics.take(diagnostics, nullptr, 100000);
+  link.committed.take(answers);
   const bool matched = link.state.matched() > 0;
   const std::int64_t taken_ns = transport::Stamp::now().nanoseconds();
   {
@@ -100,8 +104,26 @@ void Client::pollLocked(double wait_s) {
       outcomes_.erase(outcome_order_.front());
       outcome_order_.pop_front();
     }
+    takeAnswers(answers);
   }
   arrived_.notify_all();
+}
+
+void Client::takeAnswers(std::vector<transport::Sample<transport::CommittedMessage>>& answers) {
+  for (auto& sample : answers) {
+    const transport::CommittedMessage& answer = sample.message;
+    if (!sample.malformed.empty() || !transport::answers(answer, answer.request_stamp, sender_)) {
+      continue;  // another client's
+    }
+    const std::int64_t stamp = answer.request_stamp.nanoseconds();
+    if (answers_.emplace(stamp, std::move(sample.message)).second) {
+      answer_order_.push_back(stamp);
+    }
+  }
+  while (answer_order_.size() > kAnswersKept) {
+    answers_.erase(answer_order_.front());
+    answer_order_.pop_front();
+  }
 }
 
 void Client::takeOutcomes(transport::DiagnosticsMessage& diagnostics, std::int64_t taken_ns) {

@@ -79,6 +79,18 @@ py::array_t<double> array(const Container& values) {
   return array(values.data(), static_cast<std::size_t>(values.size()));
 }
 
+/// The committed reference as Sim.committed() and Client.committed() give it: toArrays() of one
+/// command per time, "time" [s] (the times, a row each) and "known" (false when a time before the
+/// running chunk could no longer be answered: those rows' position NaN).
+template <typename Command>
+py::dict committedDict(const std::vector<Command>& commands, const std::vector<double>& times_s,
+                       bool known) {
+  py::dict d = toArrays(commands);
+  d["time"] = array(times_s);
+  d["known"] = known;
+  return d;
+}
+
 /// The energy tank's account under ControllerState's names (tank_energy [J], ..., gain_fraction):
 /// the Client's state and the Sim's observation carry the same keys.
 void addPassivity(const pipeline::PassivitySnapshot& passivity, py::dict& d);

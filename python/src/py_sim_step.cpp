@@ -35,10 +35,7 @@ py::dict Sim::committed(double observation_time_s, double dt_s, int count) {
         using Command = std::remove_cvref_t<decltype(e->wrapper.lastAccepted())>;
         std::vector<Command> commands;
         const bool known = e->wrapper.predict(times, lastCycleTime(), commands);
-        py::dict d = toArrays(commands);
-        d["time"] = array(times);
-        d["known"] = known;
-        return d;
+        return committedDict(commands, times, known);
       },
       session_->episode);
 }
