@@ -13,9 +13,10 @@
 # The governance admits only authenticated participants and encrypts discovery, liveliness and
 # every topic's data, on domains 0-230 (the range DDS Security admits). An enclave may name its
 # role after '=': what its permissions let it publish and subscribe.
-#   host      publishes state and diagnostics; subscribes the command, chunk and request topics
-#   client    the reverse: commands the host and reads what it publishes
-#   monitor   reads state and diagnostics only (a dashboard, a recorder): cannot command
+#   host      publishes state, diagnostics and the committed answers; subscribes the command,
+#             chunk, request and committed_request topics
+#   client    the reverse: commands the host, asks it, and reads what it publishes
+#   monitor   reads what the host publishes only (a dashboard, a recorder): cannot command
 #   all       every topic (the default; also what a ROS 2 node of the keystore may need)
 # Keys are ECDSA P-256, certificates valid for 10 years. Needs the openssl command line.
 #
@@ -85,8 +86,8 @@ fi
 topics() {
   for topic in "$@"; do printf '<topic>rt/*/%s</topic>' "$topic"; done
 }
-commands=(cartesian_command joint_command cartesian_chunk joint_chunk request)
-published=(state diagnostics)
+commands=(cartesian_command joint_command cartesian_chunk joint_chunk request committed_request)
+published=(state diagnostics committed)
 
 for argument in "$@"; do
   enclave=${argument%%=*}

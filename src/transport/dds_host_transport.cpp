@@ -4,8 +4,10 @@
 
 #include <dds/dds.h>
 
-#include <array>
 #include <functional>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include "comply/transport/endpoints.hpp"
 #include "comply/transport/participant.hpp"
@@ -31,11 +33,10 @@ class DdsHostTransport final : public HostTransport {
         cartesian_chunks_(participant_, options.name, kCommandDepth),
         joint_chunks_(participant_, options.name, kCommandDepth),
         request_(participant_, options.name),
-        committed_request_(participant_, options.name),
         state_(participant_, options.name),
         diagnostics_(participant_, options.name),
-        committed_(participant_, options.name),
         waitset_(participant_) {
+    openCommitted();
     for (const Endpoint* reader : readers()) {
       waitset_.attach(*reader);
     }
@@ -80,25 +81,54 @@ class DdsHostTransport final : public HostTransport {
     cartesian_chunks_.take(inbox.cartesian_chunks, &inbox.departed);
     joint_chunks_.take(inbox.joint_chunks, &inbox.departed);
     request_.take(inbox.requests);
-    committed_request_.take(inbox.committed_requests);
+    if (committed_request_) {
+      committed_request_->take(inbox.committed_requests);
+    }
   }
   void wake() override { waitset_.trigger(); }
   void publish(const ControllerStateMessage& state) override { state_.write(state); }
   void publish(const DiagnosticsMessage& diagnostics) override { diagnostics_.write(diagnostics); }
-  void publish(const CommittedMessage& answer) override { committed_.write(answer); }
+  void publish(const CommittedMessage& answer) override {
+    if (committed_) {
+      committed_->write(answer);
+    }
+  }
   bool flush(double timeout_s) override { return diagnostics_.flush(timeout_s); }
   [[nodiscard]] std::string describe() const override {
     return "topics rt/" + options_.name + "/* on domain " + std::to_string(options_.domain_id) +
            " (" + options_.network +
            (options_.security.empty() ? "" : ", DDS Security as " + options_.security.string()) +
-           ")";
+           ")" + committed_refused_;
   }
   [[nodiscard]] std::uint64_t malformedSamples() const override { return malformed_log_.total(); }
 
  private:
-  [[nodiscard]] std::array<const Endpoint*, 6> readers() const {
-    return {&cartesian_,    &joint_,   &cartesian_chunks_,
-            &joint_chunks_, &request_, &committed_request_};
+  [[nodiscard]] std::vector<const Endpoint*> readers() const {
+    std::vector<const Endpoint*> all{&cartesian_, &joint_, &cartesian_chunks_, &joint_chunks_,
+                                     &request_};
+    if (committed_request_) {
+      all.push_back(committed_request_.get());
+    }
+    return all;
+  }
+
+  /// The committed topics. Under DDS Security a keystore's permissions made before they existed
+  /// refuse them: the host then runs on without answering committed requests, and says why.
+  void openCommitted() {
+    try {
+      committed_request_ =
+          std::make_unique<Reader<CommittedRequestMessage>>(participant_, options_.name);
+      committed_ = std::make_unique<Writer<CommittedMessage>>(participant_, options_.name);
+    } catch (const TransportError& error) {
+      if (options_.security.empty()) {
+        throw;
+      }
+      committed_request_.reset();
+      committed_.reset();
+      committed_refused_ = "; committed requests not answered (" + std::string(error.what()) +
+                           "): the enclave's permissions predate the committed topics, make it "
+                           "again with scripts/create-keystore.sh";
+    }
   }
 
   // First: in place before the participant sees a packet, and gone after it.
@@ -110,10 +140,11 @@ class DdsHostTransport final : public HostTransport {
   Reader<CartesianChunkMessage> cartesian_chunks_;
   Reader<JointChunkMessage> joint_chunks_;
   Reader<RequestMessage> request_;
-  Reader<CommittedRequestMessage> committed_request_;
   Writer<ControllerStateMessage> state_;
   Writer<DiagnosticsMessage> diagnostics_;
-  Writer<CommittedMessage> committed_;
+  std::unique_ptr<Reader<CommittedRequestMessage>> committed_request_;
+  std::unique_ptr<Writer<CommittedMessage>> committed_;
+  std::string committed_refused_;  ///< why there are none ("" when there are)
   WaitSet waitset_;
   std::function<void()> on_input_;
 };
