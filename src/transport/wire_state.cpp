@@ -1,5 +1,8 @@
 // ControllerState, Diagnostics, Request and CommittedRequest on the wire. The first two member by
-// member from their tables (message_tables.hpp, wire_fields.hpp), a committed request's write too.
+// member from their tables (message_tables.hpp, wire_fields.hpp), a committed request too but for
+// its header.
+
+#include <type_traits>
 
 #include "comply_msgs/msg/CommittedRequest.h"
 #include "comply_msgs/msg/ControllerState.h"
@@ -73,17 +76,20 @@ dds_return_t Wire<CommittedRequestMessage>::write(dds_entity_t writer,
   return dds_write(writer, &out);
 }
 
-/// Read as the table has it, but for the header: a frame_id over its bound refuses the request
-/// (it is answered with why) and is not copied.
+/// Every row from the table but the header, which is read as every request's: a frame_id over
+/// its bound refuses the request (it is answered with why) and is not copied.
+#define COMPLY_FROM_WIRE_BUT_HEADER(Type, member, wire, init, doc) \
+  if constexpr (!std::is_same_v<Type, Header>) {                   \
+    fromWire(in.wire, message.member);                             \
+  }
+
 template <>
 void Wire<CommittedRequestMessage>::read(const void* wire,
                                          Sample<CommittedRequestMessage>& sample) {
   const auto& in = *static_cast<const WireCommittedRequest*>(wire);
   CommittedRequestMessage& message = sample.message;
   message.header = headerFromWire(in.header, sample);
-  fromWire(in.observation, message.observation);
-  fromWire(in.dt, message.dt_s);
-  fromWire(in.count, message.count);
+  COMPLY_COMMITTED_REQUEST_FIELDS(COMPLY_FROM_WIRE_BUT_HEADER)
 }
 
 }  // namespace comply::transport::wire
