@@ -1,4 +1,5 @@
-// `comply echo`: a host's state and diagnostics as text or JSON lines.
+// `comply echo`: a host's state and diagnostics, or its answers to committed requests, as text or
+// JSON lines.
 
 #include <iomanip>
 #include <ostream>
@@ -43,9 +44,34 @@ void printDiagnostics(const transport::DiagnosticsMessage& d, bool json, std::os
   }
 }
 
+/// Every answer to a committed request, any client's, until `count` (0: until interrupted).
+int echoCommitted(const EchoOptions& options, std::ostream& out) {
+  transport::Participant participant(participantOptions(options.client));
+  transport::Reader<transport::CommittedMessage> committed(participant, options.client.name);
+  std::vector<transport::Sample<transport::CommittedMessage>> answers;
+  int printed = 0;
+  while (options.count == 0 || printed < options.count) {
+    committed.wait(0.5);
+    answers.clear();
+    committed.take(answers);
+    for (const auto& sample : answers) {
+      if (options.count == 0 || printed < options.count) {
+        out << (options.json ? toJson(sample.message).dump() : committedLine(sample.message))
+            << "\n";
+        ++printed;
+      }
+    }
+    out.flush();
+  }
+  return 0;
+}
+
 }  // namespace
 
 int echoCommand(const EchoOptions& options, std::ostream& out, std::ostream& /*err*/) {
+  if (options.topic == "committed") {
+    return echoCommitted(options, out);
+  }
   transport::Participant participant(participantOptions(options.client));
   transport::Reader<transport::ControllerStateMessage> state(participant, options.client.name);
   transport::Reader<transport::DiagnosticsMessage> diagnostics(participant, options.client.name);

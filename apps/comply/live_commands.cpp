@@ -101,11 +101,14 @@ CLI::App* addSendCommand(CLI::App& app, SendOptions* send) {
 }
 
 CLI::App* addEchoCommand(CLI::App& app, EchoOptions* echo) {
-  CLI::App* echo_command = app.add_subcommand("echo", "print a host's state or diagnostics");
+  CLI::App* echo_command =
+      app.add_subcommand("echo", "print a host's state, diagnostics or committed answers");
   addClientOptions(echo_command, echo->client);
-  echo_command->add_option("topic", echo->topic, "state, diagnostics or both")
+  echo_command
+      ->add_option("topic", echo->topic,
+                   "state, diagnostics, both, or committed (the answers to committed requests)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"state", "diagnostics", "both"}));
+      ->check(CLI::IsMember({"state", "diagnostics", "both", "committed"}));
   echo_command->add_flag("--json", echo->json, "one JSON object per line");
   echo_command->add_option("--count", echo->count, "stop after this many messages")
       ->check(CLI::NonNegativeNumber);

@@ -3,7 +3,10 @@
 #include "live_json.hpp"
 
 #include <cstdio>
+#include <iomanip>
+#include <sstream>
 
+#include "comply/schema/json.hpp"
 #include "comply/transport/message_json.hpp"
 
 namespace comply::app {
@@ -29,6 +32,65 @@ nlohmann::json toJson(const transport::DiagnosticsMessage& d) {
   }
   json["rejections"] = rejections;
   return json;
+}
+
+namespace {
+
+template <typename CommandMessage>
+nlohmann::json entriesJson(const std::vector<CommandMessage>& entries) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const CommandMessage& entry : entries) {
+    nlohmann::json object = schema::toJson(entry.command);
+    object["header"] = transport::fieldJson(entry.header);
+    list.push_back(std::move(object));
+  }
+  return list;
+}
+
+std::string stampText(const transport::Stamp& stamp) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%d.%09u", stamp.sec, stamp.nanosec);
+  return text;
+}
+
+}  // namespace
+
+nlohmann::json toJson(const transport::CommittedMessage& a) {
+  return {{"header", transport::fieldJson(a.header)},
+          {"request_stamp", transport::fieldJson(a.request_stamp)},
+          {"sender", transport::toHex(a.sender)},
+          {"command_kind", std::string(toString(a.command_kind))},
+          {"answered", a.answered},
+          {"known", a.known},
+          {"message", a.message},
+          {"cartesian", entriesJson(a.cartesian)},
+          {"joint", entriesJson(a.joint)}};
+}
+
+std::string committedLine(const transport::CommittedMessage& a) {
+  std::ostringstream line;
+  line << "committed " << stampText(a.request_stamp) << " (" << transport::toHex(a.sender) << ")";
+  if (!a.answered) {
+    line << " refused: " << a.message;
+    return line.str();
+  }
+  const auto describe = [&](const auto& entries, const auto& position) {
+    line << ": " << entries.size() << " times";
+    if (!entries.empty()) {
+      line << " from " << stampText(entries.front().header.stamp) << " to "
+           << stampText(entries.back().header.stamp) << std::fixed << std::setprecision(4)
+           << ", position " << position(entries.front()).transpose() << " to "
+           << position(entries.back()).transpose();
+    }
+  };
+  const auto position = [](const auto& entry) { return entry.command.position; };
+  if (a.command_kind == transport::WireCommandKind::kJoint) {
+    describe(a.joint, position);
+  } else {
+    describe(a.cartesian, position);
+  }
+  line << (a.known ? "" : " (not all known)");
+  return line.str();
 }
 
 std::string outcomeLine(const transport::CommandOutcomeMessage& outcome) {

@@ -32,7 +32,8 @@ struct SendOptions {
 
 struct EchoOptions {
   ClientOptions client;
-  std::string topic = "state";  ///< state | diagnostics | both
+  /// state | diagnostics | both (state and diagnostics) | committed (every client's answers)
+  std::string topic = "state";
   bool json = false;
   int count = 0;  ///< messages to print; 0: until interrupted
 };

@@ -9,6 +9,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
 #include <thread>
 #include <vector>
 
@@ -146,6 +149,50 @@ TEST_P(LiveHostOn, RefusesACommittedRequestNamingTheField) {
   ASSERT_TRUE(good);
   EXPECT_TRUE(good->answered) << good->message;
   EXPECT_EQ(good->cartesian.size(), 64U);
+}
+
+/// `comply echo committed` prints every answer on the host's committed topic until `count`:
+/// what it printed once a request from this process was answered (asked again every 100 ms
+/// while the echo's reader and the host find each other).
+std::string echoOfAnswer(ProcessHost& live, const std::string& name,
+                         const transport::CommittedRequestMessage& request, bool json) {
+  const std::string output = scratchFile(name + (json ? ".json" : ".txt"));
+  std::vector<std::string> args = {"echo",   "committed", "--domain", std::to_string(live.domain),
+                                   "--name", name,        "--count",  "1"};
+  if (json) {
+    args.emplace_back("--json");
+  }
+  Process echo(args, output);
+  transport::Writer<transport::CommittedRequestMessage> writer(live.client.participant(), name);
+  int code = -1;
+  for (int attempt = 0; attempt < 200 && code < 0; ++attempt) {
+    writer.write(request);
+    code = echo.wait(100ms);
+  }
+  EXPECT_EQ(code, 0) << "comply echo committed printed no answer";
+  std::ifstream printed(output);
+  return {std::istreambuf_iterator<char>(printed), std::istreambuf_iterator<char>()};
+}
+
+TEST(LiveHost, EchoPrintsTheAnswersToCommittedRequests) {
+  ProcessHost live("echo_committed");
+  const auto state = live.client.state(20s);
+  ASSERT_TRUE(state);
+  const transport::CommittedRequestMessage request = requestFrom(state->header.stamp, kDtS, 3);
+  const nlohmann::json answer =
+      nlohmann::json::parse(echoOfAnswer(live, "echo_committed", request, true));
+  EXPECT_EQ(answer["answered"], true) << answer.dump();
+  EXPECT_EQ(answer["request_stamp"]["sec"], request.header.stamp.sec);
+  EXPECT_EQ(answer["request_stamp"]["nanosec"], request.header.stamp.nanosec);
+  EXPECT_EQ(answer["command_kind"], "cartesian");
+  ASSERT_EQ(answer["cartesian"].size(), 3U) << answer.dump();
+  EXPECT_EQ(answer["cartesian"][2]["header"]["stamp"]["nanosec"],
+            (request.observation.nanoseconds() + 100'000'000) % 1'000'000'000);
+  EXPECT_EQ(answer["cartesian"][0]["position"].size(), 3U);
+
+  const std::string refused =
+      echoOfAnswer(live, "echo_committed", requestFrom(state->header.stamp, kDtS, 0), false);
+  EXPECT_NE(refused.find(" refused: count is 0: 1 to 64 times"), std::string::npos) << refused;
 }
 
 }  // namespace
