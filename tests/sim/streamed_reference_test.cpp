@@ -33,7 +33,9 @@ host::SimResult pressFreeMotion(double command_rate_hz) {
   host::SimRunOptions run = fr3ExampleRun("press_on_table.yaml");
   run.task.command_rate_hz = command_rate_hz;
   run.duration_s = 2.0;  // the approach, before the probe touches the table
-  run.out_dir = std::filesystem::temp_directory_path() / "comply_streamed_reference";
+  // A folder per rate: ctest may run both tests at once.
+  run.out_dir = std::filesystem::temp_directory_path() /
+                ("comply_streamed_reference_" + std::to_string(static_cast<int>(command_rate_hz)));
   run.snapshots = false;
   return host::runSimulation(run);
 }
