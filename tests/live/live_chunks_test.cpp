@@ -115,8 +115,8 @@ TEST_P(LiveHostOn, AChunkWaitingForItsStartDoesNotHoldAnotherSendersCommands) {
 
 /// A chunk planned on an observation that keeps the running chunk until its waypoint 3: its
 /// outcome, applied when it took over, carries its timing record on the host's clock: the
-/// observation and takeover it asked for, the cycle it took over in, and the waypoints already
-/// past then (3 or 4: waypoint 3 is due in that cycle).
+/// observation and takeover it asked for, when it took over (at waypoint 3's time when it arrived
+/// before it, else in the cycle it arrived in), and the waypoints already past then.
 TEST_P(LiveHostOn, AChunksOutcomeCarriesItsTakeoverTiming) {
   HostHarness& host = *host_;
   const auto state = host.startConnected("chunk_timing", 1);
@@ -169,7 +169,7 @@ TEST_P(LiveHostOn, AChunksOutcomeCarriesItsTakeoverTiming) {
   EXPECT_NEAR(transport::secondsOrNaN(timing.last_waypoint) - first_s, 9 * kSpacingS, 1e-6);
   EXPECT_GE(takeover_s, requested_s - 1e-6) << "not before the takeover it asked for";
   EXPECT_GE(timing.waypoints_past, static_cast<std::uint32_t>(kKeep));
-  // The waypoints before the takeover cycle are the ones counted past.
+  // The waypoints before its takeover are the ones counted past.
   std::uint32_t before = 0;
   std::uint32_t at_most = 0;
   for (int k = 0; k < 10; ++k) {

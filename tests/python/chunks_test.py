@@ -117,8 +117,8 @@ def check_client(cli, source):
         assert outcome["applied"], outcome
         timing = outcome["chunk"]
         assert abs(timing["requested_takeover"] - timing["first_waypoint"] - 0.1) < 1e-6, timing
-        # The first cycle at or after it (the record's times carry the cycle's scheduling
-        # jitter on the wall clock), its waypoints 0 and 1 past.
+        # At its waypoint 2's time (the record's times carry the cycle's scheduling jitter on
+        # the wall clock), its waypoints 0 and 1 past.
         assert timing["takeover"] > timing["requested_takeover"] - 0.002, timing
         assert timing["waypoints_past"] >= 2 and timing["starved"], timing
         stamp = client.send_chunk(along_y(state["tcp_position"], state["tcp_orientation"], 4,
