@@ -165,7 +165,6 @@ bool evaluate(const Track<Bus>& track, const Start<Bus>& start, double blend_tim
 }  // namespace chunk
 
 struct ChunkPlayer::Slots {
-  int kind = COMPLY_COMMAND_CARTESIAN;
   int dof = 0;
   double blend_time_s = 0.0;
   std::array<std::atomic<std::uint8_t>, kSlots> state{};

@@ -90,7 +90,6 @@ void publishView(Engine<Bus>& engine, int waiting_slot) noexcept {
 
 ChunkPlayer::ChunkPlayer(int command_kind, int dof, double blend_time_s)
     : slots_(std::make_unique<Slots>()) {
-  slots_->kind = command_kind;
   slots_->dof = dof;
   slots_->blend_time_s = std::max(0.0, blend_time_s);
   if (command_kind == COMPLY_COMMAND_CARTESIAN) {
