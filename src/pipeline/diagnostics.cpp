@@ -75,6 +75,8 @@ DiagnosticsSnapshot Diagnostics::snapshot() const {
   result.rate_limit_hits = rate_limit_hits.load();
   result.effort_limit_hits = effort_limit_hits.load();
   result.governor_hits = governor_hits.load();
+  result.wall_reference_hits = wall_reference_hits.load();
+  result.wall_brake_hits = wall_brake_hits.load();
   result.faults = faults.load();
   result.watchdog_timeouts = watchdog_timeouts.load();
   result.passivity = passivity();

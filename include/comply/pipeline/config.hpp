@@ -30,6 +30,7 @@
 #include "comply/pipeline/force_axes.hpp"
 #include "comply/pipeline/momentum_observer.hpp"
 #include "comply/pipeline/option_table.hpp"
+#include "comply/pipeline/wall_geometry.hpp"
 #include "comply/plugin/loader.hpp"
 
 namespace comply::pipeline {
@@ -90,6 +91,14 @@ struct GovernorConfig {
   COMPLY_OPTION_MEMBERS(COMPLY_GOVERNOR_OPTIONS)
 };
 
+/// Virtual walls and boxes the TCP does not pass (walls:, boxes:, wall.*; virtual_walls.hpp).
+struct WallConfig {
+  COMPLY_OPTION_MEMBERS(COMPLY_WALL_OPTIONS)
+  std::vector<WallPlane> planes;  ///< walls: point and outward unit normal, base frame [m]
+  std::vector<WallBox> boxes;     ///< boxes: min and max corners, base frame [m]
+  [[nodiscard]] bool any() const noexcept { return !planes.empty() || !boxes.empty(); }
+};
+
 /// The wrist force/torque sensor's reading as the cycle uses it (wrench_sensor.*).
 struct WrenchSensorConfig {
   COMPLY_OPTION_MEMBERS(COMPLY_WRENCH_SENSOR_OPTIONS)
@@ -142,6 +151,7 @@ struct WrapperConfig {
   PassivityConfig passivity;
   StabilityGuardConfig stability_guard;
   GovernorConfig governor;           ///< governor.*: the speeds no command drives past
+  WallConfig walls;                  ///< walls:, boxes:, wall.*: where the TCP does not go
   ObserverConfig observer;           ///< the external wrench estimate (observer.*)
   WrenchSensorConfig wrench_sensor;  ///< wrench_sensor.*
   ForceControlConfig force_control;  ///< force_control.*: force along task axes

@@ -23,10 +23,13 @@
 //   gains        ramps and the energy tank between the commanded gains and the law's (optional)
 //   force        force along the task axes a command selects, the contact-force limit
 //                (force_axes.hpp; Cartesian laws)
+//   walls        the law's reference kept inside the walls and boxes (virtual_walls.hpp;
+//                Cartesian laws; off without walls)
 //   law          plugin step, finite check                       -> FAULT on failure
 //   compensate   gravity, payload, friction, soft joint limits
 //   govern       the law's torque scaled (direction kept) so no joint passes its share of its
 //                URDF speed, nor the TCP its speeds; braking past them (motion_governor.*)
+//   barrier      a TCP approaching a wall braked through J^T (virtual_walls.*)
 //   shape        low-pass, finite check, torque-rate limit, effort limit (torque_shaper.*); a
 //                joint held at its effort limit too long         -> FAULT (stability_guard.*)
 //   write        torque out; in FAULT the controlled stop's torque instead (safe_hold.*); a
@@ -71,6 +74,7 @@
 #include "comply/pipeline/sensor_check.hpp"
 #include "comply/pipeline/stability_guard.hpp"
 #include "comply/pipeline/torque_shaper.hpp"
+#include "comply/pipeline/virtual_walls.hpp"
 #include "comply/pipeline/wrist_sensor.hpp"
 #include "comply/plugin/loader.hpp"
 
@@ -176,10 +180,14 @@ class Controller {
   [[nodiscard]] double time() const noexcept { return time_s_; }
   /// What the law reads: the command in force with the gains the gain stage let through (the
   /// command in force itself when the stage is off), and force axes turned into reference and
-  /// feedforward by the force stage. Real-time thread, or between cycles.
+  /// feedforward by the force stage, and the reference kept inside the walls (walls stage).
+  /// Real-time thread, or between cycles.
   [[nodiscard]] const CommandBus& lawBus() const noexcept {
-    return force_active_ ? force_bus_ : guardedBus();
+    return walls_active_ ? walls_bus_ : forcedBus();
   }
+  /// The walls stage (virtual_walls.hpp): the distance to the nearest wall and the barrier's
+  /// force of the last cycle.
+  [[nodiscard]] const VirtualWalls& walls() const noexcept { return walls_; }
   /// The force stage (force_axes.hpp): its loop's output and pull-back of the last cycle.
   [[nodiscard]] const ForceAxes& forceAxes() const noexcept { return force_; }
   /// The external wrench on the tool from `source`: at the TCP, base frame, force first [N, N m];
@@ -243,6 +251,11 @@ class Controller {
   [[nodiscard]] const CommandBus& guardedBus() const noexcept {
     return gains_.enabled() ? gains_.lawBus() : active_;
   }
+  [[nodiscard]] const CommandBus& forcedBus() const noexcept {
+    return force_active_ ? force_bus_ : guardedBus();
+  }
+  void limitToWalls() noexcept;  // walls.cpp
+  void brakeAtWalls() noexcept;
   bool runLaw() noexcept;      // law.cpp
   void compensate() noexcept;  // torque.cpp
   void govern() noexcept;
@@ -284,6 +297,9 @@ class Controller {
   ForceAxes force_;             // force
   CommandBus force_bus_;        //   the law's command when the force stage acts (Cartesian)
   bool force_active_ = false;   //   the force stage wrote force_bus_ this cycle
+  VirtualWalls walls_;          // walls (reference) and barrier
+  CommandBus walls_bus_;        //   the law's command when the walls stage runs (Cartesian)
+  bool walls_active_ = false;   //   the walls stage wrote walls_bus_ this cycle
   MotionGovernor governor_;     // govern
   TorqueShaper shaper_;         // shape
   SafeHold safe_hold_;          // hold (FAULT)
@@ -298,6 +314,7 @@ class Controller {
   SpscQueue<ResetResult> reset_results_{16};  // to one non-real-time reader
   bool torque_clipped_ = false;  // the last cycle's torque was rate or effort limited or governed
   bool governed_ = false;        // the governor acted this cycle
+  bool walled_ = false;          // the barrier acted this cycle
   comply_input input_{};
   comply_output law_output_{};  // the plugin's output this cycle
   JointVector torque_;

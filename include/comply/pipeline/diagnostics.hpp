@@ -35,9 +35,11 @@ struct DiagnosticsSnapshot {
   std::uint64_t cycles = 0;
   std::uint64_t commands_accepted = 0;
   std::array<std::uint64_t, kRejectionReasonCount> rejections{};
-  std::uint64_t rate_limit_hits = 0;    ///< joint-cycles clipped by the torque-rate limit
-  std::uint64_t effort_limit_hits = 0;  ///< joint-cycles clipped by the effort limit
-  std::uint64_t governor_hits = 0;      ///< cycles the motion governor acted in
+  std::uint64_t rate_limit_hits = 0;      ///< joint-cycles clipped by the torque-rate limit
+  std::uint64_t effort_limit_hits = 0;    ///< joint-cycles clipped by the effort limit
+  std::uint64_t governor_hits = 0;        ///< cycles the motion governor acted in
+  std::uint64_t wall_reference_hits = 0;  ///< cycles the walls moved the law's reference
+  std::uint64_t wall_brake_hits = 0;      ///< cycles the walls' barrier braked the TCP
   std::uint64_t faults = 0;
   std::uint64_t watchdog_timeouts = 0;
   PassivitySnapshot passivity;
@@ -72,6 +74,8 @@ class Diagnostics {
   std::atomic<std::uint64_t> rate_limit_hits{0};
   std::atomic<std::uint64_t> effort_limit_hits{0};
   std::atomic<std::uint64_t> governor_hits{0};
+  std::atomic<std::uint64_t> wall_reference_hits{0};
+  std::atomic<std::uint64_t> wall_brake_hits{0};
   std::atomic<std::uint64_t> faults{0};
   std::atomic<std::uint64_t> watchdog_timeouts{0};
   /// The gain guard's account, written by the cycle (see PassivitySnapshot).

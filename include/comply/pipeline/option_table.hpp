@@ -184,6 +184,18 @@
   NUMBER(tcp_angular_speed_rad_per_s, "governor.tcp_angular_speed_rad_per_s", 2.5, kAtLeast, 0.0, \
          20.0, "rad/s the TCP does not pass (Cartesian laws); 0: no bound")
 
+// Virtual walls and boxes (WallConfig; virtual_walls.hpp): the planes themselves are the lists
+// walls: and boxes: (read outside the table: each entry is a point and a normal, or two corners).
+// The barrier brakes a TCP that approaches a wall within brake_distance_m, passively (only while
+// it moves toward the wall); the reference is kept inside the walls whatever the gains.
+#define COMPLY_WALL_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)            \
+  NUMBER(brake_distance_m, "wall.brake_distance_m", 0.05, kAbove, 0.0, 1.0,                       \
+         "m from a wall (walls:, boxes:) where the barrier starts braking a TCP moving toward it") \
+  NUMBER(stiffness_n_per_m, "wall.stiffness_n_per_m", 2000.0, kAtLeast, 0.0, 1e5,                 \
+         "N/m x the depth into the braking zone, while the TCP approaches the wall")              \
+  NUMBER(damping_n_s_per_m, "wall.damping_n_s_per_m", 200.0, kAtLeast, 0.0, 1e4,                  \
+         "N s/m x the TCP's approach speed within the braking zone")
+
 // The external wrench estimated from the joints' momentum (ObserverConfig).
 #define COMPLY_OBSERVER_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET) \
   FLAG(enabled, "observer.enabled", false,                                                 \

@@ -39,6 +39,12 @@ struct SoftLimitParameters {
   JointVector damping;       ///< [N m s/rad]
 };
 
+/// The walls and boxes as the cycle reads them (virtual_walls.hpp): inline, no heap.
+struct WallParameters {
+  WallSet set;  ///< empty: the stage is off
+  BarrierGains gains;
+};
+
 /// Everything the cycle reads, each per-joint value sized to the controller's dof. Every member
 /// is set by resolveController() from the configuration; until then, the option table's defaults.
 struct CycleParameters {
@@ -58,6 +64,7 @@ struct CycleParameters {
   PassivityConfig passivity;
   StabilityGuardConfig stability_guard;
   GovernorConfig governor;
+  WallParameters walls;
   ObserverConfig observer;
   OutputConfig output;
   WrenchSensorConfig wrench_sensor;

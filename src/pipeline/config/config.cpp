@@ -279,6 +279,7 @@ WrapperConfig parseParameters(const YAML::Node& parameters, const std::string& s
   rejectUnknownKeys(parameters, "", report);
   readOptions(parameters, report, config);
   checkTankBounds(config, report);
+  readWalls(parameters, source, report.root(), config.walls);
   config.plugin_parameters = readPluginParameters(parameters, report);
   const YAML::Node initial = parameters["initial"];
   if (initial && !initial.IsMap()) {

@@ -66,8 +66,14 @@ std::string constraintText(const Option& option);
 WrapperConfig parseParameters(const YAML::Node& parameters, const std::string& source,
                               const std::string& controller_name);
 
-/// Keys that are read outside the table (names, plugin parameters, the initial block).
+/// The walls: and boxes: lists into `walls` (config_walls.cpp). Throws InputError naming the
+/// entry ("walls[1].normal") under `root`.
+void readWalls(const YAML::Node& parameters, const std::string& source, const std::string& root,
+               WallConfig& walls);
+
+/// Keys that are read outside the table (names, plugin parameters, the initial block, the walls).
 inline constexpr const char* kSpecialKeys[] = {
-    "plugin", "plugin_parameters", "robot", "joints", "base_frame", "tip_frame", "initial"};
+    "plugin",    "plugin_parameters", "robot", "joints", "base_frame",
+    "tip_frame", "initial",           "walls", "boxes"};
 
 }  // namespace comply::pipeline::options

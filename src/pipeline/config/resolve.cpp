@@ -128,6 +128,10 @@ void compileParameters(ResolvedController& resolved) {
   parameters.passivity = config.passivity;
   parameters.stability_guard = config.stability_guard;
   parameters.governor = config.governor;
+  (void)compileWalls(config.walls.planes, config.walls.boxes, parameters.walls.set);  // parse: fits
+  parameters.walls.gains =
+      BarrierGains{config.walls.brake_distance_m, config.walls.stiffness_n_per_m,
+                   config.walls.damping_n_s_per_m};
   parameters.observer = config.observer;
   parameters.velocity_limit.resize(dof);
   for (int i = 0; i < dof; ++i) {
@@ -239,6 +243,12 @@ void checkConsistency(const ResolvedController& resolved) {
                      std::to_string(governor.velocity_fraction) +
                          " is not below stability_guard.velocity_factor (" +
                          std::to_string(guard.velocity_factor) + ")");
+  }
+  // Walls bound the TCP's reference, which only a Cartesian law has.
+  if (config.walls.any() && !resolved.cartesian()) {
+    throw InputError(
+        InputErrc::kInconsistent, config.name, "walls",
+        "need a Cartesian law (the plugin " + config.plugin + " takes joint commands)");
   }
 }
 

@@ -40,6 +40,8 @@ Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
       sensor_check_(*resolved_),
       gains_(parameters_.gain_ramps, parameters_.passivity),
       force_bus_(emptyBus(resolved_->command_kind)),
+      walls_(parameters_, resolved_->cartesian()),
+      walls_bus_(emptyBus(resolved_->command_kind)),
       governor_(*resolved_, resolved_->cartesian()),
       shaper_(ShapingLimits{parameters_.filter_alpha, parameters_.torque_rate_limit,
                             parameters_.effort_limit}),
@@ -147,6 +149,8 @@ void Controller::resetStages() noexcept {
   gains_.reset(active_, data_, state_, diagnostics_);
   force_.reset();
   force_active_ = false;
+  walls_.reset();
+  walls_active_ = false;
   safe_hold_.reset();
   shaper_.reset(torque_);
   output_stage_.reset(state_);

@@ -53,11 +53,13 @@ CycleStatus Controller::update(const JointState& state, double period_s,
   }
   guardGains();     // gains.cpp
   applyForce();     // force.cpp
+  limitToWalls();   // walls.cpp
   if (!runLaw()) {  // law.cpp
     return hold(torque);
   }
   compensate();                          // torque.cpp
   govern();                              // torque.cpp
+  brakeAtWalls();                        // walls.cpp
   if (!shape() || !guardSaturation()) {  // torque.cpp; guard.cpp
     return hold(torque);
   }

@@ -72,7 +72,7 @@ bool Controller::shape() noexcept {
   diagnostics_.rate_limit_hits.fetch_add(shaped.rate_limited, std::memory_order_relaxed);
   diagnostics_.effort_limit_hits.fetch_add(shaped.effort_limited, std::memory_order_relaxed);
   // The energy tank learns from the torque that acted: not the law's when clipped or governed.
-  torque_clipped_ = shaped.rate_limited + shaped.effort_limited > 0 || governed_;
+  torque_clipped_ = shaped.rate_limited + shaped.effort_limited > 0 || governed_ || walled_;
   return true;
 }
 
@@ -85,6 +85,7 @@ CycleStatus Controller::write(std::span<double> torque) noexcept {
 
 CycleStatus Controller::hold(std::span<double> torque) noexcept {
   force_active_ = false;  // no law runs: what it would read is the command in force
+  walls_active_ = false;
   // The state is the last usable one when this cycle's was not.
   // A stale velocity (a frozen stream, or this cycle's state unusable: state_ is the last usable
   // one) would brake against a motion the arm may no longer have.

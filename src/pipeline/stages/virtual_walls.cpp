@@ -1,0 +1,73 @@
+#include "comply/pipeline/virtual_walls.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "comply/pipeline/wrench_bound.hpp"
+
+namespace comply::pipeline {
+namespace {
+
+// A reference this close to a wall is on it: its motion out through the wall is removed. The
+// projection puts it on the wall up to rounding; a hair more keeps a reference that arrives
+// exactly there from creeping through by one cycle's step.
+constexpr double kOnWallTolerance_m = 1e-9;
+
+Eigen::Map<Eigen::Vector3d> vector3(double* values) noexcept {
+  return Eigen::Map<Eigen::Vector3d>(values);
+}
+
+}  // namespace
+
+VirtualWalls::VirtualWalls(const CycleParameters& parameters, bool cartesian)
+    : parameters_(parameters), enabled_(cartesian && !parameters.walls.set.empty()) {
+  reset();
+}
+
+void VirtualWalls::reset() noexcept {
+  distance_m_ = std::numeric_limits<double>::infinity();
+  force_n_.setZero();
+}
+
+bool VirtualWalls::limitReference(const comply_cartesian_command& in,
+                                  const Eigen::Vector3d& tcp_position,
+                                  comply_cartesian_command& out) noexcept {
+  out = in;
+  const WallSet& set = parameters_.walls.set;
+  Eigen::Vector3d position(in.position[0], in.position[1], in.position[2]);
+  bool changed = projectInside(set, position);
+  vector3(out.position) = position;
+  Eigen::Vector3d velocity = vector3(out.twist);
+  Eigen::Vector3d acceleration = vector3(out.acceleration);
+  changed = removeOutward(set, position, kOnWallTolerance_m, velocity) || changed;
+  changed = removeOutward(set, position, kOnWallTolerance_m, acceleration) || changed;
+  vector3(out.twist) = velocity;
+  vector3(out.acceleration) = acceleration;
+  // A feedforward force pushes whatever the reference: near a wall, none of it outward.
+  Eigen::Vector3d push = vector3(out.wrench_feedforward);
+  changed =
+      removeOutward(set, tcp_position, parameters_.walls.gains.brake_distance_m, push) || changed;
+  vector3(out.wrench_feedforward) = push;
+  return changed;
+}
+
+bool VirtualWalls::brake(const model::Data& data, const Vector6d& tcp_twist, int dof,
+                         JointVector& torque) noexcept {
+  const WallSet& set = parameters_.walls.set;
+  distance_m_ = nearestWallDistance(set, data.tip_position);
+  force_n_ = barrierForce(set, parameters_.walls.gains, data.tip_position, tcp_twist.head<3>());
+  if (force_n_.isZero(0.0) || !force_n_.allFinite()) {
+    force_n_.setZero();
+    return false;
+  }
+  Vector6d wrench = Vector6d::Zero();
+  wrench.head<3>() = force_n_;
+  // Within what the joints give at this pose, its direction kept (the shaper's effort limit
+  // would turn it).
+  (void)boundWrench(data.jacobian, wrench.data(), parameters_.effort_limit, dof);
+  force_n_ = wrench.head<3>();
+  torque.head(dof).noalias() += data.jacobian.leftCols(dof).transpose() * wrench;
+  return true;
+}
+
+}  // namespace comply::pipeline

@@ -1,0 +1,93 @@
+#include "comply/pipeline/wall_geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace comply::pipeline {
+namespace {
+
+// Sweeps of projectInside(): one suffices for walls at right angles (a box); walls at an acute
+// angle converge geometrically, and what is left after these is far below a millimetre.
+constexpr int kProjectionSweeps = 16;
+
+}  // namespace
+
+bool compileWalls(const std::vector<WallPlane>& walls, const std::vector<WallBox>& boxes,
+                  WallSet& set) {
+  set = WallSet{};
+  if (walls.size() + 6 * boxes.size() > static_cast<std::size_t>(kMaxWallPlanes)) {
+    return false;
+  }
+  for (const WallPlane& wall : walls) {
+    set.planes[set.count++] = wall;
+  }
+  for (const WallBox& box : boxes) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const Eigen::Vector3d unit = Eigen::Vector3d::Unit(axis);
+      set.planes[set.count++] = WallPlane{box.max, unit};
+      set.planes[set.count++] = WallPlane{box.min, -unit};
+    }
+  }
+  return true;
+}
+
+double nearestWallDistance(const WallSet& set, const Eigen::Vector3d& p) noexcept {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < set.count; ++i) {
+    nearest = std::min(nearest, -signedDistance(set.planes[i], p));
+  }
+  return nearest;
+}
+
+bool projectInside(const WallSet& set, Eigen::Vector3d& p) noexcept {
+  bool moved = false;
+  for (int sweep = 0; sweep < kProjectionSweeps; ++sweep) {
+    bool outside = false;
+    for (int i = 0; i < set.count; ++i) {
+      const double distance = signedDistance(set.planes[i], p);
+      if (distance > 0.0) {
+        p -= distance * set.planes[i].normal;
+        outside = true;
+      }
+    }
+    if (!outside) {
+      break;
+    }
+    moved = true;
+  }
+  return moved;
+}
+
+bool removeOutward(const WallSet& set, const Eigen::Vector3d& p, double tolerance_m,
+                   Eigen::Vector3d& v) noexcept {
+  bool changed = false;
+  for (int i = 0; i < set.count; ++i) {
+    const WallPlane& plane = set.planes[i];
+    const double outward = plane.normal.dot(v);
+    if (outward > 0.0 && signedDistance(plane, p) >= -tolerance_m) {
+      v -= outward * plane.normal;
+      changed = true;
+    }
+  }
+  return changed;
+}
+
+Eigen::Vector3d barrierForce(const WallSet& set, const BarrierGains& gains,
+                             const Eigen::Vector3d& p, const Eigen::Vector3d& v) noexcept {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  for (int i = 0; i < set.count; ++i) {
+    const WallPlane& plane = set.planes[i];
+    const double approach = plane.normal.dot(v);
+    const double depth = gains.brake_distance_m + signedDistance(plane, p);
+    if (!(approach > 0.0) || !(depth > 0.0)) {
+      continue;
+    }
+    const double engaged = std::min(approach / kBarrierEngageSpeed, 1.0);
+    force -= (gains.stiffness_n_per_m * depth * engaged + gains.damping_n_s_per_m * approach) *
+             plane.normal;
+  }
+  return force;
+}
+
+}  // namespace comply::pipeline
