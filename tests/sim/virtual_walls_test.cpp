@@ -1,0 +1,96 @@
+// Virtual walls on the simulated FR3 (virtual_walls.hpp): a reference streamed toward a wall at
+// 0.5 m/s, and one leaving a box, do not carry the TCP through. Each run has its control: the
+// same reference without the walls goes well past where the wall was.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <string>
+
+#include "governed_arm.hpp"
+#include "sim_support.hpp"
+
+namespace comply::testing {
+namespace {
+
+/// Streams a reference from the start TCP along `direction` at `speed_m_per_s` until it is
+/// `travel_m` out, then holds it, for `cycles`; returns the TCP's largest excursion along
+/// `direction` past `limit_m` from the start (negative: it stayed short) and the TCP's speed
+/// along it when it came within 50 mm of the limit.
+struct Excursion {
+  double past_m = -1.0;
+  double arrival_speed_m_per_s = 0.0;
+};
+
+Excursion stream(const pipeline::WrapperConfig& config, const Eigen::Vector3d& direction,
+                 double speed_m_per_s, double travel_m, double limit_m, int cycles = 2000) {
+  Arm<> arm(config);
+  const double period = arm.plant.controlPeriod();
+  Excursion result;
+  result.past_m = -limit_m;
+  for (int cycle = 0; cycle < cycles; ++cycle) {
+    const double along = std::min(speed_m_per_s * cycle * period, travel_m);
+    CartesianCommand command = CartesianCommand::zero(arm.wrapper.dof());
+    command.stamp_s = 1.0 + cycle * period;
+    command.fields = CommandField::kPosition | CommandField::kVelocity | CommandField::kStiffness;
+    command.position = arm.start_tcp + along * direction;
+    command.orientation = arm.wrapper.controller().modelData().tip_orientation;
+    if (along < travel_m) {
+      command.twist.head<3>() = speed_m_per_s * direction;
+    }
+    command.stiffness_translational = 2000.0 * Eigen::Matrix3d::Identity();
+    command.stiffness_rotational = 100.0 * Eigen::Matrix3d::Identity();
+    if (cycle == 0) {
+      command.orientation = arm.wrapper.measuredPose().tcp_orientation;
+    }
+    EXPECT_TRUE(arm.wrapper.submit(command).accepted) << cycle;
+    const double before = (arm.tcp() - arm.start_tcp).dot(direction);
+    arm.cycle();
+    const double now = (arm.tcp() - arm.start_tcp).dot(direction);
+    if (before < limit_m - 0.05 && now >= limit_m - 0.05) {
+      result.arrival_speed_m_per_s = (now - before) / period;
+    }
+    result.past_m = std::max(result.past_m, now - limit_m);
+  }
+  EXPECT_FALSE(arm.faulted()) << arm.wrapper.diagnostics().last_fault;
+  return result;
+}
+
+TEST(VirtualWalls, ATcpDrivenAtAWallAtHalfAMetrePerSecondStopsWithinFiveMillimetres) {
+  const Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
+  pipeline::WrapperConfig config = simCartesianConfig("fr3");
+  // Control: without the wall, the reference carries the TCP 7 cm past where the wall will be.
+  const Excursion free_run = stream(config, direction, 0.5, 0.17, 0.10);
+  EXPECT_GT(free_run.past_m, 0.05);
+  EXPECT_GE(free_run.arrival_speed_m_per_s, 0.4);
+  Arm<> probe(config);
+  config.walls.planes.push_back(pipeline::WallPlane{probe.start_tcp + 0.10 * direction, direction});
+  const Excursion walled = stream(config, direction, 0.5, 0.17, 0.10);
+  EXPECT_GE(walled.arrival_speed_m_per_s, 0.4) << "the TCP did not arrive at speed";
+  EXPECT_LE(walled.past_m, 0.005);
+  RecordProperty("penetration_mm", std::to_string(1e3 * walled.past_m));
+  RecordProperty("arrival_speed_m_per_s", std::to_string(walled.arrival_speed_m_per_s));
+  std::cout << "wall: arrival " << walled.arrival_speed_m_per_s << " m/s, past the wall "
+            << 1e3 * walled.past_m << " mm (free run " << 1e3 * free_run.past_m << " mm)\n";
+}
+
+TEST(VirtualWalls, ABoxKeepsTheTcpInsideUnderAReferenceThatLeavesIt) {
+  pipeline::WrapperConfig config = simCartesianConfig("fr3");
+  const Eigen::Vector3d direction = Eigen::Vector3d(0.0, -1.0, 1.0).normalized();
+  // Leaving through the box's -y and +z faces, 6 cm from the start along each.
+  const double face_m = 0.06 * std::sqrt(2.0);
+  const Excursion free_run = stream(config, direction, 0.3, 0.15, face_m);
+  EXPECT_GT(free_run.past_m, 0.03);
+  Arm<> probe(config);
+  const Eigen::Vector3d half(0.1, 0.06, 0.06);
+  config.walls.boxes.push_back(pipeline::WallBox{probe.start_tcp - half, probe.start_tcp + half});
+  const Excursion boxed = stream(config, direction, 0.3, 0.15, face_m);
+  EXPECT_LE(boxed.past_m, 0.005 * std::sqrt(2.0));
+  std::cout << "box: past the faces " << 1e3 * boxed.past_m / std::sqrt(2.0)
+            << " mm each (free run " << 1e3 * free_run.past_m / std::sqrt(2.0) << " mm)\n";
+}
+
+}  // namespace
+}  // namespace comply::testing
