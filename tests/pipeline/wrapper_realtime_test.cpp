@@ -148,9 +148,18 @@ const std::string kGuardedLines =
     "observer:\n  enabled: true\nforce_control:\n  contact_force_limit_n: [0.0, 2.0, 0.0]\n"
     "  contact_torque_limit_n_m: [0.0, 0.0, 0.2]\n";
 
+/// Walls across the FR3's home TCP (x 0.307, z 0.487 m: the replayed arm moves a few cm around
+/// it), so that the reference is projected and the barrier brakes in the counted cycles.
+const std::string kWallLines =
+    "walls:\n  - {point: [0.3, 0.0, 0.0], normal: [1.0, 0.0, 0.0]}\n"
+    "boxes:\n  - {min: [-1.0, -1.0, 0.49], max: [1.0, 1.0, 1.5]}\n";
+
 /// The lines of a realtime run: "hold" and "reanchor" as realtimeLines(); "hold+gains" holds
 /// with every guard on (kGuardedLines).
 std::string realtimeConfigLines(const std::string& behavior) {
+  if (behavior == "hold+walls") {
+    return realtimeLines("hold") + kWallLines;
+  }
   return behavior == "hold+gains" ? realtimeLines("hold") + kGuardedLines : realtimeLines(behavior);
 }
 
@@ -249,6 +258,11 @@ TEST(WrapperRealtime, JointUpdateNeitherAllocatesNorLocks) {
       command.damping.setConstant(10.0);
       return command;
     });
+    if (behavior == "hold+walls") {
+      // The walls stage ran in the counted cycles: reference projected, barrier braking.
+      EXPECT_GT(wrapper.diagnostics().wall_reference_hits, 0U);
+      EXPECT_GT(wrapper.diagnostics().wall_brake_hits, 0U);
+    }
     if (guarded) {
       expectTheGuardWorked(wrapper.diagnostics());
       // The observer ran in the counted cycles (the replayed state moves with no torque behind
@@ -261,7 +275,7 @@ TEST(WrapperRealtime, JointUpdateNeitherAllocatesNorLocks) {
 }
 
 TEST(WrapperRealtime, CartesianUpdateNeitherAllocatesNorLocks) {
-  for (const std::string behavior : {"hold", "reanchor", "hold+gains"}) {
+  for (const std::string behavior : {"hold", "reanchor", "hold+gains", "hold+walls"}) {
     SCOPED_TRACE(behavior);
     const bool guarded = behavior == "hold+gains";
     CartesianWrapper wrapper(fr3Config(kCartesianImpedancePlugin, realtimeConfigLines(behavior)));
@@ -304,6 +318,11 @@ TEST(WrapperRealtime, CartesianUpdateNeitherAllocatesNorLocks) {
           return command;
         },
         look);
+    if (behavior == "hold+walls") {
+      // The walls stage ran in the counted cycles: reference projected, barrier braking.
+      EXPECT_GT(wrapper.diagnostics().wall_reference_hits, 0U);
+      EXPECT_GT(wrapper.diagnostics().wall_brake_hits, 0U);
+    }
     if (guarded) {
       expectTheGuardWorked(wrapper.diagnostics());
       // The force stage ran in the counted cycles.

@@ -63,6 +63,15 @@ pipeline::WrapperConfig variantConfig(const std::string& robot, const std::strin
     config.force_control.contact_force_limit_n = Eigen::Vector3d(30.0, 30.0, 0.0);
   }
   config.output.mode = variant.output;
+  if (variant.walls) {
+    // Around every robot's reach, so the law's cycle is the plain one: the cost is the stage's
+    // (a reference checked against ten planes, the barrier's distances), not a different motion.
+    config.walls.planes = {{{1.2, 0.0, 0.0}, {1.0, 0.0, 0.0}},
+                           {{0.0, 0.9, 0.0}, {0.0, 1.0, 0.0}},
+                           {{0.0, -0.9, 0.0}, {0.0, -1.0, 0.0}},
+                           {{0.0, 0.0, 1.4}, {0.0, 0.0, 1.0}}};
+    config.walls.boxes = {{{-1.5, -1.5, -0.5}, {1.5, 1.5, 1.5}}};
+  }
   if (variant.gain_stage) {
     // Ramps and tank on, the tank far from full so that it refills (and, with ratios, bounds the
     // damping from the mass matrix) every window: the stage's dearest steady state.

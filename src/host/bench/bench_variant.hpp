@@ -16,6 +16,7 @@ struct Variant {
   bool observer = false;    ///< the momentum observer
   bool chunked = false;     ///< a timed chunk plays through every cycle
   bool force = false;       ///< a force axis and contact-force limits (with the observer)
+  bool walls = false;       ///< four walls and a box around the workspace (virtual_walls.hpp)
   OutputMode output = OutputMode::kTorque;  ///< what the drives take (output.mode)
 };
 

@@ -120,6 +120,9 @@ std::vector<BenchRow> runBench(const BenchOptions& options, std::ostream& log) {
   // (the force stage: the command in the task frame, the PI, the pull-back).
   add(benchWrapper<CartesianCommand>(options, "cartesian_force", "cartesian_impedance", robot.home,
                                      log, {.force = true}));
+  // The ratio cycle with walls and a box configured (the reference kept inside, the barrier).
+  add(benchWrapper<CartesianCommand>(options, "cartesian_walls", "cartesian_impedance", robot.home,
+                                     log, {.walls = true}));
   // The ratio cycle with a timed chunk playing: its curve, gains and task frame every cycle.
   add(benchWrapper<CartesianCommand>(options, "cartesian_chunk", "cartesian_impedance", robot.home,
                                      log, {.chunked = true}));
