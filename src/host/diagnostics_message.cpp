@@ -57,6 +57,8 @@ transport::DiagnosticsMessage diagnosticsMessage(
   message.rate_limit_hits = wrapper.rate_limit_hits;
   message.effort_limit_hits = wrapper.effort_limit_hits;
   message.governor_hits = wrapper.governor_hits;
+  message.wall_reference_hits = wrapper.wall_reference_hits;
+  message.wall_brake_hits = wrapper.wall_brake_hits;
   message.histogram_bin_s = LoopCounters::kBinSeconds;
   message.compute_time_histogram = binsOf(loop.compute);
   message.start_lateness_histogram = binsOf(loop.lateness);

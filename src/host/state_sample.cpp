@@ -63,6 +63,11 @@ transport::ControllerStateMessage stateMessage(const StateSample& sample,
     message.reference_joint_position = vectorOf(sample.reference_joint_position);
   }
   setPassivity(sample.passivity, message);
+  message.walls = sample.walls;
+  message.wall_distance_m = sample.wall_distance_m;
+  for (int i = 0; i < 3; ++i) {
+    message.wall_force[i] = sample.wall_force[i];
+  }
   return message;
 }
 
@@ -160,6 +165,11 @@ void StateSampler<Command>::fill(const hardware::CycleRecord& record, const Join
   const pipeline::Diagnostics& diagnostics = controller.diagnostics();
   s.state = diagnostics.state.load(std::memory_order_relaxed);
   s.passivity = diagnostics.passivity();  // atomics only: no allocation on this thread
+  // The walls' distance is the last cycle's (infinite before one ran): 0 then, as without walls.
+  s.walls = controller.walls().enabled();
+  const double wall_distance = controller.walls().distance();
+  s.wall_distance_m = s.walls && std::isfinite(wall_distance) ? wall_distance : 0.0;
+  s.wall_force = controller.walls().force();
   s.joints = measured;
   s.torque.setZero(dof);
   for (std::size_t i = 0; i < record.torque.size(); ++i) {

@@ -327,6 +327,26 @@ TEST(LiveState, CarriesTheTanksAccount) {
   EXPECT_EQ(message.energy_dissipated_j, 2.125);
   EXPECT_EQ(message.energy_refused_j, 0.0625);
   EXPECT_EQ(message.gain_fraction, 0.4);
+  EXPECT_FALSE(message.walls);
+}
+
+TEST(LiveState, CarriesTheWallsDistanceAndBarrierForce) {
+  const auto resolved = pipeline::resolveController(host::simControllerConfig(
+      "fr3", "",
+      (std::filesystem::path(COMPLY_SOURCE_DIR) / "config" / "sim" / "cartesian_impedance.yaml")
+          .string()));
+  host::StateSample sample;
+  sample.joints = JointState::zero(resolved->dof);
+  sample.torque.setZero(resolved->dof);
+  sample.walls = true;
+  sample.wall_distance_m = -0.0025;
+  sample.wall_force = Eigen::Vector3d(-12.5, 0.5, 3.0);
+  const transport::ControllerStateMessage message = host::stateMessage(sample, *resolved);
+  EXPECT_TRUE(message.walls);
+  EXPECT_EQ(message.wall_distance_m, -0.0025);
+  EXPECT_EQ(message.wall_force[0], -12.5);
+  EXPECT_EQ(message.wall_force[1], 0.5);
+  EXPECT_EQ(message.wall_force[2], 3.0);
 }
 
 // The state's frame is the model's: a controller file may name a base other than robot.yaml's

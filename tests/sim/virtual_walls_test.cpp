@@ -22,6 +22,8 @@ namespace {
 struct Excursion {
   double past_m = -1.0;
   double arrival_speed_m_per_s = 0.0;
+  double nearest_wall_m = 1e9;  ///< the walls stage's own distance, least over the run
+  Eigen::Vector3d largest_force = Eigen::Vector3d::Zero();  ///< the barrier's, largest norm
 };
 
 Excursion stream(const pipeline::WrapperConfig& config, const Eigen::Vector3d& direction,
@@ -53,6 +55,13 @@ Excursion stream(const pipeline::WrapperConfig& config, const Eigen::Vector3d& d
       result.arrival_speed_m_per_s = (now - before) / period;
     }
     result.past_m = std::max(result.past_m, now - limit_m);
+    const pipeline::VirtualWalls& walls = arm.wrapper.controller().walls();
+    if (walls.enabled()) {
+      result.nearest_wall_m = std::min(result.nearest_wall_m, walls.distance());
+      if (walls.force().norm() > result.largest_force.norm()) {
+        result.largest_force = walls.force();
+      }
+    }
   }
   EXPECT_FALSE(arm.faulted()) << arm.wrapper.diagnostics().last_fault;
   return result;
@@ -70,6 +79,12 @@ TEST(VirtualWalls, ATcpDrivenAtAWallAtHalfAMetrePerSecondStopsWithinFiveMillimet
   const Excursion walled = stream(config, direction, 0.5, 0.17, 0.10);
   EXPECT_GE(walled.arrival_speed_m_per_s, 0.4) << "the TCP did not arrive at speed";
   EXPECT_LE(walled.past_m, 0.005);
+  // The stage's distance is the TCP's from the wall (one cycle apart), and the barrier pushed
+  // straight back along -x.
+  EXPECT_NEAR(walled.nearest_wall_m, -walled.past_m, 1e-3);
+  EXPECT_LT(walled.largest_force.x(), -10.0);
+  EXPECT_EQ(walled.largest_force.y(), 0.0);
+  EXPECT_EQ(walled.largest_force.z(), 0.0);
   RecordProperty("penetration_mm", std::to_string(1e3 * walled.past_m));
   RecordProperty("arrival_speed_m_per_s", std::to_string(walled.arrival_speed_m_per_s));
   std::cout << "wall: arrival " << walled.arrival_speed_m_per_s << " m/s, past the wall "

@@ -31,7 +31,10 @@ struct StateSample {
   /// [Hz] the estimate's first-order bandwidth (observer K_O / 2 pi, sensor filter_hz); 0: raw.
   double contact_wrench_bandwidth_hz = 0.0;
   pipeline::PassivitySnapshot passivity;  ///< the energy tank's account after the cycle
-  pipeline::CommandId reference;          ///< the command in force: its number and exact stamp
+  bool walls = false;                     ///< walls or boxes configured (virtual_walls.hpp)
+  double wall_distance_m = 0.0;           ///< measured TCP to the nearest wall; < 0 past one
+  Eigen::Vector3d wall_force = Eigen::Vector3d::Zero();  ///< the barrier's [N], base frame
+  pipeline::CommandId reference;  ///< the command in force: its number and exact stamp
   std::uint32_t reference_fields = 0;
   Eigen::Vector3d reference_position = Eigen::Vector3d::Zero();
   Eigen::Quaterniond reference_orientation = Eigen::Quaterniond::Identity();

@@ -74,7 +74,14 @@
   X(double, energy_refused_j, energy_refused, 0.0, \
     "[J] what the change the tanks held back this cycle would have injected") \
   X(double, gain_fraction, gain_fraction, 1.0, \
-    "[-] fraction of the commanded stiffness change in force (1: all of it)")
+    "[-] fraction of the commanded stiffness change in force (1: all of it)") \
+  X(bool, walls, walls, false, \
+    "walls or boxes are configured (controller options walls:, boxes:); while none, the two " \
+    "fields below are 0") \
+  X(double, wall_distance_m, wall_distance, 0.0, \
+    "[m] from the measured TCP to the nearest wall or box face; negative past one") \
+  X(Vector3, wall_force, wall_force, {}, \
+    "[N] the walls' barrier force on the TCP this cycle, base frame (0: not braking)")
 
 #define COMPLY_COMMAND_OUTCOME_FIELDS(X) \
   X(Stamp, stamp, stamp, {}, "the command's header.stamp: with the sender, what identifies it") \
@@ -166,6 +173,10 @@
     "[-] joint-cycles clipped by the effort limit") \
   X(std::uint64_t, governor_hits, governor_hits, 0, \
     "[-] cycles the motion governor scaled the law's torque or braked a joint or the TCP") \
+  X(std::uint64_t, wall_reference_hits, wall_reference_hits, 0, \
+    "[-] cycles the walls moved the law's reference back inside them") \
+  X(std::uint64_t, wall_brake_hits, wall_brake_hits, 0, \
+    "[-] cycles the walls' barrier braked the TCP approaching a wall") \
   X(double, histogram_bin_s, histogram_bin, 0.0, "[s] width of one bin of the two histograms") \
   X(Counts, compute_time_histogram, compute_time_histogram, {}, \
     "[-] cycles per bin of compute time; last bin: all above") \
