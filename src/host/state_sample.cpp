@@ -27,6 +27,14 @@ void setPassivity(const pipeline::PassivitySnapshot& passivity,
   message.gain_fraction = passivity.gain_fraction;
 }
 
+/// The walls' distance and force of the last cycle (infinite before one ran: 0 then, as without
+/// walls).
+void setWalls(const pipeline::VirtualWalls& walls, StateSample& s) noexcept {
+  s.walls = walls.enabled();
+  s.wall_distance_m = s.walls && std::isfinite(walls.distance()) ? walls.distance() : 0.0;
+  s.wall_force = walls.force();
+}
+
 }  // namespace
 
 transport::ControllerStateMessage stateMessage(const StateSample& sample,
@@ -165,11 +173,7 @@ void StateSampler<Command>::fill(const hardware::CycleRecord& record, const Join
   const pipeline::Diagnostics& diagnostics = controller.diagnostics();
   s.state = diagnostics.state.load(std::memory_order_relaxed);
   s.passivity = diagnostics.passivity();  // atomics only: no allocation on this thread
-  // The walls' distance is the last cycle's (infinite before one ran): 0 then, as without walls.
-  s.walls = controller.walls().enabled();
-  const double wall_distance = controller.walls().distance();
-  s.wall_distance_m = s.walls && std::isfinite(wall_distance) ? wall_distance : 0.0;
-  s.wall_force = controller.walls().force();
+  setWalls(controller.walls(), s);
   s.joints = measured;
   s.torque.setZero(dof);
   for (std::size_t i = 0; i < record.torque.size(); ++i) {
