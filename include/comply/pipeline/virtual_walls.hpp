@@ -55,6 +55,10 @@ class VirtualWalls {
   bool brake(const model::Data& data, const Vector6d& tcp_twist, int dof,
              JointVector& torque) noexcept;
 
+  /// A cycle without the barrier (FAULT's hold): the distance from the TCP at `tcp_position`,
+  /// measured this cycle, and no force, so the state never shows a stale barrier.
+  void observe(const Eigen::Vector3d& tcp_position) noexcept;
+
   /// The last cycle's distance from the measured TCP to the nearest wall [m] (negative past one)
   /// and the barrier's force [N, base frame].
   [[nodiscard]] double distance() const noexcept { return distance_m_; }

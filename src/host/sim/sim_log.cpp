@@ -205,6 +205,8 @@ void printSummary(const SimSummary& summary, std::ostream& out) {
       << "  rate-limit hits       " << summary.rate_limit_hits << " joint-cycles\n"
       << "  effort-limit hits     " << summary.effort_limit_hits << " joint-cycles\n"
       << "  governor hits         " << summary.governor_hits << " cycles\n"
+      << "  wall hits             " << summary.wall_reference_hits << " cycles reference, "
+      << summary.wall_brake_hits << " cycles braked\n"
       << "  commands              " << summary.commands_sent << " sent, " << summary.rejections
       << " rejected\n"
       << "  faults                " << summary.faults << "\n"

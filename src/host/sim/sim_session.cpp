@@ -270,6 +270,8 @@ void summarizeDiagnostics(const pipeline::DiagnosticsSnapshot& diagnostics, SimS
   summary.rate_limit_hits = diagnostics.rate_limit_hits;
   summary.effort_limit_hits = diagnostics.effort_limit_hits;
   summary.governor_hits = diagnostics.governor_hits;
+  summary.wall_reference_hits = diagnostics.wall_reference_hits;
+  summary.wall_brake_hits = diagnostics.wall_brake_hits;
   summary.faults = diagnostics.faults;
   if (diagnostics.faults > 0) {
     summary.fault_reason = diagnostics.last_fault;

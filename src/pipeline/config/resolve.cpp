@@ -250,6 +250,17 @@ void checkConsistency(const ResolvedController& resolved) {
         InputErrc::kInconsistent, config.name, "walls",
         "need a Cartesian law (the plugin " + config.plugin + " takes joint commands)");
   }
+  // The barrier's damper acts on the TCP's apparent mass one cycle late: past half of deadbeat on
+  // the lightest of it (at 1 kHz, as the initial command is checked) it would ring, not brake.
+  const double damping_bound = parameters.tcp_mass_kg / (2.0 * 1e-3);
+  if (config.walls.any() && parameters.tcp_mass_kg > 0.0 &&
+      config.walls.damping_n_s_per_m > damping_bound) {
+    throw InputError(InputErrc::kOutOfRange, config.name, "wall.damping_n_s_per_m",
+                     std::to_string(config.walls.damping_n_s_per_m) +
+                         " exceeds half of deadbeat on the TCP's lightest apparent mass (" +
+                         std::to_string(parameters.tcp_mass_kg) + " kg) at 1 kHz: at most " +
+                         std::to_string(damping_bound));
+  }
 }
 
 }  // namespace

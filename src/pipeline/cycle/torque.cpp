@@ -86,6 +86,12 @@ CycleStatus Controller::write(std::span<double> torque) noexcept {
 CycleStatus Controller::hold(std::span<double> torque) noexcept {
   force_active_ = false;  // no law runs: what it would read is the command in force
   walls_active_ = false;
+  walled_ = false;
+  if (walls_.enabled()) {
+    // The barrier does not act in a hold; the distance is this cycle's (the last usable pose's
+    // when this cycle's state is not).
+    walls_.observe(data_.tip_position);
+  }
   // The state is the last usable one when this cycle's was not.
   // A stale velocity (a frozen stream, or this cycle's state unusable: state_ is the last usable
   // one) would brake against a motion the arm may no longer have.

@@ -51,6 +51,11 @@ bool VirtualWalls::limitReference(const comply_cartesian_command& in,
   return changed;
 }
 
+void VirtualWalls::observe(const Eigen::Vector3d& tcp_position) noexcept {
+  distance_m_ = nearestWallDistance(parameters_.walls.set, tcp_position);
+  force_n_.setZero();
+}
+
 bool VirtualWalls::brake(const model::Data& data, const Vector6d& tcp_twist, int dof,
                          JointVector& torque) noexcept {
   const WallSet& set = parameters_.walls.set;
