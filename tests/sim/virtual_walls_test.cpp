@@ -107,5 +107,42 @@ TEST(VirtualWalls, ABoxKeepsTheTcpInsideUnderAReferenceThatLeavesIt) {
             << " mm each (free run " << 1e3 * free_run.past_m / std::sqrt(2.0) << " mm)\n";
 }
 
+TEST(VirtualWalls, ATcpActivatedPastAWallIsPulledBackInsideWithoutAFault) {
+  pipeline::WrapperConfig config = simCartesianConfig("fr3");
+  Arm<> probe(config);
+  // The wall 3 cm behind the start along x: the TCP begins 3 cm past it, the reference (the
+  // start pose, held) with it.
+  config.walls.planes.push_back(pipeline::WallPlane{
+      probe.start_tcp - Eigen::Vector3d(0.03, 0.0, 0.0), Eigen::Vector3d::UnitX()});
+  Arm<> arm(config);
+  const double period = arm.plant.controlPeriod();
+  double first_distance = 0.0;
+  double fastest_m_per_s = 0.0;
+  Eigen::Vector3d previous = arm.tcp();
+  for (int cycle = 0; cycle < 3000; ++cycle) {
+    CartesianCommand command = CartesianCommand::zero(arm.wrapper.dof());
+    command.stamp_s = 1.0 + cycle * period;
+    command.fields = CommandField::kPosition | CommandField::kStiffness;
+    command.position = arm.start_tcp;
+    command.orientation = arm.wrapper.measuredPose().tcp_orientation;
+    command.stiffness_translational = 2000.0 * Eigen::Matrix3d::Identity();
+    command.stiffness_rotational = 100.0 * Eigen::Matrix3d::Identity();
+    ASSERT_TRUE(arm.wrapper.submit(command).accepted) << cycle;
+    arm.cycle();
+    if (cycle == 0) {
+      first_distance = arm.wrapper.controller().walls().distance();
+    }
+    fastest_m_per_s = std::max(fastest_m_per_s, (arm.tcp() - previous).norm() / period);
+    previous = arm.tcp();
+  }
+  EXPECT_FALSE(arm.faulted()) << arm.wrapper.diagnostics().last_fault;
+  EXPECT_NEAR(first_distance, -0.03, 1e-3);
+  // Back on the allowed side, at the wall (the reference is projected onto it).
+  const double final_distance = arm.wrapper.controller().walls().distance();
+  EXPECT_GE(final_distance, -1e-3);
+  EXPECT_LE(final_distance, 5e-3);
+  std::cout << "activated 3 cm past a wall: " << 1e3 * final_distance
+            << " mm inside after 3 s, fastest " << fastest_m_per_s << " m/s\n";
+}
 }  // namespace
 }  // namespace comply::testing
