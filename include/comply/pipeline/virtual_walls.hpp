@@ -25,7 +25,8 @@
 // care of a law pulling harder than the damper brakes. Peak force ~ c v + k e ~ 100 + 100 N, within
 // what the FR3's joints give at the TCP (the effort bound scales it otherwise). Faster than
 // ~ c b / m = 2 m/s (twice the governor's TCP speed) the zone alone would not suffice. At 1 kHz,
-// c T / m = 0.04 on the lightest apparent mass (~1 kg): far from deadbeat, so the damper is stable.
+// c T / m = 0.08 on the FR3's lightest apparent mass at the TCP (2.6 kg): far from deadbeat, so the
+// damper is stable; resolving refuses a c past half of deadbeat, m / (2 T), on the robot's own.
 // Measured in the simulated FR3 (tests/sim/virtual_walls_test.cpp, docs/safety.md): see there.
 //
 // Real-time: allocates nothing, takes no lock, never throws.
