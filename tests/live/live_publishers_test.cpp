@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <sstream>
 #include <thread>
 
@@ -303,14 +304,25 @@ TEST(LiveHost, CommandSendAccountsEveryCommandOfAFileAtAnyRate) {
   std::filesystem::remove(file);
 }
 
-TEST(LiveState, CarriesTheTanksAccount) {
-  const auto resolved = pipeline::resolveController(host::simControllerConfig(
+/// The FR3 under config/sim's Cartesian controller, as comply sim resolves it.
+std::shared_ptr<const pipeline::ResolvedController> simFr3Controller() {
+  return pipeline::resolveController(host::simControllerConfig(
       "fr3", "",
       (std::filesystem::path(COMPLY_SOURCE_DIR) / "config" / "sim" / "cartesian_impedance.yaml")
           .string()));
+}
+
+/// A state sample of `dof` joints at zero, commanding no torque.
+host::StateSample restingSample(int dof) {
   host::StateSample sample;
-  sample.joints = JointState::zero(resolved->dof);
-  sample.torque.setZero(resolved->dof);
+  sample.joints = JointState::zero(dof);
+  sample.torque.setZero(dof);
+  return sample;
+}
+
+TEST(LiveState, CarriesTheTanksAccount) {
+  const auto resolved = simFr3Controller();
+  host::StateSample sample = restingSample(resolved->dof);
   // Every field away from its default, each value distinct, so a swap shows.
   sample.passivity = {.enabled = true,
                       .tank_energy_j = 0.75,
@@ -331,13 +343,8 @@ TEST(LiveState, CarriesTheTanksAccount) {
 }
 
 TEST(LiveState, CarriesTheWallsDistanceAndBarrierForce) {
-  const auto resolved = pipeline::resolveController(host::simControllerConfig(
-      "fr3", "",
-      (std::filesystem::path(COMPLY_SOURCE_DIR) / "config" / "sim" / "cartesian_impedance.yaml")
-          .string()));
-  host::StateSample sample;
-  sample.joints = JointState::zero(resolved->dof);
-  sample.torque.setZero(resolved->dof);
+  const auto resolved = simFr3Controller();
+  host::StateSample sample = restingSample(resolved->dof);
   sample.walls = true;
   sample.wall_distance_m = -0.0025;
   sample.wall_force = Eigen::Vector3d(-12.5, 0.5, 3.0);
