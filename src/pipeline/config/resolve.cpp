@@ -132,6 +132,7 @@ void compileParameters(ResolvedController& resolved) {
   parameters.walls.gains =
       BarrierGains{config.walls.brake_distance_m, config.walls.stiffness_n_per_m,
                    config.walls.damping_n_s_per_m};
+  parameters.reflex = config.reflex;
   parameters.observer = config.observer;
   parameters.velocity_limit.resize(dof);
   for (int i = 0; i < dof; ++i) {
@@ -249,6 +250,13 @@ void checkConsistency(const ResolvedController& resolved) {
     throw InputError(
         InputErrc::kInconsistent, config.name, "walls",
         "need a Cartesian law (the plugin " + config.plugin + " takes joint commands)");
+  }
+  // A retreat moves the TCP's reference; a joint law holds instead (hold or fault).
+  if (config.reflex.enabled && config.reflex.reaction == ReflexReaction::kRetreat &&
+      !resolved.cartesian()) {
+    throw InputError(InputErrc::kInconsistent, config.name, "reflex.reaction",
+                     "retreat needs a Cartesian law (the plugin " + config.plugin +
+                         " takes joint commands); use hold or fault");
   }
 }
 
