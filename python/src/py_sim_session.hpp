@@ -164,6 +164,10 @@ struct Sim::Session {
           const pipeline::Controller& controller = e->wrapper.controller();
           obs["sensor_wrench"] =
               array(controller.sensorWrenchValid() ? controller.sensorWrench() : Vector6d::Zero());
+          // The contact reflex (ControllerState's reflex_tripped, reflex_wrench): tripped, and on
+          // what (task frame then); while its hold lasts the episode's commands are refused.
+          obs["reflex_tripped"] = controller.reflex().tripped();
+          obs["reflex_wrench"] = array(controller.reflex().wrench());
           if constexpr (requires { bus.orientation; }) {
             obs["reference_position"] = array(bus.position, 3);
             obs["reference_orientation"] = array(bus.orientation, 4);

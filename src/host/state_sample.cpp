@@ -35,6 +35,42 @@ void setWalls(const pipeline::VirtualWalls& walls, StateSample& s) noexcept {
   s.wall_force = walls.force();
 }
 
+/// The reflex's thresholds of the last cycle and its trip (all 0 while it is off).
+void setReflex(const pipeline::ContactReflex& reflex, StateSample& s) noexcept {
+  s.reflex = reflex.enabled();
+  s.reflex_force_threshold = s.reflex ? reflex.inForce().force_n : Eigen::Vector3d::Zero();
+  s.reflex_torque_threshold = s.reflex ? reflex.inForce().torque_nm : Eigen::Vector3d::Zero();
+  s.reflex_tripped = reflex.tripped();
+  s.reflex_reaction = transport::ReflexReaction::kNone;
+  if (reflex.tripped()) {
+    switch (reflex.config().reaction) {
+      case pipeline::ReflexReaction::kHold:
+        s.reflex_reaction = transport::ReflexReaction::kHold;
+        break;
+      case pipeline::ReflexReaction::kRetreat:
+        s.reflex_reaction = transport::ReflexReaction::kRetreat;
+        break;
+      case pipeline::ReflexReaction::kFault:
+        s.reflex_reaction = transport::ReflexReaction::kFault;
+        break;
+    }
+  }
+  s.reflex_wrench = reflex.wrench();
+}
+
+void copyReflex(const StateSample& sample, transport::ControllerStateMessage& message) noexcept {
+  message.reflex = sample.reflex;
+  for (int i = 0; i < 3; ++i) {
+    message.reflex_force_threshold[i] = sample.reflex_force_threshold[i];
+    message.reflex_torque_threshold[i] = sample.reflex_torque_threshold[i];
+  }
+  message.reflex_tripped = sample.reflex_tripped;
+  message.reflex_reaction = sample.reflex_reaction;
+  for (int i = 0; i < 6; ++i) {
+    message.reflex_wrench[i] = sample.reflex_wrench[i];
+  }
+}
+
 }  // namespace
 
 transport::ControllerStateMessage stateMessage(const StateSample& sample,
@@ -76,6 +112,7 @@ transport::ControllerStateMessage stateMessage(const StateSample& sample,
   for (int i = 0; i < 3; ++i) {
     message.wall_force[i] = sample.wall_force[i];
   }
+  copyReflex(sample, message);
   return message;
 }
 
@@ -174,6 +211,7 @@ void StateSampler<Command>::fill(const hardware::CycleRecord& record, const Join
   s.state = diagnostics.state.load(std::memory_order_relaxed);
   s.passivity = diagnostics.passivity();  // atomics only: no allocation on this thread
   setWalls(controller.walls(), s);
+  setReflex(controller.reflex(), s);
   s.joints = measured;
   s.torque.setZero(dof);
   for (std::size_t i = 0; i < record.torque.size(); ++i) {

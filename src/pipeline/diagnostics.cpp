@@ -77,6 +77,8 @@ DiagnosticsSnapshot Diagnostics::snapshot() const {
   result.governor_hits = governor_hits.load();
   result.wall_reference_hits = wall_reference_hits.load();
   result.wall_brake_hits = wall_brake_hits.load();
+  result.reflex_trips = reflex_trips.load();
+  result.reflex_latched = reflex_latched.load();
   result.faults = faults.load();
   result.watchdog_timeouts = watchdog_timeouts.load();
   result.passivity = passivity();

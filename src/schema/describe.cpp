@@ -69,6 +69,8 @@ std::string constraintText(Constraint constraint, std::string_view unit) {
       return "unit norm";
     case Constraint::kSelection:
       return "entries 0 or 1";
+    case Constraint::kThreshold:
+      return ">= 0 (0: the controller file's)";
   }
   return "?";
 }

@@ -35,12 +35,13 @@ std::vector<EnumValue> enumValues() {
 #define COMPLY_SCHEMA_GROUP_INFO(enumerator, name, doc) \
   GroupInfo{CommandField::enumerator, name, doc},
 
-constexpr EnumNames<Constraint, 5> kConstraintNames{
+constexpr EnumNames<Constraint, 6> kConstraintNames{
     {{Constraint::kNone, "none"},
      {Constraint::kNonNegative, "non_negative"},
      {Constraint::kSymmetricPsd, "symmetric_psd"},
      {Constraint::kUnitQuaternion, "unit_quaternion"},
-     {Constraint::kSelection, "selection"}}};
+     {Constraint::kSelection, "selection"},
+     {Constraint::kThreshold, "threshold"}}};
 
 constexpr EnumNames<Role, 5> kRoleNames{{{Role::kNone, "none"},
                                          {Role::kSeedTcpPosition, "seed_tcp_position"},

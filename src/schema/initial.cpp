@@ -18,12 +18,22 @@ std::optional<Role> roleOf(CommandKind kind, const std::string& key) {
   return std::nullopt;
 }
 
+/// Whether `key` is one of the contact reflex's thresholds (either kind's table).
+bool isReflexThreshold(const std::string& key) {
+  for (const FieldInfo& field : fields(CommandKind::kCartesian)) {
+    if (field.name == key) {
+      return field.group == CommandField::kReflex;
+    }
+  }
+  return false;
+}
+
 std::string initialKeys() {
   std::string known;
   for (const CommandKind kind : {CommandKind::kJoint, CommandKind::kCartesian}) {
     for (const FieldInfo& field : fields(kind)) {
       const bool listed = known.find(" " + std::string(field.name) + ",") != std::string::npos;
-      if (field.role == Role::kNone && !listed) {
+      if (field.role == Role::kNone && field.group != CommandField::kReflex && !listed) {
         known += " " + std::string(field.name) + ",";
       }
     }
@@ -82,6 +92,12 @@ InitialCommands readInitialCommands(const nlohmann::json& object, int dof,
   nlohmann::json joint = nlohmann::json::object();
   nlohmann::json cartesian = nlohmann::json::object();
   for (const auto& [key, value] : object.items()) {
+    if (isReflexThreshold(key)) {
+      // One place for the file's thresholds; a command sets them per phase, a reset goes back.
+      throw InputError(InputErrc::kInvalidValue, source, key_prefix + key,
+                       "is set by the options reflex.force_n and reflex.torque_nm (a command sets "
+                       "it for a phase of its task)");
+    }
     const std::optional<Role> joint_role = roleOf(CommandKind::kJoint, key);
     const std::optional<Role> cartesian_role = roleOf(CommandKind::kCartesian, key);
     if (joint_role == Role::kNone) {

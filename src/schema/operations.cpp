@@ -17,6 +17,8 @@ static_assert(static_cast<std::uint32_t>(CommandField::kWrenchFeedforward) ==
 static_assert(static_cast<std::uint32_t>(CommandField::kTorqueFeedforward) ==
               COMPLY_FIELD_TORQUE_FEEDFORWARD);
 static_assert(static_cast<std::uint32_t>(CommandField::kNullspace) == COMPLY_FIELD_NULLSPACE);
+static_assert(static_cast<std::uint32_t>(CommandField::kForce) == COMPLY_FIELD_FORCE);
+static_assert(static_cast<std::uint32_t>(CommandField::kReflex) == COMPLY_FIELD_REFLEX);
 static_assert(static_cast<int>(DampingMode::kAbsolute) == COMPLY_DAMPING_ABSOLUTE);
 static_assert(static_cast<int>(DampingMode::kRatio) == COMPLY_DAMPING_RATIO);
 static_assert(kMaxDof == COMPLY_MAX_DOF, "core capacity and ABI capacity must agree");

@@ -31,6 +31,7 @@ MessageText controllerState() {
   addConstants(message.constants, "STATE_", kWrapperStateNames);
   addConstants(message.constants, "COMMAND_KIND_", kWireCommandKindNames);
   addConstants(message.constants, "WRENCH_SOURCE_", kWrenchSourceNames);
+  addConstants(message.constants, "REFLEX_", kReflexReactionNames);
   return message;
 }
 

@@ -83,6 +83,10 @@ std::string_view toString(WrenchSource source) {
   return nameIn(kWrenchSourceNames, source);
 }
 
+std::string_view toString(ReflexReaction reaction) {
+  return nameIn(kReflexReactionNames, reaction);
+}
+
 std::string_view toString(WireCommandKind kind) {
   return nameIn(kWireCommandKindNames, kind);
 }

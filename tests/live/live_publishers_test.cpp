@@ -356,6 +356,32 @@ TEST(LiveState, CarriesTheWallsDistanceAndBarrierForce) {
   EXPECT_EQ(message.wall_force[2], 3.0);
 }
 
+TEST(LiveState, CarriesTheReflexsThresholdsAndItsTrip) {
+  const auto resolved = pipeline::resolveController(host::simControllerConfig(
+      "fr3", "",
+      (std::filesystem::path(COMPLY_SOURCE_DIR) / "config" / "sim" / "cartesian_impedance.yaml")
+          .string()));
+  host::StateSample sample;
+  sample.joints = JointState::zero(resolved->dof);
+  sample.torque.setZero(resolved->dof);
+  EXPECT_FALSE(host::stateMessage(sample, *resolved).reflex_tripped);
+  sample.reflex = true;
+  sample.reflex_force_threshold = Eigen::Vector3d(20.0, 20.0, 45.0);
+  sample.reflex_torque_threshold = Eigen::Vector3d(5.0, 5.0, 2.5);
+  sample.reflex_tripped = true;
+  sample.reflex_reaction = transport::ReflexReaction::kRetreat;
+  sample.reflex_wrench << 0.5, 30.25, -1.0, 0.125, 0.0, -0.25;
+  const transport::ControllerStateMessage message = host::stateMessage(sample, *resolved);
+  EXPECT_TRUE(message.reflex);
+  EXPECT_EQ(message.reflex_force_threshold[2], 45.0);
+  EXPECT_EQ(message.reflex_torque_threshold[2], 2.5);
+  EXPECT_TRUE(message.reflex_tripped);
+  EXPECT_EQ(message.reflex_reaction, transport::ReflexReaction::kRetreat);
+  EXPECT_EQ(message.reflex_wrench[1], 30.25);
+  EXPECT_EQ(message.reflex_wrench[5], -0.25);
+  EXPECT_EQ(transport::toString(message.reflex_reaction), "retreat");
+}
+
 // The state's frame is the model's: a controller file may name a base other than robot.yaml's
 // (here the UR5e's base_link_inertia, turned half a turn about z from base_link).
 TEST(LiveState, IsInTheControllerFilesBaseFrame) {

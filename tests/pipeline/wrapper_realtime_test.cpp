@@ -562,6 +562,55 @@ TEST(WrapperRealtime, TheWristSensorChecksNeitherAllocateNorLock) {
   EXPECT_EQ(probe.locks, 0U);
 }
 
+// ---- the contact reflex ------------------------------------------------------------------------
+
+// The reflex armed on the observer's wrench, its thresholds within what the replayed motion (no
+// torque behind it: all of it "external") gives: it trips, holds or retreats (or faults), and a
+// reset every 500 cycles re-arms it, while commands keep coming (refused while it holds).
+TEST(WrapperRealtime, TheContactReflexTrippingNeitherAllocatesNorLocks) {
+  for (const std::string reaction : {"hold", "retreat", "fault"}) {
+    SCOPED_TRACE(reaction);
+    CartesianWrapper wrapper(
+        fr3Config(kCartesianImpedancePlugin,
+                  realtimeLines("hold") + "observer:\n  enabled: true\nreflex:\n  enabled: true\n" +
+                      "  reaction: " + reaction +
+                      "\n  force_n: 0.5\n  torque_nm: 0.05\n  hold_stiffness_fraction: 0.5\n"));
+    const JointVector home = fr3Home();
+    wrapper.activate(movingState(home, 0));
+    RealtimeProbe probe;
+    TorqueBuffer torque;
+    int refused = 0;
+    for (int cycle = 1; cycle <= kCycles; ++cycle) {
+      if (cycle % 500 == 0) {
+        ASSERT_NE(wrapper.reset(), 0U);
+      }
+      if (cycle % 100 == 50) {
+        const model::Data& measured = wrapper.controller().modelData();
+        CartesianCommand command = CartesianCommand::zero(kFr3Dof);
+        command.stamp_s = cycle * kPeriod;
+        command.fields = CommandField::kPosition | CommandField::kVelocity | CommandField::kReflex;
+        command.position = measured.tip_position + Eigen::Vector3d(0.01, 0.0, -0.01);
+        command.orientation = measured.tip_orientation;
+        command.twist[1] = 0.02;
+        command.reflex_force = Eigen::Vector3d(0.0, 0.0, 0.8);
+        refused += wrapper.submit(command).reason == RejectionReason::kReflexLatched ? 1 : 0;
+      }
+      const JointState state = movingState(home, cycle);
+      (void)probe.measure([&] { return wrapper.update(state, kPeriod, torque.span()); });
+    }
+    const DiagnosticsSnapshot diagnostics = wrapper.diagnostics();
+    // It tripped after every reset (and once before the first).
+    EXPECT_GE(diagnostics.reflex_trips, static_cast<std::uint64_t>(kCycles / 500));
+    if (reaction == "fault") {
+      EXPECT_EQ(diagnostics.faults, diagnostics.reflex_trips);
+    } else {
+      EXPECT_GT(refused, 0);
+    }
+    EXPECT_EQ(probe.allocations, 0U);
+    EXPECT_EQ(probe.locks, 0U);
+  }
+}
+
 // ---- FAULT ------------------------------------------------------------------------------------
 
 /// Counted cycles at a moving state; returns how many were not `expected`.

@@ -1,6 +1,7 @@
 """comply.Sim: the in-process simulator shaped like a Gymnasium env. Usage: sim_test.py SOURCE."""
 
 import sys
+import tempfile
 
 import numpy as np
 
@@ -18,6 +19,32 @@ def check_tank(obs):
     if not obs["passivity"]:
         assert obs["gain_fraction"] == 1.0, obs
         assert all(obs[key] == 0.0 for key in TANK_KEYS[1:-1]), obs
+
+
+def check_reflex(source):
+    """The contact reflex on the observer (commanded torque: the joints' friction is in the
+    estimate while the arm moves), its threshold below that friction: the motion trips it, the
+    observation says so, and while it holds the next command is refused as reflex_latched."""
+    with open(f"{source}/config/sim/cartesian_impedance.yaml") as base, \
+            tempfile.TemporaryDirectory() as folder:
+        path = f"{folder}/reflex.yaml"
+        with open(path, "w") as out:
+            out.write(base.read() + "    observer:\n      enabled: true\n"
+                      "    reflex:\n      enabled: true\n      force_n: 3.0\n")
+        sim = comply.Sim(path, robot="fr3", steps_per_action=50)
+        obs = sim.reset()
+        assert not obs["reflex_tripped"] and not obs["reflex_wrench"].any(), obs
+        target = obs["tcp_position"] + np.array([0.08, 0.0, 0.0])
+        for _ in range(20):  # 1 s at 20 Hz
+            obs, _, terminated, _, info = sim.step({"position": target})
+            assert not terminated, info
+            if obs["reflex_tripped"]:
+                break
+        assert obs["reflex_tripped"], obs
+        assert np.linalg.norm(obs["reflex_wrench"][:3]) > 3.0, obs["reflex_wrench"]
+        _, _, terminated, _, info = sim.step({"position": target})
+        assert not info["accepted"] and info["reason"] == "reflex_latched", info
+        assert not terminated and info["state"] == "active", info
 
 
 def main():
@@ -53,6 +80,7 @@ def main():
     frame = comply.darboux_frame([1, 0, 0], [0, 0, 1])
     assert np.allclose(np.linalg.norm(frame), 1.0)
     assert sim.reset()["position"].shape == (sim.dof,)
+    check_reflex(source)
     print("ok")
 
 

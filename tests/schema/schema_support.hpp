@@ -49,6 +49,8 @@ inline CartesianCommand distinctCartesian() {
   c.nullspace_damping = ramp(40);
   c.force_axes << 1, 0, 1, 0, 0, 1;
   c.wrench_target << 7, -8, 9, -0.7, 0.8, -0.9;
+  c.reflex_force << 21, 0, 45;
+  c.reflex_torque << 0, 3.5, 6;
   return c;
 }
 
@@ -61,6 +63,8 @@ inline JointCommand distinctJoint() {
   c.stiffness = ramp(100.0);
   c.damping = ramp(10.0);
   c.torque_feedforward = ramp(-3.0);
+  c.reflex_force << 0, 25, 31;
+  c.reflex_torque << 4.5, 0, 2;
   return c;
 }
 

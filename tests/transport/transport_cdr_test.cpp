@@ -77,6 +77,12 @@ TEST(TransportCdr, JointCommandBytesFollowTheCdrRules) {
       0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x69, 0x40,  // 72 200.0  = 0x4069000000000000
       0x00, 0x00, 0x00, 0x00,                          // 80 damping: 0 entries
       0x00, 0x00, 0x00, 0x00,                          // 84 torque_feedforward: 0 entries
+      0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,  // 88 reflex_force x = 0
+      0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,  // 96 reflex_force y = 0
+      0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,  // 104 reflex_force z = 0
+      0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,  // 112 reflex_torque x = 0
+      0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,  // 120 reflex_torque y = 0
+      0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,  // 128 reflex_torque z = 0
   };
   EXPECT_EQ(wireBytes(message), expected);
 }
@@ -89,9 +95,10 @@ TEST(TransportCdr, CartesianCommandSizeFollowsTheTable) {
   // 4 header + stamp 8 + string 4 + 1 -> 17, pad to 20, fields 4 -> 24; then 3 + 4 + 6 + 6 + 9 *
   // 4 doubles (55 doubles, 440 bytes) -> 464; damping_mode octet -> 465, pad to 472 for
   // damping_ratio 6 + task_frame 4 + wrench 6 doubles (128) -> 600; four sequences of 7 doubles:
-  // count 4 + pad 4 + 56 each (64) -> 856; force_axes and wrench_target 12 doubles (96) -> 952.
-  // Body 952, plus the 4-byte encapsulation header.
-  ASSERT_EQ(bytes.size(), 956U);
+  // count 4 + pad 4 + 56 each (64) -> 856; force_axes and wrench_target 12 doubles (96) -> 952;
+  // reflex_force and reflex_torque 6 doubles (48) -> 1000. Body 1000, plus the 4-byte
+  // encapsulation header.
+  ASSERT_EQ(bytes.size(), 1004U);
   EXPECT_EQ(bytes[1], 0x01);        // CDR_LE
   EXPECT_EQ(bytes[4 + 464], 0x00);  // damping_mode absolute
   EXPECT_EQ(bytes[4 + 600], 7);     // torque_feedforward count

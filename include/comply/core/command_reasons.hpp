@@ -20,7 +20,9 @@
     "a rate or feedforward entry above the limit of its unit for any arm; a chunk faster than the arm's speeds or accelerations") \
   X(kLateChunk, late_chunk, "a chunk whose last waypoint is already past on the host's clock") \
   X(kInvalidChunk, invalid_chunk, \
-    "a chunk's shape: waypoint count (1 to 64), times (a start more than max_stamp_lead_s ahead), field groups, damping modes")
+    "a chunk's shape: waypoint count (1 to 64), times (a start more than max_stamp_lead_s ahead), field groups, damping modes") \
+  X(kReflexLatched, reflex_latched, \
+    "the contact reflex tripped and holds the arm (ControllerState.reflex_tripped): nothing is taken until a reset request")
 
 #define COMPLY_GATE_REJECTION_REASONS(X) \
   X(kOtherPublisher, other_publisher, "another sender holds the command topics") \

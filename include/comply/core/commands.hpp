@@ -53,7 +53,8 @@ enum class CommandField : std::uint32_t {
   kTorqueFeedforward = 1U << 7,
   kNullspace = 1U << 8,  ///< nullspace target, stiffness and damping
   kForce = 1U << 9,      ///< Cartesian force axes and wrench target
-  kAll = (1U << 10) - 1,
+  kReflex = 1U << 10,    ///< the contact reflex's thresholds
+  kAll = (1U << 11) - 1,
 };
 
 constexpr CommandField operator|(CommandField a, CommandField b) {

@@ -34,7 +34,13 @@ struct StateSample {
   bool walls = false;                     ///< walls or boxes configured (virtual_walls.hpp)
   double wall_distance_m = 0.0;           ///< measured TCP to the nearest wall; < 0 past one
   Eigen::Vector3d wall_force = Eigen::Vector3d::Zero();  ///< the barrier's [N], base frame
-  pipeline::CommandId reference;  ///< the command in force: its number and exact stamp
+  bool reflex = false;  ///< the contact reflex is on (contact_reflex.hpp); else the rest is 0
+  Eigen::Vector3d reflex_force_threshold = Eigen::Vector3d::Zero();   ///< [N] task x y z
+  Eigen::Vector3d reflex_torque_threshold = Eigen::Vector3d::Zero();  ///< [N m]
+  bool reflex_tripped = false;                                        ///< until a reset
+  transport::ReflexReaction reflex_reaction = transport::ReflexReaction::kNone;
+  Vector6d reflex_wrench = Vector6d::Zero();  ///< what tripped it, task frame then
+  pipeline::CommandId reference;              ///< the command in force: its number and exact stamp
   std::uint32_t reference_fields = 0;
   Eigen::Vector3d reference_position = Eigen::Vector3d::Zero();
   Eigen::Quaterniond reference_orientation = Eigen::Quaterniond::Identity();

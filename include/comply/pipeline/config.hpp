@@ -27,6 +27,7 @@
 #include "comply/core/enum_names.hpp"
 #include "comply/model/data.hpp"
 #include "comply/model/robot_description.hpp"
+#include "comply/pipeline/contact_reflex.hpp"
 #include "comply/pipeline/force_axes.hpp"
 #include "comply/pipeline/momentum_observer.hpp"
 #include "comply/pipeline/option_table.hpp"
@@ -152,6 +153,7 @@ struct WrapperConfig {
   StabilityGuardConfig stability_guard;
   GovernorConfig governor;           ///< governor.*: the speeds no command drives past
   WallConfig walls;                  ///< walls:, boxes:, wall.*: where the TCP does not go
+  ReflexConfig reflex;               ///< reflex.*: what an unplanned contact trips
   ObserverConfig observer;           ///< the external wrench estimate (observer.*)
   WrenchSensorConfig wrench_sensor;  ///< wrench_sensor.*
   ForceControlConfig force_control;  ///< force_control.*: force along task axes

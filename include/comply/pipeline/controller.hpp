@@ -20,6 +20,8 @@
 //   watchdog     no command for command_timeout_s: hold (stop the motion) or re-anchor
 //   sensor       the wrist sensor's reading at rest after activation near zero, and in agreement
 //                with the momentum observer (sensor_check.*)    -> FAULT
+//   reflex       the contact wrench above the thresholds of the command in force: hold, retreat
+//                (latched until a reset) or FAULT (contact_reflex.hpp; off: one branch)
 //   gains        ramps and the energy tank between the commanded gains and the law's (optional)
 //   force        force along the task axes a command selects, the contact-force limit
 //                (force_axes.hpp; Cartesian laws)
@@ -61,6 +63,7 @@
 #include "comply/pipeline/chunk_player.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/command_watchdog.hpp"
+#include "comply/pipeline/contact_reflex.hpp"
 #include "comply/pipeline/cycle_status.hpp"
 #include "comply/pipeline/diagnostics.hpp"
 #include "comply/pipeline/force_axes.hpp"
@@ -99,6 +102,7 @@ struct ResetResult {
     kLeftFault,      ///< the controller left FAULT, holding the measured pose
     kStateUnusable,  ///< in FAULT with a measured state it cannot hold: the fault stays
     kInactive,       ///< taken at activation, which starts afresh anyway
+    kLeftReflex,     ///< the contact reflex's hold ended (its latch), holding the measured pose
   };
   std::uint64_t number = 0;
   End end = End::kNoFault;
@@ -188,6 +192,9 @@ class Controller {
   /// The walls stage (virtual_walls.hpp): the distance to the nearest wall and the barrier's
   /// force of the last cycle.
   [[nodiscard]] const VirtualWalls& walls() const noexcept { return walls_; }
+  /// The reflex stage (contact_reflex.hpp): its thresholds in force, whether and on what it
+  /// tripped. Real-time thread, or between cycles.
+  [[nodiscard]] const ContactReflex& reflex() const noexcept { return reflex_; }
   /// The force stage (force_axes.hpp): its loop's output and pull-back of the last cycle.
   [[nodiscard]] const ForceAxes& forceAxes() const noexcept { return force_; }
   /// The external wrench on the tool from `source`: at the TCP, base frame, force first [N, N m];
@@ -245,9 +252,12 @@ class Controller {
   bool takeReset(std::uint64_t number) noexcept;
   bool dropWaitingChunk(std::uint64_t sequence) noexcept;
   void resumeAfterReset() noexcept;
-  bool checkSensor() noexcept;  // sensor.cpp
-  void guardGains() noexcept;   // gains.cpp
-  void applyForce() noexcept;   // force.cpp
+  bool checkSensor() noexcept;   // sensor.cpp
+  bool checkContact() noexcept;  // reflex.cpp
+  void retreatFromContact() noexcept;
+  void rearmReflex() noexcept;
+  void guardGains() noexcept;  // gains.cpp
+  void applyForce() noexcept;  // force.cpp
   [[nodiscard]] const CommandBus& guardedBus() const noexcept {
     return gains_.enabled() ? gains_.lawBus() : active_;
   }
@@ -293,6 +303,8 @@ class Controller {
   ChunkPlayer chunks_;          //   the timed chunks
   CommandWatchdog watchdog_;    // watchdog
   SensorCheck sensor_check_;    // sensor
+  ContactReflex reflex_;        // reflex
+  double reflex_trip_s_ = 0.0;  //   when it tripped (controller clock)
   GainGuard gains_;             // gains
   ForceAxes force_;             // force
   CommandBus force_bus_;        //   the law's command when the force stage acts (Cartesian)

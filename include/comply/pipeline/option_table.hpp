@@ -188,13 +188,41 @@
 // walls: and boxes: (read outside the table: each entry is a point and a normal, or two corners).
 // The barrier brakes a TCP that approaches a wall within brake_distance_m, passively (only while
 // it moves toward the wall); the reference is kept inside the walls whatever the gains.
-#define COMPLY_WALL_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)            \
-  NUMBER(brake_distance_m, "wall.brake_distance_m", 0.05, kAbove, 0.0, 1.0,                       \
+#define COMPLY_WALL_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)             \
+  NUMBER(brake_distance_m, "wall.brake_distance_m", 0.05, kAbove, 0.0, 1.0,                        \
          "m from a wall (walls:, boxes:) where the barrier starts braking a TCP moving toward it") \
-  NUMBER(stiffness_n_per_m, "wall.stiffness_n_per_m", 2000.0, kAtLeast, 0.0, 1e5,                 \
-         "N/m x the depth into the braking zone, while the TCP approaches the wall")              \
-  NUMBER(damping_n_s_per_m, "wall.damping_n_s_per_m", 200.0, kAtLeast, 0.0, 1e4,                  \
+  NUMBER(stiffness_n_per_m, "wall.stiffness_n_per_m", 2000.0, kAtLeast, 0.0, 1e5,                  \
+         "N/m x the depth into the braking zone, while the TCP approaches the wall")               \
+  NUMBER(damping_n_s_per_m, "wall.damping_n_s_per_m", 200.0, kAtLeast, 0.0, 1e4,                   \
          "N s/m x the TCP's approach speed within the braking zone")
+
+// The contact reflex (ReflexConfig; contact_reflex.hpp): a contact wrench above the thresholds
+// for debounce_s is answered by a hold, a retreat or a FAULT. The thresholds are per task axis
+// (an ellipsoid: equal entries trip on the norm); a command raises them for a phase of its task
+// (reflex_force, reflex_torque) up to the ceilings, which only this file sets.
+#define COMPLY_REFLEX_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)         \
+  FLAG(enabled, "reflex.enabled", false,                                                         \
+       "react to a contact wrench above its thresholds (observer.enabled, or a wrist sensor)")   \
+  CHOICE(reaction, "reflex.reaction", ReflexReaction, kHold,                                     \
+         "hold: the measured pose, motion stopped | retreat: back off along the contact force, " \
+         "then hold | fault: FAULT")                                                             \
+  NUMBER(force_n, "reflex.force_n", 20.0, kAbove, 0.0, 1e4,                                      \
+         "N of contact force along any task axis that trips it (a command's reflex_force: per "  \
+         "axis)")                                                                                \
+  NUMBER(torque_nm, "reflex.torque_nm", 5.0, kAbove, 0.0, 1e3,                                   \
+         "N m of contact torque about any task axis that trips it (a command's reflex_torque)")  \
+  NUMBER(max_force_n, "reflex.max_force_n", 60.0, kAbove, 0.0, 1e4,                              \
+         "N: the most a command may raise reflex_force to, on any axis")                         \
+  NUMBER(max_torque_nm, "reflex.max_torque_nm", 15.0, kAbove, 0.0, 1e3,                          \
+         "N m: the most a command may raise reflex_torque to, on any axis")                      \
+  NUMBER(debounce_s, "reflex.debounce_s", 0.005, kAtLeast, 0.0, 1.0,                             \
+         "s the wrench stays above a threshold before it trips (0: the first sample)")           \
+  NUMBER(retreat_m, "reflex.retreat_m", 0.05, kAtLeast, 0.0, 0.3,                                \
+         "m a retreat backs off along the contact force")                                        \
+  NUMBER(retreat_speed_m_per_s, "reflex.retreat_speed_m_per_s", 0.1, kAbove, 0.0, 0.5,           \
+         "m/s of the retreat")                                                                   \
+  NUMBER(hold_stiffness_fraction, "reflex.hold_stiffness_fraction", 1.0, kAtLeast, 0.0, 1.0,     \
+         "the stiffness in force scaled by this when it holds or retreats (1: unchanged)")
 
 // The external wrench estimated from the joints' momentum (ObserverConfig).
 #define COMPLY_OBSERVER_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET) \

@@ -65,6 +65,7 @@ struct CycleParameters {
   StabilityGuardConfig stability_guard;
   GovernorConfig governor;
   WallParameters walls;
+  ReflexConfig reflex;
   ObserverConfig observer;
   OutputConfig output;
   WrenchSensorConfig wrench_sensor;

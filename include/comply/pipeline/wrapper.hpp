@@ -51,8 +51,10 @@ class Wrapper final : public hardware::CycleController {
   /// Non-RT. update() outputs nothing until the next activate().
   void deactivate() noexcept { controller_.deactivate(); }
   /// Any thread. Asks the cycle to leave FAULT; the law runs again from the next cycle with a
-  /// usable state (ignored outside FAULT). Clears the stamp floor either way: the next command
-  /// may carry any stamp; and a chunk still waiting for its first waypoint is dropped.
+  /// usable state. Ends the contact reflex's hold the same way (contact_reflex.hpp): the measured
+  /// pose held, the file's thresholds; commands are taken again from this request on. Ignored
+  /// otherwise. Clears the stamp floor either way: the next command may carry any stamp; and a
+  /// chunk still waiting for its first waypoint is dropped.
   /// Returns the request's number, which the cycle's ResetResult names
   /// (Controller::takeResetResult), or 0 when the intake queue was full and it was not queued.
   std::uint64_t reset();
@@ -139,6 +141,8 @@ class Wrapper final : public hardware::CycleController {
   Verdict submitChunkStamped(const Chunk<Command>& chunk, double host_time_s,
                              const IntakeStamp& stamp);
   std::uint64_t resets_ = 0;  // reset requests numbered so far
+  /// Diagnostics::reflex_trips when the last reset was queued: the reflex's hold it ends.
+  std::uint64_t reflex_trips_at_reset_ = 0;
   /// predict() under the intake's lock, on buses.
   bool predictLocked(std::span<const double> times_s, double host_time_s,
                      const MeasuredPose& measured, std::vector<CommandBus>& out);

@@ -28,7 +28,7 @@ extern "C" {
 #endif
 
 /* Bumped on any change of the structs or the function table below. */
-#define COMPLY_ABI_VERSION 2
+#define COMPLY_ABI_VERSION 3
 #define COMPLY_MAX_DOF 12
 #define COMPLY_MESSAGE_CAPACITY 128
 #define COMPLY_ENTRY_SYMBOL "comply_plugin_entry"
@@ -58,7 +58,8 @@ enum {
   COMPLY_FIELD_WRENCH_FEEDFORWARD = 1u << 6, /* Cartesian only */
   COMPLY_FIELD_TORQUE_FEEDFORWARD = 1u << 7,
   COMPLY_FIELD_NULLSPACE = 1u << 8,    /* Cartesian only: target, stiffness, damping */
-  COMPLY_FIELD_FORCE = 1u << 9         /* Cartesian only: force axes, wrench target */
+  COMPLY_FIELD_FORCE = 1u << 9,        /* Cartesian only: force axes, wrench target */
+  COMPLY_FIELD_REFLEX = 1u << 10       /* the contact reflex's thresholds */
 };
 
 /* How a Cartesian command specifies damping. */
@@ -77,6 +78,10 @@ typedef struct comply_joint_command {
   double stiffness[COMPLY_MAX_DOF];              /* N m/rad | N/m */
   double damping[COMPLY_MAX_DOF];                /* N m s/rad | N s/m */
   double torque_feedforward[COMPLY_MAX_DOF];     /* N m | N */
+  /* The contact reflex's thresholds, per base-frame axis; the wrapper acts on them (a law reads
+   * them for information only). 0: the controller file's. */
+  double reflex_force[3];                        /* N */
+  double reflex_torque[3];                       /* N m */
 } comply_joint_command;
 
 typedef struct comply_cartesian_command {
@@ -104,6 +109,10 @@ typedef struct comply_cartesian_command {
    * for information only. */
   double force_axes[6];                          /* 1: force-controlled task axis, 0: impedance */
   double wrench_target[6];                       /* task frame [N, N m], exerted by the TCP */
+  /* The contact reflex's thresholds, per task axis; the wrapper acts on them (a law reads them
+   * for information only). 0: the controller file's. */
+  double reflex_force[3];                        /* N */
+  double reflex_torque[3];                       /* N m */
 } comply_cartesian_command;
 
 /* What the wrapper hands the law each cycle: measured state + requested model quantities. */

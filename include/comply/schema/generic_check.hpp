@@ -86,6 +86,15 @@ CheckResult checkConstraint(typename F::ValueType& value, std::string_view name,
         return {Violation::kNotSelection, field, text.str()};
       }
     }
+  } else if constexpr (F::kConstraint == Constraint::kThreshold) {
+    for (Eigen::Index i = 0; i < value.size(); ++i) {
+      if (value[i] < 0.0) {
+        std::ostringstream text;
+        text << field << " entries must be >= 0 (0: the controller file's), entry " << i << " is "
+             << value[i] << " " << unit;
+        return {Violation::kNegativeThreshold, field, text.str()};
+      }
+    }
   } else if constexpr (F::kConstraint == Constraint::kNonNegative) {
     if (!(value.array() >= 0.0).all()) {
       return {Violation::kNegative, field, field + " must be >= 0"};

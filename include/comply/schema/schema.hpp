@@ -33,6 +33,7 @@ enum class Constraint : std::uint8_t {
   kSymmetricPsd,
   kUnitQuaternion,
   kSelection,  ///< every entry 0 or 1 (a selection of axes)
+  kThreshold,  ///< every entry >= 0, 0 standing for the controller file's value
 };
 
 /// What the reference rules do with a field.
@@ -155,14 +156,15 @@ struct CheckOptions {
 
 enum class Violation : std::uint8_t {
   kNone,
-  kWrongSize,        ///< a joint vector without `dof` entries
-  kNonFinite,        ///< NaN or infinity
-  kNotUnit,          ///< a quaternion too far from unit norm
-  kNegative,         ///< a non-negative field with a negative entry
-  kNotSymmetricPsd,  ///< a gain block that is not symmetric positive semi-definite
-  kGainTooLarge,     ///< a gain entry above gainLimit() of its unit
-  kValueTooLarge,    ///< a rate or feedforward entry above valueLimit() of its unit
-  kNotSelection      ///< a selection with an entry other than 0 or 1
+  kWrongSize,         ///< a joint vector without `dof` entries
+  kNonFinite,         ///< NaN or infinity
+  kNotUnit,           ///< a quaternion too far from unit norm
+  kNegative,          ///< a non-negative field with a negative entry
+  kNotSymmetricPsd,   ///< a gain block that is not symmetric positive semi-definite
+  kGainTooLarge,      ///< a gain entry above gainLimit() of its unit
+  kValueTooLarge,     ///< a rate or feedforward entry above valueLimit() of its unit
+  kNotSelection,      ///< a selection with an entry other than 0 or 1
+  kNegativeThreshold  ///< a threshold with a negative entry
 };
 
 struct CheckResult {

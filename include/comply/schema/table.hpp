@@ -16,7 +16,7 @@
 //   unit        SI unit, "" for none
 //   constraint  schema::Constraint checked on every command that sets the group: kNone,
 //               kNonNegative, kSymmetricPsd, kUnitQuaternion (drift renormalised), kSelection
-//               (every entry 0 or 1)
+//               (every entry 0 or 1), kThreshold (every entry >= 0; 0: the controller file's)
 //   role        schema::Role in the reference rules: kSeedTcpPosition, kSeedTcpOrientation,
 //               kSeedJointPosition (set from the measured state when a reference is seeded),
 //               kZeroOnStop (zeroed when seeding and when motion stops), kNone
@@ -34,7 +34,18 @@
   X(kWrenchFeedforward, "wrench_feedforward", "Cartesian wrench feedforward")      \
   X(kTorqueFeedforward, "torque_feedforward", "joint torque feedforward")          \
   X(kNullspace, "nullspace", "nullspace target, stiffness and damping")            \
-  X(kForce, "force", "force-controlled task axes and their wrench target")
+  X(kForce, "force", "force-controlled task axes and their wrench target")         \
+  X(kReflex, "reflex", "the contact reflex's thresholds for this phase of the task")
+
+// The contact reflex's thresholds (pipeline/contact_reflex.hpp), the same rows in both tables;
+// `frame` names the axes: the task frame's (Cartesian), the base frame's (joint).
+#define COMPLY_REFLEX_COMMAND_FIELDS(X, frame)                                                  \
+  X(reflex_force, kReflex, kVector3, Eigen::Vector3d, "N", kThreshold, kNone,                   \
+    Eigen::Vector3d::Zero(),                                                                    \
+    "contact force per " frame " axis (x y z) above which the reflex trips; 0: reflex.force_n") \
+  X(reflex_torque, kReflex, kVector3, Eigen::Vector3d, "N m", kThreshold, kNone,                \
+    Eigen::Vector3d::Zero(),                                                                    \
+    "contact torque per " frame " axis (x y z) above which the reflex trips; 0: reflex.torque_nm")
 
 #define COMPLY_CARTESIAN_COMMAND_FIELDS(X)                                                       \
   X(position, kPosition, kVector3, Eigen::Vector3d, "m", kNone, kSeedTcpPosition,                \
@@ -72,7 +83,8 @@
   X(force_axes, kForce, kVector6, Vector6d, "", kSelection, kZeroOnStop, Vector6d::Zero(),       \
     "1: a force-controlled task axis (x y z rx ry rz), 0: impedance")                            \
   X(wrench_target, kForce, kVector6, Vector6d, "N, N m", kNone, kNone, Vector6d::Zero(),         \
-    "wrench the TCP exerts along the force axes, task frame, force first")
+    "wrench the TCP exerts along the force axes, task frame, force first")                       \
+  COMPLY_REFLEX_COMMAND_FIELDS(X, "task")
 
 #define COMPLY_JOINT_COMMAND_FIELDS(X)                                                             \
   X(position, kPosition, kJointVector, JointVector, "rad | m", kNone, kSeedJointPosition,          \
@@ -86,7 +98,8 @@
   X(damping, kDamping, kJointVector, JointVector, "N m s/rad | N s/m", kNonNegative, kNone,        \
     JointVector(), "joint damping")                                                                \
   X(torque_feedforward, kTorqueFeedforward, kJointVector, JointVector, "N m | N", kNone, kNone,    \
-    JointVector(), "feedforward joint torque | force")
+    JointVector(), "feedforward joint torque | force")                                             \
+  COMPLY_REFLEX_COMMAND_FIELDS(X, "base frame")
 
 /// Expands a table line into a C++ member declaration (core/commands.hpp).
 #define COMPLY_SCHEMA_MEMBER(name, group, kind, type, unit, constraint, role, init, description) \

@@ -81,7 +81,23 @@
   X(double, wall_distance_m, wall_distance, 0.0, \
     "[m] from the measured TCP to the nearest wall or box face; negative past one") \
   X(Vector3, wall_force, wall_force, {}, \
-    "[N] the walls' barrier force on the TCP this cycle, base frame (0: not braking)")
+    "[N] the walls' barrier force on the TCP this cycle, base frame (0: not braking)") \
+  X(bool, reflex, reflex, false, \
+    "the contact reflex is on (controller option reflex.enabled); while it is off, the fields " \
+    "below are 0") \
+  X(Vector3, reflex_force_threshold, reflex_force_threshold, {}, \
+    "[N] the contact force along task x y z that trips it (the command's reflex_force, its 0 " \
+    "entries the file's reflex.force_n); the base frame's axes under joint control") \
+  X(Vector3, reflex_torque_threshold, reflex_torque_threshold, {}, \
+    "[N m] the contact torque about task x y z that trips it (reflex_torque, reflex.torque_nm)") \
+  X(bool, reflex_tripped, reflex_tripped, false, \
+    "it tripped: its hold or retreat refuses commands (REASON_REFLEX_LATCHED), or it faulted, " \
+    "until a reset request") \
+  X(ReflexReaction, reflex_reaction, reflex_reaction, ReflexReaction::kNone, \
+    "REFLEX_*: what it did when it tripped; REFLEX_NONE while it has not") \
+  X(Vector6, reflex_wrench, reflex_wrench, {}, \
+    "[N, N m] the contact wrench that tripped it, in the task frame then, force first; 0 while " \
+    "it has not tripped")
 
 #define COMPLY_COMMAND_OUTCOME_FIELDS(X) \
   X(Stamp, stamp, stamp, {}, "the command's header.stamp: with the sender, what identifies it") \
@@ -177,6 +193,8 @@
     "[-] cycles the walls moved the law's reference back inside them") \
   X(std::uint64_t, wall_brake_hits, wall_brake_hits, 0, \
     "[-] cycles the walls' barrier braked the TCP approaching a wall") \
+  X(std::uint64_t, reflex_trips, reflex_trips, 0, \
+    "[-] times the contact reflex tripped (hold, retreat or fault)") \
   X(double, histogram_bin_s, histogram_bin, 0.0, "[s] width of one bin of the two histograms") \
   X(Counts, compute_time_histogram, compute_time_histogram, {}, \
     "[-] cycles per bin of compute time; last bin: all above") \

@@ -105,6 +105,14 @@ inline constexpr EnumNames<WrenchSource, 3> kWrenchSourceNames{
      {WrenchSource::kObserver, "observer"},
      {WrenchSource::kSensor, "sensor"}}};
 std::string_view toString(WrenchSource source);
+/// ControllerState.REFLEX_*: what the contact reflex did when it tripped (NONE: it has not).
+enum class ReflexReaction : std::uint8_t { kNone = 0, kHold = 1, kRetreat = 2, kFault = 3 };
+inline constexpr EnumNames<ReflexReaction, 4> kReflexReactionNames{
+    {{ReflexReaction::kNone, "none"},
+     {ReflexReaction::kHold, "hold"},
+     {ReflexReaction::kRetreat, "retreat"},
+     {ReflexReaction::kFault, "fault"}}};
+std::string_view toString(ReflexReaction reaction);
 /// ControllerState.COMMAND_KIND_*. kRequest: the request topic, which only an outcome names (a
 /// controller takes Cartesian or joint commands).
 enum class WireCommandKind : std::uint8_t { kCartesian = 0, kJoint = 1, kRequest = 2 };

@@ -483,12 +483,15 @@ void ComplyController<Command>::onResetFault(std_srvs::srv::Trigger::Response& r
     response.message = "not configured";
     return;
   }
-  const bool in_fault = wrapper_->diagnostics().state == comply::pipeline::WrapperState::kFault;
+  const comply::pipeline::DiagnosticsSnapshot diagnostics = wrapper_->diagnostics();
+  const bool in_fault = diagnostics.state == comply::pipeline::WrapperState::kFault;
   wrapper_
       ->reset();  // either way it clears the stamp floor: a stamp that ran ahead locks no one out
-  response.success = in_fault;
+  response.success = in_fault || diagnostics.reflex_latched;
   response.message = in_fault ? "reset requested: the law runs again from the next cycle"
-                              : "not in FAULT: nothing to reset (stamp floor cleared)";
+                     : diagnostics.reflex_latched
+                         ? "reset requested: the contact reflex's hold ends at the measured pose"
+                         : "not in FAULT: nothing to reset (stamp floor cleared)";
 }
 
 template <typename Command>

@@ -58,7 +58,14 @@ pipeline::WrapperConfig variantConfig(const std::string& robot, const std::strin
                                       const Variant& variant) {
   pipeline::WrapperConfig config = host::controllerConfig(robot, plugin);
   config.initial_cartesian.damping_mode = variant.damping_mode;
-  config.observer.enabled = variant.observer || variant.force;
+  config.observer.enabled = variant.observer || variant.force || variant.reflex;
+  if (variant.reflex) {
+    // Armed, its thresholds out of the replayed motion's reach: the cost is the check of every
+    // cycle (the observer's wrench solved for it, the ellipsoid in the task frame), not a hold.
+    config.reflex.enabled = true;
+    config.reflex.force_n = config.reflex.max_force_n = 1e4;
+    config.reflex.torque_nm = config.reflex.max_torque_nm = 1e3;
+  }
   if (variant.force) {
     config.force_control.contact_force_limit_n = Eigen::Vector3d(30.0, 30.0, 0.0);
   }

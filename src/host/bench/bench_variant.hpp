@@ -17,6 +17,7 @@ struct Variant {
   bool chunked = false;     ///< a timed chunk plays through every cycle
   bool force = false;       ///< a force axis and contact-force limits (with the observer)
   bool walls = false;       ///< four walls and a box around the workspace (virtual_walls.hpp)
+  bool reflex = false;      ///< the contact reflex armed on the observer's wrench
   OutputMode output = OutputMode::kTorque;  ///< what the drives take (output.mode)
 };
 

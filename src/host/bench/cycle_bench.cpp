@@ -123,6 +123,9 @@ std::vector<BenchRow> runBench(const BenchOptions& options, std::ostream& log) {
   // The ratio cycle with walls and a box configured (the reference kept inside, the barrier).
   add(benchWrapper<CartesianCommand>(options, "cartesian_walls", "cartesian_impedance", robot.home,
                                      log, {.walls = true}));
+  // The observer's cycle with the contact reflex armed (contact_reflex.hpp).
+  add(benchWrapper<CartesianCommand>(options, "cartesian_reflex", "cartesian_impedance", robot.home,
+                                     log, {.reflex = true}));
   // The ratio cycle with a timed chunk playing: its curve, gains and task frame every cycle.
   add(benchWrapper<CartesianCommand>(options, "cartesian_chunk", "cartesian_impedance", robot.home,
                                      log, {.chunked = true}));

@@ -265,6 +265,19 @@ void checkTankBounds(const WrapperConfig& config, const Reporter& report) {
   }
 }
 
+/// The file's thresholds within its own ceilings: a command may raise them up to the ceilings,
+/// never the file start above them.
+void checkReflexBounds(const ReflexConfig& reflex, const Reporter& report) {
+  if (reflex.force_n > reflex.max_force_n) {
+    report.fail(InputErrc::kInconsistent, "reflex.force_n",
+                "must not exceed reflex.max_force_n (the most a command may raise it to)");
+  }
+  if (reflex.torque_nm > reflex.max_torque_nm) {
+    report.fail(InputErrc::kInconsistent, "reflex.torque_nm",
+                "must not exceed reflex.max_torque_nm (the most a command may raise it to)");
+  }
+}
+
 }  // namespace
 
 namespace options {
@@ -279,6 +292,7 @@ WrapperConfig parseParameters(const YAML::Node& parameters, const std::string& s
   rejectUnknownKeys(parameters, "", report);
   readOptions(parameters, report, config);
   checkTankBounds(config, report);
+  checkReflexBounds(config.reflex, report);
   readWalls(parameters, source, report.root(), config.walls);
   config.plugin_parameters = readPluginParameters(parameters, report);
   const YAML::Node initial = parameters["initial"];

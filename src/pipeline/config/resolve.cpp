@@ -132,6 +132,7 @@ void compileParameters(ResolvedController& resolved) {
   parameters.walls.gains =
       BarrierGains{config.walls.brake_distance_m, config.walls.stiffness_n_per_m,
                    config.walls.damping_n_s_per_m};
+  parameters.reflex = config.reflex;
   parameters.observer = config.observer;
   parameters.velocity_limit.resize(dof);
   for (int i = 0; i < dof; ++i) {
@@ -260,6 +261,13 @@ void checkConsistency(const ResolvedController& resolved) {
                          " exceeds half of deadbeat on the TCP's lightest apparent mass (" +
                          std::to_string(parameters.tcp_mass_kg) + " kg) at 1 kHz: at most " +
                          std::to_string(damping_bound));
+  }
+  // A retreat moves the TCP's reference; a joint law holds instead (hold or fault).
+  if (config.reflex.enabled && config.reflex.reaction == ReflexReaction::kRetreat &&
+      !resolved.cartesian()) {
+    throw InputError(InputErrc::kInconsistent, config.name, "reflex.reaction",
+                     "retreat needs a Cartesian law (the plugin " + config.plugin +
+                         " takes joint commands); use hold or fault");
   }
 }
 

@@ -40,21 +40,27 @@ bool Controller::takeReset(std::uint64_t number) noexcept {
   // A chunk still waiting for its start does not outlive a reset.
   const bool dropped = dropWaitingChunk(0);
   // Only a fault present when the request arrives can be reset: a request must not stay armed
-  // and clear a later fault unasked.
+  // and clear a later fault unasked. So with the reflex's hold.
   reset_pending_ = diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kFault;
   reset_number_ = number;
+  const bool reflex_held = reflex_.latched();
   if (!reset_pending_) {
-    (void)reset_results_.push({number, ResetResult::End::kNoFault});  // full: no one reads them
+    // Full: no one reads them.
+    (void)reset_results_.push(
+        {number, reflex_held ? ResetResult::End::kLeftReflex : ResetResult::End::kNoFault});
   }
-  if (reset_pending_) {
-    // The command in force may be what caused the fault (a target the arm could not reach, a
-    // feedforward it could not carry), and the arm has moved since: the measured pose is held,
-    // with the gains and task frame in force. Here, so that what the intake queued after the
-    // request builds on it (resumeAfterReset() restarts the stages if the reset is taken).
+  if (reset_pending_ || reflex_held) {
+    // The command in force may be what caused the fault or the reflex (a target the arm could not
+    // reach, a feedforward it could not carry, a motion into something), and the arm has moved
+    // since: the measured pose is held, with the gains and task frame in force, and the reflex's
+    // thresholds are the file's again. Here, so that what the intake queued after the request
+    // builds on it (resumeAfterReset() restarts the stages if a FAULT's reset is taken; under
+    // the reflex's hold the law kept running, and nothing needs restarting).
     chunks_.stop();
     holdMeasured(active_, currentPose());
+    rearmReflex();
   }
-  return dropped || reset_pending_;
+  return dropped || reset_pending_ || reflex_held;
 }
 
 bool Controller::dropWaitingChunk(std::uint64_t sequence) noexcept {
@@ -68,6 +74,11 @@ bool Controller::dropWaitingChunk(std::uint64_t sequence) noexcept {
 }
 
 void Controller::takeCommand(const IntakeMessage& message) noexcept {
+  if (reflex_.latched()) {
+    // Accepted before the intake saw the trip: taken (its outcome is settled) without effect.
+    id_in_force_ = message.id;
+    return;
+  }
   const std::uint32_t sets =
       std::visit([](const auto& bus) noexcept { return bus.fields; }, message.command);
   const bool stops_chunk = (sets & chunks_.fields()) != 0;
@@ -86,6 +97,11 @@ void Controller::takeCommand(const IntakeMessage& message) noexcept {
 }
 
 void Controller::takeChunk(const IntakeMessage& message) noexcept {
+  if (reflex_.latched()) {
+    chunks_.release(message.chunk_slot);  // as a command the intake took before it saw the trip
+    id_in_force_ = message.id;
+    return;
+  }
   if (chunks_.playing()) {
     (void)chunks_.play(time_s_, active_);  // the running chunk's reference at this time
   }

@@ -38,6 +38,7 @@ Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
       chunks_(resolved_->command_kind, dof_, parameters_.chunk_blend_time_s),
       watchdog_(parameters_.command_timeout_s),
       sensor_check_(*resolved_),
+      reflex_(parameters_.reflex),
       gains_(parameters_.gain_ramps, parameters_.passivity),
       force_bus_(emptyBus(resolved_->command_kind)),
       walls_(parameters_, resolved_->cartesian()),
@@ -146,6 +147,8 @@ void Controller::resetStages() noexcept {
   guard_.reset();
   watchdog_.reset();
   sensor_check_.reset();  // the first reading at rest is checked
+  reflex_.reset();        // armed; the thresholds in force stay, as the gains do
+  diagnostics_.reflex_latched.store(false, std::memory_order_relaxed);
   gains_.reset(active_, data_, state_, diagnostics_);
   force_.reset();
   force_active_ = false;

@@ -51,6 +51,9 @@ CycleStatus Controller::update(const JointState& state, double period_s,
   if (!checkSensor()) {  // sensor.cpp; before anything the reading can move
     return hold(torque);
   }
+  if (!checkContact()) {  // reflex.cpp; hold and retreat write the command in force
+    return hold(torque);
+  }
   guardGains();     // gains.cpp
   applyForce();     // force.cpp
   limitToWalls();   // walls.cpp

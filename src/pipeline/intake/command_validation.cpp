@@ -28,6 +28,7 @@ RejectionReason reasonFor(schema::Violation violation) {
       return RejectionReason::kInvalidGains;
     case schema::Violation::kValueTooLarge:
     case schema::Violation::kNotSelection:
+    case schema::Violation::kNegativeThreshold:
       return RejectionReason::kOutOfRange;
     case schema::Violation::kNone:
     case schema::Violation::kNonFinite:

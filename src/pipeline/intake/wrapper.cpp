@@ -7,6 +7,7 @@
 
 #include "comply/pipeline/command_bus.hpp"
 #include "comply/pipeline/force_intake.hpp"
+#include "comply/pipeline/reflex_intake.hpp"
 #include "comply/schema/schema.hpp"
 
 namespace comply::pipeline {
@@ -66,9 +67,11 @@ std::uint64_t Wrapper<Command>::reset() {
   message.type = IntakeMessage::Type::kReset;
   message.command = emptyBus(kKind<Command>);
   message.id.sequence = resets_ + 1;
+  const std::uint64_t trips = controller_.diagnostics().reflex_trips.load();
   if (!controller_.enqueue(message)) {
     return 0;  // a full queue: the sender may send it again
   }
+  reflex_trips_at_reset_ = trips;  // what follows it in the queue is taken after the reset
   return ++resets_;
 }
 
@@ -169,12 +172,19 @@ Verdict Wrapper<Command>::submitStamped(const Command& command, const IntakeStam
   if (Verdict stale = checkFloor(stamp); !stale.accepted) {
     return account(std::move(stale), stamp);
   }
+  if (Verdict held = checkReflexLatch(controller_.diagnostics(), reflex_trips_at_reset_);
+      !held.accepted) {
+    return account(std::move(held), stamp);
+  }
   const int dof = controller_.dof();
   const MeasuredPose measured = controller_.measuredPose();
   Command checked = Command::zero(dof);
   checked.stamp_s = -std::numeric_limits<double>::infinity();  // the floor is checked above
   // validateAndMerge() and, Cartesian, the force axes in force and the wrench bound.
   Verdict verdict = validateAtIntake(command, controller_, measured, intakeGains(), checked);
+  if (verdict.accepted) {
+    verdict = checkReflexCeilings(command, controller_.resolved().config.reflex);
+  }
   Command gains = Command::zero(dof);
   if (verdict.accepted) {
     verdict = checkGains(command, command.fields, intakeGains(), measured.period_s, gains);
@@ -230,6 +240,10 @@ Verdict Wrapper<Command>::submitChunkStamped(const Chunk<Command>& chunk, double
   const std::lock_guard<std::mutex> lock(intake_mutex_);
   if (Verdict stale = checkFloor(stamp); !stale.accepted) {
     return account(std::move(stale), stamp);
+  }
+  if (Verdict held = checkReflexLatch(controller_.diagnostics(), reflex_trips_at_reset_);
+      !held.accepted) {
+    return account(std::move(held), stamp);
   }
   const int dof = controller_.dof();
   const MeasuredPose measured = controller_.measuredPose();
