@@ -17,9 +17,9 @@
 //      damping (ratio)         zeta sqrt(K / m) T <= c
 //
 // 2. Through the rate limit. A linearly stable loop can still lock into a limit cycle at the rate
-//    limit: the FR3's wrist at 2000 N m/rad (w_n T = 0.22; its damping then a twentieth of
-//    critical, the laws' M without the rotors) stepped its torque by the full 1 N m a cycle at 14
-//    to 56 Hz, and was stable without the limit. The limiter's describing function depends
+//    limit: the FR3's wrist at 2000 N m/rad (w_n T = 0.22; its damping then a twenty-fifth of
+//    critical, the laws' M without the rotors) stepped its torque by the full 1 N m a cycle at
+//    14 to 56 Hz, and was stable without the limit. The limiter's describing function depends
 //    on rho = R / (A w) alone (A, w: the amplitude and frequency of the law's torque): gain 1 and
 //    no lag for rho >= 1, then down to 4 rho / pi and 90 deg of lag (rho 0.5: 0.64, -38 deg;
 //    0.3: 0.38, -62 deg). The loop (K + D s) e^(-s T_d) / (m s^2) meets -1 / N(rho) near w_n, at
