@@ -206,6 +206,7 @@ class ModelBuilder {
   static void foldInertias(const urdf::ModelInterface& urdf, const WrittenInertials& written,
                            const std::vector<urdf::JointConstSharedPtr>& path,
                            const std::vector<std::size_t>& body_path_position, Model& model);
+  static void addArmature(const ModelOptions& options, Model& model);
   static void foldSubtree(const urdf::ModelInterface& urdf, const WrittenInertials& written,
                           const urdf::Link& link, const Eigen::Isometry3d& link_in_body,
                           const std::string* stop_joint, MassAccumulator& accumulator);
@@ -322,6 +323,29 @@ void ModelBuilder::foldSubtree(const urdf::ModelInterface& urdf, const WrittenIn
   }
 }
 
+// The rotor inertias, one per controlled joint in the caller's order, each finite and >= 0.
+void ModelBuilder::addArmature(const ModelOptions& options, Model& model) {
+  if (options.armature.empty()) {
+    return;
+  }
+  if (options.armature.size() != options.joint_names.size()) {
+    throw ModelError(ModelErrc::kInvalidOption,
+                     "armature has " + std::to_string(options.armature.size()) + " entries for " +
+                         std::to_string(options.joint_names.size()) + " joints");
+  }
+  for (std::size_t i = 0; i < options.armature.size(); ++i) {
+    if (!std::isfinite(options.armature[i]) || options.armature[i] < 0.0) {
+      throw ModelError(ModelErrc::kInvalidOption,
+                       "armature of joint '" + options.joint_names[i] + "' is " +
+                           std::to_string(options.armature[i]) + " (must be finite and >= 0)");
+    }
+  }
+  model.armature_ = options.armature;
+  for (int i = 0; i < model.dof_; ++i) {
+    model.bodies_[i].armature = options.armature[model.bodies_[i].user_index];
+  }
+}
+
 // The passes run in this order because callers rely on which error a faulty set-up reports first:
 // frames, then joint names, then the chain, and only then the geometry.
 Model ModelBuilder::build(const urdf::ModelInterface& urdf, const WrittenInertials& written,
@@ -341,6 +365,7 @@ Model ModelBuilder::build(const urdf::ModelInterface& urdf, const WrittenInertia
   model.gravity_ = options.gravity_m_per_s2;
   const auto body_path_position = placeBodies(path, user_index, options.tcp_offset, model);
   foldInertias(urdf, written, path, body_path_position, model);
+  addArmature(options, model);
   return model;
 }
 

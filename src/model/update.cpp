@@ -288,8 +288,9 @@ void computeCoriolis(const Model& model, Data& data, std::span<const double> dq)
   }
 }
 
-/// Composite-rigid-body algorithm: M_ji = S_j . (I^c_i S_i) for j <= i. In 4-lane registers like
-/// the forward kinematics (the composite inertia is carried from body to body).
+/// Composite-rigid-body algorithm: M_ji = S_j . (I^c_i S_i) for j <= i, plus the rotor inertias on
+/// the diagonal. In 4-lane registers like the forward kinematics (the composite inertia is carried
+/// from body to body).
 void computeMassMatrix(const Model& model, Data& data) {
   Lanes4 angular[kMaxDof];  // motion subspace S_i = (a_i, o_i x a_i), or (0, a_i) if prismatic
   Lanes4 linear[kMaxDof];
@@ -325,6 +326,9 @@ void computeMassMatrix(const Model& model, Data& data) {
       data.mass_matrix(row_j, row_i) = value;
       data.mass_matrix(row_i, row_j) = value;
     }
+    // The rotor spins with its joint's rate times the gear ratio: its inertia reflected through
+    // the gear adds to this joint's own diagonal entry only.
+    data.mass_matrix(row_i, row_i) += body.armature;
   }
 }
 

@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <vector>
@@ -47,17 +48,34 @@ constexpr InertiaName kTcpMass{"apparent mass at the TCP", "kg"};
 constexpr InertiaName kTcpInertia{"apparent rotational inertia at the TCP", "kg m^2"};
 constexpr InertiaName kJointInertia{"inertia", "kg m^2"};
 
-/// K against m (c/T)^2.
+/// The torque-rate limit R a gain's torque passes through: joint i's, or for a Cartesian gain the
+/// lowest joint's (its torque reaches every joint); infinite without a rate bound.
+double rateOf(const GainBound& bound, Eigen::Index joint) {
+  if (bound.torque_rate_limit.size() == 0 || !(bound.rate_limit_swing_nm > 0.0)) {
+    return std::numeric_limits<double>::infinity();
+  }
+  return joint < 0 ? bound.torque_rate_limit.minCoeff() : bound.torque_rate_limit[joint];
+}
+
+/// K against m w_max^2, w_max = min(c / T, R / tau).
 Verdict checkStiffness(const std::string& field, double stiffness, const char* unit, double inertia,
-                       InertiaName inertia_name, const GainBound& bound, double period_s) {
-  const double limit = inertia * std::pow(bound.max_wn_period / period_s, 2);
+                       InertiaName inertia_name, const GainBound& bound, double period_s,
+                       double rate) {
+  const double sampled = bound.max_wn_period / period_s;
+  const double rated = rate / bound.rate_limit_swing_nm;
+  const double natural_frequency = std::min(sampled, rated);
+  const double limit = inertia * natural_frequency * natural_frequency;
   if (stiffness <= limit) {
     return {};
   }
+  const std::string frequency =
+      rated < sampled
+          ? "(" + number(rate) + " N m/s torque-rate limit / " + number(bound.rate_limit_swing_nm) +
+                " N m swing)^2"
+          : "(" + number(bound.max_wn_period) + " / " + number(period_s * 1e3) + " ms)^2";
   return refuse(field, stiffness, unit, limit,
                 bound.robot + "'s lightest " + inertia_name.name + ", " + number(inertia) + " " +
-                    inertia_name.unit + ", x (" + number(bound.max_wn_period) + " / " +
-                    number(period_s * 1e3) + " ms)^2");
+                    inertia_name.unit + ", x " + frequency);
 }
 
 /// Absolute damping D against 2 c m / T.
@@ -105,7 +123,8 @@ Verdict checkDriveGains(const CartesianCommand& command, const GainBound& bound,
     Verdict verdict;
     if (stiffness) {
       verdict = checkStiffness("joint_pd drive kp of joint " + joint + " (J^T K J at most)", kp,
-                               "N m/rad", bound.joint_inertia[i], kJointInertia, bound, period_s);
+                               "N m/rad", bound.joint_inertia[i], kJointInertia, bound, period_s,
+                               rateOf(bound, i));
     }
     if (verdict.accepted && damping && !ratio) {
       const double kd = largestEigenvalue(command.damping_translational) * lever +
@@ -210,9 +229,9 @@ Verdict checkRenderable(const CartesianCommand& command, const GainBound& bound,
   std::vector<Verdict> verdicts;
   if (stiffness) {
     verdicts.push_back(checkStiffness("stiffness_translational", k_translational, "N/m", m,
-                                      kTcpMass, bound, period_s));
+                                      kTcpMass, bound, period_s, rateOf(bound, -1)));
     verdicts.push_back(checkStiffness("stiffness_rotational", k_rotational, "N m/rad", inertia,
-                                      kTcpInertia, bound, period_s));
+                                      kTcpInertia, bound, period_s, rateOf(bound, -1)));
   }
   const bool damping = has(command.fields, CommandField::kDamping);
   if (damping && command.damping_mode == DampingMode::kAbsolute) {
@@ -236,9 +255,9 @@ Verdict checkRenderable(const CartesianCommand& command, const GainBound& bound,
   if (has(command.fields, CommandField::kNullspace)) {
     for (Eigen::Index i = 0; i < command.nullspace_stiffness.size(); ++i) {
       const std::string joint = " of joint " + std::to_string(i + 1);
-      verdicts.push_back(checkStiffness("nullspace_stiffness" + joint,
-                                        command.nullspace_stiffness[i], "N m/rad",
-                                        bound.joint_inertia[i], kJointInertia, bound, period_s));
+      verdicts.push_back(
+          checkStiffness("nullspace_stiffness" + joint, command.nullspace_stiffness[i], "N m/rad",
+                         bound.joint_inertia[i], kJointInertia, bound, period_s, rateOf(bound, i)));
       verdicts.push_back(checkDamping("nullspace_damping" + joint, command.nullspace_damping[i],
                                       "N m s/rad", bound.joint_inertia[i], kJointInertia, bound,
                                       period_s));
@@ -261,8 +280,9 @@ Verdict checkRenderable(const JointCommand& command, const GainBound& bound, dou
   for (Eigen::Index i = 0; i < bound.joint_inertia.size(); ++i) {
     const std::string joint = " of joint " + std::to_string(i + 1);
     if (has(command.fields, CommandField::kStiffness) && i < command.stiffness.size()) {
-      Verdict verdict = checkStiffness("stiffness" + joint, command.stiffness[i], "N m/rad",
-                                       bound.joint_inertia[i], kJointInertia, bound, period_s);
+      Verdict verdict =
+          checkStiffness("stiffness" + joint, command.stiffness[i], "N m/rad",
+                         bound.joint_inertia[i], kJointInertia, bound, period_s, rateOf(bound, i));
       if (!verdict.accepted) {
         return verdict;
       }

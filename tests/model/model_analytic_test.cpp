@@ -125,6 +125,33 @@ TEST(JointOrderTest, CallerOrderPermutesEveryQuantity) {
   }
 }
 
+TEST(ArmatureTest, RotorInertiasAddToTheirOwnDiagonalEntryOnlyInTheCallersOrder) {
+  ModelOptions options;
+  options.joint_names = {"elbow", "shoulder"};  // not the chain's order
+  options.tip_frame = "tip";
+  const Model bare = Model::fromUrdfString(test_urdfs::planarTwoLink(), options);
+  options.armature = {0.25, 0.75};  // elbow, shoulder [kg m^2]
+  const Model geared = Model::fromUrdfString(test_urdfs::planarTwoLink(), options);
+  EXPECT_EQ(geared.armature(), options.armature);
+  EXPECT_TRUE(bare.armature().empty());
+  Data a(bare);
+  Data b(geared);
+  const std::vector<double> q{-0.9, 0.3};
+  const std::vector<double> dq{1.5, 0.5};
+  ASSERT_EQ(update(bare, a, q, dq, Quantity::kAll), UpdateStatus::kOk);
+  ASSERT_EQ(update(geared, b, q, dq, Quantity::kAll), UpdateStatus::kOk);
+  Eigen::Matrix2d added = Eigen::Matrix2d::Zero();
+  added.diagonal() << 0.25, 0.75;
+  EXPECT_NEAR((b.mass_matrix.topLeftCorner(2, 2) - a.mass_matrix.topLeftCorner(2, 2) - added)
+                  .cwiseAbs()
+                  .maxCoeff(),
+              0.0, kTol);
+  // A reflected rotor inertia is driven by its joint's acceleration alone: gravity and the
+  // Coriolis and centrifugal torques are the links'.
+  EXPECT_NEAR((b.gravity - a.gravity).norm(), 0.0, kTol);
+  EXPECT_NEAR((b.coriolis - a.coriolis).norm(), 0.0, kTol);
+}
+
 TEST(TcpOffsetTest, OffsetMovesThePointAndKeepsAngularRows) {
   Eigen::Isometry3d tcp = Eigen::Isometry3d::Identity();
   tcp.translate(Eigen::Vector3d(0.1, 0.0, 0.2));

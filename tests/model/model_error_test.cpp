@@ -289,6 +289,19 @@ TEST(ModelErrorTest, NonFiniteOptions) {
                    ModelErrc::kInvalidOption, {"finite"});
 }
 
+TEST(ModelErrorTest, ArmatureNeedsOneFiniteNonNegativeEntryPerJoint) {
+  ModelOptions bad = options({"shoulder", "elbow"}, "tip");
+  bad.armature = {0.1};
+  expectModelError([&] { Model::fromUrdfString(test_urdfs::planarTwoLink(), bad); },
+                   ModelErrc::kInvalidOption, {"armature has 1 entries for 2 joints"});
+  bad.armature = {0.1, -0.2};
+  expectModelError([&] { Model::fromUrdfString(test_urdfs::planarTwoLink(), bad); },
+                   ModelErrc::kInvalidOption, {"armature of joint 'elbow'", ">= 0"});
+  bad.armature = {std::nan(""), 0.2};
+  expectModelError([&] { Model::fromUrdfString(test_urdfs::planarTwoLink(), bad); },
+                   ModelErrc::kInvalidOption, {"armature of joint 'shoulder'", "finite"});
+}
+
 TEST(ModelUpdateTest, NonFiniteOrWrongSizeInputLeavesResultsUntouched) {
   const Model model =
       Model::fromUrdfString(test_urdfs::planarTwoLink(), options({"shoulder", "elbow"}, "tip"));

@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "comply/model/robot_description.hpp"
 #include "comply/model/update.hpp"
@@ -52,6 +54,34 @@ TEST_P(ReferenceTest, MatchesKdl) {
   testing::KdlReference kdl(robot_.urdf_path.string(), robot_.base_frame, robot_.tcp_frame,
                             robot_.joints);
   worstAgainst(kdl, 1, "KDL").expectWithin(1e-9, 1e-9);
+}
+
+/// `reference` with the rotor inertias added to its M's diagonal: what a model built with them
+/// (ModelOptions::armature) must equal.
+template <typename Reference>
+struct WithArmature {
+  Reference& reference;
+  Eigen::VectorXd armature;
+  testing::ReferenceResult compute(const Eigen::VectorXd& q, const Eigen::VectorXd& dq) {
+    testing::ReferenceResult result = reference.compute(q, dq);
+    result.mass_matrix.diagonal() += armature;
+    return result;
+  }
+};
+
+TEST_P(ReferenceTest, WithTheRotorInertiasMatchesKdlsMassMatrixPlusThem) {
+  ASSERT_TRUE(robot_.joint_dynamics.has_value());
+  const std::vector<double>& armature = robot_.joint_dynamics->armature;
+  model::ModelOptions options = robot_.modelOptions();
+  options.armature = armature;
+  model_ = std::make_unique<Model>(robot_.loadModel(options));
+  data_ = std::make_unique<Data>(*model_);
+  testing::KdlReference kdl(robot_.urdf_path.string(), robot_.base_frame, robot_.tcp_frame,
+                            robot_.joints);
+  WithArmature<testing::KdlReference> geared{
+      kdl, Eigen::Map<const Eigen::VectorXd>(armature.data(),
+                                             static_cast<Eigen::Index>(armature.size()))};
+  worstAgainst(geared, 3, "KDL + armature").expectWithin(1e-9, 1e-9);
 }
 
 TEST_P(ReferenceTest, MatchesMujoco) {

@@ -32,6 +32,9 @@ std::string ratioRefusingCartesian(double rate_limit) {
          "initial:\n"
          "  damping_mode: absolute\n"
          "fault_damping: [1, 2, 3, 4, 5, 6, 7]\n"
+         // A rate limit far below what the gains need is the point: the gain bound's torque-rate
+         // part would refuse them.
+         "validation: {rate_limit_swing_nm: 0}\n"
          "torque_rate_limit_nm_per_s: " +
          std::to_string(rate_limit) + "\n";
 }

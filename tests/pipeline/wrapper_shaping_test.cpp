@@ -17,10 +17,12 @@ constexpr double kTolerance = 1e-9;
 TEST(WrapperShaping, TorqueRateLimitSpreadsAStepAndCountsEveryClippedCycle) {
   constexpr double kRateLimit = 50.0;  // N m/s: 0.05 N m per 1 ms cycle
   // The state is held still while the torque ramps for 0.4 s, which is what a stale sensor
-  // stream looks like: the frozen-state check is off here.
-  JointWrapper wrapper(fr3Config(
-      kJointImpedancePlugin,
-      "torque_rate_limit_nm_per_s: " + std::to_string(kRateLimit) + "\nfrozen_state_timeout_s: 0"));
+  // stream looks like: the frozen-state check is off here, and the gain bound's rate part (the
+  // rate limit is far below what the gains need, which is the point).
+  JointWrapper wrapper(
+      fr3Config(kJointImpedancePlugin, "torque_rate_limit_nm_per_s: " + std::to_string(kRateLimit) +
+                                           "\nfrozen_state_timeout_s: 0\n"
+                                           "validation: {rate_limit_swing_nm: 0}"));
   const JointVector home = fr3Home();
   const JointState state = restingAt(wrapper.controller(), home);
   wrapper.activate(state);

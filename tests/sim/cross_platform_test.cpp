@@ -41,7 +41,9 @@ TEST(CrossPlatform, EveryRobotReachesTheCommonTargetAndThePicturesShowThem) {
     EXPECT_LT(row.position_error_mm, 2.0);
     EXPECT_LT(row.orientation_error_deg, 1.0);
     EXPECT_FALSE(std::isnan(row.settle_time_s));
-    EXPECT_GT(row.peak_torque_nm, 1.0);
+    // A law ran: in admittance the torque is the virtual arm's, which carries no weight and
+    // follows a reference that starts and ends at rest.
+    EXPECT_GT(row.peak_torque_nm, isAdmittance(row.output) ? 0.01 : 1.0);
     EXPECT_EQ(row.rejections, 0U);
     EXPECT_EQ(row.faults, 0U);
   }

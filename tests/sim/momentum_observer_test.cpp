@@ -8,12 +8,15 @@
 // The plant runs without robot.yaml's Coulomb friction, an external torque to an observer given
 // the commanded torque (an arm with joint-torque sensing removes it with
 // observer.measured_torque). Its joint damping and rotor armature stay: without them the smallest
-// wrist joints cannot be held stably at 1 kHz; at rest they exert nothing, and in motion they show
-// as the small transient they are (damping times velocity, armature times acceleration).
+// wrist joints cannot be held stably at 1 kHz. The model's M(q) carries the same rotor inertias
+// (robot.yaml), so in motion only the damping shows (damping times velocity); a model without them
+// sees the armature's torque (armature times acceleration) as external while the arm accelerates.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -43,8 +46,11 @@ struct Logged {
 /// base frame's.
 const Eigen::Quaterniond kTaskFrame(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()));
 
+/// Whether the controller's model knows the plant's rotor armature.
+enum class Armature { kKnown, kUnknownToTheModel };
+
 void runWithWrench(const std::string& robot, const Vector6d& applied, Logged& log,
-                   bool with_armature = true) {
+                   Armature armature = Armature::kKnown) {
   pipeline::WrapperConfig config = simCartesianConfig(robot);
   config.observer.enabled = true;
   config.observer.gain_per_s = kGainPerS;
@@ -52,11 +58,10 @@ void runWithWrench(const std::string& robot, const Vector6d& applied, Logged& lo
   sim::PlantOptions plant_options;
   plant_options.friction_scale = 0.0;
   sim::SimulatedRobot plant(*config.robot_description, plant_options);
-  if (!with_armature) {
-    mjModel& mujoco = plant.mutableMujocoModel();
-    for (int i = 0; i < mujoco.nv; ++i) {
-      mujoco.dof_armature[i] = 0.0;
-    }
+  if (armature == Armature::kUnknownToTheModel) {
+    auto bare = std::make_shared<model::RobotDescription>(*config.robot_description);
+    std::fill(bare->joint_dynamics->armature.begin(), bare->joint_dynamics->armature.end(), 0.0);
+    config.robot_description = bare;
   }
   pipeline::CartesianWrapper wrapper(config);
   const int dof = wrapper.dof();
@@ -112,11 +117,11 @@ TEST_P(MomentumObserver, EstimatesAKnownWrenchWithItsTimeConstant) {
   Vector6d applied;
   applied << 12.0, -8.0, 15.0, 0.6, -0.4, 0.5;  // [N, N m] base frame, about the TCP
   Logged log;
-  runWithWrench(GetParam(), applied, log, /*with_armature=*/false);
+  runWithWrench(GetParam(), applied, log);
   ASSERT_EQ(log.wrench.size(), static_cast<std::size_t>(kCycles));
 
-  // Without the rotor armature the plant's inertia is the model's: the estimate is the applied
-  // wrench filtered by 1/K_O, nothing else.
+  // The plant's inertia is the model's, rotors included: the estimate is the applied wrench
+  // filtered by 1/K_O, nothing else.
   const Vector6d settled = expectSettledOn(log, applied);
 
   // Step response along the applied force: 63 % after about 1/K_O.
@@ -152,13 +157,13 @@ TEST_P(MomentumObserver, EstimatesAKnownWrenchWithItsTimeConstant) {
   EXPECT_GT((state.contact_wrench_task - state.contact_wrench).norm(), 1.0);  // the frame turned
 }
 
-// With the armature the model does not know of (as on a real arm): wrong only while the arm
-// accelerates, right once it is still.
+// With an armature the model does not know of (a robot.yaml that declares none): wrong only while
+// the arm accelerates, right once it is still.
 TEST_P(MomentumObserver, ArmatureDoesNotBiasTheSettledEstimate) {
   Vector6d applied;
   applied << -9.0, 14.0, -11.0, -0.3, 0.7, 0.2;
   Logged log;
-  runWithWrench(GetParam(), applied, log, /*with_armature=*/true);
+  runWithWrench(GetParam(), applied, log, Armature::kUnknownToTheModel);
   ASSERT_EQ(log.wrench.size(), static_cast<std::size_t>(kCycles));
   expectSettledOn(log, applied);
 }
@@ -181,7 +186,11 @@ TEST_P(MomentumObserver, ResidualMatchesAnIndependentComputation) {
   for (std::size_t k = 0; k < log.position.size(); ++k) {
     const Eigen::VectorXd q = log.position[k];
     const Eigen::VectorXd dq = log.velocity[k];
-    const ReferenceResult reference = kdl.compute(q, dq);
+    ReferenceResult reference = kdl.compute(q, dq);
+    // The controller's M(q) is the links' plus the rotor inertias robot.yaml declares.
+    for (int i = 0; i < dof; ++i) {
+      reference.mass_matrix(i, i) += robot.joint_dynamics->armature[static_cast<std::size_t>(i)];
+    }
     const Eigen::MatrixXd& mass = reference.mass_matrix;
     if (k == 0) {
       momentum0 = mass * dq;

@@ -13,7 +13,7 @@
 //       - time_s: 2.0                 # the pose is reached at this time
 //         position_offset: [0.1, 0.0, 0.0]   # m, from the start TCP position (or `position`)
 //         orientation: [1, 0, 0, 0]          # x y z w, base frame
-//         interpolate: linear                # linear (default): from the previous pose; step
+//         interpolate: linear                # linear (default), smooth or step
 //
 //     path:                           # optional, Cartesian: stream along a path afterwards
 //       start_time_s: 3.0               # leaves the first point at this time
@@ -32,7 +32,8 @@
 // control, `position` and `position_offset` are joint vectors [rad | m]. As in the controller YAML,
 // a 3x3 gain block may be given as 1 number (isotropic), 3 (diagonal) or 9 (row-major, task frame).
 // The reference between two waypoints moves along a straight line (slerp for orientation) with the
-// matching velocity feedforward.
+// matching velocity feedforward: at a constant speed (linear), or by a minimum-jerk profile that
+// starts and ends at rest (smooth: no step in the velocity, so none in the damping's torque).
 
 #include <filesystem>
 #include <optional>
@@ -51,7 +52,7 @@ namespace comply::host {
 /// Longest simulated run [s]: the log is kept in memory for the plot, about 0.65 MB per second.
 inline constexpr double kMaxSimDurationS = 600.0;
 
-enum class Interpolation { kLinear, kStep };
+enum class Interpolation { kLinear, kSmooth, kStep };
 
 struct Waypoint {
   double time_s = 0.0;

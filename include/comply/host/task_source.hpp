@@ -24,7 +24,8 @@ struct Reference {
 };
 
 /// Waypoint targets resolved against the start: absolute positions, orientations carried over;
-/// linear interpolation (slerp) with the matching velocity, or a step.
+/// interpolation (slerp) at a constant speed or by minimum jerk, with the matching velocity, or a
+/// step.
 class Trajectory {
  public:
   Trajectory(const TaskFile& task, const Reference& start);
@@ -37,7 +38,7 @@ class Trajectory {
   Reference start_;
   std::vector<Reference> targets_;
   std::vector<double> times_;
-  std::vector<bool> linear_;
+  std::vector<Interpolation> interpolation_;
 };
 
 /// The period [s] at which a task streams its reference: its command rate, in whole control

@@ -27,6 +27,10 @@ struct ModelOptions {
   Eigen::Isometry3d tcp_offset = Eigen::Isometry3d::Identity();
   /// Gravitational acceleration in base_frame axes [m/s^2].
   Eigen::Vector3d gravity_m_per_s2{0.0, 0.0, -9.81};
+  /// Reflected rotor inertia of each joint [kg m^2 | kg], in joint_names order: what a geared
+  /// drive accelerates besides the links (robot.yaml joint_dynamics.armature), added to the
+  /// diagonal of M(q) as MuJoCo's dof_armature is. Empty: the bare links of the URDF.
+  std::vector<double> armature;
 };
 
 enum class JointType { kRevolute, kPrismatic };
@@ -61,6 +65,8 @@ struct ChainBody {
   Eigen::Matrix3d inertia_com = Eigen::Matrix3d::Zero();
   /// Index of this joint in ModelOptions::joint_names (the caller's order).
   int user_index = 0;
+  /// Reflected rotor inertia on this joint [kg m^2 | kg] (ModelOptions::armature).
+  double armature = 0.0;
 };
 
 class Model {
@@ -78,6 +84,8 @@ class Model {
   /// Limits in the caller's joint order.
   [[nodiscard]] const JointLimits& limits(int joint_index) const { return limits_.at(joint_index); }
   [[nodiscard]] const Eigen::Vector3d& gravity() const noexcept { return gravity_; }
+  /// The rotor inertias in M(q), in the caller's joint order; empty: none (bare links).
+  [[nodiscard]] const std::vector<double>& armature() const noexcept { return armature_; }
 
   /// Bodies in chain order (base to tip); body i moves with controlled joint bodies()[i].user_index.
   [[nodiscard]] const ChainBody& body(int chain_index) const noexcept { return bodies_[chain_index]; }
@@ -94,6 +102,7 @@ class Model {
   std::array<ChainBody, kMaxDof> bodies_{};
   std::vector<std::string> joint_names_;
   std::vector<JointLimits> limits_;
+  std::vector<double> armature_;
   std::string base_frame_;
   std::string tip_frame_;
   Eigen::Isometry3d tip_in_last_body_ = Eigen::Isometry3d::Identity();

@@ -20,7 +20,8 @@ struct SigmoidFriction {
   std::vector<double> phi3;  ///< rad/s
 };
 
-/// Plant parameters a simulator gives each joint, so that compensation has something to do.
+/// Plant parameters a simulator gives each joint, so that compensation has something to do. The
+/// rotor inertias are the arm's too: the controller's M(q) carries them (ModelOptions::armature).
 struct JointDynamics {
   std::vector<double> damping;       ///< viscous [N m s/rad]
   std::vector<double> armature;      ///< reflected rotor inertia [kg m^2]

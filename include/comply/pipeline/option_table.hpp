@@ -49,6 +49,9 @@
   NUMBER(max_wn_period, "validation.max_wn_period", 0.35, kAtLeast, 0.0, 0.43,                     \
          "largest w_n T a stiffness or damping may give on the arm's lightest inertia (0: no "     \
          "bound)")                                                                                 \
+  NUMBER(rate_limit_swing_nm, "validation.rate_limit_swing_nm", 5.0, kAtLeast, 0.0, kNoLimit,      \
+         "N m of torque swing a stiffness must pass through the torque-rate limit without a limit "\
+         "cycle: sqrt(K / m) <= rate limit / this (output.mode torque; 0: no bound)")              \
   NUMBER(max_stamp_lead_s, "validation.max_stamp_lead_s", 1.0, kAbove, 0.0, kNoLimit,              \
          "s a command's stamp, or a chunk's first waypoint, may be ahead of the host's clock")     \
   NUMBER(max_chunk_acceleration_m_per_s2, "validation.max_chunk_acceleration_m_per_s2", 13.0,      \

@@ -97,6 +97,9 @@ struct ResolvedController {
   CycleParameters parameters;
   /// The gains the arm renders stably (gain_bound.hpp): the intake refuses commands above them.
   GainBound gain_bound;
+  /// What the controller takes but its user should know (a robot without rotor inertias): the
+  /// hosts print each once, before the first cycle.
+  std::vector<std::string> warnings;
 
   [[nodiscard]] bool cartesian() const noexcept;
 };

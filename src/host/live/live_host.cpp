@@ -290,6 +290,9 @@ int runLiveHost(const LiveHostOptions& options, pipeline::WrapperConfig config,
   }
   const std::shared_ptr<const pipeline::ResolvedController> resolved =
       pipeline::resolveController(config);
+  for (const std::string& warning : resolved->warnings) {
+    out << "comply run: " << warning << std::endl;
+  }
   return resolved->cartesian()
              ? runWith<CartesianCommand>(options, resolved, backend, priority, stop, out, err)
              : runWith<JointCommand>(options, resolved, backend, priority, stop, out, err);

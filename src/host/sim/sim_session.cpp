@@ -286,6 +286,9 @@ SimResult runWith(const SimRunOptions& options,
   summary.robot = resolved->robot.name;
   summary.plugin = resolved->config.plugin;
   summary.output_mode = resolved->parameters.output.mode;
+  for (const std::string& warning : resolved->warnings) {
+    addMessage(summary, warning, options.progress);
+  }
   sim::SimulatedRobot plant(resolved->robot, plantOptions(options, *resolved));
   pipeline::Wrapper<Command> wrapper(resolved);
   const int dof = wrapper.dof();

@@ -234,10 +234,12 @@ Waypoint readWaypoint(json object, std::size_t index, bool cartesian, int dof,
     const json& value = object["interpolate"];
     if (value == "linear") {
       waypoint.interpolate = Interpolation::kLinear;
+    } else if (value == "smooth") {
+      waypoint.interpolate = Interpolation::kSmooth;
     } else if (value == "step") {
       waypoint.interpolate = Interpolation::kStep;
     } else {
-      error.fail(where + ".interpolate", "must be linear or step");
+      error.fail(where + ".interpolate", "must be linear, smooth or step");
     }
     object.erase("interpolate");
   }

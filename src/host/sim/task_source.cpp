@@ -42,7 +42,7 @@ Trajectory::Trajectory(const TaskFile& task, const Reference& start) : start_(st
     Reference next = target(waypoint, previous);
     targets_.push_back(next);
     times_.push_back(waypoint.time_s);
-    linear_.push_back(waypoint.interpolate == Interpolation::kLinear);
+    interpolation_.push_back(waypoint.interpolate);
     previous = next;
   }
 }
@@ -80,7 +80,7 @@ Reference Trajectory::at(double t) const {
   const Reference& from = next == 0 ? start_ : targets_[next - 1];
   const double t0 = next == 0 ? 0.0 : times_[next - 1];
   const double span = times_[next] - t0;
-  if (!linear_[next] || span <= 0.0) {
+  if (interpolation_[next] == Interpolation::kStep || span <= 0.0) {
     Reference hold = from;
     hold.twist.setZero();
     if (hold.joint_velocity.size() > 0) {
@@ -89,11 +89,19 @@ Reference Trajectory::at(double t) const {
     return hold;
   }
   const Reference& to = targets_[next];
-  const double s = (t - t0) / span;
+  // The share s of the way and its rate ds/dt: constant, or minimum jerk (s = 10 u^3 - 15 u^4 +
+  // 6 u^5, at rest with no acceleration at both ends).
+  const double u = (t - t0) / span;
+  double s = u;
+  double rate = 1.0 / span;
+  if (interpolation_[next] == Interpolation::kSmooth) {
+    s = u * u * u * (10.0 - 15.0 * u + 6.0 * u * u);
+    rate = 30.0 * u * u * (1.0 - u) * (1.0 - u) / span;
+  }
   Reference out = to;
   if (from.joint_position.size() > 0) {
     out.joint_position = from.joint_position + s * (to.joint_position - from.joint_position);
-    out.joint_velocity = (to.joint_position - from.joint_position) / span;
+    out.joint_velocity = rate * (to.joint_position - from.joint_position);
     return out;
   }
   out.position = from.position + s * (to.position - from.position);
@@ -102,10 +110,10 @@ Reference Trajectory::at(double t) const {
     goal.coeffs() = -goal.coeffs();  // shortest way round
   }
   out.orientation = from.orientation.slerp(s, goal);
-  out.twist.head<3>() = (to.position - from.position) / span;
-  // Constant angular velocity of the slerp, in the base frame.
+  out.twist.head<3>() = rate * (to.position - from.position);
+  // The slerp's angular velocity (about a fixed axis), in the base frame.
   const Eigen::AngleAxisd delta(goal * from.orientation.conjugate());
-  out.twist.tail<3>() = delta.axis() * delta.angle() / span;
+  out.twist.tail<3>() = rate * delta.angle() * delta.axis();
   return out;
 }
 

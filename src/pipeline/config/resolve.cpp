@@ -62,15 +62,16 @@ SoftLimitParameters compileSoftLimits(const SoftLimitConfig& soft_limits, const 
   return compiled;
 }
 
-/// The rotor inertias the robot declares, in the model's joint order (empty when it declares
-/// none): what a drive's torque accelerates besides the links.
-JointVector declaredArmature(const model::RobotDescription& robot, const model::Model& model) {
+/// The rotor inertias the robot declares, in the order of `joints` (empty when it declares none):
+/// what a drive's torque accelerates besides the links.
+std::vector<double> declaredArmature(const model::RobotDescription& robot,
+                                     const std::vector<std::string>& joints) {
   if (!robot.joint_dynamics || robot.joint_dynamics->armature.size() != robot.joints.size()) {
     return {};
   }
-  JointVector armature = JointVector::Zero(model.dof());
-  for (int i = 0; i < model.dof(); ++i) {
-    const auto it = std::find(robot.joints.begin(), robot.joints.end(), model.jointNames()[i]);
+  std::vector<double> armature(joints.size(), 0.0);
+  for (std::size_t i = 0; i < joints.size(); ++i) {
+    const auto it = std::find(robot.joints.begin(), robot.joints.end(), joints[i]);
     if (it != robot.joints.end()) {
       armature[i] = robot.joint_dynamics->armature[it - robot.joints.begin()];
     }
@@ -79,6 +80,12 @@ JointVector declaredArmature(const model::RobotDescription& robot, const model::
 }
 
 namespace {
+
+/// The robot declares a rotor inertia above zero on some joint.
+bool hasArmature(const ResolvedController& resolved) {
+  const std::vector<double> armature = declaredArmature(resolved.robot, resolved.robot.joints);
+  return std::any_of(armature.begin(), armature.end(), [](double value) { return value > 0.0; });
+}
 
 /// Step 1: the robot's description (loaded unless the configuration carries one), its model with
 /// the configuration's joints and frames, and the plugin, whose command kind decides the rest.
@@ -92,6 +99,11 @@ void loadModelAndPlugin(ResolvedController& resolved) {
   model::ModelOptions options = resolved.robot.modelOptions(config.tip_frame);
   options.joint_names = config.joints;
   options.base_frame = config.base_frame;
+  // The laws' M(q) is the arm's, rotors included, so a damping ratio is one on the arm it damps.
+  // An admittance law drives a virtual arm of bare links (virtual_arm.hpp), whose M it reads.
+  if (!isAdmittance(config.output.mode)) {
+    options.armature = declaredArmature(resolved.robot, config.joints);
+  }
   resolved.model = std::make_shared<const model::Model>(resolved.robot.loadModel(options));
   resolved.dof = resolved.model->dof();
   if (resolved.dof != config.dof) {
@@ -166,29 +178,44 @@ void adaptToOutputMode(ResolvedController& resolved) {
   parameters.observer.enabled = false;
 }
 
-/// The gain bound of the output mode (gain_bound.hpp): the arm's inertias with its rotor inertias
-/// (torque; joint_pd, whose drives' own gains are checked too with a Cartesian law), or the
-/// admittance modes' virtual arm, bounded along translation only: it carries no rotor inertias,
-/// so its lightest rotational and joint inertias are the bare links' (the FR3's lightest rotational
-/// inertia at the TCP 1.0e-4 kg m^2, against 0.040 with its rotors), and a bound on them would
-/// refuse every robot's default rotational stiffness.
-GainBound modeBound(const ResolvedController& resolved) {
-  const WrapperConfig& config = resolved.config;
+/// The arm's lightest inertias, its rotors included: the model's M carries them, except in the
+/// admittance modes, whose model is the virtual arm's bare links (loadModelAndPlugin).
+GainBound armInertias(const ResolvedController& resolved) {
   const model::Model& model = *resolved.model;
-  GainBound bound;
+  const std::vector<double> extra = model.armature().empty()
+                                        ? declaredArmature(resolved.robot, model.jointNames())
+                                        : std::vector<double>{};
+  return lightestInertias(model, toJointVector(extra, extra.empty() ? 0 : resolved.dof));
+}
+
+/// The gain bound of the output mode (gain_bound.hpp): the arm's inertias with its rotor inertias
+/// (torque, with the torque-rate limit; joint_pd, whose drives' own gains are checked too with a
+/// Cartesian law), or the admittance modes' virtual arm. Where the inertias are bare links' (the
+/// virtual arm; a robot that declares no rotor inertias) only translation is bounded: a geared
+/// wrist's bare links are a few hundredths of its rotors (the FR3's lightest rotational inertia
+/// at the TCP 1.0e-4 kg m^2, against 0.040 with its rotors), and a bound on them would refuse
+/// every robot's default rotational stiffness.
+GainBound modeBound(const ResolvedController& resolved, const GainBound& arm) {
+  const WrapperConfig& config = resolved.config;
+  constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+  GainBound bound = arm;
+  bound.robot = resolved.robot.name;
   if (isAdmittance(config.output.mode)) {
     const AdmittanceConfig& admittance = config.output.admittance;
     bound = lightestInertias(
-        model, {}, 2000,
+        *resolved.model, {}, 2000,
         {admittance.added_mass_kg.minCoeff(), admittance.added_inertia_kg_m2.minCoeff()});
-    constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+    bound.robot = resolved.robot.name + " virtual arm";
+  } else if (config.output.mode == OutputMode::kTorque) {
+    bound.torque_rate_limit = resolved.parameters.torque_rate_limit;
+    bound.rate_limit_swing_nm = config.validation.rate_limit_swing_nm;
+  } else {
+    bound.drive_gains = config.output.mode == OutputMode::kJointPd && resolved.cartesian();
+  }
+  bound.bare_links = isAdmittance(config.output.mode) || !hasArmature(resolved);
+  if (bound.bare_links && bound.enabled()) {
     bound.rotational_inertia_kg_m2 = kUnbounded;
     bound.joint_inertia.setConstant(resolved.dof, kUnbounded);
-    bound.robot = resolved.robot.name + " virtual arm";
-  } else {
-    bound = lightestInertias(model, declaredArmature(resolved.robot, model));
-    bound.robot = resolved.robot.name;
-    bound.drive_gains = config.output.mode == OutputMode::kJointPd && resolved.cartesian();
   }
   bound.max_wn_period = config.validation.max_wn_period;
   return bound;
@@ -198,29 +225,35 @@ GainBound modeBound(const ResolvedController& resolved) {
 /// keep, and the joint inertias the stability guard's energy rule weighs speeds with.
 void boundGains(ResolvedController& resolved) {
   const WrapperConfig& config = resolved.config;
-  const model::Model& model = *resolved.model;
+  const GainBound arm = armInertias(resolved);
   if (config.validation.max_wn_period > 0.0) {
-    resolved.gain_bound = modeBound(resolved);
+    resolved.gain_bound = modeBound(resolved, arm);
     // The initial command is checked at 1 kHz: the period is the host's, known at the first cycle.
     const Verdict verdict =
         resolved.cartesian() ? checkRenderable(config.initial_cartesian, resolved.gain_bound, 1e-3)
                              : checkRenderable(config.initial_joint, resolved.gain_bound, 1e-3);
     if (!verdict.accepted) {
+      const bool by_rate = verdict.message.find("torque-rate limit") != std::string::npos;
       throw InputError(InputErrc::kOutOfRange, config.name, "initial",
                        verdict.message + " at 1 kHz (output.mode " +
-                           std::string(toString(config.output.mode)) +
-                           "); lower it, or set validation.max_wn_period");
+                           std::string(toString(config.output.mode)) + "); lower it, or set " +
+                           (by_rate ? "torque_rate_limit_nm_per_s or validation.rate_limit_swing_nm"
+                                    : "validation.max_wn_period"));
+    }
+    if (!isAdmittance(config.output.mode) && !hasArmature(resolved)) {
+      resolved.warnings.push_back(
+          resolved.robot.name +
+          " declares no rotor inertias (robot.yaml joint_dynamics.armature): the laws' M(q) and "
+          "the gain bound take its bare links, and only translational gains are bounded "
+          "(validation.max_wn_period); rotational, joint and nullspace gains are not");
     }
   }
-  // The lightest joint inertias (the arm's, rotor inertias included; an admittance's bound is
-  // its virtual arm's) weigh the energy rule and bound the governor's and the stop's damping
-  // (deadbeat on the lightest inertia is stable on every heavier one).
-  const GainBound lightest = resolved.gain_bound.enabled() && !isAdmittance(config.output.mode)
-                                 ? resolved.gain_bound
-                                 : lightestInertias(model, declaredArmature(resolved.robot, model));
-  resolved.parameters.joint_inertia = lightest.joint_inertia;
-  resolved.parameters.tcp_mass_kg = lightest.translational_mass_kg;
-  resolved.parameters.tcp_inertia_kg_m2 = lightest.rotational_inertia_kg_m2;
+  // The lightest joint inertias (the arm's, rotor inertias included) weigh the energy rule and
+  // bound the governor's and the stop's damping (deadbeat on the lightest inertia is stable on
+  // every heavier one).
+  resolved.parameters.joint_inertia = arm.joint_inertia;
+  resolved.parameters.tcp_mass_kg = arm.translational_mass_kg;
+  resolved.parameters.tcp_inertia_kg_m2 = arm.rotational_inertia_kg_m2;
 }
 
 /// Step 5: choices that cannot hold together.
