@@ -77,6 +77,7 @@ DiagnosticsSnapshot Diagnostics::snapshot() const {
   result.governor_hits = governor_hits.load();
   result.wall_reference_hits = wall_reference_hits.load();
   result.wall_brake_hits = wall_brake_hits.load();
+  result.contact_speed_hits = contact_speed_hits.load();
   result.faults = faults.load();
   result.watchdog_timeouts = watchdog_timeouts.load();
   result.passivity = passivity();

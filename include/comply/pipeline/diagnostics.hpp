@@ -40,6 +40,7 @@ struct DiagnosticsSnapshot {
   std::uint64_t governor_hits = 0;        ///< cycles the motion governor acted in
   std::uint64_t wall_reference_hits = 0;  ///< cycles the walls moved the law's reference
   std::uint64_t wall_brake_hits = 0;      ///< cycles the walls' barrier braked the TCP
+  std::uint64_t contact_speed_hits = 0;   ///< cycles the contact-speed stage acted in
   std::uint64_t faults = 0;
   std::uint64_t watchdog_timeouts = 0;
   PassivitySnapshot passivity;
@@ -76,6 +77,7 @@ class Diagnostics {
   std::atomic<std::uint64_t> governor_hits{0};
   std::atomic<std::uint64_t> wall_reference_hits{0};
   std::atomic<std::uint64_t> wall_brake_hits{0};
+  std::atomic<std::uint64_t> contact_speed_hits{0};
   std::atomic<std::uint64_t> faults{0};
   std::atomic<std::uint64_t> watchdog_timeouts{0};
   /// The gain guard's account, written by the cycle (see PassivitySnapshot).

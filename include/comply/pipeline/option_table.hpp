@@ -188,13 +188,35 @@
 // walls: and boxes: (read outside the table: each entry is a point and a normal, or two corners).
 // The barrier brakes a TCP that approaches a wall within brake_distance_m, passively (only while
 // it moves toward the wall); the reference is kept inside the walls whatever the gains.
-#define COMPLY_WALL_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)            \
-  NUMBER(brake_distance_m, "wall.brake_distance_m", 0.05, kAbove, 0.0, 1.0,                       \
+#define COMPLY_WALL_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)             \
+  NUMBER(brake_distance_m, "wall.brake_distance_m", 0.05, kAbove, 0.0, 1.0,                        \
          "m from a wall (walls:, boxes:) where the barrier starts braking a TCP moving toward it") \
-  NUMBER(stiffness_n_per_m, "wall.stiffness_n_per_m", 2000.0, kAtLeast, 0.0, 1e5,                 \
-         "N/m x the depth into the braking zone, while the TCP approaches the wall")              \
-  NUMBER(damping_n_s_per_m, "wall.damping_n_s_per_m", 200.0, kAtLeast, 0.0, 1e4,                  \
+  NUMBER(stiffness_n_per_m, "wall.stiffness_n_per_m", 2000.0, kAtLeast, 0.0, 1e5,                  \
+         "N/m x the depth into the braking zone, while the TCP approaches the wall")               \
+  NUMBER(damping_n_s_per_m, "wall.damping_n_s_per_m", 200.0, kAtLeast, 0.0, 1e4,                   \
          "N s/m x the TCP's approach speed within the braking zone")
+
+// The TCP's speed along its motion bounded by what an unexpected contact may cost (power and
+// force limiting in the spirit of ISO/TS 15066; ContactSpeedConfig; contact_speed.hpp,
+// body_regions.hpp): v_max = F / sqrt(mu k), mu the arm's mass along the motion at this pose (the
+// rotors' inertia and the declared payload included). Cartesian laws, torque or joint_pd output.
+#define COMPLY_CONTACT_SPEED_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)   \
+  FLAG(enabled, "contact_speed.enabled", false,                                                   \
+       "the TCP no faster along its motion than a contact with body_region may take")             \
+  CHOICE(                                                                                         \
+      body_region, "contact_speed.body_region", BodyRegion, kHands,                               \
+      "skull_forehead | face | neck | back_shoulders | chest | abdomen | pelvis | upper_arms | "  \
+      "lower_arms | hands | thighs | lower_legs (ISO/TS 15066 Annex A)")                          \
+  CHOICE(contact, "contact_speed.contact", ContactKind, kQuasiStatic,                             \
+         "quasi_static: the region's quasi-static force | transient: twice it (an impact; not "   \
+         "for skull_forehead or face)")                                                           \
+  NUMBER(force_limit_n, "contact_speed.force_limit_n", 0.0, kAtLeast, 0.0, 1e4,                   \
+         "N a contact may reach, in place of the region's; 0: the region's")                      \
+  NUMBER(stiffness_n_per_m, "contact_speed.stiffness_n_per_m", 0.0, kAtLeast, 0.0, 1e7,           \
+         "N/m of what the TCP meets, in place of the region's; 0: the region's")                  \
+  FLAG(body_mass, "contact_speed.body_mass", false,                                               \
+       "count the region's effective mass (a free body part: faster, less conservative); false: " \
+       "the arm's alone (clamped)")
 
 // The external wrench estimated from the joints' momentum (ObserverConfig).
 #define COMPLY_OBSERVER_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET) \
