@@ -123,6 +123,10 @@ std::vector<BenchRow> runBench(const BenchOptions& options, std::ostream& log) {
   // The ratio cycle with walls and a box configured (the reference kept inside, the barrier).
   add(benchWrapper<CartesianCommand>(options, "cartesian_walls", "cartesian_impedance", robot.home,
                                      log, {.walls = true}));
+  // The ratio cycle with the contact-speed stage: the arm's mass along the TCP's motion (the
+  // inertia with the rotors' factorised, one solve) every cycle.
+  add(benchWrapper<CartesianCommand>(options, "cartesian_contact", "cartesian_impedance",
+                                     robot.home, log, {.contact_speed = true}));
   // The ratio cycle with a timed chunk playing: its curve, gains and task frame every cycle.
   add(benchWrapper<CartesianCommand>(options, "cartesian_chunk", "cartesian_impedance", robot.home,
                                      log, {.chunked = true}));
