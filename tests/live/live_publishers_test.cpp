@@ -349,6 +349,24 @@ TEST(LiveState, CarriesTheWallsDistanceAndBarrierForce) {
   EXPECT_EQ(message.wall_force[2], 3.0);
 }
 
+TEST(LiveState, CarriesTheContactSpeedLimitShareAndBraking) {
+  const auto resolved = pipeline::resolveController(host::simControllerConfig(
+      "fr3", "",
+      (std::filesystem::path(COMPLY_SOURCE_DIR) / "config" / "sim" / "cartesian_impedance.yaml")
+          .string()));
+  host::StateSample sample;
+  sample.joints = JointState::zero(resolved->dof);
+  sample.torque.setZero(resolved->dof);
+  EXPECT_EQ(host::stateMessage(sample, *resolved).contact_speed_share, 1.0) << "off: all of it";
+  sample.contact_speed_limit_m_per_s = 0.2625;
+  sample.contact_speed_share = 0.375;
+  sample.contact_speed_brake_n = 4.5;
+  const transport::ControllerStateMessage message = host::stateMessage(sample, *resolved);
+  EXPECT_EQ(message.contact_speed_limit_m_per_s, 0.2625);
+  EXPECT_EQ(message.contact_speed_share, 0.375);
+  EXPECT_EQ(message.contact_speed_brake_n, 4.5);
+}
+
 // The state's frame is the model's: a controller file may name a base other than robot.yaml's
 // (here the UR5e's base_link_inertia, turned half a turn about z from base_link).
 TEST(LiveState, IsInTheControllerFilesBaseFrame) {

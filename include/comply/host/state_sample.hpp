@@ -34,7 +34,10 @@ struct StateSample {
   bool walls = false;                     ///< walls or boxes configured (virtual_walls.hpp)
   double wall_distance_m = 0.0;           ///< measured TCP to the nearest wall; < 0 past one
   Eigen::Vector3d wall_force = Eigen::Vector3d::Zero();  ///< the barrier's [N], base frame
-  pipeline::CommandId reference;  ///< the command in force: its number and exact stamp
+  double contact_speed_limit_m_per_s = 0.0;  ///< along the TCP's motion (contact_speed.hpp)
+  double contact_speed_share = 1.0;          ///< of the law's torque let through
+  double contact_speed_brake_n = 0.0;        ///< braking against the TCP's motion
+  pipeline::CommandId reference;             ///< the command in force: its number and exact stamp
   std::uint32_t reference_fields = 0;
   Eigen::Vector3d reference_position = Eigen::Vector3d::Zero();
   Eigen::Quaterniond reference_orientation = Eigen::Quaterniond::Identity();
