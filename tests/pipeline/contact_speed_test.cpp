@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "comply/pipeline/resolved_controller.hpp"
+#include "comply/pipeline/wrapper.hpp"
 #include "wrapper_support.hpp"
 
 namespace comply::pipeline {
@@ -177,6 +178,29 @@ TEST(ContactSpeed, LeavesSlowMotionBitForBitScalesAPushTowardTheContactAndBrakes
   EXPECT_NEAR(stage.limit(), v_max, 1e-12);
   stage.reset();
   EXPECT_EQ(stage.limit(), 0.0);
+}
+
+TEST(ContactSpeed, AFaultsHoldShowsNothingScaledOrBrakedAndTheLastLimit) {
+  // 20 N into the hands' 75 N/mm: v_max about 4 cm/s, which the replayed motion passes.
+  CartesianWrapper wrapper(fr3Config(kCartesianImpedancePlugin, kOn + "  force_limit_n: 20\n"));
+  const JointVector home = fr3Home();
+  wrapper.activate(movingState(home, 0, 0.05, 0.5));
+  TorqueBuffer torque;
+  const ContactSpeed& stage = wrapper.controller().contactSpeed();
+  bool braked = false;
+  for (int cycle = 1; cycle <= 500 && !braked; ++cycle) {
+    ASSERT_EQ(wrapper.update(movingState(home, cycle, 0.05, 0.5), kPeriod, torque.span()),
+              CycleStatus::kOk);
+    braked = stage.brakeForce() > 0.0;
+  }
+  ASSERT_TRUE(braked) << "the replayed motion never passed 0.85 v_max";
+  const double limit = stage.limit();
+  JointState bad = movingState(home, 501, 0.05, 0.5);
+  bad.position[0] = std::nan("");
+  EXPECT_EQ(wrapper.update(bad, kPeriod, torque.span()), CycleStatus::kFault);
+  EXPECT_EQ(stage.brakeForce(), 0.0);
+  EXPECT_EQ(stage.share(), 1.0);
+  EXPECT_EQ(stage.limit(), limit);
 }
 
 TEST(ContactSpeed, TheBodysMassRaisesTheLimitAsTheReducedMassSays) {

@@ -94,6 +94,12 @@ class ContactSpeed {
 
   [[nodiscard]] bool enabled() const noexcept { return enabled_; }
   void reset() noexcept;
+  /// A cycle in which no law ran (FAULT's hold): the stage scaled and braked nothing; its last
+  /// limit stays reported.
+  void hold() noexcept {
+    share_ = 1.0;
+    brake_n_ = 0.0;
+  }
 
   /// Bounds the TCP moving at `tcp_twist` (J dq) at the pose of `data` (Jacobian and mass matrix
   /// computed): the law's share of the torque, `law_torque`, is scaled in both it and `torque`,

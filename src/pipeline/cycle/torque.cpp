@@ -88,6 +88,8 @@ CycleStatus Controller::hold(std::span<double> torque) noexcept {
   force_active_ = false;  // no law runs: what it would read is the command in force
   walls_active_ = false;
   walled_ = false;
+  slowed_ = false;
+  contact_speed_.hold();  // nothing scaled, nothing braked
   if (walls_.enabled()) {
     // The barrier does not act in a hold; the distance is this cycle's (the last usable pose's
     // when this cycle's state is not).
