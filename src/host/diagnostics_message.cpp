@@ -60,6 +60,7 @@ transport::DiagnosticsMessage diagnosticsMessage(
   message.wall_reference_hits = wrapper.wall_reference_hits;
   message.wall_brake_hits = wrapper.wall_brake_hits;
   message.reflex_trips = wrapper.reflex_trips;
+  message.contact_speed_hits = wrapper.contact_speed_hits;
   message.histogram_bin_s = LoopCounters::kBinSeconds;
   message.compute_time_histogram = binsOf(loop.compute);
   message.start_lateness_histogram = binsOf(loop.lateness);

@@ -71,6 +71,13 @@ void copyReflex(const StateSample& sample, transport::ControllerStateMessage& me
   }
 }
 
+/// The contact-speed stage's limit, share and braking of the last cycle (0, 1, 0 while off).
+void setContactSpeed(const pipeline::ContactSpeed& stage, StateSample& s) noexcept {
+  s.contact_speed_limit_m_per_s = stage.limit();
+  s.contact_speed_share = stage.share();
+  s.contact_speed_brake_n = stage.brakeForce();
+}
+
 }  // namespace
 
 transport::ControllerStateMessage stateMessage(const StateSample& sample,
@@ -113,6 +120,9 @@ transport::ControllerStateMessage stateMessage(const StateSample& sample,
     message.wall_force[i] = sample.wall_force[i];
   }
   copyReflex(sample, message);
+  message.contact_speed_limit_m_per_s = sample.contact_speed_limit_m_per_s;
+  message.contact_speed_share = sample.contact_speed_share;
+  message.contact_speed_brake_n = sample.contact_speed_brake_n;
   return message;
 }
 
@@ -212,6 +222,7 @@ void StateSampler<Command>::fill(const hardware::CycleRecord& record, const Join
   s.passivity = diagnostics.passivity();  // atomics only: no allocation on this thread
   setWalls(controller.walls(), s);
   setReflex(controller.reflex(), s);
+  setContactSpeed(controller.contactSpeed(), s);
   s.joints = measured;
   s.torque.setZero(dof);
   for (std::size_t i = 0; i < record.torque.size(); ++i) {

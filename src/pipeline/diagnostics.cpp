@@ -79,6 +79,7 @@ DiagnosticsSnapshot Diagnostics::snapshot() const {
   result.wall_brake_hits = wall_brake_hits.load();
   result.reflex_trips = reflex_trips.load();
   result.reflex_latched = reflex_latched.load();
+  result.contact_speed_hits = contact_speed_hits.load();
   result.faults = faults.load();
   result.watchdog_timeouts = watchdog_timeouts.load();
   result.passivity = passivity();

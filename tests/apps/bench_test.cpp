@@ -126,9 +126,9 @@ TEST(SyntheticChain, TwelveJointsLoadAndRunEveryWrapperWithoutAFault) {
   std::ostringstream log;
   const std::vector<BenchRow> rows = runBench(options, log);  // throws on a fault
   // joint, cartesian, cartesian_abs, cartesian_tank, cartesian_observer, cartesian_force,
-  // cartesian_walls, cartesian_reflex, cartesian_chunk, cartesian_joint_pd, cartesian_admittance:
-  // step and cycle; cartesian_recorded also the push, the push into a full lane and the state
-  // sample.
+  // cartesian_walls, cartesian_reflex, cartesian_contact, cartesian_chunk, cartesian_joint_pd,
+  // cartesian_admittance: step and cycle; cartesian_recorded also the push, the push into a full
+  // lane and the state sample.
   ASSERT_EQ(rows.size(), 27U);
   int recording_stages = 0;
   for (const BenchRow& bench_row : rows) {

@@ -357,13 +357,8 @@ TEST(LiveState, CarriesTheWallsDistanceAndBarrierForce) {
 }
 
 TEST(LiveState, CarriesTheReflexsThresholdsAndItsTrip) {
-  const auto resolved = pipeline::resolveController(host::simControllerConfig(
-      "fr3", "",
-      (std::filesystem::path(COMPLY_SOURCE_DIR) / "config" / "sim" / "cartesian_impedance.yaml")
-          .string()));
-  host::StateSample sample;
-  sample.joints = JointState::zero(resolved->dof);
-  sample.torque.setZero(resolved->dof);
+  const auto resolved = simFr3Controller();
+  host::StateSample sample = restingSample(resolved->dof);
   EXPECT_FALSE(host::stateMessage(sample, *resolved).reflex_tripped);
   sample.reflex = true;
   sample.reflex_force_threshold = Eigen::Vector3d(20.0, 20.0, 45.0);
@@ -380,6 +375,19 @@ TEST(LiveState, CarriesTheReflexsThresholdsAndItsTrip) {
   EXPECT_EQ(message.reflex_wrench[1], 30.25);
   EXPECT_EQ(message.reflex_wrench[5], -0.25);
   EXPECT_EQ(transport::toString(message.reflex_reaction), "retreat");
+}
+
+TEST(LiveState, CarriesTheContactSpeedLimitShareAndBraking) {
+  const auto resolved = simFr3Controller();
+  host::StateSample sample = restingSample(resolved->dof);
+  EXPECT_EQ(host::stateMessage(sample, *resolved).contact_speed_share, 1.0) << "off: all of it";
+  sample.contact_speed_limit_m_per_s = 0.2625;
+  sample.contact_speed_share = 0.375;
+  sample.contact_speed_brake_n = 4.5;
+  const transport::ControllerStateMessage message = host::stateMessage(sample, *resolved);
+  EXPECT_EQ(message.contact_speed_limit_m_per_s, 0.2625);
+  EXPECT_EQ(message.contact_speed_share, 0.375);
+  EXPECT_EQ(message.contact_speed_brake_n, 4.5);
 }
 
 // The state's frame is the model's: a controller file may name a base other than robot.yaml's

@@ -154,11 +154,18 @@ const std::string kWallLines =
     "walls:\n  - {point: [0.3, 0.0, 0.0], normal: [1.0, 0.0, 0.0]}\n"
     "boxes:\n  - {min: [-1.0, -1.0, 0.49], max: [1.0, 1.0, 1.5]}\n";
 
+/// A contact force limit so low (20 N into the hands' 75 N/mm: v_max about 4 cm/s) that the
+/// replayed arm's TCP, up to a few cm/s faster, is both scaled and braked in the counted cycles.
+const std::string kContactSpeedLines = "contact_speed:\n  enabled: true\n  force_limit_n: 20\n";
+
 /// The lines of a realtime run: "hold" and "reanchor" as realtimeLines(); "hold+gains" holds
 /// with every guard on (kGuardedLines).
 std::string realtimeConfigLines(const std::string& behavior) {
   if (behavior == "hold+walls") {
     return realtimeLines("hold") + kWallLines;
+  }
+  if (behavior == "hold+contact") {
+    return realtimeLines("hold") + kContactSpeedLines;
   }
   return behavior == "hold+gains" ? realtimeLines("hold") + kGuardedLines : realtimeLines(behavior);
 }
@@ -275,15 +282,21 @@ TEST(WrapperRealtime, JointUpdateNeitherAllocatesNorLocks) {
 }
 
 TEST(WrapperRealtime, CartesianUpdateNeitherAllocatesNorLocks) {
-  for (const std::string behavior : {"hold", "reanchor", "hold+gains", "hold+walls"}) {
+  for (const std::string behavior :
+       {"hold", "reanchor", "hold+gains", "hold+walls", "hold+contact"}) {
     SCOPED_TRACE(behavior);
     const bool guarded = behavior == "hold+gains";
     CartesianWrapper wrapper(fr3Config(kCartesianImpedancePlugin, realtimeConfigLines(behavior)));
     bool ratio = true;
     double largest_push = 0.0;  // of the force stage, seen between the counted cycles
+    int scaled = 0;             // cycles the contact-speed stage scaled the law, and braked
+    int braked = 0;
     const auto look = [&] {
       largest_push =
           std::max(largest_push, std::abs(wrapper.controller().forceAxes().forceCommand()[2]));
+      const ContactSpeed& contact = wrapper.controller().contactSpeed();
+      scaled += contact.share() > 0.0 && contact.share() < 1.0 ? 1 : 0;
+      braked += contact.brakeForce() > 0.0 ? 1 : 0;
     };
     expectRealtimeCycles(
         wrapper,
@@ -322,6 +335,12 @@ TEST(WrapperRealtime, CartesianUpdateNeitherAllocatesNorLocks) {
       // The walls stage ran in the counted cycles: reference projected, barrier braking.
       EXPECT_GT(wrapper.diagnostics().wall_reference_hits, 0U);
       EXPECT_GT(wrapper.diagnostics().wall_brake_hits, 0U);
+    }
+    if (behavior == "hold+contact") {
+      // The contact-speed stage ran in the counted cycles: the law scaled, and the TCP braked.
+      EXPECT_GT(wrapper.diagnostics().contact_speed_hits, 0U);
+      EXPECT_GT(scaled, 0);
+      EXPECT_GT(braked, 0);
     }
     if (guarded) {
       expectTheGuardWorked(wrapper.diagnostics());

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/sim/simulated_robot.hpp"
@@ -17,11 +18,18 @@ using pipeline::WrapperState;
 /// The wrapper on the plant, as the control loop runs it (the hardware's hold when asked for).
 template <typename Command = CartesianCommand>
 struct Arm {
-  explicit Arm(const pipeline::WrapperConfig& config)
-      : plant(*config.robot_description, sim::PlantOptions{.actuation = config.output.mode}),
+  explicit Arm(const pipeline::WrapperConfig& config) : Arm(config, sim::PlantOptions{}, {}) {}
+  /// The plant built with `options` (its actuation the config's output mode), the arm put at
+  /// `start` (joint positions) at rest first when given.
+  Arm(const pipeline::WrapperConfig& config, sim::PlantOptions options,
+      const std::vector<double>& start)
+      : plant(*config.robot_description, withActuation(options, config.output.mode)),
         wrapper(config) {
     state = JointState::zero(wrapper.dof());
     command.resize(wrapper.dof());
+    if (!start.empty()) {
+      plant.setJointPositions(start);
+    }
     plant.read(state);
     wrapper.activate(state);
     start_tcp = wrapper.measuredPose().tcp_position;
@@ -51,6 +59,11 @@ struct Arm {
     const Eigen::Vector3d tcp = wrapper.measuredPose().tcp_position;
     worst_tcp_speed = std::max(worst_tcp_speed, (tcp - last_tcp).norm() / plant.controlPeriod());
     last_tcp = tcp;
+  }
+
+  static sim::PlantOptions withActuation(sim::PlantOptions options, OutputMode mode) {
+    options.actuation = mode;
+    return options;
   }
 
   [[nodiscard]] bool faulted() const { return wrapper.diagnostics().state == WrapperState::kFault; }

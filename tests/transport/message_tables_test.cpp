@@ -54,13 +54,13 @@ TEST(MessageTables, AFieldAddedToATableIsInTheStructAndTheInterfaceFiles) {
   const MessageText message{"ControllerState", "a grown state", {}, fieldTexts<GrownState>()};
   const std::string msg = rosMessageText(message);
   EXPECT_NE(
-      msg.find("float64[6] reflex_wrench  # [N, N m] the contact wrench that tripped it, in the "
-               "task frame then, force first; 0 while it has not tripped\nfloat64 grip_force  # "
-               "[N] the gripper's measured force\n"),
+      msg.find("float64 contact_speed_brake  # [N] the contact-speed limit's braking force against "
+               "the TCP's motion this cycle (0: none)\nfloat64 grip_force  # [N] the gripper's "
+               "measured force\n"),
       std::string::npos)
       << msg;
   const std::string idl = ddsIdlText(message);
-  EXPECT_NE(idl.find("  double reflex_wrench[6];\n  double grip_force;\n};"), std::string::npos)
+  EXPECT_NE(idl.find("  double contact_speed_brake;\n  double grip_force;\n};"), std::string::npos)
       << idl;
   // The rest is the table's own: the committed file's fields come first, unchanged.
   const std::string committed = ddsIdlText(hostMessageText("ControllerState"));

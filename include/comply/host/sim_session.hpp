@@ -121,6 +121,7 @@ struct SimSummary {
   std::uint64_t governor_hits = 0;        ///< cycles the motion governor acted in
   std::uint64_t wall_reference_hits = 0;  ///< cycles the walls moved the law's reference
   std::uint64_t wall_brake_hits = 0;      ///< cycles the walls' barrier braked the TCP
+  std::uint64_t contact_speed_hits = 0;   ///< cycles the contact-speed stage acted in
   std::uint64_t faults = 0;
   /// Cycles whose controller time exceeded the control period: on a real arm each is a missed
   /// deadline (the simulation just waits).

@@ -40,6 +40,9 @@ struct StateSample {
   bool reflex_tripped = false;                                        ///< until a reset
   transport::ReflexReaction reflex_reaction = transport::ReflexReaction::kNone;
   Vector6d reflex_wrench = Vector6d::Zero();  ///< what tripped it, task frame then
+  double contact_speed_limit_m_per_s = 0.0;   ///< along the TCP's motion (contact_speed.hpp)
+  double contact_speed_share = 1.0;           ///< of the law's torque let through
+  double contact_speed_brake_n = 0.0;         ///< braking against the TCP's motion
   pipeline::CommandId reference;              ///< the command in force: its number and exact stamp
   std::uint32_t reference_fields = 0;
   Eigen::Vector3d reference_position = Eigen::Vector3d::Zero();

@@ -27,6 +27,7 @@
 #include "comply/core/enum_names.hpp"
 #include "comply/model/data.hpp"
 #include "comply/model/robot_description.hpp"
+#include "comply/pipeline/body_regions.hpp"
 #include "comply/pipeline/contact_reflex.hpp"
 #include "comply/pipeline/force_axes.hpp"
 #include "comply/pipeline/momentum_observer.hpp"
@@ -100,6 +101,11 @@ struct WallConfig {
   [[nodiscard]] bool any() const noexcept { return !planes.empty() || !boxes.empty(); }
 };
 
+/// The TCP's speed bounded by what a contact may cost (contact_speed.*; contact_speed.hpp).
+struct ContactSpeedConfig {
+  COMPLY_OPTION_MEMBERS(COMPLY_CONTACT_SPEED_OPTIONS)
+};
+
 /// The wrist force/torque sensor's reading as the cycle uses it (wrench_sensor.*).
 struct WrenchSensorConfig {
   COMPLY_OPTION_MEMBERS(COMPLY_WRENCH_SENSOR_OPTIONS)
@@ -154,6 +160,7 @@ struct WrapperConfig {
   GovernorConfig governor;           ///< governor.*: the speeds no command drives past
   WallConfig walls;                  ///< walls:, boxes:, wall.*: where the TCP does not go
   ReflexConfig reflex;               ///< reflex.*: what an unplanned contact trips
+  ContactSpeedConfig contact_speed;  ///< contact_speed.*: what a contact may cost
   ObserverConfig observer;           ///< the external wrench estimate (observer.*)
   WrenchSensorConfig wrench_sensor;  ///< wrench_sensor.*
   ForceControlConfig force_control;  ///< force_control.*: force along task axes

@@ -31,6 +31,8 @@
 //   compensate   gravity, payload, friction, soft joint limits
 //   govern       the law's torque scaled (direction kept) so no joint passes its share of its
 //                URDF speed, nor the TCP its speeds; braking past them (motion_governor.*)
+//   contact      the TCP no faster along its motion than a contact may take; braking past
+//                it (contact_speed.*; Cartesian laws; off by default)
 //   barrier      a TCP approaching a wall braked through J^T (virtual_walls.*)
 //   shape        low-pass, finite check, torque-rate limit, effort limit (torque_shaper.*); a
 //                joint held at its effort limit too long         -> FAULT (stability_guard.*)
@@ -64,6 +66,7 @@
 #include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/command_watchdog.hpp"
 #include "comply/pipeline/contact_reflex.hpp"
+#include "comply/pipeline/contact_speed.hpp"
 #include "comply/pipeline/cycle_status.hpp"
 #include "comply/pipeline/diagnostics.hpp"
 #include "comply/pipeline/force_axes.hpp"
@@ -195,6 +198,9 @@ class Controller {
   /// The reflex stage (contact_reflex.hpp): its thresholds in force, whether and on what it
   /// tripped. Real-time thread, or between cycles.
   [[nodiscard]] const ContactReflex& reflex() const noexcept { return reflex_; }
+  /// The contact-speed stage (contact_speed.hpp): the speed limit along the TCP's motion, the
+  /// mass that set it, the share of the law let through and the braking of the last cycle.
+  [[nodiscard]] const ContactSpeed& contactSpeed() const noexcept { return contact_speed_; }
   /// The force stage (force_axes.hpp): its loop's output and pull-back of the last cycle.
   [[nodiscard]] const ForceAxes& forceAxes() const noexcept { return force_; }
   /// The external wrench on the tool from `source`: at the TCP, base frame, force first [N, N m];
@@ -269,6 +275,7 @@ class Controller {
   bool runLaw() noexcept;      // law.cpp
   void compensate() noexcept;  // torque.cpp
   void govern() noexcept;
+  void limitContactSpeed() noexcept;  // contact_speed.cpp
   bool shape() noexcept;
   void scaleIntoLimits() noexcept;  // effort_saturation: scale
   CycleStatus write(std::span<double> torque) noexcept;
@@ -313,6 +320,7 @@ class Controller {
   CommandBus walls_bus_;        //   the law's command when the walls stage runs (Cartesian)
   bool walls_active_ = false;   //   the walls stage wrote walls_bus_ this cycle
   MotionGovernor governor_;     // govern
+  ContactSpeed contact_speed_;  // contact
   TorqueShaper shaper_;         // shape
   SafeHold safe_hold_;          // hold (FAULT)
   OutputStage output_stage_;    // output
@@ -327,6 +335,7 @@ class Controller {
   bool torque_clipped_ = false;  // the last cycle's torque was rate or effort limited or governed
   bool governed_ = false;        // the governor acted this cycle
   bool walled_ = false;          // the barrier acted this cycle
+  bool slowed_ = false;          // the contact-speed stage acted this cycle
   comply_input input_{};
   comply_output law_output_{};  // the plugin's output this cycle
   JointVector torque_;

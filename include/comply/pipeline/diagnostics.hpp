@@ -42,6 +42,7 @@ struct DiagnosticsSnapshot {
   std::uint64_t wall_brake_hits = 0;      ///< cycles the walls' barrier braked the TCP
   std::uint64_t reflex_trips = 0;         ///< times the contact reflex tripped (any reaction)
   bool reflex_latched = false;            ///< its hold (or retreat) waits for a reset
+  std::uint64_t contact_speed_hits = 0;   ///< cycles the contact-speed stage acted in
   std::uint64_t faults = 0;
   std::uint64_t watchdog_timeouts = 0;
   PassivitySnapshot passivity;
@@ -81,6 +82,7 @@ class Diagnostics {
   std::atomic<std::uint64_t> reflex_trips{0};
   /// The contact reflex holds and refuses commands until a reset (the intake reads it).
   std::atomic<bool> reflex_latched{false};
+  std::atomic<std::uint64_t> contact_speed_hits{0};
   std::atomic<std::uint64_t> faults{0};
   std::atomic<std::uint64_t> watchdog_timeouts{0};
   /// The gain guard's account, written by the cycle (see PassivitySnapshot).

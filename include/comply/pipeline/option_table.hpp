@@ -49,9 +49,10 @@
   NUMBER(max_wn_period, "validation.max_wn_period", 0.35, kAtLeast, 0.0, 0.43,                     \
          "largest w_n T a stiffness or damping may give on the arm's lightest inertia (0: no "     \
          "bound)")                                                                                 \
-  NUMBER(rate_limit_swing_nm, "validation.rate_limit_swing_nm", 5.0, kAtLeast, 0.0, kNoLimit,      \
-         "N m of torque swing a stiffness must pass through the torque-rate limit without a limit "\
-         "cycle: sqrt(K / m) <= rate limit / this (output.mode torque; 0: no bound)")              \
+  NUMBER(                                                                                          \
+      rate_limit_swing_nm, "validation.rate_limit_swing_nm", 5.0, kAtLeast, 0.0, kNoLimit,         \
+      "N m of torque swing a stiffness must pass through the torque-rate limit without a limit "   \
+      "cycle: sqrt(K / m) <= rate limit / this (output.mode torque; 0: no bound)")                 \
   NUMBER(max_stamp_lead_s, "validation.max_stamp_lead_s", 1.0, kAbove, 0.0, kNoLimit,              \
          "s a command's stamp, or a chunk's first waypoint, may be ahead of the host's clock")     \
   NUMBER(max_chunk_acceleration_m_per_s2, "validation.max_chunk_acceleration_m_per_s2", 13.0,      \
@@ -226,6 +227,28 @@
          "m/s of the retreat")                                                                   \
   NUMBER(hold_stiffness_fraction, "reflex.hold_stiffness_fraction", 1.0, kAtLeast, 0.0, 1.0,     \
          "the stiffness in force scaled by this when it holds or retreats (1: unchanged)")
+
+// The TCP's speed along its motion bounded by what an unexpected contact may cost (power and
+// force limiting in the spirit of ISO/TS 15066; ContactSpeedConfig; contact_speed.hpp,
+// body_regions.hpp): v_max = F / sqrt(mu k), mu the arm's mass along the motion at this pose (the
+// rotors' inertia and the declared payload included). Cartesian laws, torque or joint_pd output.
+#define COMPLY_CONTACT_SPEED_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET)   \
+  FLAG(enabled, "contact_speed.enabled", false,                                                   \
+       "the TCP no faster along its motion than a contact with body_region may take")             \
+  CHOICE(                                                                                         \
+      body_region, "contact_speed.body_region", BodyRegion, kHands,                               \
+      "skull_forehead | face | neck | back_shoulders | chest | abdomen | pelvis | upper_arms | "  \
+      "lower_arms | hands | thighs | lower_legs (ISO/TS 15066 Annex A)")                          \
+  CHOICE(contact, "contact_speed.contact", ContactKind, kQuasiStatic,                             \
+         "quasi_static: the region's quasi-static force | transient: twice it (an impact; not "   \
+         "for skull_forehead or face)")                                                           \
+  NUMBER(force_limit_n, "contact_speed.force_limit_n", 0.0, kAtLeast, 0.0, 1e4,                   \
+         "N a contact may reach, in place of the region's; 0: the region's")                      \
+  NUMBER(stiffness_n_per_m, "contact_speed.stiffness_n_per_m", 0.0, kAtLeast, 0.0, 1e7,           \
+         "N/m of what the TCP meets, in place of the region's; 0: the region's")                  \
+  FLAG(body_mass, "contact_speed.body_mass", false,                                               \
+       "count the region's effective mass (a free body part: faster, less conservative); false: " \
+       "the arm's alone (clamped)")
 
 // The external wrench estimated from the joints' momentum (ObserverConfig).
 #define COMPLY_OBSERVER_OPTIONS(NUMBER, FLAG, CHOICE, VECTOR3, PER_JOINT, PER_JOINT_UNSET) \

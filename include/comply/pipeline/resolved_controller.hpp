@@ -45,6 +45,19 @@ struct WallParameters {
   BarrierGains gains;
 };
 
+/// The contact-speed stage's numbers (contact_speed.hpp), compiled from contact_speed.*, the body
+/// region's row (body_regions.hpp), the payload and the robot's rotor inertias.
+struct ContactSpeedParameters {
+  bool enabled = false;
+  double force_limit_n = 0.0;      ///< what a contact may reach
+  double stiffness_n_per_m = 0.0;  ///< of what the TCP meets
+  double body_mass_kg = 0.0;       ///< the region's, in a reduced mass; 0: clamped (the default)
+  double payload_mass_kg = 0.0;    ///< compensation.payload.mass_kg, a point mass at the TCP
+  /// robot.yaml joint_dynamics.armature in the model's joint order, 0 where none is declared:
+  /// the rotor inertias the model's mass matrix leaves out.
+  JointVector armature;
+};
+
 /// Everything the cycle reads, each per-joint value sized to the controller's dof. Every member
 /// is set by resolveController() from the configuration; until then, the option table's defaults.
 struct CycleParameters {
@@ -66,6 +79,7 @@ struct CycleParameters {
   GovernorConfig governor;
   WallParameters walls;
   ReflexConfig reflex;
+  ContactSpeedParameters contact_speed;
   ObserverConfig observer;
   OutputConfig output;
   WrenchSensorConfig wrench_sensor;

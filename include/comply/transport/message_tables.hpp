@@ -97,7 +97,14 @@
     "REFLEX_*: what it did when it tripped; REFLEX_NONE while it has not") \
   X(Vector6, reflex_wrench, reflex_wrench, {}, \
     "[N, N m] the contact wrench that tripped it, in the task frame then, force first; 0 while " \
-    "it has not tripped")
+    "it has not tripped") \
+  X(double, contact_speed_limit_m_per_s, contact_speed_limit, 0.0, \
+    "[m/s] the TCP's speed limit along its direction of motion (controller options " \
+    "contact_speed.*); 0: the stage is off, or the TCP has not moved yet") \
+  X(double, contact_speed_share, contact_speed_share, 1.0, \
+    "[-] share of the law's torque the contact-speed limit let through this cycle (1: all of it)") \
+  X(double, contact_speed_brake_n, contact_speed_brake, 0.0, \
+    "[N] the contact-speed limit's braking force against the TCP's motion this cycle (0: none)")
 
 #define COMPLY_COMMAND_OUTCOME_FIELDS(X) \
   X(Stamp, stamp, stamp, {}, "the command's header.stamp: with the sender, what identifies it") \
@@ -195,6 +202,8 @@
     "[-] cycles the walls' barrier braked the TCP approaching a wall") \
   X(std::uint64_t, reflex_trips, reflex_trips, 0, \
     "[-] times the contact reflex tripped (hold, retreat or fault)") \
+  X(std::uint64_t, contact_speed_hits, contact_speed_hits, 0, \
+    "[-] cycles the contact-speed limit scaled the law's torque or braked the TCP") \
   X(double, histogram_bin_s, histogram_bin, 0.0, "[s] width of one bin of the two histograms") \
   X(Counts, compute_time_histogram, compute_time_histogram, {}, \
     "[-] cycles per bin of compute time; last bin: all above") \

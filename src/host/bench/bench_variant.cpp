@@ -79,6 +79,9 @@ pipeline::WrapperConfig variantConfig(const std::string& robot, const std::strin
                            {{0.0, 0.0, 1.4}, {0.0, 0.0, 1.0}}};
     config.walls.boxes = {{{-1.5, -1.5, -0.5}, {1.5, 1.5, 1.5}}};
   }
+  // The defaults (hands, quasi-static): the stage computes the mass along the replayed TCP's
+  // motion every cycle; its few multiplications more when it scales or brakes are not the cost.
+  config.contact_speed.enabled = variant.contact_speed;
   if (variant.gain_stage) {
     // Ramps and tank on, the tank far from full so that it refills (and, with ratios, bounds the
     // damping from the mass matrix) every window: the stage's dearest steady state.

@@ -11,13 +11,14 @@ namespace comply::host::bench {
 /// What a benchmarked wrapper has on besides its law.
 struct Variant {
   DampingMode damping_mode = DampingMode::kRatio;
-  bool gain_stage = false;  ///< ramps and energy tank
-  bool recorded = false;    ///< the cycle pushed into a recording's lane
-  bool observer = false;    ///< the momentum observer
-  bool chunked = false;     ///< a timed chunk plays through every cycle
-  bool force = false;       ///< a force axis and contact-force limits (with the observer)
-  bool walls = false;       ///< four walls and a box around the workspace (virtual_walls.hpp)
-  bool reflex = false;      ///< the contact reflex armed on the observer's wrench
+  bool gain_stage = false;     ///< ramps and energy tank
+  bool recorded = false;       ///< the cycle pushed into a recording's lane
+  bool observer = false;       ///< the momentum observer
+  bool chunked = false;        ///< a timed chunk plays through every cycle
+  bool force = false;          ///< a force axis and contact-force limits (with the observer)
+  bool walls = false;          ///< four walls and a box around the workspace (virtual_walls.hpp)
+  bool reflex = false;         ///< the contact reflex armed on the observer's wrench
+  bool contact_speed = false;  ///< the contact-speed stage (contact_speed.hpp), hands' limits
   OutputMode output = OutputMode::kTorque;  ///< what the drives take (output.mode)
 };
 

@@ -126,6 +126,10 @@ std::vector<BenchRow> runBench(const BenchOptions& options, std::ostream& log) {
   // The observer's cycle with the contact reflex armed (contact_reflex.hpp).
   add(benchWrapper<CartesianCommand>(options, "cartesian_reflex", "cartesian_impedance", robot.home,
                                      log, {.reflex = true}));
+  // The ratio cycle with the contact-speed stage: the arm's mass along the TCP's motion (the
+  // inertia with the rotors' factorised, one solve) every cycle.
+  add(benchWrapper<CartesianCommand>(options, "cartesian_contact", "cartesian_impedance",
+                                     robot.home, log, {.contact_speed = true}));
   // The ratio cycle with a timed chunk playing: its curve, gains and task frame every cycle.
   add(benchWrapper<CartesianCommand>(options, "cartesian_chunk", "cartesian_impedance", robot.home,
                                      log, {.chunked = true}));

@@ -207,6 +207,7 @@ void printSummary(const SimSummary& summary, std::ostream& out) {
       << "  governor hits         " << summary.governor_hits << " cycles\n"
       << "  wall hits             " << summary.wall_reference_hits << " cycles reference, "
       << summary.wall_brake_hits << " cycles braked\n"
+      << "  contact-speed hits    " << summary.contact_speed_hits << " cycles\n"
       << "  commands              " << summary.commands_sent << " sent, " << summary.rejections
       << " rejected\n"
       << "  faults                " << summary.faults << "\n"

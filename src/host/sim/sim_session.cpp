@@ -272,6 +272,7 @@ void summarizeDiagnostics(const pipeline::DiagnosticsSnapshot& diagnostics, SimS
   summary.governor_hits = diagnostics.governor_hits;
   summary.wall_reference_hits = diagnostics.wall_reference_hits;
   summary.wall_brake_hits = diagnostics.wall_brake_hits;
+  summary.contact_speed_hits = diagnostics.contact_speed_hits;
   summary.faults = diagnostics.faults;
   if (diagnostics.faults > 0) {
     summary.fault_reason = diagnostics.last_fault;

@@ -278,6 +278,19 @@ void checkReflexBounds(const ReflexConfig& reflex, const Reporter& report) {
   }
 }
 
+/// A transient contact where ISO/TS 15066 allows none (body_regions.hpp) has no limit to bound
+/// by, unless the file gives its own.
+void checkContactSpeed(const ContactSpeedConfig& contact, const Reporter& report) {
+  if (contact.force_limit_n > 0.0 ||
+      forceLimit(bodyRegionLimits(contact.body_region), contact.contact) > 0.0) {
+    return;
+  }
+  report.fail(InputErrc::kInconsistent, "contact_speed.contact",
+              "transient, but ISO/TS 15066 permits no transient contact with " +
+                  std::string(nameIn(kBodyRegionNames, contact.body_region)) +
+                  "; use quasi_static, or set contact_speed.force_limit_n");
+}
+
 }  // namespace
 
 namespace options {
@@ -293,6 +306,7 @@ WrapperConfig parseParameters(const YAML::Node& parameters, const std::string& s
   readOptions(parameters, report, config);
   checkTankBounds(config, report);
   checkReflexBounds(config.reflex, report);
+  checkContactSpeed(config.contact_speed, report);
   readWalls(parameters, source, report.root(), config.walls);
   config.plugin_parameters = readPluginParameters(parameters, report);
   const YAML::Node initial = parameters["initial"];

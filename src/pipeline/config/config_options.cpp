@@ -172,6 +172,7 @@ std::vector<Option> makeTable() {
   COMPLY_ADD_OPTIONS(COMPLY_GOVERNOR_OPTIONS, GovernorConfig, .governor, true)
   COMPLY_ADD_OPTIONS(COMPLY_WALL_OPTIONS, WallConfig, .walls, true)
   COMPLY_ADD_OPTIONS(COMPLY_REFLEX_OPTIONS, ReflexConfig, .reflex, true)
+  COMPLY_ADD_OPTIONS(COMPLY_CONTACT_SPEED_OPTIONS, ContactSpeedConfig, .contact_speed, true)
   COMPLY_ADD_OPTIONS(COMPLY_OBSERVER_OPTIONS, ObserverConfig, .observer, true)
   COMPLY_ADD_OPTIONS(COMPLY_WRENCH_SENSOR_OPTIONS, WrenchSensorConfig, .wrench_sensor, true)
   COMPLY_ADD_OPTIONS(COMPLY_FORCE_CONTROL_OPTIONS, ForceControlConfig, .force_control, true)

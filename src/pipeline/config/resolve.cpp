@@ -87,6 +87,29 @@ bool hasArmature(const ResolvedController& resolved) {
   return std::any_of(armature.begin(), armature.end(), [](double value) { return value > 0.0; });
 }
 
+/// The contact-speed stage's numbers (contact_speed.hpp): the body region's row unless the file
+/// gives its own, the payload, and the rotor inertias, which the controller's mass matrix leaves
+/// out but a contact must stop as well.
+ContactSpeedParameters compileContactSpeed(const WrapperConfig& config,
+                                           const model::RobotDescription& robot,
+                                           const model::Model& model) {
+  const ContactSpeedConfig& contact = config.contact_speed;
+  const BodyRegionLimits region = bodyRegionLimits(contact.body_region);
+  ContactSpeedParameters compiled;
+  compiled.enabled = contact.enabled;
+  compiled.force_limit_n =
+      contact.force_limit_n > 0.0 ? contact.force_limit_n : forceLimit(region, contact.contact);
+  compiled.stiffness_n_per_m =
+      contact.stiffness_n_per_m > 0.0 ? contact.stiffness_n_per_m : region.stiffness_n_per_m;
+  compiled.body_mass_kg = contact.body_mass ? region.effective_mass_kg : 0.0;
+  compiled.payload_mass_kg = config.payload.mass_kg;
+  compiled.armature = declaredArmature(robot, model);
+  if (compiled.armature.size() != model.dof()) {
+    compiled.armature.setZero(model.dof());
+  }
+  return compiled;
+}
+
 /// Step 1: the robot's description (loaded unless the configuration carries one), its model with
 /// the configuration's joints and frames, and the plugin, whose command kind decides the rest.
 void loadModelAndPlugin(ResolvedController& resolved) {
@@ -145,6 +168,7 @@ void compileParameters(ResolvedController& resolved) {
       BarrierGains{config.walls.brake_distance_m, config.walls.stiffness_n_per_m,
                    config.walls.damping_n_s_per_m};
   parameters.reflex = config.reflex;
+  parameters.contact_speed = compileContactSpeed(config, resolved.robot, model);
   parameters.observer = config.observer;
   parameters.velocity_limit.resize(dof);
   for (int i = 0; i < dof; ++i) {
@@ -277,6 +301,19 @@ void checkConsistency(const ResolvedController& resolved) {
                      std::to_string(governor.velocity_fraction) +
                          " is not below stability_guard.velocity_factor (" +
                          std::to_string(guard.velocity_factor) + ")");
+  }
+  // The contact speed bounds the TCP's speed through the arm's own inertia: there is no TCP for
+  // a joint law, and position or velocity drives meet a contact with their servo's stiffness.
+  if (config.contact_speed.enabled && !resolved.cartesian()) {
+    throw InputError(
+        InputErrc::kInconsistent, config.name, "contact_speed.enabled",
+        "needs a Cartesian law (the plugin " + config.plugin + " takes joint commands)");
+  }
+  if (config.contact_speed.enabled && isAdmittance(config.output.mode)) {
+    throw InputError(InputErrc::kInconsistent, config.name, "contact_speed.enabled",
+                     "not with output.mode " + std::string(toString(config.output.mode)) +
+                         ": its drives push through a contact with their servo, not with the "
+                         "arm's inertia; bound the TCP with governor.tcp_speed_m_per_s");
   }
   // Walls bound the TCP's reference, which only a Cartesian law has.
   if (config.walls.any() && !resolved.cartesian()) {

@@ -44,6 +44,7 @@ Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
       walls_(parameters_, resolved_->cartesian()),
       walls_bus_(emptyBus(resolved_->command_kind)),
       governor_(*resolved_, resolved_->cartesian()),
+      contact_speed_(parameters_, dof_, resolved_->cartesian()),
       shaper_(ShapingLimits{parameters_.filter_alpha, parameters_.torque_rate_limit,
                             parameters_.effort_limit}),
       safe_hold_(parameters_, dof_),
@@ -69,6 +70,10 @@ Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
   force_.configure(parameters_.force_control);
   if (resolved_->cartesian()) {
     quantities_ = quantities_ | Quantity::kJacobian;
+  }
+  // The contact-speed stage's mass along the TCP's motion (contact_speed.hpp).
+  if (contact_speed_.enabled()) {
+    quantities_ = quantities_ | Quantity::kMassMatrix | Quantity::kJacobian;
   }
   observer_.configure(parameters_.observer, dof_);
   if (observer_.enabled()) {
@@ -154,6 +159,7 @@ void Controller::resetStages() noexcept {
   force_active_ = false;
   walls_.reset();
   walls_active_ = false;
+  contact_speed_.reset();
   safe_hold_.reset();
   shaper_.reset(torque_);
   output_stage_.reset(state_);

@@ -62,6 +62,7 @@ CycleStatus Controller::update(const JointState& state, double period_s,
   }
   compensate();                          // torque.cpp
   govern();                              // torque.cpp
+  limitContactSpeed();                   // contact_speed.cpp
   brakeAtWalls();                        // walls.cpp
   if (!shape() || !guardSaturation()) {  // torque.cpp; guard.cpp
     return hold(torque);

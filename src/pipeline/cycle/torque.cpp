@@ -72,7 +72,8 @@ bool Controller::shape() noexcept {
   diagnostics_.rate_limit_hits.fetch_add(shaped.rate_limited, std::memory_order_relaxed);
   diagnostics_.effort_limit_hits.fetch_add(shaped.effort_limited, std::memory_order_relaxed);
   // The energy tank learns from the torque that acted: not the law's when clipped or governed.
-  torque_clipped_ = shaped.rate_limited + shaped.effort_limited > 0 || governed_ || walled_;
+  torque_clipped_ =
+      shaped.rate_limited + shaped.effort_limited > 0 || governed_ || slowed_ || walled_;
   return true;
 }
 
@@ -87,6 +88,8 @@ CycleStatus Controller::hold(std::span<double> torque) noexcept {
   force_active_ = false;  // no law runs: what it would read is the command in force
   walls_active_ = false;
   walled_ = false;
+  slowed_ = false;
+  contact_speed_.hold();  // nothing scaled, nothing braked
   if (walls_.enabled()) {
     // The barrier does not act in a hold; the distance is this cycle's (the last usable pose's
     // when this cycle's state is not).

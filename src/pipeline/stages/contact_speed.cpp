@@ -1,0 +1,184 @@
+#include "comply/pipeline/contact_speed.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "comply/pipeline/wrench_bound.hpp"
+
+namespace comply::pipeline {
+namespace {
+
+// Shares of v_max (contact_speed.hpp), the motion governor's for its TCP speed: the law's push
+// along the motion fades from kShareFrom and is gone at kBrakeFrom, past which the TCP is braked.
+constexpr double kShareFrom = 0.5;
+constexpr double kBrakeFrom = 0.85;
+// Slower than this the measured velocity's direction is noise, and no limit is near [m/s].
+constexpr double kMovingSpeed = 1e-3;
+
+/// M + diag(rotors) = L L^T into the lower triangle of `lower`, and 1 / L_jj into `inverse`, for
+/// n = N joints (loops the compiler unrolls, for the common arms) or, with N = 0, `dof`. False
+/// where M + diag(rotors) is not positive definite.
+template <int N>
+bool choleskyLower(const JointMatrix& m, const JointVector& rotors, int dof, JointMatrix& lower,
+                   JointVector& inverse) noexcept {
+  const int n = N > 0 ? N : dof;
+  const bool with_rotors = rotors.size() == n;
+  for (int j = 0; j < n; ++j) {
+    double pivot = m(j, j) + (with_rotors ? rotors[j] : 0.0);
+    for (int k = 0; k < j; ++k) {
+      pivot -= lower(j, k) * lower(j, k);
+    }
+    if (!(pivot > 0.0)) {
+      return false;
+    }
+    lower(j, j) = std::sqrt(pivot);
+    inverse[j] = 1.0 / lower(j, j);
+    for (int i = j + 1; i < n; ++i) {
+      double sum = m(i, j);
+      for (int k = 0; k < j; ++k) {
+        sum -= lower(i, k) * lower(j, k);
+      }
+      lower(i, j) = sum * inverse[j];
+    }
+  }
+  return true;
+}
+
+/// L^-1 `in` into `out` for n = N (or, with N = 0, `dof`) joints.
+template <int N>
+void forwardSubstitute(const JointMatrix& lower, const JointVector& inverse, int dof,
+                       const JointVector& in, JointVector& out) noexcept {
+  const int n = N > 0 ? N : dof;
+  for (int i = 0; i < n; ++i) {
+    double sum = in[i];
+    for (int k = 0; k < i; ++k) {
+      sum -= lower(i, k) * out[k];
+    }
+    out[i] = sum * inverse[i];
+  }
+}
+
+}  // namespace
+
+bool ReflectedInertia::factorise(const model::Data& data, const JointVector& armature,
+                                 int dof) noexcept {
+  if (dof_ != dof) {  // sized once: inline storage, no heap either way
+    dof_ = dof;
+    lower_.setZero(dof, dof);
+    inverse_diagonal_.setZero(dof);
+    along_.setZero(dof);
+    scratch_.setZero(dof);
+  }
+  // The controller's model has the links' inertia only; the rotors' is what a contact must stop
+  // besides (contact_speed.hpp): without it the mass is too small and the limit too fast.
+  const JointMatrix& m = data.mass_matrix;
+  factorised_ = dof == 7   ? choleskyLower<7>(m, armature, dof, lower_, inverse_diagonal_)
+                : dof == 6 ? choleskyLower<6>(m, armature, dof, lower_, inverse_diagonal_)
+                           : choleskyLower<0>(m, armature, dof, lower_, inverse_diagonal_);
+  return factorised_;
+}
+
+void ReflectedInertia::forward(const JointVector& in, JointVector& out) const noexcept {
+  if (dof_ == 7) {
+    forwardSubstitute<7>(lower_, inverse_diagonal_, dof_, in, out);
+  } else if (dof_ == 6) {
+    forwardSubstitute<6>(lower_, inverse_diagonal_, dof_, in, out);
+  } else {
+    forwardSubstitute<0>(lower_, inverse_diagonal_, dof_, in, out);
+  }
+}
+
+double ReflectedInertia::mass(const model::Data& data, const Eigen::Vector3d& direction) noexcept {
+  if (!factorised_) {
+    return std::numeric_limits<double>::infinity();
+  }
+  // u^T J_v (L L^T)^-1 J_v^T u = |L^-1 J_v^T u|^2.
+  scratch_.noalias() = data.jacobian.topLeftCorner(3, dof_).transpose() * direction;
+  forward(scratch_, along_);
+  const double inverse_mass = along_.squaredNorm();
+  return inverse_mass > 0.0 ? 1.0 / inverse_mass : std::numeric_limits<double>::infinity();
+}
+
+double ReflectedInertia::accelerationAlong(const JointVector& torque) noexcept {
+  if (!factorised_) {
+    return 0.0;
+  }
+  forward(torque, scratch_);  // u^T J_v L^-T L^-1 tau = (L^-1 J_v^T u) . (L^-1 tau)
+  return along_.dot(scratch_);
+}
+
+double reflectedMass(const model::Data& data, const JointVector& armature, int dof,
+                     const Eigen::Vector3d& direction) {
+  ReflectedInertia inertia;
+  (void)inertia.factorise(data, armature, dof);
+  return inertia.mass(data, direction);
+}
+
+ContactSpeed::ContactSpeed(const CycleParameters& parameters, int dof, bool cartesian)
+    : parameters_(parameters.contact_speed),
+      effort_limit_(parameters.effort_limit),
+      dof_(dof),
+      enabled_(cartesian && parameters.contact_speed.enabled) {
+  reset();
+}
+
+void ContactSpeed::reset() noexcept {
+  limit_m_per_s_ = 0.0;
+  mass_kg_ = 0.0;
+  share_ = 1.0;
+  brake_n_ = 0.0;
+}
+
+bool ContactSpeed::apply(const model::Data& data, const Vector6d& tcp_twist, double period_s,
+                         JointVector& law_torque, JointVector& torque) noexcept {
+  share_ = 1.0;
+  brake_n_ = 0.0;
+  const Eigen::Vector3d velocity = tcp_twist.head<3>();
+  const double speed = velocity.norm();
+  if (!enabled_ || !(period_s > 0.0) || !(speed > kMovingSpeed)) {
+    return false;
+  }
+  const Eigen::Vector3d direction = velocity / speed;
+  (void)inertia_.factorise(data, parameters_.armature, dof_);
+  const double arm_kg = inertia_.mass(data, direction);
+  // Infinite only for a model whose inertia is not positive definite: the TCP moves along u, so
+  // J_v^T u is not zero. Nothing to bound by; the last limit stays reported.
+  if (!std::isfinite(arm_kg)) {
+    return false;
+  }
+  const double moving_kg = arm_kg + parameters_.payload_mass_kg;
+  mass_kg_ = parameters_.body_mass_kg > 0.0
+                 ? 1.0 / (1.0 / parameters_.body_mass_kg + 1.0 / moving_kg)
+                 : moving_kg;
+  limit_m_per_s_ = parameters_.force_limit_n / std::sqrt(mass_kg_ * parameters_.stiffness_n_per_m);
+  // Only a law that accelerates the TCP toward the contact is scaled, never one that brakes
+  // along u (what its torque adds to the acceleration along u, computed only here).
+  if (speed > kShareFrom * limit_m_per_s_ && inertia_.accelerationAlong(law_torque) > 0.0) {
+    share_ = std::clamp(
+        (kBrakeFrom * limit_m_per_s_ - speed) / ((kBrakeFrom - kShareFrom) * limit_m_per_s_), 0.0,
+        1.0);
+    torque -= (1.0 - share_) * law_torque;
+    law_torque *= share_;
+  }
+  const bool braked = brake(data, direction, speed, moving_kg, period_s, torque);
+  return share_ < 1.0 || braked;
+}
+
+bool ContactSpeed::brake(const model::Data& data, const Eigen::Vector3d& direction, double speed,
+                         double mass_kg, double period_s, JointVector& torque) noexcept {
+  const double excess = speed - kBrakeFrom * limit_m_per_s_;
+  if (!(excess > 0.0)) {
+    return false;
+  }
+  // Half of deadbeat on the mass along u the force accelerates (the arm's, rotors included, and
+  // the payload): stable on every heavier one.
+  Vector6d wrench = Vector6d::Zero();
+  wrench.head<3>() = -(mass_kg / (2.0 * period_s) * excess) * direction;
+  (void)boundWrench(data.jacobian, wrench.data(), effort_limit_, dof_);
+  brake_n_ = wrench.head<3>().norm();
+  torque.head(dof_).noalias() += data.jacobian.leftCols(dof_).transpose() * wrench;
+  return true;
+}
+
+}  // namespace comply::pipeline
