@@ -33,6 +33,8 @@ void setWalls(const pipeline::VirtualWalls& walls, StateSample& s) noexcept {
   s.walls = walls.enabled();
   s.wall_distance_m = s.walls && std::isfinite(walls.distance()) ? walls.distance() : 0.0;
   s.wall_force = walls.force();
+  s.workspace_min = walls.box().min;
+  s.workspace_max = walls.box().max;
 }
 
 /// The reflex's thresholds of the last cycle and its trip (all 0 while it is off).
@@ -118,6 +120,8 @@ transport::ControllerStateMessage stateMessage(const StateSample& sample,
   message.wall_distance_m = sample.wall_distance_m;
   for (int i = 0; i < 3; ++i) {
     message.wall_force[i] = sample.wall_force[i];
+    message.workspace_min[i] = sample.workspace_min[i];
+    message.workspace_max[i] = sample.workspace_max[i];
   }
   copyReflex(sample, message);
   message.contact_speed_limit_m_per_s = sample.contact_speed_limit_m_per_s;

@@ -18,14 +18,20 @@ std::optional<Role> roleOf(CommandKind kind, const std::string& key) {
   return std::nullopt;
 }
 
-/// Whether `key` is one of the contact reflex's thresholds (either kind's table).
-bool isReflexThreshold(const std::string& key) {
+/// A group a command sets for a phase of its task, whose value at the start the controller file
+/// gives elsewhere: the reflex's thresholds (reflex.*) and the workspace box (boxes:).
+bool isPhaseGroup(CommandField group) {
+  return group == CommandField::kReflex || group == CommandField::kWorkspace;
+}
+
+/// The phase group `key` belongs to (the Cartesian table holds every one), or kNone.
+CommandField phaseGroupOf(const std::string& key) {
   for (const FieldInfo& field : fields(CommandKind::kCartesian)) {
     if (field.name == key) {
-      return field.group == CommandField::kReflex;
+      return isPhaseGroup(field.group) ? field.group : CommandField::kNone;
     }
   }
-  return false;
+  return CommandField::kNone;
 }
 
 std::string initialKeys() {
@@ -33,7 +39,7 @@ std::string initialKeys() {
   for (const CommandKind kind : {CommandKind::kJoint, CommandKind::kCartesian}) {
     for (const FieldInfo& field : fields(kind)) {
       const bool listed = known.find(" " + std::string(field.name) + ",") != std::string::npos;
-      if (field.role == Role::kNone && field.group != CommandField::kReflex && !listed) {
+      if (field.role == Role::kNone && !isPhaseGroup(field.group) && !listed) {
         known += " " + std::string(field.name) + ",";
       }
     }
@@ -92,11 +98,17 @@ InitialCommands readInitialCommands(const nlohmann::json& object, int dof,
   nlohmann::json joint = nlohmann::json::object();
   nlohmann::json cartesian = nlohmann::json::object();
   for (const auto& [key, value] : object.items()) {
-    if (isReflexThreshold(key)) {
-      // One place for the file's thresholds; a command sets them per phase, a reset goes back.
+    // One place for the file's own value; a command sets it per phase.
+    const CommandField phase_group = phaseGroupOf(key);
+    if (phase_group == CommandField::kReflex) {
       throw InputError(InputErrc::kInvalidValue, source, key_prefix + key,
                        "is set by the options reflex.force_n and reflex.torque_nm (a command sets "
                        "it for a phase of its task)");
+    }
+    if (phase_group == CommandField::kWorkspace) {
+      throw InputError(InputErrc::kInvalidValue, source, key_prefix + key,
+                       "is set by boxes: in the controller file (a command sets a box for a "
+                       "phase of its task)");
     }
     const std::optional<Role> joint_role = roleOf(CommandKind::kJoint, key);
     const std::optional<Role> cartesian_role = roleOf(CommandKind::kCartesian, key);

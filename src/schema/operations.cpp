@@ -19,6 +19,7 @@ static_assert(static_cast<std::uint32_t>(CommandField::kTorqueFeedforward) ==
 static_assert(static_cast<std::uint32_t>(CommandField::kNullspace) == COMPLY_FIELD_NULLSPACE);
 static_assert(static_cast<std::uint32_t>(CommandField::kForce) == COMPLY_FIELD_FORCE);
 static_assert(static_cast<std::uint32_t>(CommandField::kReflex) == COMPLY_FIELD_REFLEX);
+static_assert(static_cast<std::uint32_t>(CommandField::kWorkspace) == COMPLY_FIELD_WORKSPACE);
 static_assert(static_cast<int>(DampingMode::kAbsolute) == COMPLY_DAMPING_ABSOLUTE);
 static_assert(static_cast<int>(DampingMode::kRatio) == COMPLY_DAMPING_RATIO);
 static_assert(kMaxDof == COMPLY_MAX_DOF, "core capacity and ABI capacity must agree");

@@ -348,12 +348,18 @@ TEST(LiveState, CarriesTheWallsDistanceAndBarrierForce) {
   sample.walls = true;
   sample.wall_distance_m = -0.0025;
   sample.wall_force = Eigen::Vector3d(-12.5, 0.5, 3.0);
+  sample.workspace_min = Eigen::Vector3d(0.25, -0.5, 0.125);
+  sample.workspace_max = Eigen::Vector3d(0.75, 0.5, 0.875);
   const transport::ControllerStateMessage message = host::stateMessage(sample, *resolved);
   EXPECT_TRUE(message.walls);
   EXPECT_EQ(message.wall_distance_m, -0.0025);
   EXPECT_EQ(message.wall_force[0], -12.5);
   EXPECT_EQ(message.wall_force[1], 0.5);
   EXPECT_EQ(message.wall_force[2], 3.0);
+  EXPECT_EQ(message.workspace_min[0], 0.25);
+  EXPECT_EQ(message.workspace_min[2], 0.125);
+  EXPECT_EQ(message.workspace_max[1], 0.5);
+  EXPECT_EQ(message.workspace_max[2], 0.875);
 }
 
 TEST(LiveState, CarriesTheReflexsThresholdsAndItsTrip) {

@@ -1,5 +1,5 @@
 // Virtual walls as geometry (wall_geometry.hpp), against hand-computed numbers: which side is
-// allowed, the projection of a point outside, the motion through a wall removed, and the
+// allowed, a commanded box's faces beside the file's, the projection of a point outside, the motion through a wall removed, and the
 // barrier's force, its direction, size and that it only ever brakes.
 
 #include "comply/pipeline/wall_geometry.hpp"
@@ -34,6 +34,23 @@ TEST(WallGeometry, TooManyPlanesAreRefused) {
   WallSet set;
   EXPECT_FALSE(compileWalls({}, std::vector<WallBox>(kMaxWallPlanes / 6 + 1), set));
   EXPECT_EQ(set.count, 0);
+}
+
+TEST(WallGeometry, ACommandedBoxFitsBesidesAFullFileSet) {
+  // The file's limit of planes, then a commanded box's six faces on top.
+  WallSet set;
+  ASSERT_TRUE(compileWalls({}, std::vector<WallBox>(kMaxWallPlanes / 6), set));
+  ASSERT_EQ(set.count, kMaxWallPlanes);
+  const WallBox box{{0.1, -0.2, 0.3}, {0.6, 0.2, 0.8}};
+  ASSERT_TRUE(appendBox(box, set));
+  EXPECT_EQ(set.count, kMaxWallPlanes + 6);
+  EXPECT_EQ(set.planes[kMaxWallPlanes].point, box.max);
+  EXPECT_EQ(set.planes[kMaxWallPlanes].normal, Eigen::Vector3d::UnitX());
+  EXPECT_EQ(set.planes[kMaxWallPlanes + 5].point, box.min);
+  EXPECT_EQ(set.planes[kMaxWallPlanes + 5].normal, -Eigen::Vector3d::UnitZ());
+  // No room for another: refused, the set unchanged.
+  EXPECT_FALSE(appendBox(box, set));
+  EXPECT_EQ(set.count, kMaxWallPlanes + 6);
 }
 
 TEST(WallGeometry, APointOutsideIsProjectedOntoTheNearestFaces) {

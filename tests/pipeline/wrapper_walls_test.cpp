@@ -1,7 +1,7 @@
 // Walls through the wrapper on the FR3 (virtual_walls.hpp): a chunk's reference is kept inside
 // them as a command's is; a FAULT's hold shows no barrier force; a barrier damper that would ring
-// on the TCP's lightest apparent mass, and walls under a joint law, are refused when the
-// controller is resolved.
+// on the TCP's lightest apparent mass (under any Cartesian law: a command may set a box), and
+// walls under a joint law, are refused when the controller is resolved.
 
 #include <gtest/gtest.h>
 
@@ -111,9 +111,13 @@ TEST(WrapperWallsConfig, ADamperThatWouldRingIsRefused) {
     EXPECT_NE(message.find("wall.damping_n_s_per_m"), std::string::npos) << message;
     EXPECT_NE(message.find("half of deadbeat"), std::string::npos) << message;
   }
-  // The same damper with no wall configured is never used: accepted.
+  // Without walls in the file too: a command may set a box at run time.
+  EXPECT_THROW((void)resolveController(
+                   fr3Config(kCartesianImpedancePlugin, "wall:\n  damping_n_s_per_m: 9000\n")),
+               InputError);
+  // A joint law has no TCP reference to keep anywhere: never used, accepted.
   EXPECT_NO_THROW((void)resolveController(
-      fr3Config(kCartesianImpedancePlugin, "wall:\n  damping_n_s_per_m: 9000\n")));
+      fr3Config(kJointImpedancePlugin, "wall:\n  damping_n_s_per_m: 9000\n")));
 }
 
 TEST(WrapperWallsConfig, WallsUnderAJointLawAreRefused) {

@@ -1,12 +1,14 @@
 // Virtual walls on the simulated FR3 (virtual_walls.hpp): a reference streamed toward a wall at
-// 0.5 m/s, and one leaving a box, do not carry the TCP through. Each run has its control: the
-// same reference without the walls goes well past where the wall was.
+// 0.5 m/s, toward the face of a box a command sets at run time, and one leaving a box, do not
+// carry the TCP through. Each run has its control: the same reference without the walls goes well
+// past where the wall was.
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <optional>
 #include <string>
 
 #include "governed_arm.hpp"
@@ -26,8 +28,10 @@ struct Excursion {
   Eigen::Vector3d largest_force = Eigen::Vector3d::Zero();  ///< the barrier's, largest norm
 };
 
+/// `box`: set by the first command (the workspace group), corners relative to the start TCP.
 Excursion stream(const pipeline::WrapperConfig& config, const Eigen::Vector3d& direction,
-                 double speed_m_per_s, double travel_m, double limit_m, int cycles = 2000) {
+                 double speed_m_per_s, double travel_m, double limit_m, int cycles = 2000,
+                 const std::optional<pipeline::WallBox>& box = std::nullopt) {
   Arm<> arm(config);
   const double period = arm.plant.controlPeriod();
   Excursion result;
@@ -46,6 +50,11 @@ Excursion stream(const pipeline::WrapperConfig& config, const Eigen::Vector3d& d
     command.stiffness_rotational = 100.0 * Eigen::Matrix3d::Identity();
     if (cycle == 0) {
       command.orientation = arm.wrapper.measuredPose().tcp_orientation;
+      if (box) {
+        command.fields = command.fields | CommandField::kWorkspace;
+        command.workspace_min = arm.start_tcp + box->min;
+        command.workspace_max = arm.start_tcp + box->max;
+      }
     }
     EXPECT_TRUE(arm.wrapper.submit(command).accepted) << cycle;
     const double before = (arm.tcp() - arm.start_tcp).dot(direction);
@@ -89,6 +98,21 @@ TEST(VirtualWalls, ATcpDrivenAtAWallAtHalfAMetrePerSecondStopsWithinFiveMillimet
   RecordProperty("arrival_speed_m_per_s", std::to_string(walled.arrival_speed_m_per_s));
   std::cout << "wall: arrival " << walled.arrival_speed_m_per_s << " m/s, past the wall "
             << 1e3 * walled.past_m << " mm (free run " << 1e3 * free_run.past_m << " mm)\n";
+}
+
+TEST(VirtualWalls, ABoxACommandSetsStopsTheTcpAsTheFilesWallDoes) {
+  const Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
+  const pipeline::WrapperConfig config = simCartesianConfig("fr3");
+  // The box's +x face 10 cm ahead of the start; the others 30 cm away. No walls in the file.
+  const pipeline::WallBox box{Eigen::Vector3d(-0.3, -0.3, -0.3), Eigen::Vector3d(0.1, 0.3, 0.3)};
+  const Excursion boxed = stream(config, direction, 0.5, 0.17, 0.10, 2000, box);
+  EXPECT_GE(boxed.arrival_speed_m_per_s, 0.4) << "the TCP did not arrive at speed";
+  EXPECT_LE(boxed.past_m, 0.005);
+  EXPECT_NEAR(boxed.nearest_wall_m, -boxed.past_m, 1e-3);
+  EXPECT_LT(boxed.largest_force.x(), -10.0);
+  RecordProperty("penetration_mm", std::to_string(1e3 * boxed.past_m));
+  std::cout << "commanded box: arrival " << boxed.arrival_speed_m_per_s << " m/s, past its face "
+            << 1e3 * boxed.past_m << " mm\n";
 }
 
 TEST(VirtualWalls, ABoxKeepsTheTcpInsideUnderAReferenceThatLeavesIt) {

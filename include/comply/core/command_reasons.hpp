@@ -22,7 +22,9 @@
   X(kInvalidChunk, invalid_chunk, \
     "a chunk's shape: waypoint count (1 to 64), times (a start more than max_stamp_lead_s ahead), field groups, damping modes") \
   X(kReflexLatched, reflex_latched, \
-    "the contact reflex tripped and holds the arm (ControllerState.reflex_tripped): nothing is taken until a reset request")
+    "the contact reflex tripped and holds the arm (ControllerState.reflex_tripped): nothing is taken until a reset request") \
+  X(kInvalidWorkspace, invalid_workspace, \
+    "a workspace box with a corner not below the other, the TCP outside it, or no room inside the controller file's walls")
 
 #define COMPLY_GATE_REJECTION_REASONS(X) \
   X(kOtherPublisher, other_publisher, "another sender holds the command topics") \

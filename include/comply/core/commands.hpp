@@ -54,7 +54,8 @@ enum class CommandField : std::uint32_t {
   kNullspace = 1U << 8,  ///< nullspace target, stiffness and damping
   kForce = 1U << 9,      ///< Cartesian force axes and wrench target
   kReflex = 1U << 10,    ///< the contact reflex's thresholds
-  kAll = (1U << 11) - 1,
+  kWorkspace = 1U << 11, ///< a box the Cartesian TCP stays inside
+  kAll = (1U << 12) - 1,
 };
 
 constexpr CommandField operator|(CommandField a, CommandField b) {

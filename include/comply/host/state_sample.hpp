@@ -31,9 +31,11 @@ struct StateSample {
   /// [Hz] the estimate's first-order bandwidth (observer K_O / 2 pi, sensor filter_hz); 0: raw.
   double contact_wrench_bandwidth_hz = 0.0;
   pipeline::PassivitySnapshot passivity;  ///< the energy tank's account after the cycle
-  bool walls = false;                     ///< walls or boxes configured (virtual_walls.hpp)
-  double wall_distance_m = 0.0;           ///< measured TCP to the nearest wall; < 0 past one
-  Eigen::Vector3d wall_force = Eigen::Vector3d::Zero();  ///< the barrier's [N], base frame
+  bool walls = false;            ///< walls or boxes configured or commanded (virtual_walls.hpp)
+  double wall_distance_m = 0.0;  ///< measured TCP to the nearest wall; < 0 past one
+  Eigen::Vector3d wall_force = Eigen::Vector3d::Zero();     ///< the barrier's [N], base frame
+  Eigen::Vector3d workspace_min = Eigen::Vector3d::Zero();  ///< the commanded box [m]; 0: none
+  Eigen::Vector3d workspace_max = Eigen::Vector3d::Zero();
   bool reflex = false;  ///< the contact reflex is on (contact_reflex.hpp); else the rest is 0
   Eigen::Vector3d reflex_force_threshold = Eigen::Vector3d::Zero();   ///< [N] task x y z
   Eigen::Vector3d reflex_torque_threshold = Eigen::Vector3d::Zero();  ///< [N m]

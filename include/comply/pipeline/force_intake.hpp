@@ -14,8 +14,8 @@ namespace comply::pipeline {
 /// check leaves out the force axes in force both as the cycle holds them
 /// (controller.commandInForce(): the watchdog may have ended them) and as the intake accepted them
 /// (`accepted`: commands queued that the cycle has not taken yet); the larger jump counts, so an
-/// axis is left out only where both hold it under force. Then checkWrenches(). Joint:
-/// validateAndMerge().
+/// axis is left out only where both hold it under force. Then checkWrenches() and
+/// checkWorkspace() (workspace_intake.hpp). Joint: validateAndMerge().
 Verdict validateAtIntake(const CartesianCommand& incoming, Controller& controller,
                          const MeasuredPose& measured, const CartesianCommand& accepted,
                          CartesianCommand& merged);

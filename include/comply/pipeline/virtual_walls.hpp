@@ -1,7 +1,8 @@
 #pragma once
 // Stage "walls": planes and axis-aligned boxes of the base frame the TCP does not pass
-// (walls:, boxes:, wall.*; wall_geometry.hpp). Cartesian laws only; off, and one branch, when none
-// is configured.
+// (walls:, boxes:, wall.*; wall_geometry.hpp), and the box the command in force sets for its phase
+// of the task (the workspace group, checked at the intake: workspace_intake.hpp), besides them.
+// Cartesian laws only; off, and one branch, when there are none.
 //
 // Two parts, so that neither the reference nor the arm's momentum carries the TCP through:
 //
@@ -46,6 +47,13 @@ class VirtualWalls {
 
   [[nodiscard]] bool enabled() const noexcept { return enabled_; }
 
+  /// The box of the command in force (workspace_min, workspace_max; all 0: none), in force from
+  /// this cycle on besides the file's walls. Unchanged, it costs six comparisons.
+  void commandBox(const double* min, const double* max) noexcept;
+  /// The commanded box in force, and whether there is one.
+  [[nodiscard]] bool boxCommanded() const noexcept { return box_commanded_; }
+  [[nodiscard]] const WallBox& box() const noexcept { return box_; }
+
   /// The reference: `out` = `in` kept inside the walls (see above), the measured TCP at
   /// `tcp_position`. True when anything changed; `out` is written either way.
   bool limitReference(const comply_cartesian_command& in, const Eigen::Vector3d& tcp_position,
@@ -60,16 +68,26 @@ class VirtualWalls {
   /// measured this cycle, and no force, so the state never shows a stale barrier.
   void observe(const Eigen::Vector3d& tcp_position) noexcept;
 
-  /// The last cycle's distance from the measured TCP to the nearest wall [m] (negative past one)
-  /// and the barrier's force [N, base frame].
+  /// The last cycle's distance from the measured TCP to the nearest wall or face [m] (negative
+  /// past one) and the barrier's force [N, base frame].
   [[nodiscard]] double distance() const noexcept { return distance_m_; }
   [[nodiscard]] const Eigen::Vector3d& force() const noexcept { return force_n_; }
 
+  /// The distance and force back to none; a commanded box stays, as the command in force does.
   void reset() noexcept;
 
  private:
+  /// The file's walls, with the commanded box's faces when there is one.
+  [[nodiscard]] const WallSet& walls() const noexcept {
+    return box_commanded_ ? with_box_ : parameters_.walls.set;
+  }
+
   const CycleParameters& parameters_;
+  bool cartesian_ = false;
   bool enabled_ = false;
+  bool box_commanded_ = false;
+  WallBox box_;
+  WallSet with_box_;
   double distance_m_ = 0.0;
   Eigen::Vector3d force_n_ = Eigen::Vector3d::Zero();
 };

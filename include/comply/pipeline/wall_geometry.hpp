@@ -26,12 +26,14 @@ struct WallBox {
   Eigen::Vector3d max = Eigen::Vector3d::Zero();
 };
 
-/// Half-spaces the cycle holds inline: walls plus six per box.
+/// Half-spaces of the controller file the cycle holds inline: walls plus six per box.
 inline constexpr int kMaxWallPlanes = 48;
+/// Besides them, the six faces of the box a command sets (the workspace group).
+inline constexpr int kMaxCommandedPlanes = 6;
 
 /// The allowed region: every plane's back side.
 struct WallSet {
-  std::array<WallPlane, kMaxWallPlanes> planes{};
+  std::array<WallPlane, kMaxWallPlanes + kMaxCommandedPlanes> planes{};
   int count = 0;
   [[nodiscard]] bool empty() const noexcept { return count == 0; }
 };
@@ -46,6 +48,9 @@ struct BarrierGains {
 /// The walls and boxes as one set of half-spaces; false when they are more than kMaxWallPlanes.
 bool compileWalls(const std::vector<WallPlane>& walls, const std::vector<WallBox>& boxes,
                   WallSet& set);
+
+/// Appends the six faces of `box` to `set`; false (and `set` unchanged) without room for them.
+bool appendBox(const WallBox& box, WallSet& set) noexcept;
 
 /// normal . (p - point): > 0 past the wall, its magnitude the distance [m].
 [[nodiscard]] inline double signedDistance(const WallPlane& plane,

@@ -59,7 +59,8 @@ enum {
   COMPLY_FIELD_TORQUE_FEEDFORWARD = 1u << 7,
   COMPLY_FIELD_NULLSPACE = 1u << 8,    /* Cartesian only: target, stiffness, damping */
   COMPLY_FIELD_FORCE = 1u << 9,        /* Cartesian only: force axes, wrench target */
-  COMPLY_FIELD_REFLEX = 1u << 10       /* the contact reflex's thresholds */
+  COMPLY_FIELD_REFLEX = 1u << 10,      /* the contact reflex's thresholds */
+  COMPLY_FIELD_WORKSPACE = 1u << 11    /* Cartesian only: a box the TCP stays inside */
 };
 
 /* How a Cartesian command specifies damping. */
@@ -113,6 +114,10 @@ typedef struct comply_cartesian_command {
    * for information only). 0: the controller file's. */
   double reflex_force[3];                        /* N */
   double reflex_torque[3];                       /* N m */
+  /* A box the TCP stays inside, besides the controller file's walls; the wrapper acts on it (a
+   * law reads it for information only). All 0: none. */
+  double workspace_min[3];                       /* base frame [m] */
+  double workspace_max[3];                       /* base frame [m] */
 } comply_cartesian_command;
 
 /* What the wrapper hands the law each cycle: measured state + requested model quantities. */

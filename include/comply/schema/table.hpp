@@ -35,7 +35,8 @@
   X(kTorqueFeedforward, "torque_feedforward", "joint torque feedforward")          \
   X(kNullspace, "nullspace", "nullspace target, stiffness and damping")            \
   X(kForce, "force", "force-controlled task axes and their wrench target")         \
-  X(kReflex, "reflex", "the contact reflex's thresholds for this phase of the task")
+  X(kReflex, "reflex", "the contact reflex's thresholds for this phase of the task")     \
+  X(kWorkspace, "workspace", "a box the TCP stays inside for this phase of the task")
 
 // The contact reflex's thresholds (pipeline/contact_reflex.hpp), the same rows in both tables;
 // `frame` names the axes: the task frame's (Cartesian), the base frame's (joint).
@@ -84,7 +85,13 @@
     "1: a force-controlled task axis (x y z rx ry rz), 0: impedance")                            \
   X(wrench_target, kForce, kVector6, Vector6d, "N, N m", kNone, kNone, Vector6d::Zero(),         \
     "wrench the TCP exerts along the force axes, task frame, force first")                       \
-  COMPLY_REFLEX_COMMAND_FIELDS(X, "task")
+  COMPLY_REFLEX_COMMAND_FIELDS(X, "task")                                                        \
+  X(workspace_min, kWorkspace, kVector3, Eigen::Vector3d, "m", kNone, kNone,                     \
+    Eigen::Vector3d::Zero(),                                                                     \
+    "the box's lower corner, base frame, besides the controller file's walls; all 0 with "       \
+    "workspace_max: none")                                                                       \
+  X(workspace_max, kWorkspace, kVector3, Eigen::Vector3d, "m", kNone, kNone,                     \
+    Eigen::Vector3d::Zero(), "the box's upper corner, base frame")
 
 #define COMPLY_JOINT_COMMAND_FIELDS(X)                                                             \
   X(position, kPosition, kJointVector, JointVector, "rad | m", kNone, kSeedJointPosition,          \

@@ -76,12 +76,16 @@
   X(double, gain_fraction, gain_fraction, 1.0, \
     "[-] fraction of the commanded stiffness change in force (1: all of it)") \
   X(bool, walls, walls, false, \
-    "walls or boxes are configured (controller options walls:, boxes:); while none, the two " \
-    "fields below are 0") \
+    "walls or boxes are configured (controller options walls:, boxes:), or the command in force " \
+    "sets a workspace box; while none, the fields below are 0") \
   X(double, wall_distance_m, wall_distance, 0.0, \
     "[m] from the measured TCP to the nearest wall or box face; negative past one") \
   X(Vector3, wall_force, wall_force, {}, \
     "[N] the walls' barrier force on the TCP this cycle, base frame (0: not braking)") \
+  X(Vector3, workspace_min, workspace_min, {}, \
+    "[m] the workspace box the command in force sets, lower corner, base frame (0: none)") \
+  X(Vector3, workspace_max, workspace_max, {}, \
+    "[m] its upper corner (0: none)") \
   X(bool, reflex, reflex, false, \
     "the contact reflex is on (controller option reflex.enabled); while it is off, the fields " \
     "below are 0") \

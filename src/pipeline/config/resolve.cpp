@@ -323,8 +323,9 @@ void checkConsistency(const ResolvedController& resolved) {
   }
   // The barrier's damper acts on the TCP's apparent mass one cycle late: past half of deadbeat on
   // the lightest of it (at 1 kHz, as the initial command is checked) it would ring, not brake.
+  // Any Cartesian law: a command may set a box at run time.
   const double damping_bound = parameters.tcp_mass_kg / (2.0 * 1e-3);
-  if (config.walls.any() && parameters.tcp_mass_kg > 0.0 &&
+  if (resolved.cartesian() && parameters.tcp_mass_kg > 0.0 &&
       config.walls.damping_n_s_per_m > damping_bound) {
     throw InputError(InputErrc::kOutOfRange, config.name, "wall.damping_n_s_per_m",
                      std::to_string(config.walls.damping_n_s_per_m) +

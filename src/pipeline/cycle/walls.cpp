@@ -9,6 +9,11 @@ namespace comply::pipeline {
 
 void Controller::limitToWalls() noexcept {
   walls_active_ = false;
+  // The box of the command in force, whatever stage rewrote the reference since (a chunk plays
+  // into it, so its box stays; workspace_intake.hpp checked it).
+  if (const auto* in_force = std::get_if<comply_cartesian_command>(&active_)) {
+    walls_.commandBox(in_force->workspace_min, in_force->workspace_max);
+  }
   if (!walls_.enabled()) {
     return;
   }

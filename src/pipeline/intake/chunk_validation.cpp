@@ -95,13 +95,13 @@ Verdict checkShape(const Chunk<Command>& chunk, double host_time_s, double max_l
   const auto outside = static_cast<CommandField>(static_cast<std::uint32_t>(chunk.fields) &
                                                  ~static_cast<std::uint32_t>(kChunkFields));
   if (outside != CommandField::kNone) {
-    // The acceleration follows from the curve through the waypoints; force axes and the
-    // reflex's thresholds are modes, not quantities to interpolate: a command sets them.
+    // The acceleration follows from the curve through the waypoints; force axes, the reflex's
+    // thresholds and a workspace box are modes, not quantities to interpolate: a command sets them.
     return reject(RejectionReason::kInvalidChunk,
                   "a chunk cannot set " + groupNames(outside) +
                       " (the acceleration follows from the curve through the waypoints; force "
-                      "axes and reflex thresholds come with a command, and last through the "
-                      "chunks after it)");
+                      "axes, reflex thresholds and a workspace box come with a command, and last "
+                      "through the chunks after it)");
   }
   for (std::size_t k = 0; k < count; ++k) {
     const double t = chunk.waypoints[k].time_s;

@@ -5,6 +5,7 @@
 
 #include "comply/core/number_text.hpp"
 #include "comply/model/update.hpp"
+#include "comply/pipeline/workspace_intake.hpp"
 #include "comply/pipeline/wrench_bound.hpp"
 #include "comply/schema/schema.hpp"
 
@@ -64,6 +65,9 @@ Verdict validateAtIntake(const CartesianCommand& incoming, Controller& controlle
   Verdict verdict = validateCommand(checked, limits, dof, measured, merged.stamp_s, in_force);
   if (verdict.accepted) {
     verdict = checkWrenches(checked, accepted, controller, measured);
+  }
+  if (verdict.accepted) {
+    verdict = checkWorkspace(checked, controller.resolved().parameters, measured);
   }
   if (verdict.accepted) {
     schema::merge(merged, checked);

@@ -20,8 +20,26 @@ Eigen::Map<Eigen::Vector3d> vector3(double* values) noexcept {
 }  // namespace
 
 VirtualWalls::VirtualWalls(const CycleParameters& parameters, bool cartesian)
-    : parameters_(parameters), enabled_(cartesian && !parameters.walls.set.empty()) {
+    : parameters_(parameters),
+      cartesian_(cartesian),
+      enabled_(cartesian && !parameters.walls.set.empty()) {
   reset();
+}
+
+void VirtualWalls::commandBox(const double* min, const double* max) noexcept {
+  const Eigen::Map<const Eigen::Vector3d> lower(min);
+  const Eigen::Map<const Eigen::Vector3d> upper(max);
+  const bool none = lower.isZero(0.0) && upper.isZero(0.0);
+  if (none ? !box_commanded_ : (box_commanded_ && lower == box_.min && upper == box_.max)) {
+    return;
+  }
+  box_commanded_ = !none;
+  box_ = none ? WallBox{} : WallBox{lower, upper};
+  with_box_ = parameters_.walls.set;
+  if (box_commanded_) {
+    (void)appendBox(box_, with_box_);  // the file's are at most kMaxWallPlanes: room for six
+  }
+  enabled_ = cartesian_ && !walls().empty();
 }
 
 void VirtualWalls::reset() noexcept {
@@ -33,7 +51,7 @@ bool VirtualWalls::limitReference(const comply_cartesian_command& in,
                                   const Eigen::Vector3d& tcp_position,
                                   comply_cartesian_command& out) noexcept {
   out = in;
-  const WallSet& set = parameters_.walls.set;
+  const WallSet& set = walls();
   Eigen::Vector3d position(in.position[0], in.position[1], in.position[2]);
   bool changed = projectInside(set, position);
   vector3(out.position) = position;
@@ -52,13 +70,13 @@ bool VirtualWalls::limitReference(const comply_cartesian_command& in,
 }
 
 void VirtualWalls::observe(const Eigen::Vector3d& tcp_position) noexcept {
-  distance_m_ = nearestWallDistance(parameters_.walls.set, tcp_position);
+  distance_m_ = nearestWallDistance(walls(), tcp_position);
   force_n_.setZero();
 }
 
 bool VirtualWalls::brake(const model::Data& data, const Vector6d& tcp_twist, int dof,
                          JointVector& torque) noexcept {
-  const WallSet& set = parameters_.walls.set;
+  const WallSet& set = walls();
   distance_m_ = nearestWallDistance(set, data.tip_position);
   force_n_ = barrierForce(set, parameters_.walls.gains, data.tip_position, tcp_twist.head<3>());
   if (force_n_.isZero(0.0) || !force_n_.allFinite()) {

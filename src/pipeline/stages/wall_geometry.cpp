@@ -23,11 +23,19 @@ bool compileWalls(const std::vector<WallPlane>& walls, const std::vector<WallBox
     set.planes[set.count++] = wall;
   }
   for (const WallBox& box : boxes) {
-    for (int axis = 0; axis < 3; ++axis) {
-      const Eigen::Vector3d unit = Eigen::Vector3d::Unit(axis);
-      set.planes[set.count++] = WallPlane{box.max, unit};
-      set.planes[set.count++] = WallPlane{box.min, -unit};
-    }
+    (void)appendBox(box, set);  // within kMaxWallPlanes, checked above
+  }
+  return true;
+}
+
+bool appendBox(const WallBox& box, WallSet& set) noexcept {
+  if (set.count + 6 > static_cast<int>(set.planes.size())) {
+    return false;
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    const Eigen::Vector3d unit = Eigen::Vector3d::Unit(axis);
+    set.planes[set.count++] = WallPlane{box.max, unit};
+    set.planes[set.count++] = WallPlane{box.min, -unit};
   }
   return true;
 }
