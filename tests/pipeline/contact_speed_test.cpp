@@ -70,11 +70,11 @@ TEST(ContactSpeed, CompilesTheRegionsRowTheOverridesThePayloadAndTheRotorInertia
   EXPECT_EQ(compiled.stiffness_n_per_m, 75e3);
   EXPECT_EQ(compiled.body_mass_kg, 0.0) << "clamped by default";
   EXPECT_EQ(compiled.payload_mass_kg, 0.0);
+  // The rotors are in the laws' M already (ModelOptions::armature): none left to add.
   const std::vector<double> armature = hands.controller.resolved().robot.joint_dynamics->armature;
+  EXPECT_EQ(hands.controller.model().armature(), armature);
   ASSERT_EQ(compiled.armature.size(), kFr3Dof);
-  for (int i = 0; i < kFr3Dof; ++i) {
-    EXPECT_EQ(compiled.armature[i], armature[static_cast<std::size_t>(i)]) << i;
-  }
+  EXPECT_TRUE(compiled.armature.isZero(0.0));
   HomeFr3 chest(kOn +
                 "  body_region: chest\n  contact: transient\n  body_mass: true\n"
                 "compensation:\n  payload:\n    mass_kg: 1.5\n");
@@ -99,23 +99,29 @@ TEST(ContactSpeed, ResolvingRefusesAJointLawAndTheAdmittanceModes) {
 TEST(ContactSpeed, TheReflectedMassCountsTheRotorsInertia) {
   HomeFr3 arm(kOn);
   const model::Data& data = arm.data();
-  const JointVector& armature = arm.parameters().contact_speed.armature;
+  const JointVector& extra = arm.parameters().contact_speed.armature;
   ReflectedInertia inertia;
-  ASSERT_TRUE(inertia.factorise(data, armature, kFr3Dof));
+  ASSERT_TRUE(inertia.factorise(data, extra, kFr3Dof));
+  // The model's M carries the rotors on its diagonal; without them, the links' alone.
+  const std::vector<double>& rotors = arm.controller.model().armature();
+  ASSERT_EQ(rotors.size(), static_cast<std::size_t>(kFr3Dof));
+  Eigen::MatrixXd links = data.mass_matrix.topLeftCorner(kFr3Dof, kFr3Dof);
+  for (int i = 0; i < kFr3Dof; ++i) {
+    links(i, i) -= rotors[static_cast<std::size_t>(i)];
+  }
   const std::vector<Eigen::Vector3d> directions = {
       Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), Eigen::Vector3d(0.0, 0.6, -0.8)};
   for (const Eigen::Vector3d& u : directions) {
     const double with_rotors = inertia.mass(data, u);
-    // Dense, the textbook way: (u^T J_v (M + A)^-1 J_v^T u)^-1.
-    const Eigen::MatrixXd m = data.mass_matrix.topLeftCorner(kFr3Dof, kFr3Dof).eval() +
-                              Eigen::MatrixXd(armature.asDiagonal());
+    // Dense, the textbook way: (u^T J_v M^-1 J_v^T u)^-1.
+    const Eigen::MatrixXd m = data.mass_matrix.topLeftCorner(kFr3Dof, kFr3Dof);
     const Eigen::MatrixXd jv = data.jacobian.topLeftCorner(3, kFr3Dof);
     const double expected = 1.0 / (u.transpose() * jv * m.inverse() * jv.transpose() * u)(0);
     EXPECT_NEAR(with_rotors, expected, 1e-9 * expected) << u.transpose();
     // A torque J_v^T F accelerates the TCP along u by u . F / mass.
     const JointVector pushed = jv.transpose() * (2.0 * u);
     EXPECT_NEAR(inertia.accelerationAlong(pushed), 2.0 / with_rotors, 1e-12);
-    const double links_only = reflectedMass(data, JointVector::Zero(kFr3Dof), kFr3Dof, u);
+    const double links_only = 1.0 / (u.transpose() * jv * links.inverse() * jv.transpose() * u)(0);
     EXPECT_GT(with_rotors, 1.2 * links_only) << u.transpose() << ": the rotors are heavy";
   }
 }

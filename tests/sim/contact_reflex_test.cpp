@@ -155,8 +155,10 @@ class ContactReflexOnFr3 : public ::testing::TestWithParam<std::tuple<Path, Refl
 TEST_P(ContactReflexOnFr3, AnUnexpectedPushDuringFreeMotionTripsTheReactionWithinItsBound) {
   const auto [path, reaction] = GetParam();
   const PushRun run = pushDuringFreeMotion(reflexConfig(path, reaction), path);
-  // Free motion alone stayed well below the threshold.
-  EXPECT_LT(run.largest_free_estimate_n, 15.0);
+  // Free motion alone stayed well below the threshold; on joint-torque sensors, which read the
+  // torque after the rotors, the observer leaves the rotors out of M(q) and reads next to nothing
+  // (3.6 N of rotor inertia while the arm accelerates, were they in).
+  EXPECT_LT(run.largest_free_estimate_n, path == Path::kObserver ? 0.5 : 15.0);
   ASSERT_GE(run.trip_after, 0) << "the push did not trip the reflex";
   EXPECT_LE(run.trip_after, tripBound(path));
   const std::string name =

@@ -65,7 +65,15 @@ TEST(ContactSpeedOnTheFr3, TheReflectedMassAgreesWithMujocosInertiaOfThePlant) {
   const sim::SimulatedRobot plant(*config.robot_description, sim::PlantOptions{});
   const model::RobotDescription& robot = *config.robot_description;
   pipeline::Controller controller(pipeline::resolveController(config));
+  // What the stage adds to the model's M (nothing: the laws' M carries the rotors), and the rotors
+  // themselves, taken off again for the links alone.
   const JointVector& armature = controller.resolved().parameters.contact_speed.armature;
+  const std::vector<double>& rotors = controller.model().armature();
+  ASSERT_EQ(rotors.size(), static_cast<std::size_t>(controller.dof()));
+  JointVector without_rotors = JointVector::Zero(controller.dof());
+  for (int i = 0; i < controller.dof(); ++i) {
+    without_rotors[i] = -rotors[static_cast<std::size_t>(i)];
+  }
   double worst = 0.0;
   for (const ArmPose& pose : springPoses()) {
     JointState state = JointState::zero(controller.dof());
@@ -83,8 +91,7 @@ TEST(ContactSpeedOnTheFr3, TheReflectedMassAgreesWithMujocosInertiaOfThePlant) {
       EXPECT_NEAR(ours, reference, kMassTolerance * reference) << pose.name << " " << u.transpose();
       worst = std::max(worst, std::abs(ours / reference - 1.0));
       // Without the rotors the mass is far too small: the limit would be too fast.
-      const double links =
-          pipeline::reflectedMass(data, JointVector::Zero(controller.dof()), controller.dof(), u);
+      const double links = pipeline::reflectedMass(data, without_rotors, controller.dof(), u);
       EXPECT_LT(links, 0.85 * reference) << pose.name << " " << u.transpose();
       std::cout << pose.name << " u = " << u.transpose() << ": mu " << ours << " kg (MuJoCo "
                 << reference << ", links alone " << links << ")\n";

@@ -15,14 +15,14 @@
 //   v_max(u) = F_max / sqrt(mu(u) k),   mu(u) = (u^T Lambda_v^-1 u)^-1 + m_payload,
 //   Lambda_v^-1 = J_v (M + diag(armature))^-1 J_v^T
 //
-// with J_v the translational rows of the TCP's Jacobian and M the links' joint-space inertia, both
+// with J_v the translational rows of the TCP's Jacobian and M the arm's joint-space inertia, both
 // at this cycle's pose (the model the cycle computes anyway for the Cartesian law), so that mu(u)
 // is the mass that actually meets the contact in that direction at that pose, not a lumped
 // constant: on the FR3 it ranges from about 2 kg to far above 10 kg across directions and poses.
-// The rotor inertias (robot.yaml joint_dynamics.armature) are not in the controller's M, but the
-// real arm and the simulated plant carry them, and a contact must stop them too: left out, mu is
-// too small and v_max too fast, i.e. unsafe (on the FR3 at home, 0.195 kg m^2 on joints 1 to 4
-// roughly doubles mu along most directions). The declared payload (compensation.payload.mass_kg)
+// The rotor inertias (robot.yaml joint_dynamics.armature) are in the laws' M already (the model's
+// ModelOptions::armature); `armature` adds any the model leaves out. A contact must stop them too:
+// left out, mu is too small and v_max too fast, i.e. unsafe (on the FR3 at home, 0.195 kg m^2 on
+// joints 1 to 4 roughly doubles mu along most directions). The declared payload (compensation.payload.mass_kg)
 // is added as a point mass at the TCP. By default mu is the arm's alone: a body part clamped
 // against a fixed surface takes all of it, the conservative case. contact_speed.body_mass counts
 // the region's effective mass m_H (Table A.3) as well, the reduced mass (1/m_H + 1/mu)^-1 of a

@@ -29,7 +29,11 @@ struct ObserverConfig {
 
 class MomentumObserver {
  public:
-  void configure(const ObserverConfig& config, int dof) noexcept;
+  /// `rotor_inertia`: the part of the model's M(q) diagonal that `tau` does not act on (the
+  /// rotors, when tau is a link-side joint-torque sensor's reading, observer.measured_torque:
+  /// the sensor sits after them); empty or 0: tau is the drives' own (M(q) as it is).
+  void configure(const ObserverConfig& config, int dof,
+                 const JointVector& rotor_inertia = JointVector()) noexcept;
   [[nodiscard]] bool enabled() const noexcept { return config_.enabled; }
   /// The next update() starts afresh: p0 from its state, the integral and r at zero.
   void reset() noexcept { started_ = false; }
@@ -51,7 +55,8 @@ class MomentumObserver {
   int dof_ = 0;
   bool started_ = false;
   JointVector initial_momentum_;  // p0
-  JointVector momentum_;          // M dq of this cycle
+  JointVector momentum_;          // M dq of this cycle (less the rotors' on a link-side tau)
+  JointVector rotor_inertia_;     // the diagonal left out of M
   JointVector integral_;
   JointVector residual_;
   JointMatrix previous_mass_;

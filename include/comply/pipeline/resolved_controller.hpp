@@ -53,8 +53,8 @@ struct ContactSpeedParameters {
   double stiffness_n_per_m = 0.0;  ///< of what the TCP meets
   double body_mass_kg = 0.0;       ///< the region's, in a reduced mass; 0: clamped (the default)
   double payload_mass_kg = 0.0;    ///< compensation.payload.mass_kg, a point mass at the TCP
-  /// robot.yaml joint_dynamics.armature in the model's joint order, 0 where none is declared:
-  /// the rotor inertias the model's mass matrix leaves out.
+  /// The rotor inertias (robot.yaml joint_dynamics.armature, model's joint order) the model's
+  /// mass matrix leaves out; 0 where it carries them (the laws' model does) or none is declared.
   JointVector armature;
 };
 

@@ -88,8 +88,7 @@ bool hasArmature(const ResolvedController& resolved) {
 }
 
 /// The contact-speed stage's numbers (contact_speed.hpp): the body region's row unless the file
-/// gives its own, the payload, and the rotor inertias, which the controller's mass matrix leaves
-/// out but a contact must stop as well.
+/// gives its own, the payload, and any rotor inertias the model's mass matrix leaves out.
 ContactSpeedParameters compileContactSpeed(const WrapperConfig& config,
                                            const model::RobotDescription& robot,
                                            const model::Model& model) {
@@ -103,10 +102,13 @@ ContactSpeedParameters compileContactSpeed(const WrapperConfig& config,
       contact.stiffness_n_per_m > 0.0 ? contact.stiffness_n_per_m : region.stiffness_n_per_m;
   compiled.body_mass_kg = contact.body_mass ? region.effective_mass_kg : 0.0;
   compiled.payload_mass_kg = config.payload.mass_kg;
-  compiled.armature = declaredArmature(robot, model);
-  if (compiled.armature.size() != model.dof()) {
-    compiled.armature.setZero(model.dof());
-  }
+  // The laws' model carries the rotors in M (loadModelAndPlugin) except the admittance modes'
+  // virtual arm, which this stage refuses: what the model leaves out is added here either way.
+  const std::vector<double> extra = model.armature().empty()
+                                        ? declaredArmature(robot, model.jointNames())
+                                        : std::vector<double>{};
+  compiled.armature =
+      extra.empty() ? JointVector::Zero(model.dof()) : toJointVector(extra, model.dof());
   return compiled;
 }
 

@@ -70,8 +70,8 @@ bool ReflectedInertia::factorise(const model::Data& data, const JointVector& arm
     along_.setZero(dof);
     scratch_.setZero(dof);
   }
-  // The controller's model has the links' inertia only; the rotors' is what a contact must stop
-  // besides (contact_speed.hpp): without it the mass is too small and the limit too fast.
+  // The rotors are a mass a contact must stop as well (contact_speed.hpp): those the model's M
+  // leaves out are added, else the mass would be too small and the limit too fast.
   const JointMatrix& m = data.mass_matrix;
   factorised_ = dof == 7   ? choleskyLower<7>(m, armature, dof, lower_, inverse_diagonal_)
                 : dof == 6 ? choleskyLower<6>(m, armature, dof, lower_, inverse_diagonal_)

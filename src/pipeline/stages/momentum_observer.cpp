@@ -71,9 +71,12 @@ void residualStep(int n, const double* mass, double* previous_mass, const double
 
 }  // namespace
 
-void MomentumObserver::configure(const ObserverConfig& config, int dof) noexcept {
+void MomentumObserver::configure(const ObserverConfig& config, int dof,
+                                 const JointVector& rotor_inertia) noexcept {
   config_ = config;
   dof_ = dof;
+  rotor_inertia_ =
+      rotor_inertia.size() == dof ? rotor_inertia : JointVector(JointVector::Zero(dof));
   initial_momentum_.setZero(dof);
   momentum_.setZero(dof);
   integral_.setZero(dof);
@@ -91,12 +94,15 @@ void MomentumObserver::update(const JointVector& velocity, const JointVector& ta
   const auto mass = data.mass_matrix.topLeftCorner(n, n);
   const auto dq = velocity.head(n);
   auto momentum = momentum_.head(n);
+  const auto rotors = rotor_inertia_.head(n);
   momentum.noalias() = mass * dq;
+  momentum -= rotors.cwiseProduct(dq);
   if (!started_ || !(period_s > 0.0)) {
     initial_momentum_ = momentum_;
     integral_.setZero(n);
     residual_.setZero(n);
     previous_mass_.topLeftCorner(n, n) = mass;
+    previous_mass_.diagonal().head(n) -= rotors;
     wrench_.setZero();
     wrench_due_ = false;
     started_ = true;
@@ -108,6 +114,7 @@ void MomentumObserver::update(const JointVector& velocity, const JointVector& ta
   step(n, data.mass_matrix.data(), previous_mass_.data(), velocity.data(), tau.data(),
        data.coriolis.data(), data.gravity.data(), initial_momentum_.data(), momentum_.data(),
        period_s, config_.gain_per_s, integral_.data(), residual_.data());
+  previous_mass_.diagonal().head(n) -= rotors;  // the step kept M(q) as it is
   last_data_ = &data;
   wrench_due_ = true;
 }
