@@ -159,7 +159,8 @@ TEST(CommandBus, FieldMaskBitsMatchTheAbi) {
       {CommandField::kTorqueFeedforward, COMPLY_FIELD_TORQUE_FEEDFORWARD},
       {CommandField::kNullspace, COMPLY_FIELD_NULLSPACE},
       {CommandField::kForce, COMPLY_FIELD_FORCE},
-      {CommandField::kReflex, COMPLY_FIELD_REFLEX}};
+      {CommandField::kReflex, COMPLY_FIELD_REFLEX},
+      {CommandField::kWorkspace, COMPLY_FIELD_WORKSPACE}};
   std::uint32_t all = 0;
   for (const auto& [field, abi_bit] : bits) {
     EXPECT_EQ(static_cast<std::uint32_t>(field), abi_bit);

@@ -41,7 +41,7 @@ ExtendedCommand ExtendedCommand::zero(int dof) {
   return generic::zeroCommand<ExtendedSchema>(dof);
 }
 
-constexpr std::size_t kForceLimitRow = 20;
+constexpr std::size_t kForceLimitRow = 22;
 using test::kDof;
 
 static_assert(generic::kFieldCount<ExtendedSchema> == kForceLimitRow + 1);

@@ -46,7 +46,7 @@ TEST(SchemaJson, RoundTripsBothKindsBitForBit) {
   const Parsed<CartesianCommand> c = read<CartesianCommand>(json::parse(toJson(cartesian).dump()));
   EXPECT_EQ(c.command.fields, cartesian.fields);
   EXPECT_TRUE(sameBytes(toBus(c.command, kDof), toBus(cartesian, kDof)));
-  EXPECT_EQ(c.keys, (FieldSet{1} << 20) - 1);  // every row of the table
+  EXPECT_EQ(c.keys, (FieldSet{1} << 22) - 1);  // every row of the table
 
   JointCommand joint = distinctJoint();
   joint.fields = CommandField::kAll;

@@ -51,6 +51,8 @@ inline CartesianCommand distinctCartesian() {
   c.wrench_target << 7, -8, 9, -0.7, 0.8, -0.9;
   c.reflex_force << 21, 0, 45;
   c.reflex_torque << 0, 3.5, 6;
+  c.workspace_min << 0.25, -0.5, 0.125;
+  c.workspace_max << 0.75, 0.5, 0.875;
   return c;
 }
 

@@ -96,9 +96,9 @@ TEST(TransportCdr, CartesianCommandSizeFollowsTheTable) {
   // 4 doubles (55 doubles, 440 bytes) -> 464; damping_mode octet -> 465, pad to 472 for
   // damping_ratio 6 + task_frame 4 + wrench 6 doubles (128) -> 600; four sequences of 7 doubles:
   // count 4 + pad 4 + 56 each (64) -> 856; force_axes and wrench_target 12 doubles (96) -> 952;
-  // reflex_force and reflex_torque 6 doubles (48) -> 1000. Body 1000, plus the 4-byte
-  // encapsulation header.
-  ASSERT_EQ(bytes.size(), 1004U);
+  // reflex_force and reflex_torque 6 doubles (48) -> 1000; workspace_min and workspace_max 6
+  // doubles (48) -> 1048. Body 1048, plus the 4-byte encapsulation header.
+  ASSERT_EQ(bytes.size(), 1052U);
   EXPECT_EQ(bytes[1], 0x01);        // CDR_LE
   EXPECT_EQ(bytes[4 + 464], 0x00);  // damping_mode absolute
   EXPECT_EQ(bytes[4 + 600], 7);     // torque_feedforward count
