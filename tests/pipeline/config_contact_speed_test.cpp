@@ -4,12 +4,12 @@
 
 #include <gtest/gtest.h>
 
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "comply/pipeline/body_regions.hpp"
 #include "comply/pipeline/config.hpp"
+#include "config_errors.hpp"
 
 namespace comply::pipeline {
 namespace {
@@ -23,16 +23,7 @@ WrapperConfig parse(const std::string& lines) {
 }
 
 void expectError(const std::string& lines, const std::vector<std::string>& fragments) {
-  try {
-    parse(lines);
-    ADD_FAILURE() << "expected an error for:\n" << lines;
-  } catch (const std::runtime_error& error) {
-    const std::string message = error.what();
-    for (const auto& fragment : fragments) {
-      EXPECT_NE(message.find(fragment), std::string::npos)
-          << "'" << fragment << "' not in: " << message;
-    }
-  }
+  test::expectReadError(parse, lines, fragments);
 }
 
 TEST(ContactSpeedConfig, OffByDefaultForTheHandsQuasiStaticWithTheTablesValues) {

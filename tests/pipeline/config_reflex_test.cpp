@@ -4,11 +4,11 @@
 
 #include <gtest/gtest.h>
 
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "comply/pipeline/config.hpp"
+#include "config_errors.hpp"
 
 namespace comply::pipeline {
 namespace {
@@ -25,16 +25,10 @@ WrapperConfig parse(const std::string& lines) {
 }
 
 void expectError(const std::string& lines, const std::vector<std::string>& fragments) {
-  try {
-    (void)parseWrapperConfig(controllerYaml(lines), "arm.yaml");  // the initial block too
-    ADD_FAILURE() << "expected an error for:\n" << lines;
-  } catch (const std::runtime_error& error) {
-    const std::string message = error.what();
-    for (const auto& fragment : fragments) {
-      EXPECT_NE(message.find(fragment), std::string::npos)
-          << "'" << fragment << "' not in: " << message;
-    }
-  }
+  // The initial block too.
+  test::expectReadError(
+      [](const std::string& text) { return parseWrapperConfig(controllerYaml(text), "arm.yaml"); },
+      lines, fragments);
 }
 
 TEST(ReflexConfig, OffByDefaultWithTheDocumentedValues) {
