@@ -111,8 +111,10 @@ std::string outcomeLine(const transport::CommandOutcomeMessage& outcome) {
   if (applied) {
     return std::string("applied ") + stamp + " by cycle " + std::to_string(outcome.cycle);
   }
-  return std::string("rejected ") + stamp + ": " + std::string(toString(outcome.reason)) + ": " +
-         outcome.message;
+  // The wrapper's own messages begin with their reason already; the gate's do not.
+  const std::string reason = std::string(toString(outcome.reason)) + ": ";
+  const bool named = outcome.message.starts_with(reason);
+  return std::string("rejected ") + stamp + ": " + (named ? "" : reason) + outcome.message;
 }
 
 }  // namespace comply::app
