@@ -55,7 +55,8 @@ class VirtualWalls {
   [[nodiscard]] const WallBox& box() const noexcept { return box_; }
 
   /// The reference: `out` = `in` kept inside the walls (see above), the measured TCP at
-  /// `tcp_position`. True when anything changed; `out` is written either way.
+  /// `tcp_position`. True when anything changed, and only then is `out` written (the law may
+  /// read `in` itself otherwise).
   bool limitReference(const comply_cartesian_command& in, const Eigen::Vector3d& tcp_position,
                       comply_cartesian_command& out) noexcept;
 

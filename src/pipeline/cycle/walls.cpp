@@ -22,10 +22,10 @@ void Controller::limitToWalls() noexcept {
   if (in == nullptr || out == nullptr) {
     return;
   }
-  if (walls_.limitReference(*in, data_.tip_position, *out)) {
+  walls_active_ = walls_.limitReference(*in, data_.tip_position, *out);
+  if (walls_active_) {
     diagnostics_.wall_reference_hits.fetch_add(1, std::memory_order_relaxed);
   }
-  walls_active_ = true;
 }
 
 void Controller::brakeAtWalls() noexcept {

@@ -50,23 +50,27 @@ void VirtualWalls::reset() noexcept {
 bool VirtualWalls::limitReference(const comply_cartesian_command& in,
                                   const Eigen::Vector3d& tcp_position,
                                   comply_cartesian_command& out) noexcept {
-  out = in;
   const WallSet& set = walls();
   Eigen::Vector3d position(in.position[0], in.position[1], in.position[2]);
   bool changed = projectInside(set, position);
-  vector3(out.position) = position;
-  Eigen::Vector3d velocity = vector3(out.twist);
-  Eigen::Vector3d acceleration = vector3(out.acceleration);
+  Eigen::Vector3d velocity(in.twist[0], in.twist[1], in.twist[2]);
+  Eigen::Vector3d acceleration(in.acceleration[0], in.acceleration[1], in.acceleration[2]);
   changed = removeOutward(set, position, kOnWallTolerance_m, velocity) || changed;
   changed = removeOutward(set, position, kOnWallTolerance_m, acceleration) || changed;
-  vector3(out.twist) = velocity;
-  vector3(out.acceleration) = acceleration;
   // A feedforward force pushes whatever the reference: near a wall, none of it outward.
-  Eigen::Vector3d push = vector3(out.wrench_feedforward);
+  Eigen::Vector3d push(in.wrench_feedforward[0], in.wrench_feedforward[1],
+                       in.wrench_feedforward[2]);
   changed =
       removeOutward(set, tcp_position, parameters_.walls.gains.brake_distance_m, push) || changed;
+  if (!changed) {
+    return false;  // the law reads `in` itself: no copy of the command
+  }
+  out = in;
+  vector3(out.position) = position;
+  vector3(out.twist) = velocity;
+  vector3(out.acceleration) = acceleration;
   vector3(out.wrench_feedforward) = push;
-  return changed;
+  return true;
 }
 
 void VirtualWalls::observe(const Eigen::Vector3d& tcp_position) noexcept {
