@@ -70,11 +70,9 @@ TEST(ContactSpeed, CompilesTheRegionsRowTheOverridesThePayloadAndTheRotorInertia
   EXPECT_EQ(compiled.stiffness_n_per_m, 75e3);
   EXPECT_EQ(compiled.body_mass_kg, 0.0) << "clamped by default";
   EXPECT_EQ(compiled.payload_mass_kg, 0.0);
-  // The rotors are in the laws' M already (ModelOptions::armature): none left to add.
+  // The rotors are in the laws' M (ModelOptions::armature), which the stage reads.
   const std::vector<double> armature = hands.controller.resolved().robot.joint_dynamics->armature;
   EXPECT_EQ(hands.controller.model().armature(), armature);
-  ASSERT_EQ(compiled.armature.size(), kFr3Dof);
-  EXPECT_TRUE(compiled.armature.isZero(0.0));
   HomeFr3 chest(kOn +
                 "  body_region: chest\n  contact: transient\n  body_mass: true\n"
                 "compensation:\n  payload:\n    mass_kg: 1.5\n");
@@ -99,9 +97,8 @@ TEST(ContactSpeed, ResolvingRefusesAJointLawAndTheAdmittanceModes) {
 TEST(ContactSpeed, TheReflectedMassCountsTheRotorsInertia) {
   HomeFr3 arm(kOn);
   const model::Data& data = arm.data();
-  const JointVector& extra = arm.parameters().contact_speed.armature;
   ReflectedInertia inertia;
-  ASSERT_TRUE(inertia.factorise(data, extra, kFr3Dof));
+  ASSERT_TRUE(inertia.factorise(data, JointVector(), kFr3Dof));  // as the stage does
   // The model's M carries the rotors on its diagonal; without them, the links' alone.
   const std::vector<double>& rotors = arm.controller.model().armature();
   ASSERT_EQ(rotors.size(), static_cast<std::size_t>(kFr3Dof));
@@ -133,7 +130,7 @@ TEST(ContactSpeed, LeavesSlowMotionBitForBitScalesAPushTowardTheContactAndBrakes
   ContactSpeed stage(parameters, kFr3Dof, /*cartesian=*/true);
   ASSERT_TRUE(stage.enabled());
   const Eigen::Vector3d u(0.0, 0.6, -0.8);
-  const double arm_kg = reflectedMass(data, parameters.contact_speed.armature, kFr3Dof, u);
+  const double arm_kg = reflectedMass(data, JointVector(), kFr3Dof, u);
   const double v_max = 140.0 / std::sqrt((arm_kg + 0.5) * 75e3);
   const JointVector compensation = JointVector::Constant(kFr3Dof, 3.0);
   // A law torque pushing the TCP along u (J_v^T u: positive acceleration along u).

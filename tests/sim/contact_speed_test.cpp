@@ -65,9 +65,7 @@ TEST(ContactSpeedOnTheFr3, TheReflectedMassAgreesWithMujocosInertiaOfThePlant) {
   const sim::SimulatedRobot plant(*config.robot_description, sim::PlantOptions{});
   const model::RobotDescription& robot = *config.robot_description;
   pipeline::Controller controller(pipeline::resolveController(config));
-  // What the stage adds to the model's M (nothing: the laws' M carries the rotors), and the rotors
-  // themselves, taken off again for the links alone.
-  const JointVector& armature = controller.resolved().parameters.contact_speed.armature;
+  // The stage reads the laws' M, rotors included; taken off again, the links alone.
   const std::vector<double>& rotors = controller.model().armature();
   ASSERT_EQ(rotors.size(), static_cast<std::size_t>(controller.dof()));
   JointVector without_rotors = JointVector::Zero(controller.dof());
@@ -87,7 +85,7 @@ TEST(ContactSpeedOnTheFr3, TheReflectedMassAgreesWithMujocosInertiaOfThePlant) {
         Eigen::Vector3d(1.0, -1.0, 1.0).normalized(), data.tip_rotation.col(2)};
     for (const Eigen::Vector3d& u : directions) {
       const double reference = mujocoMass(plant.mujocoModel(), pose.joints, robot.joints, u);
-      const double ours = pipeline::reflectedMass(data, armature, controller.dof(), u);
+      const double ours = pipeline::reflectedMass(data, JointVector(), controller.dof(), u);
       EXPECT_NEAR(ours, reference, kMassTolerance * reference) << pose.name << " " << u.transpose();
       worst = std::max(worst, std::abs(ours / reference - 1.0));
       // Without the rotors the mass is far too small: the limit would be too fast.

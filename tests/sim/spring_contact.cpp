@@ -105,9 +105,7 @@ SpringScene springScene(const ArmPose& pose, const std::filesystem::path& folder
   scene.axis = tcp.linear().col(2);
   const pipeline::Controller& controller = probe.wrapper.controller();
   scene.axis_mass_kg =
-      pipeline::reflectedMass(controller.modelData(),
-                              controller.resolved().parameters.contact_speed.armature,
-                              controller.dof(), scene.axis) +
+      pipeline::reflectedMass(controller.modelData(), JointVector(), controller.dof(), scene.axis) +
       kProbeMassKg;
   return scene;
 }

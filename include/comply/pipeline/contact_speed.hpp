@@ -20,13 +20,13 @@
 // is the mass that actually meets the contact in that direction at that pose, not a lumped
 // constant: on the FR3 it ranges from about 2 kg to far above 10 kg across directions and poses.
 // The rotor inertias (robot.yaml joint_dynamics.armature) are in the laws' M already (the model's
-// ModelOptions::armature); `armature` adds any the model leaves out. A contact must stop them too:
+// ModelOptions::armature), which is the M read here. A contact must stop them too:
 // left out, mu is too small and v_max too fast, i.e. unsafe (on the FR3 at home, 0.195 kg m^2 on
-// joints 1 to 4 roughly doubles mu along most directions). The declared payload (compensation.payload.mass_kg)
-// is added as a point mass at the TCP. By default mu is the arm's alone: a body part clamped
-// against a fixed surface takes all of it, the conservative case. contact_speed.body_mass counts
-// the region's effective mass m_H (Table A.3) as well, the reduced mass (1/m_H + 1/mu)^-1 of a
-// free body part: faster, and less conservative.
+// joints 1 to 4 roughly doubles mu along most directions). The declared payload
+// (compensation.payload.mass_kg) is added as a point mass at the TCP. By default mu is the arm's
+// alone: a body part clamped against a fixed surface takes all of it, the conservative case.
+// contact_speed.body_mass counts the region's effective mass m_H (Table A.3) as well, the reduced
+// mass (1/m_H + 1/mu)^-1 of a free body part: faster, and less conservative.
 //
 // Limiting, as the motion governor's TCP part (motion_governor.hpp), with v_max(u) in place of a
 // fixed speed, u = v / |v| the measured TCP velocity's direction:

@@ -46,16 +46,13 @@ struct WallParameters {
 };
 
 /// The contact-speed stage's numbers (contact_speed.hpp), compiled from contact_speed.*, the body
-/// region's row (body_regions.hpp), the payload and the robot's rotor inertias.
+/// region's row (body_regions.hpp) and the payload.
 struct ContactSpeedParameters {
   bool enabled = false;
   double force_limit_n = 0.0;      ///< what a contact may reach
   double stiffness_n_per_m = 0.0;  ///< of what the TCP meets
   double body_mass_kg = 0.0;       ///< the region's, in a reduced mass; 0: clamped (the default)
   double payload_mass_kg = 0.0;    ///< compensation.payload.mass_kg, a point mass at the TCP
-  /// The rotor inertias (robot.yaml joint_dynamics.armature, model's joint order) the model's
-  /// mass matrix leaves out; 0 where it carries them (the laws' model does) or none is declared.
-  JointVector armature;
 };
 
 /// Everything the cycle reads, each per-joint value sized to the controller's dof. Every member

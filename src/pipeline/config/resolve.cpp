@@ -88,10 +88,9 @@ bool hasArmature(const ResolvedController& resolved) {
 }
 
 /// The contact-speed stage's numbers (contact_speed.hpp): the body region's row unless the file
-/// gives its own, the payload, and any rotor inertias the model's mass matrix leaves out.
-ContactSpeedParameters compileContactSpeed(const WrapperConfig& config,
-                                           const model::RobotDescription& robot,
-                                           const model::Model& model) {
+/// gives its own, and the payload. The rotors are in the laws' M(q) (loadModelAndPlugin), whose
+/// mass the stage reads; the admittance modes, whose model has none, it refuses.
+ContactSpeedParameters compileContactSpeed(const WrapperConfig& config) {
   const ContactSpeedConfig& contact = config.contact_speed;
   const BodyRegionLimits region = bodyRegionLimits(contact.body_region);
   ContactSpeedParameters compiled;
@@ -102,13 +101,6 @@ ContactSpeedParameters compileContactSpeed(const WrapperConfig& config,
       contact.stiffness_n_per_m > 0.0 ? contact.stiffness_n_per_m : region.stiffness_n_per_m;
   compiled.body_mass_kg = contact.body_mass ? region.effective_mass_kg : 0.0;
   compiled.payload_mass_kg = config.payload.mass_kg;
-  // The laws' model carries the rotors in M (loadModelAndPlugin) except the admittance modes'
-  // virtual arm, which this stage refuses: what the model leaves out is added here either way.
-  const std::vector<double> extra = model.armature().empty()
-                                        ? declaredArmature(robot, model.jointNames())
-                                        : std::vector<double>{};
-  compiled.armature =
-      extra.empty() ? JointVector::Zero(model.dof()) : toJointVector(extra, model.dof());
   return compiled;
 }
 
@@ -170,7 +162,7 @@ void compileParameters(ResolvedController& resolved) {
       BarrierGains{config.walls.brake_distance_m, config.walls.stiffness_n_per_m,
                    config.walls.damping_n_s_per_m};
   parameters.reflex = config.reflex;
-  parameters.contact_speed = compileContactSpeed(config, resolved.robot, model);
+  parameters.contact_speed = compileContactSpeed(config);
   parameters.observer = config.observer;
   parameters.velocity_limit.resize(dof);
   for (int i = 0; i < dof; ++i) {

@@ -77,14 +77,11 @@ Controller::Controller(std::shared_ptr<const ResolvedController> resolved)
   }
   // A joint-torque sensor reads the torque after the rotors: their inertia, in the laws' M(q),
   // is not what that torque accelerates.
-  JointVector rotor_inertia = JointVector::Zero(dof_);
   const std::vector<double>& armature = resolved_->model->armature();
-  if (parameters_.observer.measured_torque && armature.size() == static_cast<std::size_t>(dof_)) {
-    for (int i = 0; i < dof_; ++i) {
-      rotor_inertia[i] = armature[static_cast<std::size_t>(i)];
-    }
-  }
-  observer_.configure(parameters_.observer, dof_, rotor_inertia);
+  observer_.configure(parameters_.observer, dof_,
+                      parameters_.observer.measured_torque && !armature.empty()
+                          ? JointVector(Eigen::Map<const Eigen::VectorXd>(armature.data(), dof_))
+                          : JointVector());
   if (observer_.enabled()) {
     quantities_ = quantities_ | Quantity::kMassMatrix | Quantity::kCoriolis | Quantity::kJacobian;
   }

@@ -44,9 +44,12 @@ Verdict checkWorkspace(const CartesianCommand& command, const CycleParameters& p
     }
   }
   const double zone_m = parameters.walls.gains.brake_distance_m;
+  // The box's point nearest the TCP (its centre before anything was measured).
+  const Eigen::Vector3d nearest =
+      measured.valid ? Eigen::Vector3d(measured.tcp_position.cwiseMax(box.min).cwiseMin(box.max))
+                     : Eigen::Vector3d(0.5 * (box.min + box.max));
   if (measured.valid) {
-    const Eigen::Vector3d inside = measured.tcp_position.cwiseMax(box.min).cwiseMin(box.max);
-    const double outside_m = (measured.tcp_position - inside).norm();
+    const double outside_m = (measured.tcp_position - nearest).norm();
     if (outside_m > zone_m) {
       std::ostringstream text;
       text << "the TCP at " << point(measured.tcp_position) << " is " << outside_m
@@ -59,9 +62,7 @@ Verdict checkWorkspace(const CartesianCommand& command, const CycleParameters& p
   if (!parameters.walls.set.empty()) {
     WallSet both = parameters.walls.set;
     (void)appendBox(box, both);  // the file's are at most kMaxWallPlanes: room for six
-    Eigen::Vector3d probe =
-        measured.valid ? Eigen::Vector3d(measured.tcp_position.cwiseMax(box.min).cwiseMin(box.max))
-                       : Eigen::Vector3d(0.5 * (box.min + box.max));
+    Eigen::Vector3d probe = nearest;
     (void)projectInside(both, probe);
     if (nearestWallDistance(both, probe) < -kRoomTolerance_m) {
       return reject("the box " + point(box.min) + " to " + point(box.max) +

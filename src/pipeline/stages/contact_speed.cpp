@@ -140,7 +140,7 @@ bool ContactSpeed::apply(const model::Data& data, const Vector6d& tcp_twist, dou
     return false;
   }
   const Eigen::Vector3d direction = velocity / speed;
-  (void)inertia_.factorise(data, parameters_.armature, dof_);
+  (void)inertia_.factorise(data, JointVector(), dof_);  // the laws' M(q): rotors included
   const double arm_kg = inertia_.mass(data, direction);
   // Infinite only for a model whose inertia is not positive definite: the TCP moves along u, so
   // J_v^T u is not zero. Nothing to bound by; the last limit stays reported.
