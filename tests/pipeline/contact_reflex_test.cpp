@@ -36,7 +36,7 @@ ReflexThresholds uniform(double force_n, double torque_nm) {
 /// Cycles `wrench` until the reflex trips (or `limit` cycles); the cycle it tripped in, 1-based,
 /// or 0.
 int cyclesToTrip(ContactReflex& reflex, const Vector6d& wrench, const ReflexThresholds& thresholds,
-                 int limit = 100, const Eigen::Matrix3d& task = Eigen::Matrix3d::Identity()) {
+                 int limit = 100, const Eigen::Quaterniond& task = Eigen::Quaterniond::Identity()) {
   for (int cycle = 1; cycle <= limit; ++cycle) {
     if (reflex.check(&wrench, task, thresholds, kPeriod) == ContactReflex::Check::kTripped) {
       return cycle;
@@ -51,16 +51,16 @@ TEST(ContactReflex, OneSampleAboveDoesNotTripAndARunAsLongAsTheDebounceDoes) {
   const Vector6d push = force(0.0, 30.0, 0.0);
   const Vector6d quiet = force(0.0, 5.0, 0.0);
   // One noisy sample, then quiet: never.
-  EXPECT_EQ(reflex.check(&push, Eigen::Matrix3d::Identity(), thresholds, kPeriod),
+  EXPECT_EQ(reflex.check(&push, Eigen::Quaterniond::Identity(), thresholds, kPeriod),
             ContactReflex::Check::kArmed);
   EXPECT_EQ(cyclesToTrip(reflex, quiet, thresholds), 0);
   // Five samples above (0 to 4 ms: 4 ms above), a quiet one ends the run; the next run starts
   // from nothing.
   for (int i = 0; i < 5; ++i) {
-    EXPECT_EQ(reflex.check(&push, Eigen::Matrix3d::Identity(), thresholds, kPeriod),
+    EXPECT_EQ(reflex.check(&push, Eigen::Quaterniond::Identity(), thresholds, kPeriod),
               ContactReflex::Check::kArmed);
   }
-  EXPECT_EQ(reflex.check(&quiet, Eigen::Matrix3d::Identity(), thresholds, kPeriod),
+  EXPECT_EQ(reflex.check(&quiet, Eigen::Quaterniond::Identity(), thresholds, kPeriod),
             ContactReflex::Check::kArmed);
   EXPECT_FALSE(reflex.tripped());
   // Above for 5 ms: the sixth sample of a run (the first starts the count at 0).
@@ -124,8 +124,7 @@ TEST(ContactReflex, TheThresholdsAreTheTaskFramesAxes) {
   const ReflexThresholds raised{Eigen::Vector3d(20.0, 20.0, 60.0), Eigen::Vector3d::Constant(5.0)};
   // The task frame turned a quarter about base x: its z is base -y. 45 N along base -y is along
   // task z (raised): it passes; in the base frame's axes it would trip.
-  const Eigen::Matrix3d task =
-      Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  const Eigen::Quaterniond task(Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitX()));
   const Vector6d push = force(0.0, -45.0, 0.0);
   EXPECT_EQ(cyclesToTrip(reflex, push, raised, 10, task), 0);
   EXPECT_EQ(cyclesToTrip(reflex, push, raised, 1), 1);
@@ -134,6 +133,22 @@ TEST(ContactReflex, TheThresholdsAreTheTaskFramesAxes) {
   const Vector6d across = force(30.0, 0.0, 0.0);  // task x
   EXPECT_EQ(cyclesToTrip(reflex, across, raised, 1, task), 1);
   EXPECT_NEAR(reflex.wrench()[0], 30.0, 1e-12);
+}
+
+TEST(ContactReflex, EqualThresholdsTripTheSameInEveryFrameAndReportInTheTaskFrame) {
+  ReflexConfig config = fileConfig();
+  config.debounce_s = 0.0;
+  ContactReflex reflex(config);
+  const ReflexThresholds thresholds = uniform(20.0, 5.0);
+  const Eigen::Quaterniond task(Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitX()));
+  // |F| = 19.9 N along a diagonal: inside the sphere whatever the frame.
+  const Vector6d inside = force(11.489, -11.489, 11.489);
+  EXPECT_EQ(cyclesToTrip(reflex, inside, thresholds, 5, task), 0);
+  const Vector6d push = force(0.0, -25.0, 0.0);  // base -y is task z
+  EXPECT_EQ(cyclesToTrip(reflex, push, thresholds, 1, task), 1);
+  EXPECT_NEAR(reflex.wrench()[0], 0.0, 1e-12);
+  EXPECT_NEAR(reflex.wrench()[1], 0.0, 1e-12);
+  EXPECT_NEAR(reflex.wrench()[2], 25.0, 1e-12);
 }
 
 TEST(ContactReflex, ACommandsZeroEntriesAreTheFilesThresholds) {
@@ -145,7 +160,7 @@ TEST(ContactReflex, ACommandsZeroEntriesAreTheFilesThresholds) {
   EXPECT_EQ(thresholds.torque_nm, Eigen::Vector3d(2.0, 5.0, 5.0));
   // The state reports what the last check used.
   const Vector6d quiet = Vector6d::Zero();
-  (void)reflex.check(&quiet, Eigen::Matrix3d::Identity(), thresholds, kPeriod);
+  (void)reflex.check(&quiet, Eigen::Quaterniond::Identity(), thresholds, kPeriod);
   EXPECT_EQ(reflex.inForce().force_n, thresholds.force_n);
 }
 
@@ -153,7 +168,7 @@ TEST(ContactReflex, CyclesWithoutAnEstimateNeitherCountNorEndARunAndFaultAfterAT
   ContactReflex reflex(fileConfig());
   const ReflexThresholds thresholds = uniform(20.0, 5.0);
   const Vector6d push = force(30.0, 0.0, 0.0);
-  const Eigen::Matrix3d base = Eigen::Matrix3d::Identity();
+  const Eigen::Quaterniond base = Eigen::Quaterniond::Identity();
   // Three samples above (2 ms), ten cycles without an estimate, two more above (4 ms): not yet;
   // the next (5 ms) trips.
   for (int i = 0; i < 3; ++i) {

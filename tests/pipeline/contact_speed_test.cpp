@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -120,6 +121,38 @@ TEST(ContactSpeed, TheReflectedMassCountsTheRotorsInertia) {
     EXPECT_NEAR(inertia.accelerationAlong(pushed), 2.0 / with_rotors, 1e-12);
     const double links_only = 1.0 / (u.transpose() * jv * links.inverse() * jv.transpose() * u)(0);
     EXPECT_GT(with_rotors, 1.2 * links_only) << u.transpose() << ": the rotors are heavy";
+  }
+}
+
+TEST(ContactSpeed, TheReflectedMassMatchesADenseInverseForEveryJointCount) {
+  // The factorisation's loops are unrolled for 6 and 7 joints and run to `dof` otherwise; each
+  // path against the textbook inverse, the rotors' list added to M's diagonal.
+  HomeFr3 arm(kOn);
+  model::Data data = arm.data();
+  std::srand(7);
+  for (const int dof : {2, 6, 7, 9, kMaxDof}) {
+    const Eigen::MatrixXd root = Eigen::MatrixXd::Random(dof, dof);
+    const Eigen::MatrixXd m = root * root.transpose() + 0.1 * Eigen::MatrixXd::Identity(dof, dof);
+    data.mass_matrix = m;
+    data.jacobian = Eigen::MatrixXd::Random(6, dof);
+    const JointVector rotors = JointVector::Constant(dof, 0.25);
+    ReflectedInertia inertia;
+    ASSERT_TRUE(inertia.factorise(data, rotors, dof)) << dof;
+    Eigen::MatrixXd with_rotors = m;
+    with_rotors.diagonal().array() += 0.25;
+    const Eigen::MatrixXd inverse = with_rotors.inverse();
+    const Eigen::MatrixXd jv = data.jacobian.topLeftCorner(3, dof);
+    const Eigen::Vector3d u = Eigen::Vector3d(0.3, -0.5, 0.81).normalized();
+    const double expected = 1.0 / (u.transpose() * jv * inverse * jv.transpose() * u)(0);
+    EXPECT_NEAR(inertia.mass(data, u), expected, 1e-9 * expected) << dof;
+    const JointVector torque = Eigen::VectorXd::LinSpaced(dof, -2.0, 3.0);
+    const double along = (u.transpose() * jv * inverse * torque)(0);
+    EXPECT_NEAR(inertia.accelerationAlong(torque), along, 1e-9 * (1.0 + std::abs(along))) << dof;
+    // Not positive definite: no factor, an infinite mass, no acceleration.
+    data.mass_matrix(dof - 1, dof - 1) = -1.0;
+    EXPECT_FALSE(inertia.factorise(data, JointVector(), dof)) << dof;
+    EXPECT_TRUE(std::isinf(inertia.mass(data, u))) << dof;
+    EXPECT_EQ(inertia.accelerationAlong(torque), 0.0) << dof;
   }
 }
 

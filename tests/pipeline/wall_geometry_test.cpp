@@ -1,6 +1,7 @@
 // Virtual walls as geometry (wall_geometry.hpp), against hand-computed numbers: which side is
-// allowed, a commanded box's faces beside the file's, the projection of a point outside, the motion through a wall removed, and the
-// barrier's force, its direction, size and that it only ever brakes.
+// allowed, a commanded box's faces beside the file's, the projection of a point outside, the motion
+// through a wall removed, and the barrier's force, its direction, size and that it only ever
+// brakes.
 
 #include "comply/pipeline/wall_geometry.hpp"
 
@@ -83,14 +84,26 @@ TEST(WallGeometry, MotionOutThroughAWallIsRemovedOnlyOnIt) {
   EXPECT_FALSE(removeOutward(set, {0.3, 0.0, 0.5}, 1e-9, w));
   Eigen::Vector3d in(-0.5, 0.0, 0.0);
   EXPECT_FALSE(removeOutward(set, {0.5, 0.0, 0.5}, 1e-9, in));
+  // Two vectors at once: each as it would be alone, whichever of them points out.
+  Eigen::Vector3d velocity(-0.5, 0.1, 0.0);
+  Eigen::Vector3d acceleration(2.0, 0.0, 1.0);
+  EXPECT_TRUE(removeOutward(set, {0.5, 0.0, 0.5}, 1e-9, velocity, acceleration));
+  EXPECT_EQ(velocity, Eigen::Vector3d(-0.5, 0.1, 0.0));
+  EXPECT_EQ(acceleration, Eigen::Vector3d(0.0, 0.0, 1.0));
+  Eigen::Vector3d away(0.5, 0.0, 0.0);
+  Eigen::Vector3d also(0.0, 0.0, -3.0);
+  EXPECT_FALSE(removeOutward(set, {0.3, 0.0, 0.5}, 1e-9, away, also));
 }
 
 TEST(WallGeometry, TheBarrierBrakesAnApproachAlongTheInwardNormal) {
   const WallSet set = wallAndBox();
   // 20 mm from the wall (30 mm into the 50 mm zone) at 0.5 m/s toward it:
   // F = -(2000 x 0.03 x 1 + 200 x 0.5) = -160 N along x.
-  const Eigen::Vector3d force = barrierForce(set, kGains, {0.48, 0.0, 0.5}, {0.5, 0.0, 0.0});
+  double nearest_m = 0.0;
+  const Eigen::Vector3d force =
+      barrierForce(set, kGains, {0.48, 0.0, 0.5}, {0.5, 0.0, 0.0}, &nearest_m);
   EXPECT_NEAR(force.x(), -160.0, 1e-9);
+  EXPECT_DOUBLE_EQ(nearest_m, nearestWallDistance(set, {0.48, 0.0, 0.5}));
   EXPECT_EQ(force.y(), 0.0);
   EXPECT_EQ(force.z(), 0.0);
   // Slower than the engage speed the spring fades: at 0.01 m/s, half of it plus the damping.

@@ -87,10 +87,10 @@ class ContactReflex {
                                             const double* torque) const noexcept;
 
   /// One cycle while armed. `wrench`: the contact wrench on the tool at the TCP, base frame, force
-  /// first [N, N m] (nullptr: none this cycle); `task`: the task frame's rotation in the base
-  /// frame. On kTripped the trip is recorded (tripped(), wrench(), detail()); on kNoEstimate,
-  /// detail() says why.
-  Check check(const Vector6d* wrench, const Eigen::Matrix3d& task,
+  /// first [N, N m] (nullptr: none this cycle); `task`: the task frame's orientation in the base
+  /// frame, a unit quaternion. On kTripped the trip is recorded (tripped(), wrench(), detail()); on
+  /// kNoEstimate, detail() says why.
+  Check check(const Vector6d* wrench, const Eigen::Quaterniond& task,
               const ReflexThresholds& thresholds, double period_s) noexcept;
 
   /// Tripped since the last reset().

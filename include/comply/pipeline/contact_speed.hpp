@@ -47,6 +47,9 @@
 //
 // Real-time: allocates nothing, takes no lock, never throws.
 
+#include <array>
+#include <cstddef>
+
 #include "comply/core/capacity.hpp"
 #include "comply/core/commands.hpp"
 #include "comply/model/data.hpp"
@@ -55,9 +58,10 @@
 namespace comply::pipeline {
 
 /// The inertia a contact at the TCP meets at one pose: the links' joint-space inertia M plus the
-/// rotors' (diag(armature)), factorised once per cycle, M + diag(armature) = L L^T (Cholesky by
-/// hand, its loops unrolled for 6 and 7 joints: a third of the time of Eigen's LLT on the
-/// fixed-capacity matrix). Real-time: inline storage, no allocation.
+/// rotors' (diag(armature)), factorised once per cycle, M + diag(armature) = L D L^T (unit lower
+/// L, no square roots; its loops unrolled for 6 and 7 joints: the chain of divisions is the
+/// cycle's cost, and the fixed strides let the compiler keep L in registers). Real-time: inline
+/// storage, no allocation.
 class ReflectedInertia {
  public:
   /// Factorises at the pose of `data` (mass matrix computed); false where it is not positive
@@ -69,18 +73,17 @@ class ReflectedInertia {
   double mass(const model::Data& data, const Eigen::Vector3d& direction) noexcept;
   /// What `torque` adds to the TCP's acceleration along the last mass()'s direction [m/s^2]:
   /// u^T J_v (M + diag(armature))^-1 torque.
-  [[nodiscard]] double accelerationAlong(const JointVector& torque) noexcept;
+  [[nodiscard]] double accelerationAlong(const JointVector& torque) const noexcept;
+
+  /// Row-major kMaxDof x kMaxDof: L's strictly lower triangle (its diagonal is 1).
+  using Lower = std::array<double, static_cast<std::size_t>(kMaxDof) * kMaxDof>;
 
  private:
-  /// L^-1 `in` into `out` (forward substitution).
-  void forward(const JointVector& in, JointVector& out) const noexcept;
-
   int dof_ = 0;
   bool factorised_ = false;
-  JointMatrix lower_;             // L
-  JointVector inverse_diagonal_;  // 1 / L_jj
-  JointVector along_;             // L^-1 J_v^T u
-  JointVector scratch_;           // J_v^T u, then L^-1 tau
+  Lower lower_{};
+  std::array<double, kMaxDof> inverse_pivot_{};  // 1 / D_jj
+  std::array<double, kMaxDof> along_{};          // L^-1 J_v^T u
 };
 
 /// ReflectedInertia at one pose, for one direction [kg] (tests, tools; not the cycle's path).

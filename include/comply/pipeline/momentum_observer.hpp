@@ -11,8 +11,9 @@
 // TCP is the damped least-squares solution of J^T F = r.
 //
 // Runs in the cycle's measure stage when observer.enabled: no allocation, no lock, no throw. The
-// residual is updated every cycle; the wrench is solved when it is first asked for after a cycle
-// (a host reads it at its state rate, a recording every cycle), from that cycle's Jacobian.
+// residual and the wrench are updated every cycle: every live host's state sample reads the
+// wrench after each cycle, and the reflex and the force stage within it, so solving it once in
+// the cycle is what a host pays anyway (and what the bench's observer row times).
 
 #include "comply/core/capacity.hpp"
 #include "comply/core/commands.hpp"
@@ -46,9 +47,8 @@ class MomentumObserver {
   /// The external joint torque estimate r [N m | N]; zero until two updates.
   [[nodiscard]] const JointVector& jointTorque() const noexcept { return residual_; }
   /// The external wrench on the tool at the TCP, base frame, force first [N, N m], from the last
-  /// update's residual and Jacobian. The thread that runs the cycle, between two cycles (the
-  /// Jacobian is the controller's model data of the last cycle).
-  [[nodiscard]] const Vector6d& wrench() const noexcept;
+  /// update's residual and Jacobian; zero until two updates.
+  [[nodiscard]] const Vector6d& wrench() const noexcept { return wrench_; }
 
  private:
   ObserverConfig config_;
@@ -60,10 +60,7 @@ class MomentumObserver {
   JointVector integral_;
   JointVector residual_;
   JointMatrix previous_mass_;
-  // The wrench of the last update, solved on demand: the data it needs, and whether it is due.
-  const model::Data* last_data_ = nullptr;
-  mutable bool wrench_due_ = false;
-  mutable Vector6d wrench_ = Vector6d::Zero();
+  Vector6d wrench_ = Vector6d::Zero();
 };
 
 }  // namespace comply::pipeline

@@ -72,6 +72,10 @@ bool projectInside(const WallSet& set, Eigen::Vector3d& p) noexcept;
 /// changed.
 bool removeOutward(const WallSet& set, const Eigen::Vector3d& p, double tolerance_m,
                    Eigen::Vector3d& v) noexcept;
+/// The same for two vectors at one point (a reference's velocity and acceleration), each wall's
+/// distance computed once. True when either changed.
+bool removeOutward(const WallSet& set, const Eigen::Vector3d& p, double tolerance_m,
+                   Eigen::Vector3d& v, Eigen::Vector3d& a) noexcept;
 
 /// The speed [m/s] at which the barrier's spring is fully engaged: below it the spring fades to
 /// zero with the approach speed, so the force is continuous as the TCP stops, and zero when it
@@ -82,8 +86,9 @@ inline constexpr double kBarrierEngageSpeed = 0.02;
 /// brake_distance of (or past) while moving toward it at approach speed u = normal . v > 0,
 ///   F = -normal ( k e min(u / kBarrierEngageSpeed, 1) + c u ),  e = brake_distance + distance
 /// e the depth into the braking zone. F . v <= 0 always: the barrier is passive.
+/// With `nearest_m`, also nearestWallDistance(set, p) into it, from the same distances.
 [[nodiscard]] Eigen::Vector3d barrierForce(const WallSet& set, const BarrierGains& gains,
-                                           const Eigen::Vector3d& p,
-                                           const Eigen::Vector3d& v) noexcept;
+                                           const Eigen::Vector3d& p, const Eigen::Vector3d& v,
+                                           double* nearest_m = nullptr) noexcept;
 
 }  // namespace comply::pipeline

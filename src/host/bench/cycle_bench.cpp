@@ -130,6 +130,10 @@ std::vector<BenchRow> runBench(const BenchOptions& options, std::ostream& log) {
   // inertia with the rotors' factorised, one solve) every cycle.
   add(benchWrapper<CartesianCommand>(options, "cartesian_contact", "cartesian_impedance",
                                      robot.home, log, {.contact_speed = true}));
+  // The three safety stages together (walls, reflex, contact speed) on the observer's cycle: what
+  // they cost over cartesian_observer is their budget's measure.
+  add(benchWrapper<CartesianCommand>(options, "cartesian_safety", "cartesian_impedance", robot.home,
+                                     log, {.walls = true, .reflex = true, .contact_speed = true}));
   // The ratio cycle with a timed chunk playing: its curve, gains and task frame every cycle.
   add(benchWrapper<CartesianCommand>(options, "cartesian_chunk", "cartesian_impedance", robot.home,
                                      log, {.chunked = true}));

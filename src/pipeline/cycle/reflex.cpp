@@ -11,16 +11,16 @@
 namespace comply::pipeline {
 namespace {
 
-/// The task frame's rotation in the base frame: the command's, or the base frame (joint control,
-/// or a bus never written, whose quaternion is zero).
-Eigen::Matrix3d taskRotation(const CommandBus& bus) noexcept {
+/// The task frame's orientation in the base frame: the command's, or the base frame (joint
+/// control, or a bus never written, whose quaternion is zero).
+Eigen::Quaterniond taskOrientation(const CommandBus& bus) noexcept {
   if (const auto* cartesian = std::get_if<comply_cartesian_command>(&bus)) {
     const Eigen::Quaterniond frame = schema::fromXyzw(cartesian->task_frame);
     if (frame.norm() > 0.5) {
-      return frame.normalized().toRotationMatrix();
+      return frame.normalized();
     }
   }
-  return Eigen::Matrix3d::Identity();
+  return Eigen::Quaterniond::Identity();
 }
 
 /// The stiffness of `bus` scaled by `fraction` (the nullspace's stays: it holds the posture).
@@ -57,7 +57,7 @@ bool Controller::checkContact() noexcept {
       },
       active_);
   const ContactReflex::Check check = reflex_.check(contactWrench(ForceSource::kAuto),
-                                                   taskRotation(active_), thresholds, period_s_);
+                                                   taskOrientation(active_), thresholds, period_s_);
   if (check == ContactReflex::Check::kArmed) {
     return true;
   }

@@ -12,6 +12,17 @@ double ellipsoidRatio(const Eigen::Vector3d& value, const Eigen::Vector3d& semi_
   return value.cwiseQuotient(semi_axes).norm();
 }
 
+/// `value` (base frame) against the ellipsoid of semi-axes `semi_axes` along the axes of `task`.
+/// A sphere is the same in every frame: no rotation then, the common case (the file's thresholds,
+/// or a command that raised none).
+double taskRatio(const Eigen::Vector3d& value, const Eigen::Quaterniond& task,
+                 const Eigen::Vector3d& semi_axes) noexcept {
+  if ((semi_axes.array() == semi_axes.x()).all()) {
+    return value.norm() / semi_axes.x();
+  }
+  return ellipsoidRatio(task.conjugate() * value, semi_axes);
+}
+
 }  // namespace
 
 void ContactReflex::reset() noexcept {
@@ -34,7 +45,7 @@ ReflexThresholds ContactReflex::thresholds(const double* force,
   return result;
 }
 
-ContactReflex::Check ContactReflex::check(const Vector6d* wrench, const Eigen::Matrix3d& task,
+ContactReflex::Check ContactReflex::check(const Vector6d* wrench, const Eigen::Quaterniond& task,
                                           const ReflexThresholds& thresholds,
                                           double period_s) noexcept {
   in_force_ = thresholds;
@@ -51,11 +62,8 @@ ContactReflex::Check ContactReflex::check(const Vector6d* wrench, const Eigen::M
     return Check::kNoEstimate;
   }
   without_s_ = 0.0;
-  Vector6d task_wrench;
-  task_wrench.head<3>().noalias() = task.transpose() * wrench->head<3>();
-  task_wrench.tail<3>().noalias() = task.transpose() * wrench->tail<3>();
-  const double force_ratio = ellipsoidRatio(task_wrench.head<3>(), thresholds.force_n);
-  const double torque_ratio = ellipsoidRatio(task_wrench.tail<3>(), thresholds.torque_nm);
+  const double force_ratio = taskRatio(wrench->head<3>(), task, thresholds.force_n);
+  const double torque_ratio = taskRatio(wrench->tail<3>(), task, thresholds.torque_nm);
   if (!(force_ratio > 1.0) && !(torque_ratio > 1.0)) {
     above_s_ = -1.0;
     return Check::kArmed;
@@ -66,6 +74,8 @@ ContactReflex::Check ContactReflex::check(const Vector6d* wrench, const Eigen::M
     return Check::kArmed;
   }
   tripped_ = true;
+  Vector6d task_wrench;
+  task_wrench << task.conjugate() * wrench->head<3>(), task.conjugate() * wrench->tail<3>();
   tripped_wrench_task_ = task_wrench;
   // Back off along the environment's push; a trip on the torque alone gives no direction.
   const double force = wrench->head<3>().norm();

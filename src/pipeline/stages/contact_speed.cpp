@@ -16,30 +16,37 @@ constexpr double kBrakeFrom = 0.85;
 // Slower than this the measured velocity's direction is noise, and no limit is near [m/s].
 constexpr double kMovingSpeed = 1e-3;
 
-/// M + diag(rotors) = L L^T into the lower triangle of `lower`, and 1 / L_jj into `inverse`, for
-/// n = N joints (loops the compiler unrolls, for the common arms) or, with N = 0, `dof`. False
-/// where M + diag(rotors) is not positive definite.
+constexpr int kStride = kMaxDof;  // ReflectedInertia::Lower is row-major kMaxDof wide
+
+/// M + diag(rotors) = L D L^T into `lower` (L's strict lower triangle) and 1 / D_jj into
+/// `inverse_pivot`, for n = N joints (loops the compiler unrolls, for the common arms) or, with
+/// N = 0, `dof`. False where M + diag(rotors) is not positive definite.
 template <int N>
-bool choleskyLower(const JointMatrix& m, const JointVector& rotors, int dof, JointMatrix& lower,
-                   JointVector& inverse) noexcept {
+bool factoriseLdl(const JointMatrix& m, const JointVector& rotors, int dof,
+                  ReflectedInertia::Lower& lower, double* inverse_pivot) noexcept {
   const int n = N > 0 ? N : dof;
   const bool with_rotors = rotors.size() == n;
+  double pivot[kMaxDof];
+#pragma GCC unroll 12
   for (int j = 0; j < n; ++j) {
-    double pivot = m(j, j) + (with_rotors ? rotors[j] : 0.0);
+    double d = m(j, j) + (with_rotors ? rotors[j] : 0.0);
+#pragma GCC unroll 12
     for (int k = 0; k < j; ++k) {
-      pivot -= lower(j, k) * lower(j, k);
+      d -= lower[j * kStride + k] * lower[j * kStride + k] * pivot[k];
     }
-    if (!(pivot > 0.0)) {
+    if (!(d > 0.0)) {
       return false;
     }
-    lower(j, j) = std::sqrt(pivot);
-    inverse[j] = 1.0 / lower(j, j);
+    pivot[j] = d;
+    inverse_pivot[j] = 1.0 / d;
+#pragma GCC unroll 12
     for (int i = j + 1; i < n; ++i) {
       double sum = m(i, j);
+#pragma GCC unroll 12
       for (int k = 0; k < j; ++k) {
-        sum -= lower(i, k) * lower(j, k);
+        sum -= lower[i * kStride + k] * lower[j * kStride + k] * pivot[k];
       }
-      lower(i, j) = sum * inverse[j];
+      lower[i * kStride + j] = sum * inverse_pivot[j];
     }
   }
   return true;
@@ -47,65 +54,93 @@ bool choleskyLower(const JointMatrix& m, const JointVector& rotors, int dof, Joi
 
 /// L^-1 `in` into `out` for n = N (or, with N = 0, `dof`) joints.
 template <int N>
-void forwardSubstitute(const JointMatrix& lower, const JointVector& inverse, int dof,
-                       const JointVector& in, JointVector& out) noexcept {
+void forwardSubstitute(const ReflectedInertia::Lower& lower, int dof, const double* in,
+                       double* out) noexcept {
   const int n = N > 0 ? N : dof;
+#pragma GCC unroll 12
   for (int i = 0; i < n; ++i) {
     double sum = in[i];
+#pragma GCC unroll 12
     for (int k = 0; k < i; ++k) {
-      sum -= lower(i, k) * out[k];
+      sum -= lower[i * kStride + k] * out[k];
     }
-    out[i] = sum * inverse[i];
+    out[i] = sum;
   }
+}
+
+/// J_v^T `direction` into `out` for N joints (or, with N = 0, `dof`): of fixed size, the product
+/// is a few vector instructions; of the capacity-sized Jacobian, a call into Eigen's GEMV.
+template <int N>
+void translationalTranspose(const Jacobian& jacobian, int dof, const Eigen::Vector3d& direction,
+                            double* out) noexcept {
+  constexpr int kColumns = N > 0 ? N : Eigen::Dynamic;
+  const Eigen::Map<const Eigen::Matrix<double, 6, kColumns>> full(jacobian.data(), 6, dof);
+  Eigen::Map<Eigen::Matrix<double, kColumns, 1>>(out, dof).noalias() =
+      full.template topRows<3>().transpose() * direction;
+}
+
+/// `along` . D^-1 L^-1 `in` for n = N (or, with N = 0, `dof`) joints: u^T J_v (L D L^T)^-1 in,
+/// `along` being L^-1 J_v^T u.
+template <int N>
+double weightedAlong(const ReflectedInertia::Lower& lower, const double* inverse_pivot, int dof,
+                     const double* along, const double* in) noexcept {
+  const int n = N > 0 ? N : dof;
+  double solved[kMaxDof];
+  forwardSubstitute<N>(lower, dof, in, solved);
+  double sum = 0.0;
+#pragma GCC unroll 12
+  for (int i = 0; i < n; ++i) {
+    sum += along[i] * inverse_pivot[i] * solved[i];
+  }
+  return sum;
 }
 
 }  // namespace
 
 bool ReflectedInertia::factorise(const model::Data& data, const JointVector& armature,
                                  int dof) noexcept {
-  if (dof_ != dof) {  // sized once: inline storage, no heap either way
-    dof_ = dof;
-    lower_.setZero(dof, dof);
-    inverse_diagonal_.setZero(dof);
-    along_.setZero(dof);
-    scratch_.setZero(dof);
-  }
+  dof_ = dof;
   // The rotors are a mass a contact must stop as well (contact_speed.hpp): those the model's M
   // leaves out are added, else the mass would be too small and the limit too fast.
   const JointMatrix& m = data.mass_matrix;
-  factorised_ = dof == 7   ? choleskyLower<7>(m, armature, dof, lower_, inverse_diagonal_)
-                : dof == 6 ? choleskyLower<6>(m, armature, dof, lower_, inverse_diagonal_)
-                           : choleskyLower<0>(m, armature, dof, lower_, inverse_diagonal_);
+  double* inverse = inverse_pivot_.data();
+  factorised_ = dof == 7   ? factoriseLdl<7>(m, armature, dof, lower_, inverse)
+                : dof == 6 ? factoriseLdl<6>(m, armature, dof, lower_, inverse)
+                           : factoriseLdl<0>(m, armature, dof, lower_, inverse);
   return factorised_;
-}
-
-void ReflectedInertia::forward(const JointVector& in, JointVector& out) const noexcept {
-  if (dof_ == 7) {
-    forwardSubstitute<7>(lower_, inverse_diagonal_, dof_, in, out);
-  } else if (dof_ == 6) {
-    forwardSubstitute<6>(lower_, inverse_diagonal_, dof_, in, out);
-  } else {
-    forwardSubstitute<0>(lower_, inverse_diagonal_, dof_, in, out);
-  }
 }
 
 double ReflectedInertia::mass(const model::Data& data, const Eigen::Vector3d& direction) noexcept {
   if (!factorised_) {
     return std::numeric_limits<double>::infinity();
   }
-  // u^T J_v (L L^T)^-1 J_v^T u = |L^-1 J_v^T u|^2.
-  scratch_.noalias() = data.jacobian.topLeftCorner(3, dof_).transpose() * direction;
-  forward(scratch_, along_);
-  const double inverse_mass = along_.squaredNorm();
+  // u^T J_v (L D L^T)^-1 J_v^T u = sum_i y_i^2 / D_ii with y = L^-1 J_v^T u.
+  double projected[kMaxDof];
+  if (dof_ == 7) {
+    translationalTranspose<7>(data.jacobian, dof_, direction, projected);
+    forwardSubstitute<7>(lower_, dof_, projected, along_.data());
+  } else if (dof_ == 6) {
+    translationalTranspose<6>(data.jacobian, dof_, direction, projected);
+    forwardSubstitute<6>(lower_, dof_, projected, along_.data());
+  } else {
+    translationalTranspose<0>(data.jacobian, dof_, direction, projected);
+    forwardSubstitute<0>(lower_, dof_, projected, along_.data());
+  }
+  double inverse_mass = 0.0;
+  for (int i = 0; i < dof_; ++i) {
+    inverse_mass += along_[i] * along_[i] * inverse_pivot_[i];
+  }
   return inverse_mass > 0.0 ? 1.0 / inverse_mass : std::numeric_limits<double>::infinity();
 }
 
-double ReflectedInertia::accelerationAlong(const JointVector& torque) noexcept {
+double ReflectedInertia::accelerationAlong(const JointVector& torque) const noexcept {
   if (!factorised_) {
     return 0.0;
   }
-  forward(torque, scratch_);  // u^T J_v L^-T L^-1 tau = (L^-1 J_v^T u) . (L^-1 tau)
-  return along_.dot(scratch_);
+  const double* inverse = inverse_pivot_.data();
+  return dof_ == 7   ? weightedAlong<7>(lower_, inverse, dof_, along_.data(), torque.data())
+         : dof_ == 6 ? weightedAlong<6>(lower_, inverse, dof_, along_.data(), torque.data())
+                     : weightedAlong<0>(lower_, inverse, dof_, along_.data(), torque.data());
 }
 
 double reflectedMass(const model::Data& data, const JointVector& armature, int dof,

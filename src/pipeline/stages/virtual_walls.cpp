@@ -55,8 +55,7 @@ bool VirtualWalls::limitReference(const comply_cartesian_command& in,
   bool changed = projectInside(set, position);
   Eigen::Vector3d velocity(in.twist[0], in.twist[1], in.twist[2]);
   Eigen::Vector3d acceleration(in.acceleration[0], in.acceleration[1], in.acceleration[2]);
-  changed = removeOutward(set, position, kOnWallTolerance_m, velocity) || changed;
-  changed = removeOutward(set, position, kOnWallTolerance_m, acceleration) || changed;
+  changed = removeOutward(set, position, kOnWallTolerance_m, velocity, acceleration) || changed;
   // A feedforward force pushes whatever the reference: near a wall, none of it outward.
   Eigen::Vector3d push(in.wrench_feedforward[0], in.wrench_feedforward[1],
                        in.wrench_feedforward[2]);
@@ -81,8 +80,8 @@ void VirtualWalls::observe(const Eigen::Vector3d& tcp_position) noexcept {
 bool VirtualWalls::brake(const model::Data& data, const Vector6d& tcp_twist, int dof,
                          JointVector& torque) noexcept {
   const WallSet& set = walls();
-  distance_m_ = nearestWallDistance(set, data.tip_position);
-  force_n_ = barrierForce(set, parameters_.walls.gains, data.tip_position, tcp_twist.head<3>());
+  force_n_ = barrierForce(set, parameters_.walls.gains, data.tip_position, tcp_twist.head<3>(),
+                          &distance_m_);
   if (force_n_.isZero(0.0) || !force_n_.allFinite()) {
     force_n_.setZero();
     return false;

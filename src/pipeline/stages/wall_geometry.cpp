@@ -69,12 +69,29 @@ bool projectInside(const WallSet& set, Eigen::Vector3d& p) noexcept {
 
 bool removeOutward(const WallSet& set, const Eigen::Vector3d& p, double tolerance_m,
                    Eigen::Vector3d& v) noexcept {
+  Eigen::Vector3d none = Eigen::Vector3d::Zero();  // no outward component: never changes
+  return removeOutward(set, p, tolerance_m, v, none);
+}
+
+bool removeOutward(const WallSet& set, const Eigen::Vector3d& p, double tolerance_m,
+                   Eigen::Vector3d& v, Eigen::Vector3d& a) noexcept {
   bool changed = false;
   for (int i = 0; i < set.count; ++i) {
     const WallPlane& plane = set.planes[i];
-    const double outward = plane.normal.dot(v);
-    if (outward > 0.0 && signedDistance(plane, p) >= -tolerance_m) {
-      v -= outward * plane.normal;
+    const double outward_v = plane.normal.dot(v);
+    const double outward_a = plane.normal.dot(a);
+    if (!(outward_v > 0.0) && !(outward_a > 0.0)) {
+      continue;
+    }
+    if (signedDistance(plane, p) < -tolerance_m) {
+      continue;
+    }
+    if (outward_v > 0.0) {
+      v -= outward_v * plane.normal;
+      changed = true;
+    }
+    if (outward_a > 0.0) {
+      a -= outward_a * plane.normal;
       changed = true;
     }
   }
@@ -82,18 +99,25 @@ bool removeOutward(const WallSet& set, const Eigen::Vector3d& p, double toleranc
 }
 
 Eigen::Vector3d barrierForce(const WallSet& set, const BarrierGains& gains,
-                             const Eigen::Vector3d& p, const Eigen::Vector3d& v) noexcept {
+                             const Eigen::Vector3d& p, const Eigen::Vector3d& v,
+                             double* nearest_m) noexcept {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  double nearest = std::numeric_limits<double>::infinity();
   for (int i = 0; i < set.count; ++i) {
     const WallPlane& plane = set.planes[i];
+    const double distance = signedDistance(plane, p);
+    nearest = std::min(nearest, -distance);
     const double approach = plane.normal.dot(v);
-    const double depth = gains.brake_distance_m + signedDistance(plane, p);
+    const double depth = gains.brake_distance_m + distance;
     if (!(approach > 0.0) || !(depth > 0.0)) {
       continue;
     }
     const double engaged = std::min(approach / kBarrierEngageSpeed, 1.0);
     force -= (gains.stiffness_n_per_m * depth * engaged + gains.damping_n_s_per_m * approach) *
              plane.normal;
+  }
+  if (nearest_m != nullptr) {
+    *nearest_m = nearest;
   }
   return force;
 }
