@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages comply builds and tests with, then the npm packages of the MCAP
-# cross-check reader (tests/record/node) when node and npm are there. Idempotent: when every package
-# is already installed it only says so; apt lists are refreshed only when something is missing, and
-# npm ci runs only when node_modules is missing or older than package-lock.json.
+# and Parquet cross-check readers (tests/record/node, tests/export/node) when node and npm are
+# there. Idempotent: when every package is already installed it only says so; apt lists are
+# refreshed only when something is missing, and npm ci runs only when node_modules is missing or
+# older than package-lock.json.
 set -euo pipefail
 
 packages=(
@@ -50,13 +51,18 @@ fi
 
 # npm writes node_modules/.package-lock.json on every install, so its age tells whether the
 # installed packages predate the lockfile.
-node_dir=$(cd "$(dirname "$0")/.." && pwd)/tests/record/node
+root=$(cd "$(dirname "$0")/.." && pwd)
 if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
-  echo "deps: no node/npm: the MCAP cross-check tests will be skipped"
-elif [ ! -f "$node_dir/node_modules/.package-lock.json" ] ||
-  [ "$node_dir/package-lock.json" -nt "$node_dir/node_modules/.package-lock.json" ]; then
-  echo "deps: npm ci in tests/record/node (the MCAP reader of the cross-check tests)"
-  npm ci --prefix "$node_dir" --no-audit --no-fund
+  echo "deps: no node/npm: the MCAP and Parquet cross-check tests cannot run"
 else
-  echo "deps: npm packages of tests/record/node already installed"
+  for node_dir in "$root/tests/record/node" "$root/tests/export/node"; do
+    what=${node_dir#"$root"/}
+    if [ ! -f "$node_dir/node_modules/.package-lock.json" ] ||
+      [ "$node_dir/package-lock.json" -nt "$node_dir/node_modules/.package-lock.json" ]; then
+      echo "deps: npm ci in $what (an independent reader of the cross-check tests)"
+      npm ci --prefix "$node_dir" --no-audit --no-fund
+    else
+      echo "deps: npm packages of $what already installed"
+    fi
+  done
 fi
