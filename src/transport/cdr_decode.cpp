@@ -119,6 +119,21 @@ void getCommitted(Reader& r, CommittedMessage& message) {
   }
 }
 
+/// A recorded cycle: the state, its timing, and the command in force (0 or 1 of either kind).
+void getCycleRecord(Reader& r, CycleRecordMessage& message) {
+  cdr::getFields(r, message.state);
+  message.compute_time_s = r.get<double>();
+  message.start_lateness_s = r.get<double>();
+  message.cartesian_in_force.resize(r.getCount(kHeaderBytes + 4, 1));
+  for (CartesianCommandMessage& command : message.cartesian_in_force) {
+    getCommandMessage(r, command);
+  }
+  message.joint_in_force.resize(r.getCount(kHeaderBytes + 4, 1));
+  for (JointCommandMessage& command : message.joint_in_force) {
+    getCommandMessage(r, command);
+  }
+}
+
 /// `get` reads the message from the bytes; whether they held one, to their end or not.
 template <typename Message, typename Get>
 bool decodeWith(std::span<const std::uint8_t> bytes, Message& message, Get get) {
@@ -166,6 +181,10 @@ bool decodeCdr(std::span<const std::uint8_t> bytes, CommittedRequestMessage& mes
 
 bool decodeCdr(std::span<const std::uint8_t> bytes, CommittedMessage& message) {
   return decodeWith(bytes, message, getCommitted);
+}
+
+bool decodeCdr(std::span<const std::uint8_t> bytes, CycleRecordMessage& message) {
+  return decodeWith(bytes, message, getCycleRecord);
 }
 
 }  // namespace comply::transport

@@ -42,6 +42,7 @@ bool decodeCdr(std::span<const std::uint8_t> bytes, JointChunkMessage& message);
 bool decodeCdr(std::span<const std::uint8_t> bytes, RequestMessage& message);
 bool decodeCdr(std::span<const std::uint8_t> bytes, CommittedRequestMessage& message);
 bool decodeCdr(std::span<const std::uint8_t> bytes, CommittedMessage& message);
+bool decodeCdr(std::span<const std::uint8_t> bytes, CycleRecordMessage& message);
 
 /// The ROS 2 type name of each message ("comply_msgs/msg/ControllerState").
 template <typename Message>
