@@ -1,0 +1,253 @@
+// A recording's cycle records sampled at i / fps (see recording_frames.hpp).
+
+#include "comply/export/recording_frames.hpp"
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+
+#include "comply/record/mcap_reader.hpp"
+#include "comply/transport/cdr.hpp"
+#include "comply/transport/messages.hpp"
+
+namespace comply::exporter {
+namespace {
+
+using transport::CycleRecordMessage;
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+// A record stamped within this of a frame's time is in force at it: the stamps are whole
+// nanoseconds, i / fps is not.
+constexpr double kStampTolerance_s = 1e-9;
+
+/// The columns as they grow, frame by frame.
+struct Columns {
+  std::vector<std::int64_t> frame_index;
+  std::vector<float> timestamp;
+  std::vector<float> state, velocity, effort, tcp_pose, contact_wrench;
+  std::vector<float> action, stiffness, damping, damping_ratio, task_frame;
+};
+
+template <typename Values>
+void append(std::vector<float>& column, const Values& values) {
+  for (const auto value : values) {
+    column.push_back(static_cast<float>(value));
+  }
+}
+
+/// A 3x3 block, row after row.
+void appendRowMajor(std::vector<float>& column, const Eigen::Matrix3d& block) {
+  for (int row = 0; row < 3; ++row) {
+    for (int col = 0; col < 3; ++col) {
+      column.push_back(static_cast<float>(block(row, col)));
+    }
+  }
+}
+
+void appendQuaternion(std::vector<float>& column, const Eigen::Quaterniond& q) {
+  append(column, std::array<double, 4>{q.x(), q.y(), q.z(), q.w()});
+}
+
+class FrameSampler {
+ public:
+  FrameSampler(double fps, int dof, bool cartesian) : fps_(fps), dof_(dof), cartesian_(cartesian) {}
+
+  /// Frames whose time has come before a record at `time_s`, each from `in_force`.
+  void until(double time_s, const CycleRecordMessage& in_force) {
+    while (static_cast<double>(next_) / fps_ < time_s - kStampTolerance_s) {
+      emit(in_force);
+    }
+  }
+  /// The last record: frames up to its time (inclusive).
+  void through(double time_s, const CycleRecordMessage& last) {
+    while (static_cast<double>(next_) / fps_ <= time_s + kStampTolerance_s) {
+      emit(last);
+    }
+  }
+  Columns& columns() { return columns_; }
+  [[nodiscard]] std::int64_t frames() const { return next_; }
+
+ private:
+  void emit(const CycleRecordMessage& record) {
+    columns_.frame_index.push_back(next_);
+    columns_.timestamp.push_back(static_cast<float>(static_cast<double>(next_) / fps_));
+    const transport::ControllerStateMessage& s = record.state;
+    append(columns_.state, s.position);
+    append(columns_.velocity, s.velocity);
+    append(columns_.effort, s.effort);
+    append(columns_.tcp_pose, s.tcp_position);
+    append(columns_.tcp_pose, s.tcp_orientation);
+    append(columns_.contact_wrench, s.contact_wrench);
+    if (cartesian_) {
+      emitCartesian(record);
+    } else {
+      emitJoint(record);
+    }
+    ++next_;
+  }
+
+  void emitCartesian(const CycleRecordMessage& record) {
+    if (record.cartesian_in_force.empty()) {
+      columns_.action.insert(columns_.action.end(), 7, kNaN);
+      columns_.stiffness.insert(columns_.stiffness.end(), 18, kNaN);
+      columns_.damping.insert(columns_.damping.end(), 18, kNaN);
+      columns_.damping_ratio.insert(columns_.damping_ratio.end(), 6, kNaN);
+      columns_.task_frame.insert(columns_.task_frame.end(), 4, kNaN);
+      return;
+    }
+    const CartesianCommand& c = record.cartesian_in_force.front().command;
+    append(columns_.action, c.position);
+    appendQuaternion(columns_.action, c.orientation);
+    appendRowMajor(columns_.stiffness, c.stiffness_translational);
+    appendRowMajor(columns_.stiffness, c.stiffness_rotational);
+    appendRowMajor(columns_.damping, c.damping_translational);
+    appendRowMajor(columns_.damping, c.damping_rotational);
+    append(columns_.damping_ratio, c.damping_ratio);
+    appendQuaternion(columns_.task_frame, c.task_frame);
+  }
+
+  void emitJoint(const CycleRecordMessage& record) {
+    const auto width = static_cast<std::size_t>(dof_);
+    if (record.joint_in_force.empty()) {
+      columns_.action.insert(columns_.action.end(), width, kNaN);
+      columns_.stiffness.insert(columns_.stiffness.end(), width, kNaN);
+      columns_.damping.insert(columns_.damping.end(), width, kNaN);
+      return;
+    }
+    const JointCommand& c = record.joint_in_force.front().command;
+    append(columns_.action, c.position);
+    append(columns_.stiffness, c.stiffness);
+    append(columns_.damping, c.damping);
+  }
+
+  double fps_;
+  int dof_;
+  bool cartesian_;
+  std::int64_t next_ = 0;
+  Columns columns_;
+};
+
+double seconds(const transport::Stamp& stamp) {
+  return static_cast<double>(stamp.sec) + 1e-9 * static_cast<double>(stamp.nanosec);
+}
+
+}  // namespace
+
+EpisodeFrames recordingFrames(const std::filesystem::path& recording, double fps,
+                              std::int64_t episode_index, std::int64_t first_index,
+                              std::int64_t task_index) {
+  if (!(fps > 0.0) || !std::isfinite(fps)) {
+    throw std::invalid_argument("export: the frame rate must be positive, not " +
+                                std::to_string(fps));
+  }
+  const std::string name = recording.string();
+  EpisodeFrames episode;
+  std::optional<FrameSampler> sampler;
+  std::optional<CycleRecordMessage> previous;
+  std::uint16_t cycle_channel = 0;
+  bool found_channel = false;
+  double first_s = 0.0;
+  double last_s = 0.0;
+  std::uint64_t records = 0;
+  std::string error;
+  const auto on_message = [&](const record::McapMessageView& message) {
+    if (message.channel_id != cycle_channel || !error.empty()) {
+      return;
+    }
+    CycleRecordMessage cycle;
+    if (!transport::decodeCdr(message.data, cycle)) {
+      error = name + ": cycle record " + std::to_string(records) + " does not decode";
+      return;
+    }
+    const double time_s = seconds(cycle.state.header.stamp);
+    if (cycle.state.position.size() != cycle.state.joint_names.size() ||
+        cycle.state.position.empty()) {
+      error = name + ": cycle record " + std::to_string(records) + " has " +
+              std::to_string(cycle.state.position.size()) + " joint positions for " +
+              std::to_string(cycle.state.joint_names.size()) + " joints";
+      return;
+    }
+    if (!sampler) {
+      episode.dof = static_cast<int>(cycle.state.position.size());
+      episode.cartesian = cycle.state.command_kind == transport::WireCommandKind::kCartesian;
+      episode.joint_names = cycle.state.joint_names;
+      sampler.emplace(fps, episode.dof, episode.cartesian);
+      first_s = time_s;
+    } else if (time_s < last_s) {
+      error = name + ": cycle record " + std::to_string(records) + " is stamped before the one " +
+              "before it";
+      return;
+    } else if (cycle.state.position.size() != static_cast<std::size_t>(episode.dof)) {
+      error = name + ": cycle record " + std::to_string(records) + " has " +
+              std::to_string(cycle.state.position.size()) + " joints, the first " +
+              std::to_string(episode.dof);
+      return;
+    } else {
+      sampler->until(time_s - first_s, *previous);
+    }
+    last_s = time_s;
+    previous = std::move(cycle);
+    ++records;
+  };
+  // The channels first (a pass without messages), then the cycle channel's records.
+  for (const record::McapChannelInfo& channel : record::readMcap(name).channels) {
+    if (channel.topic.ends_with("/cycle") && channel.schema_name.ends_with("CycleRecord")) {
+      if (found_channel) {
+        throw std::runtime_error(name + ": more than one cycle channel (" + channel.topic +
+                                 "): one host's recording per episode");
+      }
+      cycle_channel = channel.id;
+      found_channel = true;
+    }
+  }
+  if (!found_channel) {
+    throw std::runtime_error(name +
+                             ": no cycle channel (/<name>/cycle, comply_msgs/CycleRecord): " +
+                             "record with comply sim --record or comply run --record");
+  }
+  (void)record::readMcap(name, on_message);
+  if (!error.empty()) {
+    throw std::runtime_error(error);
+  }
+  if (!sampler) {
+    throw std::runtime_error(name + ": no cycle record in the cycle channel");
+  }
+  sampler->through(last_s - first_s, *previous);
+  episode.frames = sampler->frames();
+  episode.duration_s = last_s - first_s;
+
+  Columns& columns = sampler->columns();
+  const auto frames = static_cast<std::size_t>(episode.frames);
+  ParquetTable& table = episode.table;
+  table.addFloat("timestamp", std::move(columns.timestamp));
+  table.addInt64("frame_index", columns.frame_index);
+  table.addInt64("episode_index", std::vector<std::int64_t>(frames, episode_index));
+  std::vector<std::int64_t> index(frames);
+  for (std::size_t i = 0; i < frames; ++i) {
+    index[i] = first_index + static_cast<std::int64_t>(i);
+  }
+  table.addInt64("index", std::move(index));
+  table.addInt64("task_index", std::vector<std::int64_t>(frames, task_index));
+  const int dof = episode.dof;
+  table.addFloatList("observation.state", std::move(columns.state), dof);
+  table.addFloatList("observation.velocity", std::move(columns.velocity), dof);
+  table.addFloatList("observation.effort", std::move(columns.effort), dof);
+  table.addFloatList("observation.tcp_pose", std::move(columns.tcp_pose), 7);
+  table.addFloatList("observation.contact_wrench", std::move(columns.contact_wrench), 6);
+  if (episode.cartesian) {
+    table.addFloatList("action", std::move(columns.action), 7);
+    table.addFloatList("action.stiffness", std::move(columns.stiffness), 18);
+    table.addFloatList("action.damping", std::move(columns.damping), 18);
+    table.addFloatList("action.damping_ratio", std::move(columns.damping_ratio), 6);
+    table.addFloatList("action.task_frame", std::move(columns.task_frame), 4);
+  } else {
+    table.addFloatList("action", std::move(columns.action), dof);
+    table.addFloatList("action.stiffness", std::move(columns.stiffness), dof);
+    table.addFloatList("action.damping", std::move(columns.damping), dof);
+  }
+  return episode;
+}
+
+}  // namespace comply::exporter

@@ -1,0 +1,169 @@
+// A recording sampled into frames (recording_frames.hpp): 0.8 s of a simulated FR3 stepping
+// 3 cm at 0.5 s, recorded by `comply sim --record`, exported at 30 frames per second and read back
+// by hyparquet (tests/export/read_parquet.mjs): as many rows as the run has frames, timestamps
+// exactly i / fps, and the state, the action and the gains of each row those of the cycle in force
+// at i / fps, found here in the recording by comply's MCAP reader.
+
+#include "comply/export/recording_frames.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "comply/record/mcap_reader.hpp"
+#include "comply/transport/cdr.hpp"
+#include "comply/transport/messages.hpp"
+#include "scratch.hpp"
+
+namespace comply::exporter {
+namespace {
+
+const std::string kSourceDir = COMPLY_SOURCE_DIR;
+const std::string kComply = COMPLY_CLI;
+
+nlohmann::json readWithHyparquet(const std::filesystem::path& path) {
+  const auto [status, text] = testing::runCommand(
+      "node " + kSourceDir + "/tests/export/read_parquet.mjs '" + path.string() + "'");
+  if (status != 0 || text.empty()) {
+    ADD_FAILURE() << "read_parquet.mjs failed (exit " << status << "): run "
+                  << "scripts/install-deps.sh to install Node's packages";
+    return nullptr;
+  }
+  return nlohmann::json::parse(text);
+}
+
+/// Every cycle record of `path`, in order, with its time from the first [s].
+std::vector<std::pair<double, transport::CycleRecordMessage>> cycles(
+    const std::filesystem::path& path) {
+  std::uint16_t channel = 0;
+  for (const record::McapChannelInfo& info : record::readMcap(path.string()).channels) {
+    if (info.topic.ends_with("/cycle")) {
+      channel = info.id;
+    }
+  }
+  std::vector<std::pair<double, transport::CycleRecordMessage>> out;
+  (void)record::readMcap(path.string(), [&](const record::McapMessageView& message) {
+    if (message.channel_id != channel) {
+      return;
+    }
+    transport::CycleRecordMessage cycle;
+    EXPECT_TRUE(transport::decodeCdr(message.data, cycle));
+    const auto& stamp = cycle.state.header.stamp;
+    out.emplace_back(static_cast<double>(stamp.sec) + 1e-9 * stamp.nanosec, cycle);
+  });
+  const double first_s = out.front().first;
+  for (auto& entry : out) {
+    entry.first -= first_s;
+  }
+  return out;
+}
+
+std::vector<float> floats(const nlohmann::json& values) {
+  std::vector<float> out;
+  for (const nlohmann::json& value : values) {
+    out.push_back(value.is_null() ? NAN : static_cast<float>(value.get<double>()));
+  }
+  return out;
+}
+
+class RecordingFrames : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    scratch_ = new testing::ScratchDir("frames");
+    const std::filesystem::path dir = scratch_->path();
+    recording_ = dir / "run.mcap";
+    const std::string command = kComply + " sim --robot fr3 --config " + kSourceDir +
+                                "/config/sim/cartesian_impedance.yaml --task " + kSourceDir +
+                                "/examples/sim/step_response.yaml --duration 0.8 --out '" +
+                                (dir / "out").string() + "' --no-plot --snapshot-every 0 " +
+                                "--record '" + recording_.string() + "' > /dev/null 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  }
+  static void TearDownTestSuite() {
+    delete scratch_;
+    scratch_ = nullptr;
+  }
+  static testing::ScratchDir* scratch_;
+  static std::filesystem::path recording_;
+};
+testing::ScratchDir* RecordingFrames::scratch_ = nullptr;
+std::filesystem::path RecordingFrames::recording_;
+
+TEST_F(RecordingFrames, EachRowIsTheCycleInForceAtExactlyIOverFps) {
+  constexpr double kFps = 30.0;
+  const EpisodeFrames episode = recordingFrames(recording_, kFps, 2, 100, 0);
+  const auto recorded = cycles(recording_);
+  ASSERT_GT(recorded.size(), 400U);
+  EXPECT_EQ(episode.dof, 7);
+  EXPECT_TRUE(episode.cartesian);
+  EXPECT_DOUBLE_EQ(episode.duration_s, recorded.back().first);
+  // Frames at 0, 1/30, ... up to the last record's time.
+  const auto expected_frames = static_cast<std::int64_t>(std::floor(episode.duration_s * kFps)) + 1;
+  EXPECT_EQ(episode.frames, expected_frames);
+  const std::filesystem::path file = scratch_->path() / "episode.parquet";
+  episode.table.write(file);
+
+  const nlohmann::json read = readWithHyparquet(file);
+  ASSERT_FALSE(read.is_null());
+  ASSERT_EQ(read["num_rows"], expected_frames);
+  const nlohmann::json& rows = read["rows"];
+  std::size_t cycle = 0;
+  for (std::int64_t i = 0; i < expected_frames; ++i) {
+    const nlohmann::json& row = rows[static_cast<std::size_t>(i)];
+    const double t_s = static_cast<double>(i) / kFps;
+    EXPECT_EQ(static_cast<float>(row["timestamp"].get<double>()), static_cast<float>(t_s)) << i;
+    EXPECT_EQ(row["frame_index"].get<std::string>(), std::to_string(i));
+    EXPECT_EQ(row["index"].get<std::string>(), std::to_string(100 + i));
+    EXPECT_EQ(row["episode_index"].get<std::string>(), "2");
+    // The cycle in force: the last recorded at or before t_s.
+    while (cycle + 1 < recorded.size() && recorded[cycle + 1].first <= t_s + 1e-9) {
+      ++cycle;
+    }
+    const transport::CycleRecordMessage& in_force = recorded[cycle].second;
+    ASSERT_EQ(in_force.cartesian_in_force.size(), 1U) << i;
+    const CartesianCommand& command = in_force.cartesian_in_force.front().command;
+    const std::vector<float> state = floats(row["observation.state"]);
+    ASSERT_EQ(state.size(), 7U);
+    for (std::size_t j = 0; j < 7; ++j) {
+      EXPECT_EQ(state[j], static_cast<float>(in_force.state.position[j])) << i << ", " << j;
+    }
+    const std::vector<float> action = floats(row["action"]);
+    ASSERT_EQ(action.size(), 7U);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(action[static_cast<std::size_t>(k)], static_cast<float>(command.position[k]));
+    }
+    EXPECT_EQ(action[6], static_cast<float>(command.orientation.w()));
+    const std::vector<float> stiffness = floats(row["action.stiffness"]);
+    ASSERT_EQ(stiffness.size(), 18U);
+    EXPECT_EQ(stiffness[0], static_cast<float>(command.stiffness_translational(0, 0)));
+    EXPECT_EQ(stiffness[1], static_cast<float>(command.stiffness_translational(0, 1)));
+    EXPECT_EQ(stiffness[13], static_cast<float>(command.stiffness_rotational(1, 1)));
+    EXPECT_GT(stiffness[0], 0.0F) << "a law in force has stiffness";
+    const std::vector<float> ratio = floats(row["action.damping_ratio"]);
+    ASSERT_EQ(ratio.size(), 6U);
+    EXPECT_EQ(ratio[0], static_cast<float>(command.damping_ratio[0]));
+    const std::vector<float> frame = floats(row["action.task_frame"]);
+    ASSERT_EQ(frame.size(), 4U);
+    EXPECT_EQ(frame[3], static_cast<float>(command.task_frame.w()));
+  }
+  // The step at 0.5 s moved the reference 3 cm along x.
+  EXPECT_NEAR(floats(rows.back()["action"])[0] - floats(rows.front()["action"])[0], 0.03, 1e-6);
+}
+
+TEST_F(RecordingFrames, RefusesARateThatIsNotPositiveAndAFileWithoutCycles) {
+  EXPECT_THROW((void)recordingFrames(recording_, 0.0, 0, 0, 0), std::invalid_argument);
+  EXPECT_THROW((void)recordingFrames(recording_, -30.0, 0, 0, 0), std::invalid_argument);
+  const std::filesystem::path not_mcap = scratch_->path() / "not.mcap";
+  std::ofstream(not_mcap) << "not a recording";
+  EXPECT_ANY_THROW((void)recordingFrames(not_mcap, 30.0, 0, 0, 0));
+}
+
+}  // namespace
+}  // namespace comply::exporter
