@@ -8,6 +8,7 @@
 //   comply send --json '{"position": [...]}' | --file F [--rate HZ]
 //   comply echo [state|diagnostics]
 //   comply inspect FILE [--json]
+//   comply export --lerobot DIR RUN.mcap... [--fps 30] [--task TEXT]
 //   comply schema [--format markdown|json|msg|idl] [--kind cartesian|joint]
 //   comply codegen simulink [--out DIR]
 //   comply plugin new NAME --kind joint|cartesian --lang cpp|c [--out DIR]
@@ -24,6 +25,7 @@
 #include "cli_options.hpp"
 #include "config_command.hpp"
 #include "experiment_commands.hpp"
+#include "export_command.hpp"
 #include "live_commands.hpp"
 
 int main(int argc, char** argv) {
@@ -35,6 +37,7 @@ int main(int argc, char** argv) {
   SimOptions sim;
   SchemaOptions schema;
   InspectOptions inspect;
+  ExportOptions export_options;
   ConfigOptions config;
   CodegenOptions codegen;
   PluginNewOptions plugin_new;
@@ -45,6 +48,7 @@ int main(int argc, char** argv) {
   const LiveCommands live = addLiveCommands(app);
   CLI::App* schema_command = addSchemaCommand(app, schema);
   CLI::App* inspect_command = addInspectCommand(app, inspect);
+  CLI::App* export_command = addExportCommand(app, export_options);
   CLI::App* config_command = addConfigCommand(app, config);
   CLI::App* codegen_simulink = addCodegenCommand(app, codegen);
   CLI::App* plugin_new_command = addPluginCommand(app, plugin_new);
@@ -73,6 +77,9 @@ int main(int argc, char** argv) {
     }
     if (inspect_command->parsed()) {
       return inspectCommand(inspect, std::cout, std::cerr);
+    }
+    if (export_command->parsed()) {
+      return exportCommand(export_options, std::cout, std::cerr);
     }
     if (schema_command->parsed()) {
       return schemaCommand(schema, std::cout, std::cerr);

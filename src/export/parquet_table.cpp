@@ -140,6 +140,30 @@ void ParquetTable::addFloatList(const std::string& name, std::vector<float> valu
   add({.name = name, .kind = Kind::kFloatList, .width = width, .floats = std::move(values)}, rows);
 }
 
+void ParquetTable::append(const ParquetTable& other) {
+  if (other.columns_.size() != columns_.size()) {
+    throw std::invalid_argument("parquet: appending " + std::to_string(other.columns_.size()) +
+                                " columns to " + std::to_string(columns_.size()));
+  }
+  for (std::size_t c = 0; c < columns_.size(); ++c) {
+    const Column& mine = columns_[c];
+    const Column& theirs = other.columns_[c];
+    if (mine.name != theirs.name || mine.kind != theirs.kind || mine.width != theirs.width) {
+      throw std::invalid_argument("parquet: appending column '" + theirs.name + "' onto '" +
+                                  mine.name + "' (another name, kind or width)");
+    }
+  }
+  for (std::size_t c = 0; c < columns_.size(); ++c) {
+    Column& mine = columns_[c];
+    const Column& theirs = other.columns_[c];
+    mine.int64s.insert(mine.int64s.end(), theirs.int64s.begin(), theirs.int64s.end());
+    mine.floats.insert(mine.floats.end(), theirs.floats.begin(), theirs.floats.end());
+    mine.doubles.insert(mine.doubles.end(), theirs.doubles.begin(), theirs.doubles.end());
+    mine.strings.insert(mine.strings.end(), theirs.strings.begin(), theirs.strings.end());
+  }
+  rows_ += other.rows_;
+}
+
 void ParquetTable::addMetadata(const std::string& key, const std::string& value) {
   metadata_.emplace_back(key, value);
 }

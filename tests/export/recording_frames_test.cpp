@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "comply/export/lerobot_dataset.hpp"
 #include "comply/record/mcap_reader.hpp"
 #include "comply/transport/cdr.hpp"
 #include "comply/transport/messages.hpp"
@@ -163,6 +164,72 @@ TEST_F(RecordingFrames, RefusesARateThatIsNotPositiveAndAFileWithoutCycles) {
   const std::filesystem::path not_mcap = scratch_->path() / "not.mcap";
   std::ofstream(not_mcap) << "not a recording";
   EXPECT_ANY_THROW((void)recordingFrames(not_mcap, 30.0, 0, 0, 0));
+}
+
+TEST_F(RecordingFrames, TwoRecordingsAreTwoEpisodesOfOneLeRobotDataset) {
+  const std::filesystem::path folder = scratch_->path() / "dataset";
+  const std::string command = kComply + " export --lerobot '" + folder.string() + "' '" +
+                              recording_.string() + "' '" + recording_.string() +
+                              "' --fps 10 --task 'step 3 cm' --robot-type fr3 2>&1";
+  const auto [status, text] = testing::runCommand(command);
+  ASSERT_EQ(status, 0) << text;
+  // 0.8 s at 10 fps: frames at 0, 0.1, ... up to the last cycle's stamp, in both episodes.
+  const double duration_s = cycles(recording_).back().first;
+  const auto per = static_cast<std::size_t>(std::floor(duration_s * 10.0 + 1e-9)) + 1;
+  const std::size_t total = 2 * per;
+  EXPECT_NE(text.find("2 episode(s), " + std::to_string(total) + " frames at 10 fps"),
+            std::string::npos)
+      << text;
+
+  std::ifstream info_file(folder / "meta" / "info.json");
+  const nlohmann::json info = nlohmann::json::parse(info_file);
+  EXPECT_EQ(info["codebase_version"], "v3.0");
+  EXPECT_EQ(info["robot_type"], "fr3");
+  EXPECT_EQ(info["fps"], 10);
+  EXPECT_EQ(info["total_episodes"], 2);
+  EXPECT_EQ(info["total_frames"], total);
+  EXPECT_EQ(info["splits"]["train"], "0:2");
+  EXPECT_EQ(info["features"]["observation.state"]["shape"], nlohmann::json::array({7}));
+  EXPECT_EQ(info["features"]["observation.state"]["names"][0], "fr3_joint1");
+  EXPECT_EQ(info["features"]["action.stiffness"]["shape"], nlohmann::json::array({18}));
+  EXPECT_EQ(info["features"]["action.task_frame"]["dtype"], "float32");
+
+  const nlohmann::json data = readWithHyparquet(folder / "data" / "chunk-000" / "file-000.parquet");
+  ASSERT_FALSE(data.is_null());
+  ASSERT_EQ(data["num_rows"], total);
+  for (std::size_t row = 0; row < total; ++row) {
+    const nlohmann::json& frame = data["rows"][row];
+    EXPECT_EQ(frame["index"].get<std::string>(), std::to_string(row));
+    EXPECT_EQ(frame["episode_index"].get<std::string>(), row < per ? "0" : "1");
+    EXPECT_EQ(frame["frame_index"].get<std::string>(), std::to_string(row % per));
+    EXPECT_EQ(static_cast<float>(frame["timestamp"].get<double>()),
+              static_cast<float>(static_cast<double>(row % per) / 10.0));
+  }
+  // The same recording twice: the same frames twice.
+  EXPECT_EQ(data["rows"][3]["action"], data["rows"][per + 3]["action"]);
+  EXPECT_EQ(data["rows"][3]["action.stiffness"], data["rows"][per + 3]["action.stiffness"]);
+
+  const nlohmann::json episodes =
+      readWithHyparquet(folder / "meta" / "episodes" / "chunk-000" / "file-000.parquet");
+  ASSERT_FALSE(episodes.is_null());
+  ASSERT_EQ(episodes["num_rows"], 2);
+  EXPECT_EQ(episodes["rows"][1]["dataset_from_index"], std::to_string(per));
+  EXPECT_EQ(episodes["rows"][1]["dataset_to_index"], std::to_string(total));
+  EXPECT_EQ(episodes["rows"][1]["length"], std::to_string(per));
+  EXPECT_EQ(episodes["rows"][1]["comply/recording"], "run.mcap");
+  const nlohmann::json tasks = readWithHyparquet(folder / "meta" / "tasks.parquet");
+  ASSERT_FALSE(tasks.is_null());
+  EXPECT_EQ(tasks["rows"][0]["task"], "step 3 cm");
+}
+
+TEST_F(RecordingFrames, TheCommandRefusesWhatIsNotARecordingWithTheReason) {
+  const std::filesystem::path not_mcap = scratch_->path() / "notes.mcap";
+  std::ofstream(not_mcap) << "not a recording";
+  const auto [status, text] = testing::runCommand(kComply + " export --lerobot '" +
+                                                  (scratch_->path() / "refused").string() + "' '" +
+                                                  not_mcap.string() + "' 2>&1");
+  EXPECT_EQ(status, 2) << text;
+  EXPECT_NE(text.find("notes.mcap"), std::string::npos) << text;
 }
 
 }  // namespace

@@ -31,6 +31,9 @@ class ParquetTable {
   void addString(const std::string& name, std::vector<std::string> values);
   /// `width` floats per row, row after row (values.size() = rows x width, width >= 1).
   void addFloatList(const std::string& name, std::vector<float> values, int width);
+  /// The rows of `other` after these: the same columns in the same order (names, kinds, list
+  /// widths), else std::invalid_argument naming the first that differs.
+  void append(const ParquetTable& other);
   /// A key/value pair in the file's footer.
   void addMetadata(const std::string& key, const std::string& value);
 

@@ -1,0 +1,42 @@
+#pragma once
+// Recordings as a LeRobot dataset (format v3.0): each recording one episode of frames at a fixed
+// rate (recording_frames.hpp), in the layout LeRobot reads:
+//
+//   data/chunk-000/file-000.parquet              every episode's frames, one after another
+//   meta/info.json                               the format's version, fps, totals, the path
+//                                                templates, every feature's dtype, shape, names
+//   meta/tasks.parquet                           task_index, task
+//   meta/episodes/chunk-000/file-000.parquet     per episode: its index, length, file and its
+//                                                rows in the data file (dataset_from_index,
+//                                                dataset_to_index), the recording it came from
+//
+// Not yet written: videos (no camera is recorded), the per-feature statistics (meta/stats.json
+// and the episodes' stats columns) and the episodes' `tasks` list column.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace comply::exporter {
+
+struct LeRobotOptions {
+  double fps = 30.0;
+  std::string task = "comply recording";  ///< the one task every episode is given
+  std::string robot_type;                 ///< info.json's robot_type ("" : null)
+};
+
+struct LeRobotSummary {
+  std::int64_t episodes = 0;
+  std::int64_t frames = 0;
+  std::vector<std::filesystem::path> files;  ///< what was written
+};
+
+/// Writes the dataset into `folder` (made if missing; files of the same names are replaced).
+/// Every recording must come from one kind of controller on the same joints. Throws
+/// std::runtime_error naming the recording or file at fault, std::invalid_argument for options
+/// out of range or no recording.
+LeRobotSummary writeLeRobotDataset(const std::filesystem::path& folder,
+                                   const std::vector<std::filesystem::path>& recordings,
+                                   const LeRobotOptions& options);
+
+}  // namespace comply::exporter

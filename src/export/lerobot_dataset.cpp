@@ -1,0 +1,158 @@
+// A LeRobot v3.0 dataset from recordings (see lerobot_dataset.hpp).
+
+#include "comply/export/lerobot_dataset.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "comply/export/parquet_table.hpp"
+#include "comply/export/recording_frames.hpp"
+
+namespace comply::exporter {
+namespace {
+
+constexpr std::int64_t kChunksSize = 1000;  // episodes per chunk folder, LeRobot's default
+
+/// One feature of info.json.
+nlohmann::json feature(const std::string& dtype, int width, const nlohmann::json& names) {
+  return {{"dtype", dtype}, {"shape", {width}}, {"names", names}};
+}
+
+nlohmann::json features(const EpisodeFrames& first) {
+  const nlohmann::json joints = first.joint_names;
+  const nlohmann::json pose = {"x", "y", "z", "qx", "qy", "qz", "qw"};
+  const nlohmann::json wrench = {"fx", "fy", "fz", "tx", "ty", "tz"};
+  nlohmann::json out = {
+      {"timestamp", feature("float32", 1, nullptr)},
+      {"frame_index", feature("int64", 1, nullptr)},
+      {"episode_index", feature("int64", 1, nullptr)},
+      {"index", feature("int64", 1, nullptr)},
+      {"task_index", feature("int64", 1, nullptr)},
+      {"observation.state", feature("float32", first.dof, joints)},
+      {"observation.velocity", feature("float32", first.dof, joints)},
+      {"observation.effort", feature("float32", first.dof, joints)},
+      {"observation.tcp_pose", feature("float32", 7, pose)},
+      {"observation.contact_wrench", feature("float32", 6, wrench)},
+  };
+  if (first.cartesian) {
+    nlohmann::json blocks = nlohmann::json::array();
+    for (const char* block : {"translational", "rotational"}) {
+      for (const char* row : {"x", "y", "z"}) {
+        for (const char* col : {"x", "y", "z"}) {
+          blocks.push_back(std::string(block) + "_" + row + col);
+        }
+      }
+    }
+    out["action"] = feature("float32", 7, pose);
+    out["action.stiffness"] = feature("float32", 18, blocks);
+    out["action.damping"] = feature("float32", 18, blocks);
+    out["action.damping_ratio"] = feature("float32", 6, {"x", "y", "z", "rx", "ry", "rz"});
+    out["action.task_frame"] = feature("float32", 4, {"qx", "qy", "qz", "qw"});
+  } else {
+    out["action"] = feature("float32", first.dof, joints);
+    out["action.stiffness"] = feature("float32", first.dof, joints);
+    out["action.damping"] = feature("float32", first.dof, joints);
+  }
+  return out;
+}
+
+void writeText(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::trunc);
+  out << text;
+  out.close();
+  if (!out) {
+    throw std::runtime_error("export: cannot write " + path.string());
+  }
+}
+
+}  // namespace
+
+LeRobotSummary writeLeRobotDataset(const std::filesystem::path& folder,
+                                   const std::vector<std::filesystem::path>& recordings,
+                                   const LeRobotOptions& options) {
+  if (recordings.empty()) {
+    throw std::invalid_argument("export: no recording to export");
+  }
+  std::vector<EpisodeFrames> episodes;
+  std::int64_t frames = 0;
+  for (std::size_t e = 0; e < recordings.size(); ++e) {
+    episodes.push_back(
+        recordingFrames(recordings[e], options.fps, static_cast<std::int64_t>(e), frames, 0));
+    const EpisodeFrames& episode = episodes.back();
+    const EpisodeFrames& first = episodes.front();
+    if (episode.cartesian != first.cartesian || episode.joint_names != first.joint_names) {
+      throw std::runtime_error("export: " + recordings[e].string() +
+                               " is of another controller "
+                               "or other joints than " +
+                               recordings.front().string() +
+                               ": a dataset's frames all have one shape");
+    }
+    frames += episode.frames;
+  }
+
+  // The frames of every episode, one after the other: each episode's columns appended.
+  ParquetTable data = std::move(episodes.front().table);
+  for (std::size_t e = 1; e < episodes.size(); ++e) {
+    data.append(episodes[e].table);
+  }
+  const std::filesystem::path data_file = folder / "data" / "chunk-000" / "file-000.parquet";
+  const std::filesystem::path episodes_file =
+      folder / "meta" / "episodes" / "chunk-000" / "file-000.parquet";
+  std::filesystem::create_directories(data_file.parent_path());
+  std::filesystem::create_directories(episodes_file.parent_path());
+  data.write(data_file);
+
+  ParquetTable episode_table;
+  std::vector<std::int64_t> index, length, zeros(episodes.size(), 0), from, to;
+  std::vector<std::string> sources;
+  std::int64_t row = 0;
+  for (std::size_t e = 0; e < episodes.size(); ++e) {
+    index.push_back(static_cast<std::int64_t>(e));
+    length.push_back(episodes[e].frames);
+    from.push_back(row);
+    row += episodes[e].frames;
+    to.push_back(row);
+    sources.push_back(recordings[e].filename().string());
+  }
+  episode_table.addInt64("episode_index", index);
+  episode_table.addInt64("length", length);
+  episode_table.addInt64("data/chunk_index", zeros);
+  episode_table.addInt64("data/file_index", zeros);
+  episode_table.addInt64("dataset_from_index", from);
+  episode_table.addInt64("dataset_to_index", to);
+  episode_table.addInt64("meta/episodes/chunk_index", zeros);
+  episode_table.addInt64("meta/episodes/file_index", zeros);
+  episode_table.addString("comply/recording", sources);
+  episode_table.write(episodes_file);
+
+  ParquetTable tasks;
+  tasks.addInt64("task_index", {0});
+  tasks.addString("task", {options.task});
+  const std::filesystem::path tasks_file = folder / "meta" / "tasks.parquet";
+  tasks.write(tasks_file);
+
+  const auto episode_count = static_cast<std::int64_t>(episodes.size());
+  const nlohmann::json info = {
+      {"codebase_version", "v3.0"},
+      {"robot_type",
+       options.robot_type.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.robot_type)},
+      {"total_episodes", episode_count},
+      {"total_frames", frames},
+      {"total_tasks", 1},
+      {"chunks_size", kChunksSize},
+      {"fps", options.fps == std::floor(options.fps)
+                  ? nlohmann::json(static_cast<std::int64_t>(options.fps))
+                  : nlohmann::json(options.fps)},
+      {"splits", {{"train", "0:" + std::to_string(episode_count)}}},
+      {"data_path", "data/chunk-{chunk_index:03d}/file-{file_index:03d}.parquet"},
+      {"video_path", nullptr},
+      {"features", features(episodes.front())},
+  };
+  const std::filesystem::path info_file = folder / "meta" / "info.json";
+  writeText(info_file, info.dump(4) + "\n");
+  return {episode_count, frames, {data_file, info_file, tasks_file, episodes_file}};
+}
+
+}  // namespace comply::exporter
