@@ -9,11 +9,13 @@
 namespace comply::app {
 
 CLI::App* addExportCommand(CLI::App& app, ExportOptions& options) {
-  CLI::App* command = app.add_subcommand(
-      "export", "recordings (MCAP) as training data: a LeRobot v3.0 dataset, one episode each");
+  CLI::App* command =
+      app.add_subcommand("export",
+                         "recordings (MCAP) as training data: a LeRobot v3.0 dataset, an episode "
+                         "per recording (per reset of a Python Sim)");
   command->add_option("--lerobot", options.lerobot, "the dataset's folder (made if missing)")
       ->required();
-  command->add_option("recordings", options.recordings, "the .mcap files, one episode each")
+  command->add_option("recordings", options.recordings, "the .mcap files, in episode order")
       ->required()
       ->check(CLI::ExistingFile);
   command->add_option("--fps", options.fps, "frames per second, sampled at exactly i / fps")

@@ -76,20 +76,21 @@ LeRobotSummary writeLeRobotDataset(const std::filesystem::path& folder,
     throw std::invalid_argument("export: no recording to export");
   }
   std::vector<EpisodeFrames> episodes;
+  std::vector<std::string> sources;  // the recording of each episode
   std::int64_t frames = 0;
-  for (std::size_t e = 0; e < recordings.size(); ++e) {
-    episodes.push_back(
-        recordingFrames(recordings[e], options.fps, static_cast<std::int64_t>(e), frames, 0));
-    const EpisodeFrames& episode = episodes.back();
-    const EpisodeFrames& first = episodes.front();
-    if (episode.cartesian != first.cartesian || episode.joint_names != first.joint_names) {
-      throw std::runtime_error("export: " + recordings[e].string() +
-                               " is of another controller "
-                               "or other joints than " +
-                               recordings.front().string() +
-                               ": a dataset's frames all have one shape");
+  for (const std::filesystem::path& recording : recordings) {
+    for (EpisodeFrames& episode : recordingEpisodes(
+             recording, options.fps, static_cast<std::int64_t>(episodes.size()), frames, 0)) {
+      const EpisodeFrames& first = episodes.empty() ? episode : episodes.front();
+      if (episode.cartesian != first.cartesian || episode.joint_names != first.joint_names) {
+        throw std::runtime_error("export: " + recording.string() + " is of another controller " +
+                                 "or other joints than " + recordings.front().string() +
+                                 ": a dataset's frames all have one shape");
+      }
+      frames += episode.frames;
+      sources.push_back(recording.filename().string());
+      episodes.push_back(std::move(episode));
     }
-    frames += episode.frames;
   }
 
   // The frames of every episode, one after the other: each episode's columns appended.
@@ -106,7 +107,6 @@ LeRobotSummary writeLeRobotDataset(const std::filesystem::path& folder,
 
   ParquetTable episode_table;
   std::vector<std::int64_t> index, length, zeros(episodes.size(), 0), from, to;
-  std::vector<std::string> sources;
   std::int64_t row = 0;
   for (std::size_t e = 0; e < episodes.size(); ++e) {
     index.push_back(static_cast<std::int64_t>(e));
@@ -114,7 +114,6 @@ LeRobotSummary writeLeRobotDataset(const std::filesystem::path& folder,
     from.push_back(row);
     row += episodes[e].frames;
     to.push_back(row);
-    sources.push_back(recordings[e].filename().string());
   }
   episode_table.addInt64("episode_index", index);
   episode_table.addInt64("length", length);

@@ -133,92 +133,9 @@ double seconds(const transport::Stamp& stamp) {
   return static_cast<double>(stamp.sec) + 1e-9 * static_cast<double>(stamp.nanosec);
 }
 
-}  // namespace
-
-EpisodeFrames recordingFrames(const std::filesystem::path& recording, double fps,
-                              std::int64_t episode_index, std::int64_t first_index,
-                              std::int64_t task_index) {
-  if (!(fps > 0.0) || !std::isfinite(fps)) {
-    throw std::invalid_argument("export: the frame rate must be positive, not " +
-                                std::to_string(fps));
-  }
-  const std::string name = recording.string();
-  EpisodeFrames episode;
-  std::optional<FrameSampler> sampler;
-  std::optional<CycleRecordMessage> previous;
-  std::uint16_t cycle_channel = 0;
-  bool found_channel = false;
-  double first_s = 0.0;
-  double last_s = 0.0;
-  std::uint64_t records = 0;
-  std::string error;
-  const auto on_message = [&](const record::McapMessageView& message) {
-    if (message.channel_id != cycle_channel || !error.empty()) {
-      return;
-    }
-    CycleRecordMessage cycle;
-    if (!transport::decodeCdr(message.data, cycle)) {
-      error = name + ": cycle record " + std::to_string(records) + " does not decode";
-      return;
-    }
-    const double time_s = seconds(cycle.state.header.stamp);
-    if (cycle.state.position.size() != cycle.state.joint_names.size() ||
-        cycle.state.position.empty()) {
-      error = name + ": cycle record " + std::to_string(records) + " has " +
-              std::to_string(cycle.state.position.size()) + " joint positions for " +
-              std::to_string(cycle.state.joint_names.size()) + " joints";
-      return;
-    }
-    if (!sampler) {
-      episode.dof = static_cast<int>(cycle.state.position.size());
-      episode.cartesian = cycle.state.command_kind == transport::WireCommandKind::kCartesian;
-      episode.joint_names = cycle.state.joint_names;
-      sampler.emplace(fps, episode.dof, episode.cartesian);
-      first_s = time_s;
-    } else if (time_s < last_s) {
-      error = name + ": cycle record " + std::to_string(records) + " is stamped before the one " +
-              "before it";
-      return;
-    } else if (cycle.state.position.size() != static_cast<std::size_t>(episode.dof)) {
-      error = name + ": cycle record " + std::to_string(records) + " has " +
-              std::to_string(cycle.state.position.size()) + " joints, the first " +
-              std::to_string(episode.dof);
-      return;
-    } else {
-      sampler->until(time_s - first_s, *previous);
-    }
-    last_s = time_s;
-    previous = std::move(cycle);
-    ++records;
-  };
-  // The channels first (a pass without messages), then the cycle channel's records.
-  for (const record::McapChannelInfo& channel : record::readMcap(name).channels) {
-    if (channel.topic.ends_with("/cycle") && channel.schema_name.ends_with("CycleRecord")) {
-      if (found_channel) {
-        throw std::runtime_error(name + ": more than one cycle channel (" + channel.topic +
-                                 "): one host's recording per episode");
-      }
-      cycle_channel = channel.id;
-      found_channel = true;
-    }
-  }
-  if (!found_channel) {
-    throw std::runtime_error(name +
-                             ": no cycle channel (/<name>/cycle, comply_msgs/CycleRecord): " +
-                             "record with comply sim --record or comply run --record");
-  }
-  (void)record::readMcap(name, on_message);
-  if (!error.empty()) {
-    throw std::runtime_error(error);
-  }
-  if (!sampler) {
-    throw std::runtime_error(name + ": no cycle record in the cycle channel");
-  }
-  sampler->through(last_s - first_s, *previous);
-  episode.frames = sampler->frames();
-  episode.duration_s = last_s - first_s;
-
-  Columns& columns = sampler->columns();
+/// The table of one episode's sampled frames.
+void tabulate(Columns& columns, std::int64_t episode_index, std::int64_t first_index,
+              std::int64_t task_index, EpisodeFrames& episode) {
   const auto frames = static_cast<std::size_t>(episode.frames);
   ParquetTable& table = episode.table;
   table.addFloat("timestamp", std::move(columns.timestamp));
@@ -247,7 +164,127 @@ EpisodeFrames recordingFrames(const std::filesystem::path& recording, double fps
     table.addFloatList("action.stiffness", std::move(columns.stiffness), dof);
     table.addFloatList("action.damping", std::move(columns.damping), dof);
   }
-  return episode;
+}
+
+/// One episode as its cycle records arrive: where it starts, the last record, the frames so far.
+struct EpisodeInProgress {
+  EpisodeFrames episode;
+  std::optional<FrameSampler> sampler;
+  std::optional<CycleRecordMessage> previous;
+  double first_s = 0.0;
+  double last_s = 0.0;
+};
+
+}  // namespace
+
+std::vector<EpisodeFrames> recordingEpisodes(const std::filesystem::path& recording, double fps,
+                                             std::int64_t first_episode_index,
+                                             std::int64_t first_index, std::int64_t task_index) {
+  if (!(fps > 0.0) || !std::isfinite(fps)) {
+    throw std::invalid_argument("export: the frame rate must be positive, not " +
+                                std::to_string(fps));
+  }
+  const std::string name = recording.string();
+  std::vector<EpisodeFrames> episodes;
+  EpisodeInProgress current;
+  std::int64_t next_index = first_index;
+  const auto finish = [&] {
+    if (!current.sampler) {
+      return;
+    }
+    current.sampler->through(current.last_s - current.first_s, *current.previous);
+    EpisodeFrames& episode = current.episode;
+    episode.frames = current.sampler->frames();
+    episode.duration_s = current.last_s - current.first_s;
+    tabulate(current.sampler->columns(),
+             first_episode_index + static_cast<std::int64_t>(episodes.size()), next_index,
+             task_index, episode);
+    next_index += episode.frames;
+    episodes.push_back(std::move(episode));
+    current = EpisodeInProgress{};
+  };
+  std::uint16_t cycle_channel = 0;
+  bool found_channel = false;
+  std::uint64_t records = 0;
+  std::string error;
+  const auto on_message = [&](const record::McapMessageView& message) {
+    if (message.channel_id != cycle_channel || !error.empty()) {
+      return;
+    }
+    CycleRecordMessage cycle;
+    if (!transport::decodeCdr(message.data, cycle)) {
+      error = name + ": cycle record " + std::to_string(records) + " does not decode";
+      return;
+    }
+    const std::string which = name + ": cycle record " + std::to_string(records);
+    ++records;
+    if (cycle.state.position.size() != cycle.state.joint_names.size() ||
+        cycle.state.position.empty()) {
+      error = which + " has " + std::to_string(cycle.state.position.size()) +
+              " joint positions for " + std::to_string(cycle.state.joint_names.size()) + " joints";
+      return;
+    }
+    // A host's cycle count starts at 0 with each episode (Python's Sim: at every reset).
+    if (current.previous && cycle.state.cycle <= current.previous->state.cycle) {
+      finish();
+    }
+    const double time_s = seconds(cycle.state.header.stamp);
+    EpisodeFrames& episode = current.episode;
+    if (!current.sampler) {
+      episode.dof = static_cast<int>(cycle.state.position.size());
+      episode.cartesian = cycle.state.command_kind == transport::WireCommandKind::kCartesian;
+      episode.joint_names = cycle.state.joint_names;
+      current.sampler.emplace(fps, episode.dof, episode.cartesian);
+      current.first_s = time_s;
+    } else if (time_s < current.last_s) {
+      error = which + " is stamped before the one before it";
+      return;
+    } else if (cycle.state.joint_names != episode.joint_names) {
+      error = which + " is of other joints than the episode's first";
+      return;
+    } else {
+      current.sampler->until(time_s - current.first_s, *current.previous);
+    }
+    current.last_s = time_s;
+    current.previous = std::move(cycle);
+  };
+  // The channels first (a pass without messages), then the cycle channel's records.
+  for (const record::McapChannelInfo& channel : record::readMcap(name).channels) {
+    if (channel.topic.ends_with("/cycle") && channel.schema_name.ends_with("CycleRecord")) {
+      if (found_channel) {
+        throw std::runtime_error(name + ": more than one cycle channel (" + channel.topic +
+                                 "): one host's recording per file");
+      }
+      cycle_channel = channel.id;
+      found_channel = true;
+    }
+  }
+  if (!found_channel) {
+    throw std::runtime_error(name +
+                             ": no cycle channel (/<name>/cycle, comply_msgs/CycleRecord): " +
+                             "record with comply sim --record or comply run --record");
+  }
+  (void)record::readMcap(name, on_message);
+  if (!error.empty()) {
+    throw std::runtime_error(error);
+  }
+  finish();
+  if (episodes.empty()) {
+    throw std::runtime_error(name + ": no cycle record in the cycle channel");
+  }
+  return episodes;
+}
+
+EpisodeFrames recordingFrames(const std::filesystem::path& recording, double fps,
+                              std::int64_t episode_index, std::int64_t first_index,
+                              std::int64_t task_index) {
+  std::vector<EpisodeFrames> episodes =
+      recordingEpisodes(recording, fps, episode_index, first_index, task_index);
+  if (episodes.size() != 1) {
+    throw std::runtime_error(recording.string() + " holds " + std::to_string(episodes.size()) +
+                             " episodes, not one");
+  }
+  return std::move(episodes.front());
 }
 
 }  // namespace comply::exporter

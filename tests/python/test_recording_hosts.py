@@ -1,11 +1,14 @@
 """record= on comply.Sim and comply.Client, read back with comply.read_recording: the Sim's
 episodes (every cycle, the commands sent, one outcome each, the state the Sim returned; the Sim
-waits for a busy disk rather than drop; a timing record per chunk), and what a client sent to and saw from a `comply run
---sim` host. A record= path in a missing folder is refused, and the folder not made. Usage:
+waits for a busy disk rather than drop; a timing record per chunk), its episodes exported as a
+LeRobot dataset (`comply export`), and what a client sent to and saw from a `comply run --sim`
+host. A record= path in a missing folder is refused, and the folder not made. Usage:
 test_recording_hosts.py COMPLY_CLI SOURCE_DIR (the build's python/ on PYTHONPATH)."""
 
+import json
 import os
 import re
+import subprocess
 import sys
 import tempfile
 
@@ -138,6 +141,41 @@ def check_sim(source, folder):
     check_sim_commands(rec, episodes)
     assert comply.Sim(f"{source}/config/sim/cartesian_impedance.yaml").recording_stats() is None
     print(f"sim: {EPISODES} episodes, {stats['written']} messages recorded")
+    return path
+
+
+def check_export(cli, source, recording, folder):
+    """`comply export --lerobot` splits the Sim's file into its episodes where the cycle count
+    starts again: as many episodes as reset() began, each from its own first cycle (frame 0 at
+    its time 0), rows numbered across them. The Parquet files read with hyparquet
+    (tests/export/read_parquet.mjs)."""
+    dataset = os.path.join(folder, "dataset")
+    done = subprocess.run([cli, "export", "--lerobot", dataset, recording, "--fps", "100"],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    with open(os.path.join(dataset, "meta", "info.json")) as file:
+        info = json.load(file)
+    assert info["total_episodes"] == EPISODES, info
+
+    def read(*parts):
+        text = subprocess.run(["node", f"{source}/tests/export/read_parquet.mjs",
+                               os.path.join(dataset, *parts)],
+                              capture_output=True, text=True, check=True).stdout
+        return json.loads(text)
+
+    episodes = read("meta", "episodes", "chunk-000", "file-000.parquet")["rows"]
+    assert [int(e["episode_index"]) for e in episodes] == list(range(EPISODES)), episodes
+    frames = read("data", "chunk-000", "file-000.parquet")["rows"]
+    assert len(frames) == info["total_frames"] == sum(int(e["length"]) for e in episodes)
+    for episode in episodes:
+        start, end = int(episode["dataset_from_index"]), int(episode["dataset_to_index"])
+        # STEPS x STEPS_PER_ACTION cycles of 1 ms at 100 fps: about 12 frames each.
+        assert end - start >= STEPS * STEPS_PER_ACTION // 10 - 1, episode
+        own = frames[start:end]
+        assert [int(f["frame_index"]) for f in own] == list(range(end - start)), own
+        assert all(f["episode_index"] == episode["episode_index"] for f in own)
+        assert [int(f["index"]) for f in own] == list(range(start, end))
+    print(f"export: {EPISODES} episodes, {len(frames)} frames")
 
 
 def check_sim_chunks(source, folder):
@@ -257,12 +295,13 @@ def check_client(cli, source, folder):
 def main():
     cli, source = sys.argv[1], sys.argv[2]
     with tempfile.TemporaryDirectory() as folder:
-        check_sim(source, folder)
+        recording = check_sim(source, folder)
         check_sim_chunks(source, folder)
         if not os.access(cli, os.X_OK):
             print(f"skip: the Sim's recording passed; the host {cli} is not built, so the "
-                  f"client's is not tested")
+                  f"client's and the export are not tested")
             return
+        check_export(cli, source, recording, folder)
         check_client(cli, source, folder)
     print("ok")
 

@@ -1,8 +1,8 @@
 #pragma once
 // One recording (comply sim --record, comply run --record) as one episode of frames at a fixed
 // rate, the table LeRobot datasets train on (its data/*.parquet files): the recording's cycle
-// records (channel `/<name>/cycle`) sampled at exactly t_i = i / fps from the first record,
-// each frame the cycle in force at t_i (the last at or before it).
+// records (channel `/<name>/cycle`) sampled at exactly t_i = i / fps from the episode's first
+// record, each frame the cycle in force at t_i (the last at or before it).
 //
 // Columns (LeRobot's own first, then the observation and the action as comply records them;
 // float32 lists, every row the same width):
@@ -43,9 +43,17 @@ struct EpisodeFrames {
   double duration_s = 0.0;  ///< from the first cycle record to the last
 };
 
-/// Samples `recording` at `fps` (> 0). Throws std::runtime_error naming the file when it cannot
-/// be read, has no cycle channel or no cycle record, or a record does not decode, and
-/// std::invalid_argument for an fps that is not positive.
+/// The episodes of `recording`, each sampled at `fps` (> 0): a new one wherever the host's cycle
+/// count starts again (Python's Sim records every episode after a reset into one file), numbered
+/// from `first_episode_index`, their rows from `first_index` on. Throws std::runtime_error naming
+/// the file when it cannot be read, has no cycle channel or no cycle record, a record does not
+/// decode, goes back in time within an episode or changes the joints; std::invalid_argument for an
+/// fps that is not positive.
+std::vector<EpisodeFrames> recordingEpisodes(const std::filesystem::path& recording, double fps,
+                                             std::int64_t first_episode_index,
+                                             std::int64_t first_index, std::int64_t task_index);
+
+/// recordingEpisodes() of a recording of one episode (std::runtime_error for more).
 EpisodeFrames recordingFrames(const std::filesystem::path& recording, double fps,
                               std::int64_t episode_index, std::int64_t first_index,
                               std::int64_t task_index);
