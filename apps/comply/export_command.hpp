@@ -1,6 +1,6 @@
 #pragma once
-// `comply export --lerobot DIR RUN.mcap...`: recordings as a LeRobot v3.0 dataset, each an
-// episode of frames at --fps (include/comply/export/lerobot_dataset.hpp).
+// `comply export --lerobot DIR RUN.mcap...`: recordings as a LeRobot v3.0 dataset, an episode
+// per recording (per reset of a Python Sim), frames at --fps (comply/export/lerobot_dataset.hpp).
 
 #include <iosfwd>
 #include <string>
