@@ -21,24 +21,16 @@
 #include "comply/record/mcap_reader.hpp"
 #include "comply/transport/cdr.hpp"
 #include "comply/transport/messages.hpp"
+#include "read_parquet.hpp"
 #include "scratch.hpp"
 
 namespace comply::exporter {
 namespace {
 
+using test::readWithHyparquet;
+
 const std::string kSourceDir = COMPLY_SOURCE_DIR;
 const std::string kComply = COMPLY_CLI;
-
-nlohmann::json readWithHyparquet(const std::filesystem::path& path) {
-  const auto [status, text] = testing::runCommand(
-      "node " + kSourceDir + "/tests/export/read_parquet.mjs '" + path.string() + "'");
-  if (status != 0 || text.empty()) {
-    ADD_FAILURE() << "read_parquet.mjs failed (exit " << status << "): run "
-                  << "scripts/install-deps.sh to install Node's packages";
-    return nullptr;
-  }
-  return nlohmann::json::parse(text);
-}
 
 /// Every cycle record of `path`, in order, with its time from the first [s].
 std::vector<std::pair<double, transport::CycleRecordMessage>> cycles(

@@ -14,24 +14,13 @@
 #include <string>
 #include <vector>
 
+#include "read_parquet.hpp"
 #include "scratch.hpp"
 
 namespace comply::exporter {
 namespace {
 
-const std::string kSourceDir = COMPLY_SOURCE_DIR;
-
-/// read_parquet.mjs on `path`; null JSON (and a failure) when Node or its packages are missing.
-nlohmann::json readWithHyparquet(const std::filesystem::path& path) {
-  const auto [status, text] = testing::runCommand(
-      "node " + kSourceDir + "/tests/export/read_parquet.mjs '" + path.string() + "'");
-  if (status != 0 || text.empty()) {
-    ADD_FAILURE() << "read_parquet.mjs failed (exit " << status << "): run "
-                  << "scripts/install-deps.sh to install Node's packages";
-    return nullptr;
-  }
-  return nlohmann::json::parse(text);
-}
+using test::readWithHyparquet;
 
 template <typename Call>
 void expectRefusal(Call call, const std::string& fragment) {
