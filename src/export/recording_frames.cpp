@@ -37,6 +37,17 @@ void append(std::vector<float>& column, const Values& values) {
   }
 }
 
+/// A joint vector of `dof` entries; NaN for each where the record has none (a host without
+/// effort readings), so that every row keeps the feature's width.
+template <typename Values>
+void appendJoints(std::vector<float>& column, const Values& values, int dof) {
+  if (static_cast<int>(values.size()) == dof) {
+    append(column, values);
+  } else {
+    column.insert(column.end(), static_cast<std::size_t>(dof), kNaN);
+  }
+}
+
 /// A 3x3 block, row after row.
 void appendRowMajor(std::vector<float>& column, const Eigen::Matrix3d& block) {
   for (int row = 0; row < 3; ++row) {
@@ -74,9 +85,9 @@ class FrameSampler {
     columns_.frame_index.push_back(next_);
     columns_.timestamp.push_back(static_cast<float>(static_cast<double>(next_) / fps_));
     const transport::ControllerStateMessage& s = record.state;
-    append(columns_.state, s.position);
-    append(columns_.velocity, s.velocity);
-    append(columns_.effort, s.effort);
+    append(columns_.state, s.position);  // the episode's joints, checked as it arrived
+    appendJoints(columns_.velocity, s.velocity, dof_);
+    appendJoints(columns_.effort, s.effort, dof_);
     append(columns_.tcp_pose, s.tcp_position);
     append(columns_.tcp_pose, s.tcp_orientation);
     append(columns_.contact_wrench, s.contact_wrench);
@@ -117,9 +128,9 @@ class FrameSampler {
       return;
     }
     const JointCommand& c = record.joint_in_force.front().command;
-    append(columns_.action, c.position);
-    append(columns_.stiffness, c.stiffness);
-    append(columns_.damping, c.damping);
+    appendJoints(columns_.action, c.position, dof_);
+    appendJoints(columns_.stiffness, c.stiffness, dof_);
+    appendJoints(columns_.damping, c.damping, dof_);
   }
 
   double fps_;
@@ -129,8 +140,12 @@ class FrameSampler {
   Columns columns_;
 };
 
-double seconds(const transport::Stamp& stamp) {
-  return static_cast<double>(stamp.sec) + 1e-9 * static_cast<double>(stamp.nanosec);
+/// A stamp in whole nanoseconds: a wall-clock stamp (about 1.7e9 s) as a double in seconds
+/// would keep only a quarter of a microsecond, too coarse to tell which cycle is in force at
+/// a frame time a cycle falls on.
+std::int64_t nanoseconds(const transport::Stamp& stamp) {
+  return static_cast<std::int64_t>(stamp.sec) * 1'000'000'000 +
+         static_cast<std::int64_t>(stamp.nanosec);
 }
 
 /// The table of one episode's sampled frames.
@@ -171,8 +186,8 @@ struct EpisodeInProgress {
   EpisodeFrames episode;
   std::optional<FrameSampler> sampler;
   std::optional<CycleRecordMessage> previous;
-  double first_s = 0.0;
-  double last_s = 0.0;
+  std::int64_t first_ns = 0;
+  std::int64_t last_ns = 0;
 };
 
 }  // namespace
@@ -192,10 +207,11 @@ std::vector<EpisodeFrames> recordingEpisodes(const std::filesystem::path& record
     if (!current.sampler) {
       return;
     }
-    current.sampler->through(current.last_s - current.first_s, *current.previous);
+    const double duration_s = 1e-9 * static_cast<double>(current.last_ns - current.first_ns);
+    current.sampler->through(duration_s, *current.previous);
     EpisodeFrames& episode = current.episode;
     episode.frames = current.sampler->frames();
-    episode.duration_s = current.last_s - current.first_s;
+    episode.duration_s = duration_s;
     tabulate(current.sampler->columns(),
              first_episode_index + static_cast<std::int64_t>(episodes.size()), next_index,
              task_index, episode);
@@ -228,24 +244,25 @@ std::vector<EpisodeFrames> recordingEpisodes(const std::filesystem::path& record
     if (current.previous && cycle.state.cycle <= current.previous->state.cycle) {
       finish();
     }
-    const double time_s = seconds(cycle.state.header.stamp);
+    const std::int64_t time_ns = nanoseconds(cycle.state.header.stamp);
     EpisodeFrames& episode = current.episode;
     if (!current.sampler) {
       episode.dof = static_cast<int>(cycle.state.position.size());
       episode.cartesian = cycle.state.command_kind == transport::WireCommandKind::kCartesian;
       episode.joint_names = cycle.state.joint_names;
       current.sampler.emplace(fps, episode.dof, episode.cartesian);
-      current.first_s = time_s;
-    } else if (time_s < current.last_s) {
+      current.first_ns = time_ns;
+    } else if (time_ns < current.last_ns) {
       error = which + " is stamped before the one before it";
       return;
     } else if (cycle.state.joint_names != episode.joint_names) {
       error = which + " is of other joints than the episode's first";
       return;
     } else {
-      current.sampler->until(time_s - current.first_s, *current.previous);
+      current.sampler->until(1e-9 * static_cast<double>(time_ns - current.first_ns),
+                             *current.previous);
     }
-    current.last_s = time_s;
+    current.last_ns = time_ns;
     current.previous = std::move(cycle);
   };
   // The channels first (a pass without messages), then the cycle channel's records.
