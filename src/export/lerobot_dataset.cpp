@@ -67,6 +67,31 @@ void writeText(const std::filesystem::path& path, const std::string& text) {
   }
 }
 
+/// meta/episodes: each episode's index, length, its rows in the one data file, the recording.
+void writeEpisodes(const std::filesystem::path& path, const std::vector<EpisodeFrames>& episodes,
+                   const std::vector<std::string>& sources) {
+  std::vector<std::int64_t> index, length, zeros(episodes.size(), 0), from, to;
+  std::int64_t row = 0;
+  for (std::size_t e = 0; e < episodes.size(); ++e) {
+    index.push_back(static_cast<std::int64_t>(e));
+    length.push_back(episodes[e].frames);
+    from.push_back(row);
+    row += episodes[e].frames;
+    to.push_back(row);
+  }
+  ParquetTable table;
+  table.addInt64("episode_index", index);
+  table.addInt64("length", length);
+  table.addInt64("data/chunk_index", zeros);
+  table.addInt64("data/file_index", zeros);
+  table.addInt64("dataset_from_index", from);
+  table.addInt64("dataset_to_index", to);
+  table.addInt64("meta/episodes/chunk_index", zeros);
+  table.addInt64("meta/episodes/file_index", zeros);
+  table.addString("comply/recording", sources);
+  table.write(path);
+}
+
 }  // namespace
 
 LeRobotSummary writeLeRobotDataset(const std::filesystem::path& folder,
@@ -105,26 +130,7 @@ LeRobotSummary writeLeRobotDataset(const std::filesystem::path& folder,
   std::filesystem::create_directories(episodes_file.parent_path());
   data.write(data_file);
 
-  ParquetTable episode_table;
-  std::vector<std::int64_t> index, length, zeros(episodes.size(), 0), from, to;
-  std::int64_t row = 0;
-  for (std::size_t e = 0; e < episodes.size(); ++e) {
-    index.push_back(static_cast<std::int64_t>(e));
-    length.push_back(episodes[e].frames);
-    from.push_back(row);
-    row += episodes[e].frames;
-    to.push_back(row);
-  }
-  episode_table.addInt64("episode_index", index);
-  episode_table.addInt64("length", length);
-  episode_table.addInt64("data/chunk_index", zeros);
-  episode_table.addInt64("data/file_index", zeros);
-  episode_table.addInt64("dataset_from_index", from);
-  episode_table.addInt64("dataset_to_index", to);
-  episode_table.addInt64("meta/episodes/chunk_index", zeros);
-  episode_table.addInt64("meta/episodes/file_index", zeros);
-  episode_table.addString("comply/recording", sources);
-  episode_table.write(episodes_file);
+  writeEpisodes(episodes_file, episodes, sources);
 
   ParquetTable tasks;
   tasks.addInt64("task_index", {0});

@@ -168,107 +168,80 @@ void ParquetTable::addMetadata(const std::string& key, const std::string& value)
   metadata_.emplace_back(key, value);
 }
 
-std::vector<std::uint8_t> ParquetTable::serialize(std::int64_t row_group_rows) const {
-  if (row_group_rows < 1) {
-    throw std::invalid_argument("parquet: a row group needs at least one row");
-  }
-  Bytes file = {'P', 'A', 'R', '1'};
-  // What the footer says of each column chunk, per row group.
-  struct Chunk {
-    std::int64_t offset;
-    std::int64_t size;
-    std::int64_t values;
-  };
-  std::vector<std::vector<Chunk>> groups;
-  std::vector<std::int64_t> group_rows;
-  for (std::int64_t first = 0; first < rows_; first += row_group_rows) {
-    const std::int64_t count = std::min(row_group_rows, rows_ - first);
-    std::vector<Chunk> chunks;
-    for (const Column& column : columns_) {
-      Bytes page;
-      std::int64_t values = count;
-      const auto begin = static_cast<std::size_t>(first);
-      const auto end = static_cast<std::size_t>(first + count);
-      switch (column.kind) {
-        case Kind::kInt64:
-          for (std::size_t i = begin; i < end; ++i) {
-            appendLittleEndian(page, column.int64s[i]);
-          }
-          break;
-        case Kind::kFloat:
-          for (std::size_t i = begin; i < end; ++i) {
-            appendLittleEndian(page, column.floats[i]);
-          }
-          break;
-        case Kind::kDouble:
-          for (std::size_t i = begin; i < end; ++i) {
-            appendLittleEndian(page, column.doubles[i]);
-          }
-          break;
-        case Kind::kString:
-          for (std::size_t i = begin; i < end; ++i) {
-            const std::string& text = column.strings[i];
-            appendLittleEndian(page,
-                               static_cast<std::uint32_t>(checkedSize(text.size(), column.name)));
-            page.insert(page.end(), text.begin(), text.end());
-          }
-          break;
-        case Kind::kFloatList: {
-          const auto width = static_cast<std::size_t>(column.width);
-          values = count * column.width;
-          // A new row starts at repetition level 0, its other elements repeat at 1; every
-          // element is present, at the definition level of the repeated group (1).
-          std::vector<std::uint8_t> repetition(static_cast<std::size_t>(values), 1);
-          for (std::size_t row = 0; row < static_cast<std::size_t>(count); ++row) {
-            repetition[row * width] = 0;
-          }
-          appendLevels(page, repetition);
-          appendLevels(page, std::vector<std::uint8_t>(static_cast<std::size_t>(values), 1));
-          for (std::size_t i = begin * width; i < end * width; ++i) {
-            appendLittleEndian(page, column.floats[i]);
-          }
-          break;
-        }
-      }
-      Bytes header;
-      Thrift thrift(header);
-      thrift.beginStruct();  // PageHeader
-      thrift.fieldI32(1, kPageData);
-      thrift.fieldI32(2, checkedSize(page.size(), column.name));
-      thrift.fieldI32(3, checkedSize(page.size(), column.name));
-      thrift.fieldStruct(5);  // DataPageHeader
-      thrift.fieldI32(1, checkedSize(static_cast<std::size_t>(values), column.name));
-      thrift.fieldI32(2, kEncodingPlain);
-      thrift.fieldI32(3, kEncodingRle);
-      thrift.fieldI32(4, kEncodingRle);
-      thrift.endStruct();
-      thrift.endStruct();
-      const auto offset = static_cast<std::int64_t>(file.size());
-      file.insert(file.end(), header.begin(), header.end());
-      file.insert(file.end(), page.begin(), page.end());
-      chunks.push_back({offset, static_cast<std::int64_t>(header.size() + page.size()), values});
+std::vector<std::uint8_t> ParquetTable::encodePage(const Column& column, std::int64_t first,
+                                                   std::int64_t count, std::int64_t& values) {
+  Bytes page;
+  values = count;
+  const auto begin = static_cast<std::size_t>(first);
+  const auto end = static_cast<std::size_t>(first + count);
+  const auto plain = [&](const auto& source, std::size_t from, std::size_t to) {
+    for (std::size_t i = from; i < to; ++i) {
+      appendLittleEndian(page, source[i]);
     }
-    groups.push_back(std::move(chunks));
-    group_rows.push_back(count);
+  };
+  switch (column.kind) {
+    case Kind::kInt64:
+      plain(column.int64s, begin, end);
+      break;
+    case Kind::kFloat:
+      plain(column.floats, begin, end);
+      break;
+    case Kind::kDouble:
+      plain(column.doubles, begin, end);
+      break;
+    case Kind::kString:
+      for (std::size_t i = begin; i < end; ++i) {
+        const std::string& text = column.strings[i];
+        appendLittleEndian(page, static_cast<std::uint32_t>(checkedSize(text.size(), column.name)));
+        page.insert(page.end(), text.begin(), text.end());
+      }
+      break;
+    case Kind::kFloatList: {
+      const auto width = static_cast<std::size_t>(column.width);
+      values = count * column.width;
+      // A new row starts at repetition level 0, its other elements repeat at 1; every element is
+      // present, at the definition level of the repeated group (1).
+      std::vector<std::uint8_t> repetition(static_cast<std::size_t>(values), 1);
+      for (std::size_t row = 0; row < static_cast<std::size_t>(count); ++row) {
+        repetition[row * width] = 0;
+      }
+      appendLevels(page, repetition);
+      appendLevels(page, std::vector<std::uint8_t>(static_cast<std::size_t>(values), 1));
+      plain(column.floats, begin * width, end * width);
+      break;
+    }
   }
+  Bytes header;
+  Thrift thrift(header);
+  thrift.beginStruct();  // PageHeader
+  thrift.fieldI32(1, kPageData);
+  thrift.fieldI32(2, checkedSize(page.size(), column.name));
+  thrift.fieldI32(3, checkedSize(page.size(), column.name));
+  thrift.fieldStruct(5);  // DataPageHeader
+  thrift.fieldI32(1, checkedSize(static_cast<std::size_t>(values), column.name));
+  thrift.fieldI32(2, kEncodingPlain);
+  thrift.fieldI32(3, kEncodingRle);
+  thrift.fieldI32(4, kEncodingRle);
+  thrift.endStruct();
+  thrift.endStruct();
+  header.insert(header.end(), page.begin(), page.end());
+  return header;
+}
 
-  Bytes footer;
-  Thrift thrift(footer);
-  thrift.beginStruct();   // FileMetaData
-  thrift.fieldI32(1, 1);  // version
-  std::size_t schema_elements = 1;
+void ParquetTable::encodeSchema(ThriftCompactWriter& thrift) const {
+  std::size_t elements = 1;
   for (const Column& column : columns_) {
-    schema_elements += column.kind == Kind::kFloatList ? 3 : 1;
+    elements += column.kind == Kind::kFloatList ? 3 : 1;
   }
-  thrift.fieldList(2, Thrift::Type::kStruct, schema_elements);
+  thrift.fieldList(2, Thrift::Type::kStruct, elements);
   thrift.beginStruct();  // the root
   thrift.fieldString(4, "schema");
   thrift.fieldI32(5, static_cast<std::int32_t>(columns_.size()));
   thrift.endStruct();
   for (const Column& column : columns_) {
-    if (column.kind == Kind::kFloatList) {
-      thrift.beginStruct();
-      thrift.fieldI32(3, kRequired);
+    thrift.beginStruct();
+    if (column.kind == Kind::kFloatList) {  // required group (LIST) { repeated group list {
+      thrift.fieldI32(3, kRequired);        //   required float element; } }
       thrift.fieldString(4, column.name);
       thrift.fieldI32(5, 1);
       thrift.fieldI32(6, kConvertedList);
@@ -289,7 +262,6 @@ std::vector<std::uint8_t> ParquetTable::serialize(std::int64_t row_group_rows) c
       thrift.endStruct();
       continue;
     }
-    thrift.beginStruct();
     thrift.fieldI32(1, physicalType(column.kind));
     thrift.fieldI32(3, kRequired);
     thrift.fieldString(4, column.name);
@@ -302,41 +274,74 @@ std::vector<std::uint8_t> ParquetTable::serialize(std::int64_t row_group_rows) c
     }
     thrift.endStruct();
   }
+}
+
+void ParquetTable::encodeRowGroup(ThriftCompactWriter& thrift,
+                                  const std::vector<ChunkPlace>& chunks, std::int64_t rows) const {
+  thrift.beginStruct();  // RowGroup
+  thrift.fieldList(1, Thrift::Type::kStruct, columns_.size());
+  std::int64_t bytes = 0;
+  for (std::size_t c = 0; c < columns_.size(); ++c) {
+    const Column& column = columns_[c];
+    const ChunkPlace& chunk = chunks[c];
+    bytes += chunk.size;
+    thrift.beginStruct();  // ColumnChunk
+    thrift.fieldI64(2, chunk.offset);
+    thrift.fieldStruct(3);  // ColumnMetaData
+    thrift.fieldI32(1, physicalType(column.kind));
+    thrift.fieldList(2, Thrift::Type::kI32, 2);
+    thrift.elementI32(kEncodingPlain);
+    thrift.elementI32(kEncodingRle);
+    const bool list = column.kind == Kind::kFloatList;
+    thrift.fieldList(3, Thrift::Type::kBinary, list ? 3 : 1);
+    thrift.elementString(column.name);
+    if (list) {
+      thrift.elementString("list");
+      thrift.elementString("element");
+    }
+    thrift.fieldI32(4, kCodecUncompressed);
+    thrift.fieldI64(5, chunk.values);
+    thrift.fieldI64(6, chunk.size);
+    thrift.fieldI64(7, chunk.size);
+    thrift.fieldI64(9, chunk.offset);
+    thrift.endStruct();
+    thrift.endStruct();
+  }
+  thrift.fieldI64(2, bytes);
+  thrift.fieldI64(3, rows);
+  thrift.endStruct();
+}
+
+std::vector<std::uint8_t> ParquetTable::serialize(std::int64_t row_group_rows) const {
+  if (row_group_rows < 1) {
+    throw std::invalid_argument("parquet: a row group needs at least one row");
+  }
+  Bytes file = {'P', 'A', 'R', '1'};
+  std::vector<std::vector<ChunkPlace>> groups;
+  std::vector<std::int64_t> group_rows;
+  for (std::int64_t first = 0; first < rows_; first += row_group_rows) {
+    const std::int64_t count = std::min(row_group_rows, rows_ - first);
+    std::vector<ChunkPlace> chunks;
+    for (const Column& column : columns_) {
+      std::int64_t values = 0;
+      const Bytes page = encodePage(column, first, count, values);
+      chunks.push_back(
+          {static_cast<std::int64_t>(file.size()), static_cast<std::int64_t>(page.size()), values});
+      file.insert(file.end(), page.begin(), page.end());
+    }
+    groups.push_back(std::move(chunks));
+    group_rows.push_back(count);
+  }
+
+  Bytes footer;
+  Thrift thrift(footer);
+  thrift.beginStruct();   // FileMetaData
+  thrift.fieldI32(1, 1);  // version
+  encodeSchema(thrift);
   thrift.fieldI64(3, rows_);
   thrift.fieldList(4, Thrift::Type::kStruct, groups.size());
   for (std::size_t g = 0; g < groups.size(); ++g) {
-    thrift.beginStruct();  // RowGroup
-    thrift.fieldList(1, Thrift::Type::kStruct, columns_.size());
-    std::int64_t group_bytes = 0;
-    for (std::size_t c = 0; c < columns_.size(); ++c) {
-      const Column& column = columns_[c];
-      const Chunk& chunk = groups[g][c];
-      group_bytes += chunk.size;
-      thrift.beginStruct();  // ColumnChunk
-      thrift.fieldI64(2, chunk.offset);
-      thrift.fieldStruct(3);  // ColumnMetaData
-      thrift.fieldI32(1, physicalType(column.kind));
-      thrift.fieldList(2, Thrift::Type::kI32, 2);
-      thrift.elementI32(kEncodingPlain);
-      thrift.elementI32(kEncodingRle);
-      const bool list = column.kind == Kind::kFloatList;
-      thrift.fieldList(3, Thrift::Type::kBinary, list ? 3 : 1);
-      thrift.elementString(column.name);
-      if (list) {
-        thrift.elementString("list");
-        thrift.elementString("element");
-      }
-      thrift.fieldI32(4, kCodecUncompressed);
-      thrift.fieldI64(5, chunk.values);
-      thrift.fieldI64(6, chunk.size);
-      thrift.fieldI64(7, chunk.size);
-      thrift.fieldI64(9, chunk.offset);
-      thrift.endStruct();
-      thrift.endStruct();
-    }
-    thrift.fieldI64(2, group_bytes);
-    thrift.fieldI64(3, group_rows[g]);
-    thrift.endStruct();
+    encodeRowGroup(thrift, groups[g], group_rows[g]);
   }
   if (!metadata_.empty()) {
     thrift.fieldList(5, Thrift::Type::kStruct, metadata_.size());

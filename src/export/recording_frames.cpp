@@ -6,7 +6,9 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <span>
 #include <stdexcept>
+#include <string>
 
 #include "comply/record/mcap_reader.hpp"
 #include "comply/transport/cdr.hpp"
@@ -181,14 +183,116 @@ void tabulate(Columns& columns, std::int64_t episode_index, std::int64_t first_i
   }
 }
 
-/// One episode as its cycle records arrive: where it starts, the last record, the frames so far.
-struct EpisodeInProgress {
-  EpisodeFrames episode;
-  std::optional<FrameSampler> sampler;
-  std::optional<CycleRecordMessage> previous;
-  std::int64_t first_ns = 0;
-  std::int64_t last_ns = 0;
+/// A recording's cycle records, in file order, into episodes: a new one wherever the host's cycle
+/// count starts again (Python's Sim: at every reset).
+class EpisodeSplitter {
+ public:
+  EpisodeSplitter(std::string name, double fps, std::int64_t first_episode_index,
+                  std::int64_t first_index, std::int64_t task_index)
+      : name_(std::move(name)),
+        fps_(fps),
+        first_episode_index_(first_episode_index),
+        next_index_(first_index),
+        task_index_(task_index) {}
+
+  /// One record's bytes; after an error (error()) the rest are ignored.
+  void add(std::span<const std::uint8_t> bytes) {
+    if (!error_.empty()) {
+      return;
+    }
+    const std::string which = name_ + ": cycle record " + std::to_string(records_++);
+    CycleRecordMessage cycle;
+    if (!transport::decodeCdr(bytes, cycle)) {
+      error_ = which + " does not decode";
+      return;
+    }
+    const transport::ControllerStateMessage& state = cycle.state;
+    if (state.position.size() != state.joint_names.size() || state.position.empty()) {
+      error_ = which + " has " + std::to_string(state.position.size()) + " joint positions for " +
+               std::to_string(state.joint_names.size()) + " joints";
+      return;
+    }
+    if (previous_ && state.cycle <= previous_->state.cycle) {
+      finish();
+    }
+    const std::int64_t time_ns = nanoseconds(state.header.stamp);
+    if (!sampler_) {
+      episode_.dof = static_cast<int>(state.position.size());
+      episode_.cartesian = state.command_kind == transport::WireCommandKind::kCartesian;
+      episode_.joint_names = state.joint_names;
+      sampler_.emplace(fps_, episode_.dof, episode_.cartesian);
+      first_ns_ = time_ns;
+    } else if (time_ns < last_ns_) {
+      error_ = which + " is stamped before the one before it";
+      return;
+    } else if (state.joint_names != episode_.joint_names) {
+      error_ = which + " is of other joints than the episode's first";
+      return;
+    } else {
+      sampler_->until(1e-9 * static_cast<double>(time_ns - first_ns_), *previous_);
+    }
+    last_ns_ = time_ns;
+    previous_ = std::move(cycle);
+  }
+
+  /// The episode in progress, sampled to its last record, into episodes().
+  void finish() {
+    if (!sampler_) {
+      return;
+    }
+    const double duration_s = 1e-9 * static_cast<double>(last_ns_ - first_ns_);
+    sampler_->through(duration_s, *previous_);
+    episode_.frames = sampler_->frames();
+    episode_.duration_s = duration_s;
+    tabulate(sampler_->columns(),
+             first_episode_index_ + static_cast<std::int64_t>(episodes_.size()), next_index_,
+             task_index_, episode_);
+    next_index_ += episode_.frames;
+    episodes_.push_back(std::move(episode_));
+    episode_ = EpisodeFrames{};
+    sampler_.reset();
+    previous_.reset();
+  }
+
+  [[nodiscard]] const std::string& error() const { return error_; }
+  std::vector<EpisodeFrames>& episodes() { return episodes_; }
+
+ private:
+  std::string name_;
+  double fps_;
+  std::int64_t first_episode_index_;
+  std::int64_t next_index_;
+  std::int64_t task_index_;
+  std::uint64_t records_ = 0;
+  std::string error_;
+  std::vector<EpisodeFrames> episodes_;
+  // The episode in progress: its frames so far, its first and last record's times, its last.
+  EpisodeFrames episode_;
+  std::optional<FrameSampler> sampler_;
+  std::optional<CycleRecordMessage> previous_;
+  std::int64_t first_ns_ = 0;
+  std::int64_t last_ns_ = 0;
 };
+
+/// The id of the recording's cycle channel; throws naming the file without exactly one.
+std::uint16_t cycleChannel(const std::string& name) {
+  std::optional<std::uint16_t> found;
+  for (const record::McapChannelInfo& channel : record::readMcap(name).channels) {
+    if (channel.topic.ends_with("/cycle") && channel.schema_name.ends_with("CycleRecord")) {
+      if (found) {
+        throw std::runtime_error(name + ": more than one cycle channel (" + channel.topic +
+                                 "): one host's recording per file");
+      }
+      found = channel.id;
+    }
+  }
+  if (!found) {
+    throw std::runtime_error(name +
+                             ": no cycle channel (/<name>/cycle, comply_msgs/CycleRecord): " +
+                             "record with comply sim --record or comply run --record");
+  }
+  return *found;
+}
 
 }  // namespace
 
@@ -200,96 +304,22 @@ std::vector<EpisodeFrames> recordingEpisodes(const std::filesystem::path& record
                                 std::to_string(fps));
   }
   const std::string name = recording.string();
-  std::vector<EpisodeFrames> episodes;
-  EpisodeInProgress current;
-  std::int64_t next_index = first_index;
-  const auto finish = [&] {
-    if (!current.sampler) {
-      return;
-    }
-    const double duration_s = 1e-9 * static_cast<double>(current.last_ns - current.first_ns);
-    current.sampler->through(duration_s, *current.previous);
-    EpisodeFrames& episode = current.episode;
-    episode.frames = current.sampler->frames();
-    episode.duration_s = duration_s;
-    tabulate(current.sampler->columns(),
-             first_episode_index + static_cast<std::int64_t>(episodes.size()), next_index,
-             task_index, episode);
-    next_index += episode.frames;
-    episodes.push_back(std::move(episode));
-    current = EpisodeInProgress{};
-  };
-  std::uint16_t cycle_channel = 0;
-  bool found_channel = false;
-  std::uint64_t records = 0;
-  std::string error;
-  const auto on_message = [&](const record::McapMessageView& message) {
-    if (message.channel_id != cycle_channel || !error.empty()) {
-      return;
-    }
-    CycleRecordMessage cycle;
-    if (!transport::decodeCdr(message.data, cycle)) {
-      error = name + ": cycle record " + std::to_string(records) + " does not decode";
-      return;
-    }
-    const std::string which = name + ": cycle record " + std::to_string(records);
-    ++records;
-    if (cycle.state.position.size() != cycle.state.joint_names.size() ||
-        cycle.state.position.empty()) {
-      error = which + " has " + std::to_string(cycle.state.position.size()) +
-              " joint positions for " + std::to_string(cycle.state.joint_names.size()) + " joints";
-      return;
-    }
-    // A host's cycle count starts at 0 with each episode (Python's Sim: at every reset).
-    if (current.previous && cycle.state.cycle <= current.previous->state.cycle) {
-      finish();
-    }
-    const std::int64_t time_ns = nanoseconds(cycle.state.header.stamp);
-    EpisodeFrames& episode = current.episode;
-    if (!current.sampler) {
-      episode.dof = static_cast<int>(cycle.state.position.size());
-      episode.cartesian = cycle.state.command_kind == transport::WireCommandKind::kCartesian;
-      episode.joint_names = cycle.state.joint_names;
-      current.sampler.emplace(fps, episode.dof, episode.cartesian);
-      current.first_ns = time_ns;
-    } else if (time_ns < current.last_ns) {
-      error = which + " is stamped before the one before it";
-      return;
-    } else if (cycle.state.joint_names != episode.joint_names) {
-      error = which + " is of other joints than the episode's first";
-      return;
-    } else {
-      current.sampler->until(1e-9 * static_cast<double>(time_ns - current.first_ns),
-                             *current.previous);
-    }
-    current.last_ns = time_ns;
-    current.previous = std::move(cycle);
-  };
   // The channels first (a pass without messages), then the cycle channel's records.
-  for (const record::McapChannelInfo& channel : record::readMcap(name).channels) {
-    if (channel.topic.ends_with("/cycle") && channel.schema_name.ends_with("CycleRecord")) {
-      if (found_channel) {
-        throw std::runtime_error(name + ": more than one cycle channel (" + channel.topic +
-                                 "): one host's recording per file");
-      }
-      cycle_channel = channel.id;
-      found_channel = true;
+  const std::uint16_t channel = cycleChannel(name);
+  EpisodeSplitter splitter(name, fps, first_episode_index, first_index, task_index);
+  (void)record::readMcap(name, [&](const record::McapMessageView& message) {
+    if (message.channel_id == channel) {
+      splitter.add(message.data);
     }
+  });
+  if (!splitter.error().empty()) {
+    throw std::runtime_error(splitter.error());
   }
-  if (!found_channel) {
-    throw std::runtime_error(name +
-                             ": no cycle channel (/<name>/cycle, comply_msgs/CycleRecord): " +
-                             "record with comply sim --record or comply run --record");
-  }
-  (void)record::readMcap(name, on_message);
-  if (!error.empty()) {
-    throw std::runtime_error(error);
-  }
-  finish();
-  if (episodes.empty()) {
+  splitter.finish();
+  if (splitter.episodes().empty()) {
     throw std::runtime_error(name + ": no cycle record in the cycle channel");
   }
-  return episodes;
+  return std::move(splitter.episodes());
 }
 
 EpisodeFrames recordingFrames(const std::filesystem::path& recording, double fps,

@@ -21,6 +21,8 @@
 
 namespace comply::exporter {
 
+class ThriftCompactWriter;
+
 class ParquetTable {
  public:
   /// Columns in the order they are added. Every column has the table's rows (the first column
@@ -56,8 +58,21 @@ class ParquetTable {
     std::vector<double> doubles = {};
     std::vector<std::string> strings = {};
   };
+  /// Where a column chunk's page landed in the file, for the footer.
+  struct ChunkPlace {
+    std::int64_t offset;
+    std::int64_t size;
+    std::int64_t values;
+  };
   void add(Column column, std::int64_t column_rows);
   static std::int32_t physicalType(Kind kind) noexcept;
+  /// Rows [first, first + count) of `column` as one data page with its header; `values`: the
+  /// leaf values in it.
+  static std::vector<std::uint8_t> encodePage(const Column& column, std::int64_t first,
+                                              std::int64_t count, std::int64_t& values);
+  void encodeSchema(ThriftCompactWriter& thrift) const;
+  void encodeRowGroup(ThriftCompactWriter& thrift, const std::vector<ChunkPlace>& chunks,
+                      std::int64_t rows) const;
 
   std::vector<Column> columns_;
   std::vector<std::pair<std::string, std::string>> metadata_;
