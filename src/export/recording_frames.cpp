@@ -200,15 +200,16 @@ class EpisodeSplitter {
     if (!error_.empty()) {
       return;
     }
-    const std::string which = name_ + ": cycle record " + std::to_string(records_++);
+    const std::uint64_t record = records_++;
+    const auto which = [&] { return name_ + ": cycle record " + std::to_string(record); };
     CycleRecordMessage cycle;
     if (!transport::decodeCdr(bytes, cycle)) {
-      error_ = which + " does not decode";
+      error_ = which() + " does not decode";
       return;
     }
     const transport::ControllerStateMessage& state = cycle.state;
     if (state.position.size() != state.joint_names.size() || state.position.empty()) {
-      error_ = which + " has " + std::to_string(state.position.size()) + " joint positions for " +
+      error_ = which() + " has " + std::to_string(state.position.size()) + " joint positions for " +
                std::to_string(state.joint_names.size()) + " joints";
       return;
     }
@@ -223,10 +224,10 @@ class EpisodeSplitter {
       sampler_.emplace(fps_, episode_.dof, episode_.cartesian);
       first_ns_ = time_ns;
     } else if (time_ns < last_ns_) {
-      error_ = which + " is stamped before the one before it";
+      error_ = which() + " is stamped before the one before it";
       return;
     } else if (state.joint_names != episode_.joint_names) {
-      error_ = which + " is of other joints than the episode's first";
+      error_ = which() + " is of other joints than the episode's first";
       return;
     } else {
       sampler_->until(1e-9 * static_cast<double>(time_ns - first_ns_), *previous_);
