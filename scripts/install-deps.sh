@@ -21,6 +21,7 @@ packages=(
   pybind11-dev python3-numpy
   libzstd-dev python3-zstandard
   octave
+  ffmpeg python3-distributed
 )
 
 missing=()

@@ -9,6 +9,7 @@
 
 #include "comply/export/parquet_table.hpp"
 #include "comply/export/recording_frames.hpp"
+#include "dataset_videos.hpp"
 
 namespace comply::exporter {
 namespace {
@@ -58,6 +59,22 @@ nlohmann::json features(const EpisodeFrames& first) {
   return out;
 }
 
+/// A camera's feature: its frames are in a video, a frame per row.
+nlohmann::json videoFeature(const CameraVideo& video, double fps) {
+  return {{"dtype", "video"},
+          {"shape", {video.height_px, video.width_px, 3}},
+          {"names", {"height", "width", "channels"}},
+          {"info",
+           {{"video.height", video.height_px},
+            {"video.width", video.width_px},
+            {"video.codec", "h264"},
+            {"video.pix_fmt", "yuv420p"},
+            {"video.is_depth_map", false},
+            {"video.fps", fps},
+            {"video.channels", 3},
+            {"has_audio", false}}}};
+}
+
 void writeText(const std::filesystem::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::trunc);
   out << text;
@@ -69,7 +86,8 @@ void writeText(const std::filesystem::path& path, const std::string& text) {
 
 /// meta/episodes: each episode's index, length, its rows in the one data file, the recording.
 void writeEpisodes(const std::filesystem::path& path, const std::vector<EpisodeFrames>& episodes,
-                   const std::vector<std::string>& sources) {
+                   const std::vector<std::string>& sources,
+                   const std::vector<CameraVideo>& videos) {
   std::vector<std::int64_t> index, length, zeros(episodes.size(), 0), from, to;
   std::int64_t row = 0;
   for (std::size_t e = 0; e < episodes.size(); ++e) {
@@ -88,24 +106,33 @@ void writeEpisodes(const std::filesystem::path& path, const std::vector<EpisodeF
   table.addInt64("dataset_to_index", to);
   table.addInt64("meta/episodes/chunk_index", zeros);
   table.addInt64("meta/episodes/file_index", zeros);
+  for (const CameraVideo& video : videos) {
+    const std::string prefix = "videos/" + video.key + "/";
+    table.addInt64(prefix + "chunk_index", zeros);
+    table.addInt64(prefix + "file_index", zeros);
+    table.addDouble(prefix + "from_timestamp", video.from_s);
+    table.addDouble(prefix + "to_timestamp", video.to_s);
+  }
   table.addString("comply/recording", sources);
   table.write(path);
 }
 
 }  // namespace
 
-LeRobotSummary writeLeRobotDataset(const std::filesystem::path& folder,
-                                   const std::vector<std::filesystem::path>& recordings,
-                                   const LeRobotOptions& options) {
-  if (recordings.empty()) {
-    throw std::invalid_argument("export: no recording to export");
-  }
+namespace {
+
+/// Every recording's episodes, checked to be of one shape, numbered on from each other; their
+/// camera frames into `videos` as they are read.
+std::vector<EpisodeFrames> readEpisodes(const std::vector<std::filesystem::path>& recordings,
+                                        double fps, DatasetVideos& videos,
+                                        std::vector<std::string>& sources) {
   std::vector<EpisodeFrames> episodes;
-  std::vector<std::string> sources;  // the recording of each episode
   std::int64_t frames = 0;
   for (const std::filesystem::path& recording : recordings) {
-    for (EpisodeFrames& episode : recordingEpisodes(
-             recording, options.fps, static_cast<std::int64_t>(episodes.size()), frames, 0)) {
+    std::vector<EpisodeFrames> more =
+        recordingEpisodes(recording, fps, static_cast<std::int64_t>(episodes.size()), frames, 0);
+    videos.add(recording, more);
+    for (EpisodeFrames& episode : more) {
       const EpisodeFrames& first = episodes.empty() ? episode : episodes.front();
       if (episode.cartesian != first.cartesian || episode.joint_names != first.joint_names) {
         throw std::runtime_error("export: " + recording.string() + " is of another controller " +
@@ -117,7 +144,60 @@ LeRobotSummary writeLeRobotDataset(const std::filesystem::path& folder,
       episodes.push_back(std::move(episode));
     }
   }
+  return episodes;
+}
 
+nlohmann::json info(const LeRobotOptions& options, const std::vector<EpisodeFrames>& episodes,
+                    std::int64_t frames, const std::vector<CameraVideo>& videos) {
+  const auto episode_count = static_cast<std::int64_t>(episodes.size());
+  nlohmann::json all = features(episodes.front());
+  for (const CameraVideo& video : videos) {
+    all[video.key] = videoFeature(video, options.fps);
+  }
+  return {
+      {"codebase_version", "v3.0"},
+      {"robot_type",
+       options.robot_type.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.robot_type)},
+      {"total_episodes", episode_count},
+      {"total_frames", frames},
+      {"total_tasks", 1},
+      {"chunks_size", kChunksSize},
+      {"data_files_size_in_mb", 100},
+      {"video_files_size_in_mb", 500},
+      {"fps", options.fps == std::floor(options.fps)
+                  ? nlohmann::json(static_cast<std::int64_t>(options.fps))
+                  : nlohmann::json(options.fps)},
+      {"splits", {{"train", "0:" + std::to_string(episode_count)}}},
+      {"data_path", "data/chunk-{chunk_index:03d}/file-{file_index:03d}.parquet"},
+      {"video_path", videos.empty() ? nlohmann::json(nullptr)
+                                    : nlohmann::json("videos/{video_key}/chunk-{chunk_index:03d}/"
+                                                     "file-{file_index:03d}.mp4")},
+      {"features", all},
+  };
+}
+
+}  // namespace
+
+LeRobotSummary writeLeRobotDataset(const std::filesystem::path& folder,
+                                   const std::vector<std::filesystem::path>& recordings,
+                                   const LeRobotOptions& options) {
+  if (recordings.empty()) {
+    throw std::invalid_argument("export: no recording to export");
+  }
+  if (!(options.fps > 0.0) || !std::isfinite(options.fps)) {
+    throw std::invalid_argument("export: the frame rate must be positive, not " +
+                                std::to_string(options.fps));
+  }
+  DatasetVideos videos(folder, options.fps);
+  std::vector<std::string> sources;  // the recording of each episode
+  std::vector<EpisodeFrames> episodes = readEpisodes(recordings, options.fps, videos, sources);
+  videos.finish();
+  std::int64_t frames = 0;
+  for (const EpisodeFrames& episode : episodes) {
+    frames += episode.frames;
+  }
+
+  const nlohmann::json metadata = info(options, episodes, frames, videos.cameras());
   // The frames of every episode, one after the other: each episode's columns appended.
   ParquetTable data = std::move(episodes.front().table);
   for (std::size_t e = 1; e < episodes.size(); ++e) {
@@ -129,8 +209,7 @@ LeRobotSummary writeLeRobotDataset(const std::filesystem::path& folder,
   std::filesystem::create_directories(data_file.parent_path());
   std::filesystem::create_directories(episodes_file.parent_path());
   data.write(data_file);
-
-  writeEpisodes(episodes_file, episodes, sources);
+  writeEpisodes(episodes_file, episodes, sources, videos.cameras());
 
   ParquetTable tasks;
   tasks.addInt64("task_index", {0});
@@ -138,26 +217,15 @@ LeRobotSummary writeLeRobotDataset(const std::filesystem::path& folder,
   const std::filesystem::path tasks_file = folder / "meta" / "tasks.parquet";
   tasks.write(tasks_file);
 
-  const auto episode_count = static_cast<std::int64_t>(episodes.size());
-  const nlohmann::json info = {
-      {"codebase_version", "v3.0"},
-      {"robot_type",
-       options.robot_type.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.robot_type)},
-      {"total_episodes", episode_count},
-      {"total_frames", frames},
-      {"total_tasks", 1},
-      {"chunks_size", kChunksSize},
-      {"fps", options.fps == std::floor(options.fps)
-                  ? nlohmann::json(static_cast<std::int64_t>(options.fps))
-                  : nlohmann::json(options.fps)},
-      {"splits", {{"train", "0:" + std::to_string(episode_count)}}},
-      {"data_path", "data/chunk-{chunk_index:03d}/file-{file_index:03d}.parquet"},
-      {"video_path", nullptr},
-      {"features", features(episodes.front())},
-  };
   const std::filesystem::path info_file = folder / "meta" / "info.json";
-  writeText(info_file, info.dump(4) + "\n");
-  return {episode_count, frames, {data_file, info_file, tasks_file, episodes_file}};
+  writeText(info_file, metadata.dump(4) + "\n");
+  LeRobotSummary summary{static_cast<std::int64_t>(episodes.size()),
+                         frames,
+                         {data_file, info_file, tasks_file, episodes_file}};
+  for (const CameraVideo& video : videos.cameras()) {
+    summary.files.push_back(folder / video.file);
+  }
+  return summary;
 }
 
 }  // namespace comply::exporter

@@ -245,6 +245,7 @@ class EpisodeSplitter {
     sampler_->through(duration_s, *previous_);
     episode_.frames = sampler_->frames();
     episode_.duration_s = duration_s;
+    episode_.first_stamp_ns = first_ns_;
     tabulate(sampler_->columns(),
              first_episode_index_ + static_cast<std::int64_t>(episodes_.size()), next_index_,
              task_index_, episode_);

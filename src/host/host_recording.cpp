@@ -12,6 +12,9 @@ namespace {
 
 // The command and publishing lanes see a few hundred records a second.
 constexpr std::size_t kSideLaneBytes = std::size_t{4} << 20;
+// Camera frames are PNGs of tens to hundreds of KB, a few per policy step: room for a second of
+// them at 30 fps should the disk stall.
+constexpr std::size_t kCameraLaneBytes = std::size_t{32} << 20;
 
 record::RecorderOptions recorderOptions(const std::string& path, const HostRecordingOptions& host) {
   record::RecorderOptions options;
@@ -96,6 +99,15 @@ HostRecording::HostRecording(const std::string& path,
       addMessageChannel<transport::ChunkTimingMessage>(recorder_, prefix + "chunk_timing");
   diagnostics_channel_ =
       addMessageChannel<transport::DiagnosticsMessage>(recorder_, prefix + "diagnostics");
+  if (!options.cameras.empty()) {
+    cameras_ = &recorder_.addLane("cameras", kCameraLaneBytes);
+    const std::uint16_t schema =
+        recorder_.addSchema(transport::kCompressedImageType, "ros2msg",
+                            transport::ros2MessageDefinition(transport::kCompressedImageType));
+    for (const std::string& camera : options.cameras) {
+      camera_channels_.push_back(recorder_.addChannel(schema, prefix + "camera/" + camera, {}));
+    }
+  }
   metadata["robot"] = controller.robot.name;
   metadata["plugin"] = controller.config.plugin;
   metadata["dof"] = std::to_string(controller.config.dof);
@@ -131,6 +143,15 @@ void HostRecording::outcome(const transport::CommandOutcomeMessage& message) {
 
 void HostRecording::diagnostics(const transport::DiagnosticsMessage& message) {
   push(publisher_, diagnostics_channel_, message, message.header.stamp, publisher_bytes_);
+}
+
+void HostRecording::image(std::size_t camera, const transport::CompressedImageMessage& message) {
+  if (cameras_ == nullptr || camera >= camera_channels_.size()) {
+    return;
+  }
+  transport::encodeCdr(message, camera_bytes_);
+  cameras_->push(camera_channels_[camera], message.header.stamp.nanoseconds(), camera_bytes_.data(),
+                 camera_bytes_.size());
 }
 
 void HostRecording::stop() {

@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <new>
 #include <string>
 
 #include "comply/sim/sim_error.hpp"
@@ -97,12 +98,37 @@ using PngReader = PngHandle<false>;
 
 // ---- writing -------------------------------------------------------------------------------
 
+/// Where encoded bytes go: a file, or the end of a vector.
+struct PngSink {
+  std::FILE* file = nullptr;
+  std::vector<std::uint8_t>* memory = nullptr;
+  int compression_level = -1;  ///< zlib's 0 to 9; -1 libpng's default
+};
+
+void appendToMemory(png_structp png, png_bytep data, png_size_t length) {
+  auto* out = static_cast<std::vector<std::uint8_t>*>(png_get_io_ptr(png));
+  try {
+    out->insert(out->end(), data, data + length);
+  } catch (const std::bad_alloc&) {
+    png_error(png, "out of memory");  // no exception may cross libpng's C frames
+  }
+}
+
+void flushNothing(png_structp) {}
+
 /// False when libpng reported an error (its message is in the writer's PngError).
-bool encode(PngWriter& writer, std::FILE* file, const Image& image, png_bytepp rows) {
+bool encode(PngWriter& writer, const PngSink& sink, const Image& image, png_bytepp rows) {
   if (setjmp(png_jmpbuf(writer.png)) != 0) {
     return false;
   }
-  png_init_io(writer.png, file);
+  if (sink.memory != nullptr) {
+    png_set_write_fn(writer.png, sink.memory, appendToMemory, flushNothing);
+  } else {
+    png_init_io(writer.png, sink.file);
+  }
+  if (sink.compression_level >= 0) {
+    png_set_compression_level(writer.png, sink.compression_level);
+  }
   png_set_IHDR(writer.png, writer.info, static_cast<png_uint_32>(image.width),
                static_cast<png_uint_32>(image.height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
@@ -115,11 +141,33 @@ bool encode(PngWriter& writer, std::FILE* file, const Image& image, png_bytepp r
 // ---- reading -------------------------------------------------------------------------------
 
 /// Reads the header and asks libpng to deliver 8-bit RGB whatever the file holds. False on error.
-bool readHeader(PngReader& reader, std::FILE* file, png_uint_32* width, png_uint_32* height) {
+/// Bytes in memory being read.
+struct PngSource {
+  const std::uint8_t* data;
+  std::size_t size;
+  std::size_t at = 0;
+};
+
+void readFromMemory(png_structp png, png_bytep data, png_size_t length) {
+  auto* source = static_cast<PngSource*>(png_get_io_ptr(png));
+  if (length > source->size - source->at) {
+    png_error(png, "the PNG ends early");
+  }
+  std::memcpy(data, source->data + source->at, length);
+  source->at += length;
+}
+
+/// `file`, or when null `memory`.
+bool readHeader(PngReader& reader, std::FILE* file, PngSource* memory, png_uint_32* width,
+                png_uint_32* height) {
   if (setjmp(png_jmpbuf(reader.png)) != 0) {
     return false;
   }
-  png_init_io(reader.png, file);
+  if (file != nullptr) {
+    png_init_io(reader.png, file);
+  } else {
+    png_set_read_fn(reader.png, memory, readFromMemory);
+  }
   png_read_info(reader.png, reader.info);
   png_set_expand(reader.png);  // palette -> RGB, gray < 8 bit -> 8 bit, tRNS -> alpha
   png_set_strip_16(reader.png);
@@ -167,7 +215,7 @@ void writePng(const Image& image, const std::filesystem::path& file) {
   // libpng's row pointers are non-const although writing only reads through them.
   auto* pixels = const_cast<std::uint8_t*>(image.rgb.data());
   std::vector<png_bytep> rows = rowPointers(pixels, image.width, image.height);
-  if (!encode(writer, handle.get(), image, rows.data())) {
+  if (!encode(writer, PngSink{.file = handle.get()}, image, rows.data())) {
     throw SimError("writePng: cannot write " + quoted(file) + ": " + writer.error.message);
   }
   // Buffered bytes reach the disk only here, so a full disk shows up now rather than in encode.
@@ -176,16 +224,18 @@ void writePng(const Image& image, const std::filesystem::path& file) {
   }
 }
 
-Image readPng(const std::filesystem::path& file) {
-  const FileHandle handle = openFile(file, "rb", "readPng");
+namespace {
+
+/// Reads from `file`, or when null from `memory`; errors name `what`.
+Image readPngFrom(std::FILE* file, PngSource* memory, const std::string& what) {
   PngReader reader;
   if (reader.info == nullptr) {
-    throw SimError("readPng: libpng could not allocate its state for " + quoted(file));
+    throw SimError("readPng: libpng could not allocate its state for " + what);
   }
   png_uint_32 width = 0;
   png_uint_32 height = 0;
-  if (!readHeader(reader, handle.get(), &width, &height)) {
-    throw SimError("readPng: cannot read " + quoted(file) + ": " + reader.error.message);
+  if (!readHeader(reader, file, memory, &width, &height)) {
+    throw SimError("readPng: cannot read " + what + ": " + reader.error.message);
   }
   // libpng's default user limits keep both dimensions far below INT_MAX.
   Image image;
@@ -194,9 +244,41 @@ Image readPng(const std::filesystem::path& file) {
   image.rgb.resize(byteCount(image.width, image.height));
   std::vector<png_bytep> rows = rowPointers(image.rgb.data(), image.width, image.height);
   if (!readRows(reader, rows.data())) {
-    throw SimError("readPng: cannot read " + quoted(file) + ": " + reader.error.message);
+    throw SimError("readPng: cannot read " + what + ": " + reader.error.message);
   }
   return image;
+}
+
+}  // namespace
+
+Image readPng(const std::filesystem::path& file) {
+  const FileHandle handle = openFile(file, "rb", "readPng");
+  return readPngFrom(handle.get(), nullptr, quoted(file));
+}
+
+std::vector<std::uint8_t> encodePng(const Image& image, int compression_level) {
+  checkLayout(image, "encodePng");
+  if (image.empty()) {
+    throw SimError("encodePng: cannot encode an empty image");
+  }
+  PngWriter writer;
+  if (writer.info == nullptr) {
+    throw SimError("encodePng: libpng could not allocate its state");
+  }
+  std::vector<std::uint8_t> bytes;
+  bytes.reserve(image.rgb.size() / 2 + 1024);
+  auto* pixels = const_cast<std::uint8_t*>(image.rgb.data());
+  std::vector<png_bytep> rows = rowPointers(pixels, image.width, image.height);
+  const PngSink sink{.memory = &bytes, .compression_level = std::clamp(compression_level, 0, 9)};
+  if (!encode(writer, sink, image, rows.data())) {
+    throw SimError(std::string("encodePng: ") + writer.error.message);
+  }
+  return bytes;
+}
+
+Image decodePng(std::span<const std::uint8_t> bytes) {
+  PngSource source{bytes.data(), bytes.size()};
+  return readPngFrom(nullptr, &source, "a PNG of " + std::to_string(bytes.size()) + " bytes");
 }
 
 Image sideBySide(const std::vector<Image>& images, int gap_px,

@@ -9,6 +9,7 @@
 #include <EGL/eglext.h>
 #include <GL/gl.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <mutex>
@@ -283,10 +284,9 @@ Renderer::Renderer(const mjModel& model, int width, int height) {
 
 Renderer::~Renderer() = default;
 
-Image Renderer::render(const mjData& data, const CameraView& view) {
-  Context& c = *context_;
-  c.makeCurrent();
+namespace {
 
+mjvCamera freeCamera(const CameraView& view) {
   mjvCamera camera;
   mjv_defaultCamera(&camera);
   camera.type = mjCAMERA_FREE;
@@ -296,11 +296,43 @@ Image Renderer::render(const mjData& data, const CameraView& view) {
   camera.distance = view.distance_m;
   camera.azimuth = view.azimuth_deg;
   camera.elevation = view.elevation_deg;
+  return camera;
+}
 
+/// Puts both eyes of the scene's camera at `pose` (mono rendering averages them) with its field
+/// of view: MuJoCo 2.2 cannot place a free camera by pose, and a wrist camera needs one.
+void placeCamera(const mjModel& model, const CameraPose& pose, mjvScene& scene) {
+  const double near_m = model.vis.map.znear * model.stat.extent;
+  const double half_height = near_m * std::tan(pose.fovy_deg * mjPI / 360.0);
+  for (mjvGLCamera& eye : scene.camera) {
+    for (int i = 0; i < 3; ++i) {
+      eye.pos[i] = static_cast<float>(pose.position[i]);
+      eye.forward[i] = static_cast<float>(pose.forward[i]);
+      eye.up[i] = static_cast<float>(pose.up[i]);
+    }
+    eye.frustum_center = 0.0F;
+    eye.frustum_near = static_cast<float>(near_m);
+    eye.frustum_far = static_cast<float>(model.vis.map.zfar * model.stat.extent);
+    eye.frustum_bottom = static_cast<float>(-half_height);
+    eye.frustum_top = static_cast<float>(half_height);
+  }
+}
+
+}  // namespace
+
+void Renderer::draw(const mjData& data, const CameraView& view, const CameraPose* pose,
+                    Image& image) {
+  Context& c = *context_;
+  c.makeCurrent();
+
+  mjvCamera camera = freeCamera(view);
   // mjv_updateScene takes mjData* only for scratch space on its stack, which it restores; the
   // state it reads is left as it was, so the caller's (non-const) mjData is not changed.
   mjv_updateScene(c.model, const_cast<mjData*>(&data), &c.option, nullptr, &camera, mjCAT_ALL,
                   &c.scene);
+  if (pose != nullptr) {
+    placeCamera(*c.model, *pose, c.scene);
+  }
   const mjrRect viewport{0, 0, c.width, c.height};
   mjr_setBuffer(mjFB_OFFSCREEN, &c.render_context);
   mjr_render(viewport, &c.scene, &c.render_context);
@@ -313,7 +345,6 @@ Image Renderer::render(const mjData& data, const CameraView& view) {
     throw SimError(std::string("Renderer: OpenGL error ") + hex + " while rendering");
   }
 
-  Image image;
   image.width = c.width;
   image.height = c.height;
   image.rgb.resize(c.bottom_up.size());
@@ -323,7 +354,26 @@ Image Renderer::render(const mjData& data, const CameraView& view) {
     std::memcpy(image.rgb.data() + y * row_bytes, c.bottom_up.data() + source_row * row_bytes,
                 row_bytes);
   }
+}
+
+Image Renderer::render(const mjData& data, const CameraView& view) {
+  Image image;
+  draw(data, view, nullptr, image);
   return image;
+}
+
+Image Renderer::render(const mjData& data, const CameraPose& pose) {
+  Image image;
+  draw(data, CameraView{}, &pose, image);
+  return image;
+}
+
+void Renderer::render(const mjData& data, const CameraView& view, Image& image) {
+  draw(data, view, nullptr, image);
+}
+
+void Renderer::render(const mjData& data, const CameraPose& pose, Image& image) {
+  draw(data, CameraView{}, &pose, image);
 }
 
 int Renderer::width() const noexcept {

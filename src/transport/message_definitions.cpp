@@ -11,9 +11,12 @@
 namespace comply::transport {
 namespace {
 
-// The two standard types comply's messages use, as ROS 2 defines them.
+// The standard types comply's messages use, as ROS 2 defines them.
 constexpr std::string_view kTime = "int32 sec\nuint32 nanosec\n";
 constexpr std::string_view kHeader = "builtin_interfaces/Time stamp\nstring frame_id\n";
+// A recording's camera frames (compressed_image.hpp); the comments of ROS 2's file left out.
+constexpr std::string_view kCompressedImage =
+    "std_msgs/Header header\nstring format\nuint8[] data\n";
 
 bool isPrimitive(std::string_view type) {
   static constexpr std::string_view kPrimitives[] = {
@@ -48,6 +51,9 @@ std::string_view textOf(const std::string& type) {
   }
   if (type == "std_msgs/Header") {
     return kHeader;
+  }
+  if (type == "sensor_msgs/CompressedImage") {
+    return kCompressedImage;
   }
   const std::size_t slash = type.rfind('/');
   if (type.starts_with("comply_msgs/")) {

@@ -13,6 +13,7 @@
 
 #include "comply/sim/image.hpp"
 #include "comply/sim/renderer.hpp"
+#include "comply/sim/sim_cameras.hpp"
 #include "comply/sim/sim_error.hpp"
 #include "comply/sim/viewer.hpp"
 #include "scratch.hpp"
@@ -56,6 +57,40 @@ TEST(Png, RoundTripKeepsEveryByte) {
   EXPECT_EQ(read.width, gradient.width);
   EXPECT_EQ(read.height, gradient.height);
   EXPECT_EQ(read.rgb, gradient.rgb);
+}
+
+TEST(Png, InMemoryRoundTripKeepsEveryByteAndIsTheFilesFormat) {
+  Image gradient{38, 24, {}};
+  for (int y = 0; y < gradient.height; ++y) {
+    for (int x = 0; x < gradient.width; ++x) {
+      gradient.rgb.push_back(static_cast<std::uint8_t>(x * 5));
+      gradient.rgb.push_back(static_cast<std::uint8_t>(y * 9));
+      gradient.rgb.push_back(static_cast<std::uint8_t>((x + y) % 256));
+    }
+  }
+  const std::vector<std::uint8_t> fast = encodePng(gradient, 1);
+  const std::vector<std::uint8_t> small = encodePng(gradient, 9);
+  EXPECT_EQ(decodePng(fast).rgb, gradient.rgb);
+  EXPECT_EQ(decodePng(small).rgb, gradient.rgb);
+  EXPECT_LE(small.size(), fast.size());
+  // The bytes are a PNG file: readPng takes them from the disk.
+  const testing::ScratchDir folder("render_test");
+  const fs::path file = folder.path() / "memory.png";
+  {
+    std::FILE* out = std::fopen(file.c_str(), "wb");
+    ASSERT_NE(out, nullptr);
+    ASSERT_EQ(std::fwrite(fast.data(), 1, fast.size(), out), fast.size());
+    std::fclose(out);
+  }
+  EXPECT_EQ(readPng(file).rgb, gradient.rgb);
+}
+
+TEST(Png, DecodingCutBytesThrowsAndAnEmptyImageIsRefused) {
+  std::vector<std::uint8_t> bytes = encodePng(filled(8, 6, {10, 20, 30}));
+  bytes.resize(bytes.size() / 2);
+  EXPECT_THROW((void)decodePng(bytes), SimError);
+  EXPECT_THROW((void)decodePng(std::vector<std::uint8_t>{1, 2, 3}), SimError);
+  EXPECT_THROW((void)encodePng(Image{}), SimError);
 }
 
 TEST(Png, WriteIntoMissingFolderNamesTheFile) {
@@ -282,6 +317,75 @@ TEST_F(RenderTest, SeveralRenderersTakeTurnsAndComeBackAfterTheLastIsGone) {
   // Both gone: the shared EGL display was terminated and must come back for a new Renderer.
   Renderer again(*model_, 320, 240);
   EXPECT_EQ(again.render(*data_, view()).rgb, reference.rgb);
+}
+
+TEST_F(RenderTest, ACameraAtAPoseSeesWhatMujocosFreeCameraSees) {
+  // The pose the free camera's angles give (scenePose, worked out here, not by MuJoCo), rendered
+  // by placing the scene's camera: the same picture as MuJoCo's own free camera, up to the
+  // float rounding of the camera's frame (a few edge pixels).
+  Renderer renderer(*model_, 320, 240);
+  for (const double azimuth : {90.0, 135.0, -40.0}) {
+    CameraView from = view();
+    from.azimuth_deg = azimuth;
+    const Image by_mujoco = renderer.render(*data_, from);
+    const Image by_pose = renderer.render(*data_, scenePose(from, model_->vis.global.fovy));
+    int differing = 0;
+    for (std::size_t i = 0; i < by_mujoco.rgb.size(); i += 3) {
+      differing += std::abs(by_mujoco.rgb[i] - by_pose.rgb[i]) > 8 ? 1 : 0;
+    }
+    EXPECT_LT(differing, 320 * 240 / 200) << "azimuth " << azimuth;
+    EXPECT_GT(redPixels(by_pose).first, 500) << "azimuth " << azimuth;
+  }
+}
+
+TEST_F(RenderTest, AWiderFieldOfViewShowsTheBoxSmaller) {
+  Renderer renderer(*model_, 320, 240);
+  const int narrow = redPixels(renderer.render(*data_, scenePose(view(), 30.0))).first;
+  const int wide = redPixels(renderer.render(*data_, scenePose(view(), 60.0))).first;
+  // Image size goes as 1 / tan(fovy / 2): (tan 30 / tan 15)^2 = 4.6 times the area.
+  EXPECT_NEAR(static_cast<double>(narrow) / wide, 4.65, 0.6);
+}
+
+TEST(CameraPoses, ATcpCameraLooksAlongItsOpticalAxisWithImageUpAgainstItsY) {
+  Eigen::Isometry3d world_from_tcp = Eigen::Isometry3d::Identity();
+  world_from_tcp.translation() = Eigen::Vector3d(0.5, 0.1, 0.3);
+  // A TCP pointing down (its z along world -z), as an arm at home holds its tool.
+  world_from_tcp.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  Eigen::Isometry3d tcp_from_camera = Eigen::Isometry3d::Identity();
+  tcp_from_camera.translation() = Eigen::Vector3d(0.0, 0.07, -0.10);
+  const CameraPose pose = tcpPose(world_from_tcp, tcp_from_camera, 50.0);
+  const Eigen::Vector3d position(pose.position[0], pose.position[1], pose.position[2]);
+  EXPECT_TRUE(position.isApprox(Eigen::Vector3d(0.5, 0.1 - 0.07, 0.3 + 0.10), 1e-12));
+  EXPECT_TRUE(Eigen::Vector3d(pose.forward[0], pose.forward[1], pose.forward[2])
+                  .isApprox(Eigen::Vector3d(0, 0, -1), 1e-12));
+  // Optical y (image down) is the TCP's y, world -y: image up is world +y.
+  EXPECT_TRUE(Eigen::Vector3d(pose.up[0], pose.up[1], pose.up[2])
+                  .isApprox(Eigen::Vector3d(0, 1, 0), 1e-12));
+  EXPECT_EQ(pose.fovy_deg, 50.0);
+}
+
+TEST(CameraPoses, SpecsThatCannotBeRenderedAreRefusedNamingTheCamera) {
+  const auto refused = [](const std::vector<CameraSpec>& specs, const std::string& words) {
+    try {
+      checkCameraSpecs(specs);
+      ADD_FAILURE() << "accepted; expected: " << words;
+    } catch (const SimError& error) {
+      EXPECT_NE(std::string(error.what()).find(words), std::string::npos) << error.what();
+    }
+  };
+  CameraSpec good;
+  good.name = "front";
+  EXPECT_NO_THROW(checkCameraSpecs({good}));
+  CameraSpec odd = good;
+  odd.width_px = 127;
+  refused({odd}, "camera 'front': 127 x 96 pixels");
+  refused({good, good}, "camera 'front' is named twice");
+  CameraSpec unnamed = good;
+  unnamed.name.clear();
+  refused({unnamed}, "needs a name");
+  CameraSpec flat = good;
+  flat.fovy_deg = 180.0;
+  refused({flat}, "fovy");
 }
 
 TEST_F(RenderTest, OddWidthKeepsRowsAligned) {

@@ -8,11 +8,19 @@
 //   meta/tasks.parquet                           task_index, task
 //   meta/episodes/chunk-000/file-000.parquet     per episode: its index, length, file and its
 //                                                rows in the data file (dataset_from_index,
-//                                                dataset_to_index), the recording it came from
+//                                                dataset_to_index), where its frames are in each
+//                                                video (videos/<key>/from_timestamp, to_timestamp),
+//                                                the recording it came from
+//   videos/observation.images.<camera>/chunk-000/file-000.mp4
+//                                                each camera a recording holds (a Sim's cameras):
+//                                                every episode's frames, a frame per data row, at
+//                                                i / fps, encoded by Debian's ffmpeg (H.264)
 //
-// Not yet written: videos (no camera is recorded), the per-feature statistics (meta/stats.json
-// and the episodes' stats columns) and the episodes' `tasks` list column.
+// A camera's frame for row i is the one in force at the row's time (the last taken at or before
+// it), as for the cycle records. Not yet written: the per-feature statistics (meta/stats.json and
+// the episodes' stats columns) and the episodes' `tasks` list column.
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -32,7 +40,8 @@ struct LeRobotSummary {
 };
 
 /// Writes the dataset into `folder` (made if missing; files of the same names are replaced).
-/// Every recording must come from one kind of controller on the same joints. Throws
+/// Every recording must come from one kind of controller on the same joints, with the same
+/// cameras. Throws
 /// std::runtime_error naming the recording or file at fault, std::invalid_argument for options
 /// out of range or no recording.
 LeRobotSummary writeLeRobotDataset(const std::filesystem::path& folder,

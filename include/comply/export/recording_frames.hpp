@@ -41,6 +41,8 @@ struct EpisodeFrames {
   bool cartesian = true;
   std::vector<std::string> joint_names;
   double duration_s = 0.0;  ///< from the first cycle record to the last
+  /// The first cycle record's stamp [ns]: frame i is at first_stamp_ns + i / fps.
+  std::int64_t first_stamp_ns = 0;
 };
 
 /// The episodes of `recording`, each sampled at `fps` (> 0): a new one wherever the host's cycle

@@ -10,6 +10,7 @@
 //   /<name>/outcome            comply_msgs/CommandOutcome   one per command
 //   /<name>/chunk_timing       comply_msgs/ChunkTiming   one per chunk: its outcome's chunk entry
 //   /<name>/diagnostics        comply_msgs/Diagnostics   as published
+//   /<name>/camera/<camera>    sensor_msgs/CompressedImage  every frame a simulated camera took
 //
 // Messages are the CDR bytes of the wire. Each group of channels has its own lane with one
 // producer: cycle() is called by the control thread and costs a copy of the state sample (about
@@ -35,6 +36,7 @@
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/record/recorder.hpp"
 #include "comply/transport/cdr.hpp"
+#include "comply/transport/compressed_image.hpp"
 #include "comply/transport/messages.hpp"
 
 namespace comply::host {
@@ -95,6 +97,8 @@ struct HostRecordingOptions {
   std::size_t control_lane_bytes = kControlLaneBytes;
   /// The writer's sleep when it found nothing to write (record::RecorderOptions).
   double writer_period_s = 0.005;
+  /// The cameras whose frames image() records, a channel each (none: no camera lane).
+  std::vector<std::string> cameras;
 };
 
 /// One cycle as the recording's control lane holds it.
@@ -168,6 +172,10 @@ class HostRecording {
   // takeover (or, never taken over, at the outcome's time).
   void outcome(const transport::CommandOutcomeMessage& message);
   void diagnostics(const transport::DiagnosticsMessage& message);
+  /// The thread that renders: a frame of camera `camera` (its index in
+  /// HostRecordingOptions::cameras), logged at the time its header is stamped with. A frame
+  /// larger than half the camera lane is dropped and counted.
+  void image(std::size_t camera, const transport::CompressedImageMessage& message);
 
   /// Drains, writes the counts and closes the file; idempotent.
   void stop();
@@ -182,13 +190,16 @@ class HostRecording {
   std::uint16_t outcome_channel_ = 0;
   std::uint16_t chunk_timing_channel_ = 0;
   std::uint16_t diagnostics_channel_ = 0;
+  std::vector<std::uint16_t> camera_channels_;
   record::RecordLane& control_;
   record::RecordLane& intake_;
   record::RecordLane& publisher_;
+  record::RecordLane* cameras_ = nullptr;  // only with cameras
   std::variant<std::monostate, CycleRecorder<CartesianCommand>, CycleRecorder<JointCommand>>
       cycles_;
   std::vector<std::uint8_t> intake_bytes_;     // the command thread's scratch
   std::vector<std::uint8_t> publisher_bytes_;  // the publishing thread's scratch
+  std::vector<std::uint8_t> camera_bytes_;     // the rendering thread's scratch
 };
 
 }  // namespace comply::host

@@ -19,6 +19,16 @@ struct CameraView {
   double elevation_deg = -20.0;
 };
 
+/// A camera at a pose in the world: at `position` [m], looking along `forward`, `up` the image's
+/// up direction (both unit and orthogonal), `fovy_deg` the vertical field of view. What a camera
+/// carried by a body (a wrist camera) gives each frame.
+struct CameraPose {
+  double position[3] = {0.0, 0.0, 0.0};
+  double forward[3] = {1.0, 0.0, 0.0};
+  double up[3] = {0.0, 0.0, 1.0};
+  double fovy_deg = 45.0;
+};
+
 class Renderer {
  public:
   /// Creates the GL context and MuJoCo's render context for `model`, which must outlive the
@@ -35,12 +45,19 @@ class Renderer {
   /// returning, so several Renderers (and a Viewer) can take turns; one call at a time per
   /// Renderer. Throws SimError when the context cannot be made current or GL reports an error.
   [[nodiscard]] Image render(const mjData& data, const CameraView& view);
+  /// The same from a camera at `pose`.
+  [[nodiscard]] Image render(const mjData& data, const CameraPose& pose);
+  /// The same into `image` (resized once; no allocation after the first frame of a size).
+  void render(const mjData& data, const CameraView& view, Image& image);
+  void render(const mjData& data, const CameraPose& pose, Image& image);
 
   [[nodiscard]] int width() const noexcept;
   [[nodiscard]] int height() const noexcept;
 
  private:
   struct Context;
+  /// Renders from `view`, or from `pose` when not null.
+  void draw(const mjData& data, const CameraView& view, const CameraPose* pose, Image& image);
   std::unique_ptr<Context> context_;
 };
 
