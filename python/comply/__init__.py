@@ -34,6 +34,16 @@ clock that runs on across episodes; an episode starts where the cycle index is 0
 comply.policy.PolicyRunner runs a chunking policy that infers while the arm moves, on a Sim or a
 Client, with the delay the host measured handed to each inference (docs/policies.md).
 
+rollouts() runs many Sim episodes in worker processes (dask.distributed, on this machine or on
+the machines of a cluster; imported only when used) and returns a row per episode in episode
+order: a Schedule(fn) gives each episode one command, any other callable is a policy called
+every step; record=/dataset= keep every episode as MCAP and a LeRobot dataset
+(docs/rollouts.md):
+
+    results = comply.rollouts(comply.Schedule(lambda episode, rng, obs: {...}), 200,
+                              config="config/sim/cartesian_impedance.yaml", seconds=2.0)
+    print(results.summary()); results.column("tracking_error_rms_m")
+
 read_recording(path) reads a recording (MCAP) into numpy columns per topic in pure Python
 (numpy, zstandard), so it works where the C++ extension is not built:
 
@@ -43,12 +53,14 @@ read_recording(path) reads a recording (MCAP) into numpy columns per topic in pu
 """
 
 from .recording import Recording, RecordingError, Topic, read_recording
+from .rollouts import RolloutError, Schedule, rollouts
 
-_EXTENSION_NAMES = ["Client", "Sim", "darboux_frame", "frenet_frame"]
-__all__ = ["Recording", "RecordingError", "Topic", "read_recording"]
+_EXTENSION_NAMES = ["Client", "Sim", "darboux_frame", "export_lerobot", "frenet_frame"]
+__all__ = ["Recording", "RecordingError", "RolloutError", "Schedule", "Topic", "read_recording",
+           "rollouts"]
 
 try:
-    from ._comply import Client, Sim, darboux_frame, frenet_frame
+    from ._comply import Client, Sim, darboux_frame, export_lerobot, frenet_frame
     __all__ += _EXTENSION_NAMES
 except ModuleNotFoundError as _missing:
     # Only the extension's absence is forgiven (a source checkout, a dataset machine): the

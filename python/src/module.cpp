@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include "comply/export/lerobot_dataset.hpp"
 #include "comply/record/mcap_writer.hpp"
 #include "comply/task/frames.hpp"
 #include "py_client.hpp"
@@ -47,7 +48,8 @@ constexpr const char* kClientDoc =
     "records are dropped and counted (recording_stats()), never the commands held up.";
 
 constexpr const char* kSimDoc =
-    "Sim(config, robot='', steps_per_action=50, max_time=0.0, record=None): the controller on an "
+    "Sim(config, robot='', steps_per_action=50, max_time=0.0, record=None, cameras=None): the "
+    "controller on an "
     "in-process MuJoCo plant, shaped like a Gymnasium environment.\n\n"
     "record='path.mcap' records every cycle, command and outcome of every episode to one file, "
     "as `comply sim --record` does (/comply/cycle, /comply/cartesian_command or "
@@ -56,7 +58,15 @@ constexpr const char* kSimDoc =
     "episode starts where the one before it stopped, so log times never go back; commands keep "
     "the stamps they were sent with (the episode's time). close() finishes the file (also on "
     "destruction); the Sim carries on unrecorded. The file's folder must exist (OSError naming "
-    "it otherwise). Nothing is dropped: a step waits for a busy disk.";
+    "it otherwise). Nothing is dropped: a step waits for a busy disk.\n\n"
+    "cameras={'front': {'width': 128, 'height': 96, 'lookat': [0.4, 0, 0.3], 'distance': 1.2, "
+    "'azimuth': 180, 'elevation': -25}, 'wrist': {'mount': 'tcp'}}: every observation carries "
+    "observation['images'][name], a uint8 array (height, width, 3) rendered offscreen (EGL) from "
+    "the state it reports. Keys: width, height (even), fovy [deg], mount 'scene' (lookat [m], "
+    "distance [m], azimuth, elevation [deg], as MuJoCo's free camera) or 'tcp' (position [m] and "
+    "orientation x y z w of the camera in the TCP frame: x right, y down, z the view). A "
+    "recording keeps the frames as sensor_msgs/CompressedImage (PNG) on /comply/camera/<name>; "
+    "`comply export --lerobot` makes videos of them (docs/simulation.md).";
 
 constexpr const char* kCloseDoc =
     "Stop the recording and finish its file; idempotent (a no-op without record=)";
@@ -154,9 +164,10 @@ void bindClient(py::module_& m) {
 void bindSim(py::module_& m) {
   py::class_<Sim>(m, "Sim", kSimDoc)
       .def(py::init<const std::string&, const std::string&, int, double,
-                    const std::optional<std::filesystem::path>&>(),
+                    const std::optional<std::filesystem::path>&, const py::object&>(),
            py::arg("config"), py::arg("robot") = "", py::arg("steps_per_action") = 50,
-           py::arg("max_time") = 0.0, py::kw_only(), py::arg("record") = py::none())
+           py::arg("max_time") = 0.0, py::kw_only(), py::arg("record") = py::none(),
+           py::arg("cameras") = py::none())
       .def("reset", &Sim::reset)
       .def("tare", &Sim::tare,
            "Take the wrist force/torque sensor's reading (less the declared tool's weight) as its "
@@ -204,6 +215,31 @@ void bindTaskFrames(py::module_& m) {
       "Darboux frame of a curve on a surface as a task_frame quaternion (x y z w), or None");
 }
 
+void bindExport(py::module_& m) {
+  m.def(
+      "export_lerobot",
+      [](const std::filesystem::path& folder, const std::vector<std::filesystem::path>& recordings,
+         double fps, const std::string& task, const std::string& robot_type) {
+        comply::exporter::LeRobotSummary summary;
+        {
+          const py::gil_scoped_release release;
+          summary =
+              comply::exporter::writeLeRobotDataset(folder, recordings, {fps, task, robot_type});
+        }
+        py::dict d;
+        d["episodes"] = summary.episodes;
+        d["frames"] = summary.frames;
+        d["files"] = summary.files;
+        return d;
+      },
+      py::arg("folder"), py::arg("recordings"), py::kw_only(), py::arg("fps") = 30.0,
+      py::arg("task") = "comply recording", py::arg("robot_type") = "",
+      "Recordings (MCAP, in episode order; a Sim's file holds an episode per reset) as a LeRobot "
+      "v3.0 dataset in `folder`, as `comply export --lerobot` writes it (docs/datasets.md). "
+      "Returns {'episodes', 'frames', 'files'}; raises RuntimeError naming the recording at "
+      "fault, ValueError for an fps that is not positive or no recording");
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_comply, m) {
@@ -212,4 +248,5 @@ PYBIND11_MODULE(_comply, m) {
   bindClient(m);
   bindSim(m);
   bindTaskFrames(m);
+  bindExport(m);
 }

@@ -12,6 +12,7 @@
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "py_convert.hpp"
+#include "py_sim_cameras.hpp"
 #include "py_sim_session.hpp"
 
 namespace comply::python {
@@ -29,21 +30,28 @@ transport::CommandOutcomeMessage simOutcomeMessage(const pipeline::CommandOutcom
 }  // namespace
 
 Sim::Sim(const std::string& config, const std::string& robot, int steps_per_action,
-         double max_time_s, const std::optional<std::filesystem::path>& record)
+         double max_time_s, const std::optional<std::filesystem::path>& record,
+         const py::object& cameras)
     : resolved_(pipeline::resolveController(host::simControllerConfig(robot, "", config))),
+      camera_specs_(cameraSpecs(cameras)),
       steps_per_action_(steps_per_action),
       max_time_s_(max_time_s) {
   if (steps_per_action < 1) {
     throw py::value_error("steps_per_action must be >= 1");
   }
   if (record) {
+    std::vector<std::string> camera_names;
+    for (const sim::CameraSpec& spec : camera_specs_) {
+      camera_names.push_back(spec.name);
+    }
     recording_ = std::make_unique<host::HostRecording>(
         record->string(), resolved_, "comply",
         record::StringMap{{"host", "comply.Sim"},
                           {"clock", "simulated"},
                           {"steps_per_action", std::to_string(steps_per_action)}},
         // Simulated time has no deadline: a step waits for a busy disk, no cycle is lost.
-        host::HostRecordingOptions{.when_full = record::WhenFull::kWait});
+        host::HostRecordingOptions{.when_full = record::WhenFull::kWait,
+                                   .cameras = std::move(camera_names)});
     recording_open_ = true;
   }
 }
@@ -114,7 +122,42 @@ py::dict Sim::reset() {
     session_.reset();
   }
   session_ = std::make_unique<Session>(resolved_, start_ns, recording());
-  return session_->observation();
+  if (!camera_specs_.empty()) {
+    const py::gil_scoped_release release;
+    if (cameras_) {
+      cameras_->attach(session_->plant);
+    } else {
+      cameras_ = std::make_unique<sim::SimCameras>(session_->plant, camera_specs_);
+    }
+  }
+  py::dict observation = session_->observation();
+  addImages(observation);
+  return observation;
+}
+
+void Sim::addImages(py::dict& observation) {
+  if (!cameras_) {
+    return;
+  }
+  const std::vector<sim::Image>* images = nullptr;
+  {
+    const py::gil_scoped_release release;
+    images = &cameras_->render();
+  }
+  observation["images"] = imagesDict(camera_specs_, *images);
+  if (host::HostRecording* to = recording()) {
+    const py::gil_scoped_release release;
+    const double now_s = session_->plant.simTime();
+    transport::CompressedImageMessage message;
+    message.header.stamp =
+        transport::Stamp::fromNanoseconds(session_->start_ns + stampNanoseconds(now_s));
+    message.format = "png";
+    for (std::size_t i = 0; i < camera_specs_.size(); ++i) {
+      message.header.frame_id = camera_specs_[i].name;
+      message.data = sim::encodePng((*images)[i]);
+      to->image(i, message);
+    }
+  }
 }
 
 void Sim::tare() {

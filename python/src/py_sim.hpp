@@ -9,6 +9,10 @@
 // the Sim was made: each episode starts where the one before it stopped, so the file's log times
 // never go back, while the commands keep the stamps they were sent with (the episode's own
 // simulated time). An episode starts where the cycle index (state.cycle) is 0 again.
+//
+// With `cameras`, every observation (reset()'s and each step()'s) carries each camera's frame,
+// rendered offscreen, as observation["images"][name]; a recording keeps them as PNG compressed
+// images, a channel per camera, at the observation's time.
 
 #include <pybind11/pybind11.h>
 
@@ -22,6 +26,7 @@
 #include "comply/host/host_recording.hpp"
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
+#include "comply/sim/sim_cameras.hpp"
 
 namespace comply::python {
 
@@ -29,9 +34,10 @@ namespace py = pybind11;
 
 class Sim {
  public:
-  /// `record`: the MCAP file every episode is recorded to (none: not recorded).
+  /// `record`: the MCAP file every episode is recorded to (none: not recorded). `cameras`: None
+  /// or a dict of name -> keys (py_sim_cameras.hpp).
   Sim(const std::string& config, const std::string& robot, int steps_per_action, double max_time_s,
-      const std::optional<std::filesystem::path>& record);
+      const std::optional<std::filesystem::path>& record, const py::object& cameras);
   ~Sim();
   Sim(const Sim&) = delete;
   Sim& operator=(const Sim&) = delete;
@@ -82,8 +88,15 @@ class Sim {
   /// The simulated time of the last cycle (the wrapper's host clock, so chunk times fall on
   /// cycles).
   [[nodiscard]] double lastCycleTime() const noexcept;
+  /// The cameras' frames of the current state into `observation` ("images"), and into the
+  /// recording; nothing without cameras.
+  void addImages(py::dict& observation);
 
   std::shared_ptr<const pipeline::ResolvedController> resolved_;
+  std::vector<sim::CameraSpec> camera_specs_;
+  /// Made with the first episode and kept across resets (their GL contexts are costly to make);
+  /// null without cameras.
+  std::unique_ptr<sim::SimCameras> cameras_;
   std::unique_ptr<host::HostRecording> recording_;
   bool recording_open_ = false;
   std::unique_ptr<Session> session_;

@@ -142,7 +142,9 @@ py::tuple Sim::step(const py::object& command, const py::object& relative_to,
   info["chunks"] = takeChunkTimings();
   info["state"] = std::string(toString(d.state));
   info["last_fault"] = d.last_fault;
-  return py::make_tuple(session_->observation(), 0.0, terminated, truncated, info);
+  py::dict observation = session_->observation();
+  addImages(observation);
+  return py::make_tuple(observation, 0.0, terminated, truncated, info);
 }
 
 }  // namespace comply::python

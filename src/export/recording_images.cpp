@@ -88,6 +88,7 @@ std::vector<CameraFrames> recordingImages(const std::filesystem::path& recording
     throw std::runtime_error(error);
   }
   std::vector<CameraFrames> out;
+  out.reserve(cameras.size());
   for (auto& [id, frames] : cameras) {
     out.push_back(std::move(frames));
   }

@@ -7,12 +7,12 @@
 #include "video_encoder.hpp"
 
 #include <fcntl.h>
-#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -94,6 +94,7 @@ VideoEncoder::VideoEncoder(std::filesystem::path file, double fps)
       "-c:v",       "libx264",      "-pix_fmt", "yuv420p",   "-g",    "2",   "-crf",
       "18",         "-preset",      "veryfast", "-r",        rate,    output};
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (std::string& arg : args) {
     argv.push_back(arg.data());
   }

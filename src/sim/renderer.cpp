@@ -1,176 +1,22 @@
 // Headless rendering: an EGL context without any surface (MuJoCo draws into its own offscreen
-// framebuffer object), so no display, window or pbuffer is needed. Mesa's surfaceless platform is
-// preferred because the default EGL display would try X11 or Wayland when DISPLAY happens to be
-// set, and fail on machines where that display is unreachable.
+// framebuffer object), so no display, window or pbuffer is needed (egl_display.hpp).
 
 #include "comply/sim/renderer.hpp"
 
 #include <EGL/egl.h>
-#include <EGL/eglext.h>
 #include <GL/gl.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <mutex>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "comply/sim/sim_error.hpp"
-#include "gl_driver.hpp"
+#include "egl_display.hpp"
 
 namespace comply::sim {
 namespace {
-
-const char* eglErrorName(EGLint code) {
-  switch (code) {
-    case EGL_NOT_INITIALIZED:
-      return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS:
-      return "EGL_BAD_ACCESS";
-    case EGL_BAD_ALLOC:
-      return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE:
-      return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONFIG:
-      return "EGL_BAD_CONFIG";
-    case EGL_BAD_CONTEXT:
-      return "EGL_BAD_CONTEXT";
-    case EGL_BAD_DISPLAY:
-      return "EGL_BAD_DISPLAY";
-    case EGL_BAD_MATCH:
-      return "EGL_BAD_MATCH";
-    case EGL_BAD_PARAMETER:
-      return "EGL_BAD_PARAMETER";
-    case EGL_BAD_SURFACE:
-      return "EGL_BAD_SURFACE";
-    case EGL_CONTEXT_LOST:
-      return "EGL_CONTEXT_LOST";
-    default:
-      return "unknown EGL error";
-  }
-}
-
-/// "<step> failed (EGL error 0x3009 EGL_BAD_MATCH)", with the error of the last EGL call.
-std::string eglFailure(const std::string& step) {
-  const EGLint code = eglGetError();
-  char hex[16];
-  std::snprintf(hex, sizeof hex, "0x%04X", static_cast<unsigned>(code));
-  return "Renderer: " + step + " failed (EGL error " + hex + " " + eglErrorName(code) + ")";
-}
-
-bool hasExtension(const char* list, std::string_view name) {
-  if (list == nullptr) {
-    return false;
-  }
-  const std::string_view extensions(list);
-  for (std::size_t at = extensions.find(name); at != std::string_view::npos;
-       at = extensions.find(name, at + 1)) {
-    const std::size_t end = at + name.size();
-    if ((at == 0 || extensions[at - 1] == ' ') &&
-        (end == extensions.size() || extensions[end] == ' ')) {
-      return true;
-    }
-  }
-  return false;
-}
-
-EGLDisplay surfacelessDisplay() {
-  // Client extensions are queried on EGL_NO_DISPLAY; an EGL 1.4 library returns null (and sets
-  // an error, cleared here so that it does not show up in a later message).
-  const char* client_extensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-  eglGetError();
-  if (!hasExtension(client_extensions, "EGL_EXT_platform_base") ||
-      !hasExtension(client_extensions, "EGL_MESA_platform_surfaceless")) {
-    return EGL_NO_DISPLAY;
-  }
-  const auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
-      eglGetProcAddress("eglGetPlatformDisplayEXT"));
-  if (get_platform_display == nullptr) {
-    return EGL_NO_DISPLAY;
-  }
-  return get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-}
-
-bool initialize(EGLDisplay display) {
-  EGLint major = 0;
-  EGLint minor = 0;
-  return display != EGL_NO_DISPLAY && eglInitialize(display, &major, &minor) == EGL_TRUE;
-}
-
-EGLDisplay openDisplay() {
-  if (EGLDisplay display = surfacelessDisplay(); initialize(display)) {
-    return display;
-  }
-  EGLDisplay display = eglGetDisplay(EGL_DEFAULT_DISPLAY);
-  if (display == EGL_NO_DISPLAY) {
-    throw SimError(eglFailure(
-        "Mesa's surfaceless platform is unavailable and eglGetDisplay(EGL_DEFAULT_DISPLAY)"));
-  }
-  if (!initialize(display)) {
-    throw SimError(eglFailure("eglInitialize (default display)"));
-  }
-  return display;
-}
-
-/// One EGL display for the process, initialised by the first Renderer and terminated with the
-/// last one: eglInitialize/eglTerminate are not reference counted by EGL itself, so terminating
-/// per Renderer would pull the display from under the others.
-class SharedDisplay {
- public:
-  static EGLDisplay acquire() {
-    const std::lock_guard lock(mutex_);
-    if (users_ == 0) {
-      display_ = openDisplay();
-      keepGlDriverLoaded();
-    }
-    ++users_;
-    return display_;
-  }
-
-  static void release() {
-    const std::lock_guard lock(mutex_);
-    if (--users_ == 0) {
-      eglTerminate(display_);
-      display_ = EGL_NO_DISPLAY;
-    }
-  }
-
- private:
-  static inline std::mutex mutex_;
-  static inline EGLDisplay display_ = EGL_NO_DISPLAY;
-  static inline int users_ = 0;
-};
-
-EGLConfig chooseConfig(EGLDisplay display) {
-  // The config only matters for the (unused) default framebuffer; MuJoCo allocates its own
-  // colour and depth buffers. Pbuffer-capable configs are the ones Mesa offers surfaceless.
-  const EGLint attributes[] = {EGL_RED_SIZE,
-                               8,
-                               EGL_GREEN_SIZE,
-                               8,
-                               EGL_BLUE_SIZE,
-                               8,
-                               EGL_DEPTH_SIZE,
-                               24,
-                               EGL_SURFACE_TYPE,
-                               EGL_PBUFFER_BIT,
-                               EGL_RENDERABLE_TYPE,
-                               EGL_OPENGL_BIT,
-                               EGL_NONE};
-  EGLConfig config = nullptr;
-  EGLint count = 0;
-  if (eglChooseConfig(display, attributes, &config, 1, &count) != EGL_TRUE) {
-    throw SimError(eglFailure("eglChooseConfig"));
-  }
-  if (count < 1) {
-    throw SimError(
-        "Renderer: eglChooseConfig found no config with 8-bit RGB, 24-bit depth and desktop "
-        "OpenGL");
-  }
-  return config;
-}
 
 void checkBufferSize(const mjModel& model, int width, int height) {
   if (width <= 0 || height <= 0) {
@@ -190,8 +36,24 @@ void checkBufferSize(const mjModel& model, int width, int height) {
 
 }  // namespace
 
+namespace {
+
+/// What the GL context holds of a model (its meshes, textures, ...) counted: another compilation of
+/// the same scene has the same.
+struct SceneCounts {
+  int geoms, bodies, meshes, mesh_vertices, textures, materials, height_fields, skins;
+
+  static SceneCounts of(const mjModel& m) {
+    return {m.ngeom, m.nbody, m.nmesh, m.nmeshvert, m.ntex, m.nmat, m.nhfield, m.nskin};
+  }
+  bool operator==(const SceneCounts&) const = default;
+};
+
+}  // namespace
+
 struct Renderer::Context {
   const mjModel* model;
+  SceneCounts counts;
   int width;
   int height;
   EGLDisplay display = EGL_NO_DISPLAY;
@@ -202,7 +64,8 @@ struct Renderer::Context {
   mjvOption option;
   std::vector<unsigned char> bottom_up;  ///< glReadPixels rows, bottom row first
 
-  Context(const mjModel& m, int w, int h) : model(&m), width(w), height(h) {
+  Context(const mjModel& m, int w, int h)
+      : model(&m), counts(SceneCounts::of(m)), width(w), height(h) {
     mjv_defaultScene(&scene);
     mjr_defaultContext(&render_context);
     mjv_defaultOption(&option);
@@ -374,6 +237,29 @@ void Renderer::render(const mjData& data, const CameraView& view, Image& image) 
 
 void Renderer::render(const mjData& data, const CameraPose& pose, Image& image) {
   draw(data, CameraView{}, &pose, image);
+}
+
+void Renderer::setShadows(bool on) noexcept {
+  context_->scene.flags[mjRND_SHADOW] = on ? 1 : 0;
+}
+
+void Renderer::setReflections(bool on) noexcept {
+  context_->scene.flags[mjRND_REFLECTION] = on ? 1 : 0;
+}
+
+void Renderer::rebind(const mjModel& model) {
+  // Counted, not read from the model this was made for: a reset has destroyed it by now.
+  const SceneCounts counts = SceneCounts::of(model);
+  const SceneCounts& made_for = context_->counts;
+  if (counts != made_for) {
+    throw SimError("Renderer: cannot render a model of another scene than it was made for (" +
+                   std::to_string(counts.geoms) + " geoms, " + std::to_string(counts.meshes) +
+                   " meshes, " + std::to_string(counts.textures) + " textures against " +
+                   std::to_string(made_for.geoms) + ", " + std::to_string(made_for.meshes) + ", " +
+                   std::to_string(made_for.textures) + ")");
+  }
+  checkBufferSize(model, context_->width, context_->height);
+  context_->model = &model;
 }
 
 int Renderer::width() const noexcept {

@@ -83,28 +83,48 @@ void checkCameraSpecs(const std::vector<CameraSpec>& specs) {
   }
 }
 
-SimCameras::SimCameras(SimulatedRobot& plant, std::vector<CameraSpec> specs)
-    : plant_(plant), specs_(std::move(specs)) {
-  checkCameraSpecs(specs_);
-  mjModel& model = plant_.mutableMujocoModel();
-  for (const CameraSpec& spec : specs_) {
+namespace {
+
+/// The offscreen buffer of `plant`'s model raised to the largest camera.
+mjModel& withBuffer(SimulatedRobot& plant, const std::vector<CameraSpec>& specs) {
+  mjModel& model = plant.mutableMujocoModel();
+  for (const CameraSpec& spec : specs) {
     model.vis.global.offwidth = std::max(model.vis.global.offwidth, spec.width_px);
     model.vis.global.offheight = std::max(model.vis.global.offheight, spec.height_px);
   }
+  return model;
+}
+
+}  // namespace
+
+SimCameras::SimCameras(SimulatedRobot& plant, std::vector<CameraSpec> specs)
+    : plant_(&plant), specs_(std::move(specs)) {
+  checkCameraSpecs(specs_);
+  const mjModel& model = withBuffer(plant, specs_);
   for (const CameraSpec& spec : specs_) {
     renderers_.push_back(std::make_unique<Renderer>(model, spec.width_px, spec.height_px));
+    renderers_.back()->setShadows(spec.shadows);
+    renderers_.back()->setReflections(spec.reflections);
   }
   images_.resize(specs_.size());
+}
+
+void SimCameras::attach(SimulatedRobot& plant) {
+  const mjModel& model = withBuffer(plant, specs_);
+  for (const std::unique_ptr<Renderer>& renderer : renderers_) {
+    renderer->rebind(model);
+  }
+  plant_ = &plant;
 }
 
 SimCameras::~SimCameras() = default;
 
 const std::vector<Image>& SimCameras::render() {
-  const mjData& data = plant_.mujocoData();
+  const mjData& data = plant_->mujocoData();
   for (std::size_t i = 0; i < specs_.size(); ++i) {
     const CameraSpec& spec = specs_[i];
     const CameraPose pose = spec.mount == CameraMount::kTcp
-                                ? tcpPose(plant_.tcpPose(), spec.tcp_from_camera, spec.fovy_deg)
+                                ? tcpPose(plant_->tcpPose(), spec.tcp_from_camera, spec.fovy_deg)
                                 : scenePose(spec.view, spec.fovy_deg);
     renderers_[i]->render(data, pose, images_[i]);
   }

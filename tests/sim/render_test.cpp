@@ -338,6 +338,58 @@ TEST_F(RenderTest, ACameraAtAPoseSeesWhatMujocosFreeCameraSees) {
   }
 }
 
+TEST_F(RenderTest, RebindRendersAnotherCompilationOfTheSceneAndRefusesAnotherScene) {
+  auto renderer = std::make_unique<Renderer>(*model_, 160, 120);
+  const Image before = renderer->render(*data_, view());
+  // The model it was made for goes (as a reset's old plant does) before the new one is bound.
+  auto rebuilt = loadModel(kSceneXml);
+  std::unique_ptr<mjData, DataDeleter> rebuilt_data(mj_makeData(rebuilt.get()));
+  mj_forward(rebuilt.get(), rebuilt_data.get());
+  data_.reset();
+  model_.reset();
+  renderer->rebind(*rebuilt);
+  EXPECT_EQ(renderer->render(*rebuilt_data, view()).rgb, before.rgb);
+
+  std::string other(kSceneXml);
+  other.replace(other.find("<body name=\"box\""), 0,
+                "<geom type=\"sphere\" size=\"0.05\" pos=\"1 1 0.05\"/>");
+  const auto other_model = loadModel(other);
+  EXPECT_THROW(renderer->rebind(*other_model), SimError);
+  EXPECT_EQ(renderer->render(*rebuilt_data, view()).rgb, before.rgb) << "a refused rebind keeps";
+}
+
+TEST_F(RenderTest, ShadowsAndReflectionsCanBeTurnedOff) {
+  // A slanted light that casts the box's shadow beside it, and a floor that mirrors.
+  std::string xml(kSceneXml);
+  const std::string overhead = "<light pos=\"0 0 3\" dir=\"0 0 -1\"";
+  xml.replace(xml.find(overhead), overhead.size(), "<light pos=\"-2 0 2\" dir=\"1 0 -1\"");
+  xml.replace(xml.find("<worldbody>"), 0,
+              "<asset><material name=\"mirror\" reflectance=\"0.6\"/></asset>");
+  xml.replace(xml.find("rgba=\"0.6 0.6 0.6 1\""), 0, "material=\"mirror\" ");
+  const auto model = loadModel(xml);
+  std::unique_ptr<mjData, DataDeleter> data(mj_makeData(model.get()));
+  mj_forward(model.get(), data.get());
+  Renderer renderer(*model, 160, 120);
+  const auto changed = [](const Image& a, const Image& b) {
+    int count = 0;
+    for (std::size_t i = 0; i < a.rgb.size(); ++i) {
+      count += std::abs(a.rgb[i] - b.rgb[i]) > 8 ? 1 : 0;
+    }
+    return count;
+  };
+  const Image both = renderer.render(*data, view());
+  renderer.setShadows(false);
+  const Image no_shadow = renderer.render(*data, view());
+  renderer.setReflections(false);
+  const Image neither = renderer.render(*data, view());
+  EXPECT_GT(changed(both, no_shadow), 100) << "the box's shadow on the floor is gone";
+  EXPECT_GT(changed(no_shadow, neither), 100) << "the box's mirror image is gone";
+  EXPECT_GT(redPixels(neither).first, 100);
+  renderer.setShadows(true);
+  renderer.setReflections(true);
+  EXPECT_EQ(renderer.render(*data, view()).rgb, both.rgb);
+}
+
 TEST_F(RenderTest, AWiderFieldOfViewShowsTheBoxSmaller) {
   Renderer renderer(*model_, 320, 240);
   const int narrow = redPixels(renderer.render(*data_, scenePose(view(), 30.0))).first;

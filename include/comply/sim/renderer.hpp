@@ -51,6 +51,18 @@ class Renderer {
   void render(const mjData& data, const CameraView& view, Image& image);
   void render(const mjData& data, const CameraPose& pose, Image& image);
 
+  /// Shadows on (the default) or off: on a CPU renderer (llvmpipe) a frame with them costs about
+  /// twice one without, the lights' shadow maps drawn each frame.
+  void setShadows(bool on) noexcept;
+  /// Reflections in reflective surfaces (the floor) on (the default) or off: with them the scene
+  /// is drawn twice per frame, and on a CPU renderer a frame costs about three times as much.
+  void setReflections(bool on) noexcept;
+  /// Renders `model` from now on: another compilation of the scene this Renderer was made for
+  /// (a simulation reset rebuilds its plant), whose meshes and textures the GL context already
+  /// holds, so that a reset does not pay for a new context. Throws SimError, changing nothing,
+  /// when `model` is not of the same scene (other counts of meshes, textures, geoms, bodies).
+  void rebind(const mjModel& model);
+
   [[nodiscard]] int width() const noexcept;
   [[nodiscard]] int height() const noexcept;
 

@@ -25,6 +25,10 @@ struct CameraSpec {
   int width_px = 128;
   int height_px = 96;
   double fovy_deg = 45.0;  ///< vertical field of view
+  /// Off by default: on a CPU renderer (llvmpipe) shadows double a frame's cost, and the floor's
+  /// reflection triples it (docs/simulation.md#cameras).
+  bool shadows = false;
+  bool reflections = false;
   CameraMount mount = CameraMount::kScene;
   CameraView view;  ///< kScene: where it looks from (the world is the robot's base frame)
   /// kTcp: the camera's pose in the TCP frame, in the optical convention (x right, y down, z the
@@ -42,10 +46,14 @@ struct CameraSpec {
 
 class SimCameras {
  public:
-  /// Renderers for `specs` on `plant`'s scene, which must outlive this. Raises the model's
-  /// offscreen buffer to the largest camera. Throws SimError for a spec that is not usable: an
-  /// empty or repeated name, a size not positive or odd, a field of view outside (0, 180).
+  /// Renderers for `specs` on `plant`'s scene, which must outlive this (or the next attach()'s).
+  /// Raises the model's offscreen buffer to the largest camera. Throws SimError for a spec that is
+  /// not usable: an empty or repeated name, a size not positive or odd, a field of view outside
+  /// (0, 180).
   SimCameras(SimulatedRobot& plant, std::vector<CameraSpec> specs);
+  /// Renders `plant` from now on, a rebuild of the same scene (a reset's new plant), keeping the
+  /// GL contexts: making them costs hundreds of milliseconds. Throws SimError for another scene.
+  void attach(SimulatedRobot& plant);
   ~SimCameras();
   SimCameras(const SimCameras&) = delete;
   SimCameras& operator=(const SimCameras&) = delete;
@@ -55,7 +63,7 @@ class SimCameras {
   [[nodiscard]] const std::vector<CameraSpec>& specs() const noexcept { return specs_; }
 
  private:
-  SimulatedRobot& plant_;
+  SimulatedRobot* plant_;
   std::vector<CameraSpec> specs_;
   std::vector<std::unique_ptr<Renderer>> renderers_;
   std::vector<Image> images_;
