@@ -38,18 +38,24 @@ Image filled(int width, int height, Rgb colour) {
   return image;
 }
 
+/// Every pixel different from its neighbours: a PNG filter or a row offset that goes wrong shows.
+Image gradientImage(int width, int height) {
+  Image image{width, height, {}};
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      image.rgb.push_back(static_cast<std::uint8_t>(x * 7));
+      image.rgb.push_back(static_cast<std::uint8_t>(y * 11));
+      image.rgb.push_back(static_cast<std::uint8_t>((x * y) % 256));
+    }
+  }
+  return image;
+}
+
 // ---- images and PNG ------------------------------------------------------------------------
 
 TEST(Png, RoundTripKeepsEveryByte) {
   // Odd width: rows of 3 * 37 bytes are not 4-byte aligned.
-  Image gradient{37, 23, {}};
-  for (int y = 0; y < gradient.height; ++y) {
-    for (int x = 0; x < gradient.width; ++x) {
-      gradient.rgb.push_back(static_cast<std::uint8_t>(x * 7));
-      gradient.rgb.push_back(static_cast<std::uint8_t>(y * 11));
-      gradient.rgb.push_back(static_cast<std::uint8_t>((x * y) % 256));
-    }
-  }
+  const Image gradient = gradientImage(37, 23);
   const testing::ScratchDir folder("render_test");
   const fs::path file = folder.path() / "gradient.png";
   writePng(gradient, file);
@@ -60,14 +66,7 @@ TEST(Png, RoundTripKeepsEveryByte) {
 }
 
 TEST(Png, InMemoryRoundTripKeepsEveryByteAndIsTheFilesFormat) {
-  Image gradient{38, 24, {}};
-  for (int y = 0; y < gradient.height; ++y) {
-    for (int x = 0; x < gradient.width; ++x) {
-      gradient.rgb.push_back(static_cast<std::uint8_t>(x * 5));
-      gradient.rgb.push_back(static_cast<std::uint8_t>(y * 9));
-      gradient.rgb.push_back(static_cast<std::uint8_t>((x + y) % 256));
-    }
-  }
+  const Image gradient = gradientImage(38, 24);
   const std::vector<std::uint8_t> fast = encodePng(gradient, 1);
   const std::vector<std::uint8_t> small = encodePng(gradient, 9);
   EXPECT_EQ(decodePng(fast).rgb, gradient.rgb);

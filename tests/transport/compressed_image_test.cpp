@@ -54,23 +54,14 @@ std::vector<std::uint8_t> wireBytes(const CompressedImageMessage& message) {
   sample.data._buffer = data.data();
   sample.data._release = false;
   EXPECT_EQ(dds_write(writer, &sample), DDS_RETCODE_OK);
-  ddsi_serdata* serdata = nullptr;
-  dds_sample_info_t info;
-  dds_return_t count = 0;
-  for (int i = 0; i < 500 && count == 0; ++i) {
-    count = dds_takecdr(reader, &serdata, 1, &info, DDS_ANY_STATE);
-    if (count == 0) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  for (int i = 0; i < 500; ++i) {  // until the sample has arrived, at most 5 s
+    uint32_t status = 0;
+    if (dds_take_status(reader, &status, DDS_DATA_AVAILABLE_STATUS) == 0 && status != 0) {
+      break;
     }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
-  EXPECT_EQ(count, 1);
-  if (count != 1) {
-    return {};
-  }
-  std::vector<std::uint8_t> bytes(ddsi_serdata_size(serdata));
-  ddsi_serdata_to_ser(serdata, 0, bytes.size(), bytes.data());
-  ddsi_serdata_unref(serdata);
-  return bytes;
+  return takeSerialized(reader);
 }
 
 TEST(CompressedImage, EncoderMatchesCycloneDdsAndTheDecoderReadsItBack) {

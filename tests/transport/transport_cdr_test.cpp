@@ -29,18 +29,7 @@ template <typename Message>
 std::vector<std::uint8_t> wireBytes(const Message& message) {
   Loopback<Message> loopback("cdr_test");
   loopback.send(message);
-  ddsi_serdata* serdata = nullptr;
-  dds_sample_info_t info;
-  const dds_return_t count =
-      dds_takecdr(loopback.reader.handle(), &serdata, 1, &info, DDS_ANY_STATE);
-  EXPECT_EQ(count, 1);
-  if (count != 1) {
-    return {};
-  }
-  std::vector<std::uint8_t> bytes(ddsi_serdata_size(serdata));
-  ddsi_serdata_to_ser(serdata, 0, bytes.size(), bytes.data());
-  ddsi_serdata_unref(serdata);
-  return bytes;
+  return takeSerialized(loopback.reader.handle());
 }
 
 TEST(TransportCdr, JointCommandBytesFollowTheCdrRules) {
