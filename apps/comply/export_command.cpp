@@ -12,7 +12,8 @@ CLI::App* addExportCommand(CLI::App& app, ExportOptions& options) {
   CLI::App* command =
       app.add_subcommand("export",
                          "recordings (MCAP) as training data: a LeRobot v3.0 dataset, an episode "
-                         "per recording (per reset of a Python Sim)");
+                         "per recording (per reset of a Python Sim), a video per recorded camera "
+                         "(through ffmpeg)");
   command->add_option("--lerobot", options.lerobot, "the dataset's folder (made if missing)")
       ->required();
   command->add_option("recordings", options.recordings, "the .mcap files, in episode order")
