@@ -12,7 +12,7 @@ namespace comply::exporter {
 void DatasetVideos::open(const std::filesystem::path& recording, const std::string& camera,
                          int width_px, int height_px) {
   if (width_px % 2 != 0 || height_px % 2 != 0) {
-    throw std::runtime_error("export: " + recording.string() + ": camera '" + camera + "' is " +
+    throw std::runtime_error(recording.string() + ": camera '" + camera + "' is " +
                              std::to_string(width_px) + " x " + std::to_string(height_px) +
                              ": a video of 4:2:0 chroma needs an even width and height");
   }
@@ -37,7 +37,7 @@ void DatasetVideos::add(const std::filesystem::path& recording,
     first_ = false;
   }
   if (frames.size() != cameras_.size()) {
-    throw std::runtime_error("export: " + name + " holds " + std::to_string(frames.size()) +
+    throw std::runtime_error(name + " holds " + std::to_string(frames.size()) +
                              " camera(s), the first recording " + std::to_string(cameras_.size()) +
                              ": a dataset's episodes all have the same cameras");
   }
@@ -46,11 +46,10 @@ void DatasetVideos::add(const std::filesystem::path& recording,
     CameraVideo& video = cameras_[c];
     if ("observation.images." + camera.camera != video.key || camera.width_px != video.width_px ||
         camera.height_px != video.height_px) {
-      throw std::runtime_error("export: " + name + ": camera '" + camera.camera + "' (" +
-                               std::to_string(camera.width_px) + " x " +
-                               std::to_string(camera.height_px) + ") is not the first " +
-                               "recording's " + video.key + " (" + std::to_string(video.width_px) +
-                               " x " + std::to_string(video.height_px) + ")");
+      throw std::runtime_error(
+          name + ": camera '" + camera.camera + "' (" + std::to_string(camera.width_px) + " x " +
+          std::to_string(camera.height_px) + ") is not the first " + "recording's " + video.key +
+          " (" + std::to_string(video.width_px) + " x " + std::to_string(video.height_px) + ")");
     }
     std::int64_t row = frames_;
     for (std::size_t e = 0; e < episodes.size(); ++e) {
@@ -63,7 +62,7 @@ void DatasetVideos::add(const std::filesystem::path& recording,
         const std::vector<std::uint8_t>* png =
             frameAt(camera, episode.first_stamp_ns, end_ns, static_cast<double>(i) / fps_);
         if (png == nullptr) {
-          throw std::runtime_error("export: " + name + ": camera '" + camera.camera +
+          throw std::runtime_error(name + ": camera '" + camera.camera +
                                    "' has no frame in episode " + std::to_string(e) +
                                    " of the recording");
         }

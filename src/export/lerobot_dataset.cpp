@@ -80,7 +80,7 @@ void writeText(const std::filesystem::path& path, const std::string& text) {
   out << text;
   out.close();
   if (!out) {
-    throw std::runtime_error("export: cannot write " + path.string());
+    throw std::runtime_error("cannot write " + path.string());
   }
 }
 
@@ -135,7 +135,7 @@ std::vector<EpisodeFrames> readEpisodes(const std::vector<std::filesystem::path>
     for (EpisodeFrames& episode : more) {
       const EpisodeFrames& first = episodes.empty() ? episode : episodes.front();
       if (episode.cartesian != first.cartesian || episode.joint_names != first.joint_names) {
-        throw std::runtime_error("export: " + recording.string() + " is of another controller " +
+        throw std::runtime_error(recording.string() + " is of another controller " +
                                  "or other joints than " + recordings.front().string() +
                                  ": a dataset's frames all have one shape");
       }
@@ -182,10 +182,10 @@ LeRobotSummary writeLeRobotDataset(const std::filesystem::path& folder,
                                    const std::vector<std::filesystem::path>& recordings,
                                    const LeRobotOptions& options) {
   if (recordings.empty()) {
-    throw std::invalid_argument("export: no recording to export");
+    throw std::invalid_argument("no recording to export");
   }
   if (!(options.fps > 0.0) || !std::isfinite(options.fps)) {
-    throw std::invalid_argument("export: the frame rate must be positive, not " +
+    throw std::invalid_argument("the frame rate must be positive, not " +
                                 std::to_string(options.fps));
   }
   DatasetVideos videos(folder, options.fps);

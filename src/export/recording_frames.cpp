@@ -302,8 +302,7 @@ std::vector<EpisodeFrames> recordingEpisodes(const std::filesystem::path& record
                                              std::int64_t first_episode_index,
                                              std::int64_t first_index, std::int64_t task_index) {
   if (!(fps > 0.0) || !std::isfinite(fps)) {
-    throw std::invalid_argument("export: the frame rate must be positive, not " +
-                                std::to_string(fps));
+    throw std::invalid_argument("the frame rate must be positive, not " + std::to_string(fps));
   }
   const std::string name = recording.string();
   // The channels first (a pass without messages), then the cycle channel's records.

@@ -83,8 +83,7 @@ VideoEncoder::VideoEncoder(std::filesystem::path file, double fps)
     : file_(std::move(file)), log_(file_.string() + ".ffmpeg.log") {
   int pipe_fds[2];
   if (::pipe2(pipe_fds, O_CLOEXEC) != 0) {
-    throw std::runtime_error("export: cannot make a pipe to ffmpeg: " +
-                             std::string(std::strerror(errno)));
+    throw std::runtime_error("cannot make a pipe to ffmpeg: " + std::string(std::strerror(errno)));
   }
   const std::string rate = fpsText(fps);
   const std::string output = file_.string();
@@ -111,7 +110,7 @@ VideoEncoder::VideoEncoder(std::filesystem::path file, double fps)
   if (spawned != 0) {
     ::close(pipe_fds[1]);
     pid_ = -1;
-    throw std::runtime_error("export: cannot start ffmpeg (" + std::string(std::strerror(spawned)) +
+    throw std::runtime_error("cannot start ffmpeg (" + std::string(std::strerror(spawned)) +
                              "): videos of the cameras need it (apt install ffmpeg)");
   }
   stdin_ = pipe_fds[1];
@@ -143,7 +142,7 @@ std::string VideoEncoder::failure(const std::string& what) {
   } else if (WIFSIGNALED(status)) {
     exit += " was killed by signal " + std::to_string(WTERMSIG(status));
   }
-  return "export: " + what + " " + file_.string() + ": " + exit + ": " + lastLines(log_);
+  return what + " " + file_.string() + ": " + exit + ": " + lastLines(log_);
 }
 
 void VideoEncoder::frame(std::span<const std::uint8_t> png) {
@@ -160,12 +159,12 @@ void VideoEncoder::finish() {
   }
   int status = 0;
   if (::waitpid(pid_, &status, 0) != pid_) {
-    throw std::runtime_error("export: lost ffmpeg writing " + file_.string());
+    throw std::runtime_error("lost ffmpeg writing " + file_.string());
   }
   pid_ = -1;
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     const std::string log = lastLines(log_);
-    throw std::runtime_error("export: ffmpeg failed writing " + file_.string() + " (" +
+    throw std::runtime_error("ffmpeg failed writing " + file_.string() + " (" +
                              (WIFEXITED(status) ? "status " + std::to_string(WEXITSTATUS(status))
                                                 : std::string("killed")) +
                              "): " + log);

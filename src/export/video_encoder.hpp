@@ -32,7 +32,7 @@ class VideoEncoder {
   [[nodiscard]] const std::filesystem::path& file() const noexcept { return file_; }
 
  private:
-  /// ffmpeg's exit and its last words, for an error.
+  /// "<what> <file>: ffmpeg exited with status N: <its last words>", after waiting for it.
   [[nodiscard]] std::string failure(const std::string& what);
 
   std::filesystem::path file_;
