@@ -10,6 +10,7 @@
 #include "comply/export/parquet_table.hpp"
 #include "comply/export/recording_frames.hpp"
 #include "dataset_videos.hpp"
+#include "feature_stats.hpp"
 
 namespace comply::exporter {
 namespace {
@@ -176,6 +177,18 @@ nlohmann::json info(const LeRobotOptions& options, const std::vector<EpisodeFram
   };
 }
 
+/// meta/stats.json: every numeric column's statistics and every camera's; its path.
+std::filesystem::path writeStats(const std::filesystem::path& folder, const ParquetTable& data,
+                                 const std::vector<CameraVideo>& videos) {
+  nlohmann::json stats = tableStats(data);
+  for (const CameraVideo& video : videos) {
+    stats[video.key] = videoStats(folder / video.file, video.width_px, video.height_px);
+  }
+  const std::filesystem::path file = folder / "meta" / "stats.json";
+  writeText(file, stats.dump(4) + "\n");
+  return file;
+}
+
 }  // namespace
 
 LeRobotSummary writeLeRobotDataset(const std::filesystem::path& folder,
@@ -219,9 +232,10 @@ LeRobotSummary writeLeRobotDataset(const std::filesystem::path& folder,
 
   const std::filesystem::path info_file = folder / "meta" / "info.json";
   writeText(info_file, metadata.dump(4) + "\n");
+  const std::filesystem::path stats_file = writeStats(folder, data, videos.cameras());
   LeRobotSummary summary{static_cast<std::int64_t>(episodes.size()),
                          frames,
-                         {data_file, info_file, tasks_file, episodes_file}};
+                         {data_file, info_file, stats_file, tasks_file, episodes_file}};
   for (const CameraVideo& video : videos.cameras()) {
     summary.files.push_back(folder / video.file);
   }

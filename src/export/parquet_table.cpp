@@ -371,4 +371,14 @@ void ParquetTable::write(const std::filesystem::path& path, std::int64_t row_gro
   }
 }
 
+std::vector<ParquetTable::NumericColumn> ParquetTable::numericColumns() const {
+  std::vector<NumericColumn> out;
+  for (const Column& column : columns_) {
+    if (column.kind != Kind::kString) {
+      out.push_back({column.name, column.width, column.int64s, column.floats, column.doubles});
+    }
+  }
+  return out;
+}
+
 }  // namespace comply::exporter

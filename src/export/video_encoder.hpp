@@ -3,12 +3,12 @@
 // a key frame every second frame (LeRobot's default: a decoder seeks to any frame cheaply),
 // frame i shown at exactly i / fps. Private to the export module.
 
-#include <sys/types.h>
-
 #include <cstdint>
 #include <filesystem>
 #include <span>
 #include <string>
+
+#include "ffmpeg_process.hpp"
 
 namespace comply::exporter {
 
@@ -17,7 +17,7 @@ class VideoEncoder {
   /// Starts ffmpeg writing `file` (replaced). Throws std::runtime_error when ffmpeg cannot be
   /// started (not installed: says so).
   VideoEncoder(std::filesystem::path file, double fps);
-  /// Stops ffmpeg if finish() was not called (the file is then not to be used).
+  /// Kills ffmpeg if finish() was not called (the file is then not to be used).
   ~VideoEncoder();
   VideoEncoder(const VideoEncoder&) = delete;
   VideoEncoder& operator=(const VideoEncoder&) = delete;
@@ -32,13 +32,8 @@ class VideoEncoder {
   [[nodiscard]] const std::filesystem::path& file() const noexcept { return file_; }
 
  private:
-  /// "<what> <file>: ffmpeg exited with status N: <its last words>", after waiting for it.
-  [[nodiscard]] std::string failure(const std::string& what);
-
   std::filesystem::path file_;
-  std::filesystem::path log_;  ///< ffmpeg's stderr
-  pid_t pid_ = -1;
-  int stdin_ = -1;
+  FfmpegProcess ffmpeg_;
   std::int64_t frames_ = 0;
 };
 

@@ -8,7 +8,8 @@
 - the camera's video has one frame per row (ffprobe), and frame i shows the image the Sim
   observed last at or before row i's time (the decoded frame is nearest to that image among the
   episode's images);
-- the episodes' table places each episode's rows and video frames;
+- the episodes' table places each episode's rows and video frames, and meta/stats.json holds
+  numpy's statistics of the rows and of the decoded frames;
 - a reset's frames are the first reset's, a TCP camera's frames move with the arm, and a camera
   that cannot be rendered is refused naming it.
 
@@ -140,6 +141,21 @@ def check_rows(rows, cycles, episode_rows):
     assert len({tuple(floats(r["action.stiffness"])) for r in rows}) > 3
 
 
+def check_stats(dataset, rows):
+    """meta/stats.json's numeric features against numpy over the rows a reader gave."""
+    with open(os.path.join(dataset, "meta", "stats.json")) as file:
+        stats = json.load(file)
+    for feature in ("observation.state", "action", "action.stiffness", "timestamp", "index"):
+        values = np.array([floats(np.atleast_1d(row[feature])) for row in rows], dtype=np.float64)
+        np.testing.assert_allclose(stats[feature]["mean"], values.mean(axis=0), rtol=1e-9,
+                                   atol=1e-12, err_msg=feature)
+        np.testing.assert_allclose(stats[feature]["std"], values.std(axis=0), rtol=1e-7,
+                                   atol=1e-9, err_msg=feature)
+        np.testing.assert_array_equal(stats[feature]["min"], values.min(axis=0), err_msg=feature)
+        np.testing.assert_array_equal(stats[feature]["max"], values.max(axis=0), err_msg=feature)
+        assert stats[feature]["count"] == [len(rows)], feature
+
+
 def decoded_frames(video):
     raw = subprocess.run(["ffmpeg", "-v", "error", "-i", video, "-f", "rawvideo", "-pix_fmt",
                           "rgb24", "-"], capture_output=True, check=True).stdout
@@ -157,6 +173,16 @@ def check_video(dataset, info, episodes, episode_table):
     assert (probe["width"], probe["height"], probe["codec_name"]) == (WIDTH, HEIGHT, "h264")
     frames = decoded_frames(video)
     assert len(frames) == info["total_frames"]
+    # meta/stats.json: the camera's per channel on 0 to 1, of the frames as decoded.
+    with open(os.path.join(dataset, "meta", "stats.json")) as file:
+        stats = json.load(file)["observation.images.front"]
+    np.testing.assert_allclose(np.array(stats["mean"]).ravel(),
+                               frames.mean(axis=(0, 1, 2)) / 255.0, rtol=1e-9)
+    np.testing.assert_allclose(np.array(stats["std"]).ravel(),
+                               frames.std(axis=(0, 1, 2)) / 255.0, rtol=1e-6)
+    np.testing.assert_array_equal(np.array(stats["max"]).ravel(),
+                                  frames.max(axis=(0, 1, 2)) / 255.0)
+    assert np.array(stats["mean"]).shape == (3, 1, 1) and stats["count"] == [len(frames)]
     for e, episode in enumerate(episode_table):
         begin, end = int(episode["dataset_from_index"]), int(episode["dataset_to_index"])
         assert episode["videos/observation.images.front/from_timestamp"] == begin / FPS
@@ -201,6 +227,7 @@ def main():
             table = read_parquet(source, script, data)
             assert table["num_rows"] == info["total_frames"] == len(table["rows"]), script
             check_rows(table["rows"], cycles, episode_rows)
+        check_stats(dataset, table["rows"])
         check_video(dataset, info, episodes, episode_table)
         print(f"ok: {EPISODES} episodes, {info['total_frames']} rows and video frames at {FPS} "
               "fps, read by hyparquet, DuckDB and ffprobe")

@@ -5,6 +5,8 @@
 //   data/chunk-000/file-000.parquet              every episode's frames, one after another
 //   meta/info.json                               the format's version, fps, totals, the path
 //                                                templates, every feature's dtype, shape, names
+//   meta/stats.json                              every feature's min, max, mean, std, count (per
+//                                                dimension; a camera's per channel, 0 to 1)
 //   meta/tasks.parquet                           task_index, task
 //   meta/episodes/chunk-000/file-000.parquet     per episode: its index, length, file and its
 //                                                rows in the data file (dataset_from_index,
@@ -17,8 +19,8 @@
 //                                                i / fps, encoded by Debian's ffmpeg (H.264)
 //
 // A camera's frame for row i is the one in force at the row's time (the last taken at or before
-// it), as for the cycle records. Not yet written: the per-feature statistics (meta/stats.json and
-// the episodes' stats columns) and the episodes' `tasks` list column.
+// it), as for the cycle records. Not yet written: the episodes' own statistics columns and their
+// `tasks` list column.
 
 #include <cstdint>
 #include <filesystem>

@@ -16,7 +16,9 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace comply::exporter {
@@ -38,6 +40,18 @@ class ParquetTable {
   void append(const ParquetTable& other);
   /// A key/value pair in the file's footer.
   void addMetadata(const std::string& key, const std::string& value);
+
+  /// A numeric column as stored (INT64 in `int64s`, FLOAT and FLOAT lists in `floats`, DOUBLE in
+  /// `doubles`; `width` values per row), for what is computed from a table (its statistics).
+  struct NumericColumn {
+    std::string_view name;
+    int width;
+    std::span<const std::int64_t> int64s;
+    std::span<const float> floats;
+    std::span<const double> doubles;
+  };
+  /// Every column but the strings, in order; valid while the table is not changed.
+  [[nodiscard]] std::vector<NumericColumn> numericColumns() const;
 
   [[nodiscard]] std::int64_t rows() const noexcept { return rows_; }
   [[nodiscard]] std::size_t columns() const noexcept { return columns_.size(); }

@@ -1,14 +1,17 @@
 // A dataset's camera frames: the frame in force at a row's time within its episode, a PNG's size
 // from its header, and the video ffmpeg makes of them (ffprobe counts its frames, ffmpeg decodes
-// them back next to the PNGs they came from).
+// them back next to the PNGs they came from); the features' statistics.
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "comply/sim/image.hpp"
+#include "feature_stats.hpp"
 #include "recording_images.hpp"
 #include "scratch.hpp"
 #include "video_encoder.hpp"
@@ -50,6 +53,30 @@ TEST(FrameAt, TheLastFrameAtOrBeforeTheRowsTimeWithinItsEpisode) {
   EXPECT_EQ(which(frameAt(frames, start - 20'000'000, next, 0.0)), 0);
   // An episode without frames has none.
   EXPECT_EQ(frameAt(frames, start + 300'000'000, INT64_MAX, 0.0), nullptr);
+}
+
+TEST(FeatureStats, LargeValuesKeepTheirVarianceAndNanIsLeftOut) {
+  // A row index near 1e12 varying by a few units: a sum of squares would lose the variance.
+  FeatureStats stats(2);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double rows[4][2] = {{1e12 + 1, 2.0}, {1e12 + 2, nan}, {1e12 + 3, 4.0}, {1e12 + 4, nan}};
+  for (const auto& row : rows) {
+    stats.add(row);
+  }
+  const nlohmann::json json = stats.json();
+  EXPECT_DOUBLE_EQ(json["mean"][0].get<double>(), 1e12 + 2.5);
+  EXPECT_NEAR(json["std"][0].get<double>(), std::sqrt(1.25), 1e-9);
+  EXPECT_EQ(json["min"][0].get<double>(), 1e12 + 1);
+  EXPECT_EQ(json["max"][0].get<double>(), 1e12 + 4);
+  // The second dimension from its two numbers only.
+  EXPECT_DOUBLE_EQ(json["mean"][1].get<double>(), 3.0);
+  EXPECT_DOUBLE_EQ(json["std"][1].get<double>(), 1.0);
+  EXPECT_EQ(json["count"], nlohmann::json::array({4}));
+
+  FeatureStats empty(1);
+  const double only_nan[1] = {nan};
+  empty.add(only_nan);
+  EXPECT_TRUE(empty.json()["mean"][0].is_null()) << "no number is made up for a NaN column";
 }
 
 sim::Image shade(int width, int height, std::uint8_t red, std::uint8_t green) {
