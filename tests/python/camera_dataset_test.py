@@ -10,6 +10,7 @@
   episode's images);
 - the episodes' table places each episode's rows and video frames, and meta/stats.json holds
   numpy's statistics of the rows and of the decoded frames;
+- Foxglove's deserializer decodes the recording's camera channel (sensor_msgs/CompressedImage);
 - a reset's frames are the first reset's, a TCP camera's frames move with the arm, and a camera
   that cannot be rendered is refused naming it.
 
@@ -91,6 +92,27 @@ def check_cameras(source):
             raise AssertionError(f"{cameras} was accepted")
         except ValueError as error:
             assert words in str(error), (words, str(error))
+
+
+def check_foxglove(source, recording, episodes):
+    """Foxglove's own ROS 2 deserializer (tests/record/read_mcap.mjs) decodes every frame of the
+    camera channel: PNG bytes, stamped with the observation's time."""
+    done = subprocess.run(["node", f"{source}/tests/record/read_mcap.mjs", recording,
+                           "--messages", "1000000"], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    messages = json.loads(done.stdout)["messages"]["/comply/camera/front"]
+    assert len(messages) == EPISODES * (STEPS + 1), len(messages)
+    # Each episode's frames 50 ms apart on the recording's clock, as the observations were.
+    stamps = [int(m["data"]["header"]["stamp"]["sec"]) * 10**9
+              + int(m["data"]["header"]["stamp"]["nanosec"]) for m in messages]
+    for e, episode in enumerate(episodes):
+        own = np.array(stamps[e * (STEPS + 1):(e + 1) * (STEPS + 1)]) - stamps[e * (STEPS + 1)]
+        observed = np.array([t for t, _ in episode]) - episode[0][0]
+        np.testing.assert_allclose(own * 1e-9, observed, atol=1e-9)
+    for message in messages:
+        image = message["data"]
+        assert image["format"] == "png" and image["data"][:4] == [137, 80, 78, 71], image["format"]
+        assert image["header"]["frame_id"] == "front"
 
 
 def read_parquet(source, script, path):
@@ -206,6 +228,7 @@ def main():
         images = comply.read_recording(recording)["/comply/camera/front"]
         assert images.count == EPISODES * (STEPS + 1), images.count
         assert set(images["format"]) == {"png"}
+        check_foxglove(source, recording, episodes)
 
         dataset = os.path.join(folder, "dataset")
         done = subprocess.run([cli, "export", "--lerobot", dataset, recording, "--fps", str(FPS),
@@ -230,7 +253,7 @@ def main():
         check_stats(dataset, table["rows"])
         check_video(dataset, info, episodes, episode_table)
         print(f"ok: {EPISODES} episodes, {info['total_frames']} rows and video frames at {FPS} "
-              "fps, read by hyparquet, DuckDB and ffprobe")
+              "fps, read by hyparquet, DuckDB and ffprobe; frames by Foxglove's deserializer")
 
 
 if __name__ == "__main__":
