@@ -177,6 +177,37 @@ nlohmann::json info(const LeRobotOptions& options, const std::vector<EpisodeFram
   };
 }
 
+/// meta/tasks.parquet: task_index and the task's text, which pandas reads as the table's index
+/// (the footer's "pandas" metadata, pandas' own format for it), as LeRobot's writer leaves it and
+/// its loader takes a task's text from; its path.
+std::filesystem::path writeTasks(const std::filesystem::path& folder, const std::string& task) {
+  ParquetTable tasks;
+  tasks.addInt64("task_index", {0});
+  tasks.addString("task", {task});
+  const auto column = [](const char* name, const char* pandas_type, const char* numpy_type) {
+    return nlohmann::json{{"name", name},
+                          {"field_name", name},
+                          {"pandas_type", pandas_type},
+                          {"numpy_type", numpy_type},
+                          {"metadata", nullptr}};
+  };
+  const nlohmann::json pandas = {
+      {"index_columns", {"task"}},
+      {"column_indexes",
+       {{{"name", nullptr},
+         {"field_name", nullptr},
+         {"pandas_type", "unicode"},
+         {"numpy_type", "object"},
+         {"metadata", {{"encoding", "UTF-8"}}}}}},
+      {"columns", {column("task_index", "int64", "int64"), column("task", "unicode", "object")}},
+      {"creator", {{"library", "comply"}, {"version", "1"}}},
+      {"pandas_version", "1.5.3"}};
+  tasks.addMetadata("pandas", pandas.dump());
+  const std::filesystem::path file = folder / "meta" / "tasks.parquet";
+  tasks.write(file);
+  return file;
+}
+
 /// meta/stats.json: every numeric column's statistics and every camera's; its path.
 std::filesystem::path writeStats(const std::filesystem::path& folder, const ParquetTable& data,
                                  const std::vector<CameraVideo>& videos) {
@@ -224,11 +255,7 @@ LeRobotSummary writeLeRobotDataset(const std::filesystem::path& folder,
   data.write(data_file);
   writeEpisodes(episodes_file, episodes, sources, videos.cameras());
 
-  ParquetTable tasks;
-  tasks.addInt64("task_index", {0});
-  tasks.addString("task", {options.task});
-  const std::filesystem::path tasks_file = folder / "meta" / "tasks.parquet";
-  tasks.write(tasks_file);
+  const std::filesystem::path tasks_file = writeTasks(folder, options.task);
 
   const std::filesystem::path info_file = folder / "meta" / "info.json";
   writeText(info_file, metadata.dump(4) + "\n");

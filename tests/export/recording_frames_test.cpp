@@ -212,6 +212,16 @@ TEST_F(RecordingFrames, TwoRecordingsAreTwoEpisodesOfOneLeRobotDataset) {
   const nlohmann::json tasks = readWithHyparquet(folder / "meta" / "tasks.parquet");
   ASSERT_FALSE(tasks.is_null());
   EXPECT_EQ(tasks["rows"][0]["task"], "step 3 cm");
+  // pandas reads the task's text as the index (its own metadata format), as LeRobot's loader
+  // expects: the descriptor names a column that is there, and every column is described.
+  const nlohmann::json pandas =
+      nlohmann::json::parse(tasks["key_value_metadata"]["pandas"].get<std::string>());
+  EXPECT_EQ(pandas["index_columns"], nlohmann::json::array({"task"}));
+  ASSERT_EQ(pandas["columns"].size(), 2U);
+  EXPECT_EQ(pandas["columns"][0]["field_name"], "task_index");
+  EXPECT_EQ(pandas["columns"][1]["field_name"], "task");
+  EXPECT_EQ(pandas["columns"][1]["pandas_type"], "unicode");
+  EXPECT_TRUE(tasks["rows"][0].contains("task"));
 }
 
 TEST_F(RecordingFrames, TheCommandRefusesWhatIsNotARecordingWithTheReason) {
