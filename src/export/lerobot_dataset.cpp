@@ -228,10 +228,6 @@ LeRobotSummary writeLeRobotDataset(const std::filesystem::path& folder,
   if (recordings.empty()) {
     throw std::invalid_argument("no recording to export");
   }
-  if (!(options.fps > 0.0) || !std::isfinite(options.fps)) {
-    throw std::invalid_argument("the frame rate must be positive, not " +
-                                std::to_string(options.fps));
-  }
   DatasetVideos videos(folder, options.fps);
   std::vector<std::string> sources;  // the recording of each episode
   std::vector<EpisodeFrames> episodes = readEpisodes(recordings, options.fps, videos, sources);

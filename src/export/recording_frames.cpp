@@ -142,14 +142,6 @@ class FrameSampler {
   Columns columns_;
 };
 
-/// A stamp in whole nanoseconds: a wall-clock stamp (about 1.7e9 s) as a double in seconds
-/// would keep only a quarter of a microsecond, too coarse to tell which cycle is in force at
-/// a frame time a cycle falls on.
-std::int64_t nanoseconds(const transport::Stamp& stamp) {
-  return static_cast<std::int64_t>(stamp.sec) * 1'000'000'000 +
-         static_cast<std::int64_t>(stamp.nanosec);
-}
-
 /// The table of one episode's sampled frames.
 void tabulate(Columns& columns, std::int64_t episode_index, std::int64_t first_index,
               std::int64_t task_index, EpisodeFrames& episode) {
@@ -216,7 +208,7 @@ class EpisodeSplitter {
     if (previous_ && state.cycle <= previous_->state.cycle) {
       finish();
     }
-    const std::int64_t time_ns = nanoseconds(state.header.stamp);
+    const std::int64_t time_ns = state.header.stamp.nanoseconds();
     if (!sampler_) {
       episode_.dof = static_cast<int>(state.position.size());
       episode_.cartesian = state.command_kind == transport::WireCommandKind::kCartesian;

@@ -18,11 +18,6 @@ std::uint32_t bigEndian32(const std::uint8_t* bytes) {
          (std::uint32_t{bytes[2]} << 8) | std::uint32_t{bytes[3]};
 }
 
-std::int64_t nanoseconds(const transport::Stamp& stamp) {
-  return static_cast<std::int64_t>(stamp.sec) * 1'000'000'000 +
-         static_cast<std::int64_t>(stamp.nanosec);
-}
-
 }  // namespace
 
 bool pngSize(const std::vector<std::uint8_t>& bytes, int& width_px, int& height_px) {
@@ -75,12 +70,12 @@ std::vector<CameraFrames> recordingImages(const std::filesystem::path& recording
               ", the camera's first " + std::to_string(frames.width_px) + " x " +
               std::to_string(frames.height_px);
     } else if (!frames.stamp_ns.empty() &&
-               nanoseconds(image.header.stamp) < frames.stamp_ns.back()) {
+               image.header.stamp.nanoseconds() < frames.stamp_ns.back()) {
       error = which + " is stamped before the one before it";
     } else {
       frames.width_px = width;
       frames.height_px = height;
-      frames.stamp_ns.push_back(nanoseconds(image.header.stamp));
+      frames.stamp_ns.push_back(image.header.stamp.nanoseconds());
       frames.png.push_back(std::move(image.data));
     }
   });

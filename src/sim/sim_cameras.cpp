@@ -105,6 +105,8 @@ SimCameras::SimCameras(SimulatedRobot& plant, std::vector<CameraSpec> specs)
     renderers_.push_back(std::make_unique<Renderer>(model, spec.width_px, spec.height_px));
     renderers_.back()->setShadows(spec.shadows);
     renderers_.back()->setReflections(spec.reflections);
+    // A scene camera never moves: its pose once, here.
+    poses_.push_back(scenePose(spec.view, spec.fovy_deg));
   }
   images_.resize(specs_.size());
 }
@@ -123,10 +125,10 @@ const std::vector<Image>& SimCameras::render() {
   const mjData& data = plant_->mujocoData();
   for (std::size_t i = 0; i < specs_.size(); ++i) {
     const CameraSpec& spec = specs_[i];
-    const CameraPose pose = spec.mount == CameraMount::kTcp
-                                ? tcpPose(plant_->tcpPose(), spec.tcp_from_camera, spec.fovy_deg)
-                                : scenePose(spec.view, spec.fovy_deg);
-    renderers_[i]->render(data, pose, images_[i]);
+    if (spec.mount == CameraMount::kTcp) {
+      poses_[i] = tcpPose(plant_->tcpPose(), spec.tcp_from_camera, spec.fovy_deg);
+    }
+    renderers_[i]->render(data, poses_[i], images_[i]);
   }
   return images_;
 }

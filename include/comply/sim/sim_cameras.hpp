@@ -66,6 +66,7 @@ class SimCameras {
   SimulatedRobot* plant_;
   std::vector<CameraSpec> specs_;
   std::vector<std::unique_ptr<Renderer>> renderers_;
+  std::vector<CameraPose> poses_;  ///< each camera's, a TCP camera's as of its last frame
   std::vector<Image> images_;
 };
 
