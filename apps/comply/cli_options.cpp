@@ -100,6 +100,13 @@ CLI::App* addSimCommand(CLI::App& app, SimOptions& options) {
       ->add_option("--snapshot-every", options.snapshot_every_ms,
                    "also a PNG every N ms of simulated time (default: the task's)")
       ->check(finiteIn(0.0, 1e6));
+  command->add_option("--foxglove", options.foxglove,
+                      "serve a Foxglove live view on [ADDRESS:]PORT (ADDRESS default 127.0.0.1; "
+                      "real time while a viewer is connected; docs/live-view.md)");
+  command
+      ->add_option("--foxglove-wait", options.foxglove_wait_s,
+                   "with --foxglove: wait up to this long [s] for the first viewer")
+      ->check(finiteIn(0.0, 3600.0));
   command->add_flag("--realtime", options.realtime, "pace the simulation to the wall clock");
   command->add_flag("--view", options.view, "open an interactive window (needs a display)");
   command->add_flag("--no-plot{false}", options.plot, "skip the matplotlib plot");

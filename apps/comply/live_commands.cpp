@@ -79,6 +79,9 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions* run) {
   run_command->add_option("--record", run->record_path,
                           "record every cycle, command and outcome to this MCAP file (its folder "
                           "must exist)");
+  run_command->add_option("--foxglove", run->foxglove,
+                          "serve a Foxglove live view on [ADDRESS:]PORT (ADDRESS default "
+                          "127.0.0.1; Foxglove's port is 8765; docs/live-view.md)");
   return run_command;
 }
 

@@ -9,6 +9,7 @@
 #include "comply/core/output_folder.hpp"
 #include "comply/host/controller_setup.hpp"
 #include "comply/host/live_host.hpp"
+#include "comply/host/live_view.hpp"
 #include "comply/pipeline/config.hpp"
 #include "comply/sim/viewer.hpp"
 
@@ -49,6 +50,13 @@ std::string checkOptions(const RunOptions& options) {
   if (!options.record_path.empty()) {
     if (const std::string why = missingFolderOf(options.record_path); !why.empty()) {
       return "cannot record to " + options.record_path + ": " + why;
+    }
+  }
+  if (!options.foxglove.empty()) {
+    try {
+      (void)host::parseViewAddress(options.foxglove);
+    } catch (const std::invalid_argument& error) {
+      return error.what();
     }
   }
   return {};

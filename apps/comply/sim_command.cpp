@@ -36,6 +36,15 @@ int simCommand(const SimOptions& options, std::ostream& out, std::ostream& err) 
     return 2;
   }
   host::SimRunOptions run;
+  if (!options.foxglove.empty()) {
+    try {
+      run.foxglove = host::parseViewAddress(options.foxglove);
+    } catch (const std::invalid_argument& error) {
+      err << "comply sim: " << error.what() << "\n";
+      return 2;
+    }
+    run.foxglove_wait_s = options.foxglove_wait_s;
+  }
   run.config = host::simControllerConfig(options.robot,
                                          options.plugin.empty() && options.config_file.empty()
                                              ? "cartesian_impedance"

@@ -28,18 +28,9 @@ template <typename Command>
 void encodeCycle(std::span<const std::uint8_t> raw, const pipeline::BusOf<Command>& in_force,
                  const pipeline::ResolvedController& resolved, std::vector<std::uint8_t>& out) {
   const auto& cycle = record::recordAs<RecordedCycle>(raw);
-  transport::CycleRecordMessage message;
-  message.state = stateMessage(cycle.state, resolved);
-  message.compute_time_s = cycle.compute_s;
-  message.start_lateness_s = cycle.start_lateness_s;
-  const transport::Header header{transport::Stamp::fromNanoseconds(cycle.state.reference.stamp_ns),
-                                 resolved.robot.base_frame};
-  if constexpr (std::is_same_v<Command, CartesianCommand>) {
-    message.cartesian_in_force.push_back({header, schema::fromBus(in_force)});
-  } else {
-    message.joint_in_force.push_back({header, schema::fromBus(in_force)});
-  }
-  transport::encodeCdr(message, out);
+  transport::encodeCdr(cycleRecordMessage<Command>(cycle.state, in_force, cycle.compute_s,
+                                                   cycle.start_lateness_s, resolved),
+                       out);
 }
 
 template <typename Message>
@@ -50,6 +41,32 @@ void push(record::RecordLane& lane, std::uint16_t channel, const Message& messag
 }
 
 }  // namespace
+
+template <typename Command>
+transport::CycleRecordMessage cycleRecordMessage(const StateSample& state,
+                                                 const pipeline::BusOf<Command>& in_force,
+                                                 double compute_s, double start_lateness_s,
+                                                 const pipeline::ResolvedController& resolved) {
+  transport::CycleRecordMessage message;
+  message.state = stateMessage(state, resolved);
+  message.compute_time_s = compute_s;
+  message.start_lateness_s = start_lateness_s;
+  const transport::Header header{transport::Stamp::fromNanoseconds(state.reference.stamp_ns),
+                                 resolved.robot.base_frame};
+  if constexpr (std::is_same_v<Command, CartesianCommand>) {
+    message.cartesian_in_force.push_back({header, schema::fromBus(in_force)});
+  } else {
+    message.joint_in_force.push_back({header, schema::fromBus(in_force)});
+  }
+  return message;
+}
+
+template transport::CycleRecordMessage cycleRecordMessage<CartesianCommand>(
+    const StateSample&, const pipeline::BusOf<CartesianCommand>&, double, double,
+    const pipeline::ResolvedController&);
+template transport::CycleRecordMessage cycleRecordMessage<JointCommand>(
+    const StateSample&, const pipeline::BusOf<JointCommand>&, double, double,
+    const pipeline::ResolvedController&);
 
 SenderChannels::SenderChannels(record::Recorder& recorder, const std::string& prefix)
     : cartesian_(addMessageChannel<transport::CartesianCommandMessage>(

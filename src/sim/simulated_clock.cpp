@@ -18,22 +18,25 @@ SimulatedClock::SimulatedClock(SimulatedRobot& robot, bool pace_to_wall_clock)
     : robot_(robot), pace_(pace_to_wall_clock), origin_s_(robot.simTime()) {}
 
 void SimulatedClock::waitUntil(double time_s) noexcept {
-  if (pace_ && !anchored_) {
+  const bool pace = pacing();
+  if (pace && !anchored_) {
     wall_start_ = SteadyClock::now() - steadyDuration(now());
     anchored_ = true;
+  } else if (!pace) {
+    anchored_ = false;  // paced again later: from then on, not making up the unpaced stretch
   }
   // Half a period of slack: floating-point sums of the period must not skip or add a step.
   const double tolerance_s = 0.5 * robot_.controlPeriod();
   while (now() < time_s - tolerance_s) {
     robot_.step();
   }
-  if (pace_) {
+  if (pace) {
     std::this_thread::sleep_until(wall_start_ + steadyDuration(now()));
   }
 }
 
 double SimulatedClock::lateness(double time_s) noexcept {
-  if (!pace_ || !anchored_) {
+  if (!pacing() || !anchored_) {
     return now() - time_s;
   }
   return std::chrono::duration<double>(SteadyClock::now() - wall_start_).count() - time_s;

@@ -53,6 +53,14 @@ std::uint16_t addMessageChannel(record::Recorder& recorder, const std::string& t
   return recorder.addChannel(schema, topic, std::move(encoder));
 }
 
+/// The cycle record of `state` with the command the law used, `in_force`, and the cycle's timing:
+/// what a recording and the live view carry on `/<name>/cycle` (allocates: off the control thread).
+template <typename Command>
+transport::CycleRecordMessage cycleRecordMessage(const StateSample& state,
+                                                 const pipeline::BusOf<Command>& in_force,
+                                                 double compute_s, double start_lateness_s,
+                                                 const pipeline::ResolvedController& resolved);
+
 /// The channels of what a sender writes, under `/<name>/`: the commands and chunks of both kinds
 /// and the requests, one channel each, as the hosts and the Python client record them.
 class SenderChannels {

@@ -39,6 +39,8 @@ struct LiveHostOptions {
   double warm_ahead_us = 0.0;
   std::string
       record_path;  ///< non-empty: record every cycle, command and outcome to this MCAP file
+  /// Non-empty: a Foxglove live view on "[ADDRESS:]PORT" (host/live_view.hpp).
+  std::string foxglove;
 };
 
 /// Runs the controller `config` (from controllerConfig() or simControllerConfig()) on the

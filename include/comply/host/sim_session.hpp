@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "comply/core/commands.hpp"
+#include "comply/host/live_view.hpp"
 #include "comply/host/task_file.hpp"
 #include "comply/host/timing_statistics.hpp"
 #include "comply/pipeline/config.hpp"
@@ -44,6 +45,11 @@ struct SimRunOptions {
   /// Non-empty: every cycle, command and outcome recorded to this MCAP file, stamped with the
   /// simulated time (seconds since the start, as if the epoch).
   std::filesystem::path record_path;
+  /// Set: a Foxglove live view (host/live_view.hpp) on this address, the run paced to the wall
+  /// clock while a viewer is connected.
+  std::optional<LiveViewOptions> foxglove;
+  /// With `foxglove`: wait up to this long [s] for the first viewer before the first cycle.
+  double foxglove_wait_s = 0.0;
 };
 
 /// What a recording wrote (SimSummary::recording).

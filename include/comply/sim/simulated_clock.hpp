@@ -5,6 +5,7 @@
 // (`comply run --sim`, --realtime and the interactive viewer), from the first wait on: the time a
 // host takes to set up before its first cycle is not a backlog the plant then runs through.
 
+#include <atomic>
 #include <chrono>
 
 #include "comply/hardware/loop_clock.hpp"
@@ -23,10 +24,19 @@ class SimulatedClock final : public hardware::LoopClock {
   /// Paced: how far the wall clock is past time_s's real-time deadline, so that a stalled host
   /// shows as late while the plant, stepped back to back, catches up; else now() - time_s.
   [[nodiscard]] double lateness(double time_s) noexcept override;
+  /// Also paces while `*flag` is set (a viewer watching `comply sim`), re-anchored each time it
+  /// becomes set: the run goes as fast as it can between. Not owned; nullptr: only the constructor's
+  /// choice.
+  void paceWhile(const std::atomic<bool>* flag) noexcept { pace_while_ = flag; }
 
  private:
   SimulatedRobot& robot_;
+  [[nodiscard]] bool pacing() const noexcept {
+    return pace_ || (pace_while_ != nullptr && pace_while_->load(std::memory_order_relaxed));
+  }
+
   bool pace_;
+  const std::atomic<bool>* pace_while_ = nullptr;
   double origin_s_;
   bool anchored_ = false;
   /// Paced: the wall-clock time at which now() read 0 (set by the first waitUntil()).

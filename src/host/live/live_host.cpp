@@ -13,6 +13,7 @@
 #include "comply/hardware/control_loop.hpp"
 #include "comply/host/diagnostics_message.hpp"
 #include "comply/host/hardware_backends.hpp"
+#include "comply/host/live_view.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/transport/host_transport.hpp"
@@ -51,6 +52,7 @@ struct PublisherContext {
   transport::HostTransport& transport;
   double period_s;
   HostRecording* recording;
+  LiveView* view;
 };
 
 template <typename Command>
@@ -67,6 +69,12 @@ void publishDiagnostics(PublisherContext<Command>& c,
       c.recording->outcome(outcome);
     }
     c.recording->diagnostics(message);
+  }
+  if (c.view != nullptr) {
+    for (const transport::CommandOutcomeMessage& outcome : message.outcomes) {
+      c.view->outcome(outcome);
+    }
+    c.view->diagnostics(message);
   }
   c.transport.publish(message);
 }
@@ -205,6 +213,12 @@ int runWith(const LiveHostOptions& options,
     observer.setRecording(recording.get());
     intake.setRecording(recording.get());
   }
+  const std::unique_ptr<LiveView> view =
+      options.foxglove.empty()
+          ? nullptr
+          : std::make_unique<LiveView>(parseViewAddress(options.foxglove), resolved, options.name);
+  observer.setView(view.get());
+  intake.setView(view.get());
 
   std::atomic<bool> loop_running{true};
   std::atomic<bool> io_running{true};
@@ -219,12 +233,15 @@ int runWith(const LiveHostOptions& options,
     makeThreadRealtime(receivePriority(priority));  // granted: the control thread's is
     readerThread(*transport, intake, committed, io_running);
   });
-  PublisherContext<Command> context{options, *resolved,  wrapper,  observer,
-                                    gate,    *transport, period_s, recording.get()};
+  PublisherContext<Command> context{options,    *resolved, wrapper,         observer,  gate,
+                                    *transport, period_s,  recording.get(), view.get()};
   std::thread publisher([&] { publisherThread(context, io_running); });
   out << "comply run: " << resolved->robot.name << " with " << resolved->config.plugin << " at "
       << options.rate_hz << " Hz on " << backend.description << "; " << transport->describe()
       << "; Ctrl-C to stop" << std::endl;
+  if (view != nullptr) {
+    out << "comply run: Foxglove live view on " << view->url() << std::endl;
+  }
 
   while (!stop.load() && loop_running.load()) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -245,6 +262,9 @@ int runWith(const LiveHostOptions& options,
   if (recording != nullptr) {
     recording->stop();
     printRecording(*recording, out);
+  }
+  if (view != nullptr) {
+    out << "comply run: " << describeViewStats(view->stats()) << "\n";
   }
   return 0;
 }

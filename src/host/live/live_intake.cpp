@@ -56,10 +56,23 @@ void offerSample(pipeline::Wrapper<Command>& wrapper, pipeline::CommandGate& gat
 
 template <typename Command>
 template <typename Message>
-void Intake<Command>::handleCommand(const transport::Sample<Message>& sample) {
-  if (recording_ != nullptr && sample.malformed.empty()) {
-    recording_->received(sample.message, transport::Stamp::now());
+void Intake<Command>::noteReceived(const transport::Sample<Message>& sample) {
+  if (!sample.malformed.empty() || (recording_ == nullptr && view_ == nullptr)) {
+    return;
   }
+  const transport::Stamp now = transport::Stamp::now();
+  if (recording_ != nullptr) {
+    recording_->received(sample.message, now);
+  }
+  if (view_ != nullptr) {
+    view_->received(sample.message, now);
+  }
+}
+
+template <typename Command>
+template <typename Message>
+void Intake<Command>::handleCommand(const transport::Sample<Message>& sample) {
+  noteReceived(sample);
   constexpr bool kCartesian = std::is_same_v<Message, transport::CartesianCommandMessage> ||
                               std::is_same_v<Message, transport::CartesianChunkMessage>;
   offerSample(wrapper_, gate_, sample,
@@ -108,9 +121,7 @@ void Intake<Command>::take(const transport::Inbox& inbox) {
 
 template <typename Command>
 void Intake<Command>::handleRequest(const transport::Sample<transport::RequestMessage>& sample) {
-  if (recording_ != nullptr && sample.malformed.empty()) {
-    recording_->received(sample.message, transport::Stamp::now());
-  }
+  noteReceived(sample);
   // Every request has an outcome, as every command has: its sender learns whether it was carried
   // out or why not.
   const std::int64_t stamp_ns = sample.message.header.stamp.nanoseconds();

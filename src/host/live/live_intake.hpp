@@ -42,17 +42,22 @@ class Intake {
   void take(const transport::Inbox& inbox);
   /// Every well-formed command and request is recorded as received (nullptr: none).
   void setRecording(HostRecording* recording) noexcept { recording_ = recording; }
+  /// Every command and request is also shown there (nullptr: none).
+  void setView(LiveView* view) noexcept { view_ = view; }
 
  private:
   /// A command or chunk of either kind: recorded as received, then offered to the gate.
   template <typename Message>
   void handleCommand(const transport::Sample<Message>& sample);
+  template <typename Message>
+  void noteReceived(const transport::Sample<Message>& sample);
   void handleRequest(const transport::Sample<transport::RequestMessage>& sample);
 
   pipeline::Wrapper<Command>& wrapper_;
   LiveObserver<Command>& observer_;
   pipeline::CommandGate& gate_;
   HostRecording* recording_ = nullptr;
+  LiveView* view_ = nullptr;
 };
 
 extern template class Intake<CartesianCommand>;

@@ -19,6 +19,7 @@
 #include "comply/hardware/control_loop.hpp"
 #include "comply/host/diagnostics_message.hpp"
 #include "comply/host/host_recording.hpp"
+#include "comply/host/live_view.hpp"
 #include "comply/host/state_sample.hpp"
 #include "comply/model/data.hpp"
 #include "comply/pipeline/command_gate.hpp"
@@ -41,6 +42,8 @@ class LiveObserver final : public hardware::LoopObserver {
 
   /// Before the loop runs: every cycle is recorded there (nullptr: none).
   void setRecording(HostRecording* recording) noexcept { recording_ = recording; }
+  /// Before the loop runs: every cycle is shown there while a viewer watches (nullptr: none).
+  void setView(LiveView* view) noexcept { view_ = view; }
   /// The intake's thread: activate or deactivate before the next cycle; the request (`stamp_ns`,
   /// `sender`) is settled when it was carried out or failed (settleRequests()). False when too
   /// many wait (the caller refuses it).
@@ -67,6 +70,7 @@ class LiveObserver final : public hardware::LoopObserver {
   JointState last_state_;
   StateSampler<Command> sampler_;
   HostRecording* recording_ = nullptr;
+  LiveView* view_ = nullptr;
   struct LifecycleRequest {
     transport::RequestType request = transport::RequestType::kProbe;
     std::int64_t stamp_ns = 0;

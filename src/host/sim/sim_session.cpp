@@ -11,6 +11,8 @@
 #include "comply/core/output_folder.hpp"
 #include "comply/hardware/control_loop.hpp"
 #include "comply/host/host_recording.hpp"
+#include "comply/host/live_view.hpp"
+#include "sim_view.hpp"
 #include "comply/host/task_source.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/wrapper.hpp"
@@ -63,10 +65,12 @@ class SimRecorder final : public hardware::LoopObserver {
   }
   void setGuard(CrashGuard* guard) { guard_ = guard; }
   /// Every cycle, command and outcome is recorded there, stamped with the simulated time.
-  void setRecording(HostRecording* recording, const std::string& base_frame) {
+  /// And shown there (`--foxglove`); either may be null.
+  void setRecording(HostRecording* recording, LiveView* view, const std::string& base_frame) {
     recording_ = recording;
+    view_ = view;
     base_frame_ = base_frame;
-    if (recording != nullptr) {
+    if (recording != nullptr || view != nullptr) {
       sampler_.emplace(wrapper_);
     }
   }
@@ -90,11 +94,16 @@ class SimRecorder final : public hardware::LoopObserver {
   }
 
   void afterCycle(const hardware::CycleRecord& record) override {
-    if (recording_ != nullptr && record.state != nullptr) {
+    if (sampler_ && record.state != nullptr) {
       sampler_->fill(record, *record.state, transport::Stamp::fromSeconds(record.time_s), sample_);
-      recording_->cycle<Command>(sample_,
-                                 std::get<pipeline::BusOf<Command>>(wrapper_.controller().lawBus()),
-                                 record.controller_s, record.start_lateness_s);
+      const auto& in_force = std::get<pipeline::BusOf<Command>>(wrapper_.controller().lawBus());
+      if (recording_ != nullptr) {
+        recording_->cycle<Command>(sample_, in_force, record.controller_s,
+                                   record.start_lateness_s);
+      }
+      if (view_ != nullptr) {
+        view_->cycle<Command>(sample_, in_force, record.controller_s, record.start_lateness_s);
+      }
     }
     SimLog& log = result_.log;
     SimSummary& summary = result_.summary;
@@ -182,7 +191,13 @@ class SimRecorder final : public hardware::LoopObserver {
     transport::CommandOutcomeMessage outcome;
     outcome.stamp = header.stamp;
     outcome.received = now;
-    recording_->received(transport::CommandMessageOf<Command>{header, command}, now);
+    const transport::CommandMessageOf<Command> message{header, command};
+    if (recording_ != nullptr) {
+      recording_->received(message, now);
+    }
+    if (view_ != nullptr) {
+      view_->received(message, now);
+    }
     outcome.command_kind = std::is_same_v<Command, CartesianCommand>
                                ? transport::WireCommandKind::kCartesian
                                : transport::WireCommandKind::kJoint;
@@ -196,12 +211,17 @@ class SimRecorder final : public hardware::LoopObserver {
       outcome.reason = static_cast<transport::Reason>(verdict.reason);
       outcome.message = verdict.message;
     }
-    recording_->outcome(outcome);
+    if (recording_ != nullptr) {
+      recording_->outcome(outcome);
+    }
+    if (view_ != nullptr) {
+      view_->outcome(outcome);
+    }
   }
 
   void submit(Command command, double t) {
     const pipeline::Verdict verdict = wrapper_.submit(command);
-    if (recording_ != nullptr) {
+    if (recording_ != nullptr || view_ != nullptr) {
       record(command, verdict, t);
     }
     ++result_.summary.commands_sent;
@@ -229,6 +249,7 @@ class SimRecorder final : public hardware::LoopObserver {
   CrashGuard* guard_ = nullptr;
   WallClock::time_point wall_start_ = WallClock::now();
   HostRecording* recording_ = nullptr;
+  LiveView* view_ = nullptr;
   std::string base_frame_;
   std::optional<StateSampler<Command>> sampler_;
   StateSample sample_;  // the loop thread's scratch
@@ -332,8 +353,9 @@ SimResult runWith(const SimRunOptions& options,
         options.record_path.string(), resolved, "comply",
         record::StringMap{{"host", "comply sim"}, {"clock", "simulated"}},
         HostRecordingOptions{.when_full = record::WhenFull::kWait});
-    recorder.setRecording(recording.get(), resolved->robot.base_frame);
   }
+  const SimView view = openView(options, resolved, clock);
+  recorder.setRecording(recording.get(), view.get(), resolved->robot.base_frame);
   runGuarded(options, *resolved, recorder, loop, result);
   clock.waitUntil(loop.nextCycleTime());  // the plant carries out the last torque written
   progress.finish();

@@ -1,0 +1,134 @@
+// The live view's 3D part (see live_view_scene.hpp).
+
+#include "live_view_scene.hpp"
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace comply::host {
+namespace {
+
+/// A robot's URDF text: the description's own, else its file's.
+std::string urdfText(const model::RobotDescription& robot) {
+  if (!robot.urdf_xml.empty()) {
+    return robot.urdf_xml;
+  }
+  std::ifstream file(robot.urdf_path);
+  if (!file) {
+    throw std::runtime_error("the live view cannot read the robot's URDF " +
+                             robot.urdf_path.string());
+  }
+  std::ostringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+/// A row-major 3x3 block of the bus.
+Eigen::Matrix3d block(const double (&values)[9]) {
+  return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(values);
+}
+
+Eigen::Quaterniond xyzw(const double (&values)[4]) {
+  const Eigen::Quaterniond q(values[3], values[0], values[1], values[2]);
+  return q.norm() > 0.0 ? q.normalized() : Eigen::Quaterniond::Identity();
+}
+
+}  // namespace
+
+LiveView::Scene::Scene(viewer::FoxgloveServer& server, const pipeline::ResolvedController& resolved,
+                       const std::string& name, double rate_hz)
+    : server_(server),
+      base_frame_(resolved.robot.base_frame),
+      name_(name),
+      frames_(urdfText(resolved.robot), resolved.config.joints),
+      period_(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+          std::chrono::duration<double>(1.0 / rate_hz))),
+      positions_(resolved.config.joints.size(), 0.0) {
+  const std::string urdf = urdfText(resolved.robot);
+  description_channel_ = server_.addChannel({.topic = "/robot_description",
+                                             .encoding = "cdr",
+                                             .schema_name = std::string(viewer::kStringSchemaName),
+                                             .schema_encoding = "ros2msg",
+                                             .schema = std::string(viewer::kStringDefinition),
+                                             .latched = true});
+  server_.publish(description_channel_, 0, viewer::stringMessageCdr(urdf));
+  transforms_channel_ = server_.addChannel({.topic = "/tf",
+                                            .encoding = "json",
+                                            .schema_name = "foxglove.FrameTransforms",
+                                            .schema_encoding = "jsonschema",
+                                            .schema = viewer::frameTransformsSchema(),
+                                            .max_rate_hz = rate_hz});
+  markers_channel_ = server_.addChannel({.topic = "/" + name + "/markers",
+                                         .encoding = "json",
+                                         .schema_name = "foxglove.SceneUpdate",
+                                         .schema_encoding = "jsonschema",
+                                         .schema = viewer::sceneUpdateSchema(),
+                                         .max_rate_hz = rate_hz});
+  markers_.frame_id = base_frame_;
+}
+
+void LiveView::Scene::publish(const ViewedCycle& cycle) {
+  const auto now = std::chrono::steady_clock::now();
+  if (now < next_) {
+    return;
+  }
+  next_ = now + period_;
+  const std::int64_t time_ns = cycle.state.wall.nanoseconds();
+  if (server_.wants(transforms_channel_)) {
+    publishTransforms(cycle, time_ns);
+  }
+  if (server_.wants(markers_channel_)) {
+    publishMarkers(cycle, time_ns);
+  }
+}
+
+void LiveView::Scene::publishTransforms(const ViewedCycle& cycle, std::int64_t time_ns) {
+  const JointVector& q = cycle.state.joints.position;
+  for (std::size_t i = 0; i < positions_.size() && static_cast<Eigen::Index>(i) < q.size(); ++i) {
+    positions_[i] = q[static_cast<Eigen::Index>(i)];
+  }
+  frames_.update(positions_);
+  std::vector<viewer::ExtraFrame> extra;
+  extra.push_back({base_frame_, name_ + "/tcp", cycle.state.tcp_position,
+                   cycle.state.tcp_orientation});
+  if (const auto* bus = std::get_if<comply_cartesian_command>(&cycle.in_force)) {
+    // The task frame's axes at the TCP: where the stiffness they carry acts.
+    extra.push_back({base_frame_, name_ + "/task_frame", cycle.state.tcp_position,
+                     xyzw(bus->task_frame)});
+    extra.push_back({base_frame_, name_ + "/reference", cycle.state.reference_position,
+                     cycle.state.reference_orientation});
+  }
+  server_.publish(transforms_channel_, time_ns,
+                  viewer::frameTransformsJson(time_ns, frames_.transforms(), extra));
+}
+
+void LiveView::Scene::publishMarkers(const ViewedCycle& cycle, std::int64_t time_ns) {
+  markers_.tcp_position = cycle.state.tcp_position;
+  markers_.contact_force = cycle.state.contact_wrench.head<3>();
+  const auto* bus = std::get_if<comply_cartesian_command>(&cycle.in_force);
+  markers_.stiffness = bus != nullptr;
+  if (bus != nullptr) {
+    markers_.stiffness_task = block(bus->stiffness_translational);
+    markers_.task_frame = xyzw(bus->task_frame);
+  }
+  {
+    const std::lock_guard lock(path_mutex_);
+    if (!path_.empty() && cycle.state.wall.seconds() > path_end_s_ + 0.5) {
+      path_.clear();  // played out
+    }
+    markers_.path = path_;
+  }
+  server_.publish(markers_channel_, time_ns, viewer::sceneUpdateJson(time_ns, markers_));
+}
+
+void LiveView::Scene::setPath(const CartesianChunk& chunk) {
+  const std::lock_guard lock(path_mutex_);
+  path_.clear();
+  for (const auto& waypoint : chunk.waypoints) {
+    path_.push_back(waypoint.command.position);
+  }
+  path_end_s_ = chunk.waypoints.empty() ? 0.0 : chunk.waypoints.back().time_s;
+}
+
+}  // namespace comply::host
