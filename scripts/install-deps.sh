@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages comply builds and tests with, then the npm packages of the MCAP
-# and Parquet cross-check readers (tests/record/node, tests/export/node) when node and npm are
-# there. Idempotent: when every package is already installed it only says so; apt lists are
+# and Parquet cross-check readers (tests/record/node, tests/export/node) and of the live view's
+# browser test (tests/viewer/node: Foxglove's client, playwright-core driving Debian's Chromium)
+# when node and npm are there. Idempotent: when every package is already installed it only says so; apt lists are
 # refreshed only when something is missing, and npm ci runs only when node_modules is missing or
 # older than package-lock.json.
 set -euo pipefail
@@ -22,6 +23,7 @@ packages=(
   libzstd-dev python3-zstandard
   octave
   ffmpeg python3-distributed
+  libboost-dev chromium
 )
 
 missing=()
@@ -54,9 +56,9 @@ fi
 # installed packages predate the lockfile.
 root=$(cd "$(dirname "$0")/.." && pwd)
 if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
-  echo "deps: no node/npm: the MCAP and Parquet cross-check tests cannot run"
+  echo "deps: no node/npm: the MCAP and Parquet cross-check tests and the browser test cannot run"
 else
-  for node_dir in "$root/tests/record/node" "$root/tests/export/node"; do
+  for node_dir in "$root/tests/record/node" "$root/tests/export/node" "$root/tests/viewer/node"; do
     what=${node_dir#"$root"/}
     if [ ! -f "$node_dir/node_modules/.package-lock.json" ] ||
       [ "$node_dir/package-lock.json" -nt "$node_dir/node_modules/.package-lock.json" ]; then

@@ -8,7 +8,7 @@
 
 import assert from "node:assert/strict";
 import { spawn } from "node:child_process";
-import { readFileSync } from "node:fs";
+import { mkdirSync, readFileSync } from "node:fs";
 import { dirname, join } from "node:path";
 import { fileURLToPath } from "node:url";
 import { createRequire } from "node:module";
@@ -21,6 +21,7 @@ const esbuild = require("esbuild");
 const { chromium } = require("playwright-core");
 
 const [comply, task, workdir, urdfPath] = process.argv.slice(2);
+mkdirSync(workdir, { recursive: true });
 const recording = join(workdir, "view.mcap");
 
 function startSim() {
