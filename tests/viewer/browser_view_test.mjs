@@ -9,18 +9,15 @@
 import assert from "node:assert/strict";
 import { spawn } from "node:child_process";
 import { mkdirSync, readFileSync } from "node:fs";
-import { dirname, join } from "node:path";
-import { fileURLToPath } from "node:url";
-import { createRequire } from "node:module";
+import { join } from "node:path";
 
+import { openViewPage } from "./browser_page.mjs";
 import { recordedCycles } from "./recorded_cycles.mjs";
+import { checkLayout } from "./layout_checks.mjs";
 import { ellipsoidAxes, transformError, urdfJoints } from "./scene_checks.mjs";
 
-const require = createRequire(new URL("./node/package.json", import.meta.url));
-const esbuild = require("esbuild");
-const { chromium } = require("playwright-core");
 
-const [comply, task, workdir, urdfPath] = process.argv.slice(2);
+const [comply, task, workdir, urdfPath, layoutPath] = process.argv.slice(2);
 mkdirSync(workdir, { recursive: true });
 const recording = join(workdir, "view.mcap");
 
@@ -40,24 +37,8 @@ function startSim() {
   return { url, exited, child };
 }
 
-async function openPage() {
-  const bundle = await esbuild.build({
-    entryPoints: [join(dirname(fileURLToPath(import.meta.url)), "view_page.mjs")],
-    bundle: true, format: "iife", platform: "browser", write: false, logLevel: "error",
-    nodePaths: [join(dirname(fileURLToPath(import.meta.url)), "node", "node_modules")],
-  });
-  const browser = await chromium.launch({
-    executablePath: process.env.COMPLY_CHROMIUM ?? "/usr/bin/chromium",
-    args: ["--no-sandbox"], // a container's root has no user namespaces for Chromium's sandbox
-  });
-  const page = await browser.newPage();
-  page.on("pageerror", (error) => console.error("page error:", error));
-  await page.setContent("<!doctype html><title>comply live view test</title>");
-  await page.addScriptTag({ content: bundle.outputFiles[0].text });
-  return { browser, page };
-}
-
-const TOPICS = ["/comply/state", "/comply/cycle", "/tf", "/comply/markers", "/robot_description", "/comply/outcome"];
+const TOPICS = ["/comply/state", "/comply/cycle", "/tf", "/comply/markers", "/robot_description", "/comply/outcome",
+  "/comply/diagnostics"];
 
 function checkAdvertised(session) {
   const schemas = Object.fromEntries(session.advertised.map((c) => [c.topic, c.schemaName]));
@@ -121,7 +102,7 @@ function checkScene(session, urdf, last) {
   const update = session.messages["/comply/markers"].at(-1).message;
   const sphere = update.entities.find((e) => e.id === "stiffness").spheres[0];
   const axes = ellipsoidAxes(sphere);
-  const expected = [1500, 600, 300].map((k) => k * 5e-5);
+  const expected = [1500, 600, 300].map((k) => k * 2e-4); // kStiffnessEllipsoidMPerNPerM
   axes.forEach((a, i) => assert.ok(Math.abs(a.length - expected[i]) < 1e-12, `ellipsoid axis ${i}: ${a.length}`));
   // The stiffest axis is the task frame's x: (cos 45, sin 45, 0) in the base frame.
   const along = Math.abs(axes[0].axis[0] * Math.SQRT1_2 + axes[0].axis[1] * Math.SQRT1_2);
@@ -151,7 +132,7 @@ function checkSlowClient(session) {
 
 const sim = startSim();
 const url = await sim.url;
-const { browser, page } = await openPage();
+const { browser, page } = await openViewPage("comply live view test");
 try {
   assert.equal(await page.evaluate(([u]) => window.complyView.refuses(u, "foxglove.other.v9"), [url]), true, "an unknown subprotocol was accepted");
   const [main, old] = await Promise.all([
@@ -172,6 +153,8 @@ try {
   const last = checkValues(main, cycles);
   checkScene(main, readFileSync(urdfPath, "utf8"), last);
   checkSlowClient(slow);
+  const layoutPaths = checkLayout(JSON.parse(readFileSync(layoutPath, "utf8")), main.advertised.map((c) => c.topic), main.first);
+  console.log(`layout: ${layoutPaths} topics and paths of ${layoutPath} served`);
   const summary = stderr.match(/live view: .*/)?.[0];
   console.log(`comply sim: ${summary}`);
   assert.ok(summary && /, [1-9][0-9]* dropped/.test(summary), "comply sim's summary names no dropped messages");

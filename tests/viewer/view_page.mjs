@@ -57,7 +57,7 @@ function summarize(topic, message, logTime) {
 async function watch(url, subprotocol, topics, { durationMs, blockAfterMs = 0, blockMs = 0 }) {
   const ws = new WebSocket(url, [subprotocol]);
   const client = new FoxgloveClient({ ws });
-  const result = { protocol: "", serverName: "", advertised: [], status: [], messages: {} };
+  const result = { protocol: "", serverName: "", advertised: [], status: [], messages: {}, first: {} };
   const decoders = new Map();
   const topicOf = new Map();
   let opened = false;
@@ -85,7 +85,13 @@ async function watch(url, subprotocol, topics, { durationMs, blockAfterMs = 0, b
   });
   client.on("message", ({ subscriptionId, timestamp, data }) => {
     const topic = topicOf.get(subscriptionId);
-    const entry = summarize(topic, decoders.get(subscriptionId)(data), timestamp);
+    const decoded = decoders.get(subscriptionId)(data);
+    if (!(topic in result.first)) {
+      // The whole message once, for the layout's paths: arrays and 64-bit numbers made plain.
+      result.first[topic] = JSON.parse(JSON.stringify(decoded, (key, value) =>
+        typeof value === "bigint" ? Number(value) : ArrayBuffer.isView(value) ? Array.from(value) : value));
+    }
+    const entry = summarize(topic, decoded, timestamp);
     entry.at = performance.now();
     result.messages[topic].push(entry);
   });

@@ -16,8 +16,9 @@
 
 namespace comply::viewer {
 
-/// An ellipsoid axis's length [m] per N/m of stiffness along it: 1000 N/m draws 5 cm.
-inline constexpr double kStiffnessEllipsoidMPerNPerM = 5e-5;
+/// An ellipsoid axis's length [m] per N/m of stiffness along it: 1000 N/m draws 20 cm, so that
+/// a task's usual stiffnesses (a few hundred to a few thousand N/m) stand out of the hand.
+inline constexpr double kStiffnessEllipsoidMPerNPerM = 2e-4;
 /// Axes shorter than this are drawn this long [m], so that a soft axis still shows.
 inline constexpr double kStiffnessEllipsoidMinimumM = 0.004;
 /// The force arrow's length [m] per N: 10 N draws 10 cm (up to kForceArrowMaximumM).

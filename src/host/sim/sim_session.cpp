@@ -12,7 +12,6 @@
 #include "comply/hardware/control_loop.hpp"
 #include "comply/host/host_recording.hpp"
 #include "comply/host/live_view.hpp"
-#include "sim_view.hpp"
 #include "comply/host/task_source.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/wrapper.hpp"
@@ -20,6 +19,7 @@
 #include "progress_bar.hpp"
 #include "sim_crash_guard.hpp"
 #include "sim_pictures.hpp"
+#include "sim_view.hpp"
 
 namespace comply::host {
 namespace {
@@ -96,14 +96,7 @@ class SimRecorder final : public hardware::LoopObserver {
   void afterCycle(const hardware::CycleRecord& record) override {
     if (sampler_ && record.state != nullptr) {
       sampler_->fill(record, *record.state, transport::Stamp::fromSeconds(record.time_s), sample_);
-      const auto& in_force = std::get<pipeline::BusOf<Command>>(wrapper_.controller().lawBus());
-      if (recording_ != nullptr) {
-        recording_->cycle<Command>(sample_, in_force, record.controller_s,
-                                   record.start_lateness_s);
-      }
-      if (view_ != nullptr) {
-        view_->cycle<Command>(sample_, in_force, record.controller_s, record.start_lateness_s);
-      }
+      forwardCycle(recording_, view_, sample_, wrapper_, record);
     }
     SimLog& log = result_.log;
     SimSummary& summary = result_.summary;

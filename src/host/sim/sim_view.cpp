@@ -4,6 +4,8 @@
 
 #include <ostream>
 
+#include "comply/host/diagnostics_message.hpp"
+
 namespace comply::host {
 
 void ViewCloser::operator()(LiveView* view) const {
@@ -31,6 +33,14 @@ SimView openView(const SimRunOptions& options,
                       << " s; running without one" << std::endl;
   }
   return view;
+}
+
+void viewDiagnostics(LiveView& view, const pipeline::DiagnosticsSnapshot& diagnostics,
+                     double period_s, double time_s) {
+  transport::DiagnosticsMessage message =
+      diagnosticsMessage(diagnostics, LoopCounters{}, period_s, {}, 0, "comply", {});
+  message.header.stamp = transport::Stamp::fromSeconds(time_s);
+  view.diagnostics(message);
 }
 
 }  // namespace comply::host
