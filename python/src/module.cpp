@@ -48,7 +48,8 @@ constexpr const char* kClientDoc =
     "records are dropped and counted (recording_stats()), never the commands held up.";
 
 constexpr const char* kSimDoc =
-    "Sim(config, robot='', steps_per_action=50, max_time=0.0, record=None, cameras=None): the "
+    "Sim(config, robot='', steps_per_action=50, max_time=0.0, record=None, cameras=None, "
+    "foxglove=None): the "
     "controller on an "
     "in-process MuJoCo plant, shaped like a Gymnasium environment.\n\n"
     "record='path.mcap' records every cycle, command and outcome of every episode to one file, "
@@ -67,7 +68,10 @@ constexpr const char* kSimDoc =
     "distance [m], azimuth, elevation [deg], as MuJoCo's free camera) or 'tcp' (position [m] and "
     "orientation x y z w of the camera in the TCP frame: x right, y down, z the view). A "
     "recording keeps the frames as sensor_msgs/CompressedImage (PNG) on /comply/camera/<name>; "
-    "`comply export --lerobot` makes videos of them (docs/simulation.md).";
+    "`comply export --lerobot` makes videos of them (docs/simulation.md).\n\n"
+    "foxglove='8765' (or '0.0.0.0:8765', or a port number) serves a live view to Foxglove or "
+    "Lichtblick, as `comply sim --foxglove` does (foxglove_url says where); while a viewer is "
+    "connected the episodes keep to real time (docs/live-view.md).";
 
 constexpr const char* kCloseDoc =
     "Stop the recording and finish its file; idempotent (a no-op without record=)";
@@ -165,10 +169,15 @@ void bindClient(py::module_& m) {
 void bindSim(py::module_& m) {
   py::class_<Sim>(m, "Sim", kSimDoc)
       .def(py::init<const std::string&, const std::string&, int, double,
-                    const std::optional<std::filesystem::path>&, const py::object&>(),
+                    const std::optional<std::filesystem::path>&, const py::object&,
+                    const py::object&>(),
            py::arg("config"), py::arg("robot") = "", py::arg("steps_per_action") = 50,
            py::arg("max_time") = 0.0, py::kw_only(), py::arg("record") = py::none(),
-           py::arg("cameras") = py::none())
+           py::arg("cameras") = py::none(), py::arg("foxglove") = py::none())
+      .def_property_readonly("foxglove_url", &Sim::foxgloveUrl,
+                             "The live view's URL (foxglove=), or None")
+      .def_property_readonly("foxglove_viewing", &Sim::foxgloveViewing,
+                             "A viewer is connected to the live view: steps keep to real time")
       .def("reset", &Sim::reset)
       .def("tare", &Sim::tare,
            "Take the wrist force/torque sensor's reading (less the declared tool's weight) as its "

@@ -31,7 +31,7 @@ transport::CommandOutcomeMessage simOutcomeMessage(const pipeline::CommandOutcom
 
 Sim::Sim(const std::string& config, const std::string& robot, int steps_per_action,
          double max_time_s, const std::optional<std::filesystem::path>& record,
-         const py::object& cameras)
+         const py::object& cameras, const py::object& foxglove)
     : resolved_(pipeline::resolveController(host::simControllerConfig(robot, "", config))),
       camera_specs_(cameraSpecs(cameras)),
       steps_per_action_(steps_per_action),
@@ -54,6 +54,12 @@ Sim::Sim(const std::string& config, const std::string& robot, int steps_per_acti
                                    .cameras = std::move(camera_names)});
     recording_open_ = true;
   }
+  if (!foxglove.is_none()) {
+    const std::string address = py::isinstance<py::int_>(foxglove)
+                                    ? std::to_string(foxglove.cast<int>())
+                                    : foxglove.cast<std::string>();
+    view_ = std::make_unique<host::LiveView>(host::parseViewAddress(address), resolved_, "comply");
+  }
 }
 
 Sim::~Sim() {
@@ -75,6 +81,10 @@ void Sim::close() {
   recording_open_ = false;
 }
 
+py::object Sim::foxgloveUrl() const {
+  return view_ ? py::object(py::str(view_->url())) : py::object(py::none());
+}
+
 py::object Sim::recordingStats() const {
   return recording_ ? py::object(toDict(recording_->stats())) : py::object(py::none());
 }
@@ -82,6 +92,9 @@ py::object Sim::recordingStats() const {
 void Sim::recordOutcome(const pipeline::CommandOutcome& outcome) {
   if (host::HostRecording* to = recording()) {
     to->outcome(simOutcomeMessage(outcome, session_->start_ns));
+  }
+  if (view_) {
+    view_->outcome(simOutcomeMessage(outcome, session_->start_ns));
   }
 }
 
@@ -121,7 +134,7 @@ py::dict Sim::reset() {
     start_ns = session_->clockNs();
     session_.reset();
   }
-  session_ = std::make_unique<Session>(resolved_, start_ns, recording());
+  session_ = std::make_unique<Session>(resolved_, start_ns, recording(), view_.get());
   if (!camera_specs_.empty()) {
     const py::gil_scoped_release release;
     if (cameras_) {

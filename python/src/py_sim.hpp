@@ -24,6 +24,7 @@
 
 #include "comply/core/chunk.hpp"
 #include "comply/host/host_recording.hpp"
+#include "comply/host/live_view.hpp"
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/sim/sim_cameras.hpp"
@@ -35,9 +36,12 @@ namespace py = pybind11;
 class Sim {
  public:
   /// `record`: the MCAP file every episode is recorded to (none: not recorded). `cameras`: None
-  /// or a dict of name -> keys (py_sim_cameras.hpp).
+  /// or a dict of name -> keys (py_sim_cameras.hpp). `foxglove`: None, or "[ADDRESS:]PORT" (or
+  /// a port number) to serve a live view on (host/live_view.hpp), the episodes paced to real
+  /// time while a viewer is connected.
   Sim(const std::string& config, const std::string& robot, int steps_per_action, double max_time_s,
-      const std::optional<std::filesystem::path>& record, const py::object& cameras);
+      const std::optional<std::filesystem::path>& record, const py::object& cameras,
+      const py::object& foxglove);
   ~Sim();
   Sim(const Sim&) = delete;
   Sim& operator=(const Sim&) = delete;
@@ -72,6 +76,10 @@ class Sim {
   void close();
   /// The recording's counts (written, dropped, bytes, writer_cpu_s, error), or None.
   [[nodiscard]] py::object recordingStats() const;
+  /// The live view's URL ("ws://127.0.0.1:8765"), or None without one.
+  [[nodiscard]] py::object foxgloveUrl() const;
+  /// A viewer is connected to the live view (the episodes keep to real time meanwhile).
+  [[nodiscard]] bool foxgloveViewing() const noexcept { return view_ && view_->viewing(); }
 
  private:
   struct Session;
@@ -99,6 +107,7 @@ class Sim {
   std::unique_ptr<sim::SimCameras> cameras_;
   std::unique_ptr<host::HostRecording> recording_;
   bool recording_open_ = false;
+  std::unique_ptr<host::LiveView> view_;  // null without foxglove
   std::unique_ptr<Session> session_;
   int steps_per_action_;
   double max_time_s_;

@@ -9,6 +9,7 @@
 #include "comply/core/clock.hpp"
 #include "comply/hardware/control_loop.hpp"
 #include "comply/host/controller_setup.hpp"
+#include "comply/host/live_view.hpp"
 #include "comply/host/state_sample.hpp"
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
@@ -38,17 +39,23 @@ struct Episode final : hardware::LoopObserver {
     // The gate's clock is the recording's, so an outcome's applied time is the cycle's.
     gate->noteCycle(record.index, wrapper.controller().idInForce(),
                     [&] { return now.nanoseconds(); });
-    if (recording != nullptr && record.state != nullptr) {
+    if (sampler && record.state != nullptr && (recording != nullptr || view != nullptr)) {
       sampler->fill(record, *record.state, now, sample);
-      recording->cycle<Command>(sample,
-                                std::get<pipeline::BusOf<Command>>(wrapper.controller().lawBus()),
-                                record.controller_s, record.start_lateness_s);
+      const auto& in_force = std::get<pipeline::BusOf<Command>>(wrapper.controller().lawBus());
+      if (recording != nullptr) {
+        recording->cycle<Command>(sample, in_force, record.controller_s, record.start_lateness_s);
+      }
+      if (view != nullptr) {
+        view->cycle<Command>(sample, in_force, record.controller_s, record.start_lateness_s);
+      }
     }
   }
 
-  void attach(host::HostRecording* to) {
+  /// Every cycle goes to `to` and is shown on `shown_on` (either null: not there).
+  void attach(host::HostRecording* to, host::LiveView* shown_on) {
     recording = to;
-    if (to != nullptr && !sampler) {
+    view = shown_on;
+    if ((to != nullptr || shown_on != nullptr) && !sampler) {
       sampler.emplace(wrapper);
     }
   }
@@ -68,6 +75,7 @@ struct Episode final : hardware::LoopObserver {
   pipeline::CommandGate* gate = nullptr;
   std::int64_t start_ns;  ///< the recording's clock when the episode started
   host::HostRecording* recording = nullptr;
+  host::LiveView* view = nullptr;
   std::optional<host::StateSampler<Command>> sampler;
   host::StateSample sample;  // the loop's scratch
 };
@@ -83,10 +91,10 @@ struct Sim::Session {
   std::unique_ptr<hardware::ControlLoop> loop;
   std::int64_t start_ns;
 
-  /// `episode_start_ns`: the recording's clock at the episode's start; `recording`: null when
-  /// there is none.
+  /// `episode_start_ns`: the recording's clock at the episode's start; `recording`, `view`: null
+  /// when there is none (with a view, the plant keeps to real time while a viewer watches).
   Session(const std::shared_ptr<const pipeline::ResolvedController>& resolved,
-          std::int64_t episode_start_ns, host::HostRecording* recording)
+          std::int64_t episode_start_ns, host::HostRecording* recording, host::LiveView* view)
       : plant(resolved->robot, plantOptions(*resolved)),
         clock(plant),
         gate(pipeline::gateOptions(resolved->config, resolved->cartesian())),
@@ -96,12 +104,15 @@ struct Sim::Session {
     } else {
       episode = std::make_unique<Episode<JointCommand>>(resolved, episode_start_ns);
     }
+    if (view != nullptr) {
+      clock.paceWhile(&view->viewingFlag());
+    }
     JointState state = JointState::zero(plant.dof());
     plant.read(state);
     std::visit(
         [&](auto& e) {
           e->gate = &gate;
-          e->attach(recording);
+          e->attach(recording, view);
           e->wrapper.activate(state);
           loop = std::make_unique<hardware::ControlLoop>(
               plant, e->wrapper, clock, hardware::LoopOptions{.period_s = plant.controlPeriod()});
@@ -111,7 +122,7 @@ struct Sim::Session {
   }
 
   void detachRecording() {
-    std::visit([](auto& e) { e->attach(nullptr); }, episode);
+    std::visit([](auto& e) { e->attach(nullptr, e->view); }, episode);
   }
 
   /// The recording's clock now: where the next episode starts.

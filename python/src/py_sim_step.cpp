@@ -66,8 +66,12 @@ std::optional<std::int64_t> Sim::offer(const py::object& command, const py::obje
           c.stamp_s = stampSeconds(stamp_ns);
           c.observation_s = origin_s;
           c.takeover_s = takeoverOfKeep(c, keep);
+          const transport::ChunkMessageOf<Command> message{header, c};
           if (host::HostRecording* to = recording()) {
-            to->received(transport::ChunkMessageOf<Command>{header, c}, e->clockAt(now_s));
+            to->received(message, e->clockAt(now_s));
+          }
+          if (view_) {
+            view_->received(message, e->clockAt(now_s));
           }
           session_->gate.offer(offer, active, [&](std::int64_t wire_stamp_ns) {
             // The host's clock at the last cycle: the chunk's times then fall on the cycles
@@ -79,8 +83,12 @@ std::optional<std::int64_t> Sim::offer(const py::object& command, const py::obje
         const py::dict kwargs = command.cast<py::dict>();
         Command c = commandFromKwargs<Command>(kwargs, dof(), e->wrapper.lastAccepted());
         c.stamp_s = stampSeconds(stamp_ns);
+        const transport::CommandMessageOf<Command> message{header, c};
         if (host::HostRecording* to = recording()) {
-          to->received(transport::CommandMessageOf<Command>{header, c}, e->clockAt(now_s));
+          to->received(message, e->clockAt(now_s));
+        }
+        if (view_) {
+          view_->received(message, e->clockAt(now_s));
         }
         session_->gate.offer(offer, active, [&](std::int64_t wire_stamp_ns) {
           return e->wrapper.submit(c, wire_stamp_ns);

@@ -152,9 +152,14 @@ class FoxgloveServer::Impl {
         return;
       }
       if (!error) {
-        std::make_shared<Session>(std::move(socket), state_,
-                                  session_prefix_ + "-" + std::to_string(++sessions_started_))
-            ->start();
+        const auto session = std::make_shared<Session>(
+            std::move(socket), state_, session_prefix_ + "-" + std::to_string(++sessions_started_));
+        {
+          const std::lock_guard lock(state_.mutex);
+          forEachSession([](Session&) {});  // forgets the ended ones
+          state_.sessions.push_back(session);
+        }
+        session->start();
       }
       accept();
     });

@@ -21,6 +21,7 @@ constexpr int kSendBufferBytes = 64 * 1024;
 Session::Session(asio::ip::tcp::socket socket, ServerState& server, std::string session_id)
     : server_(server),
       session_id_(std::move(session_id)),
+      executor_(socket.get_executor()),
       stream_(std::move(socket)),
       queue_(server.channel_queue_bytes) {}
 
@@ -94,7 +95,6 @@ void Session::onAccept(beast::error_code error) {
     for (std::size_t id = 0; id < server_.channels.size(); ++id) {
       channels.emplace_back(static_cast<ChannelId>(id), server_.channels[id].spec);
     }
-    server_.sessions.push_back(weak_from_this());
     ++server_.clients;
     const std::lock_guard lock(mutex_);
     open_ = true;
@@ -227,7 +227,7 @@ void Session::kickLocked() {
     return;
   }
   writing_ = true;
-  asio::post(socket_->get_executor(), [self = shared_from_this()] { self->writeNext(); });
+  asio::post(executor_, [self = shared_from_this()] { self->writeNext(); });
 }
 
 void Session::writeNext() {

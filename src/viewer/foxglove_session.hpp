@@ -32,7 +32,9 @@ struct ChannelEntry {
   std::int64_t latched_time_ns = 0;
 };
 
-/// What the sessions share with the server. Lock order: this mutex, then a session's.
+/// What the sessions share with the server. Lock order: this mutex, then a session's. `sessions`
+/// holds every connection from its accept on (so that the server's end closes each); only those
+/// past the upgrade (`clients` of them) take messages.
 struct ServerState {
   std::string name;
   std::string url;
@@ -74,6 +76,9 @@ class Session : public std::enable_shared_from_this<Session> {
 
   ServerState& server_;
   std::string session_id_;
+  // The connection's executor, kept apart: publishing threads post to it while the I/O thread
+  // works on the stream.
+  boost::asio::any_io_executor executor_;
   boost::beast::tcp_stream stream_;
   std::optional<boost::beast::websocket::stream<boost::beast::tcp_stream>> socket_;
   boost::beast::flat_buffer buffer_;

@@ -59,6 +59,11 @@ function checkValues(session, cycles) {
   console.log(`state: ${states.length} messages in ${(session.windowMs / 1000).toFixed(2)} s: ${rate.toFixed(0)} Hz`);
   assert.ok(rate >= 100, `state at ${rate} Hz, below 100 Hz`);
   for (let i = 1; i < states.length; ++i) assert.ok(states[i].cycle > states[i - 1].cycle, "state cycles out of order");
+  // Watched, comply sim keeps to real time: its clock (the stamps) never ahead of the browser's.
+  const simulatedS = Number(BigInt(states.at(-1).stamp) - BigInt(states[0].stamp)) / 1e9;
+  const wallS = (states.at(-1).at - states[0].at) / 1000;
+  console.log(`pacing: ${simulatedS.toFixed(3)} s simulated while ${wallS.toFixed(3)} s passed in the browser`);
+  assert.ok(simulatedS <= wallS * 1.02 + 0.05 && simulatedS > 0.5 * wallS, "not paced to real time while watched");
   for (const state of states) {
     const recorded = cycles.get(state.cycle);
     assert.ok(recorded, `cycle ${state.cycle} is not in the recording`);

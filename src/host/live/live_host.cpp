@@ -183,6 +183,22 @@ std::unique_ptr<HostRecording> openRecording(
       HostRecordingOptions{.when_full = record::WhenFull::kDrop});
 }
 
+/// The live view of --foxglove; none without it.
+std::unique_ptr<LiveView> openView(
+    const LiveHostOptions& options,
+    const std::shared_ptr<const pipeline::ResolvedController>& resolved) {
+  if (options.foxglove.empty()) {
+    return nullptr;
+  }
+  return std::make_unique<LiveView>(parseViewAddress(options.foxglove), resolved, options.name);
+}
+
+void printView(const LiveView* view, std::ostream& out) {
+  if (view != nullptr) {
+    out << "comply run: " << describeViewStats(view->stats()) << "\n";
+  }
+}
+
 template <typename Command>
 int runWith(const LiveHostOptions& options,
             const std::shared_ptr<const pipeline::ResolvedController>& resolved,
@@ -213,10 +229,7 @@ int runWith(const LiveHostOptions& options,
     observer.setRecording(recording.get());
     intake.setRecording(recording.get());
   }
-  const std::unique_ptr<LiveView> view =
-      options.foxglove.empty()
-          ? nullptr
-          : std::make_unique<LiveView>(parseViewAddress(options.foxglove), resolved, options.name);
+  const std::unique_ptr<LiveView> view = openView(options, resolved);
   observer.setView(view.get());
   intake.setView(view.get());
 
@@ -263,9 +276,7 @@ int runWith(const LiveHostOptions& options,
     recording->stop();
     printRecording(*recording, out);
   }
-  if (view != nullptr) {
-    out << "comply run: " << describeViewStats(view->stats()) << "\n";
-  }
+  printView(view.get(), out);
   return 0;
 }
 
