@@ -54,7 +54,12 @@ void Session::onRequest(beast::error_code error) {
   }
   stream_.expires_never();
   socket_.emplace(std::move(stream_));
-  socket_->set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
+  // A viewer that only listens sends nothing: pinged after 15 s of silence, and let go at 30 s
+  // only when it answers nothing (a browser answers pings by itself).
+  auto timeout = websocket::stream_base::timeout::suggested(beast::role_type::server);
+  timeout.idle_timeout = std::chrono::seconds(30);
+  timeout.keep_alive_pings = true;
+  socket_->set_option(timeout);
   socket_->set_option(
       websocket::stream_base::decorator([name = *subprotocol](websocket::response_type& response) {
         response.set(http::field::sec_websocket_protocol, name);
