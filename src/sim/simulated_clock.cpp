@@ -8,6 +8,9 @@ namespace {
 
 using SteadyClock = std::chrono::steady_clock;
 
+/// How far behind the wall clock a viewer's pacing may fall before it starts again from now.
+constexpr auto kViewerCatchUpLimit = std::chrono::milliseconds(50);
+
 SteadyClock::duration steadyDuration(double seconds) {
   return std::chrono::duration_cast<SteadyClock::duration>(std::chrono::duration<double>(seconds));
 }
@@ -19,6 +22,12 @@ SimulatedClock::SimulatedClock(SimulatedRobot& robot, bool pace_to_wall_clock)
 
 void SimulatedClock::waitUntil(double time_s) noexcept {
   const bool pace = pacing();
+  if (pace && anchored_ && !pace_ &&
+      SteadyClock::now() - (wall_start_ + steadyDuration(now())) > kViewerCatchUpLimit) {
+    // Paced for a viewer only: time spent outside the loop (a Python policy thinking, a
+    // breakpoint) is not made up by running fast afterwards, which a viewer would see.
+    anchored_ = false;
+  }
   if (pace && !anchored_) {
     wall_start_ = SteadyClock::now() - steadyDuration(now());
     anchored_ = true;

@@ -51,8 +51,12 @@ std::vector<ChannelId> ClientQueue::channels() const {
   return ids;
 }
 
-void ClientQueue::pushText(std::string text) {
+bool ClientQueue::pushText(std::string text) {
+  if (texts_.size() >= kMaxTexts) {
+    return false;
+  }
   texts_.push_back(std::move(text));
+  return true;
 }
 
 std::uint64_t ClientQueue::push(ChannelId channel, std::int64_t log_time_ns,

@@ -54,7 +54,10 @@ class ClientQueue {
   /// The channels subscribed to, for the server's counts when the client leaves.
   [[nodiscard]] std::vector<ChannelId> channels() const;
 
-  void pushText(std::string text);
+  /// False (and nothing queued) when kMaxTexts wait already: a client that sends and never reads
+  /// does not grow the server's memory with the answers.
+  bool pushText(std::string text);
+  static constexpr std::size_t kMaxTexts = 1024;
   /// Queues a message of a subscribed channel (else nothing); returns how many older ones of the
   /// channel it pushed out.
   std::uint64_t push(ChannelId channel, std::int64_t log_time_ns, SharedPayload payload);

@@ -17,7 +17,8 @@ using Clock = std::chrono::steady_clock;
 
 class FoxgloveServer::Impl {
  public:
-  explicit Impl(const ServerOptions& options) : acceptor_(io_), drop_timer_(io_) {
+  explicit Impl(const ServerOptions& options)
+      : acceptor_(io_), drop_timer_(io_), retry_timer_(io_) {
     state_.name = options.name;
     state_.channel_queue_bytes = options.channel_queue_bytes;
     boost::system::error_code error;
@@ -46,7 +47,10 @@ class FoxgloveServer::Impl {
                              : ""));
     }
     port_ = acceptor_.local_endpoint().port();
-    state_.url = "ws://" + options.address + ":" + std::to_string(port_);
+    // An IPv6 address goes in brackets in a URL.
+    const bool v6 = options.address.find(':') != std::string::npos;
+    state_.url = "ws://" + (v6 ? "[" + options.address + "]" : options.address) + ":" +
+                 std::to_string(port_);
     session_prefix_ = std::to_string(std::random_device{}());
     accept();
     reportDropsLater();
@@ -55,9 +59,11 @@ class FoxgloveServer::Impl {
 
   ~Impl() {
     asio::post(io_, [this] {
+      stopping_ = true;  // a timer or accept completion already queued does not re-arm
       boost::system::error_code ignored;
       acceptor_.close(ignored);
       drop_timer_.cancel();
+      retry_timer_.cancel();
       const std::lock_guard lock(state_.mutex);
       for (const std::weak_ptr<Session>& weak : state_.sessions) {
         if (const std::shared_ptr<Session> session = weak.lock()) {
@@ -74,15 +80,23 @@ class FoxgloveServer::Impl {
     ChannelEntry& entry = state_.channels.emplace_back();
     entry.spec = spec;
     entry.stats.topic = spec.topic;
+    entry.rate = RateLimit(spec.max_rate_hz);
     const std::string advertisement = advertiseJson({{id, spec}});
     forEachSession([&](Session& session) { session.enqueueText(advertisement); });
     return id;
   }
 
-  bool wants(ChannelId channel) const {
+  bool wants(ChannelId channel) {
     const std::lock_guard lock(state_.mutex);
-    const ChannelEntry& entry = state_.channels.at(channel);
-    return entry.subscribers > 0 && rateAllows(entry, Clock::now());
+    ChannelEntry& entry = state_.channels.at(channel);
+    if (entry.subscribers == 0) {
+      return false;
+    }
+    if (!entry.rate.allows(Clock::now())) {
+      ++entry.stats.rate_limited;
+      return false;
+    }
+    return true;
   }
 
   bool publish(ChannelId channel, std::int64_t log_time_ns, const std::uint8_t* data,
@@ -90,14 +104,14 @@ class FoxgloveServer::Impl {
     const std::lock_guard lock(state_.mutex);
     ChannelEntry& entry = state_.channels.at(channel);
     const Clock::time_point now = Clock::now();
-    if (!rateAllows(entry, now)) {
+    if (!entry.rate.allows(now)) {
       ++entry.stats.rate_limited;
       return false;
     }
     if (entry.subscribers == 0 && !entry.spec.latched) {
       return false;
     }
-    entry.last_published = now;
+    entry.rate.take(now);
     ++entry.stats.published;
     auto payload = std::make_shared<const std::vector<std::uint8_t>>(data, data + size);
     if (entry.spec.latched) {
@@ -128,13 +142,6 @@ class FoxgloveServer::Impl {
   const std::string& url() const noexcept { return state_.url; }
 
  private:
-  static bool rateAllows(const ChannelEntry& entry, Clock::time_point now) {
-    if (entry.spec.max_rate_hz <= 0.0 || entry.stats.published == 0) {
-      return true;
-    }
-    return now - entry.last_published >= std::chrono::duration<double>(1.0 / entry.spec.max_rate_hz);
-  }
-
   /// The state's lock held; forgets the sessions that ended.
   template <typename Visit>
   void forEachSession(Visit&& visit) {
@@ -148,19 +155,27 @@ class FoxgloveServer::Impl {
 
   void accept() {
     acceptor_.async_accept([this](boost::system::error_code error, asio::ip::tcp::socket socket) {
-      if (error == asio::error::operation_aborted || !acceptor_.is_open()) {
+      if (stopping_ || error == asio::error::operation_aborted) {
         return;
       }
-      if (!error) {
-        const auto session = std::make_shared<Session>(
-            std::move(socket), state_, session_prefix_ + "-" + std::to_string(++sessions_started_));
-        {
-          const std::lock_guard lock(state_.mutex);
-          forEachSession([](Session&) {});  // forgets the ended ones
-          state_.sessions.push_back(session);
-        }
-        session->start();
+      if (error) {
+        // Out of file descriptors, say: try again in a while, not in a loop that eats a core.
+        retry_timer_.expires_after(std::chrono::milliseconds(100));
+        retry_timer_.async_wait([this](boost::system::error_code wait_error) {
+          if (!wait_error && !stopping_) {
+            accept();
+          }
+        });
+        return;
       }
+      const auto session = std::make_shared<Session>(
+          std::move(socket), state_, session_prefix_ + "-" + std::to_string(++sessions_started_));
+      {
+        const std::lock_guard lock(state_.mutex);
+        forEachSession([](Session&) {});  // forgets the ended ones
+        state_.sessions.push_back(session);
+      }
+      session->start();
       accept();
     });
   }
@@ -168,7 +183,7 @@ class FoxgloveServer::Impl {
   void reportDropsLater() {
     drop_timer_.expires_after(std::chrono::seconds(1));
     drop_timer_.async_wait([this](boost::system::error_code error) {
-      if (error) {
+      if (error || stopping_) {
         return;
       }
       {
@@ -183,6 +198,8 @@ class FoxgloveServer::Impl {
   asio::io_context io_;
   asio::ip::tcp::acceptor acceptor_;
   asio::steady_timer drop_timer_;
+  asio::steady_timer retry_timer_;
+  bool stopping_ = false;  // the I/O thread's
   std::uint16_t port_ = 0;
   std::string session_prefix_;
   std::uint64_t sessions_started_ = 0;
@@ -198,7 +215,7 @@ ChannelId FoxgloveServer::addChannel(const ChannelSpec& spec) {
   return impl_->addChannel(spec);
 }
 
-bool FoxgloveServer::wants(ChannelId channel) const {
+bool FoxgloveServer::wants(ChannelId channel) {
   return impl_->wants(channel);
 }
 

@@ -159,6 +159,9 @@ void Session::handleText(const std::string& text) {
 void Session::subscribe(const std::vector<std::pair<SubscriptionId, ChannelId>>& subscriptions) {
   const std::lock_guard server_lock(server_.mutex);
   const std::lock_guard lock(mutex_);
+  if (!open_) {
+    return;  // a read that completed after the connection failed: its counts are settled
+  }
   for (const auto& [subscription, channel] : subscriptions) {
     if (channel >= server_.channels.size()) {
       queue_.pushText(statusJson(StatusLevel::kError,
@@ -184,6 +187,9 @@ void Session::subscribe(const std::vector<std::pair<SubscriptionId, ChannelId>>&
 void Session::unsubscribe(const std::vector<SubscriptionId>& subscriptions) {
   const std::lock_guard server_lock(server_.mutex);
   const std::lock_guard lock(mutex_);
+  if (!open_) {
+    return;
+  }
   for (const SubscriptionId subscription : subscriptions) {
     if (const std::optional<ChannelId> channel = queue_.unsubscribe(subscription)) {
       --server_.channels[*channel].subscribers;

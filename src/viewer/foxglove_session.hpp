@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "client_queue.hpp"
+#include "comply/viewer/rate_limit.hpp"
 #include "comply/viewer/foxglove_server.hpp"
 
 namespace comply::viewer {
@@ -26,7 +27,7 @@ class Session;
 struct ChannelEntry {
   ChannelSpec spec;
   ChannelStats stats;
-  std::chrono::steady_clock::time_point last_published{};
+  RateLimit rate;
   std::size_t subscribers = 0;
   SharedPayload latched;
   std::int64_t latched_time_ns = 0;

@@ -25,8 +25,9 @@ class SimulatedClock final : public hardware::LoopClock {
   /// shows as late while the plant, stepped back to back, catches up; else now() - time_s.
   [[nodiscard]] double lateness(double time_s) noexcept override;
   /// Also paces while `*flag` is set (a viewer watching `comply sim`), re-anchored each time it
-  /// becomes set: the run goes as fast as it can between. Not owned; nullptr: only the constructor's
-  /// choice.
+  /// becomes set and whenever the wall clock got more than 50 ms ahead (the caller away between
+  /// waits: a viewer sees no fast-forward); the run goes as fast as it can between. Not owned;
+  /// nullptr: only the constructor's choice.
   void paceWhile(const std::atomic<bool>* flag) noexcept { pace_while_ = flag; }
 
  private:

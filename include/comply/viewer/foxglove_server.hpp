@@ -42,7 +42,8 @@ struct ChannelSpec {
   std::string schema_name;      ///< "comply_msgs/msg/ControllerState", "foxglove.SceneUpdate"
   std::string schema_encoding;  ///< "ros2msg", "jsonschema"
   std::string schema;           ///< the definition's text
-  /// At most this many messages a second reach clients (publish() refuses the rest); 0: all.
+  /// At most this many messages a second reach clients, on average (publish() refuses the rest);
+  /// 0: all.
   double max_rate_hz = 0.0;
   /// A new subscriber gets the channel's last message at once (a robot description, a path).
   bool latched = false;
@@ -52,7 +53,7 @@ struct ChannelSpec {
 struct ChannelStats {
   std::string topic;
   std::uint64_t published = 0;     ///< accepted by publish()
-  std::uint64_t rate_limited = 0;  ///< refused by publish() for max_rate_hz
+  std::uint64_t rate_limited = 0;  ///< refused for max_rate_hz, by publish() or wants()
   std::uint64_t sent = 0;          ///< messages written to clients (one per client)
   std::uint64_t dropped = 0;       ///< taken from a slow client's full queue unsent
 };
@@ -71,8 +72,9 @@ class FoxgloveServer {
   /// Advertises a channel to every client, those connected and those to come.
   ChannelId addChannel(const ChannelSpec& spec);
   /// Whether a message on `channel` now would go anywhere: some client subscribes and the
-  /// channel's rate allows one. Lets a caller skip encoding what nobody takes.
-  [[nodiscard]] bool wants(ChannelId channel) const;
+  /// channel's rate allows one (a refusal for the rate counts as rate_limited). Lets a caller
+  /// skip encoding what nobody takes.
+  [[nodiscard]] bool wants(ChannelId channel);
   /// Queues `payload` (copied once, shared by the clients) for every client subscribed to
   /// `channel`, stamped `log_time_ns`. False when the channel's rate refused it or nobody
   /// subscribes (a latched channel keeps it all the same). Any thread; never waits for a client.

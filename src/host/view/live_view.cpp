@@ -164,7 +164,7 @@ void LiveView::received(const Message& message, transport::Stamp received_at) {
   } else if constexpr (std::is_same_v<Message, transport::JointCommandMessage>) {
     publishMessage(joint_command_channel_, message, received_at);
   } else if constexpr (std::is_same_v<Message, transport::CartesianChunkMessage>) {
-    scene_->setPath(message.chunk);
+    scene_->setPath(message.chunk, received_at);
     publishMessage(cartesian_chunk_channel_, message, received_at);
   } else if constexpr (std::is_same_v<Message, transport::JointChunkMessage>) {
     publishMessage(joint_chunk_channel_, message, received_at);

@@ -42,8 +42,7 @@ LiveView::Scene::Scene(viewer::FoxgloveServer& server, const pipeline::ResolvedC
       base_frame_(resolved.robot.base_frame),
       name_(name),
       frames_(urdfText(resolved.robot), resolved.config.joints),
-      period_(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-          std::chrono::duration<double>(1.0 / rate_hz))),
+      rate_(rate_hz),
       positions_(resolved.config.joints.size(), 0.0) {
   const std::string urdf = urdfText(resolved.robot);
   description_channel_ = server_.addChannel({.topic = "/robot_description",
@@ -57,23 +56,22 @@ LiveView::Scene::Scene(viewer::FoxgloveServer& server, const pipeline::ResolvedC
                                             .encoding = "json",
                                             .schema_name = "foxglove.FrameTransforms",
                                             .schema_encoding = "jsonschema",
-                                            .schema = viewer::frameTransformsSchema(),
-                                            .max_rate_hz = rate_hz});
+                                            .schema = viewer::frameTransformsSchema()});
   markers_channel_ = server_.addChannel({.topic = "/" + name + "/markers",
                                          .encoding = "json",
                                          .schema_name = "foxglove.SceneUpdate",
                                          .schema_encoding = "jsonschema",
-                                         .schema = viewer::sceneUpdateSchema(),
-                                         .max_rate_hz = rate_hz});
+                                         .schema = viewer::sceneUpdateSchema()});
   markers_.frame_id = base_frame_;
 }
 
 void LiveView::Scene::publish(const ViewedCycle& cycle) {
+  // The scene's rate is kept here, once for both channels (they go out together).
   const auto now = std::chrono::steady_clock::now();
-  if (now < next_) {
+  if (!rate_.allows(now)) {
     return;
   }
-  next_ = now + period_;
+  rate_.take(now);
   const std::int64_t time_ns = cycle.state.wall.nanoseconds();
   if (server_.wants(transforms_channel_)) {
     publishTransforms(cycle, time_ns);
@@ -114,7 +112,7 @@ void LiveView::Scene::publishMarkers(const ViewedCycle& cycle, std::int64_t time
   }
   {
     const std::lock_guard lock(path_mutex_);
-    if (!path_.empty() && cycle.state.wall.seconds() > path_end_s_ + 0.5) {
+    if (!path_.empty() && time_ns > path_end_ns_) {
       path_.clear();  // played out
     }
     markers_.path = path_;
@@ -122,13 +120,17 @@ void LiveView::Scene::publishMarkers(const ViewedCycle& cycle, std::int64_t time
   server_.publish(markers_channel_, time_ns, viewer::sceneUpdateJson(time_ns, markers_));
 }
 
-void LiveView::Scene::setPath(const CartesianChunk& chunk) {
+void LiveView::Scene::setPath(const CartesianChunk& chunk, transport::Stamp received_at) {
   const std::lock_guard lock(path_mutex_);
   path_.clear();
   for (const auto& waypoint : chunk.waypoints) {
     path_.push_back(waypoint.command.position);
   }
-  path_end_s_ = chunk.waypoints.empty() ? 0.0 : chunk.waypoints.back().time_s;
+  // The waypoints' times are the wrapper's clock, which need not be the stamps' (Python's Sim
+  // stamps an episode from where the last one ended): the span counts from the receipt.
+  const double span_s =
+      chunk.waypoints.empty() ? 0.0 : chunk.waypoints.back().time_s - chunk.waypoints.front().time_s;
+  path_end_ns_ = received_at.nanoseconds() + static_cast<std::int64_t>((span_s + 1.0) * 1e9);
 }
 
 }  // namespace comply::host

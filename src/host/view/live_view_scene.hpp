@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "comply/host/live_view.hpp"
+#include "comply/viewer/rate_limit.hpp"
 #include "comply/viewer/robot_frames.hpp"
 #include "comply/viewer/scene_messages.hpp"
 
@@ -20,8 +21,9 @@ class LiveView::Scene {
 
   /// The view thread: publishes `cycle`'s transforms and markers when the scene rate allows.
   void publish(const ViewedCycle& cycle);
-  /// Any thread: the chunk whose waypoints are drawn from now on (until its last has passed).
-  void setPath(const CartesianChunk& chunk);
+  /// Any thread: the chunk whose waypoints are drawn from now on, received at `received_at` (on
+  /// the clock of the cycles' stamps), until a second after its span has passed.
+  void setPath(const CartesianChunk& chunk, transport::Stamp received_at);
 
  private:
   void publishTransforms(const ViewedCycle& cycle, std::int64_t time_ns);
@@ -34,12 +36,11 @@ class LiveView::Scene {
   viewer::ChannelId description_channel_ = 0;
   viewer::ChannelId transforms_channel_ = 0;
   viewer::ChannelId markers_channel_ = 0;
-  std::chrono::steady_clock::duration period_;
-  std::chrono::steady_clock::time_point next_;
+  viewer::RateLimit rate_;
   std::vector<double> positions_;
   std::mutex path_mutex_;
   std::vector<Eigen::Vector3d> path_;
-  double path_end_s_ = 0.0;  // the chunk's last waypoint, on the host's clock
+  std::int64_t path_end_ns_ = 0;  // on the clock of the cycles' stamps
   viewer::ArmMarkers markers_;
 };
 

@@ -38,6 +38,17 @@ TEST(ClientQueue, TextGoesBeforeDataAndDataCarriesTheClientsSubscription) {
   EXPECT_FALSE(queue.pop(out));
 }
 
+TEST(ClientQueue, TextsWaitingAreBounded) {
+  ClientQueue queue(1 << 20);
+  for (std::size_t i = 0; i < ClientQueue::kMaxTexts; ++i) {
+    ASSERT_TRUE(queue.pushText("status"));
+  }
+  EXPECT_FALSE(queue.pushText("one more"));
+  Outgoing out;
+  ASSERT_TRUE(queue.pop(out));
+  EXPECT_TRUE(queue.pushText("room again"));
+}
+
 TEST(ClientQueue, AMessageOfAnotherChannelIsWrittenWithinOneRoundOfABigBacklog) {
   ClientQueue queue(1 << 30);
   ASSERT_TRUE(queue.subscribe(1, 0));
