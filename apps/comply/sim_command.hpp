@@ -19,8 +19,8 @@ struct SimOptions {
   std::string record_path;          ///< non-empty: an MCAP recording of the run
   double duration_s = 0.0;          ///< 0: the task's
   double snapshot_every_ms = -1.0;  ///< < 0: the task's
-  std::string foxglove;        ///< non-empty: a Foxglove live view on [ADDRESS:]PORT
-  double foxglove_wait_s = 0;  ///< wait this long for the first viewer
+  std::string foxglove;             ///< non-empty: a Foxglove live view on [ADDRESS:]PORT
+  double foxglove_wait_s = 0;       ///< wait this long for the first viewer
   bool realtime = false;
   bool view = false;
   bool plot = true;

@@ -145,7 +145,8 @@ class FoxgloveServer::Impl {
   /// The state's lock held; forgets the sessions that ended.
   template <typename Visit>
   void forEachSession(Visit&& visit) {
-    std::erase_if(state_.sessions, [](const std::weak_ptr<Session>& weak) { return weak.expired(); });
+    std::erase_if(state_.sessions,
+                  [](const std::weak_ptr<Session>& weak) { return weak.expired(); });
     for (const std::weak_ptr<Session>& weak : state_.sessions) {
       if (const std::shared_ptr<Session> session = weak.lock()) {
         visit(*session);

@@ -82,12 +82,11 @@ void Session::reply(http::status status, std::string body) {
   response_.keep_alive(false);
   response_.body() = std::move(body);
   response_.prepare_payload();
-  http::async_write(stream_, response_,
-                    [self = shared_from_this()](beast::error_code, std::size_t) {
-                      beast::error_code ignored;
-                      self->stream_.socket().shutdown(asio::ip::tcp::socket::shutdown_send,
-                                                      ignored);
-                    });
+  http::async_write(
+      stream_, response_, [self = shared_from_this()](beast::error_code, std::size_t) {
+        beast::error_code ignored;
+        self->stream_.socket().shutdown(asio::ip::tcp::socket::shutdown_send, ignored);
+      });
 }
 
 void Session::onAccept(beast::error_code error) {
@@ -143,9 +142,9 @@ void Session::handleText(const std::string& text) {
       unsubscribe(unsubscribe_op->subscriptions);
     } else {
       const std::lock_guard lock(mutex_);
-      queue_.pushText(statusJson(StatusLevel::kError,
-                                 "comply does not take \"" + std::get<OtherOp>(op).op +
-                                     "\": it serves subscriptions only"));
+      queue_.pushText(statusJson(StatusLevel::kError, "comply does not take \"" +
+                                                          std::get<OtherOp>(op).op +
+                                                          "\": it serves subscriptions only"));
       kickLocked();
     }
   } catch (const ProtocolError& refusal) {

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "client_queue.hpp"
-#include "comply/viewer/rate_limit.hpp"
 #include "comply/viewer/foxglove_server.hpp"
+#include "comply/viewer/rate_limit.hpp"
 
 namespace comply::viewer {
 

@@ -51,10 +51,8 @@ RobotFrames::RobotFrames(const std::string& urdf_xml, const std::vector<std::str
       }
       axis.normalize();
     }
-    joints_.push_back(
-        {toIsometry(joint->parent_to_joint_origin_transform), axis, motion, index});
-    transforms_.push_back({joint->parent_link_name, joint->child_link_name,
-                           joints_.back().origin});
+    joints_.push_back({toIsometry(joint->parent_to_joint_origin_transform), axis, motion, index});
+    transforms_.push_back({joint->parent_link_name, joint->child_link_name, joints_.back().origin});
   }
 }
 

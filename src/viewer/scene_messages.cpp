@@ -42,12 +42,9 @@ json transformJson(std::int64_t time_ns, const std::string& parent, const std::s
 }
 
 json entityJson(std::int64_t time_ns, const std::string& frame_id, std::string_view id) {
-  json entity = {{"timestamp", timeJson(time_ns)},
-                 {"frame_id", frame_id},
-                 {"id", id},
-                 {"lifetime", timeJson(0)},
-                 {"frame_locked", false},
-                 {"metadata", json::array()}};
+  json entity = {
+      {"timestamp", timeJson(time_ns)}, {"frame_id", frame_id},  {"id", id},
+      {"lifetime", timeJson(0)},        {"frame_locked", false}, {"metadata", json::array()}};
   for (const char* kind :
        {"arrows", "cubes", "spheres", "cylinders", "lines", "triangles", "texts", "models"}) {
     entity[kind] = json::array();
@@ -121,9 +118,8 @@ json timeSchema() {
 }
 
 json poseSchema() {
-  return objectSchema(
-      {{"position", numbersSchema({"x", "y", "z"})},
-       {"orientation", numbersSchema({"x", "y", "z", "w"})}});
+  return objectSchema({{"position", numbersSchema({"x", "y", "z"})},
+                       {"orientation", numbersSchema({"x", "y", "z", "w"})}});
 }
 
 json arrayOf(json items) {

@@ -40,7 +40,8 @@ TEST(LiveView, TheControlThreadsSideAllocatesNothingWithOrWithoutAViewer) {
   LiveView view(options, fr3(), "comply");
   StateSample sample;
   sample.joints = JointState::zero(7);
-  const auto in_force = std::get<comply_cartesian_command>(pipeline::emptyBus(COMPLY_COMMAND_CARTESIAN));
+  const auto in_force =
+      std::get<comply_cartesian_command>(pipeline::emptyBus(COMPLY_COMMAND_CARTESIAN));
   comply::testing::AllocationCounter counter;
   counter.start();
   for (int i = 0; i < 1000; ++i) {
@@ -49,7 +50,8 @@ TEST(LiveView, TheControlThreadsSideAllocatesNothingWithOrWithoutAViewer) {
   EXPECT_EQ(counter.stop(), 0U);
   EXPECT_FALSE(view.viewing());
 
-  const std::uint16_t port = static_cast<std::uint16_t>(std::stoi(view.url().substr(view.url().rfind(':') + 1)));
+  const std::uint16_t port =
+      static_cast<std::uint16_t>(std::stoi(view.url().substr(view.url().rfind(':') + 1)));
   viewer::testing::WsTestClient client(port, "foxglove.sdk.v1");
   client.readJson();
   const auto advertise = client.readJson();
@@ -61,9 +63,9 @@ TEST(LiveView, TheControlThreadsSideAllocatesNothingWithOrWithoutAViewer) {
       state_channel = channel["id"];
     }
   }
-  for (const char* topic : {"/comply/state", "/comply/cycle", "/comply/diagnostics", "/comply/outcome",
-                            "/comply/cartesian_command", "/comply/joint_command", "/comply/cartesian_chunk",
-                            "/comply/joint_chunk", "/comply/request"}) {
+  for (const char* topic : {"/comply/state", "/comply/cycle", "/comply/diagnostics",
+                            "/comply/outcome", "/comply/cartesian_command", "/comply/joint_command",
+                            "/comply/cartesian_chunk", "/comply/joint_chunk", "/comply/request"}) {
     EXPECT_NE(std::find(topics.begin(), topics.end(), topic), topics.end()) << topic;
   }
   ASSERT_GE(state_channel, 0);

@@ -16,8 +16,8 @@ void ViewCloser::operator()(LiveView* view) const {
 }
 
 SimView openView(const SimRunOptions& options,
-                                   const std::shared_ptr<const pipeline::ResolvedController>& resolved,
-                                   sim::SimulatedClock& clock) {
+                 const std::shared_ptr<const pipeline::ResolvedController>& resolved,
+                 sim::SimulatedClock& clock) {
   if (!options.foxglove) {
     return SimView(nullptr, ViewCloser{});
   }

@@ -22,10 +22,9 @@ using SimView = std::unique_ptr<LiveView, ViewCloser>;
 
 /// The live view of SimRunOptions::foxglove (none without it): the clock paces while a viewer
 /// watches, and the run waits for the first one as long as foxglove_wait_s says.
-SimView openView(
-    const SimRunOptions& options,
-    const std::shared_ptr<const pipeline::ResolvedController>& resolved,
-    sim::SimulatedClock& clock);
+SimView openView(const SimRunOptions& options,
+                 const std::shared_ptr<const pipeline::ResolvedController>& resolved,
+                 sim::SimulatedClock& clock);
 
 /// The view's diagnostics at simulated time `time_s` (a simulation has no transport nor gate:
 /// their counts stay 0).

@@ -71,8 +71,8 @@ std::string describeViewStats(const std::vector<viewer::ChannelStats>& stats) {
     sent += channel.sent;
     dropped += channel.dropped;
     if (channel.dropped > 0) {
-      per_channel += (per_channel.empty() ? "" : ", ") + channel.topic + " " +
-                     std::to_string(channel.dropped);
+      per_channel +=
+          (per_channel.empty() ? "" : ", ") + channel.topic + " " + std::to_string(channel.dropped);
     }
   }
   return "live view: " + std::to_string(sent) + " messages sent to viewers, " +
@@ -101,11 +101,10 @@ LiveView::LiveView(const LiveViewOptions& options,
       server_.addChannel(rosChannel<transport::CartesianChunkMessage>(prefix + "cartesian_chunk"));
   joint_chunk_channel_ =
       server_.addChannel(rosChannel<transport::JointChunkMessage>(prefix + "joint_chunk"));
-  request_channel_ =
-      server_.addChannel(rosChannel<transport::RequestMessage>(prefix + "request"));
+  request_channel_ = server_.addChannel(rosChannel<transport::RequestMessage>(prefix + "request"));
   scene_ = std::make_unique<Scene>(server_, *resolved_, name, options.scene_rate_hz);
-  scratch_.in_force = pipeline::emptyBus(resolved_->cartesian() ? COMPLY_COMMAND_CARTESIAN
-                                                                : COMPLY_COMMAND_JOINT);
+  scratch_.in_force =
+      pipeline::emptyBus(resolved_->cartesian() ? COMPLY_COMMAND_CARTESIAN : COMPLY_COMMAND_JOINT);
   thread_ = std::thread([this] { run(); });
 }
 
@@ -181,9 +180,9 @@ template void LiveView::received(const transport::JointChunkMessage&, transport:
 template void LiveView::received(const transport::RequestMessage&, transport::Stamp);
 
 void LiveView::outcome(const transport::CommandOutcomeMessage& message) {
-  publishMessage(outcome_channel_, message,
-                 message.outcome == transport::Outcome::kApplied ? message.applied
-                                                                 : message.received);
+  publishMessage(
+      outcome_channel_, message,
+      message.outcome == transport::Outcome::kApplied ? message.applied : message.received);
 }
 
 void LiveView::diagnostics(const transport::DiagnosticsMessage& message) {
@@ -191,10 +190,9 @@ void LiveView::diagnostics(const transport::DiagnosticsMessage& message) {
 }
 
 bool LiveView::waitForViewer(double timeout_s, const std::atomic<bool>* stop) const {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration_cast<
-                                                               std::chrono::steady_clock::duration>(
-                                                               std::chrono::duration<double>(
-                                                                   timeout_s));
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                            std::chrono::duration<double>(timeout_s));
   while (server_.clients() == 0) {
     if (std::chrono::steady_clock::now() >= deadline || (stop != nullptr && stop->load())) {
       return false;

@@ -88,12 +88,12 @@ void LiveView::Scene::publishTransforms(const ViewedCycle& cycle, std::int64_t t
   }
   frames_.update(positions_);
   std::vector<viewer::ExtraFrame> extra;
-  extra.push_back({base_frame_, name_ + "/tcp", cycle.state.tcp_position,
-                   cycle.state.tcp_orientation});
+  extra.push_back(
+      {base_frame_, name_ + "/tcp", cycle.state.tcp_position, cycle.state.tcp_orientation});
   if (const auto* bus = std::get_if<comply_cartesian_command>(&cycle.in_force)) {
     // The task frame's axes at the TCP: where the stiffness they carry acts.
-    extra.push_back({base_frame_, name_ + "/task_frame", cycle.state.tcp_position,
-                     xyzw(bus->task_frame)});
+    extra.push_back(
+        {base_frame_, name_ + "/task_frame", cycle.state.tcp_position, xyzw(bus->task_frame)});
     extra.push_back({base_frame_, name_ + "/reference", cycle.state.reference_position,
                      cycle.state.reference_orientation});
   }
@@ -128,8 +128,9 @@ void LiveView::Scene::setPath(const CartesianChunk& chunk, transport::Stamp rece
   }
   // The waypoints' times are the wrapper's clock, which need not be the stamps' (Python's Sim
   // stamps an episode from where the last one ended): the span counts from the receipt.
-  const double span_s =
-      chunk.waypoints.empty() ? 0.0 : chunk.waypoints.back().time_s - chunk.waypoints.front().time_s;
+  const double span_s = chunk.waypoints.empty()
+                            ? 0.0
+                            : chunk.waypoints.back().time_s - chunk.waypoints.front().time_s;
   path_end_ns_ = received_at.nanoseconds() + static_cast<std::int64_t>((span_s + 1.0) * 1e9);
 }
 

@@ -20,8 +20,12 @@ using testing::WsTestClient;
 using namespace std::chrono_literals;
 
 ChannelSpec channel(const std::string& topic, double max_rate_hz = 0.0, bool latched = false) {
-  return {.topic = topic, .encoding = "cdr", .schema_name = "pkg/msg/T",
-          .schema_encoding = "ros2msg", .schema = "uint8 x\n", .max_rate_hz = max_rate_hz,
+  return {.topic = topic,
+          .encoding = "cdr",
+          .schema_name = "pkg/msg/T",
+          .schema_encoding = "ros2msg",
+          .schema = "uint8 x\n",
+          .max_rate_hz = max_rate_hz,
           .latched = latched};
 }
 
@@ -139,7 +143,6 @@ TEST(FoxgloveServer, AChannelsRateLimitRefusesAndCounts) {
   EXPECT_EQ(stats.published, 2U);
   EXPECT_EQ(stats.rate_limited, 50U) << "49 publish() and one wants() refused";
 }
-
 
 TEST(FoxgloveServer, AClientThatStopsReadingLosesTheBigChannelNotTheSmallOne) {
   FoxgloveServer server({.address = "127.0.0.1", .port = 0, .channel_queue_bytes = 256 * 1024});

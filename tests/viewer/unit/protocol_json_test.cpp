@@ -24,9 +24,12 @@ TEST(Subprotocol, OthersAreRefused) {
 }
 
 TEST(ServerMessages, AdvertiseListsEveryChannelAsTheProtocolNamesIt) {
-  const auto message = nlohmann::json::parse(advertiseJson(
-      {{4, {.topic = "/a", .encoding = "cdr", .schema_name = "pkg/msg/A",
-            .schema_encoding = "ros2msg", .schema = "float64 x\n"}}}));
+  const auto message = nlohmann::json::parse(advertiseJson({{4,
+                                                             {.topic = "/a",
+                                                              .encoding = "cdr",
+                                                              .schema_name = "pkg/msg/A",
+                                                              .schema_encoding = "ros2msg",
+                                                              .schema = "float64 x\n"}}}));
   EXPECT_EQ(message["op"], "advertise");
   ASSERT_EQ(message["channels"].size(), 1U);
   const auto& channel = message["channels"][0];
@@ -53,7 +56,8 @@ TEST(ClientMessages, SubscribeAndUnsubscribeAreRead) {
   EXPECT_EQ(subscriptions[0], std::make_pair(SubscriptionId{0}, ChannelId{3}));
   EXPECT_EQ(subscriptions[1].first, 4294967295U);
   const ClientOp unsubscribe = parseClientOp(R"({"op":"unsubscribe","subscriptionIds":[7, 8]})");
-  EXPECT_EQ(std::get<UnsubscribeOp>(unsubscribe).subscriptions, (std::vector<SubscriptionId>{7, 8}));
+  EXPECT_EQ(std::get<UnsubscribeOp>(unsubscribe).subscriptions,
+            (std::vector<SubscriptionId>{7, 8}));
   EXPECT_EQ(std::get<OtherOp>(parseClientOp(R"({"op":"advertise","channels":[]})")).op,
             "advertise");
 }

@@ -44,8 +44,8 @@ TEST(RobotFrames, EveryRobotsFlangeAgreesWithKdl) {
   for (const std::string& name : model::availableRobots()) {
     const model::RobotDescription robot = model::loadRobotDescription(name);
     RobotFrames frames(readText(robot.urdf_path), robot.joints);
-    const testing::KdlReference kdl(robot.urdf_path.string(), robot.base_frame,
-                                    robot.flange_frame, robot.joints);
+    const testing::KdlReference kdl(robot.urdf_path.string(), robot.base_frame, robot.flange_frame,
+                                    robot.joints);
     for (int trial = 0; trial < 20; ++trial) {
       Eigen::VectorXd q(static_cast<Eigen::Index>(robot.joints.size()));
       std::uniform_real_distribution<double> angle(-2.0, 2.0);

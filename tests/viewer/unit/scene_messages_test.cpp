@@ -12,7 +12,8 @@
 namespace comply::viewer {
 namespace {
 
-const Eigen::Quaterniond kTurned45(Eigen::AngleAxisd(std::numbers::pi / 4, Eigen::Vector3d::UnitZ()));
+const Eigen::Quaterniond kTurned45(Eigen::AngleAxisd(std::numbers::pi / 4,
+                                                     Eigen::Vector3d::UnitZ()));
 
 TEST(StiffnessEllipsoid, ItsAxesAreTheStiffnessesPrincipalAxesInTheBaseFrame) {
   const Eigen::Matrix3d stiffness = Eigen::Vector3d(1500, 600, 300).asDiagonal();
@@ -98,7 +99,8 @@ TEST(SceneMessages, TheForceArrowPointsAlongTheForceAndShowsOnlyAContact) {
 TEST(SceneMessages, TheChunkPathIsALineStripThroughItsWaypoints) {
   ArmMarkers markers;
   markers.frame_id = "base";
-  markers.path = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.1, 0, 0), Eigen::Vector3d(0.1, 0.1, 0)};
+  markers.path = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.1, 0, 0),
+                  Eigen::Vector3d(0.1, 0.1, 0)};
   const auto update = nlohmann::json::parse(sceneUpdateJson(0, markers));
   const auto& line = update["entities"][2]["lines"][0];
   EXPECT_EQ(line["type"], 0);
