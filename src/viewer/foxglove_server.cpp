@@ -44,6 +44,8 @@ class FoxgloveServer::Impl {
                         (error == asio::error::address_in_use
                              ? " (another program, or another comply, serves it: choose another "
                                "port)"
+                         : error == asio::error::access_denied
+                             ? " (ports below 1024 need privileges: choose another, e.g. 8765)"
                              : ""));
     }
     port_ = acceptor_.local_endpoint().port();
