@@ -25,3 +25,15 @@ export async function openViewPage(title, browserArgs = []) {
   await page.addScriptTag({ content: bundle.outputFiles[0].text });
   return { browser, page };
 }
+
+/// The live view's URL once a host prints it on `stream` ("Foxglove live view on ws://...").
+export function viewUrlFrom(stream) {
+  return new Promise((resolve) => {
+    let text = "";
+    stream.on("data", (chunk) => {
+      text += chunk;
+      const found = text.match(/Foxglove live view on (ws:\/\/\S+)/);
+      if (found) resolve(found[1]);
+    });
+  });
+}

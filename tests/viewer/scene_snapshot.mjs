@@ -7,7 +7,7 @@ import { spawn } from "node:child_process";
 import { writeFileSync } from "node:fs";
 import { createRequire } from "node:module";
 
-import { openViewPage } from "./browser_page.mjs";
+import { openViewPage, viewUrlFrom } from "./browser_page.mjs";
 
 const require = createRequire(new URL("./node/package.json", import.meta.url));
 const esbuild = require("esbuild");
@@ -16,14 +16,7 @@ const [comply, out] = process.argv.slice(2);
 const task = new URL("./view_task.yaml", import.meta.url).pathname;
 const sim = spawn(comply, ["sim", "--robot", "fr3", "--task", task, "--duration", "8", "--foxglove", "127.0.0.1:0",
   "--foxglove-wait", "60", "--no-plot", "--out", "/tmp/comply-scene-snapshot"]);
-const url = await new Promise((resolve) => {
-  let text = "";
-  sim.stderr.on("data", (chunk) => {
-    text += chunk;
-    const found = text.match(/Foxglove live view on (ws:\/\/\S+)/);
-    if (found) resolve(found[1]);
-  });
-});
+const url = await viewUrlFrom(sim.stderr);
 const { browser, page } = await openViewPage("comply live view scene", ["--use-angle=swiftshader", "--enable-unsafe-swiftshader"]);
 try {
   const renderer = await esbuild.build({

@@ -10,6 +10,8 @@
 
 import { spawn } from "node:child_process";
 
+import { viewUrlFrom } from "./browser_page.mjs";
+
 const [comply, durationText = "20", roundsText = "3", ...runOptions] = process.argv.slice(2);
 const duration = Number(durationText);
 const TOPICS = ["/comply/state", "/comply/cycle", "/comply/diagnostics", "/comply/outcome", "/tf",
@@ -26,14 +28,7 @@ async function run(viewers) {
   const host = spawn(comply, ["run", "--sim", "--config", config, "--duration", String(duration),
     "--transport", "in_process", "--foxglove", "127.0.0.1:0", ...runOptions]);
   const hostDone = output(host);
-  const url = await new Promise((resolve) => {
-    let text = "";
-    host.stdout.on("data", (chunk) => {
-      text += chunk;
-      const found = text.match(/Foxglove live view on (ws:\/\/\S+)/);
-      if (found) resolve(found[1]);
-    });
-  });
+  const url = await viewUrlFrom(host.stdout);
   const clients = Array.from({ length: viewers }, () => output(spawn(process.execPath,
     ["--experimental-websocket", "--no-warnings", new URL("./node_viewer.mjs", import.meta.url).pathname,
       url, String((duration - 2) * 1000), ...TOPICS])));
