@@ -1,0 +1,256 @@
+// RTDE over TCP for the UR controller emulator (see rtde_server.hpp).
+
+#include "comply/ur/rtde_server.hpp"
+
+#include <algorithm>
+#include <array>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/post.hpp>
+#include <boost/asio/write.hpp>
+#include <cmath>
+#include <deque>
+#include <mutex>
+#include <thread>
+
+namespace comply::ur {
+
+namespace asio = boost::asio;
+using asio::ip::tcp;
+
+namespace {
+
+/// One client: its socket, its session, what waits to be written.
+class Connection : public std::enable_shared_from_this<Connection> {
+ public:
+  Connection(tcp::socket socket, const RtdeServerOptions& options)
+      : socket_(std::move(socket)),
+        session_(options.version, options.max_frequency_hz),
+        max_frequency_hz_(options.max_frequency_hz) {
+    socket_.set_option(tcp::no_delay(true));
+  }
+
+  void start() { read(); }
+  void close() {
+    boost::system::error_code ignored;
+    socket_.close(ignored);
+  }
+  [[nodiscard]] bool open() {
+    const std::lock_guard lock(mutex_);
+    return open_;
+  }
+
+  /// A controller cycle's variables: this client's output recipe when it is due.
+  void cycle(const std::map<std::string, RtdeValue>& variables) {
+    const std::lock_guard lock(mutex_);
+    const std::optional<OutputRecipe>& recipe = session_.output();
+    if (!open_ || !session_.started() || !recipe) {
+      return;
+    }
+    // A recipe at a fraction of the controller's rate gets every n-th cycle.
+    const auto every = std::max<long>(1, std::lround(max_frequency_hz_ / recipe->frequency_hz));
+    if (cycles_++ % every != 0) {
+      return;
+    }
+    std::vector<RtdeValue> values;
+    for (std::size_t i = 0; i < recipe->names.size(); ++i) {
+      const auto found = variables.find(recipe->names[i]);
+      values.push_back(found != variables.end() && typeOf(found->second) == recipe->types[i]
+                           ? found->second
+                           : zeroOf(recipe->types[i]));
+    }
+    queueLocked(session_.outputPackage(values));
+  }
+
+  void collectInputs(std::map<std::string, RtdeValue>& into) {
+    const std::lock_guard lock(mutex_);
+    for (const auto& [name, value] : session_.inputs()) {
+      into[name] = value;
+    }
+  }
+
+ private:
+  void read() {
+    socket_.async_read_some(
+        asio::buffer(buffer_),
+        [self = shared_from_this()](boost::system::error_code error, std::size_t size) {
+          if (error) {
+            const std::lock_guard lock(self->mutex_);
+            self->open_ = false;
+            return;
+          }
+          self->take(size);
+          self->read();
+        });
+  }
+
+  void take(std::size_t size) {
+    const std::lock_guard lock(mutex_);
+    framer_.feed(std::span(buffer_.data(), size));
+    try {
+      for (Package package; framer_.next(package);) {
+        if (package.type == PackageType::kStart) {
+          cycles_ = 0;  // a recipe started anew is served from its first cycle
+        }
+        for (std::vector<std::uint8_t>& answer : session_.handle(package)) {
+          queueLocked(std::move(answer));
+        }
+      }
+    } catch (const RtdeError&) {
+      close();  // the stream lost its framing: nothing more can be read from it
+    }
+  }
+
+  void queueLocked(std::vector<std::uint8_t> bytes) {
+    pending_.push_back(std::move(bytes));
+    if (!writing_) {
+      writing_ = true;
+      asio::post(socket_.get_executor(), [self = shared_from_this()] { self->writeNext(); });
+    }
+  }
+
+  void writeNext() {
+    {
+      const std::lock_guard lock(mutex_);
+      if (pending_.empty() || !open_) {
+        writing_ = false;
+        return;
+      }
+      current_ = std::move(pending_.front());
+      pending_.pop_front();
+    }
+    asio::async_write(socket_, asio::buffer(current_),
+                      [self = shared_from_this()](boost::system::error_code error, std::size_t) {
+                        if (error) {
+                          const std::lock_guard lock(self->mutex_);
+                          self->open_ = false;
+                          self->writing_ = false;
+                          return;
+                        }
+                        self->writeNext();
+                      });
+  }
+
+  tcp::socket socket_;
+  std::mutex mutex_;  // the emulator's thread and the I/O thread
+  RtdeServerSession session_;
+  PackageFramer framer_;
+  double max_frequency_hz_;
+  std::uint64_t cycles_ = 0;
+  bool open_ = true;
+  bool writing_ = false;
+  std::deque<std::vector<std::uint8_t>> pending_;
+  std::vector<std::uint8_t> current_;
+  std::array<std::uint8_t, 4096> buffer_{};
+};
+
+}  // namespace
+
+class RtdeServer::Impl {
+ public:
+  explicit Impl(const RtdeServerOptions& options) : options_(options), acceptor_(io_) {
+    boost::system::error_code error;
+    const auto address = asio::ip::make_address(options.address, error);
+    const tcp::endpoint endpoint(address, options.port);
+    if (!error) {
+      acceptor_.open(endpoint.protocol(), error);
+    }
+    if (!error) {
+      acceptor_.set_option(asio::socket_base::reuse_address(true), error);
+    }
+    if (!error) {
+      acceptor_.bind(endpoint, error);
+    }
+    if (!error) {
+      acceptor_.listen(asio::socket_base::max_listen_connections, error);
+    }
+    if (error) {
+      throw RtdeError("the RTDE server cannot listen on " + options.address + ":" +
+                      std::to_string(options.port) + ": " + error.message());
+    }
+    accept();
+    thread_ = std::thread([this] { io_.run(); });
+  }
+
+  ~Impl() {
+    asio::post(io_, [this] {
+      stopping_ = true;
+      boost::system::error_code ignored;
+      acceptor_.close(ignored);
+      const std::lock_guard lock(mutex_);
+      for (const auto& connection : connections_) {
+        connection->close();
+      }
+    });
+    thread_.join();
+    connections_.clear();  // their sockets go while the I/O context they belong to is there
+  }
+
+  std::uint16_t port() const { return acceptor_.local_endpoint().port(); }
+
+  void sendOutputs(const std::map<std::string, RtdeValue>& variables) {
+    const std::lock_guard lock(mutex_);
+    std::erase_if(connections_, [](const auto& connection) { return !connection->open(); });
+    for (const auto& connection : connections_) {
+      connection->cycle(variables);
+    }
+  }
+
+  std::map<std::string, RtdeValue> inputs() const {
+    const std::lock_guard lock(mutex_);
+    std::map<std::string, RtdeValue> all;
+    for (const auto& connection : connections_) {
+      connection->collectInputs(all);
+    }
+    return all;
+  }
+
+  std::size_t connections() const {
+    const std::lock_guard lock(mutex_);
+    return static_cast<std::size_t>(std::count_if(connections_.begin(), connections_.end(),
+                                                  [](const auto& c) { return c->open(); }));
+  }
+
+ private:
+  void accept() {
+    acceptor_.async_accept([this](boost::system::error_code error, tcp::socket socket) {
+      if (stopping_ || error == asio::error::operation_aborted) {
+        return;
+      }
+      if (!error) {
+        auto connection = std::make_shared<Connection>(std::move(socket), options_);
+        {
+          const std::lock_guard lock(mutex_);
+          connections_.push_back(connection);
+        }
+        connection->start();
+      }
+      accept();
+    });
+  }
+
+  RtdeServerOptions options_;
+  mutable std::mutex mutex_;  // the connections' list
+  std::vector<std::shared_ptr<Connection>> connections_;
+  asio::io_context io_;
+  tcp::acceptor acceptor_;
+  bool stopping_ = false;  // the I/O thread's
+  std::thread thread_;
+};
+
+RtdeServer::RtdeServer(const RtdeServerOptions& options) : impl_(std::make_unique<Impl>(options)) {}
+RtdeServer::~RtdeServer() = default;
+std::uint16_t RtdeServer::port() const noexcept {
+  return impl_->port();
+}
+void RtdeServer::sendOutputs(const std::map<std::string, RtdeValue>& variables) {
+  impl_->sendOutputs(variables);
+}
+std::map<std::string, RtdeValue> RtdeServer::inputs() const {
+  return impl_->inputs();
+}
+std::size_t RtdeServer::connections() const {
+  return impl_->connections();
+}
+
+}  // namespace comply::ur
