@@ -51,10 +51,14 @@ RtdeClient::RtdeClient(const std::string& host, std::uint16_t port, double timeo
   }
   const int on = 1;
   ::setsockopt(socket_, IPPROTO_TCP, TCP_NODELAY, &on, sizeof on);
-  write(protocolVersionRequest());
-  if (!readAccepted(await(PackageType::kRequestProtocolVersion, timeout_s_).payload)) {
-    ::close(socket_);
-    throw RtdeError("RTDE: the controller at " + where + " refused protocol version 2");
+  try {
+    write(protocolVersionRequest());
+    if (!readAccepted(await(PackageType::kRequestProtocolVersion, timeout_s_).payload)) {
+      throw RtdeError("RTDE: the controller at " + where + " refused protocol version 2");
+    }
+  } catch (...) {
+    ::close(socket_);  // no destructor runs for an object whose constructor threw
+    throw;
   }
 }
 
