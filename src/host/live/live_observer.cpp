@@ -96,6 +96,9 @@ template <typename Command>
 void LiveObserver<Command>::fillSample(const hardware::CycleRecord& record) noexcept {
   sampler_.fill(record, last_state_, transport::Stamp::now(), sample_);
   state_.publishFromSoleWriter(sample_);
+  if (recording_ == nullptr && view_ == nullptr) {
+    return;
+  }
   const auto& in_force = std::get<pipeline::BusOf<Command>>(wrapper_.controller().lawBus());
   if (recording_ != nullptr) {
     recording_->cycle<Command>(sample_, in_force, record.compute_s, record.start_lateness_s);

@@ -2,9 +2,10 @@
 
 #include "live_view_scene.hpp"
 
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
+
+#include "comply/core/text_file.hpp"
+#include "comply/schema/schema.hpp"
 
 namespace comply::host {
 namespace {
@@ -14,37 +15,27 @@ std::string urdfText(const model::RobotDescription& robot) {
   if (!robot.urdf_xml.empty()) {
     return robot.urdf_xml;
   }
-  std::ifstream file(robot.urdf_path);
-  if (!file) {
-    throw std::runtime_error("the live view cannot read the robot's URDF " +
-                             robot.urdf_path.string());
+  TextFile file = readTextFile(robot.urdf_path);
+  if (!file.ok()) {
+    throw std::runtime_error("the live view cannot show the robot: " + file.error);
   }
-  std::ostringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
-/// A row-major 3x3 block of the bus.
-Eigen::Matrix3d block(const double (&values)[9]) {
-  return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(values);
-}
-
-Eigen::Quaterniond xyzw(const double (&values)[4]) {
-  const Eigen::Quaterniond q(values[3], values[0], values[1], values[2]);
-  return q.norm() > 0.0 ? q.normalized() : Eigen::Quaterniond::Identity();
+  return std::move(file.text);
 }
 
 }  // namespace
 
 LiveView::Scene::Scene(viewer::FoxgloveServer& server, const pipeline::ResolvedController& resolved,
                        const std::string& name, double rate_hz)
+    : Scene(server, resolved, name, rate_hz, urdfText(resolved.robot)) {}
+
+LiveView::Scene::Scene(viewer::FoxgloveServer& server, const pipeline::ResolvedController& resolved,
+                       const std::string& name, double rate_hz, const std::string& urdf)
     : server_(server),
       base_frame_(resolved.robot.base_frame),
       name_(name),
-      frames_(urdfText(resolved.robot), resolved.config.joints),
+      frames_(urdf, resolved.config.joints),
       rate_(rate_hz),
       positions_(resolved.config.joints.size(), 0.0) {
-  const std::string urdf = urdfText(resolved.robot);
   description_channel_ = server_.addChannel({.topic = "/robot_description",
                                              .encoding = "cdr",
                                              .schema_name = std::string(viewer::kStringSchemaName),
@@ -92,8 +83,8 @@ void LiveView::Scene::publishTransforms(const ViewedCycle& cycle, std::int64_t t
       {base_frame_, name_ + "/tcp", cycle.state.tcp_position, cycle.state.tcp_orientation});
   if (const auto* bus = std::get_if<comply_cartesian_command>(&cycle.in_force)) {
     // The task frame's axes at the TCP: where the stiffness they carry acts.
-    extra.push_back(
-        {base_frame_, name_ + "/task_frame", cycle.state.tcp_position, xyzw(bus->task_frame)});
+    extra.push_back({base_frame_, name_ + "/task_frame", cycle.state.tcp_position,
+                     schema::fromXyzw(bus->task_frame).normalized()});
     extra.push_back({base_frame_, name_ + "/reference", cycle.state.reference_position,
                      cycle.state.reference_orientation});
   }
@@ -107,8 +98,8 @@ void LiveView::Scene::publishMarkers(const ViewedCycle& cycle, std::int64_t time
   const auto* bus = std::get_if<comply_cartesian_command>(&cycle.in_force);
   markers_.stiffness = bus != nullptr;
   if (bus != nullptr) {
-    markers_.stiffness_task = block(bus->stiffness_translational);
-    markers_.task_frame = xyzw(bus->task_frame);
+    markers_.stiffness_task = schema::fromRowMajor(bus->stiffness_translational);
+    markers_.task_frame = schema::fromXyzw(bus->task_frame).normalized();
   }
   {
     const std::lock_guard lock(path_mutex_);

@@ -26,6 +26,9 @@ class LiveView::Scene {
   void setPath(const CartesianChunk& chunk, transport::Stamp received_at);
 
  private:
+  /// `urdf`: the robot's URDF text, read once for the frames and the robot description.
+  Scene(viewer::FoxgloveServer& server, const pipeline::ResolvedController& resolved,
+        const std::string& name, double rate_hz, const std::string& urdf);
   void publishTransforms(const ViewedCycle& cycle, std::int64_t time_ns);
   void publishMarkers(const ViewedCycle& cycle, std::int64_t time_ns);
 
