@@ -90,11 +90,16 @@ py::object Sim::recordingStats() const {
 }
 
 void Sim::recordOutcome(const pipeline::CommandOutcome& outcome) {
-  if (host::HostRecording* to = recording()) {
-    to->outcome(simOutcomeMessage(outcome, session_->start_ns));
+  host::HostRecording* to = recording();
+  if (to == nullptr && !view_) {
+    return;
+  }
+  const transport::CommandOutcomeMessage message = simOutcomeMessage(outcome, session_->start_ns);
+  if (to != nullptr) {
+    to->outcome(message);
   }
   if (view_) {
-    view_->outcome(simOutcomeMessage(outcome, session_->start_ns));
+    view_->outcome(message);
   }
 }
 

@@ -69,14 +69,9 @@ template transport::CycleRecordMessage cycleRecordMessage<JointCommand>(
     const pipeline::ResolvedController&);
 
 SenderChannels::SenderChannels(record::Recorder& recorder, const std::string& prefix)
-    : cartesian_(addMessageChannel<transport::CartesianCommandMessage>(
-          recorder, prefix + "cartesian_command")),
-      joint_(addMessageChannel<transport::JointCommandMessage>(recorder, prefix + "joint_command")),
-      cartesian_chunk_(addMessageChannel<transport::CartesianChunkMessage>(
-          recorder, prefix + "cartesian_chunk")),
-      joint_chunk_(
-          addMessageChannel<transport::JointChunkMessage>(recorder, prefix + "joint_chunk")),
-      request_(addMessageChannel<transport::RequestMessage>(recorder, prefix + "request")) {}
+    : SenderChannelIds(prefix, [&recorder](const std::string& topic, auto message) {
+        return addMessageChannel<typename decltype(message)::type>(recorder, topic);
+      }) {}
 
 HostRecording::HostRecording(const std::string& path,
                              std::shared_ptr<const pipeline::ResolvedController> resolved,

@@ -31,6 +31,7 @@
 #include <variant>
 #include <vector>
 
+#include "comply/host/sender_channels.hpp"
 #include "comply/host/state_sample.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
@@ -61,35 +62,12 @@ transport::CycleRecordMessage cycleRecordMessage(const StateSample& state,
                                                  double compute_s, double start_lateness_s,
                                                  const pipeline::ResolvedController& resolved);
 
-/// The channels of what a sender writes, under `/<name>/`: the commands and chunks of both kinds
-/// and the requests, one channel each, as the hosts and the Python client record them.
-class SenderChannels {
+/// A recording's channels of what a sender writes (sender_channels.hpp), as the hosts and the
+/// Python client record them.
+class SenderChannels : public SenderChannelIds<std::uint16_t> {
  public:
   SenderChannels() = default;
   SenderChannels(record::Recorder& recorder, const std::string& prefix);
-  /// The channel of a message of type `Message`.
-  template <typename Message>
-  [[nodiscard]] std::uint16_t of() const noexcept {
-    if constexpr (std::is_same_v<Message, transport::CartesianCommandMessage>) {
-      return cartesian_;
-    } else if constexpr (std::is_same_v<Message, transport::JointCommandMessage>) {
-      return joint_;
-    } else if constexpr (std::is_same_v<Message, transport::CartesianChunkMessage>) {
-      return cartesian_chunk_;
-    } else if constexpr (std::is_same_v<Message, transport::JointChunkMessage>) {
-      return joint_chunk_;
-    } else {
-      static_assert(std::is_same_v<Message, transport::RequestMessage>, "not a sender's message");
-      return request_;
-    }
-  }
-
- private:
-  std::uint16_t cartesian_ = 0;
-  std::uint16_t joint_ = 0;
-  std::uint16_t cartesian_chunk_ = 0;
-  std::uint16_t joint_chunk_ = 0;
-  std::uint16_t request_ = 0;
 };
 
 /// The control lane's size. A cycle is ~1 KB in it (the command in force travels only when it

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "comply/core/triple_buffer.hpp"
+#include "comply/host/sender_channels.hpp"
 #include "comply/host/state_sample.hpp"
 #include "comply/pipeline/command_bus_variant.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
@@ -116,11 +117,7 @@ class LiveView {
   viewer::ChannelId cycle_channel_ = 0;
   viewer::ChannelId diagnostics_channel_ = 0;
   viewer::ChannelId outcome_channel_ = 0;
-  viewer::ChannelId cartesian_command_channel_ = 0;
-  viewer::ChannelId joint_command_channel_ = 0;
-  viewer::ChannelId cartesian_chunk_channel_ = 0;
-  viewer::ChannelId joint_chunk_channel_ = 0;
-  viewer::ChannelId request_channel_ = 0;
+  SenderChannelIds<viewer::ChannelId> senders_;
 
   std::atomic<bool> viewing_{false};
   ViewedCycle scratch_;  // the control thread's

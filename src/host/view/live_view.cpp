@@ -93,15 +93,10 @@ LiveView::LiveView(const LiveViewOptions& options,
       server_.addChannel(rosChannel<transport::DiagnosticsMessage>(prefix + "diagnostics"));
   outcome_channel_ =
       server_.addChannel(rosChannel<transport::CommandOutcomeMessage>(prefix + "outcome"));
-  cartesian_command_channel_ = server_.addChannel(
-      rosChannel<transport::CartesianCommandMessage>(prefix + "cartesian_command"));
-  joint_command_channel_ =
-      server_.addChannel(rosChannel<transport::JointCommandMessage>(prefix + "joint_command"));
-  cartesian_chunk_channel_ =
-      server_.addChannel(rosChannel<transport::CartesianChunkMessage>(prefix + "cartesian_chunk"));
-  joint_chunk_channel_ =
-      server_.addChannel(rosChannel<transport::JointChunkMessage>(prefix + "joint_chunk"));
-  request_channel_ = server_.addChannel(rosChannel<transport::RequestMessage>(prefix + "request"));
+  senders_ =
+      SenderChannelIds<viewer::ChannelId>(prefix, [this](const std::string& topic, auto message) {
+        return server_.addChannel(rosChannel<typename decltype(message)::type>(topic));
+      });
   scene_ = std::make_unique<Scene>(server_, *resolved_, name, options.scene_rate_hz);
   scratch_.in_force =
       pipeline::emptyBus(resolved_->cartesian() ? COMPLY_COMMAND_CARTESIAN : COMPLY_COMMAND_JOINT);
@@ -158,19 +153,10 @@ void LiveView::publishMessage(viewer::ChannelId channel, const Message& message,
 
 template <typename Message>
 void LiveView::received(const Message& message, transport::Stamp received_at) {
-  if constexpr (std::is_same_v<Message, transport::CartesianCommandMessage>) {
-    publishMessage(cartesian_command_channel_, message, received_at);
-  } else if constexpr (std::is_same_v<Message, transport::JointCommandMessage>) {
-    publishMessage(joint_command_channel_, message, received_at);
-  } else if constexpr (std::is_same_v<Message, transport::CartesianChunkMessage>) {
+  if constexpr (std::is_same_v<Message, transport::CartesianChunkMessage>) {
     scene_->setPath(message.chunk, received_at);
-    publishMessage(cartesian_chunk_channel_, message, received_at);
-  } else if constexpr (std::is_same_v<Message, transport::JointChunkMessage>) {
-    publishMessage(joint_chunk_channel_, message, received_at);
-  } else {
-    static_assert(std::is_same_v<Message, transport::RequestMessage>, "not a sender's message");
-    publishMessage(request_channel_, message, received_at);
   }
+  publishMessage(senders_.of<Message>(), message, received_at);
 }
 
 template void LiveView::received(const transport::CartesianCommandMessage&, transport::Stamp);
