@@ -83,6 +83,7 @@ bool ControlLoop::runOnce() {
   if (hardware_.read(state_)) {
     state_.wrench_valid = hardware_.readWrench(state_.wrench);
     state_.sequence_valid = hardware_.readSequence(state_.sequence);
+    state_.robot_stop = hardware_.robotStop();
     const auto controller_start = SteadyClock::now();
     record.wrote = controller_.cycle(state_, options_.period_s, command_);
     record.controller_s = secondsBetween(controller_start, SteadyClock::now());

@@ -24,6 +24,11 @@ struct JointState {
   /// with every new sample, so a stream that repeats itself is caught whatever the arm does.
   std::uint64_t sequence = 0;
   bool sequence_valid = false;
+  /// The robot stopped itself and takes no command (a protective or an emergency stop, its
+  /// control program ended, the link to it lost): why, in the driver's words; nullptr while it
+  /// runs (HardwareInterface::robotStop). The cycle enters FAULT naming it, and no reset leaves
+  /// FAULT while it is set.
+  const char* robot_stop = nullptr;
 
   /// `dof` entries each, position and velocity finite: a state a cycle can run on (the effort
   /// may be NaN: an arm without torque sensing).

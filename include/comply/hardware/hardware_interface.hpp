@@ -64,6 +64,12 @@ class HardwareInterface {
     (void)sequence;
     return false;
   }
+  /// Why the robot does not take commands now, where its controller can stop by itself (a
+  /// protective or an emergency stop, its program ended, the link to it lost); nullptr while it
+  /// does. The text is the backend's and stays valid until the next read(). The control loop
+  /// calls it after every read() and hands it on in JointState::robot_stop. read() still returns
+  /// the last state it has, so that the controller holds what it knows.
+  [[nodiscard]] virtual const char* robotStop() noexcept { return nullptr; }
 };
 
 }  // namespace comply::hardware

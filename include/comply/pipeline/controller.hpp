@@ -106,6 +106,7 @@ struct ResetResult {
     kStateUnusable,  ///< in FAULT with a measured state it cannot hold: the fault stays
     kInactive,       ///< taken at activation, which starts afresh anyway
     kLeftReflex,     ///< the contact reflex's hold ended (its latch), holding the measured pose
+    kRobotStopped,   ///< in FAULT while the robot itself is stopped (JointState::robot_stop)
   };
   std::uint64_t number = 0;
   End end = End::kNoFault;
@@ -328,6 +329,7 @@ class Controller {
   // The cycle's own state.
   JointState state_;
   bool state_usable_ = false;      // this cycle's state passed measure(), so input_ is current
+  bool robot_stopped_ = false;     // this cycle's state says the robot stopped itself
   bool in_force_changed_ = false;  // active_ changed since the gain stage last saw it
   bool reset_pending_ = false;
   std::uint64_t reset_number_ = 0;            // the pending reset's number

@@ -35,10 +35,12 @@ CycleStatus Controller::update(const JointState& state, double period_s,
   watchdog();      // commands.cpp
   if (diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kFault) {
     // A reset is consumed either way: one refused for a bad state is not carried to a later cycle.
-    const bool reset = reset_pending_ && state_usable_;
+    const bool reset = reset_pending_ && state_usable_ && !robot_stopped_;
     if (reset_pending_) {
-      (void)reset_results_.push(
-          {reset_number_, reset ? ResetResult::End::kLeftFault : ResetResult::End::kStateUnusable});
+      const ResetResult::End end = reset            ? ResetResult::End::kLeftFault
+                                   : robot_stopped_ ? ResetResult::End::kRobotStopped
+                                                    : ResetResult::End::kStateUnusable;
+      (void)reset_results_.push({reset_number_, end});
     }
     reset_pending_ = false;
     if (!reset) {

@@ -11,6 +11,12 @@ namespace comply::pipeline {
 
 bool Controller::measure(const JointState& state) noexcept {
   wrist_.invalidate();  // until it reads this cycle's state: a tare needs its reading
+  // The robot's own stop comes first, so that the FAULT names it rather than what follows from
+  // it (a stream that stands still once the link is lost).
+  robot_stopped_ = state.robot_stop != nullptr;
+  if (robot_stopped_) {
+    enterFault("robot: ", state.robot_stop);
+  }
   if (!state.usable(dof_)) {
     enterFault("state: ", "joint state of the wrong size or with NaN/inf position or velocity");
     return false;
@@ -19,7 +25,7 @@ bool Controller::measure(const JointState& state) noexcept {
   // FAULT's stop, the hardware's own hold (brakes) keeps the state still on purpose.
   const bool braked = safe_hold_.atRest() &&
                       diagnostics_.state.load(std::memory_order_relaxed) == WrapperState::kFault;
-  if (!braked && frozen_.check(state, state_, torque_, time_s_)) {
+  if (!braked && !robot_stopped_ && frozen_.check(state, state_, torque_, time_s_)) {
     enterFault("state: ",
                state.sequence_valid
                    ? "the driver's sample counter has not advanced for frozen_state_timeout_s: a "
