@@ -27,6 +27,8 @@ constexpr std::array kVariables{
     Named{"actual_q", RtdeType::kVector6d, kOut},
     Named{"actual_qd", RtdeType::kVector6d, kOut},
     Named{"actual_current", RtdeType::kVector6d, kOut},
+    // The joint currents as torques [N m]: PolyScope 5.23 / 10.10 and later.
+    Named{"actual_current_as_torque", RtdeType::kVector6d, kOut},
     Named{"joint_control_output", RtdeType::kVector6d, kOut},
     Named{"actual_TCP_pose", RtdeType::kVector6d, kOut},
     Named{"actual_TCP_speed", RtdeType::kVector6d, kOut},

@@ -40,6 +40,9 @@ class RtdeClient {
   bool receive(std::vector<RtdeValue>& values, double timeout_s);
   /// Writes `values` (the recipe's order and types) to input recipe `recipe`.
   void send(const Recipe& recipe, const std::vector<RtdeValue>& values);
+  /// The connection's socket, for a thread that writes ready input packages to it itself without
+  /// waiting (the UR backend's control thread); valid while this client lives.
+  [[nodiscard]] int socket() const noexcept { return socket_; }
   /// The controller's text messages received so far.
   [[nodiscard]] const std::vector<TextMessage>& messages() const noexcept { return messages_; }
 
