@@ -8,7 +8,9 @@
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/post.hpp>
 #include <boost/asio/write.hpp>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <deque>
 #include <mutex>
 #include <thread>
@@ -20,11 +22,38 @@ using asio::ip::tcp;
 
 namespace {
 
+/// Counts the input packages of all clients, for a thread that waits for the next one.
+class InputSignal {
+ public:
+  void notify() {
+    {
+      const std::lock_guard lock(mutex_);
+      ++count_;
+    }
+    changed_.notify_all();
+  }
+  std::uint64_t count() const {
+    const std::lock_guard lock(mutex_);
+    return count_;
+  }
+  bool awaitAfter(std::uint64_t seen, double timeout_s) {
+    std::unique_lock lock(mutex_);
+    return changed_.wait_for(lock, std::chrono::duration<double>(timeout_s),
+                             [&] { return count_ > seen; });
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::condition_variable changed_;
+  std::uint64_t count_ = 0;
+};
+
 /// One client: its socket, its session, what waits to be written.
 class Connection : public std::enable_shared_from_this<Connection> {
  public:
-  Connection(tcp::socket socket, const RtdeServerOptions& options)
-      : socket_(std::move(socket)),
+  Connection(tcp::socket socket, const RtdeServerOptions& options, InputSignal& inputs)
+      : inputs_signal_(inputs),
+        socket_(std::move(socket)),
         session_(options.version, options.max_frequency_hz),
         max_frequency_hz_(options.max_frequency_hz) {
     socket_.set_option(tcp::no_delay(true));
@@ -95,6 +124,9 @@ class Connection : public std::enable_shared_from_this<Connection> {
         for (std::vector<std::uint8_t>& answer : session_.handle(package)) {
           queueLocked(std::move(answer));
         }
+        if (package.type == PackageType::kDataPackage) {
+          inputs_signal_.notify();
+        }
       }
     } catch (const RtdeError&) {
       close();  // the stream lost its framing: nothing more can be read from it
@@ -131,6 +163,7 @@ class Connection : public std::enable_shared_from_this<Connection> {
                       });
   }
 
+  InputSignal& inputs_signal_;
   tcp::socket socket_;
   std::mutex mutex_;  // the emulator's thread and the I/O thread
   RtdeServerSession session_;
@@ -205,6 +238,20 @@ class RtdeServer::Impl {
     return all;
   }
 
+  std::uint64_t inputPackages() const { return inputs_signal_.count(); }
+  bool awaitInputs(std::uint64_t seen, double timeout_s) {
+    return inputs_signal_.awaitAfter(seen, timeout_s);
+  }
+
+  void closeConnections() {
+    asio::post(io_, [this] {
+      const std::lock_guard lock(mutex_);
+      for (const auto& connection : connections_) {
+        connection->close();
+      }
+    });
+  }
+
   std::size_t connections() const {
     const std::lock_guard lock(mutex_);
     return static_cast<std::size_t>(std::count_if(connections_.begin(), connections_.end(),
@@ -218,7 +265,7 @@ class RtdeServer::Impl {
         return;
       }
       if (!error) {
-        auto connection = std::make_shared<Connection>(std::move(socket), options_);
+        auto connection = std::make_shared<Connection>(std::move(socket), options_, inputs_signal_);
         {
           const std::lock_guard lock(mutex_);
           connections_.push_back(connection);
@@ -230,7 +277,8 @@ class RtdeServer::Impl {
   }
 
   RtdeServerOptions options_;
-  mutable std::mutex mutex_;  // the connections' list
+  InputSignal inputs_signal_;  // before the connections, which hold it
+  mutable std::mutex mutex_;   // the connections' list
   std::vector<std::shared_ptr<Connection>> connections_;
   asio::io_context io_;
   tcp::acceptor acceptor_;
@@ -248,6 +296,15 @@ void RtdeServer::sendOutputs(const std::map<std::string, RtdeValue>& variables) 
 }
 std::map<std::string, RtdeValue> RtdeServer::inputs() const {
   return impl_->inputs();
+}
+std::uint64_t RtdeServer::inputPackages() const {
+  return impl_->inputPackages();
+}
+bool RtdeServer::awaitInputs(std::uint64_t seen, double timeout_s) {
+  return impl_->awaitInputs(seen, timeout_s);
+}
+void RtdeServer::closeConnections() {
+  impl_->closeConnections();
 }
 std::size_t RtdeServer::connections() const {
   return impl_->connections();

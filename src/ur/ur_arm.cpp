@@ -150,7 +150,11 @@ bool UrArm::awaitSample(double timeout_s) noexcept {
     std::uint64_t count = 0;
     (void)::read(wakeup_, &count, sizeof count);  // clears it (non-blocking): the next poll waits
   }
-  awaited_ = received_.load(std::memory_order_acquire);
+  const std::uint64_t received = received_.load(std::memory_order_acquire);
+  if (received > awaited_ + 1 && awaited_ != 0) {
+    unanswered_.fetch_add(received - awaited_ - 1, std::memory_order_relaxed);
+  }
+  awaited_ = received;
   return true;
 }
 
@@ -163,7 +167,9 @@ double UrArm::sampleArrival() const noexcept {
 }
 
 UrLinkStats UrArm::stats() const noexcept {
-  return link_->stats();
+  UrLinkStats stats = link_->stats();
+  stats.unanswered = unanswered_.load(std::memory_order_relaxed);
+  return stats;
 }
 
 void UrClock::waitUntil(double time_s) noexcept {

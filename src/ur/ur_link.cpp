@@ -154,7 +154,8 @@ void UrArm::Link::publish() {
   const auto robot_mode = as<std::int32_t>(values_, 4);
   const auto safety_mode = as<std::int32_t>(values_, 5);
   const auto runtime_state = as<std::uint32_t>(values_, 6);
-  program_running_ = as<std::int32_t>(values_, 8) == 1;
+  program_running_ = as<std::int32_t>(values_, 8) == 1 &&
+                     runtime_state == static_cast<std::uint32_t>(RuntimeState::kPlaying);
   // Whatever the program does: powered, running, in normal safety.
   controller_ready_ = stopReason(robot_mode, safety_mode,
                                  static_cast<std::uint32_t>(RuntimeState::kPlaying),
@@ -232,9 +233,12 @@ void UrArm::Link::sendProgram() {
 }
 
 UrLinkStats UrArm::Link::stats() const noexcept {
-  return {packages_.load(std::memory_order_relaxed), skipped_.load(std::memory_order_relaxed),
-          connections_.load(std::memory_order_relaxed),
-          programs_.load(std::memory_order_relaxed)};
+  UrLinkStats stats;
+  stats.packages = packages_.load(std::memory_order_relaxed);
+  stats.skipped_cycles = skipped_.load(std::memory_order_relaxed);
+  stats.connections = connections_.load(std::memory_order_relaxed);
+  stats.programs_sent = programs_.load(std::memory_order_relaxed);
+  return stats;
 }
 
 void sendScript(const std::string& host, std::uint16_t port, const std::string& script,

@@ -37,6 +37,12 @@ class RtdeServer {
   void sendOutputs(const std::map<std::string, RtdeValue>& variables);
   /// What the clients last wrote to each input, by name.
   [[nodiscard]] std::map<std::string, RtdeValue> inputs() const;
+  /// Input data packages received from all clients so far.
+  [[nodiscard]] std::uint64_t inputPackages() const;
+  /// Waits until inputPackages() exceeds `seen`, at most `timeout_s`; false on the timeout.
+  bool awaitInputs(std::uint64_t seen, double timeout_s);
+  /// Closes every client's connection (a cable pulled): they may connect again.
+  void closeConnections();
   /// Clients connected now.
   [[nodiscard]] std::size_t connections() const;
 

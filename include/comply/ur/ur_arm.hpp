@@ -57,9 +57,11 @@ struct UrSample {
 };
 
 struct UrLinkStats {
-  std::uint64_t packages = 0;       ///< data packages received
+  std::uint64_t packages = 0;        ///< data packages received
   std::uint64_t skipped_cycles = 0;  ///< controller cycles between packages that never came
-  std::uint64_t connections = 0;    ///< RTDE connections made (1 + reconnects)
+  /// Packages the control thread never answered: a newer one had come by the time it woke.
+  std::uint64_t unanswered = 0;
+  std::uint64_t connections = 0;  ///< RTDE connections made (1 + reconnects)
   std::uint64_t programs_sent = 0;
 };
 
@@ -113,6 +115,7 @@ class UrArm final : public hardware::HardwareInterface {
   std::atomic<double> newest_arrival_s_{0.0};
   std::atomic<std::uint64_t> received_{0};  // packages published
   std::uint64_t awaited_ = 0;               // control thread: packages its clock saw
+  std::atomic<std::uint64_t> unanswered_{0};
   int wakeup_ = -1;                         // eventfd: one count per package
   std::atomic<int> socket_{-1};             // the RTDE socket the answers go to
   std::atomic<std::uint8_t> input_recipe_{0};

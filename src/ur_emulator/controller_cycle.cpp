@@ -1,0 +1,263 @@
+// The emulated controller's cycle: comply's program applied from the registers, the plant
+// stepped, the safety limit checked, the variables sent (ur_emulator.hpp).
+
+#include <time.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "comply/hardware/loop_clock.hpp"
+#include "emulator_impl.hpp"
+
+namespace comply::ur {
+namespace {
+
+timespec timespecOf(double seconds) {
+  timespec at{};
+  at.tv_sec = static_cast<time_t>(seconds);
+  at.tv_nsec = static_cast<long>((seconds - static_cast<double>(at.tv_sec)) * 1e9);
+  return at;
+}
+
+/// A stall longer than this many cycles is not caught up: the next cycle starts from now.
+constexpr double kCatchUpCycles = 10.0;
+
+std::array<double, 6> sixOf(const JointVector& vector) {
+  std::array<double, 6> six{};
+  for (int i = 0; i < 6 && i < vector.size(); ++i) {
+    six[static_cast<std::size_t>(i)] = vector[i];
+  }
+  return six;
+}
+
+}  // namespace
+
+void UrEmulator::Impl::runCycles(const std::stop_token& stop) {
+  const double period_s = options_.period_s;
+  double next_s = hardware::monotonicSeconds();
+  while (!stop.stop_requested()) {
+    awaitAnswer();
+    {
+      const std::lock_guard lock(mutex_);
+      cycle();
+    }
+    next_s += period_s;
+    const double now_s = hardware::monotonicSeconds();
+    if (now_s - next_s > kCatchUpCycles * period_s) {
+      next_s = now_s;
+    }
+    const timespec at = timespecOf(next_s);
+    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &at, nullptr) == EINTR) {
+    }
+  }
+}
+
+void UrEmulator::Impl::awaitAnswer() {
+  // A controller's cycle does not slip: a client always has one period from a package to its
+  // answer. This thread's wake-ups do slip on a busy host; so that a late wake-up (which sent
+  // the last package late) is not counted against the client, the cycle waits for the answer
+  // until one period after the package went out.
+  std::string answer_register;
+  std::int32_t expected = 0;
+  double deadline_s = 0.0;
+  {
+    const std::lock_guard lock(mutex_);
+    if (!running_ || !armed_ || cycle_ == 0 || !sent_[static_cast<std::size_t>(cycle_)]) {
+      return;
+    }
+    answer_register = "input_int_register_" + std::to_string(program_.register_offset);
+    expected = static_cast<std::int32_t>(cycle_);
+    deadline_s = last_send_s_ + options_.period_s;
+  }
+  for (;;) {
+    const std::uint64_t seen = rtde_.inputPackages();
+    const auto inputs = rtde_.inputs();
+    const auto found = inputs.find(answer_register);
+    if (found != inputs.end() && std::holds_alternative<std::int32_t>(found->second) &&
+        std::get<std::int32_t>(found->second) == expected) {
+      return;
+    }
+    const double left_s = deadline_s - hardware::monotonicSeconds();
+    if (left_s <= 0.0 || !rtde_.awaitInputs(seen, left_s)) {
+      return;
+    }
+  }
+}
+
+void UrEmulator::Impl::cycle() {
+  startPendingProgram();
+  for (const auto& [name, value] : rtde_.inputs()) {
+    registers_[name] = value;
+  }
+  if (running_ && safety_mode_ == 1) {
+    applyProgram();
+  } else {
+    plant_->hold();
+  }
+  plant_->step();
+  plant_->read(measured_);
+  checkSafety();
+  sendOutputs();
+  ++cycle_;
+}
+
+void UrEmulator::Impl::startPendingProgram() {
+  if (!pending_) {
+    return;
+  }
+  if (safety_mode_ != 1) {
+    stats_.last_program_error = "the program cannot start: the robot is protectively stopped";
+    pending_.reset();
+    return;
+  }
+  program_ = *pending_;
+  pending_.reset();
+  const OutputMode actuation = program_.mode;
+  if (actuation != plant_mode_) {
+    buildPlant(actuation);  // the arm at rest where it was, with the drives the program uses
+  }
+  running_ = true;
+  program_flag_ = 1;
+  armed_ = false;
+  quiet_s_ = 0.0;
+  last_answer_ = intRegister(program_.register_offset);
+  ++stats_.programs;
+}
+
+void UrEmulator::Impl::applyProgram() {
+  const int o = program_.register_offset;
+  const std::int32_t answer = intRegister(o);
+  if (answer != last_answer_) {
+    // Packages sent between the last answer and this one that no answer named.
+    for (std::int64_t index = std::int64_t{last_answer_} + 1; armed_ && index < answer; ++index) {
+      if (static_cast<std::size_t>(index) < sent_.size() &&
+          sent_[static_cast<std::size_t>(index)]) {
+        ++stats_.missed;
+      }
+    }
+    last_answer_ = answer;
+    armed_ = true;
+    quiet_s_ = 0.0;
+    ++stats_.answered;
+  } else {
+    quiet_s_ += program_.period_s;
+  }
+  // The package of the last cycle is numbered cycle_: its answer is due by now.
+  const auto last_package = static_cast<std::size_t>(cycle_);
+  if (armed_ && answer != static_cast<std::int32_t>(cycle_) && last_package < sent_.size() &&
+      sent_[last_package]) {
+    ++stats_.late;
+  }
+  if (armed_ && quiet_s_ > program_.watchdog_s) {
+    ++stats_.watchdog_stops;
+    stopProgram(2);
+    plant_->hold();
+    return;
+  }
+  applied_ = answer;
+  std::array<double, 6> values{};
+  for (int joint = 0; joint < 6; ++joint) {
+    values[static_cast<std::size_t>(joint)] = doubleRegister(o + joint);
+  }
+  command(intRegister(o + 1), values);
+}
+
+void UrEmulator::Impl::command(int drive, const std::array<double, 6>& values) {
+  bool finite = true;
+  for (const double value : values) {
+    finite = finite && std::isfinite(value);
+  }
+  if (drive != 1 || !finite) {
+    plant_->hold();  // stopj, or a script that would stop on a bad number: the arm stands
+    return;
+  }
+  ActuatorCommand drives;
+  drives.mode = program_.mode;
+  drives.resize(6);
+  for (int joint = 0; joint < 6; ++joint) {
+    const double value = values[static_cast<std::size_t>(joint)];
+    if (program_.mode == OutputMode::kPosition) {
+      drives.position[joint] = value;
+    } else if (program_.mode == OutputMode::kVelocity) {
+      drives.velocity[joint] = value;
+    } else {
+      // torque_command: on top of the controller's own gravity and Coriolis compensation.
+      const int dof = dof_address_[static_cast<std::size_t>(joint)];
+      drives.effort[joint] = value + plant_->mujocoData().qfrc_bias[dof];
+    }
+  }
+  (void)plant_->writeCommand(drives);
+}
+
+void UrEmulator::Impl::stopProgram(std::int32_t flag) {
+  running_ = false;
+  program_flag_ = flag;
+}
+
+void UrEmulator::Impl::checkSafety() {
+  if (options_.protective_stop_force_n > 0.0 &&
+      plant_->toolContactWrench().head<3>().norm() > options_.protective_stop_force_n) {
+    protectiveStopLocked();
+  }
+}
+
+void UrEmulator::Impl::sendOutputs() {
+  const std::size_t index = static_cast<std::size_t>(cycle_) + 1;
+  if (sent_.size() <= index) {
+    sent_.resize(index + 1, false);
+  }
+  if (drop_ > 0) {
+    --drop_;
+    ++stats_.dropped;
+    ++stats_.cycles;
+    return;
+  }
+  sent_[index] = true;
+  ++stats_.cycles;
+  last_send_s_ = hardware::monotonicSeconds();
+  Vector6d wrench = Vector6d::Zero();
+  if (plant_->readWrench(wrench)) {
+    wrench -= wrench_tare_;  // the controller takes the payload's weight off
+  }
+  const Eigen::Isometry3d tcp = plant_->tcpPose();
+  const Eigen::AngleAxisd rotation(tcp.rotation());
+  const Eigen::Vector3d rotation_vector = rotation.angle() * rotation.axis();
+  const std::array<double, 6> pose{tcp.translation().x(), tcp.translation().y(),
+                                   tcp.translation().z(), rotation_vector.x(),
+                                   rotation_vector.y(),   rotation_vector.z()};
+  const int o = program_.register_offset;
+  const auto runtime = static_cast<std::uint32_t>(running_ ? 2 : 1);
+  const std::map<std::string, RtdeValue> variables{
+      {"timestamp", static_cast<double>(cycle_) * options_.period_s},
+      {"actual_q", sixOf(measured_.position)},
+      {"actual_qd", sixOf(measured_.velocity)},
+      {"actual_current_as_torque", sixOf(measured_.effort)},
+      {"actual_TCP_force",
+       std::array<double, 6>{wrench[0], wrench[1], wrench[2], wrench[3], wrench[4], wrench[5]}},
+      {"actual_TCP_pose", pose},
+      {"robot_mode", std::int32_t{7}},
+      {"safety_mode", safety_mode_},
+      {"safety_status", safety_mode_},
+      {"runtime_state", runtime},
+      {"speed_scaling", 1.0},
+      {"target_speed_fraction", 1.0},
+      {"output_int_register_" + std::to_string(o), applied_},
+      {"output_int_register_" + std::to_string(o + 1), program_flag_}};
+  rtde_.sendOutputs(variables);
+}
+
+std::int32_t UrEmulator::Impl::intRegister(int index) const {
+  const auto found = registers_.find("input_int_register_" + std::to_string(index));
+  return found != registers_.end() && std::holds_alternative<std::int32_t>(found->second)
+             ? std::get<std::int32_t>(found->second)
+             : 0;
+}
+
+double UrEmulator::Impl::doubleRegister(int index) const {
+  const auto found = registers_.find("input_double_register_" + std::to_string(index));
+  return found != registers_.end() && std::holds_alternative<double>(found->second)
+             ? std::get<double>(found->second)
+             : 0.0;
+}
+
+}  // namespace comply::ur

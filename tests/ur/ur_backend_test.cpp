@@ -1,0 +1,183 @@
+// The UR backend against the emulated controller: the program is sent and runs, the arm follows
+// commands on the controller's cycles with every package answered, and each stop (protective, a
+// lost link, a program's watchdog) is said by robotStop() and recovers once cleared.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <thread>
+
+#include "comply/hardware/backend.hpp"
+#include "comply/hardware/control_loop.hpp"
+#include "comply/ur/robot_status.hpp"
+#include "ur_emulator_support.hpp"
+
+namespace comply::ur::test {
+namespace {
+
+constexpr double kPeriod = 0.002;
+
+/// Sends the first position it reads plus a slow sine on the first joint (position mode), or the
+/// sine's derivative (velocity mode).
+class SineController final : public hardware::CycleController {
+ public:
+  explicit SineController(OutputMode mode) : mode_(mode) {}
+  [[nodiscard]] int dof() const noexcept override { return 6; }
+  [[nodiscard]] OutputMode outputMode() const noexcept override { return mode_; }
+  bool cycle(const JointState& state, double period_s,
+             ActuatorCommand& command) noexcept override {
+    if (!started_) {
+      start_ = state.position;
+      started_ = true;
+    }
+    time_s_ += period_s;
+    stops_ += state.robot_stop != nullptr ? 1 : 0;
+    command.mode = mode_;
+    command.position = start_;
+    command.velocity.setZero(6);
+    const double phase = 2.0 * M_PI * kFrequencyHz * time_s_;
+    command.position[0] += kAmplitudeRad * std::sin(phase);
+    command.velocity[0] = kAmplitudeRad * 2.0 * M_PI * kFrequencyHz * std::cos(phase);
+    target_ = command.position;
+    return true;
+  }
+  static constexpr double kAmplitudeRad = 0.1;
+  static constexpr double kFrequencyHz = 0.5;
+  JointVector target_;
+  int stops_ = 0;
+
+ private:
+  OutputMode mode_;
+  JointVector start_;
+  bool started_ = false;
+  double time_s_ = 0.0;
+};
+
+class UrBackend : public ::testing::Test {
+ protected:
+  UrEmulator emulator{freePorts()};
+};
+
+TEST_F(UrBackend, FollowsPositionCommandsAnsweringEveryPackage) {
+  UrArm arm(armFor(emulator, OutputMode::kPosition));
+  EXPECT_EQ(emulator.stats().programs, 1U);
+  EXPECT_EQ(arm.controllerVersion().minor, 23U);
+  UrClock clock(arm);
+  SineController controller(OutputMode::kPosition);
+  hardware::ControlLoop loop(arm, controller, clock, {.period_s = kPeriod, .cycles = 1000});
+  const hardware::LoopStats loop_stats = loop.run();
+  EXPECT_EQ(loop_stats.read_failures, 0U);
+  EXPECT_EQ(loop_stats.write_failures, 0U);
+  EXPECT_EQ(controller.stops_, 0);
+  // The position servos follow the sine within their lag (20 Hz bandwidth: < 5 mrad at 0.3 rad/s).
+  const UrEmulatorState state = emulator.state();
+  EXPECT_NEAR(state.position[0], controller.target_[0], 0.01);
+  EXPECT_TRUE(state.program_running);
+  // Every cycle of the loop answered one package; on a busy host a few may be answered late or
+  // overtaken (the 60 s run in ur_loop_test counts them alone on the machine).
+  const UrEmulatorStats stats = emulator.stats();
+  const UrLinkStats link = arm.stats();
+  EXPECT_GE(stats.answered, 950U);
+  EXPECT_LE(stats.missed, 50U);
+  EXPECT_EQ(stats.watchdog_stops, 0U);
+  EXPECT_EQ(link.skipped_cycles, 0U);
+  EXPECT_GE(link.packages, 1000U);
+  EXPECT_EQ(link.connections, 1U);
+}
+
+TEST_F(UrBackend, FollowsVelocityCommands) {
+  UrArm arm(armFor(emulator, OutputMode::kVelocity));
+  UrClock clock(arm);
+  SineController controller(OutputMode::kVelocity);
+  hardware::ControlLoop loop(arm, controller, clock, {.period_s = kPeriod, .cycles = 1000});
+  (void)loop.run();
+  EXPECT_EQ(emulator.state().program_mode, OutputMode::kVelocity);
+  EXPECT_NEAR(emulator.state().position[0], controller.target_[0], 0.02);
+}
+
+TEST_F(UrBackend, DroppedPackagesAreCountedAsSkippedCycles) {
+  UrArm arm(armFor(emulator, OutputMode::kPosition));
+  UrClock clock(arm);
+  SineController controller(OutputMode::kPosition);
+  hardware::ControlLoop loop(arm, controller, clock, {.period_s = kPeriod, .cycles = 250});
+  (void)loop.run();
+  emulator.dropPackages(5);
+  loop.stop();
+  hardware::ControlLoop more(arm, controller, clock, {.period_s = kPeriod, .cycles = 250});
+  (void)more.run();
+  EXPECT_EQ(arm.stats().skipped_cycles, 5U);
+  EXPECT_EQ(emulator.stats().dropped, 5U);
+}
+
+TEST_F(UrBackend, AProtectiveStopIsSaidAndRecoversOnceUnlocked) {
+  UrArm arm(armFor(emulator, OutputMode::kPosition));
+  UrClock clock(arm);
+  SineController controller(OutputMode::kPosition);
+  hardware::ControlLoop loop(arm, controller, clock, {.period_s = kPeriod});
+  std::jthread cycles([&] { (void)loop.run(); });
+  ASSERT_TRUE(eventually([&] { return emulator.stats().answered > 50; }, 2.0));
+  emulator.protectiveStop();
+  ASSERT_TRUE(eventually([&] { return arm.robotStop() != nullptr; }, 1.0));
+  EXPECT_NE(std::string(arm.robotStop()).find("protective stop"), std::string::npos)
+      << arm.robotStop();
+  const JointVector held = emulator.state().position;
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_LT((emulator.state().position - held).cwiseAbs().maxCoeff(), 1e-6) << "the arm moved";
+  // Too early to unlock (0.2 s here), then unlocked: the backend sends the program again.
+  EXPECT_NE(emulator.dashboard("unlock protective stop").find("Cannot unlock"), std::string::npos);
+  std::this_thread::sleep_for(std::chrono::milliseconds(250));
+  EXPECT_EQ(emulator.dashboard("unlock protective stop"), "Protective stop releasing");
+  EXPECT_TRUE(eventually([&] { return arm.robotStop() == nullptr; }, 3.0));
+  EXPECT_EQ(emulator.stats().programs, 2U);
+  loop.stop();
+}
+
+TEST_F(UrBackend, ALostLinkIsSaidTheProgramStopsTheArmAndTheLinkComesBack) {
+  UrArm arm(armFor(emulator, OutputMode::kPosition));
+  UrClock clock(arm);
+  SineController controller(OutputMode::kPosition);
+  hardware::ControlLoop loop(arm, controller, clock, {.period_s = kPeriod});
+  std::jthread cycles([&] { (void)loop.run(); });
+  ASSERT_TRUE(eventually([&] { return emulator.stats().answered > 50; }, 2.0));
+  emulator.closeConnections();
+  ASSERT_TRUE(eventually([&] { return arm.robotStop() != nullptr; }, 1.0));
+  EXPECT_NE(std::string(arm.robotStop()).find("link to the UR controller is lost"),
+            std::string::npos)
+      << arm.robotStop();
+  // Without answers, the program's watchdog stopped the arm; the backend connects again and
+  // sends the program again.
+  EXPECT_TRUE(eventually([&] { return arm.robotStop() == nullptr; }, 3.0));
+  EXPECT_EQ(emulator.stats().watchdog_stops, 1U);
+  EXPECT_EQ(arm.stats().connections, 2U);
+  EXPECT_EQ(emulator.stats().programs, 2U);
+  loop.stop();
+}
+
+TEST(UrBackendSetup, TorqueCommandsNeedPolyScope523) {
+  UrEmulatorOptions old = freePorts();
+  old.version = {5, 22, 1, 0};
+  UrEmulator emulator(old);
+  try {
+    UrArm arm(armFor(emulator, OutputMode::kTorque));
+    FAIL() << "a 5.22 controller was taken for torque_command";
+  } catch (const hardware::BackendError& error) {
+    EXPECT_NE(std::string(error.what()).find("5.23"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("5.22.1"), std::string::npos) << error.what();
+  }
+}
+
+TEST(UrBackendSetup, NoControllerIsAClearError) {
+  UrArmOptions options;
+  options.robot_ip = "127.0.0.1";
+  options.rtde_port = 1;  // nothing listens there
+  try {
+    UrArm arm(options);
+    FAIL();
+  } catch (const hardware::BackendError& error) {
+    EXPECT_NE(std::string(error.what()).find("127.0.0.1:1"), std::string::npos) << error.what();
+  }
+}
+
+}  // namespace
+}  // namespace comply::ur::test
