@@ -14,6 +14,7 @@
 //   comply plugin new NAME --kind joint|cartesian --lang cpp|c [--out DIR]
 //   comply plugin new NAME --kind hardware [--out DIR]
 //   comply config --defaults [--robot fr3] [--plugin cartesian_impedance]
+//   comply ur-emulator [--rtde-port 30004] [--object table.xml] [--duration S]
 //
 // Exit codes: 0 success, 1 a check failed (validate above tolerance, a controller fault, a
 // target not reached), 2 bad input or setup.
@@ -27,6 +28,7 @@
 #include "experiment_commands.hpp"
 #include "export_command.hpp"
 #include "live_commands.hpp"
+#include "ur_emulator_command.hpp"
 
 int main(int argc, char** argv) {
   using namespace comply::app;
@@ -41,6 +43,7 @@ int main(int argc, char** argv) {
   ConfigOptions config;
   CodegenOptions codegen;
   PluginNewOptions plugin_new;
+  UrEmulatorCommandOptions ur_emulator;
   CLI::App* bench_command = addBenchCommand(app, bench);
   CLI::App* validate_command = addValidateCommand(app, validate);
   CLI::App* sim_command = addSimCommand(app, sim);
@@ -52,6 +55,7 @@ int main(int argc, char** argv) {
   CLI::App* config_command = addConfigCommand(app, config);
   CLI::App* codegen_simulink = addCodegenCommand(app, codegen);
   CLI::App* plugin_new_command = addPluginCommand(app, plugin_new);
+  CLI::App* ur_emulator_command = addUrEmulatorCommand(app, ur_emulator);
 
   try {
     app.parse(argc, argv);
@@ -92,6 +96,9 @@ int main(int argc, char** argv) {
     }
     if (plugin_new_command->parsed()) {
       return pluginNewCommand(plugin_new, std::cout, std::cerr);
+    }
+    if (ur_emulator_command->parsed()) {
+      return urEmulatorCommand(ur_emulator, std::cout, std::cerr);
     }
     return 2;
   } catch (const std::bad_alloc&) {

@@ -3,7 +3,6 @@
 #include "run_command.hpp"
 
 #include <atomic>
-#include <csignal>
 #include <ostream>
 
 #include "comply/core/output_folder.hpp"
@@ -12,23 +11,10 @@
 #include "comply/host/live_view.hpp"
 #include "comply/pipeline/config.hpp"
 #include "comply/sim/viewer.hpp"
+#include "stop_signal.hpp"
 
 namespace comply::app {
 namespace {
-
-std::atomic<bool> stop_requested{false};  // lock-free: set from a signal handler
-
-extern "C" void onStopSignal(int /*signal*/) {
-  stop_requested.store(true);
-}
-
-void installSignalHandlers() {
-  struct sigaction action {};
-  action.sa_handler = onStopSignal;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
-}
 
 std::string checkOptions(const RunOptions& options) {
   if (options.config_file.empty()) {
@@ -71,8 +57,7 @@ int runCommand(const RunOptions& options, std::ostream& out, std::ostream& err) 
   }
   const pipeline::WrapperConfig config =
       host::simControllerConfig(options.robot, "", options.config_file);
-  stop_requested = false;
-  installSignalHandlers();
+  std::atomic<bool>& stop_requested = stopOnSignals();
   RunOptions locked = options;
   locked.lock_memory = true;
   return host::runLiveHost(locked, config, stop_requested, out, err);

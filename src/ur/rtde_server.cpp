@@ -2,6 +2,8 @@
 
 #include "comply/ur/rtde_server.hpp"
 
+#include <atomic>
+
 #include <algorithm>
 #include <array>
 #include <boost/asio/io_context.hpp>
@@ -14,6 +16,9 @@
 #include <deque>
 #include <mutex>
 #include <thread>
+
+#include "comply/core/realtime_scheduling.hpp"
+#include "comply/hardware/loop_clock.hpp"
 
 namespace comply::ur {
 
@@ -32,6 +37,11 @@ class InputSignal {
     }
     changed_.notify_all();
   }
+  /// When a data package last left for a client (monotonic seconds): its write completed.
+  void noteOutputWritten() {
+    output_written_s_.store(hardware::monotonicSeconds(), std::memory_order_relaxed);
+  }
+  double outputWritten() const { return output_written_s_.load(std::memory_order_relaxed); }
   std::uint64_t count() const {
     const std::lock_guard lock(mutex_);
     return count_;
@@ -46,6 +56,7 @@ class InputSignal {
   mutable std::mutex mutex_;
   std::condition_variable changed_;
   std::uint64_t count_ = 0;
+  std::atomic<double> output_written_s_{0.0};
 };
 
 /// One client: its socket, its session, what waits to be written.
@@ -159,6 +170,11 @@ class Connection : public std::enable_shared_from_this<Connection> {
                           self->writing_ = false;
                           return;
                         }
+                        if (self->current_.size() > 2 &&
+                            self->current_[2] ==
+                                static_cast<std::uint8_t>(PackageType::kDataPackage)) {
+                          self->inputs_signal_.noteOutputWritten();
+                        }
                         self->writeNext();
                       });
   }
@@ -202,7 +218,10 @@ class RtdeServer::Impl {
                       std::to_string(options.port) + ": " + error.message());
     }
     accept();
-    thread_ = std::thread([this] { io_.run(); });
+    thread_ = std::thread([this] {
+      (void)makeThreadRealtime(options_.thread_priority);  // normal priority where it may not
+      io_.run();
+    });
   }
 
   ~Impl() {
@@ -239,6 +258,7 @@ class RtdeServer::Impl {
   }
 
   std::uint64_t inputPackages() const { return inputs_signal_.count(); }
+  double lastOutputWritten() const { return inputs_signal_.outputWritten(); }
   bool awaitInputs(std::uint64_t seen, double timeout_s) {
     return inputs_signal_.awaitAfter(seen, timeout_s);
   }
@@ -296,6 +316,9 @@ void RtdeServer::sendOutputs(const std::map<std::string, RtdeValue>& variables) 
 }
 std::map<std::string, RtdeValue> RtdeServer::inputs() const {
   return impl_->inputs();
+}
+double RtdeServer::lastOutputWritten() const {
+  return impl_->lastOutputWritten();
 }
 std::uint64_t RtdeServer::inputPackages() const {
   return impl_->inputPackages();

@@ -49,6 +49,9 @@ UrArm::UrArm(UrArmOptions options) : options_(std::move(options)) {
     ::close(wakeup_);
     throw;
   }
+  // At normal priority, though a package waits for it before the cycle starts: measured with
+  // the emulator on one 2-core host, SCHED_FIFO for it beside the control thread made cycles
+  // later, not earlier (docs/ur.md, "Timing").
   link_thread_ = std::jthread([this](std::stop_token stop) { link_->run(stop); });
 }
 
@@ -170,6 +173,15 @@ UrLinkStats UrArm::stats() const noexcept {
   UrLinkStats stats = link_->stats();
   stats.unanswered = unanswered_.load(std::memory_order_relaxed);
   return stats;
+}
+
+std::string UrArm::summary() const {
+  const UrLinkStats s = stats();
+  return "UR link: " + std::to_string(s.packages) + " data packages, " +
+         std::to_string(s.skipped_cycles) + " controller cycles without one, " +
+         std::to_string(s.unanswered) + " left unanswered (a newer one had come), " +
+         std::to_string(s.connections) + " connections, " + std::to_string(s.programs_sent) +
+         " programs sent";
 }
 
 void UrClock::waitUntil(double time_s) noexcept {

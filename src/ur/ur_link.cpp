@@ -73,16 +73,23 @@ ControllerVersion UrArm::Link::connect() {
       names.emplace_back("actual_current_as_torque");
     }
     outputs_ = client->setupOutputs(1.0 / options.program.period_s, names);
+    // The answers go over a connection of their own, which only the control thread writes: on
+    // the one the link thread reads, a send would wait for the kernel's socket lock whenever
+    // that thread (not real-time) holds it in a receive.
+    auto commands = std::make_unique<RtdeClient>(options.robot_ip, options.rtde_port,
+                                                 options.connect_timeout_s);
     std::vector<std::string> inputs{"input_int_register_" + std::to_string(o),
                                     "input_int_register_" + std::to_string(o + 1)};
     for (int joint = 0; joint < 6; ++joint) {
       inputs.push_back("input_double_register_" + std::to_string(o + joint));
     }
-    inputs_ = client->setupInputs(inputs);
+    inputs_ = commands->setupInputs(inputs);
+    commands->start();
     client->start();
     client_ = std::move(client);
+    commands_ = std::move(commands);
     arm_.input_recipe_.store(inputs_.id, std::memory_order_relaxed);
-    arm_.socket_.store(client_->socket(), std::memory_order_release);
+    arm_.socket_.store(commands_->socket(), std::memory_order_release);
     last_package_s_ = hardware::monotonicSeconds();
     connections_.fetch_add(1, std::memory_order_relaxed);
     return version;
@@ -184,7 +191,8 @@ void UrArm::Link::publishStop(const char* why) {
 
 void UrArm::Link::lose(const char* why) {
   arm_.socket_.store(-1, std::memory_order_release);
-  retired_ = std::move(client_);
+  client_.reset();
+  retired_ = std::move(commands_);
   program_running_ = false;
   last_attempt_s_ = hardware::monotonicSeconds();
   publishStop(why);
@@ -201,6 +209,7 @@ void UrArm::Link::tryReconnect() {
     last_program_s_ = -1e9;  // the program went with the link: sent on the first package
   } catch (const hardware::BackendError&) {
     client_.reset();  // tried again after the interval
+    commands_.reset();
   }
 }
 
@@ -226,7 +235,7 @@ void UrArm::Link::sendProgram() {
   for (int joint = 0; joint < 6; ++joint) {
     hold.emplace_back(0.0);
   }
-  client_->send(inputs_, hold);
+  commands_->send(inputs_, hold);
   sendScript(arm_.options_.robot_ip, arm_.options_.script_port,
              controlProgramScript(arm_.options_.program), arm_.options_.connect_timeout_s);
   programs_.fetch_add(1, std::memory_order_relaxed);

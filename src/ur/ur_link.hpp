@@ -36,9 +36,10 @@ class UrArm::Link {
   void restartProgramIfStopped();
 
   UrArm& arm_;
-  std::unique_ptr<RtdeClient> client_;
-  /// The last connection's client, kept open one reconnect longer: the control thread may still
-  /// be sending to its socket, whose number must not be reused meanwhile.
+  std::unique_ptr<RtdeClient> client_;    // the output recipe: read by this thread
+  std::unique_ptr<RtdeClient> commands_;  // the input recipe: written by the control thread
+  /// The last link's commanding client, kept open one reconnect longer: the control thread may
+  /// still be sending to its socket, whose number must not be reused meanwhile.
   std::unique_ptr<RtdeClient> retired_;
   Recipe outputs_;
   Recipe inputs_;

@@ -4,6 +4,7 @@
 #include <time.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 #include "comply/hardware/loop_clock.hpp"
@@ -19,8 +20,10 @@ timespec timespecOf(double seconds) {
   return at;
 }
 
-/// A stall longer than this many cycles is not caught up: the next cycle starts from now.
-constexpr double kCatchUpCycles = 10.0;
+/// A wake-up this late [s] is the host's stall, not a client's delay (awaitAnswer).
+constexpr double kStallS = 0.5e-3;
+/// The most stall time [s] one answer's wait makes up for.
+constexpr double kMostStalledS = 0.1;
 
 std::array<double, 6> sixOf(const JointVector& vector) {
   std::array<double, 6> six{};
@@ -42,9 +45,12 @@ void UrEmulator::Impl::runCycles(const std::stop_token& stop) {
       cycle();
     }
     next_s += period_s;
+    // A controller's cycle does not stall; this thread does, on a busy host. The cycles it
+    // missed are not caught up in a burst (which would send the client packages back to back):
+    // the next one starts a period after this one.
     const double now_s = hardware::monotonicSeconds();
-    if (now_s - next_s > kCatchUpCycles * period_s) {
-      next_s = now_s;
+    if (now_s > next_s) {
+      next_s = now_s + period_s;
     }
     const timespec at = timespecOf(next_s);
     while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &at, nullptr) == EINTR) {
@@ -56,10 +62,10 @@ void UrEmulator::Impl::awaitAnswer() {
   // A controller's cycle does not slip: a client always has one period from a package to its
   // answer. This thread's wake-ups do slip on a busy host; so that a late wake-up (which sent
   // the last package late) is not counted against the client, the cycle waits for the answer
-  // until one period after the package went out.
+  // until one period after the package went out (answer_wait_s, when longer).
   std::string answer_register;
   std::int32_t expected = 0;
-  double deadline_s = 0.0;
+  double last_send_s = 0.0;
   {
     const std::lock_guard lock(mutex_);
     if (!running_ || !armed_ || cycle_ == 0 || !sent_[static_cast<std::size_t>(cycle_)]) {
@@ -67,19 +73,41 @@ void UrEmulator::Impl::awaitAnswer() {
     }
     answer_register = "input_int_register_" + std::to_string(program_.register_offset);
     expected = static_cast<std::int32_t>(cycle_);
-    deadline_s = last_send_s_ + options_.period_s;
+    last_send_s = last_send_s_;
   }
+  const double wait_s = std::max(options_.period_s, options_.answer_wait_s);
+  const double give_up_s = hardware::monotonicSeconds() + wait_s + 2.0 * options_.period_s;
+  double stalled_s = 0.0;
   for (;;) {
+    // From when the package's bytes left: the I/O thread writes it a little after the cycle
+    // queued it, or (stalled) not yet, when the period has not started. Time this thread was
+    // kept from running while it waited (a wake-up far past its timeout: the host stalled it,
+    // and the client with it, most likely) is added.
+    const double written_s = rtde_.lastOutputWritten();
+    const double left_at_s = written_s >= last_send_s ? written_s : hardware::monotonicSeconds();
+    const double on_time_s = left_at_s + options_.period_s + stalled_s;
+    const double deadline_s = std::min(left_at_s + wait_s, give_up_s) + stalled_s;
     const std::uint64_t seen = rtde_.inputPackages();
     const auto inputs = rtde_.inputs();
     const auto found = inputs.find(answer_register);
+    const double now_s = hardware::monotonicSeconds();
     if (found != inputs.end() && std::holds_alternative<std::int32_t>(found->second) &&
         std::get<std::int32_t>(found->second) == expected) {
+      if (now_s > on_time_s) {
+        const std::lock_guard lock(mutex_);
+        ++stats_.late;  // in, but after a controller's cycle would have read its registers
+      }
       return;
     }
-    const double left_s = deadline_s - hardware::monotonicSeconds();
-    if (left_s <= 0.0 || !rtde_.awaitInputs(seen, left_s)) {
+    if (now_s >= deadline_s) {
       return;
+    }
+    if (!rtde_.awaitInputs(seen, deadline_s - now_s)) {
+      const double overslept_s = hardware::monotonicSeconds() - deadline_s;
+      if (overslept_s < kStallS || stalled_s > kMostStalledS) {
+        return;
+      }
+      stalled_s += overslept_s;
     }
   }
 }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "comply/core/realtime_scheduling.hpp"
 #include "emulator_impl.hpp"
 
 namespace comply::ur {
@@ -16,6 +17,7 @@ RtdeServerOptions rtdeOptions(const UrEmulatorOptions& options) {
   rtde.port = options.rtde_port;
   rtde.version = options.version;
   rtde.max_frequency_hz = 1.0 / options.period_s;
+  rtde.thread_priority = options.priority;
   return rtde;
 }
 
@@ -45,7 +47,10 @@ UrEmulator::Impl::Impl(const UrEmulatorOptions& options)
           }
         }
       });
-  cycle_thread_ = std::jthread([this](std::stop_token stop) { runCycles(stop); });
+  cycle_thread_ = std::jthread([this](std::stop_token stop) {
+    (void)makeThreadRealtime(options_.priority);
+    runCycles(stop);
+  });
 }
 
 UrEmulator::Impl::~Impl() {

@@ -4,6 +4,7 @@
 // non-real-time thread holds, no throw).
 
 #include <span>
+#include <string>
 
 #include "comply/core/actuator_command.hpp"
 #include "comply/core/commands.hpp"
@@ -70,6 +71,9 @@ class HardwareInterface {
   /// calls it after every read() and hands it on in JointState::robot_stop. read() still returns
   /// the last state it has, so that the controller holds what it knows.
   [[nodiscard]] virtual const char* robotStop() noexcept { return nullptr; }
+  /// What the driver counted over the run (packages, gaps, reconnections), for the host's closing
+  /// lines; "" when it has nothing to say. Not real-time: called after the loop.
+  [[nodiscard]] virtual std::string summary() const { return {}; }
 };
 
 }  // namespace comply::hardware

@@ -1,6 +1,6 @@
 #pragma once
 // Hardware backends by name, for `comply run --hardware NAME`: built-in ones (`sim`, the MuJoCo
-// plant in lock-step with the wall clock) and backend libraries built out of tree
+// plant in lock-step with the wall clock; `ur`, a UR e-series controller over RTDE) and backend libraries built out of tree
 // (hardware/backend.hpp), found by path or as libcomply_hardware_<NAME>.so on the plugin search
 // path.
 

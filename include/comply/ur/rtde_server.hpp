@@ -20,6 +20,8 @@ struct RtdeServerOptions {
   ControllerVersion version{5, 23, 0, 0};
   /// The controller's cycle rate: sendOutputs() is called this often, the fastest recipe.
   double max_frequency_hz = 500.0;
+  /// SCHED_FIFO priority of the I/O thread (0: normal), where the process may have it.
+  int thread_priority = 0;
 };
 
 class RtdeServer {
@@ -37,6 +39,9 @@ class RtdeServer {
   void sendOutputs(const std::map<std::string, RtdeValue>& variables);
   /// What the clients last wrote to each input, by name.
   [[nodiscard]] std::map<std::string, RtdeValue> inputs() const;
+  /// When the last data package's bytes were handed to a client's socket (monotonic seconds,
+  /// hardware::monotonicSeconds()); 0 before any.
+  [[nodiscard]] double lastOutputWritten() const;
   /// Input data packages received from all clients so far.
   [[nodiscard]] std::uint64_t inputPackages() const;
   /// Waits until inputPackages() exceeds `seen`, at most `timeout_s`; false on the timeout.

@@ -99,6 +99,8 @@ class UrArm final : public hardware::HardwareInterface {
   [[nodiscard]] double sampleTime() const noexcept;
   [[nodiscard]] double sampleArrival() const noexcept;
   [[nodiscard]] UrLinkStats stats() const noexcept;
+  /// "UR link: N packages, ..." (stats()).
+  [[nodiscard]] std::string summary() const override;
   [[nodiscard]] const ControllerVersion& controllerVersion() const noexcept { return version_; }
   [[nodiscard]] const UrArmOptions& options() const noexcept { return options_; }
 

@@ -45,14 +45,22 @@ struct UrEmulatorOptions {
   /// How long a protective stop must last before the dashboard unlocks it [s] (PolyScope: 5).
   double unlock_delay_s = 5.0;
   double servo_bandwidth_hz = 20.0;  ///< the joints' position and velocity servos [Hz]
+  /// How long a cycle waits for the answer to the last package [s]: at most one period, as a
+  /// controller's cycle does (0, the default). Longer makes a run independent of how this host
+  /// schedules the emulator and its client (the tests): an answer after one period still counts
+  /// as late, but is applied.
+  double answer_wait_s = 0.0;
+  /// SCHED_FIFO priority of the cycle and RTDE threads, as a controller's are real-time (0:
+  /// normal). Where the process may not have it, they run at normal priority.
+  int priority = 0;
 };
 
 struct UrEmulatorStats {
   std::uint64_t cycles = 0;     ///< controller cycles run
   std::uint64_t dropped = 0;    ///< data packages not sent, on request
   std::uint64_t answered = 0;   ///< cycles in which the program found a new answer
-  /// Cycles in which the answer to the last cycle's data package had not come one period after
-  /// that package went out (the program applied an older one again), while it ran armed.
+  /// Answers that came more than one period after their package went out (their cycle applied
+  /// an older answer again, unless answer_wait_s waited for them), while the program ran armed.
   std::uint64_t late = 0;
   /// Data packages sent while the program ran whose answer it never applied: none came, or a
   /// newer one had overtaken it by the next cycle.

@@ -272,6 +272,9 @@ int runWith(const LiveHostOptions& options,
   publishDiagnostics(context, outcomeMessages(gate.takeOutcomes()));
   transport->flush(1.0);
   printSummary(observer.counters(), gate.counts(), loop.stats(), *transport, out);
+  if (const std::string driver = backend.hardware->summary(); !driver.empty()) {
+    out << "comply run: " << driver << "\n";
+  }
   if (recording != nullptr) {
     recording->stop();
     printRecording(*recording, out);
