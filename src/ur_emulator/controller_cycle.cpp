@@ -121,6 +121,7 @@ void UrEmulator::Impl::cycle() {
     applyProgram();
   } else {
     plant_->hold();
+    servo_following_ = false;
   }
   plant_->step();
   plant_->read(measured_);
@@ -180,6 +181,7 @@ void UrEmulator::Impl::applyProgram() {
     ++stats_.watchdog_stops;
     stopProgram(2);
     plant_->hold();
+    servo_following_ = false;
     return;
   }
   applied_ = answer;
@@ -197,6 +199,7 @@ void UrEmulator::Impl::command(int drive, const std::array<double, 6>& values) {
   }
   if (drive != 1 || !finite) {
     plant_->hold();  // stopj, or a script that would stop on a bad number: the arm stands
+    servo_following_ = false;
     return;
   }
   ActuatorCommand drives;
@@ -205,7 +208,13 @@ void UrEmulator::Impl::command(int drive, const std::array<double, 6>& values) {
   for (int joint = 0; joint < 6; ++joint) {
     const double value = values[static_cast<std::size_t>(joint)];
     if (program_.mode == OutputMode::kPosition) {
+      // servoj follows the targets as a trajectory: its velocity is theirs, from one cycle's
+      // target to the next (none for the first after a stop).
+      const auto j = static_cast<std::size_t>(joint);
       drives.position[joint] = value;
+      drives.velocity[joint] = servo_following_ ? (value - last_target_[j]) / program_.period_s
+                                                : 0.0;
+      last_target_[j] = value;
     } else if (program_.mode == OutputMode::kVelocity) {
       drives.velocity[joint] = value;
     } else {
@@ -215,6 +224,7 @@ void UrEmulator::Impl::command(int drive, const std::array<double, 6>& values) {
     }
   }
   (void)plant_->writeCommand(drives);
+  servo_following_ = program_.mode == OutputMode::kPosition;
 }
 
 void UrEmulator::Impl::stopProgram(std::int32_t flag) {

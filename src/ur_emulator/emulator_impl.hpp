@@ -79,6 +79,8 @@ class UrEmulator::Impl {
   std::int32_t last_answer_ = 0;
   bool armed_ = false;
   double quiet_s_ = 0.0;
+  std::array<double, 6> last_target_{};  // servoj: the last cycle's target
+  bool servo_following_ = false;         // servoj: last_target_ is the last cycle's
 
   std::map<std::string, RtdeValue> registers_;  // kept across connections, as a controller does
   std::vector<bool> sent_;                      // by package index k + 1: sent (not dropped)
