@@ -24,6 +24,8 @@ timespec timespecOf(double seconds) {
 constexpr double kStallS = 0.5e-3;
 /// The most stall time [s] one answer's wait makes up for.
 constexpr double kMostStalledS = 0.1;
+/// A long wait for an answer looks at the connections this often [s].
+constexpr double kWaitSliceS = 0.01;
 
 std::array<double, 6> sixOf(const JointVector& vector) {
   std::array<double, 6> six{};
@@ -99,15 +101,16 @@ void UrEmulator::Impl::awaitAnswer() {
       }
       return;
     }
-    if (now_s >= deadline_s) {
+    // No client left (a cable pulled): nothing to wait for.
+    if (now_s >= deadline_s || rtde_.connections() == 0) {
       return;
     }
-    if (!rtde_.awaitInputs(seen, deadline_s - now_s)) {
-      const double overslept_s = hardware::monotonicSeconds() - deadline_s;
-      if (overslept_s < kStallS || stalled_s > kMostStalledS) {
-        return;
+    const double slice_end_s = std::min(deadline_s, now_s + kWaitSliceS);
+    if (!rtde_.awaitInputs(seen, slice_end_s - now_s)) {
+      const double overslept_s = hardware::monotonicSeconds() - slice_end_s;
+      if (overslept_s >= kStallS && stalled_s <= kMostStalledS) {
+        stalled_s += overslept_s;
       }
-      stalled_s += overslept_s;
     }
   }
 }

@@ -43,6 +43,7 @@ const JointState& VirtualArm::lawState(const JointState& measured) noexcept {
   }
   virtual_.wrench = measured.wrench;  // the raw reading: the controller takes the tool and tare off
   virtual_.wrench_valid = measured.wrench_valid;
+  virtual_.robot_stop = measured.robot_stop;  // the robot's own stop is the law's FAULT too
   return usable ? virtual_ : measured;
 }
 
