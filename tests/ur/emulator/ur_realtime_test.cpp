@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "../pipeline/mutex_lock_counter.hpp"
+#include "../../pipeline/mutex_lock_counter.hpp"
 #include "allocation_counter.hpp"
 #include "comply/hardware/control_loop.hpp"
 #include "ur_emulator_support.hpp"

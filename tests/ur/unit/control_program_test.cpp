@@ -1,0 +1,118 @@
+// comply's URScript control program: what is written is read back the same, each mode calls its
+// command with the registers it was given, and text that is not the program, or values out of
+// UR's ranges, are refused by name. The robot's modes say why an arm takes no commands.
+
+#include "comply/ur/control_program.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "comply/ur/robot_status.hpp"
+
+namespace comply::ur {
+namespace {
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+TEST(ControlProgram, IsReadBackAsWritten) {
+  for (const OutputMode mode : {OutputMode::kPosition, OutputMode::kVelocity, OutputMode::kTorque}) {
+    ControlProgram program;
+    program.mode = mode;
+    program.register_offset = 30;
+    program.watchdog_s = 0.1;
+    program.servoj_lookahead_s = 0.05;
+    program.servoj_gain = 600.0;
+    const std::string script = controlProgramScript(program);
+    const ControlProgram read = readControlProgram(script);
+    EXPECT_EQ(read.mode, mode);
+    EXPECT_EQ(read.register_offset, 30);
+    EXPECT_DOUBLE_EQ(read.watchdog_s, 0.1);
+    EXPECT_DOUBLE_EQ(read.servoj_lookahead_s, 0.05);
+    EXPECT_DOUBLE_EQ(read.servoj_gain, 600.0);
+    EXPECT_TRUE(contains(script, std::string(driveCommand(mode)) + "(target")) << script;
+    // The registers it reads are the ones it was given, and no others.
+    EXPECT_TRUE(contains(script, "read_input_integer_register(30)"));
+    EXPECT_TRUE(contains(script, "read_input_integer_register(31)"));
+    EXPECT_TRUE(contains(script, "read_input_float_register(35)"));
+    EXPECT_FALSE(contains(script, "read_input_float_register(36)"));
+    EXPECT_FALSE(contains(script, "register(24)"));
+  }
+}
+
+TEST(ControlProgram, HasAWatchdogThatStopsTheArm) {
+  const std::string script = controlProgramScript({});
+  EXPECT_TRUE(contains(script, "if armed and quiet > COMPLY_WATCHDOG:"));
+  EXPECT_TRUE(contains(script, "stopj(COMPLY_DECELERATION)\n      halt"));
+}
+
+TEST(ControlProgram, RefusesWhatAUrCannotRun) {
+  ControlProgram pd;
+  pd.mode = OutputMode::kJointPd;
+  EXPECT_THROW(
+      {
+        try {
+          (void)controlProgramScript(pd);
+        } catch (const ControlProgramError& error) {
+          EXPECT_TRUE(contains(error.what(), "no per-joint PD")) << error.what();
+          throw;
+        }
+      },
+      ControlProgramError);
+  ControlProgram gain;
+  gain.servoj_gain = 5000.0;
+  EXPECT_THROW((void)controlProgramScript(gain), ControlProgramError);
+  ControlProgram registers;
+  registers.register_offset = 44;  // 44..49: past the last register, 47
+  EXPECT_THROW((void)controlProgramScript(registers), ControlProgramError);
+  ControlProgram watchdog;
+  watchdog.watchdog_s = 0.001;
+  EXPECT_THROW((void)controlProgramScript(watchdog), ControlProgramError);
+}
+
+TEST(ControlProgram, RefusesTextThatIsNotIt) {
+  EXPECT_THROW((void)readControlProgram("def prog():\n  movej([0,0,0,0,0,0])\nend\n"),
+               ControlProgramError);
+  std::string script = controlProgramScript({});
+  const std::size_t gain = script.find("COMPLY_GAIN = ");
+  script.replace(gain, script.find('\n', gain) - gain, "COMPLY_GAIN = fast");
+  try {
+    (void)readControlProgram(script);
+    FAIL() << "a gain that is not a number was read";
+  } catch (const ControlProgramError& error) {
+    EXPECT_TRUE(contains(error.what(), "COMPLY_GAIN")) << error.what();
+  }
+}
+
+TEST(RobotStatus, SaysWhyTheArmTakesNoCommands) {
+  const auto running = static_cast<std::int32_t>(RobotMode::kRunning);
+  const auto normal = static_cast<std::int32_t>(SafetyMode::kNormal);
+  const auto playing = static_cast<std::uint32_t>(RuntimeState::kPlaying);
+  EXPECT_EQ(stopReason(running, normal, playing, true), nullptr);
+  EXPECT_EQ(stopReason(running, static_cast<std::int32_t>(SafetyMode::kReduced), playing, true),
+            nullptr);
+  EXPECT_TRUE(contains(
+      stopReason(running, static_cast<std::int32_t>(SafetyMode::kProtectiveStop), playing, true),
+      "protective stop"));
+  EXPECT_TRUE(contains(
+      stopReason(running, static_cast<std::int32_t>(SafetyMode::kRobotEmergencyStop), playing,
+                 true),
+      "emergency stop"));
+  EXPECT_TRUE(contains(stopReason(static_cast<std::int32_t>(RobotMode::kPowerOff), normal,
+                                  playing, true),
+                       "not powered on"));
+  EXPECT_TRUE(contains(stopReason(running, normal, static_cast<std::uint32_t>(RuntimeState::kStopped),
+                                  true),
+                       "program is not running"));
+  EXPECT_TRUE(contains(stopReason(running, normal, playing, false), "program is not running"));
+  EXPECT_EQ(safetyModeName(3), "PROTECTIVE_STOP");
+  EXPECT_EQ(robotModeName(7), "RUNNING");
+  EXPECT_EQ(robotModeName(-1), "NO_CONTROLLER");
+  EXPECT_EQ(runtimeStateName(2), "PLAYING");
+  EXPECT_EQ(safetyModeName(99), "UNKNOWN");
+}
+
+}  // namespace
+}  // namespace comply::ur
