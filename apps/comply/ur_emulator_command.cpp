@@ -34,9 +34,9 @@ void printStatus(const ur::UrEmulator& emulator, std::ostream& out) {
   const ur::UrEmulatorStats stats = emulator.stats();
   const ur::UrEmulatorState state = emulator.state();
   out << "t " << state.time_s << " s, " << ur::safetyModeName(state.safety_mode) << ", program "
-      << (state.program_running ? ur::driveCommand(state.program_mode) : "stopped")
-      << ", answered " << stats.answered << ", late " << stats.late << ", missed "
-      << stats.missed << ", watchdog stops " << stats.watchdog_stops << ", protective stops "
+      << (state.program_running ? ur::driveCommand(state.program_mode) : "stopped") << ", answered "
+      << stats.answered << ", late " << stats.late << ", missed " << stats.missed
+      << ", watchdog stops " << stats.watchdog_stops << ", protective stops "
       << stats.protective_stops << "\n"
       << std::flush;
 }
@@ -44,9 +44,10 @@ void printStatus(const ur::UrEmulator& emulator, std::ostream& out) {
 }  // namespace
 
 CLI::App* addUrEmulatorCommand(CLI::App& app, UrEmulatorCommandOptions& options) {
-  CLI::App* command = app.add_subcommand(
-      "ur-emulator", "a UR e-series controller emulated on the MuJoCo UR5e (RTDE, program, "
-                     "dashboard), for --hardware ur without a robot");
+  CLI::App* command =
+      app.add_subcommand("ur-emulator",
+                         "a UR e-series controller emulated on the MuJoCo UR5e (RTDE, program, "
+                         "dashboard), for --hardware ur without a robot");
   command->add_option("--address", options.address, "IPv4 address to listen on")
       ->capture_default_str();
   command->add_option("--rtde-port", options.rtde_port, "RTDE (0: any free port)")
@@ -61,16 +62,19 @@ CLI::App* addUrEmulatorCommand(CLI::App& app, UrEmulatorCommandOptions& options)
       ->check(CLI::ExistingFile);
   command->add_option("--tool", options.tool, "MuJoCo fragment on the TCP")
       ->check(CLI::ExistingFile);
-  command->add_option("--force-limit", options.force_limit_n,
-                      "TCP contact force [N] above which it makes a protective stop (0: none)")
+  command
+      ->add_option("--force-limit", options.force_limit_n,
+                   "TCP contact force [N] above which it makes a protective stop (0: none)")
       ->capture_default_str();
-  command->add_option("--unlock-delay", options.unlock_delay_s,
-                      "[s] a protective stop lasts before the dashboard unlocks it")
+  command
+      ->add_option("--unlock-delay", options.unlock_delay_s,
+                   "[s] a protective stop lasts before the dashboard unlocks it")
       ->capture_default_str();
   command->add_option("--duration", options.duration_s, "[s] then stop (0: until Ctrl-C)");
-  command->add_option("--priority", options.priority,
-                      "SCHED_FIFO priority of its cycle and RTDE threads, as a controller's are "
-                      "real-time (0: normal; refused quietly where not permitted)")
+  command
+      ->add_option("--priority", options.priority,
+                   "SCHED_FIFO priority of its cycle and RTDE threads, as a controller's are "
+                   "real-time (0: normal; refused quietly where not permitted)")
       ->check(CLI::Range(0, 99));
   return command;
 }

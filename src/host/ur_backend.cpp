@@ -18,8 +18,7 @@ double numberOption(const std::string& key, const std::string& text) {
   double value = 0.0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
-    throw hardware::BackendError("--hardware-option " + key + "='" + text +
-                                 "' is not a number");
+    throw hardware::BackendError("--hardware-option " + key + "='" + text + "' is not a number");
   }
   return value;
 }
@@ -89,8 +88,8 @@ HardwareBackend urArm(const pipeline::WrapperConfig& config,
   backend.clock = std::make_unique<ur::UrClock>(*arm);
   const ur::ControllerVersion& version = arm->controllerVersion();
   backend.description = "a UR controller at " + options.robot_ip + " (PolyScope " +
-                        std::to_string(version.major) + "." + std::to_string(version.minor) +
-                        "." + std::to_string(version.bugfix) + ", " +
+                        std::to_string(version.major) + "." + std::to_string(version.minor) + "." +
+                        std::to_string(version.bugfix) + ", " +
                         std::string(ur::driveCommand(options.program.mode)) + ")";
   backend.hardware = std::move(arm);
   return backend;

@@ -155,9 +155,8 @@ std::string controlProgramScript(const ControlProgram& program) {
 }
 
 ControlProgram readControlProgram(std::string_view script) {
-  check(script.starts_with(kFirstLine),
-        "the text does not start with '" + std::string(kFirstLine) +
-            "': not comply's control program");
+  check(script.starts_with(kFirstLine), "the text does not start with '" + std::string(kFirstLine) +
+                                            "': not comply's control program");
   ControlProgram program;
   const double mode = constant(script, "COMPLY_MODE");
   check(mode == 0.0 || mode == 2.0 || mode == 3.0,

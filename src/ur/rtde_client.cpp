@@ -107,10 +107,12 @@ bool RtdeClient::receive(std::vector<RtdeValue>& values, double timeout_s) {
   while (next(package, std::chrono::duration<double>(deadline - Clock::now()).count())) {
     if (package.type == PackageType::kTextMessage) {
       messages_.push_back(readTextMessage(package.payload));
-    } else if (package.type == PackageType::kDataPackage &&
-               readRecipeId(package.payload) == output_.id) {
-      values = readData(package.payload, output_.types);
-      return true;
+    } else if (package.type == PackageType::kDataPackage) {
+      if (readRecipeId(package.payload) == output_.id) {
+        values = readData(package.payload, output_.types);
+        return true;
+      }
+      ++other_recipe_;
     }
   }
   return false;

@@ -2,10 +2,9 @@
 
 #include "comply/ur/rtde_server.hpp"
 
-#include <atomic>
-
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/post.hpp>
@@ -162,21 +161,21 @@ class Connection : public std::enable_shared_from_this<Connection> {
       current_ = std::move(pending_.front());
       pending_.pop_front();
     }
-    asio::async_write(socket_, asio::buffer(current_),
-                      [self = shared_from_this()](boost::system::error_code error, std::size_t) {
-                        if (error) {
-                          const std::lock_guard lock(self->mutex_);
-                          self->open_ = false;
-                          self->writing_ = false;
-                          return;
-                        }
-                        if (self->current_.size() > 2 &&
-                            self->current_[2] ==
-                                static_cast<std::uint8_t>(PackageType::kDataPackage)) {
-                          self->inputs_signal_.noteOutputWritten();
-                        }
-                        self->writeNext();
-                      });
+    asio::async_write(
+        socket_, asio::buffer(current_),
+        [self = shared_from_this()](boost::system::error_code error, std::size_t) {
+          if (error) {
+            const std::lock_guard lock(self->mutex_);
+            self->open_ = false;
+            self->writing_ = false;
+            return;
+          }
+          if (self->current_.size() > 2 &&
+              self->current_[2] == static_cast<std::uint8_t>(PackageType::kDataPackage)) {
+            self->inputs_signal_.noteOutputWritten();
+          }
+          self->writeNext();
+        });
   }
 
   InputSignal& inputs_signal_;

@@ -20,9 +20,9 @@ namespace {
 
 template <typename Number>
 std::size_t putBigEndian(std::array<std::uint8_t, 64>& out, std::size_t at, Number value) {
-  using Bits = std::conditional_t<sizeof(Number) == 4, std::uint32_t,
-                                  std::conditional_t<sizeof(Number) == 8, std::uint64_t,
-                                                     std::uint16_t>>;
+  using Bits =
+      std::conditional_t<sizeof(Number) == 4, std::uint32_t,
+                         std::conditional_t<sizeof(Number) == 8, std::uint64_t, std::uint16_t>>;
   const auto bits = std::bit_cast<Bits>(value);
   for (int shift = 8 * (static_cast<int>(sizeof(Number)) - 1); shift >= 0; shift -= 8) {
     out[at++] = static_cast<std::uint8_t>(bits >> shift);

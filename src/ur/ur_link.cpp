@@ -109,9 +109,14 @@ void UrArm::Link::startProgram(double timeout_s) {
       throw hardware::BackendError(std::string("UR: ") + kLinkClosed);
     }
   }
+  std::string why = last_.stop != nullptr ? last_.stop : "no data package came";
+  if (client_ && client_->otherRecipePackages() > 0) {
+    why += " (" + std::to_string(client_->otherRecipePackages()) +
+           " data packages of another recipe id came: the controller numbers its recipes "
+           "otherwise than its set-up said)";
+  }
   throw hardware::BackendError("UR: the control program did not start within " +
-                               std::to_string(timeout_s) + " s: " +
-                               (last_.stop != nullptr ? last_.stop : "no data"));
+                               std::to_string(timeout_s) + " s: " + why);
 }
 
 void UrArm::Link::run(const std::stop_token& stop) {
@@ -164,9 +169,9 @@ void UrArm::Link::publish() {
   program_running_ = as<std::int32_t>(values_, 8) == 1 &&
                      runtime_state == static_cast<std::uint32_t>(RuntimeState::kPlaying);
   // Whatever the program does: powered, running, in normal safety.
-  controller_ready_ = stopReason(robot_mode, safety_mode,
-                                 static_cast<std::uint32_t>(RuntimeState::kPlaying),
-                                 true) == nullptr;
+  controller_ready_ =
+      stopReason(robot_mode, safety_mode, static_cast<std::uint32_t>(RuntimeState::kPlaying),
+                 true) == nullptr;
   last_.stop = stopReason(robot_mode, safety_mode, runtime_state, program_running_);
   if (previous != 0 && last_.cycle > previous + 1) {
     skipped_.fetch_add(last_.cycle - previous - 1, std::memory_order_relaxed);

@@ -47,12 +47,12 @@ void UrEmulator::Impl::runCycles(const std::stop_token& stop) {
       cycle();
     }
     next_s += period_s;
-    // A controller's cycle does not stall; this thread does, on a busy host. The cycles it
-    // missed are not caught up in a burst (which would send the client packages back to back):
-    // the next one starts a period after this one.
+    // A controller's cycle does not stall; this thread does, on a busy host. A cycle late by
+    // less than a period starts at once (the rate stays 500 Hz); the cycles a longer stall missed
+    // are not caught up in a burst, which would send the client packages back to back.
     const double now_s = hardware::monotonicSeconds();
-    if (now_s > next_s) {
-      next_s = now_s + period_s;
+    if (now_s - next_s > period_s) {
+      next_s = now_s;
     }
     const timespec at = timespecOf(next_s);
     while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &at, nullptr) == EINTR) {
@@ -215,8 +215,8 @@ void UrEmulator::Impl::command(int drive, const std::array<double, 6>& values) {
       // target to the next (none for the first after a stop).
       const auto j = static_cast<std::size_t>(joint);
       drives.position[joint] = value;
-      drives.velocity[joint] = servo_following_ ? (value - last_target_[j]) / program_.period_s
-                                                : 0.0;
+      drives.velocity[joint] =
+          servo_following_ ? (value - last_target_[j]) / program_.period_s : 0.0;
       last_target_[j] = value;
     } else if (program_.mode == OutputMode::kVelocity) {
       drives.velocity[joint] = value;

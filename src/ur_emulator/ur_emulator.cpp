@@ -142,8 +142,7 @@ void UrEmulator::Impl::withPlant(const std::function<void(sim::SimulatedRobot&)>
   edit(*plant_);
 }
 
-UrEmulator::UrEmulator(const UrEmulatorOptions& options)
-    : impl_(std::make_unique<Impl>(options)) {}
+UrEmulator::UrEmulator(const UrEmulatorOptions& options) : impl_(std::make_unique<Impl>(options)) {}
 UrEmulator::~UrEmulator() = default;
 std::uint16_t UrEmulator::rtdePort() const noexcept {
   return impl_->rtdePort();

@@ -1,8 +1,8 @@
 #pragma once
 // Hardware backends by name, for `comply run --hardware NAME`: built-in ones (`sim`, the MuJoCo
-// plant in lock-step with the wall clock; `ur`, a UR e-series controller over RTDE) and backend libraries built out of tree
-// (hardware/backend.hpp), found by path or as libcomply_hardware_<NAME>.so on the plugin search
-// path.
+// plant in lock-step with the wall clock; `ur`, a UR e-series controller over RTDE) and backend
+// libraries built out of tree (hardware/backend.hpp), found by path or as
+// libcomply_hardware_<NAME>.so on the plugin search path.
 
 #include <functional>
 #include <memory>

@@ -43,6 +43,9 @@ class RtdeClient {
   /// The connection's socket, for a thread that writes ready input packages to it itself without
   /// waiting (the UR backend's control thread); valid while this client lives.
   [[nodiscard]] int socket() const noexcept { return socket_; }
+  /// Data packages received of a recipe other than the output recipe (dropped): a controller
+  /// that numbers its recipes otherwise than its set-up said.
+  [[nodiscard]] std::uint64_t otherRecipePackages() const noexcept { return other_recipe_; }
   /// The controller's text messages received so far.
   [[nodiscard]] const std::vector<TextMessage>& messages() const noexcept { return messages_; }
 
@@ -58,6 +61,7 @@ class RtdeClient {
   PackageFramer framer_;
   Recipe output_;
   std::vector<TextMessage> messages_;
+  std::uint64_t other_recipe_ = 0;
 };
 
 }  // namespace comply::ur

@@ -34,11 +34,11 @@ namespace comply::ur {
 class RtdeClient;
 
 struct UrArmOptions {
-  std::string robot_ip;              ///< IPv4
-  std::uint16_t rtde_port = 30004;   ///< RTDE
+  std::string robot_ip;               ///< IPv4
+  std::uint16_t rtde_port = 30004;    ///< RTDE
   std::uint16_t script_port = 30002;  ///< secondary interface: takes a URScript program
-  ControlProgram program;            ///< its mode is the controller's output.mode
-  double connect_timeout_s = 5.0;    ///< set-up and the program's start [s]
+  ControlProgram program;             ///< its mode is the controller's output.mode
+  double connect_timeout_s = 5.0;     ///< set-up and the program's start [s]
   /// No data package for this long [s]: the link is lost (a robotStop()).
   double link_timeout_s = 0.05;
   double reconnect_interval_s = 0.5;  ///< between attempts once the link is lost [s]
@@ -46,12 +46,12 @@ struct UrArmOptions {
 
 /// The newest data package, as the control thread reads it.
 struct UrSample {
-  double time_s = 0.0;          ///< the controller's time [s] (RTDE timestamp)
-  std::uint64_t cycle = 0;      ///< its controller cycle: time_s / period
-  double arrived_s = 0.0;       ///< hardware::monotonicSeconds() when it was received
-  std::array<double, 6> q{};    ///< rad
-  std::array<double, 6> dq{};   ///< rad/s
-  std::array<double, 6> tau{};  ///< N m; NaN where the controller reports no joint torque
+  double time_s = 0.0;             ///< the controller's time [s] (RTDE timestamp)
+  std::uint64_t cycle = 0;         ///< its controller cycle: time_s / period
+  double arrived_s = 0.0;          ///< hardware::monotonicSeconds() when it was received
+  std::array<double, 6> q{};       ///< rad
+  std::array<double, 6> dq{};      ///< rad/s
+  std::array<double, 6> tau{};     ///< N m; NaN where the controller reports no joint torque
   std::array<double, 6> wrench{};  ///< actual_TCP_force: base frame, at the TCP [N, N m]
   const char* stop = nullptr;      ///< stopReason() of this package, or the link's
 };
@@ -118,8 +118,8 @@ class UrArm final : public hardware::HardwareInterface {
   std::atomic<std::uint64_t> received_{0};  // packages published
   std::uint64_t awaited_ = 0;               // control thread: packages its clock saw
   std::atomic<std::uint64_t> unanswered_{0};
-  int wakeup_ = -1;                         // eventfd: one count per package
-  std::atomic<int> socket_{-1};             // the RTDE socket the answers go to
+  int wakeup_ = -1;              // eventfd: one count per package
+  std::atomic<int> socket_{-1};  // the RTDE socket the answers go to
   std::atomic<std::uint8_t> input_recipe_{0};
   std::uint64_t answered_cycle_ = 0;  // control thread: the cycle of the sample read last
   std::array<std::uint8_t, 64> package_{};

@@ -56,9 +56,9 @@ struct UrEmulatorOptions {
 };
 
 struct UrEmulatorStats {
-  std::uint64_t cycles = 0;     ///< controller cycles run
-  std::uint64_t dropped = 0;    ///< data packages not sent, on request
-  std::uint64_t answered = 0;   ///< cycles in which the program found a new answer
+  std::uint64_t cycles = 0;    ///< controller cycles run
+  std::uint64_t dropped = 0;   ///< data packages not sent, on request
+  std::uint64_t answered = 0;  ///< cycles in which the program found a new answer
   /// Answers that came more than one period after their package went out (their cycle applied
   /// an older answer again, unless answer_wait_s waited for them), while the program ran armed.
   std::uint64_t late = 0;

@@ -116,7 +116,7 @@ void publisherThread(PublisherContext<Command> c, const std::atomic<bool>& runni
 
 void printSummary(const LoopCounters& counters, const pipeline::GateCounts& counts,
                   const hardware::LoopStats& stats, const transport::HostTransport& transport,
-                  std::ostream& out) {
+                  const HardwareBackend& backend, std::ostream& out) {
   const auto us = [](double seconds) { return std::lround(seconds * 1e6); };
   out << "comply run: " << counters.cycles.load() << " cycles, " << counters.overruns.load()
       << " overruns, " << stats.read_failures << " read failures, " << stats.write_failures
@@ -134,6 +134,9 @@ void printSummary(const LoopCounters& counters, const pipeline::GateCounts& coun
     // Their chunks' outcomes went out without them, and the recording has no row for them.
     out << "comply run: chunk timing records lost (more than the gate's queue held) " << lost
         << "\n";
+  }
+  if (const std::string driver = backend.hardware->summary(); !driver.empty()) {
+    out << "comply run: " << driver << "\n";
   }
 }
 
@@ -271,10 +274,7 @@ int runWith(const LiveHostOptions& options,
   gate.abandonPending("the host shut down before a cycle took it");
   publishDiagnostics(context, outcomeMessages(gate.takeOutcomes()));
   transport->flush(1.0);
-  printSummary(observer.counters(), gate.counts(), loop.stats(), *transport, out);
-  if (const std::string driver = backend.hardware->summary(); !driver.empty()) {
-    out << "comply run: " << driver << "\n";
-  }
+  printSummary(observer.counters(), gate.counts(), loop.stats(), *transport, backend, out);
   if (recording != nullptr) {
     recording->stop();
     printRecording(*recording, out);

@@ -25,8 +25,7 @@ class SineController final : public hardware::CycleController {
   explicit SineController(OutputMode mode) : mode_(mode) {}
   [[nodiscard]] int dof() const noexcept override { return 6; }
   [[nodiscard]] OutputMode outputMode() const noexcept override { return mode_; }
-  bool cycle(const JointState& state, double period_s,
-             ActuatorCommand& command) noexcept override {
+  bool cycle(const JointState& state, double period_s, ActuatorCommand& command) noexcept override {
     if (!started_) {
       start_ = state.position;
       started_ = true;

@@ -95,7 +95,7 @@ TEST(UrIdentification, RendersTheCommandedStiffnessWithinFivePercent) {
   UrEmulator emulator(options);
   const std::array<double, 6> commanded{800.0, 1500.0, 2500.0, 40.0, 60.0, 90.0};
   const Eigen::Quaterniond task_frame(Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitZ()) *
-                                     Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitX()));
+                                      Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitX()));
   pipeline::WrapperConfig config = urConfig(OutputMode::kPosition);
   // The wrist's own inertia about the tool is a few g m^2: at 90 N m/rad the virtual arm would
   // ring near 30 Hz, past what servoj at 500 Hz follows; 20 g m^2 added brings it to 10 Hz

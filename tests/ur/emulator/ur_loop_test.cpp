@@ -49,8 +49,8 @@ TEST(UrLoop, AMinuteOnPositionDrivesWithoutALostCycle) {
     ASSERT_TRUE(rig.wrapper.submit(command).accepted);
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
     if (t > 2.0) {
-      worst_tracking_m = std::max(
-          worst_tracking_m, (emulator.state().tcp.translation() - command.position).norm());
+      worst_tracking_m = std::max(worst_tracking_m,
+                                  (emulator.state().tcp.translation() - command.position).norm());
     }
   }
   rig.loop.stop();

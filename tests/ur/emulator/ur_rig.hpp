@@ -3,12 +3,13 @@
 // `comply run --hardware ur` runs it: the controller file, the backend's options, its clock on
 // the controller's cycles, the control loop on a thread of its own.
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <string>
 #include <thread>
-#include <unistd.h>
 
 #include "comply/hardware/control_loop.hpp"
 #include "comply/host/controller_setup.hpp"

@@ -54,8 +54,8 @@ class UrStop : public ::testing::Test {
   void expectRecovered() {
     const double held = tcpY();
     rig.wrapper.reset();
-    EXPECT_TRUE(eventually(
-        [&] { return controllerState() == pipeline::WrapperState::kActive; }, 1.0));
+    EXPECT_TRUE(
+        eventually([&] { return controllerState() == pipeline::WrapperState::kActive; }, 1.0));
     std::this_thread::sleep_for(std::chrono::milliseconds(1500));
     EXPECT_GT(std::abs(tcpY() - held), 5e-3) << "the arm does not yield to the push after reset";
   }

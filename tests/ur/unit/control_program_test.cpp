@@ -18,7 +18,8 @@ bool contains(const std::string& text, const std::string& part) {
 }
 
 TEST(ControlProgram, IsReadBackAsWritten) {
-  for (const OutputMode mode : {OutputMode::kPosition, OutputMode::kVelocity, OutputMode::kTorque}) {
+  for (const OutputMode mode :
+       {OutputMode::kPosition, OutputMode::kVelocity, OutputMode::kTorque}) {
     ControlProgram program;
     program.mode = mode;
     program.register_offset = 30;
@@ -96,16 +97,16 @@ TEST(RobotStatus, SaysWhyTheArmTakesNoCommands) {
   EXPECT_TRUE(contains(
       stopReason(running, static_cast<std::int32_t>(SafetyMode::kProtectiveStop), playing, true),
       "protective stop"));
+  EXPECT_TRUE(
+      contains(stopReason(running, static_cast<std::int32_t>(SafetyMode::kRobotEmergencyStop),
+                          playing, true),
+               "emergency stop"));
+  EXPECT_TRUE(
+      contains(stopReason(static_cast<std::int32_t>(RobotMode::kPowerOff), normal, playing, true),
+               "not powered on"));
   EXPECT_TRUE(contains(
-      stopReason(running, static_cast<std::int32_t>(SafetyMode::kRobotEmergencyStop), playing,
-                 true),
-      "emergency stop"));
-  EXPECT_TRUE(contains(stopReason(static_cast<std::int32_t>(RobotMode::kPowerOff), normal,
-                                  playing, true),
-                       "not powered on"));
-  EXPECT_TRUE(contains(stopReason(running, normal, static_cast<std::uint32_t>(RuntimeState::kStopped),
-                                  true),
-                       "program is not running"));
+      stopReason(running, normal, static_cast<std::uint32_t>(RuntimeState::kStopped), true),
+      "program is not running"));
   EXPECT_TRUE(contains(stopReason(running, normal, playing, false), "program is not running"));
   EXPECT_EQ(safetyModeName(3), "PROTECTIVE_STOP");
   EXPECT_EQ(robotModeName(7), "RUNNING");
