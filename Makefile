@@ -83,7 +83,7 @@ ASAN_CI_TARGETS = schema_test schema_realtime_test pipeline_unit_test wrapper_te
 test-asan-ci:
 	@$(MAKE) --no-print-directory test-asan ASAN_TARGETS="$(ASAN_CI_TARGETS)" CTEST_ARGS="-L asan_ci"
 
-TSAN_TESTS ?= pipeline|wrapper|Diagnostics|transport|Live|live|triple_buffer|spsc|Recorder|McapFile|FoxgloveServer|ClientQueue|RtdeTcp
+TSAN_TESTS ?= pipeline|wrapper|Diagnostics|transport|Live|live|triple_buffer|spsc|Recorder|McapFile|FoxgloveServer|ClientQueue|RtdeTcp|UrBackend
 test-tsan: deps
 	@cmake -S . -B build-tsan $(SANITIZER_CONFIGURE) -DCOMPLY_SANITIZE=thread >/dev/null
 	@cmake --build build-tsan -j $(JOBS)

@@ -52,7 +52,7 @@ UrArm::UrArm(UrArmOptions options) : options_(std::move(options)) {
   // At normal priority, though a package waits for it before the cycle starts: measured with
   // the emulator on one 2-core host, SCHED_FIFO for it beside the control thread made cycles
   // later, not earlier (docs/ur.md, "Timing").
-  link_thread_ = std::jthread([this](std::stop_token stop) { link_->run(stop); });
+  link_thread_ = std::jthread([this](const std::stop_token& stop) { link_->run(stop); });
 }
 
 UrArm::~UrArm() {

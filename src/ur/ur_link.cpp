@@ -179,6 +179,7 @@ void UrArm::Link::publish() {
   last_package_s_ = last_.arrived_s;
   packages_.fetch_add(1, std::memory_order_relaxed);
   arm_.sample_.publishFromSoleWriter(last_);
+  arm_.last_stop_.store(last_.stop, std::memory_order_release);
   arm_.newest_time_s_.store(last_.time_s, std::memory_order_release);
   arm_.newest_arrival_s_.store(last_.arrived_s, std::memory_order_release);
   arm_.received_.fetch_add(1, std::memory_order_acq_rel);
@@ -192,6 +193,7 @@ void UrArm::Link::publishStop(const char* why) {
   }
   last_.stop = why;
   arm_.sample_.publishFromSoleWriter(last_);
+  arm_.last_stop_.store(why, std::memory_order_release);
 }
 
 void UrArm::Link::lose(const char* why) {

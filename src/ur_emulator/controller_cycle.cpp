@@ -1,11 +1,10 @@
 // The emulated controller's cycle: comply's program applied from the registers, the plant
 // stepped, the safety limit checked, the variables sent (ur_emulator.hpp).
 
-#include <time.h>
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <ctime>
 
 #include "comply/hardware/loop_clock.hpp"
 #include "emulator_impl.hpp"

@@ -75,7 +75,7 @@ void TextConnection::write(const std::string& text) {
   (void)::send(socket_, text.data(), text.size(), MSG_NOSIGNAL);
 }
 
-TextPort::TextPort(const std::string& address, std::uint16_t port, std::string what,
+TextPort::TextPort(const std::string& address, std::uint16_t port, const std::string& what,
                    Handler handler)
     : handler_(std::move(handler)) {
   sockaddr_in endpoint{};

@@ -36,7 +36,8 @@ class TextPort {
  public:
   using Handler = std::function<void(TextConnection&)>;
   /// Listens on `address`:`port` (0: any free port); throws std::runtime_error naming `what`.
-  TextPort(const std::string& address, std::uint16_t port, std::string what, Handler handler);
+  TextPort(const std::string& address, std::uint16_t port, const std::string& what,
+           Handler handler);
   ~TextPort();
   TextPort(const TextPort&) = delete;
   TextPort& operator=(const TextPort&) = delete;

@@ -4,6 +4,7 @@
 #include "comply/ur_emulator/ur_emulator.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "comply/core/realtime_scheduling.hpp"
 #include "emulator_impl.hpp"
@@ -47,7 +48,7 @@ UrEmulator::Impl::Impl(const UrEmulatorOptions& options)
           }
         }
       });
-  cycle_thread_ = std::jthread([this](std::stop_token stop) {
+  cycle_thread_ = std::jthread([this](const std::stop_token& stop) {
     (void)makeThreadRealtime(options_.priority);
     runCycles(stop);
   });
@@ -60,7 +61,7 @@ UrEmulator::Impl::~Impl() {
 void UrEmulator::Impl::buildPlant(OutputMode actuation) {
   sim::PlantOptions plant;
   plant.control_period_s = options_.period_s;
-  plant.substeps = std::max(1, static_cast<int>(options_.period_s / 0.001 + 0.5));
+  plant.substeps = std::max(1, static_cast<int>(std::lround(options_.period_s / 0.001)));
   plant.actuation = actuation;
   plant.servo_bandwidth_hz = options_.servo_bandwidth_hz;
   plant.scene = options_.scene;

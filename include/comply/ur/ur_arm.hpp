@@ -79,7 +79,12 @@ class UrArm final : public hardware::HardwareInterface {
   bool read(JointState& state) noexcept override;
   bool readWrench(Vector6d& wrench) noexcept override;
   bool readSequence(std::uint64_t& sequence) noexcept override;
+  /// The control thread's (the sample read() returned): see lastStop() for any other.
   [[nodiscard]] const char* robotStop() noexcept override { return sample_.read().stop; }
+  /// Any thread: the stop the link thread published last (nullptr while the arm runs).
+  [[nodiscard]] const char* lastStop() const noexcept {
+    return last_stop_.load(std::memory_order_acquire);
+  }
   [[nodiscard]] bool accepts(OutputMode mode) const noexcept override {
     return mode == options_.program.mode;
   }
@@ -113,6 +118,7 @@ class UrArm final : public hardware::HardwareInterface {
   UrArmOptions options_;
   ControllerVersion version_;
   TripleBuffer<UrSample> sample_;  // written by the link thread, read by the control thread
+  std::atomic<const char*> last_stop_{nullptr};
   std::atomic<double> newest_time_s_{0.0};
   std::atomic<double> newest_arrival_s_{0.0};
   std::atomic<std::uint64_t> received_{0};  // packages published

@@ -1,6 +1,6 @@
 // The UR backend against the emulated controller: the program is sent and runs, the arm follows
 // commands on the controller's cycles with every package answered, and each stop (protective, a
-// lost link, a program's watchdog) is said by robotStop() and recovers once cleared.
+// lost link, a program's watchdog) is said (robotStop(), lastStop()) and recovers once cleared.
 
 #include <gtest/gtest.h>
 
@@ -53,9 +53,16 @@ class SineController final : public hardware::CycleController {
   double time_s_ = 0.0;
 };
 
+/// A protective stop unlocks 1 s after it (PolyScope: 5 s).
+UrEmulatorOptions unlockAfterOneSecond() {
+  UrEmulatorOptions options = freePorts();
+  options.unlock_delay_s = 1.0;
+  return options;
+}
+
 class UrBackend : public ::testing::Test {
  protected:
-  UrEmulator emulator{freePorts()};
+  UrEmulator emulator{unlockAfterOneSecond()};
 };
 
 TEST_F(UrBackend, FollowsPositionCommandsAnsweringEveryPackage) {
@@ -117,17 +124,17 @@ TEST_F(UrBackend, AProtectiveStopIsSaidAndRecoversOnceUnlocked) {
   std::jthread cycles([&] { (void)loop.run(); });
   ASSERT_TRUE(eventually([&] { return emulator.stats().answered > 50; }, 2.0));
   emulator.protectiveStop();
-  ASSERT_TRUE(eventually([&] { return arm.robotStop() != nullptr; }, 1.0));
-  EXPECT_NE(std::string(arm.robotStop()).find("protective stop"), std::string::npos)
-      << arm.robotStop();
+  ASSERT_TRUE(eventually([&] { return arm.lastStop() != nullptr; }, 1.0));
+  EXPECT_NE(std::string(arm.lastStop()).find("protective stop"), std::string::npos)
+      << arm.lastStop();
   const JointVector held = emulator.state().position;
   std::this_thread::sleep_for(std::chrono::milliseconds(100));
   EXPECT_LT((emulator.state().position - held).cwiseAbs().maxCoeff(), 1e-6) << "the arm moved";
-  // Too early to unlock (0.2 s here), then unlocked: the backend sends the program again.
+  // Too early to unlock, then unlocked: the backend sends the program again.
   EXPECT_NE(emulator.dashboard("unlock protective stop").find("Cannot unlock"), std::string::npos);
-  std::this_thread::sleep_for(std::chrono::milliseconds(250));
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));
   EXPECT_EQ(emulator.dashboard("unlock protective stop"), "Protective stop releasing");
-  EXPECT_TRUE(eventually([&] { return arm.robotStop() == nullptr; }, 3.0));
+  EXPECT_TRUE(eventually([&] { return arm.lastStop() == nullptr; }, 3.0));
   EXPECT_EQ(emulator.stats().programs, 2U);
   loop.stop();
 }
@@ -140,13 +147,13 @@ TEST_F(UrBackend, ALostLinkIsSaidTheProgramStopsTheArmAndTheLinkComesBack) {
   std::jthread cycles([&] { (void)loop.run(); });
   ASSERT_TRUE(eventually([&] { return emulator.stats().answered > 50; }, 2.0));
   emulator.closeConnections();
-  ASSERT_TRUE(eventually([&] { return arm.robotStop() != nullptr; }, 1.0));
-  EXPECT_NE(std::string(arm.robotStop()).find("link to the UR controller is lost"),
+  ASSERT_TRUE(eventually([&] { return arm.lastStop() != nullptr; }, 1.0));
+  EXPECT_NE(std::string(arm.lastStop()).find("link to the UR controller is lost"),
             std::string::npos)
-      << arm.robotStop();
+      << arm.lastStop();
   // Without answers, the program's watchdog stopped the arm; the backend connects again and
   // sends the program again.
-  EXPECT_TRUE(eventually([&] { return arm.robotStop() == nullptr; }, 3.0));
+  EXPECT_TRUE(eventually([&] { return arm.lastStop() == nullptr; }, 3.0));
   EXPECT_EQ(emulator.stats().watchdog_stops, 1U);
   EXPECT_EQ(arm.stats().connections, 2U);
   EXPECT_EQ(emulator.stats().programs, 2U);

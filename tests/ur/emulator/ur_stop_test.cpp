@@ -74,8 +74,8 @@ TEST_F(UrStop, AProtectiveStopIsAFaultThatNamesItAndRecoversAfterTheUnlock) {
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   EXPECT_EQ(controllerState(), pipeline::WrapperState::kFault);
   EXPECT_EQ(emulator.dashboard("unlock protective stop"), "Protective stop releasing");
-  ASSERT_TRUE(eventually([&] { return rig.arm().robotStop() == nullptr; }, 3.0))
-      << rig.arm().robotStop();
+  ASSERT_TRUE(eventually([&] { return rig.arm().lastStop() == nullptr; }, 3.0))
+      << rig.arm().lastStop();
   EXPECT_EQ(rig.arm().stats().programs_sent, 2U);
   EXPECT_EQ(controllerState(), pipeline::WrapperState::kFault) << "re-armed without a reset";
   expectRecovered();
@@ -90,8 +90,8 @@ TEST_F(UrStop, ALostLinkIsAFaultThatNamesItTheProgramStopsTheArmAndItRecovers) {
   // Without answers the program's watchdog stopped the arm: it stands until the program runs.
   ASSERT_TRUE(eventually([&] { return emulator.stats().watchdog_stops == 1; }, 1.0));
   expectHeld();
-  ASSERT_TRUE(eventually([&] { return rig.arm().robotStop() == nullptr; }, 3.0))
-      << rig.arm().robotStop();
+  ASSERT_TRUE(eventually([&] { return rig.arm().lastStop() == nullptr; }, 3.0))
+      << rig.arm().lastStop();
   EXPECT_EQ(rig.arm().stats().connections, 2U);
   EXPECT_EQ(controllerState(), pipeline::WrapperState::kFault) << "re-armed without a reset";
   expectRecovered();
