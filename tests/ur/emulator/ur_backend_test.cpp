@@ -160,6 +160,55 @@ TEST_F(UrBackend, ALostLinkIsSaidTheProgramStopsTheArmAndTheLinkComesBack) {
   loop.stop();
 }
 
+/// Holds the first position it reads with a joint-space PD in torque, and keeps the effort read.
+class TorqueHold final : public hardware::CycleController {
+ public:
+  [[nodiscard]] int dof() const noexcept override { return 6; }
+  bool cycle(const JointState& state, double /*period_s*/,
+             ActuatorCommand& command) noexcept override {
+    if (!started_) {
+      start_ = state.position;
+      started_ = true;
+    }
+    command.mode = OutputMode::kTorque;
+    command.effort = 100.0 * (start_ - state.position) - 5.0 * state.velocity;
+    effort_ = state.effort;
+    return true;
+  }
+  JointVector start_;
+  JointVector effort_;
+
+ private:
+  bool started_ = false;
+};
+
+// torque_command: the controller adds gravity, so a PD around the start holds the arm still with
+// torques far below gravity's; the effort read is the drives' torque, gravity's on the shoulder.
+TEST_F(UrBackend, TorqueCommandsOnTopOfTheControllersGravity) {
+  UrArm arm(armFor(emulator, OutputMode::kTorque));
+  EXPECT_TRUE(arm.compensatesGravity());
+  UrClock clock(arm);
+  TorqueHold controller;
+  hardware::ControlLoop loop(arm, controller, clock, {.period_s = kPeriod, .cycles = 500});
+  (void)loop.run();
+  EXPECT_EQ(emulator.state().program_mode, OutputMode::kTorque);
+  EXPECT_LT((emulator.state().position - controller.start_).cwiseAbs().maxCoeff(), 2e-3)
+      << "the arm sagged: gravity not compensated by the controller";
+  ASSERT_TRUE(controller.effort_.allFinite()) << "PolyScope 5.23 reports joint torques";
+  EXPECT_GT(std::abs(controller.effort_[1]), 10.0) << "the shoulder carries the arm's weight";
+}
+
+TEST(UrBackendSetup, APolyScopeBefore523GivesNoJointTorques) {
+  UrEmulatorOptions old = freePorts();
+  old.version = {5, 22, 1, 0};
+  UrEmulator emulator(old);
+  UrArm arm(armFor(emulator, OutputMode::kPosition));
+  JointState state = JointState::zero(6);
+  ASSERT_TRUE(eventually([&] { return arm.read(state); }, 1.0));
+  EXPECT_TRUE(state.position.allFinite());
+  EXPECT_TRUE(state.effort.array().isNaN().all()) << state.effort.transpose();
+}
+
 TEST(UrBackendSetup, TorqueCommandsNeedPolyScope523) {
   UrEmulatorOptions old = freePorts();
   old.version = {5, 22, 1, 0};
