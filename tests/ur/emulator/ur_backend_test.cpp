@@ -109,19 +109,35 @@ TEST_F(UrBackend, DroppedPackagesAreCountedAsSkippedCycles) {
   hardware::ControlLoop loop(arm, controller, clock, {.period_s = kPeriod, .cycles = 250});
   (void)loop.run();
   emulator.dropPackages(5);
-  loop.stop();
   hardware::ControlLoop more(arm, controller, clock, {.period_s = kPeriod, .cycles = 250});
   (void)more.run();
   EXPECT_EQ(arm.stats().skipped_cycles, 5U);
   EXPECT_EQ(emulator.stats().dropped, 5U);
 }
 
+/// The backend on position drives with a SineController, its loop on a thread until this goes
+/// (also when an assertion ends the test early).
+struct RunningArm {
+  explicit RunningArm(UrEmulator& emulator)
+      : arm(armFor(emulator, OutputMode::kPosition)),
+        clock(arm),
+        controller(OutputMode::kPosition),
+        loop(arm, controller, clock, {.period_s = kPeriod}),
+        thread([this] { (void)loop.run(); }) {}
+  ~RunningArm() { loop.stop(); }  // then the thread joins
+  RunningArm(const RunningArm&) = delete;
+  RunningArm& operator=(const RunningArm&) = delete;
+
+  UrArm arm;
+  UrClock clock;
+  SineController controller;
+  hardware::ControlLoop loop;
+  std::jthread thread;
+};
+
 TEST_F(UrBackend, AProtectiveStopIsSaidAndRecoversOnceUnlocked) {
-  UrArm arm(armFor(emulator, OutputMode::kPosition));
-  UrClock clock(arm);
-  SineController controller(OutputMode::kPosition);
-  hardware::ControlLoop loop(arm, controller, clock, {.period_s = kPeriod});
-  std::jthread cycles([&] { (void)loop.run(); });
+  RunningArm running(emulator);
+  UrArm& arm = running.arm;
   ASSERT_TRUE(eventually([&] { return emulator.stats().answered > 50; }, 2.0));
   emulator.protectiveStop();
   ASSERT_TRUE(eventually([&] { return arm.lastStop() != nullptr; }, 1.0));
@@ -136,15 +152,11 @@ TEST_F(UrBackend, AProtectiveStopIsSaidAndRecoversOnceUnlocked) {
   EXPECT_EQ(emulator.dashboard("unlock protective stop"), "Protective stop releasing");
   EXPECT_TRUE(eventually([&] { return arm.lastStop() == nullptr; }, 3.0));
   EXPECT_EQ(emulator.stats().programs, 2U);
-  loop.stop();
 }
 
 TEST_F(UrBackend, ALostLinkIsSaidTheProgramStopsTheArmAndTheLinkComesBack) {
-  UrArm arm(armFor(emulator, OutputMode::kPosition));
-  UrClock clock(arm);
-  SineController controller(OutputMode::kPosition);
-  hardware::ControlLoop loop(arm, controller, clock, {.period_s = kPeriod});
-  std::jthread cycles([&] { (void)loop.run(); });
+  RunningArm running(emulator);
+  UrArm& arm = running.arm;
   ASSERT_TRUE(eventually([&] { return emulator.stats().answered > 50; }, 2.0));
   emulator.closeConnections();
   ASSERT_TRUE(eventually([&] { return arm.lastStop() != nullptr; }, 1.0));
@@ -157,7 +169,6 @@ TEST_F(UrBackend, ALostLinkIsSaidTheProgramStopsTheArmAndTheLinkComesBack) {
   EXPECT_EQ(emulator.stats().watchdog_stops, 1U);
   EXPECT_EQ(arm.stats().connections, 2U);
   EXPECT_EQ(emulator.stats().programs, 2U);
-  loop.stop();
 }
 
 /// Holds the first position it reads with a joint-space PD in torque, and keeps the effort read.
