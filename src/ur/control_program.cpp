@@ -9,7 +9,9 @@
 namespace comply::ur {
 namespace {
 
-constexpr std::string_view kFirstLine = "# comply control program, version 1";
+// A program sent to the controller starts with `def` and ends with `end`, both in column 0; the
+// marker is the first line inside it.
+constexpr std::string_view kHead = "def comply_control():\n  # comply control program, version 1\n";
 
 std::string number(double value) {
   std::ostringstream out;
@@ -18,6 +20,8 @@ std::string number(double value) {
   return out.str();
 }
 
+constexpr double kMaxInstance = 2147483646.0;
+
 void check(bool holds, const std::string& what) {
   if (!holds) {
     throw ControlProgramError("UR control program: " + what);
@@ -25,9 +29,11 @@ void check(bool holds, const std::string& what) {
 }
 
 void checkRanges(const ControlProgram& program) {
+  check(program.instance >= 1 && program.instance <= kMaxInstance,
+        "instance " + std::to_string(program.instance) + " is not in [1, 2^31 - 1)");
   check(program.mode != OutputMode::kJointPd,
         "a UR controller has no per-joint PD command; output.mode must be position (servoj), "
-        "velocity (speedj) or torque (torque_command)");
+        "velocity (speedj) or torque (direct_torque)");
   check(std::isfinite(program.period_s) && program.period_s > 0.0 && program.period_s <= 0.1,
         "period_s " + number(program.period_s) + " is not in (0, 0.1] s");
   check(program.register_offset >= 0 && program.register_offset + 5 <= 47,
@@ -66,7 +72,7 @@ std::string driveLine(const ControlProgram& program) {
       return "speedj(target, COMPLY_ACCELERATION, COMPLY_PERIOD)";
     default:
       // Returns at once: the cycle ends at sync().
-      return "torque_command(target, friction_comp=True)\n      sync()";
+      return "direct_torque(target, friction_comp=True)\n      sync()";
   }
 }
 
@@ -88,6 +94,16 @@ double constant(std::string_view script, std::string_view name) {
   return value;
 }
 
+/// A constant that must be a whole number in [least, most] (read from the network: checked
+/// before it is converted).
+double wholeNumber(std::string_view script, std::string_view name, double least, double most) {
+  const double value = constant(script, name);
+  check(value >= least && value <= most && value == std::floor(value),
+        std::string(name) + " = " + number(value) + " is not a whole number in [" + number(least) +
+            ", " + number(most) + "]");
+  return value;
+}
+
 }  // namespace
 
 std::string_view driveCommand(OutputMode mode) {
@@ -97,7 +113,7 @@ std::string_view driveCommand(OutputMode mode) {
     case OutputMode::kVelocity:
       return "speedj";
     case OutputMode::kTorque:
-      return "torque_command";
+      return "direct_torque";
     default:
       return "";
   }
@@ -109,9 +125,8 @@ std::string controlProgramScript(const ControlProgram& program) {
   const std::string cycle_in = "read_input_integer_register(" + std::to_string(o) + ")";
   const std::string drive_in = "read_input_integer_register(" + std::to_string(o + 1) + ")";
   std::ostringstream s;
-  s << kFirstLine << "\n"
-    << "def comply_control():\n"
-    << "  COMPLY_DRIVE = \"" << driveCommand(program.mode) << "\"\n"
+  s << kHead << "  COMPLY_DRIVE = \"" << driveCommand(program.mode) << "\"\n"
+    << "  COMPLY_INSTANCE = " << program.instance << "\n"
     << "  COMPLY_MODE = " << static_cast<int>(program.mode) << "\n"
     << "  COMPLY_PERIOD = " << number(program.period_s) << "\n"
     << "  COMPLY_REGISTER = " << o << "\n"
@@ -120,8 +135,8 @@ std::string controlProgramScript(const ControlProgram& program) {
     << "  COMPLY_GAIN = " << number(program.servoj_gain) << "\n"
     << "  COMPLY_ACCELERATION = " << number(program.speedj_acceleration_rad_per_s2) << "\n"
     << "  COMPLY_DECELERATION = " << number(program.stop_deceleration_rad_per_s2) << "\n"
-    << "  write_output_integer_register(" << o + 1 << ", 1)\n"
-    << "  textmsg(\"comply: control program started, \", COMPLY_DRIVE)\n"
+    << "  write_output_integer_register(" << o + 1 << ", COMPLY_INSTANCE)\n"
+    << "  textmsg(\"comply: control program started with \", COMPLY_DRIVE)\n"
     << "  last_cycle = " << cycle_in << "\n"
     << "  armed = False\n"
     << "  quiet = 0.0\n"
@@ -135,8 +150,8 @@ std::string controlProgramScript(const ControlProgram& program) {
     << "      quiet = quiet + COMPLY_PERIOD\n"
     << "    end\n"
     << "    if armed and quiet > COMPLY_WATCHDOG:\n"
-    << "      write_output_integer_register(" << o + 1 << ", 2)\n"
-    << "      textmsg(\"comply: no command for \", COMPLY_WATCHDOG, \" s, the arm stops\")\n"
+    << "      write_output_integer_register(" << o + 1 << ", -COMPLY_INSTANCE)\n"
+    << "      textmsg(\"comply: no command within the watchdog: \", \"the arm stops\")\n"
     << "      stopj(COMPLY_DECELERATION)\n"
     << "      halt\n"
     << "    end\n"
@@ -149,21 +164,28 @@ std::string controlProgramScript(const ControlProgram& program) {
     << "      sync()\n"
     << "    end\n"
     << "  end\n"
-    << "end\n"
-    << "comply_control()\n";
+    << "end\n";
   return s.str();
 }
 
 ControlProgram readControlProgram(std::string_view script) {
-  check(script.starts_with(kFirstLine), "the text does not start with '" + std::string(kFirstLine) +
-                                            "': not comply's control program");
+  check(script.starts_with(kHead), "the text does not start with comply's '" +
+                                       std::string(kHead.substr(0, kHead.find('\n'))) +
+                                       "' and its marker: not comply's control program");
+  std::string_view trimmed = script;
+  while (!trimmed.empty() && (trimmed.back() == '\n' || trimmed.back() == ' ')) {
+    trimmed.remove_suffix(1);
+  }
+  check(trimmed.ends_with("\nend"), "the program does not end with 'end' in column 0");
   ControlProgram program;
   const double mode = constant(script, "COMPLY_MODE");
   check(mode == 0.0 || mode == 2.0 || mode == 3.0,
         "COMPLY_MODE " + number(mode) + " is not torque (0), position (2) or velocity (3)");
   program.mode = static_cast<OutputMode>(static_cast<int>(mode));
   program.period_s = constant(script, "COMPLY_PERIOD");
-  program.register_offset = static_cast<int>(constant(script, "COMPLY_REGISTER"));
+  program.instance =
+      static_cast<std::int32_t>(wholeNumber(script, "COMPLY_INSTANCE", 1, kMaxInstance));
+  program.register_offset = static_cast<int>(wholeNumber(script, "COMPLY_REGISTER", 0, 47));
   program.watchdog_s = constant(script, "COMPLY_WATCHDOG");
   program.servoj_lookahead_s = constant(script, "COMPLY_LOOKAHEAD");
   program.servoj_gain = constant(script, "COMPLY_GAIN");

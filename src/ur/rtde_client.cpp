@@ -3,6 +3,7 @@
 #include "comply/ur/rtde_client.hpp"
 
 #include <arpa/inet.h>
+#include <fcntl.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
 #include <poll.h>
@@ -29,6 +30,29 @@ Clock::time_point after(double seconds) {
          std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
 }
 
+/// A connect that gives up after `timeout_s` (errno ETIMEDOUT), where a blocking one waits for
+/// TCP's own retries (minutes on a routed network).
+bool connectWithin(int socket, const sockaddr_in& address, double timeout_s) {
+  const int flags = ::fcntl(socket, F_GETFL, 0);
+  ::fcntl(socket, F_SETFL, flags | O_NONBLOCK);
+  int result = ::connect(socket, reinterpret_cast<const sockaddr*>(&address), sizeof address);
+  if (result != 0 && errno == EINPROGRESS) {
+    pollfd writable{socket, POLLOUT, 0};
+    const int ready = ::poll(&writable, 1, millisecondsUntil(after(timeout_s)));
+    int error = 0;
+    socklen_t size = sizeof error;
+    if (ready <= 0) {
+      errno = ready == 0 ? ETIMEDOUT : errno;
+      return false;
+    }
+    ::getsockopt(socket, SOL_SOCKET, SO_ERROR, &error, &size);
+    errno = error;
+    result = error == 0 ? 0 : -1;
+  }
+  ::fcntl(socket, F_SETFL, flags);
+  return result == 0;
+}
+
 }  // namespace
 
 RtdeClient::RtdeClient(const std::string& host, std::uint16_t port, double timeout_s)
@@ -41,13 +65,13 @@ RtdeClient::RtdeClient(const std::string& host, std::uint16_t port, double timeo
     throw RtdeError("RTDE: \"" + host + "\" is not an IPv4 address");
   }
   socket_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-  if (socket_ < 0 ||
-      ::connect(socket_, reinterpret_cast<const sockaddr*>(&address), sizeof address) != 0) {
+  if (socket_ < 0 || !connectWithin(socket_, address, timeout_s)) {
     const std::string why = std::strerror(errno);
     if (socket_ >= 0) {
       ::close(socket_);
     }
-    throw RtdeError("RTDE: cannot connect to " + where + ": " + why);
+    throw RtdeError("RTDE: cannot connect to " + where + " within " + std::to_string(timeout_s) +
+                    " s: " + why);
   }
   const int on = 1;
   ::setsockopt(socket_, IPPROTO_TCP, TCP_NODELAY, &on, sizeof on);
@@ -59,6 +83,14 @@ RtdeClient::RtdeClient(const std::string& host, std::uint16_t port, double timeo
   } catch (...) {
     ::close(socket_);  // no destructor runs for an object whose constructor threw
     throw;
+  }
+}
+
+void RtdeClient::disconnect() noexcept {
+  const int null = ::open("/dev/null", O_RDWR | O_CLOEXEC);
+  if (null >= 0) {
+    ::dup2(null, socket_);  // the connection closes; the number stays taken until ~RtdeClient
+    ::close(null);
   }
 }
 

@@ -13,7 +13,9 @@
 #include <cmath>
 #include <condition_variable>
 #include <deque>
+#include <map>
 #include <mutex>
+#include <set>
 #include <thread>
 
 #include "comply/core/realtime_scheduling.hpp"
@@ -58,11 +60,41 @@ class InputSignal {
   std::atomic<double> output_written_s_{0.0};
 };
 
+/// Which client writes which input: one at a time, as on a controller. A leaf lock: nothing is
+/// locked while it is held.
+class InputOwners {
+ public:
+  std::set<std::string> takenExcept(const void* client) const {
+    const std::lock_guard lock(mutex_);
+    std::set<std::string> taken;
+    for (const auto& [owner, names] : owners_) {
+      if (owner != client) {
+        taken.insert(names.begin(), names.end());
+      }
+    }
+    return taken;
+  }
+  void set(const void* client, std::set<std::string> names) {
+    const std::lock_guard lock(mutex_);
+    owners_[client] = std::move(names);
+  }
+  void release(const void* client) {
+    const std::lock_guard lock(mutex_);
+    owners_.erase(client);
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::map<const void*, std::set<std::string>> owners_;
+};
+
 /// One client: its socket, its session, what waits to be written.
 class Connection : public std::enable_shared_from_this<Connection> {
  public:
-  Connection(tcp::socket socket, const RtdeServerOptions& options, InputSignal& inputs)
+  Connection(tcp::socket socket, const RtdeServerOptions& options, InputSignal& inputs,
+             InputOwners& owners)
       : inputs_signal_(inputs),
+        owners_(owners),
         socket_(std::move(socket)),
         session_(options.version, options.max_frequency_hz),
         max_frequency_hz_(options.max_frequency_hz) {
@@ -114,6 +146,7 @@ class Connection : public std::enable_shared_from_this<Connection> {
         asio::buffer(buffer_),
         [self = shared_from_this()](boost::system::error_code error, std::size_t size) {
           if (error) {
+            self->owners_.release(self.get());  // its inputs are free for the next client
             const std::lock_guard lock(self->mutex_);
             self->open_ = false;
             return;
@@ -131,11 +164,17 @@ class Connection : public std::enable_shared_from_this<Connection> {
         if (package.type == PackageType::kStart) {
           cycles_ = 0;  // a recipe started anew is served from its first cycle
         }
+        if (package.type == PackageType::kSetupInputs) {
+          session_.setInputsTakenElsewhere(owners_.takenExcept(this));
+        }
         for (std::vector<std::uint8_t>& answer : session_.handle(package)) {
           queueLocked(std::move(answer));
         }
         if (package.type == PackageType::kDataPackage) {
           inputs_signal_.notify();
+        }
+        if (package.type == PackageType::kSetupInputs) {
+          owners_.set(this, session_.inputNames());
         }
       }
     } catch (const RtdeError&) {
@@ -179,6 +218,7 @@ class Connection : public std::enable_shared_from_this<Connection> {
   }
 
   InputSignal& inputs_signal_;
+  InputOwners& owners_;
   tcp::socket socket_;
   std::mutex mutex_;  // the emulator's thread and the I/O thread
   RtdeServerSession session_;
@@ -284,7 +324,8 @@ class RtdeServer::Impl {
         return;
       }
       if (!error) {
-        auto connection = std::make_shared<Connection>(std::move(socket), options_, inputs_signal_);
+        auto connection = std::make_shared<Connection>(std::move(socket), options_, inputs_signal_,
+                                                       input_owners_);
         {
           const std::lock_guard lock(mutex_);
           connections_.push_back(connection);
@@ -297,6 +338,7 @@ class RtdeServer::Impl {
 
   RtdeServerOptions options_;
   InputSignal inputs_signal_;  // before the connections, which hold it
+  InputOwners input_owners_;   // so
   mutable std::mutex mutex_;   // the connections' list
   std::vector<std::shared_ptr<Connection>> connections_;
   asio::io_context io_;

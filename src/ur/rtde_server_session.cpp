@@ -109,6 +109,9 @@ std::vector<std::uint8_t> RtdeServerSession::setupInputs(const Package& package)
   const std::uint8_t id = next_recipe_id_++;
   SetupReply reply = answerSetup(id, names, Direction::kInput);
   for (std::size_t i = 0; i < names.size(); ++i) {
+    if (taken_elsewhere_.count(names[i]) != 0) {
+      reply.types[i] = std::string(kInUse);
+    }
     for (const auto& [other, recipe] : input_recipes_) {
       if (std::find(recipe.names.begin(), recipe.names.end(), names[i]) != recipe.names.end()) {
         reply.types[i] = std::string(kInUse);
@@ -122,6 +125,14 @@ std::vector<std::uint8_t> RtdeServerSession::setupInputs(const Package& package)
     input_recipes_[id] = {names, recipeTypes(names, reply)};
   }
   return setupReply(package.type, reply);
+}
+
+std::set<std::string> RtdeServerSession::inputNames() const {
+  std::set<std::string> names;
+  for (const auto& [id, recipe] : input_recipes_) {
+    names.insert(recipe.names.begin(), recipe.names.end());
+  }
+  return names;
 }
 
 void RtdeServerSession::takeInputs(const Package& package) {

@@ -10,7 +10,9 @@
 
 #include <bit>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "comply/hardware/backend.hpp"
 #include "ur_link.hpp"
@@ -56,6 +58,11 @@ UrArm::UrArm(UrArmOptions options) : options_(std::move(options)) {
 }
 
 UrArm::~UrArm() {
+  // Stand still now rather than keep the last velocity or torque until the program's watchdog
+  // (the control thread has stopped: this is the only writer left).
+  answered_ = false;
+  (void)send(0, nullptr);
+  std::this_thread::sleep_for(std::chrono::milliseconds(10));  // a few controller cycles
   link_thread_ = {};  // joins: the link is done before what it writes to goes
   link_.reset();
   ::close(wakeup_);
@@ -74,6 +81,7 @@ bool UrArm::read(JointState& state) noexcept {
     state.effort[joint] = sample.tau[j];
   }
   answered_cycle_ = sample.cycle;
+  answered_ = false;
   return true;
 }
 
@@ -118,7 +126,9 @@ bool UrArm::writeCommand(const ActuatorCommand& command) noexcept {
 }
 
 bool UrArm::hold() noexcept {
-  return send(0, nullptr);
+  // One answer per controller cycle: one already sent for this sample (a FAULT's command) stays,
+  // so that the program does not apply whichever of two came first.
+  return !answered_ && send(0, nullptr);
 }
 
 bool UrArm::send(int drive, const JointVector* values) noexcept {
@@ -135,9 +145,14 @@ bool UrArm::send(int drive, const JointVector* values) noexcept {
   for (int joint = 0; joint < 6; ++joint) {
     at = putBigEndian(package_, at, values != nullptr ? (*values)[joint] : 0.0);
   }
-  // Never waits: a full send buffer means the link is failing, which the link thread reports.
+  // Never waits: a full send buffer means the link is failing, which the link thread reports. A
+  // package that went out in part leaves the stream out of step: the link thread ends it.
   const ssize_t sent = ::send(socket, package_.data(), at, MSG_DONTWAIT | MSG_NOSIGNAL);
-  return sent == static_cast<ssize_t>(at);
+  if (sent > 0 && sent < static_cast<ssize_t>(at)) {
+    answer_broken_.store(true, std::memory_order_release);
+  }
+  answered_ = sent == static_cast<ssize_t>(at);
+  return answered_;
 }
 
 bool UrArm::awaitSample(double timeout_s) noexcept {

@@ -4,9 +4,11 @@
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
+#include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -28,14 +30,44 @@ constexpr const char* kLinkClosed =
 constexpr double kSilenceBeforeReconnect_s = 1.0;
 /// The program is sent again at most this often [s].
 constexpr double kProgramRetry_s = 1.0;
+/// The answer connection's own output recipe [Hz]: only so that it may start.
+constexpr double kCommandsOutputHz = 1.0;
 
 std::string versionText(const ControllerVersion& v) {
   return std::to_string(v.major) + "." + std::to_string(v.minor) + "." + std::to_string(v.bugfix);
 }
 
-/// PolyScope 5.23 / 10.10 and later: torque_command and actual_current_as_torque.
-bool hasTorqueInterface(const ControllerVersion& v) {
+constexpr const char* kAnswerBroken =
+    "the link to the UR controller is lost: an answer could not be sent whole";
+constexpr const char* kStoppedOnRobot =
+    "comply's control program was stopped on the robot, not by a stop comply recovers from: "
+    "start comply run again";
+
+/// PolyScope 5.23 / 10.10 and later: direct_torque.
+bool hasTorqueCommand(const ControllerVersion& v) {
   return (v.major == 5 && v.minor >= 23) || (v.major == 10 && v.minor >= 10) || v.major > 10;
+}
+
+/// PolyScope 5.23 / 10.11 and later: actual_current_as_torque.
+bool hasJointTorques(const ControllerVersion& v) {
+  return (v.major == 5 && v.minor >= 23) || (v.major == 10 && v.minor >= 11) || v.major > 10;
+}
+
+/// The types the output recipe's variables have on every controller; a controller that says
+/// otherwise is refused at set-up, so that reading a package cannot meet another type.
+void checkTypes(const Recipe& recipe, const std::string& where) {
+  for (std::size_t i = 0; i < recipe.names.size(); ++i) {
+    const std::string& name = recipe.names[i];
+    const RtdeType expected = name == "timestamp"           ? RtdeType::kDouble
+                              : name == "runtime_state"     ? RtdeType::kUint32
+                              : name.starts_with("actual_") ? RtdeType::kVector6d
+                                                            : RtdeType::kInt32;
+    if (recipe.types[i] != expected) {
+      throw hardware::BackendError("UR at " + where + ": the controller gives " + name + " as " +
+                                   std::string(nameIn(kRtdeTypeNames, recipe.types[i], "?")) +
+                                   ", not " + std::string(nameIn(kRtdeTypeNames, expected, "?")));
+    }
+  }
 }
 
 template <typename Value>
@@ -52,10 +84,10 @@ ControllerVersion UrArm::Link::connect() {
     auto client = std::make_unique<RtdeClient>(options.robot_ip, options.rtde_port,
                                                options.connect_timeout_s);
     const ControllerVersion version = client->controllerVersion();
-    has_torque_ = hasTorqueInterface(version);
-    if (options.program.mode == OutputMode::kTorque && !has_torque_) {
+    has_torque_ = hasJointTorques(version);
+    if (options.program.mode == OutputMode::kTorque && !hasTorqueCommand(version)) {
       throw hardware::BackendError(
-          "UR: output.mode torque needs torque_command, which PolyScope 5.23 / 10.10 and later "
+          "UR: output.mode torque needs direct_torque, which PolyScope 5.23 / 10.10 and later "
           "have; the controller at " +
           where + " runs " + versionText(version));
     }
@@ -73,6 +105,7 @@ ControllerVersion UrArm::Link::connect() {
       names.emplace_back("actual_current_as_torque");
     }
     outputs_ = client->setupOutputs(1.0 / options.program.period_s, names);
+    checkTypes(outputs_, where);
     // The answers go over a connection of their own, which only the control thread writes: on
     // the one the link thread reads, a send would wait for the kernel's socket lock whenever
     // that thread (not real-time) holds it in a receive.
@@ -84,6 +117,9 @@ ControllerVersion UrArm::Link::connect() {
       inputs.push_back("input_double_register_" + std::to_string(o + joint));
     }
     inputs_ = commands->setupInputs(inputs);
+    // An output recipe as well, which a controller may require to start a connection; slow, and
+    // drained by this thread (drainCommands).
+    (void)commands->setupOutputs(kCommandsOutputHz, {"timestamp"});
     commands->start();
     client->start();
     client_ = std::move(client);
@@ -99,7 +135,7 @@ ControllerVersion UrArm::Link::connect() {
 }
 
 void UrArm::Link::startProgram(double timeout_s) {
-  sendProgram();
+  sendProgram(true);
   const double deadline_s = hardware::monotonicSeconds() + timeout_s;
   while (hardware::monotonicSeconds() < deadline_s) {
     if (receiveOnce(arm_.options_.link_timeout_s) && last_.stop == nullptr) {
@@ -121,17 +157,39 @@ void UrArm::Link::startProgram(double timeout_s) {
 
 void UrArm::Link::run(const std::stop_token& stop) {
   while (!stop.stop_requested()) {
-    if (!client_) {
-      tryReconnect();
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-      continue;
+    try {
+      if (!client_) {
+        tryReconnect();
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        continue;
+      }
+      if (arm_.answer_broken_.exchange(false, std::memory_order_acq_rel)) {
+        lose(kAnswerBroken);
+        continue;
+      }
+      if (receiveOnce(arm_.options_.link_timeout_s)) {
+        drainCommands();
+        restartProgramIfStopped();
+      } else if (client_ &&
+                 hardware::monotonicSeconds() - last_package_s_ > kSilenceBeforeReconnect_s) {
+        lose(kLinkSilent);
+      }
+    } catch (const std::exception&) {
+      // Whatever the controller sent that this side cannot take ends the link, not the process.
+      lose(kLinkClosed);
     }
-    if (receiveOnce(arm_.options_.link_timeout_s)) {
-      restartProgramIfStopped();
-    } else if (client_ &&
-               hardware::monotonicSeconds() - last_package_s_ > kSilenceBeforeReconnect_s) {
-      lose(kLinkSilent);
+  }
+}
+
+void UrArm::Link::drainCommands() {
+  if (!commands_) {
+    return;
+  }
+  try {
+    while (commands_->receive(scratch_, 0.0)) {
     }
+  } catch (const RtdeError&) {
+    lose(kLinkClosed);
   }
 }
 
@@ -166,13 +224,23 @@ void UrArm::Link::publish() {
   const auto robot_mode = as<std::int32_t>(values_, 4);
   const auto safety_mode = as<std::int32_t>(values_, 5);
   const auto runtime_state = as<std::uint32_t>(values_, 6);
-  program_running_ = as<std::int32_t>(values_, 8) == 1 &&
+  const auto program_flag = as<std::int32_t>(values_, 8);
+  program_running_ = program_flag == instance_ &&
                      runtime_state == static_cast<std::uint32_t>(RuntimeState::kPlaying);
   // Whatever the program does: powered, running, in normal safety.
   controller_ready_ =
       stopReason(robot_mode, safety_mode, static_cast<std::uint32_t>(RuntimeState::kPlaying),
                  true) == nullptr;
+  // The program is sent again only after a stop comply recovers from: a safety stop, a lost
+  // link (lose()), its own watchdog. One stopped on the pendant stays stopped.
+  if (!controller_ready_ || program_flag == -instance_) {
+    restart_allowed_ = true;
+  }
+  seen_running_ = seen_running_ || program_running_;
   last_.stop = stopReason(robot_mode, safety_mode, runtime_state, program_running_);
+  if (last_.stop != nullptr && controller_ready_ && seen_running_ && !restart_allowed_) {
+    last_.stop = kStoppedOnRobot;
+  }
   if (previous != 0 && last_.cycle > previous + 1) {
     skipped_.fetch_add(last_.cycle - previous - 1, std::memory_order_relaxed);
   }
@@ -199,8 +267,12 @@ void UrArm::Link::publishStop(const char* why) {
 void UrArm::Link::lose(const char* why) {
   arm_.socket_.store(-1, std::memory_order_release);
   client_.reset();
+  if (commands_) {
+    commands_->disconnect();  // the controller frees its registers for the next connection
+  }
   retired_ = std::move(commands_);
   program_running_ = false;
+  restart_allowed_ = true;
   last_attempt_s_ = hardware::monotonicSeconds();
   publishStop(why);
 }
@@ -221,30 +293,38 @@ void UrArm::Link::tryReconnect() {
 }
 
 void UrArm::Link::restartProgramIfStopped() {
-  if (program_running_ || !controller_ready_) {
+  if (program_running_ || !controller_ready_ || !restart_allowed_) {
     return;
   }
   if (hardware::monotonicSeconds() - last_program_s_ < kProgramRetry_s) {
     return;
   }
   try {
-    sendProgram();
+    sendProgram(false);
   } catch (const std::exception&) {
     // Tried again after kProgramRetry_s; the stop stays published meanwhile.
   }
 }
 
-void UrArm::Link::sendProgram() {
+void UrArm::Link::sendProgram(bool write_hold) {
   last_program_s_ = hardware::monotonicSeconds();
-  // Registers a last session left on "drive" with its targets must not move the arm when the
-  // program starts: they say "stand still" first.
-  std::vector<RtdeValue> hold{std::int32_t{0}, std::int32_t{0}};
-  for (int joint = 0; joint < 6; ++joint) {
-    hold.emplace_back(0.0);
+  if (write_hold) {
+    // Before the control thread answers (the first program): registers a last session left on
+    // "drive" with its targets must not move the arm when the program starts. Later the control
+    // thread's answers are in them (in a FAULT, its hold at the measured pose).
+    std::vector<RtdeValue> hold{std::int32_t{0}, std::int32_t{0}};
+    for (int joint = 0; joint < 6; ++joint) {
+      hold.emplace_back(0.0);
+    }
+    commands_->send(inputs_, hold);
   }
-  commands_->send(inputs_, hold);
-  sendScript(arm_.options_.robot_ip, arm_.options_.script_port,
-             controlProgramScript(arm_.options_.program), arm_.options_.connect_timeout_s);
+  ControlProgram program = arm_.options_.program;
+  instance_ = instance_ % 2147483646 + 1;
+  program.instance = instance_;
+  restart_allowed_ = false;
+  seen_running_ = false;
+  sendScript(arm_.options_.robot_ip, arm_.options_.script_port, controlProgramScript(program),
+             arm_.options_.connect_timeout_s);
   programs_.fetch_add(1, std::memory_order_relaxed);
 }
 
@@ -256,6 +336,31 @@ UrLinkStats UrArm::Link::stats() const noexcept {
   stats.programs_sent = programs_.load(std::memory_order_relaxed);
   return stats;
 }
+
+namespace {
+
+/// A controller greets a client of its secondary interface with its version message (79 bytes
+/// and more) and may drop a program sent before that was read: it is read first, for up to
+/// 0.2 s (an emulator may send none).
+void skipGreeting(int socket) {
+  constexpr std::size_t kGreetingBytes = 79;
+  const double until_s = hardware::monotonicSeconds() + 0.2;
+  std::array<char, 4096> buffer{};
+  for (std::size_t read = 0; read < kGreetingBytes;) {
+    const double left_s = until_s - hardware::monotonicSeconds();
+    pollfd readable{socket, POLLIN, 0};
+    if (left_s <= 0.0 || ::poll(&readable, 1, static_cast<int>(std::ceil(left_s * 1e3))) <= 0) {
+      return;
+    }
+    const ssize_t n = ::recv(socket, buffer.data(), buffer.size(), 0);
+    if (n <= 0) {
+      return;
+    }
+    read += static_cast<std::size_t>(n);
+  }
+}
+
+}  // namespace
 
 void sendScript(const std::string& host, std::uint16_t port, const std::string& script,
                 double timeout_s) {
@@ -273,6 +378,9 @@ void sendScript(const std::string& host, std::uint16_t port, const std::string& 
   ::setsockopt(socket, SOL_SOCKET, SO_SNDTIMEO, &limit, sizeof limit);
   bool sent = socket >= 0 &&
               ::connect(socket, reinterpret_cast<const sockaddr*>(&address), sizeof address) == 0;
+  if (sent) {
+    skipGreeting(socket);
+  }
   for (std::size_t at = 0; sent && at < script.size();) {
     const ssize_t n = ::send(socket, script.data() + at, script.size() - at, MSG_NOSIGNAL);
     sent = n > 0;

@@ -28,7 +28,12 @@ class UrArm::Link {
   void publish();
   void publishStop(const char* why);
   void lose(const char* why);
-  void sendProgram();
+  /// `write_hold`: the registers say "stand still" first (only while the control thread does not
+  /// answer yet).
+  void sendProgram(bool write_hold);
+  /// Reads what the answer connection's controller sent (its slow output recipe); a closed one
+  /// ends the link.
+  void drainCommands();
   /// A lost link: a new connection, at most every reconnect_interval_s.
   void tryReconnect();
   /// The controller can run the program again (a stop cleared) but it is not running: sent again,
@@ -46,7 +51,11 @@ class UrArm::Link {
   bool has_torque_ = false;
   std::vector<RtdeValue> values_;
   UrSample last_;
+  std::vector<RtdeValue> scratch_;
   bool program_running_ = false;
+  std::int32_t instance_ = 0;      // the program sent last (control_program.hpp)
+  bool restart_allowed_ = false;   // a stop comply recovers from came since it was sent
+  bool seen_running_ = false;      // it ran since it was sent
   bool controller_ready_ = false;  // normal safety, powered, running
   double last_program_s_ = -1e9;
   double last_attempt_s_ = -1e9;

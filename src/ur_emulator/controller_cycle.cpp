@@ -148,7 +148,7 @@ void UrEmulator::Impl::startPendingProgram() {
     buildPlant(actuation);  // the arm at rest where it was, with the drives the program uses
   }
   running_ = true;
-  program_flag_ = 1;
+  program_flag_ = program_.instance;
   armed_ = false;
   quiet_s_ = 0.0;
   last_answer_ = intRegister(program_.register_offset);
@@ -181,7 +181,7 @@ void UrEmulator::Impl::applyProgram() {
   }
   if (armed_ && quiet_s_ > program_.watchdog_s) {
     ++stats_.watchdog_stops;
-    stopProgram(2);
+    stopProgram(-program_.instance);
     plant_->hold();
     servo_following_ = false;
     return;
@@ -220,7 +220,7 @@ void UrEmulator::Impl::command(int drive, const std::array<double, 6>& values) {
     } else if (program_.mode == OutputMode::kVelocity) {
       drives.velocity[joint] = value;
     } else {
-      // torque_command: on top of the controller's own gravity and Coriolis compensation.
+      // direct_torque: on top of the controller's own gravity and Coriolis compensation.
       const int dof = dof_address_[static_cast<std::size_t>(joint)];
       drives.effort[joint] = value + plant_->mujocoData().qfrc_bias[dof];
     }

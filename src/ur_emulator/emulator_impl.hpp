@@ -60,7 +60,7 @@ class UrEmulator::Impl {
   mutable std::mutex mutex_;
   std::unique_ptr<sim::SimulatedRobot> plant_;
   OutputMode plant_mode_ = OutputMode::kPosition;
-  std::vector<int> dof_address_;  // the arm's joints' MuJoCo dofs (gravity for torque_command)
+  std::vector<int> dof_address_;  // the arm's joints' MuJoCo dofs (gravity for direct_torque)
   Vector6d wrench_tare_ = Vector6d::Zero();  // the tool's weight at home: the payload's share
   JointState measured_;
 

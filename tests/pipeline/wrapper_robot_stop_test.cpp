@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "comply/pipeline/wrapper.hpp"
@@ -74,6 +75,32 @@ TEST_F(RobotStop, NoResetLeavesFaultWhileTheRobotIsStopped) {
   EXPECT_EQ(cycle(state), CycleStatus::kOk);
   EXPECT_EQ(lastReset(), ResetResult::End::kLeftFault);
   EXPECT_EQ(wrapper.diagnostics().faults, 1U);
+}
+
+// Admittance: while the robot is stopped the arm may be moved by other means (jogged, guided by
+// hand); the FAULT's hold follows it, so that when the robot takes commands again the drives are
+// not sent back to where the FAULT began.
+TEST(RobotStopAdmittance, TheHoldFollowsTheArmWhileTheRobotIsStopped) {
+  JointWrapper wrapper(fr3Config(kJointImpedancePlugin, "output:\n  mode: position\n"));
+  JointState state = restingAt(wrapper.controller(), fr3Home());
+  wrapper.activate(state);
+  ActuatorCommand command;
+  command.resize(kFr3Dof);
+  ASSERT_TRUE(wrapper.cycle(state, kPeriod, command));
+  JointState stopped = state;
+  stopped.robot_stop = "protective stop";
+  ASSERT_TRUE(wrapper.cycle(stopped, kPeriod, command));
+  ASSERT_EQ(wrapper.diagnostics().state, WrapperState::kFault);
+  stopped.position[1] += 0.1;  // moved by hand while stopped
+  ASSERT_TRUE(wrapper.cycle(stopped, kPeriod, command));
+  EXPECT_NEAR(command.position[1], stopped.position[1], 1e-12);
+  // Running again, still in FAULT: held where the arm is, not where the FAULT began.
+  JointState running = stopped;
+  running.robot_stop = nullptr;
+  ASSERT_TRUE(wrapper.cycle(running, kPeriod, command));
+  EXPECT_EQ(wrapper.diagnostics().state, WrapperState::kFault);
+  EXPECT_NEAR(command.position[1], stopped.position[1], 1e-12);
+  EXPECT_GT(std::abs(command.position[1] - state.position[1]), 0.09);
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 //
 //   servoj          position drives follow q          (output.mode position)
 //   speedj          velocity drives follow dq         (output.mode velocity)
-//   torque_command  the joint torques, the controller adding gravity and friction
+//   direct_torque  the joint torques, the controller adding gravity and friction
 //                   compensation (output.mode torque; PolyScope 5.23 / 10.10 and later)
 //
 // Registers, from `register_offset` (24 by default: the first of the upper half, which
@@ -15,7 +15,9 @@
 //   input_int_register_<o+1>        1: drive with the six doubles; 0: stop and stand still
 //   input_double_register_<o..o+5>  q [rad], dq [rad/s] or torque [N m], joint by joint
 //   output_int_register_<o>         the cycle whose answer the program applied last
-//   output_int_register_<o+1>       1 while the program runs, 2 once its watchdog stopped it
+//   output_int_register_<o+1>       its instance number while it runs, the negative once its
+//                                   watchdog stopped it (so an earlier program's is not taken
+//                                   for it)
 // Watchdog: once comply has written, a cycle counter that has not moved for `watchdog_s` stops
 // the arm (stopj) and ends the program, so the arm stands still when comply stops talking.
 
@@ -35,7 +37,7 @@ class ControlProgramError : public std::runtime_error {
 };
 
 struct ControlProgram {
-  /// position (servoj), velocity (speedj) or torque (torque_command).
+  /// position (servoj), velocity (speedj) or torque (direct_torque).
   OutputMode mode = OutputMode::kPosition;
   double period_s = 0.002;  ///< the controller's cycle [s]
   int register_offset = 24;
@@ -46,6 +48,8 @@ struct ControlProgram {
   double servoj_gain = 1000.0;
   double speedj_acceleration_rad_per_s2 = 20.0;  ///< speedj's largest joint acceleration
   double stop_deceleration_rad_per_s2 = 10.0;    ///< stopj's, for a hold and the watchdog
+  /// Which program this is (1 to 2^31 - 2): the backend numbers the programs it sends.
+  std::int32_t instance = 1;
 };
 
 /// The URScript text of `program`. Throws ControlProgramError for a mode the program has no
@@ -56,7 +60,7 @@ std::string controlProgramScript(const ControlProgram& program);
 /// when the text is not comply's control program or a value is missing.
 ControlProgram readControlProgram(std::string_view script);
 
-/// The URScript function a mode's program calls each cycle: "servoj", "speedj", "torque_command".
+/// The URScript function a mode's program calls each cycle: "servoj", "speedj", "direct_torque".
 std::string_view driveCommand(OutputMode mode);
 
 }  // namespace comply::ur

@@ -23,11 +23,16 @@ struct Recipe {
 
 class RtdeClient {
  public:
-  /// Connects to `host` (an IPv4 address) and agrees on protocol version 2.
+  /// Connects to `host` (an IPv4 address) within `timeout_s` and agrees on protocol version 2.
   RtdeClient(const std::string& host, std::uint16_t port, double timeout_s = 2.0);
   ~RtdeClient();
   RtdeClient(const RtdeClient&) = delete;
   RtdeClient& operator=(const RtdeClient&) = delete;
+
+  /// Closes the connection at once while its socket's number stays taken (by /dev/null) until
+  /// this client goes: a thread that still writes to it fails instead of writing to whatever
+  /// file would get the number next.
+  void disconnect() noexcept;
 
   [[nodiscard]] ControllerVersion controllerVersion();
   /// The output recipe of `names` at `frequency_hz`; throws naming every variable refused.

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <set>
 #include <span>
 #include <string>
 #include <vector>
@@ -34,6 +35,12 @@ class RtdeServerSession {
   /// The answers to `package`, in order (none to a data package). A package the session cannot
   /// take is answered with a text message saying why (level error), and changes nothing.
   std::vector<std::vector<std::uint8_t>> handle(const Package& package);
+
+  /// Inputs other clients write: a set-up asking for one is answered IN_USE, as a controller
+  /// lets one client at a time write an input. Set before handle().
+  void setInputsTakenElsewhere(std::set<std::string> names) { taken_elsewhere_ = std::move(names); }
+  /// Every input this session's recipes write.
+  [[nodiscard]] std::set<std::string> inputNames() const;
 
   [[nodiscard]] bool started() const noexcept { return started_; }
   [[nodiscard]] std::uint16_t protocolVersion() const noexcept { return protocol_version_; }
@@ -62,6 +69,7 @@ class RtdeServerSession {
     std::vector<RtdeType> types;
   };
   std::map<std::uint8_t, InputRecipe> input_recipes_;
+  std::set<std::string> taken_elsewhere_;
   std::map<std::string, RtdeValue> inputs_;
 };
 

@@ -69,7 +69,7 @@ class UrArm final : public hardware::HardwareInterface {
  public:
   /// Connects, sets up the recipes, sends the program and waits until it runs. Throws
   /// hardware::BackendError naming what failed (the address, a refused variable, a controller too
-  /// old for torque_command, a stop that keeps the program from running).
+  /// old for direct_torque, a stop that keeps the program from running).
   explicit UrArm(UrArmOptions options);
   ~UrArm() override;
   UrArm(const UrArm&) = delete;
@@ -90,9 +90,10 @@ class UrArm final : public hardware::HardwareInterface {
   }
   bool write(std::span<const double> torque) noexcept override;
   bool writeCommand(const ActuatorCommand& command) noexcept override;
-  /// The program's stopj: the arm decelerates and stands still until the next command.
+  /// The program's stopj: the arm decelerates and stands still until the next command. False
+  /// when this cycle already sent its command (one answer per controller cycle).
   bool hold() noexcept override;
-  /// torque_command: the controller adds gravity (and friction) compensation itself.
+  /// direct_torque: the controller adds gravity (and friction) compensation itself.
   [[nodiscard]] bool compensatesGravity() const noexcept override {
     return options_.program.mode == OutputMode::kTorque;
   }
@@ -119,6 +120,7 @@ class UrArm final : public hardware::HardwareInterface {
   ControllerVersion version_;
   TripleBuffer<UrSample> sample_;  // written by the link thread, read by the control thread
   std::atomic<const char*> last_stop_{nullptr};
+  std::atomic<bool> answer_broken_{false};  // a send went out in part: the stream is out of step
   std::atomic<double> newest_time_s_{0.0};
   std::atomic<double> newest_arrival_s_{0.0};
   std::atomic<std::uint64_t> received_{0};  // packages published
@@ -128,6 +130,7 @@ class UrArm final : public hardware::HardwareInterface {
   std::atomic<int> socket_{-1};  // the RTDE socket the answers go to
   std::atomic<std::uint8_t> input_recipe_{0};
   std::uint64_t answered_cycle_ = 0;  // control thread: the cycle of the sample read last
+  bool answered_ = false;             // control thread: an answer to it went out
   std::array<std::uint8_t, 64> package_{};
   std::unique_ptr<Link> link_;
   std::jthread link_thread_;

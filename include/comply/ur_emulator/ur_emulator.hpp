@@ -9,7 +9,7 @@
 //                      "running", "stop", "PolyscopeVersion", "close safety popup", "quit"
 //
 // Each 2 ms controller cycle: the registers comply wrote are applied as the program would
-// (servoj to position servos, speedj to velocity servos, torque_command on top of the plant's
+// (servoj to position servos, speedj to velocity servos, direct_torque on top of the plant's
 // own gravity and Coriolis torque; stopj as a brake; the watchdog), the plant steps, a contact
 // force above the safety limit makes a protective stop, and the variables go out. Protective
 // stops, dropped data packages and closed connections on request, for the tests.

@@ -159,7 +159,10 @@ void VirtualArm::writeMotion(const JointState& state, ActuatorCommand& command) 
 }
 
 void VirtualArm::hold(const JointState& state, ActuatorCommand& command) noexcept {
-  if (!holding_) {
+  // While the robot says it is stopped, the arm may be moved by other means (jogged, guided by
+  // hand, coasting after an emergency stop): the hold is where it is now, so that once the robot
+  // takes commands again nothing pulls it back to where the FAULT began.
+  if (!holding_ || state.robot_stop != nullptr) {
     holding_ = true;
     hold_position_ = last_measured_;
   }

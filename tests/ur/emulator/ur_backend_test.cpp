@@ -171,6 +171,25 @@ TEST_F(UrBackend, ALostLinkIsSaidTheProgramStopsTheArmAndTheLinkComesBack) {
   EXPECT_EQ(emulator.stats().programs, 2U);
 }
 
+// The controller falls silent with its connections open (a switch dropping packets): after a
+// second the backend gives the link up and connects anew, its old answer connection closed so
+// that the controller lets the new one write the registers (one writer per input).
+TEST_F(UrBackend, ASilentLinkIsGivenUpAndMadeAgainWithItsRegistersFreed) {
+  RunningArm running(emulator);
+  UrArm& arm = running.arm;
+  ASSERT_TRUE(eventually([&] { return emulator.stats().answered > 50; }, 2.0));
+  emulator.dropPackages(750);  // 1.5 s
+  ASSERT_TRUE(eventually(
+      [&] {
+        const char* stop = arm.lastStop();
+        return stop != nullptr && std::string(stop).find("no RTDE data") != std::string::npos;
+      },
+      1.0));
+  EXPECT_TRUE(eventually([&] { return arm.lastStop() == nullptr; }, 4.0)) << arm.lastStop();
+  EXPECT_EQ(arm.stats().connections, 2U);
+  EXPECT_EQ(emulator.stats().watchdog_stops, 1U);
+}
+
 /// Holds the first position it reads with a joint-space PD in torque, and keeps the effort read.
 class TorqueHold final : public hardware::CycleController {
  public:
@@ -193,7 +212,7 @@ class TorqueHold final : public hardware::CycleController {
   bool started_ = false;
 };
 
-// torque_command: the controller adds gravity, so a PD around the start holds the arm still with
+// direct_torque: the controller adds gravity, so a PD around the start holds the arm still with
 // torques far below gravity's; the effort read is the drives' torque, gravity's on the shoulder.
 TEST_F(UrBackend, TorqueCommandsOnTopOfTheControllersGravity) {
   UrArm arm(armFor(emulator, OutputMode::kTorque));
@@ -226,7 +245,7 @@ TEST(UrBackendSetup, TorqueCommandsNeedPolyScope523) {
   UrEmulator emulator(old);
   try {
     UrArm arm(armFor(emulator, OutputMode::kTorque));
-    FAIL() << "a 5.22 controller was taken for torque_command";
+    FAIL() << "a 5.22 controller was taken for direct_torque";
   } catch (const hardware::BackendError& error) {
     EXPECT_NE(std::string(error.what()).find("5.23"), std::string::npos) << error.what();
     EXPECT_NE(std::string(error.what()).find("5.22.1"), std::string::npos) << error.what();

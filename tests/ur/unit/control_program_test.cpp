@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "comply/ur/robot_status.hpp"
@@ -41,6 +42,27 @@ TEST(ControlProgram, IsReadBackAsWritten) {
     EXPECT_FALSE(contains(script, "read_input_float_register(36)"));
     EXPECT_FALSE(contains(script, "register(24)"));
   }
+}
+
+// What a controller takes over its secondary interface: `def` first and `end` last, in column 0,
+// nothing after; textmsg with at most two arguments; the program numbered as it was sent.
+TEST(ControlProgram, IsOneDefinitionTheControllerRuns) {
+  ControlProgram program;
+  program.instance = 123456;
+  const std::string script = controlProgramScript(program);
+  EXPECT_TRUE(script.starts_with("def comply_control():\n")) << script.substr(0, 40);
+  EXPECT_TRUE(script.ends_with("\nend\n"));
+  EXPECT_EQ(script.find("\nend\n"), script.size() - 5) << "text after the definition";
+  for (std::size_t at = script.find("textmsg("); at != std::string::npos;
+       at = script.find("textmsg(", at + 1)) {
+    const std::string call = script.substr(at, script.find('\n', at) - at);
+    EXPECT_LE(std::count(call.begin(), call.end(), ','), 1) << call;
+  }
+  EXPECT_TRUE(contains(script, "write_output_integer_register(25, COMPLY_INSTANCE)"));
+  EXPECT_TRUE(contains(script, "write_output_integer_register(25, -COMPLY_INSTANCE)"));
+  EXPECT_EQ(readControlProgram(script).instance, 123456);
+  std::string trailing = script + "comply_control()\n";
+  EXPECT_THROW((void)readControlProgram(trailing), ControlProgramError);
 }
 
 TEST(ControlProgram, HasAWatchdogThatStopsTheArm) {
