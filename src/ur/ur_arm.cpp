@@ -46,6 +46,10 @@ UrArm::UrArm(UrArmOptions options) : options_(std::move(options)) {
     link_ = std::make_unique<Link>(*this);
     version_ = link_->connect();
     link_->startProgram(options_.connect_timeout_s);
+    // The stops before the program ran (it had not started yet) are not the run's: the control
+    // thread counts from here. Its side still, as the link thread has not started.
+    sample_.update();
+    stops_seen_ = sample_.read().stops;
   } catch (...) {
     link_.reset();
     ::close(wakeup_);
@@ -82,6 +86,11 @@ bool UrArm::read(JointState& state) noexcept {
   }
   answered_cycle_ = sample.cycle;
   answered_ = false;
+  stop_ = sample.stop;
+  if (sample.stops != stops_seen_) {
+    stops_seen_ = sample.stops;
+    stop_ = stop_ != nullptr ? stop_ : sample.last_stop;  // came and went since the last read
+  }
   return true;
 }
 

@@ -210,6 +210,7 @@ bool UrArm::Link::receiveOnce(double timeout_s) {
 void UrArm::Link::publish() {
   const double period_s = arm_.options_.program.period_s;
   const std::uint64_t previous = last_.cycle;
+  const char* const previous_stop = last_.stop;
   last_.time_s = as<double>(values_, 0);
   last_.cycle = static_cast<std::uint64_t>(std::llround(last_.time_s / period_s)) + 1;
   last_.arrived_s = hardware::monotonicSeconds();
@@ -246,6 +247,7 @@ void UrArm::Link::publish() {
   }
   last_package_s_ = last_.arrived_s;
   packages_.fetch_add(1, std::memory_order_relaxed);
+  noteStop(previous_stop);
   arm_.sample_.publishFromSoleWriter(last_);
   arm_.last_stop_.store(last_.stop, std::memory_order_release);
   arm_.newest_time_s_.store(last_.time_s, std::memory_order_release);
@@ -259,9 +261,18 @@ void UrArm::Link::publishStop(const char* why) {
   if (last_.stop == why) {
     return;
   }
+  const char* const previous_stop = last_.stop;
   last_.stop = why;
+  noteStop(previous_stop);
   arm_.sample_.publishFromSoleWriter(last_);
   arm_.last_stop_.store(why, std::memory_order_release);
+}
+
+void UrArm::Link::noteStop(const char* previous) {
+  if (last_.stop != nullptr && last_.stop != previous) {
+    ++last_.stops;
+    last_.last_stop = last_.stop;
+  }
 }
 
 void UrArm::Link::lose(const char* why) {

@@ -27,6 +27,8 @@ class UrArm::Link {
   bool receiveOnce(double timeout_s);
   void publish();
   void publishStop(const char* why);
+  /// Counts a stop that differs from `previous` (UrSample::stops).
+  void noteStop(const char* previous);
   void lose(const char* why);
   /// `write_hold`: the registers say "stand still" first (only while the control thread does not
   /// answer yet).

@@ -54,6 +54,10 @@ struct UrSample {
   std::array<double, 6> tau{};     ///< N m; NaN where the controller reports no joint torque
   std::array<double, 6> wrench{};  ///< actual_TCP_force: base frame, at the TCP [N, N m]
   const char* stop = nullptr;      ///< stopReason() of this package, or the link's
+  /// Stops published so far and the last of them: one that came and went between two reads of
+  /// the control thread is still seen once.
+  std::uint64_t stops = 0;
+  const char* last_stop = nullptr;
 };
 
 struct UrLinkStats {
@@ -80,7 +84,7 @@ class UrArm final : public hardware::HardwareInterface {
   bool readWrench(Vector6d& wrench) noexcept override;
   bool readSequence(std::uint64_t& sequence) noexcept override;
   /// The control thread's (the sample read() returned): see lastStop() for any other.
-  [[nodiscard]] const char* robotStop() noexcept override { return sample_.read().stop; }
+  [[nodiscard]] const char* robotStop() noexcept override { return stop_; }
   /// Any thread: the stop the link thread published last (nullptr while the arm runs).
   [[nodiscard]] const char* lastStop() const noexcept {
     return last_stop_.load(std::memory_order_acquire);
@@ -131,6 +135,8 @@ class UrArm final : public hardware::HardwareInterface {
   std::atomic<std::uint8_t> input_recipe_{0};
   std::uint64_t answered_cycle_ = 0;  // control thread: the cycle of the sample read last
   bool answered_ = false;             // control thread: an answer to it went out
+  const char* stop_ = nullptr;        // control thread: robotStop() for the sample read last
+  std::uint64_t stops_seen_ = 0;      // control thread: UrSample::stops at the last read
   std::array<std::uint8_t, 64> package_{};
   std::unique_ptr<Link> link_;
   std::jthread link_thread_;

@@ -150,9 +150,9 @@ void LiveObserver<Command>::settleRequests(pipeline::CommandGate& gate) {
     if (reset.end == pipeline::ResetResult::End::kStateUnusable) {
       refusal = "reset refused: the measured state is not usable, the fault stays";
     } else if (reset.end == pipeline::ResetResult::End::kRobotStopped) {
-      refusal = "reset refused: the robot is still stopped (" +
-                wrapper_.controller().diagnostics().snapshot().last_fault +
-                "); clear the stop on the robot first, the fault stays";
+      refusal =
+          "reset refused: the robot is still stopped (diagnostics' last_fault says why); "
+          "clear the stop on the robot first, the fault stays";
     }
     if (!refusal.empty()) {
       gate.noteRefusal(refusal);
