@@ -59,7 +59,10 @@ bool TextConnection::readLine(std::string& line) {
 
 std::string TextConnection::readAll(double idle_s) {
   double last_byte_s = hardware::monotonicSeconds();
-  while (!closed_ && hardware::monotonicSeconds() - last_byte_s < idle_s) {
+  // A program is a few kB; a peer that sends without end is cut off at a bound.
+  constexpr std::size_t kMostBytes = 1 << 20;
+  while (!closed_ && buffer_.size() < kMostBytes &&
+         hardware::monotonicSeconds() - last_byte_s < idle_s) {
     const std::size_t before = buffer_.size();
     if (!fill(kPollMs)) {
       break;

@@ -18,7 +18,7 @@ class TextConnection {
       : socket_(socket), stopping_(stopping) {}
   /// The next line without its end ("\n", "\r\n"); false when the peer closed or the port stops.
   bool readLine(std::string& line);
-  /// Everything until the peer closes its side, or `idle_s` without a byte.
+  /// Everything until the peer closes its side, or `idle_s` without a byte (at most 1 MiB).
   std::string readAll(double idle_s);
   void write(const std::string& text);
 
