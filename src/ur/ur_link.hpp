@@ -7,6 +7,7 @@
 
 #include "comply/ur/rtde_client.hpp"
 #include "comply/ur/ur_arm.hpp"
+#include "script_sender.hpp"
 
 namespace comply::ur {
 
@@ -67,10 +68,5 @@ class UrArm::Link {
   std::atomic<std::uint64_t> connections_{0};
   std::atomic<std::uint64_t> programs_{0};
 };
-
-/// Sends a URScript program to the secondary interface at `host`:`port` and closes; throws
-/// hardware::BackendError naming the address when it cannot.
-void sendScript(const std::string& host, std::uint16_t port, const std::string& script,
-                double timeout_s);
 
 }  // namespace comply::ur
