@@ -100,9 +100,9 @@ ControllerVersion UrArm::Link::connect() {
     }
     outputs_ = client->setupOutputs(1.0 / options.program.period_s, names);
     checkTypes(outputs_, where);
-    // The answers go over a connection of their own, which only the control thread writes: on
-    // the one the link thread reads, a send would wait for the kernel's socket lock whenever
-    // that thread (not real-time) holds it in a receive.
+    // The answers go over a connection of their own, which the control thread writes (this
+    // thread only once, before the control thread runs): on the one this thread reads, a send
+    // would wait for the kernel's socket lock whenever this thread (not real-time) held it.
     auto commands = std::make_unique<RtdeClient>(options.robot_ip, options.rtde_port,
                                                  options.connect_timeout_s);
     std::vector<std::string> inputs{"input_int_register_" + std::to_string(o),
