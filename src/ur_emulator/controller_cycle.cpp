@@ -160,9 +160,10 @@ void UrEmulator::Impl::applyProgram() {
   const std::int32_t answer = intRegister(o);
   if (answer != last_answer_) {
     // Packages sent between the last answer and this one that no answer named.
-    for (std::int64_t index = std::int64_t{last_answer_} + 1; armed_ && index < answer; ++index) {
-      if (static_cast<std::size_t>(index) < sent_.size() &&
-          sent_[static_cast<std::size_t>(index)]) {
+    const std::int64_t end =
+        std::min<std::int64_t>(answer, static_cast<std::int64_t>(sent_.size()));
+    for (std::int64_t index = std::int64_t{last_answer_} + 1; armed_ && index < end; ++index) {
+      if (index >= 0 && sent_[static_cast<std::size_t>(index)]) {
         ++stats_.missed;
       }
     }
