@@ -13,15 +13,30 @@
 
 namespace comply::ur::wire {
 
+/// The unsigned integer as wide as `Number`.
+template <typename Number>
+using BitsOf = std::conditional_t<
+    sizeof(Number) == 1, std::uint8_t,
+    std::conditional_t<sizeof(Number) == 2, std::uint16_t,
+                       std::conditional_t<sizeof(Number) == 4, std::uint32_t, std::uint64_t>>>;
+
+/// Writes `value` big-endian at `at` in `out` (which must have room) and returns the byte after
+/// it: a package encoded in place, without allocation (the UR backend's answers).
+template <typename Number>
+std::size_t putAt(std::span<std::uint8_t> out, std::size_t at, Number value) noexcept {
+  const auto bits = std::bit_cast<BitsOf<Number>>(value);
+  for (int shift = 8 * (static_cast<int>(sizeof(Number)) - 1); shift >= 0; shift -= 8) {
+    out[at++] = static_cast<std::uint8_t>(bits >> shift);
+  }
+  return at;
+}
+
 class Writer {
  public:
   explicit Writer(std::vector<std::uint8_t>& out) : out_(out) {}
   template <typename Number>
   void put(Number value) {
-    using Bits = std::conditional_t<
-        sizeof(Number) == 1, std::uint8_t,
-        std::conditional_t<sizeof(Number) == 2, std::uint16_t,
-                           std::conditional_t<sizeof(Number) == 4, std::uint32_t, std::uint64_t>>>;
+    using Bits = BitsOf<Number>;
     const auto bits = std::bit_cast<Bits>(value);
     for (int shift = 8 * (static_cast<int>(sizeof(Number)) - 1); shift >= 0; shift -= 8) {
       out_.push_back(static_cast<std::uint8_t>(bits >> shift));
@@ -38,10 +53,7 @@ class Reader {
   Reader(std::span<const std::uint8_t> bytes, std::string_view what) : bytes_(bytes), what_(what) {}
   template <typename Number>
   Number get() {
-    using Bits = std::conditional_t<
-        sizeof(Number) == 1, std::uint8_t,
-        std::conditional_t<sizeof(Number) == 2, std::uint16_t,
-                           std::conditional_t<sizeof(Number) == 4, std::uint32_t, std::uint64_t>>>;
+    using Bits = BitsOf<Number>;
     need(sizeof(Number));
     Bits bits = 0;
     for (std::size_t i = 0; i < sizeof(Number); ++i) {

@@ -8,29 +8,17 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
-#include <bit>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <thread>
 
+#include "big_endian.hpp"
 #include "comply/hardware/backend.hpp"
 #include "ur_link.hpp"
 
 namespace comply::ur {
 namespace {
-
-template <typename Number>
-std::size_t putBigEndian(std::array<std::uint8_t, 64>& out, std::size_t at, Number value) {
-  using Bits =
-      std::conditional_t<sizeof(Number) == 4, std::uint32_t,
-                         std::conditional_t<sizeof(Number) == 8, std::uint64_t, std::uint16_t>>;
-  const auto bits = std::bit_cast<Bits>(value);
-  for (int shift = 8 * (static_cast<int>(sizeof(Number)) - 1); shift >= 0; shift -= 8) {
-    out[at++] = static_cast<std::uint8_t>(bits >> shift);
-  }
-  return at;
-}
 
 /// The answer's package: header (size, 'U'), recipe, cycle, drive, six doubles.
 constexpr std::size_t kAnswerBytes = 3 + 1 + 4 + 4 + 6 * 8;
@@ -145,14 +133,14 @@ bool UrArm::send(int drive, const JointVector* values) noexcept {
   if (socket < 0 || (values != nullptr && (values->size() != 6 || !values->allFinite()))) {
     return false;
   }
-  std::size_t at = putBigEndian(package_, 0, static_cast<std::uint16_t>(kAnswerBytes));
+  std::size_t at = wire::putAt(package_, 0, static_cast<std::uint16_t>(kAnswerBytes));
   package_[at++] = static_cast<std::uint8_t>(PackageType::kDataPackage);
   package_[at++] = input_recipe_.load(std::memory_order_relaxed);
   // The cycle's low 31 bits: the program compares it for a change only.
-  at = putBigEndian(package_, at, static_cast<std::int32_t>(answered_cycle_ & 0x7fffffffU));
-  at = putBigEndian(package_, at, static_cast<std::int32_t>(drive));
+  at = wire::putAt(package_, at, static_cast<std::int32_t>(answered_cycle_ & 0x7fffffffU));
+  at = wire::putAt(package_, at, static_cast<std::int32_t>(drive));
   for (int joint = 0; joint < 6; ++joint) {
-    at = putBigEndian(package_, at, values != nullptr ? (*values)[joint] : 0.0);
+    at = wire::putAt(package_, at, values != nullptr ? (*values)[joint] : 0.0);
   }
   // Never waits: a full send buffer means the link is failing, which the link thread reports. A
   // package that went out in part leaves the stream out of step: the link thread ends it.
