@@ -2,7 +2,6 @@
 
 #include "comply/ur/rtde_client.hpp"
 
-#include <arpa/inet.h>
 #include <fcntl.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
@@ -14,6 +13,8 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+
+#include "tcp_connect.hpp"
 
 namespace comply::ur {
 namespace {
@@ -30,46 +31,14 @@ Clock::time_point after(double seconds) {
          std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
 }
 
-/// A connect that gives up after `timeout_s` (errno ETIMEDOUT), where a blocking one waits for
-/// TCP's own retries (minutes on a routed network).
-bool connectWithin(int socket, const sockaddr_in& address, double timeout_s) {
-  const int flags = ::fcntl(socket, F_GETFL, 0);
-  ::fcntl(socket, F_SETFL, flags | O_NONBLOCK);
-  int result = ::connect(socket, reinterpret_cast<const sockaddr*>(&address), sizeof address);
-  if (result != 0 && errno == EINPROGRESS) {
-    pollfd writable{socket, POLLOUT, 0};
-    const int ready = ::poll(&writable, 1, millisecondsUntil(after(timeout_s)));
-    int error = 0;
-    socklen_t size = sizeof error;
-    if (ready <= 0) {
-      errno = ready == 0 ? ETIMEDOUT : errno;
-      return false;
-    }
-    ::getsockopt(socket, SOL_SOCKET, SO_ERROR, &error, &size);
-    errno = error;
-    result = error == 0 ? 0 : -1;
-  }
-  ::fcntl(socket, F_SETFL, flags);
-  return result == 0;
-}
-
 }  // namespace
 
 RtdeClient::RtdeClient(const std::string& host, std::uint16_t port, double timeout_s)
     : timeout_s_(timeout_s) {
   const std::string where = host + ":" + std::to_string(port);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(port);
-  if (inet_pton(AF_INET, host.c_str(), &address.sin_addr) != 1) {
-    throw RtdeError("RTDE: \"" + host + "\" is not an IPv4 address");
-  }
-  socket_ = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
-  if (socket_ < 0 || !connectWithin(socket_, address, timeout_s)) {
-    const std::string why = std::strerror(errno);
-    if (socket_ >= 0) {
-      ::close(socket_);
-    }
+  std::string why;
+  socket_ = connectTcp(host, port, timeout_s, why);
+  if (socket_ < 0) {
     throw RtdeError("RTDE: cannot connect to " + where + " within " + std::to_string(timeout_s) +
                     " s: " + why);
   }

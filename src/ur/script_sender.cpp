@@ -2,8 +2,6 @@
 
 #include "script_sender.hpp"
 
-#include <arpa/inet.h>
-#include <netinet/in.h>
 #include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -15,6 +13,7 @@
 
 #include "comply/hardware/backend.hpp"
 #include "comply/hardware/loop_clock.hpp"
+#include "tcp_connect.hpp"
 
 namespace comply::ur {
 
@@ -46,19 +45,13 @@ void skipGreeting(int socket) {
 void sendScript(const std::string& host, std::uint16_t port, const std::string& script,
                 double timeout_s) {
   const std::string where = host + ":" + std::to_string(port);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(port);
-  if (inet_pton(AF_INET, host.c_str(), &address.sin_addr) != 1) {
-    throw hardware::BackendError("UR: \"" + host + "\" is not an IPv4 address");
-  }
-  const int socket = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  std::string why;
+  const int socket = connectTcp(host, port, timeout_s, why);
   timeval limit{};
   limit.tv_sec = static_cast<time_t>(timeout_s);
   limit.tv_usec = static_cast<suseconds_t>((timeout_s - std::floor(timeout_s)) * 1e6);
   ::setsockopt(socket, SOL_SOCKET, SO_SNDTIMEO, &limit, sizeof limit);
-  bool sent = socket >= 0 &&
-              ::connect(socket, reinterpret_cast<const sockaddr*>(&address), sizeof address) == 0;
+  bool sent = socket >= 0;
   if (sent) {
     skipGreeting(socket);
   }
@@ -67,7 +60,9 @@ void sendScript(const std::string& host, std::uint16_t port, const std::string& 
     sent = n > 0;
     at += sent ? static_cast<std::size_t>(n) : 0;
   }
-  const std::string why = std::strerror(errno);
+  if (socket >= 0 && !sent) {
+    why = std::strerror(errno);
+  }
   if (socket >= 0) {
     ::shutdown(socket, SHUT_WR);
     ::close(socket);
