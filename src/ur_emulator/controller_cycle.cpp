@@ -72,7 +72,7 @@ void UrEmulator::Impl::awaitAnswer() {
     if (!running_ || !armed_ || cycle_ == 0 || !sent_[static_cast<std::size_t>(cycle_)]) {
       return;
     }
-    answer_register = "input_int_register_" + std::to_string(program_.register_offset);
+    answer_register = names_.answer;
     expected = static_cast<std::int32_t>(cycle_);
     last_send_s = last_send_s_;
   }
@@ -151,13 +151,13 @@ void UrEmulator::Impl::startPendingProgram() {
   program_flag_ = program_.instance;
   armed_ = false;
   quiet_s_ = 0.0;
-  last_answer_ = intRegister(program_.register_offset);
+  names_ = ProgramRegisters(program_.register_offset);
+  last_answer_ = intRegister(names_.answer);
   ++stats_.programs;
 }
 
 void UrEmulator::Impl::applyProgram() {
-  const int o = program_.register_offset;
-  const std::int32_t answer = intRegister(o);
+  const std::int32_t answer = intRegister(names_.answer);
   if (answer != last_answer_) {
     // Packages sent between the last answer and this one that no answer named.
     const std::int64_t end =
@@ -190,9 +190,10 @@ void UrEmulator::Impl::applyProgram() {
   applied_ = answer;
   std::array<double, 6> values{};
   for (int joint = 0; joint < 6; ++joint) {
-    values[static_cast<std::size_t>(joint)] = doubleRegister(o + joint);
+    values[static_cast<std::size_t>(joint)] =
+        doubleRegister(names_.target[static_cast<std::size_t>(joint)]);
   }
-  command(intRegister(o + 1), values);
+  command(intRegister(names_.drive), values);
 }
 
 void UrEmulator::Impl::command(int drive, const std::array<double, 6>& values) {
@@ -266,7 +267,6 @@ void UrEmulator::Impl::sendOutputs() {
   const std::array<double, 6> pose{tcp.translation().x(), tcp.translation().y(),
                                    tcp.translation().z(), rotation_vector.x(),
                                    rotation_vector.y(),   rotation_vector.z()};
-  const int o = program_.register_offset;
   const auto runtime = static_cast<std::uint32_t>(running_ ? 2 : 1);
   const std::map<std::string, RtdeValue> variables{
       {"timestamp", static_cast<double>(cycle_) * options_.period_s},
@@ -282,20 +282,31 @@ void UrEmulator::Impl::sendOutputs() {
       {"runtime_state", runtime},
       {"speed_scaling", 1.0},
       {"target_speed_fraction", 1.0},
-      {"output_int_register_" + std::to_string(o), applied_},
-      {"output_int_register_" + std::to_string(o + 1), program_flag_}};
+      {names_.applied, applied_},
+      {names_.flag, program_flag_}};
   rtde_.sendOutputs(variables);
 }
 
-std::int32_t UrEmulator::Impl::intRegister(int index) const {
-  const auto found = registers_.find("input_int_register_" + std::to_string(index));
+ProgramRegisters::ProgramRegisters(int offset)
+    : answer("input_int_register_" + std::to_string(offset)),
+      drive("input_int_register_" + std::to_string(offset + 1)),
+      applied("output_int_register_" + std::to_string(offset)),
+      flag("output_int_register_" + std::to_string(offset + 1)) {
+  for (int joint = 0; joint < 6; ++joint) {
+    target[static_cast<std::size_t>(joint)] =
+        "input_double_register_" + std::to_string(offset + joint);
+  }
+}
+
+std::int32_t UrEmulator::Impl::intRegister(const std::string& name) const {
+  const auto found = registers_.find(name);
   return found != registers_.end() && std::holds_alternative<std::int32_t>(found->second)
              ? std::get<std::int32_t>(found->second)
              : 0;
 }
 
-double UrEmulator::Impl::doubleRegister(int index) const {
-  const auto found = registers_.find("input_double_register_" + std::to_string(index));
+double UrEmulator::Impl::doubleRegister(const std::string& name) const {
+  const auto found = registers_.find(name);
   return found != registers_.end() && std::holds_alternative<double>(found->second)
              ? std::get<double>(found->second)
              : 0.0;

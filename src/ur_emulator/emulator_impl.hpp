@@ -2,6 +2,7 @@
 // The emulated UR controller's inside (ur_emulator.hpp): one mutex over the plant, the program
 // and the safety state, taken by the controller's cycle, the ports and the tests' calls.
 
+#include <array>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -17,6 +18,16 @@
 #include "text_port.hpp"
 
 namespace comply::ur {
+
+/// The names of the registers a program uses (control_program.hpp), made once per program.
+struct ProgramRegisters {
+  explicit ProgramRegisters(int offset = 24);
+  std::string answer;                 // input_int_register_<o>
+  std::string drive;                  // input_int_register_<o+1>
+  std::array<std::string, 6> target;  // input_double_register_<o..o+5>
+  std::string applied;                // output_int_register_<o>
+  std::string flag;                   // output_int_register_<o+1>
+};
 
 class UrEmulator::Impl {
  public:
@@ -50,8 +61,8 @@ class UrEmulator::Impl {
   void stopProgram(std::int32_t flag);
   void checkSafety();
   void sendOutputs();
-  [[nodiscard]] std::int32_t intRegister(int index) const;
-  [[nodiscard]] double doubleRegister(int index) const;
+  [[nodiscard]] std::int32_t intRegister(const std::string& name) const;
+  [[nodiscard]] double doubleRegister(const std::string& name) const;
   void buildPlant(OutputMode actuation);
   void protectiveStopLocked();
 
@@ -73,6 +84,7 @@ class UrEmulator::Impl {
   // The program (control_program.hpp) and its state, as the script's variables.
   std::optional<ControlProgram> pending_;
   ControlProgram program_;
+  ProgramRegisters names_;
   bool running_ = false;
   std::int32_t program_flag_ = 0;  // output_int_register_<o+1>
   std::int32_t applied_ = 0;       // output_int_register_<o>
