@@ -25,7 +25,7 @@
 namespace comply::hardware {
 
 /// Bumped whenever BackendContext or HardwareInterface change layout or meaning.
-inline constexpr int kBackendAbiVersion = 4;
+inline constexpr int kBackendAbiVersion = 5;
 
 /// What a backend learns about the controller it serves, once, before the first cycle.
 struct BackendContext {

@@ -71,6 +71,12 @@ class HardwareInterface {
   /// calls it after every read() and hands it on in JointState::robot_stop. read() still returns
   /// the last state it has, so that the controller holds what it knows.
   [[nodiscard]] virtual const char* robotStop() noexcept { return nullptr; }
+  /// Runs the robot's own recovery from a stop, where it has one that a client may start
+  /// (libfranka's automatic error recovery after a reflex), and waits for it: "" when the robot
+  /// takes commands again or had nothing to recover from, else why not. Not real-time: the live
+  /// host calls it from its request thread when a reset is asked for, before the controller
+  /// decides the reset (which stays refused while robotStop() is set).
+  [[nodiscard]] virtual std::string recover() { return {}; }
   /// What the driver counted over the run (packages, gaps, reconnections), for the host's closing
   /// lines; "" when it has nothing to say. Not real-time: called after the loop.
   [[nodiscard]] virtual std::string summary() const { return {}; }
