@@ -15,6 +15,7 @@
 //   comply plugin new NAME --kind hardware [--out DIR]
 //   comply config --defaults [--robot fr3] [--plugin cartesian_impedance]
 //   comply ur-emulator [--rtde-port 30004] [--object table.xml] [--duration S]
+//   comply franka-emulator [--command-port 1337] [--object table.xml] [--duration S]
 //
 // Exit codes: 0 success, 1 a check failed (validate above tolerance, a controller fault, a
 // target not reached), 2 bad input or setup.
@@ -27,6 +28,7 @@
 #include "config_command.hpp"
 #include "experiment_commands.hpp"
 #include "export_command.hpp"
+#include "franka_emulator_command.hpp"
 #include "live_commands.hpp"
 #include "ur_emulator_command.hpp"
 
@@ -44,6 +46,7 @@ int main(int argc, char** argv) {
   CodegenOptions codegen;
   PluginNewOptions plugin_new;
   UrEmulatorCommandOptions ur_emulator;
+  FrankaEmulatorCommandOptions franka_emulator;
   CLI::App* bench_command = addBenchCommand(app, bench);
   CLI::App* validate_command = addValidateCommand(app, validate);
   CLI::App* sim_command = addSimCommand(app, sim);
@@ -56,6 +59,7 @@ int main(int argc, char** argv) {
   CLI::App* codegen_simulink = addCodegenCommand(app, codegen);
   CLI::App* plugin_new_command = addPluginCommand(app, plugin_new);
   CLI::App* ur_emulator_command = addUrEmulatorCommand(app, ur_emulator);
+  CLI::App* franka_emulator_command = addFrankaEmulatorCommand(app, franka_emulator);
 
   try {
     app.parse(argc, argv);
@@ -99,6 +103,9 @@ int main(int argc, char** argv) {
     }
     if (ur_emulator_command->parsed()) {
       return urEmulatorCommand(ur_emulator, std::cout, std::cerr);
+    }
+    if (franka_emulator_command->parsed()) {
+      return frankaEmulatorCommand(franka_emulator, std::cout, std::cerr);
     }
     return 2;
   } catch (const std::bad_alloc&) {

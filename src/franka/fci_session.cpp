@@ -127,6 +127,9 @@ class FciSession final : public FrankaSession {
     }
     failure_ = channel_.closed() ? kCommandLinkClosed : nullptr;
     toSample(sample);
+    if (motion_id_ >= 0 && !sample.torque_control) {
+      motion_id_ = -1;  // the robot ended it (a reflex, a stop): its Move response says how
+    }
     return failure_ == nullptr;
   }
 
@@ -161,15 +164,18 @@ class FciSession final : public FrankaSession {
     if (response.status != static_cast<std::uint8_t>(fci::MoveStatus::kMotionStarted)) {
       return "the torque control was " + moveStatusText(response.status);
     }
-    motion_id_ = id;
     // The robot switches its modes within a few states; no torque goes out before.
     FrankaSample sample;
     for (int state = 0; state < 100; ++state) {
       if (!read(sample, 0.1)) {
-        return failure_;
+        return failure_ != nullptr ? failure_ : kNoState;
       }
       if (sample.torque_control) {
+        motion_id_ = id;
         return {};
+      }
+      if (channel_.take(id, response)) {
+        return "the torque control was " + moveStatusText(response.status);
       }
     }
     return "the robot did not switch to comply's torque control within 100 states";

@@ -92,9 +92,6 @@ void FrankaEmulator::Impl::receiveCommands() {
 
 void FrankaEmulator::Impl::cycle() {
   ++time_ms_;
-  if (pending_motion_ && mode_ == fci::RobotMode::kIdle) {
-    startMotion();
-  }
   if (mode_ == fci::RobotMode::kAutomaticErrorRecovery && time_ms_ >= recovery_end_ms_) {
     mode_ = fci::RobotMode::kIdle;
     errors_.fill(false);
@@ -129,6 +126,10 @@ void FrankaEmulator::Impl::cycle() {
       // A lost command: the robot goes on with the last one it has.
       applyMotion(&command_);
     }
+  }
+  if (pending_motion_ && mode_ == fci::RobotMode::kIdle) {
+    // From the next state on: the last one went out before the motion, nobody answers it.
+    startMotion();
   }
   if (!motion_) {
     holdArm();

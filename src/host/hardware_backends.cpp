@@ -10,6 +10,7 @@
 #include "comply/plugin/loader.hpp"
 #include "comply/sim/simulated_clock.hpp"
 #include "comply/sim/simulated_robot.hpp"
+#include "franka_backend.hpp"
 #include "ur_backend.hpp"
 
 namespace comply::host {
@@ -65,7 +66,7 @@ HardwareBackend simulatedArm(const pipeline::WrapperConfig& config,
 }
 
 NamedRegistry<HardwareFactory>& registry() {
-  static NamedRegistry<HardwareFactory> instance({{"sim", simulatedArm}, {"ur", urArm}});
+  static NamedRegistry<HardwareFactory> instance({{"sim", simulatedArm}, {"ur", urArm}, {"franka", frankaArm}});
   return instance;
 }
 

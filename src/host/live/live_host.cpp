@@ -226,6 +226,7 @@ int runWith(const LiveHostOptions& options,
       {.period_s = period_s, .cycles = cycles, .warm_ahead_s = 1e-6 * options.warm_ahead_us});
   loop.setObserver(&observer);
   Intake<Command> intake(wrapper, observer, gate);
+  intake.setHardware(&robot);
   CommittedAnswers<Command> committed(wrapper, resolved->robot.base_frame);
   const std::unique_ptr<HostRecording> recording = openRecording(options, resolved, backend);
   if (recording != nullptr) {

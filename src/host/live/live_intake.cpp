@@ -167,6 +167,15 @@ void Intake<Command>::handleRequest(const transport::Sample<transport::RequestMe
       gate_.noteRefusal(refused);
       break;
     case transport::RequestType::kReset:
+      // The robot's own recovery first (a reflex cleared), waited for: the cycle's reset is
+      // refused while the robot stays stopped.
+      if (hardware_ != nullptr) {
+        if (const std::string why_not = hardware_->recover(); !why_not.empty()) {
+          refused = "reset refused: the robot's error recovery failed: " + why_not;
+          gate_.noteRefusal(refused);
+          break;
+        }
+      }
       // Clears the stamp floor now; settled once the cycle has decided it.
       if (const std::uint64_t number = wrapper_.reset(); number != 0) {
         observer_.noteReset(number, stamp_ns, sample.sender);

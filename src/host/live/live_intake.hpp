@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "comply/hardware/hardware_interface.hpp"
 #include "comply/host/host_recording.hpp"
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
@@ -44,6 +45,9 @@ class Intake {
   void setRecording(HostRecording* recording) noexcept { recording_ = recording; }
   /// Every command and request is also shown there (nullptr: none).
   void setView(LiveView* view) noexcept { view_ = view; }
+  /// A reset first runs the robot's own recovery there (HardwareInterface::recover; nullptr:
+  /// none).
+  void setHardware(hardware::HardwareInterface* hardware) noexcept { hardware_ = hardware; }
 
  private:
   /// A command or chunk of either kind: recorded as received, then offered to the gate.
@@ -58,6 +62,7 @@ class Intake {
   pipeline::CommandGate& gate_;
   HostRecording* recording_ = nullptr;
   LiveView* view_ = nullptr;
+  hardware::HardwareInterface* hardware_ = nullptr;
 };
 
 extern template class Intake<CartesianCommand>;

@@ -1,0 +1,146 @@
+// `comply franka-emulator` (franka_emulator_command.hpp).
+
+#include "franka_emulator_command.hpp"
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <ostream>
+#include <thread>
+
+#include "comply/franka/franka_errors.hpp"
+#include "comply/franka_emulator/franka_emulator.hpp"
+#include "stop_signal.hpp"
+
+namespace comply::app {
+namespace {
+
+const char* modeName(franka::fci::RobotMode mode) {
+  switch (mode) {
+    case franka::fci::RobotMode::kOther:
+      return "Other";
+    case franka::fci::RobotMode::kIdle:
+      return "Idle";
+    case franka::fci::RobotMode::kMove:
+      return "Move";
+    case franka::fci::RobotMode::kGuiding:
+      return "Guiding";
+    case franka::fci::RobotMode::kReflex:
+      return "Reflex";
+    case franka::fci::RobotMode::kUserStopped:
+      return "UserStopped";
+    case franka::fci::RobotMode::kAutomaticErrorRecovery:
+      return "AutomaticErrorRecovery";
+  }
+  return "?";
+}
+
+void printStatus(const franka::FrankaEmulator& emulator, std::ostream& out) {
+  const franka::FrankaEmulatorStats stats = emulator.stats();
+  const franka::FrankaEmulatorState state = emulator.state();
+  out << "t " << static_cast<double>(state.time_ms) * 1e-3 << " s, " << modeName(state.mode)
+      << (state.torque_control ? " (torque control)" : "") << ", motions " << stats.motions
+      << ", answered " << stats.answered << ", late " << stats.late << ", lost " << stats.lost
+      << " (longest run " << stats.longest_lost_run << "), reflexes " << stats.reflexes
+      << (stats.last_reflex.empty() ? "" : " (last: " + stats.last_reflex + ")")
+      << ", recoveries " << stats.recoveries << "\n"
+      << std::flush;
+}
+
+int errorIndex(const std::string& name) {
+  for (int index = 0; index < franka::fci::kErrorCount; ++index) {
+    if (name == franka::errorName(index)) {
+      return index;
+    }
+  }
+  return -1;
+}
+
+}  // namespace
+
+CLI::App* addFrankaEmulatorCommand(CLI::App& app, FrankaEmulatorCommandOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "franka-emulator",
+      "a Franka robot's FCI (protocol 7) emulated on the MuJoCo FR3, for --hardware franka or "
+      "libfranka programs without a robot");
+  command->add_option("--address", options.address, "IPv4 address to listen on")
+      ->capture_default_str();
+  command->add_option("--command-port", options.command_port, "FCI command port (0: any free)")
+      ->capture_default_str();
+  command->add_option("--object", options.objects, "MuJoCo fragment added to the world")
+      ->check(CLI::ExistingFile);
+  command->add_option("--tool", options.tool, "MuJoCo fragment on the TCP")
+      ->check(CLI::ExistingFile);
+  command
+      ->add_option("--lost-limit", options.lost_limit,
+                   "states in a row without a command that end a motion")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1000));
+  command->add_option("--duration", options.duration_s, "[s] then stop (0: until Ctrl-C)");
+  command
+      ->add_option("--priority", options.priority,
+                   "SCHED_FIFO priority of its cycle (0: normal; refused quietly where not "
+                   "permitted)")
+      ->check(CLI::Range(0, 99));
+  command->add_option("--reflex-at", options.reflex_at_s, "[s] a reflex then (0: none)");
+  command->add_option("--reflex", options.reflex, "the reflex's error name")
+      ->capture_default_str();
+  command->add_option("--lose-at", options.lose_at_s, "[s] commands lost then (0: none)");
+  command->add_option("--lose-count", options.lose_count, "how many commands are lost")
+      ->capture_default_str();
+  return command;
+}
+
+int frankaEmulatorCommand(const FrankaEmulatorCommandOptions& options, std::ostream& out,
+                          std::ostream& err) {
+  const int reflex = errorIndex(options.reflex);
+  if (reflex < 0) {
+    err << "comply franka-emulator: --reflex '" << options.reflex
+        << "' is not one of the robot's errors (joint_reflex, cartesian_reflex, ...)\n";
+    return 2;
+  }
+  franka::FrankaEmulatorOptions emulator_options;
+  emulator_options.address = options.address;
+  emulator_options.command_port = options.command_port;
+  emulator_options.lost_in_a_row_limit = options.lost_limit;
+  emulator_options.priority = options.priority;
+  for (const std::string& object : options.objects) {
+    emulator_options.scene.objects.emplace_back(object);
+  }
+  emulator_options.scene.tool = options.tool;
+  std::atomic<bool>& stop = stopOnSignals();
+  franka::FrankaEmulator emulator(emulator_options);
+  out << "comply franka-emulator: an FR3 (FCI protocol " << franka::fci::kProtocolVersion
+      << ") on " << options.address << ":" << emulator.commandPort() << "\n"
+      << std::flush;
+  const auto start = std::chrono::steady_clock::now();
+  auto next_status = start + std::chrono::seconds(1);
+  bool reflexed = false;
+  bool lost = false;
+  while (!stop.load()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    const auto now = std::chrono::steady_clock::now();
+    const double elapsed_s = std::chrono::duration<double>(now - start).count();
+    if (!reflexed && options.reflex_at_s > 0.0 && elapsed_s >= options.reflex_at_s) {
+      emulator.reflex(reflex);
+      reflexed = true;
+      out << "comply franka-emulator: reflex " << options.reflex << "\n" << std::flush;
+    }
+    if (!lost && options.lose_at_s > 0.0 && elapsed_s >= options.lose_at_s) {
+      emulator.loseCommands(options.lose_count);
+      lost = true;
+      out << "comply franka-emulator: the next " << options.lose_count << " commands lost\n"
+          << std::flush;
+    }
+    if (now >= next_status) {
+      printStatus(emulator, out);
+      next_status += std::chrono::seconds(1);
+    }
+    if (options.duration_s > 0.0 && elapsed_s >= options.duration_s) {
+      break;
+    }
+  }
+  printStatus(emulator, out);
+  return 0;
+}
+
+}  // namespace comply::app

@@ -1,0 +1,38 @@
+#pragma once
+// `comply franka-emulator`: a Franka robot's FCI emulated on the MuJoCo FR3
+// (comply/franka_emulator/franka_emulator.hpp), for `comply run --hardware franka` or any
+// libfranka program without a robot. Runs until Ctrl-C or --duration.
+
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace comply::app {
+
+struct FrankaEmulatorCommandOptions {
+  std::string address = "127.0.0.1";
+  std::uint16_t command_port = 1337;
+  std::vector<std::string> objects;  ///< MuJoCo fragments added to the world (a table)
+  std::string tool;                  ///< a fragment on the TCP
+  int lost_limit = 20;               ///< states in a row without a command
+  double duration_s = 0.0;           ///< 0: until Ctrl-C
+  int priority = 0;                  ///< SCHED_FIFO of its cycle (0: normal)
+  /// A reflex after this many seconds [s] (0: none), naming this error; lose commands or drop
+  /// states then. For by-hand checks of a client's error handling.
+  double reflex_at_s = 0.0;
+  std::string reflex = "joint_reflex";
+  double lose_at_s = 0.0;
+  int lose_count = 25;
+};
+
+CLI::App* addFrankaEmulatorCommand(CLI::App& app, FrankaEmulatorCommandOptions& options);
+/// Serves until stopped; a status line every second on `out`. 0, or 2 when it cannot start.
+int frankaEmulatorCommand(const FrankaEmulatorCommandOptions& options, std::ostream& out,
+                          std::ostream& err);
+
+}  // namespace comply::app
