@@ -145,8 +145,9 @@ class FciSession final : public FrankaSession {
 
   [[nodiscard]] const char* failure() const noexcept override { return failure_; }
 
-  std::string startTorqueControl() override {
+  std::string startTorqueControl(FrankaSample& first) override {
     if (motion_id_ >= 0) {
+      toSample(first);
       return {};
     }
     std::array<std::uint8_t, fci::kMoveRequestBytes> payload{};
@@ -172,6 +173,7 @@ class FciSession final : public FrankaSession {
       }
       if (sample.torque_control) {
         motion_id_ = id;
+        first = sample;
         return {};
       }
       if (channel_.take(id, response)) {

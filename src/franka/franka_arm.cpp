@@ -14,11 +14,11 @@ namespace comply::franka {
 namespace {
 
 constexpr const char* kLinkLost =
-    "robot: the link to the Franka robot is lost: no state within link_timeout_s (the network, "
+    "the link to the Franka robot is lost: no state within link_timeout_s (the network, "
     "the robot's FCI, or the robot switched off); the robot stops itself without comply's "
     "torques";
 constexpr const char* kControlEnded =
-    "robot: the robot ended comply's torque control (another client, Desk or a stop request): "
+    "the robot ended comply's torque control (another client, Desk or a stop request): "
     "reset to start it again";
 
 // The requests of other threads (recovery_).
@@ -81,14 +81,26 @@ FrankaArm::~FrankaArm() {
 
 bool FrankaArm::awaitSample() noexcept {
   carryOutRequests();
+  if (wants_control_ && !controlling_ && stop_ == nullptr) {
+    startControl();
+  }
+  wants_control_ = false;
   FrankaSample next;
-  fresh_ = session_->read(next, options_.link_timeout_s);
+  const bool started_on_fresh = started_;
+  if (started_) {
+    next = started_on_;  // the state the torque control started on: the first torque answers it
+    fresh_ = true;
+    started_ = false;
+  } else {
+    fresh_ = session_->read(next, options_.link_timeout_s);
+  }
   if (!fresh_) {
     controlling_ = false;  // the robot ends a torque control it gets no torques for
     noteStop(kLinkLost);
     return false;
   }
-  if (sample_valid_ && next.time_ms > sample_.time_ms + 1) {
+  // States missed while comply's torques drive the arm (outside, the robot holds it: no loss).
+  if (sample_valid_ && controlling_ && !started_on_fresh && next.time_ms > sample_.time_ms + 1) {
     skipped_.fetch_add(next.time_ms - sample_.time_ms - 1, std::memory_order_relaxed);
   }
   sample_ = next;
@@ -155,10 +167,7 @@ void FrankaArm::carryOutRequests() noexcept {
     }
     thresholds_pending_.store(false, std::memory_order_release);
     if (was_controlling && stop_ == nullptr) {
-      controlling_ = session_->startTorqueControl().empty();
-      if (controlling_) {
-        controls_.fetch_add(1, std::memory_order_relaxed);
-      }
+      startControl();
     }
   }
 }
@@ -204,22 +213,30 @@ bool FrankaArm::write(std::span<const double> torque) noexcept {
     return false;
   }
   if (!controlling_) {
-    std::string why;
-    try {
-      why = session_->startTorqueControl();
-    } catch (...) {
-      why = "the torque control could not start";
-    }
-    if (!why.empty()) {
-      return false;
-    }
-    controlling_ = true;
-    controls_.fetch_add(1, std::memory_order_relaxed);
+    // Started at the next sample, unless this cycle also asks for the robot's hold (a FAULT
+    // at rest writes its hold torque and asks for the brakes every cycle).
+    wants_control_ = true;
+    return true;
   }
   return session_->writeTorque(std::span<const double, 7>(torque.data(), 7));
 }
 
+void FrankaArm::startControl() noexcept {
+  std::string why;
+  try {
+    why = session_->startTorqueControl(started_on_);
+  } catch (...) {
+    why = "the torque control could not start";
+  }
+  if (why.empty()) {
+    controlling_ = true;
+    started_ = true;
+    controls_.fetch_add(1, std::memory_order_relaxed);
+  }
+}
+
 bool FrankaArm::hold() noexcept {
+  wants_control_ = false;
   if (controlling_) {
     try {
       (void)session_->stopTorqueControl();

@@ -14,87 +14,87 @@ struct ErrorText {
 // automatic error recovery, which a reset runs.
 constexpr std::array<ErrorText, fci::kErrorCount> kErrors{{
     {"joint_position_limits_violation",
-     "robot: joint_position_limits_violation (a joint at its limit): reset to recover, then move "
+     "joint_position_limits_violation (a joint at its limit): reset to recover, then move "
      "it away"},
     {"cartesian_position_limits_violation",
-     "robot: cartesian_position_limits_violation (the flange outside its workspace): reset to "
+     "cartesian_position_limits_violation (the flange outside its workspace): reset to "
      "recover"},
     {"self_collision_avoidance_violation",
-     "robot: self_collision_avoidance_violation (the arm close to itself): reset to recover"},
+     "self_collision_avoidance_violation (the arm close to itself): reset to recover"},
     {"joint_velocity_violation",
-     "robot: joint_velocity_violation (a joint above its speed limit): reset to recover"},
+     "joint_velocity_violation (a joint above its speed limit): reset to recover"},
     {"cartesian_velocity_violation",
-     "robot: cartesian_velocity_violation (the flange above its speed limit): reset to recover"},
+     "cartesian_velocity_violation (the flange above its speed limit): reset to recover"},
     {"force_control_safety_violation",
-     "robot: force_control_safety_violation: reset to recover"},
+     "force_control_safety_violation: reset to recover"},
     {"joint_reflex",
-     "robot: reflex joint_reflex (a joint's external torque above its collision threshold): "
+     "reflex joint_reflex (a joint's external torque above its collision threshold): "
      "reset to recover; raise collision_torque_n_m for intended contact"},
     {"cartesian_reflex",
-     "robot: reflex cartesian_reflex (the external force above its collision threshold): reset "
+     "reflex cartesian_reflex (the external force above its collision threshold): reset "
      "to recover; raise collision_force_n for intended contact"},
-    {"max_goal_pose_deviation_violation", "robot: max_goal_pose_deviation_violation: reset"},
-    {"max_path_pose_deviation_violation", "robot: max_path_pose_deviation_violation: reset"},
+    {"max_goal_pose_deviation_violation", "max_goal_pose_deviation_violation: reset"},
+    {"max_path_pose_deviation_violation", "max_path_pose_deviation_violation: reset"},
     {"cartesian_velocity_profile_safety_violation",
-     "robot: cartesian_velocity_profile_safety_violation: reset"},
+     "cartesian_velocity_profile_safety_violation: reset"},
     {"joint_position_motion_generator_start_pose_invalid",
-     "robot: joint_position_motion_generator_start_pose_invalid: reset"},
+     "joint_position_motion_generator_start_pose_invalid: reset"},
     {"joint_motion_generator_position_limits_violation",
-     "robot: joint_motion_generator_position_limits_violation: reset"},
+     "joint_motion_generator_position_limits_violation: reset"},
     {"joint_motion_generator_velocity_limits_violation",
-     "robot: joint_motion_generator_velocity_limits_violation: reset"},
+     "joint_motion_generator_velocity_limits_violation: reset"},
     {"joint_motion_generator_velocity_discontinuity",
-     "robot: joint_motion_generator_velocity_discontinuity: reset"},
+     "joint_motion_generator_velocity_discontinuity: reset"},
     {"joint_motion_generator_acceleration_discontinuity",
-     "robot: joint_motion_generator_acceleration_discontinuity: reset"},
+     "joint_motion_generator_acceleration_discontinuity: reset"},
     {"cartesian_position_motion_generator_start_pose_invalid",
-     "robot: cartesian_position_motion_generator_start_pose_invalid: reset"},
+     "cartesian_position_motion_generator_start_pose_invalid: reset"},
     {"cartesian_motion_generator_elbow_limit_violation",
-     "robot: cartesian_motion_generator_elbow_limit_violation: reset"},
+     "cartesian_motion_generator_elbow_limit_violation: reset"},
     {"cartesian_motion_generator_velocity_limits_violation",
-     "robot: cartesian_motion_generator_velocity_limits_violation: reset"},
+     "cartesian_motion_generator_velocity_limits_violation: reset"},
     {"cartesian_motion_generator_velocity_discontinuity",
-     "robot: cartesian_motion_generator_velocity_discontinuity: reset"},
+     "cartesian_motion_generator_velocity_discontinuity: reset"},
     {"cartesian_motion_generator_acceleration_discontinuity",
-     "robot: cartesian_motion_generator_acceleration_discontinuity: reset"},
+     "cartesian_motion_generator_acceleration_discontinuity: reset"},
     {"cartesian_motion_generator_elbow_sign_inconsistent",
-     "robot: cartesian_motion_generator_elbow_sign_inconsistent: reset"},
+     "cartesian_motion_generator_elbow_sign_inconsistent: reset"},
     {"cartesian_motion_generator_start_elbow_invalid",
-     "robot: cartesian_motion_generator_start_elbow_invalid: reset"},
+     "cartesian_motion_generator_start_elbow_invalid: reset"},
     {"force_controller_desired_force_tolerance_violation",
-     "robot: force_controller_desired_force_tolerance_violation: reset"},
-    {"start_elbow_sign_inconsistent", "robot: start_elbow_sign_inconsistent: reset"},
+     "force_controller_desired_force_tolerance_violation: reset"},
+    {"start_elbow_sign_inconsistent", "start_elbow_sign_inconsistent: reset"},
     {"communication_constraints_violation",
-     "robot: communication_constraints_violation (the robot went without comply's torques for "
+     "communication_constraints_violation (the robot went without comply's torques for "
      "too many cycles in a row): check the network and the real-time kernel, then reset"},
     {"power_limit_violation",
-     "robot: power_limit_violation (the torques' power above the robot's limit): reset"},
+     "power_limit_violation (the torques' power above the robot's limit): reset"},
     {"cartesian_motion_generator_joint_position_limits_violation",
-     "robot: cartesian_motion_generator_joint_position_limits_violation: reset"},
+     "cartesian_motion_generator_joint_position_limits_violation: reset"},
     {"cartesian_motion_generator_joint_velocity_limits_violation",
-     "robot: cartesian_motion_generator_joint_velocity_limits_violation: reset"},
+     "cartesian_motion_generator_joint_velocity_limits_violation: reset"},
     {"cartesian_motion_generator_joint_velocity_discontinuity",
-     "robot: cartesian_motion_generator_joint_velocity_discontinuity: reset"},
+     "cartesian_motion_generator_joint_velocity_discontinuity: reset"},
     {"cartesian_motion_generator_joint_acceleration_discontinuity",
-     "robot: cartesian_motion_generator_joint_acceleration_discontinuity: reset"},
+     "cartesian_motion_generator_joint_acceleration_discontinuity: reset"},
     {"cartesian_position_motion_generator_invalid_frame",
-     "robot: cartesian_position_motion_generator_invalid_frame: reset"},
+     "cartesian_position_motion_generator_invalid_frame: reset"},
     {"controller_torque_discontinuity",
-     "robot: controller_torque_discontinuity (comply's torque jumped between two cycles more "
+     "controller_torque_discontinuity (comply's torque jumped between two cycles more "
      "than the robot allows): reset"},
     {"joint_p2p_insufficient_torque_for_planning",
-     "robot: joint_p2p_insufficient_torque_for_planning: reset"},
+     "joint_p2p_insufficient_torque_for_planning: reset"},
     {"tau_J_range_violation",
-     "robot: tau_J_range_violation (a joint torque sensor out of range): reset"},
-    {"instability_detected", "robot: instability_detected: reset"},
-    {"joint_move_in_wrong_direction", "robot: joint_move_in_wrong_direction: reset"},
+     "tau_J_range_violation (a joint torque sensor out of range): reset"},
+    {"instability_detected", "instability_detected: reset"},
+    {"joint_move_in_wrong_direction", "joint_move_in_wrong_direction: reset"},
     {"cartesian_spline_motion_generator_violation",
-     "robot: cartesian_spline_motion_generator_violation: reset"},
+     "cartesian_spline_motion_generator_violation: reset"},
     {"joint_via_motion_generator_planning_joint_limit_violation",
-     "robot: joint_via_motion_generator_planning_joint_limit_violation: reset"},
+     "joint_via_motion_generator_planning_joint_limit_violation: reset"},
     {"base_acceleration_initialization_timeout",
-     "robot: base_acceleration_initialization_timeout: reset"},
-    {"base_acceleration_invalid_reading", "robot: base_acceleration_invalid_reading: reset"},
+     "base_acceleration_initialization_timeout: reset"},
+    {"base_acceleration_invalid_reading", "base_acceleration_invalid_reading: reset"},
 }};
 
 }  // namespace
@@ -129,16 +129,16 @@ const char* stopText(const std::array<bool, fci::kErrorCount>& flags,
   }
   switch (mode) {
     case fci::RobotMode::kReflex:
-      return "robot: reflex (the robot named no reason): reset to recover";
+      return "reflex (the robot named no reason): reset to recover";
     case fci::RobotMode::kUserStopped:
-      return "robot: user stop (the external activation device is pressed): release it, then "
+      return "user stop (the external activation device is pressed): release it, then "
              "reset";
     case fci::RobotMode::kGuiding:
-      return "robot: guiding (the pilot's guiding button is held): release it, then reset";
+      return "guiding (the pilot's guiding button is held): release it, then reset";
     case fci::RobotMode::kAutomaticErrorRecovery:
-      return "robot: recovering from an error";
+      return "recovering from an error";
     case fci::RobotMode::kOther:
-      return "robot: not ready (mode Other: the brakes closed or the joints not unlocked in "
+      return "not ready (mode Other: the brakes closed or the joints not unlocked in "
              "Desk; FCI not activated)";
     case fci::RobotMode::kIdle:
     case fci::RobotMode::kMove:

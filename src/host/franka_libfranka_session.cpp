@@ -94,14 +94,15 @@ class LibfrankaSession final : public franka::FrankaSession {
 
   [[nodiscard]] const char* failure() const noexcept override { return failure_; }
 
-  std::string startTorqueControl() override {
-    if (control_) {
-      return {};
-    }
+  std::string startTorqueControl(franka::FrankaSample& first) override {
     try {
-      control_ = robot_.startTorqueControl();
+      if (!control_) {
+        control_ = robot_.startTorqueControl();
+      }
+      toSample(control_->readOnce().first, first);
       return {};
     } catch (const ::franka::Exception& error) {
+      endControl();
       return error.what();
     }
   }

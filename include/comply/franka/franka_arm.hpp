@@ -10,8 +10,8 @@
 // (the state's effort) and estimates the external wrench (readWrench), numbers its states
 // (readSequence). Its errors and modes are robotStop() texts (franka_errors.hpp): the cycle
 // enters FAULT naming them. recover() runs the robot's error recovery for a reset. hold() ends
-// the torque control: the robot then holds the arm itself, until the next write() starts it
-// again.
+// the torque control: the robot then holds the arm itself, until a cycle writes a torque without
+// asking for the hold again (the control starts at the next sample).
 //
 // Threads: the control thread makes every call to the session. What another thread asks for
 // (recover(), new collision thresholds) the control thread carries out at its next sample, when
@@ -46,7 +46,8 @@ fci::CollisionThresholds frankaCollisionThresholds(double collision_torque_n_m,
 
 struct FrankaArmStats {
   std::uint64_t states = 0;        ///< robot states read
-  std::uint64_t skipped = 0;       ///< robot states between two reads that never came
+  /// Robot states between two reads under comply's torque control that the loop never saw
+  std::uint64_t skipped = 0;
   std::uint64_t controls = 0;      ///< torque controls started
   std::uint64_t stops = 0;         ///< robot stops seen (errors, user stop, lost link)
   std::uint64_t recoveries = 0;    ///< error recoveries run
@@ -70,7 +71,9 @@ class FrankaArm final : public hardware::HardwareInterface {
   bool readWrench(Vector6d& wrench) noexcept override;
   bool readSequence(std::uint64_t& sequence) noexcept override;
   [[nodiscard]] const char* robotStop() noexcept override { return stop_; }
-  /// Starts the torque control if none runs (blocks a few robot cycles), then sends `torque`.
+  /// Sends `torque` through the running torque control. Without one, the robot holds the arm
+  /// this cycle and the control starts at the next sample (blocking a few robot cycles), unless
+  /// hold() follows in the same cycle.
   bool write(std::span<const double> torque) noexcept override;
   /// Ends the torque control: the robot holds the arm itself.
   bool hold() noexcept override;
@@ -92,6 +95,7 @@ class FrankaArm final : public hardware::HardwareInterface {
 
  private:
   void carryOutRequests() noexcept;
+  void startControl() noexcept;
   void noteStop(const char* stop) noexcept;
 
   std::unique_ptr<FrankaSession> session_;
@@ -100,6 +104,9 @@ class FrankaArm final : public hardware::HardwareInterface {
   bool sample_valid_ = false;   // control thread
   bool fresh_ = false;          // control thread: sample_ came with the last awaitSample()
   bool controlling_ = false;    // control thread: a torque control runs
+  bool wants_control_ = false;  // control thread: a write() without a hold() after it
+  FrankaSample started_on_;     // control thread: the state the last torque control started on
+  bool started_ = false;        // control thread: started_on_ is the next cycle's sample
   const char* stop_ = nullptr;  // control thread
   std::atomic<bool> stopped_{false};  // stop_ != nullptr, for recover()
   std::atomic<int> recovery_{0};      // 0 none, 1 asked, 2 done, 3 failed

@@ -50,8 +50,9 @@ class FrankaSession {
   /// while it works.
   [[nodiscard]] virtual const char* failure() const noexcept = 0;
 
-  /// Starts the client's torque control (the robot's external controller). "" or why not.
-  virtual std::string startTorqueControl() = 0;
+  /// Starts the client's torque control (the robot's external controller) and gives the state it
+  /// started on, the one the first torque answers. "" or why not.
+  virtual std::string startTorqueControl(FrankaSample& first) = 0;
   /// Ends it as the client finishes a motion: the robot holds the arm where it is.
   virtual std::string stopTorqueControl() = 0;
   /// The robot's automatic error recovery (a reflex, a limit): "" once it is ready again.

@@ -140,6 +140,14 @@ void printSummary(const LoopCounters& counters, const pipeline::GateCounts& coun
   }
 }
 
+/// A run that faulted says so, and why it last did (the diagnostics' last_fault).
+void printFaults(const pipeline::DiagnosticsSnapshot& diagnostics, std::ostream& out) {
+  if (diagnostics.faults > 0) {
+    out << "comply run: the controller faulted " << diagnostics.faults << " time"
+        << (diagnostics.faults == 1 ? "" : "s") << ", last: " << diagnostics.last_fault << "\n";
+  }
+}
+
 void printRecording(const HostRecording& recording, std::ostream& out) {
   const record::RecorderStats stats = recording.stats();
   out << "comply run: recorded " << stats.written << " messages to " << recording.path() << " ("
@@ -276,6 +284,7 @@ int runWith(const LiveHostOptions& options,
   publishDiagnostics(context, outcomeMessages(gate.takeOutcomes()));
   transport->flush(1.0);
   printSummary(observer.counters(), gate.counts(), loop.stats(), *transport, backend, out);
+  printFaults(wrapper.diagnostics(), out);
   if (recording != nullptr) {
     recording->stop();
     printRecording(*recording, out);

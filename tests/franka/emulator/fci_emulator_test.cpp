@@ -21,6 +21,7 @@ namespace {
 
 using testing::connect;
 using testing::emulatorOptions;
+using testing::start;
 
 /// Answers the state read last and `count` more with `torque`, as a control loop does.
 void answer(FrankaSession& session, int count, const std::array<double, 7>& torque = {}) {
@@ -100,7 +101,7 @@ TEST(FciEmulator, ConnectedClientGetsTheStateEveryMillisecond) {
 TEST(FciEmulator, TorqueControlStartsRunsAndFinishes) {
   FrankaEmulator robot(emulatorOptions(0.5));
   auto session = connect(robot);
-  ASSERT_EQ(session->startTorqueControl(), "");
+  ASSERT_EQ(start(*session), "");
   EXPECT_TRUE(robot.state().torque_control);
   const JointVector start = robot.state().position;
   answer(*session, 300);  // zero torque: the robot's gravity compensation carries the arm
@@ -128,7 +129,7 @@ TEST(FciEmulator, TorqueControlStartsRunsAndFinishes) {
 TEST(FciEmulator, StatesWithoutACommandEndTheMotionWithACommunicationError) {
   FrankaEmulator robot(emulatorOptions(0.0));  // the robot's own rule: no waiting
   auto session = connect(robot);
-  ASSERT_EQ(session->startTorqueControl(), "");
+  ASSERT_EQ(start(*session), "");
   answer(*session, 50);
   // The client stops answering (a stalled loop): after 20 states in a row, a reflex.
   const FrankaSample stopped = readUntil(
@@ -142,12 +143,12 @@ TEST(FciEmulator, StatesWithoutACommandEndTheMotionWithACommunicationError) {
   EXPECT_GE(stats.longest_lost_run, 20U);
   EXPECT_EQ(stats.reflexes, 1U);
   // No motion starts until the error is recovered.
-  EXPECT_NE(session->startTorqueControl(), "");
+  EXPECT_NE(start(*session), "");
   ASSERT_EQ(session->recover(), "");
   const FrankaSample idle = readUntil(
       *session, [](const FrankaSample& s) { return s.robot_mode == fci::RobotMode::kIdle; });
   EXPECT_FALSE(idle.errors[25]);
-  ASSERT_EQ(session->startTorqueControl(), "");
+  ASSERT_EQ(start(*session), "");
   answer(*session, 20);
   EXPECT_EQ(robot.stats().recoveries, 1U);
 }
@@ -155,7 +156,7 @@ TEST(FciEmulator, StatesWithoutACommandEndTheMotionWithACommunicationError) {
 TEST(FciEmulator, FewLostCommandsAreRiddenThroughAndCounted) {
   FrankaEmulator robot(emulatorOptions(0.5));
   auto session = connect(robot);
-  ASSERT_EQ(session->startTorqueControl(), "");
+  ASSERT_EQ(start(*session), "");
   answer(*session, 20);
   robot.loseCommands(5);
   answer(*session, 30);
@@ -178,7 +179,7 @@ TEST(FciEmulator, FewLostCommandsAreRiddenThroughAndCounted) {
 TEST(FciEmulator, AnInjectedReflexEndsTheMotionNamingIt) {
   FrankaEmulator robot(emulatorOptions(0.5));
   auto session = connect(robot);
-  ASSERT_EQ(session->startTorqueControl(), "");
+  ASSERT_EQ(start(*session), "");
   answer(*session, 20);
   robot.reflex(6);  // joint_reflex
   const FrankaSample stopped = readUntil(
@@ -194,7 +195,7 @@ TEST(FciEmulator, APushAboveTheCollisionThresholdIsAReflexAndRaisedThresholdsLet
   FrankaEmulator robot(emulatorOptions(0.5));
   auto session = connect(robot);
   ASSERT_EQ(session->setCollisionThresholds(frankaCollisionThresholds(100.0, 20.0)), "");
-  ASSERT_EQ(session->startTorqueControl(), "");
+  ASSERT_EQ(start(*session), "");
   answer(*session, 20);
   Vector6d push = Vector6d::Zero();
   push[2] = -35.0;  // N, down on the tool
@@ -208,7 +209,7 @@ TEST(FciEmulator, APushAboveTheCollisionThresholdIsAReflexAndRaisedThresholdsLet
   (void)readUntil(*session,
                   [](const FrankaSample& s) { return s.robot_mode == fci::RobotMode::kIdle; });
   ASSERT_EQ(session->setCollisionThresholds(frankaCollisionThresholds(100.0, 60.0)), "");
-  ASSERT_EQ(session->startTorqueControl(), "");
+  ASSERT_EQ(start(*session), "");
   robot.push(push);
   FrankaSample sample;
   for (int state = 0; state < 300; ++state) {

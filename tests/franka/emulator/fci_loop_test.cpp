@@ -15,10 +15,8 @@ TEST(FciLoop, SixtySecondsOfStatesWithoutALostCycle) {
   // against the client; an answer after its cycle would still count as late.
   FrankaEmulator robot(testing::emulatorOptions(0.5));
   auto session = testing::connect(robot);
-  ASSERT_EQ(session->startTorqueControl(), "");
   FrankaSample sample;
-  ASSERT_TRUE(session->writeTorque(std::array<double, 7>{}));  // the state the start read
-  ASSERT_TRUE(session->read(sample, 1.0));
+  ASSERT_EQ(session->startTorqueControl(sample), "");  // the first torque answers its state
   const std::array<double, 7> hold_q = sample.q;
   std::uint64_t last = sample.time_ms;
   std::uint64_t gaps = 0;

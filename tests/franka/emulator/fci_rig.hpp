@@ -2,6 +2,7 @@
 // The emulated Franka robot and comply's FCI client on loopback, for the tests.
 
 #include <memory>
+#include <string>
 
 #include "comply/franka/fci_session.hpp"
 #include "comply/franka_emulator/franka_emulator.hpp"
@@ -20,6 +21,12 @@ inline std::unique_ptr<FrankaSession> connect(const FrankaEmulator& robot) {
   options.robot_ip = "127.0.0.1";
   options.command_port = robot.commandPort();
   return makeFciSession(options);
+}
+
+/// Starts the torque control; "" or why not.
+inline std::string start(FrankaSession& session) {
+  FrankaSample first;
+  return session.startTorqueControl(first);
 }
 
 }  // namespace comply::franka::testing

@@ -57,11 +57,13 @@ class ScriptedSession final : public FrankaSession {
   [[nodiscard]] const char* failure() const noexcept override {
     return script_.link_lost ? "the test's link is down" : nullptr;
   }
-  std::string startTorqueControl() override {
+  std::string startTorqueControl(FrankaSample& first) override {
     ++script_.starts;
     script_.controlling = true;
     script_.last.torque_control = true;
     script_.last.robot_mode = fci::RobotMode::kMove;
+    ++script_.last.time_ms;  // the robot switched within a state
+    first = script_.last;
     return {};
   }
   std::string stopTorqueControl() override {
@@ -141,14 +143,24 @@ TEST(FrankaArm, StateWrenchAndSequenceAreTheRobots) {
   EXPECT_DOUBLE_EQ(script.thresholds[0].force_collision_nominal[3], 2.0);  // N m: 20 N x 0.1 m
 }
 
-TEST(FrankaArm, FirstWriteStartsTheTorqueControlAndHoldEndsIt) {
+/// One control cycle as the loop runs it: the next sample, then the torque (and a hold).
+bool cycle(FrankaArm& arm, const std::array<double, 7>& torque, bool hold = false) {
+  if (!arm.awaitSample() || !arm.write(torque)) {
+    return false;
+  }
+  return !hold || arm.hold();
+}
+
+TEST(FrankaArm, TorqueControlStartsAfterAWriteAndHoldEndsIt) {
   Script script;
   FrankaArm arm = makeArm(script);
   const std::array<double, 7> torque{1, 2, 3, 4, 5, 6, 7};
   ASSERT_TRUE(arm.write(torque));
+  EXPECT_EQ(script.starts, 0);  // the robot holds this cycle
+  EXPECT_TRUE(script.torques.empty());
+  ASSERT_TRUE(cycle(arm, torque));
   EXPECT_EQ(script.starts, 1);
-  ASSERT_TRUE(arm.awaitSample());
-  ASSERT_TRUE(arm.write(torque));
+  ASSERT_TRUE(cycle(arm, torque));
   EXPECT_EQ(script.starts, 1);  // one start for a run of cycles
   ASSERT_EQ(script.torques.size(), 2U);
   EXPECT_DOUBLE_EQ(script.torques[1][6], 7.0);
@@ -156,11 +168,25 @@ TEST(FrankaArm, FirstWriteStartsTheTorqueControlAndHoldEndsIt) {
   EXPECT_EQ(script.stops, 1);
   ASSERT_TRUE(arm.awaitSample());
   EXPECT_EQ(arm.robotStop(), nullptr);  // ended by comply: not a stop
-  ASSERT_TRUE(arm.write(torque));
-  EXPECT_EQ(script.starts, 2);
-  EXPECT_EQ(arm.stats().controls, 2U);
+  EXPECT_EQ(arm.stats().controls, 1U);
   const std::array<double, 6> six{};
   EXPECT_FALSE(arm.write(six));  // a wrong size never reaches the robot
+}
+
+TEST(FrankaArm, AHoldEveryCycleKeepsTheRobotHolding) {
+  // A FAULT at rest writes its hold torque and asks for the robot's hold in every cycle: the
+  // torque control must not start and end each time.
+  Script script;
+  FrankaArm arm = makeArm(script);
+  const std::array<double, 7> torque{};
+  for (int i = 0; i < 10; ++i) {
+    ASSERT_TRUE(cycle(arm, torque, true));
+  }
+  EXPECT_EQ(script.starts, 0);
+  EXPECT_EQ(script.stops, 0);
+  ASSERT_TRUE(cycle(arm, torque));
+  ASSERT_TRUE(cycle(arm, torque));
+  EXPECT_EQ(script.starts, 1);
 }
 
 TEST(FrankaArm, AReflexIsAStopNamingItAndAResetRecovers) {
@@ -168,6 +194,7 @@ TEST(FrankaArm, AReflexIsAStopNamingItAndAResetRecovers) {
   FrankaArm arm = makeArm(script);
   const std::array<double, 7> torque{};
   ASSERT_TRUE(arm.write(torque));
+  ASSERT_TRUE(cycle(arm, torque));
   FrankaSample reflex = idleState(101);
   reflex.robot_mode = fci::RobotMode::kReflex;
   reflex.errors[6] = true;  // joint_reflex
@@ -191,6 +218,7 @@ TEST(FrankaArm, AReflexIsAStopNamingItAndAResetRecovers) {
   EXPECT_EQ(script.recoveries, 1);
   EXPECT_EQ(arm.robotStop(), nullptr);
   ASSERT_TRUE(arm.write(torque));
+  ASSERT_TRUE(cycle(arm, torque));
   EXPECT_EQ(script.starts, 2);
   const FrankaArmStats stats = arm.stats();
   EXPECT_EQ(stats.stops, 1U);
@@ -228,6 +256,7 @@ TEST(FrankaArm, ControlEndedFromOutsideStaysAStopUntilRecovered) {
   FrankaArm arm = makeArm(script);
   const std::array<double, 7> torque{};
   ASSERT_TRUE(arm.write(torque));
+  ASSERT_TRUE(cycle(arm, torque));
   script.controlling = false;  // Desk or another client ended it, no error named
   script.states.push_back(idleState(101));
   ASSERT_TRUE(arm.awaitSample());
@@ -257,6 +286,7 @@ TEST(FrankaArm, CollisionThresholdsChangeBetweenTwoTorqueControls) {
   FrankaArm arm = makeArm(script);
   const std::array<double, 7> torque{};
   ASSERT_TRUE(arm.write(torque));
+  ASSERT_TRUE(cycle(arm, torque));
   ASSERT_TRUE(arm.requestCollisionThresholds(frankaCollisionThresholds(60.0, 80.0)));
   EXPECT_FALSE(arm.requestCollisionThresholds(frankaCollisionThresholds(30.0, 30.0)));
   ASSERT_TRUE(arm.awaitSample());
