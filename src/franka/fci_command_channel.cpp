@@ -148,7 +148,7 @@ void FciCommandChannel::readResponses(const std::stop_token& stop) {
     filed_.notify_all();
   }
   const std::lock_guard lock(mutex_);
-  closed_ = true;
+  closed_.store(true, std::memory_order_release);
   filed_.notify_all();
 }
 
@@ -175,7 +175,7 @@ bool FciCommandChannel::await(std::uint32_t command_id, double timeout_s,
       found->second.pop_front();
       return true;
     }
-    if (closed_ || filed_.wait_until(lock, deadline) == std::cv_status::timeout) {
+    if (closed_.load(std::memory_order_acquire) || filed_.wait_until(lock, deadline) == std::cv_status::timeout) {
       found = responses_.find(command_id);
       if (found != responses_.end() && !found->second.empty()) {
         continue;
@@ -185,9 +185,5 @@ bool FciCommandChannel::await(std::uint32_t command_id, double timeout_s,
   }
 }
 
-bool FciCommandChannel::closed() const {
-  const std::lock_guard lock(mutex_);
-  return closed_;
-}
 
 }  // namespace comply::franka

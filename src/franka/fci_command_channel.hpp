@@ -2,6 +2,7 @@
 // The FCI's TCP side for a client (fci_session.hpp): requests out, and a reader thread that files
 // every response by its command id, for the caller that waits for it. Not real-time.
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -37,7 +38,8 @@ class FciCommandChannel {
   bool await(std::uint32_t command_id, double timeout_s, FciResponse& response);
   /// The next response to `command_id` if one is in.
   bool take(std::uint32_t command_id, FciResponse& response);
-  [[nodiscard]] bool closed() const;
+  /// Any thread, without a lock (the control thread asks every cycle).
+  [[nodiscard]] bool closed() const noexcept { return closed_.load(std::memory_order_acquire); }
   /// The robot's address as this connection sees it (IPv4, network order).
   [[nodiscard]] std::uint32_t peerAddress() const noexcept { return peer_address_; }
 
@@ -51,7 +53,7 @@ class FciCommandChannel {
   mutable std::mutex mutex_;
   std::condition_variable filed_;
   std::map<std::uint32_t, std::deque<FciResponse>> responses_;
-  bool closed_ = false;
+  std::atomic<bool> closed_{false};
   std::jthread reader_;
 };
 
