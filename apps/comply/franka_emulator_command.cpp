@@ -41,8 +41,8 @@ void printStatus(const franka::FrankaEmulator& emulator, std::ostream& out) {
       << (state.torque_control ? " (torque control)" : "") << ", motions " << stats.motions
       << ", answered " << stats.answered << ", late " << stats.late << ", lost " << stats.lost
       << " (longest run " << stats.longest_lost_run << "), reflexes " << stats.reflexes
-      << (stats.last_reflex.empty() ? "" : " (last: " + stats.last_reflex + ")")
-      << ", recoveries " << stats.recoveries << "\n"
+      << (stats.last_reflex.empty() ? "" : " (last: " + stats.last_reflex + ")") << ", recoveries "
+      << stats.recoveries << "\n"
       << std::flush;
 }
 
@@ -82,8 +82,7 @@ CLI::App* addFrankaEmulatorCommand(CLI::App& app, FrankaEmulatorCommandOptions& 
                    "permitted)")
       ->check(CLI::Range(0, 99));
   command->add_option("--reflex-at", options.reflex_at_s, "[s] a reflex then (0: none)");
-  command->add_option("--reflex", options.reflex, "the reflex's error name")
-      ->capture_default_str();
+  command->add_option("--reflex", options.reflex, "the reflex's error name")->capture_default_str();
   command->add_option("--lose-at", options.lose_at_s, "[s] commands lost then (0: none)");
   command->add_option("--lose-count", options.lose_count, "how many commands are lost")
       ->capture_default_str();
@@ -109,8 +108,8 @@ int frankaEmulatorCommand(const FrankaEmulatorCommandOptions& options, std::ostr
   emulator_options.scene.tool = options.tool;
   std::atomic<bool>& stop = stopOnSignals();
   franka::FrankaEmulator emulator(emulator_options);
-  out << "comply franka-emulator: an FR3 (FCI protocol " << franka::fci::kProtocolVersion
-      << ") on " << options.address << ":" << emulator.commandPort() << "\n"
+  out << "comply franka-emulator: an FR3 (FCI protocol " << franka::fci::kProtocolVersion << ") on "
+      << options.address << ":" << emulator.commandPort() << "\n"
       << std::flush;
   const auto start = std::chrono::steady_clock::now();
   auto next_status = start + std::chrono::seconds(1);

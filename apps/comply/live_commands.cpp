@@ -36,7 +36,8 @@ CLI::App* addRunCommand(CLI::App& app, RunOptions* run) {
   run_command->add_flag("--sim", run->sim, "a simulated arm (MuJoCo): --hardware sim");
   run_command
       ->add_option("--hardware", run->hardware,
-                   "the robot: a built-in backend (sim; ur: docs/ur.md; franka: docs/franka.md), a backend library (.so), "
+                   "the robot: a built-in backend (sim; ur: docs/ur.md; franka: docs/franka.md), a "
+                   "backend library (.so), "
                    "or NAME for "
                    "libcomply_hardware_NAME.so on the plugin path")
       ->capture_default_str();

@@ -26,11 +26,10 @@
 
 #include "cli_options.hpp"
 #include "config_command.hpp"
+#include "emulator_commands.hpp"
 #include "experiment_commands.hpp"
 #include "export_command.hpp"
-#include "franka_emulator_command.hpp"
 #include "live_commands.hpp"
-#include "ur_emulator_command.hpp"
 
 int main(int argc, char** argv) {
   using namespace comply::app;
@@ -45,8 +44,6 @@ int main(int argc, char** argv) {
   ConfigOptions config;
   CodegenOptions codegen;
   PluginNewOptions plugin_new;
-  UrEmulatorCommandOptions ur_emulator;
-  FrankaEmulatorCommandOptions franka_emulator;
   CLI::App* bench_command = addBenchCommand(app, bench);
   CLI::App* validate_command = addValidateCommand(app, validate);
   CLI::App* sim_command = addSimCommand(app, sim);
@@ -58,8 +55,7 @@ int main(int argc, char** argv) {
   CLI::App* config_command = addConfigCommand(app, config);
   CLI::App* codegen_simulink = addCodegenCommand(app, codegen);
   CLI::App* plugin_new_command = addPluginCommand(app, plugin_new);
-  CLI::App* ur_emulator_command = addUrEmulatorCommand(app, ur_emulator);
-  CLI::App* franka_emulator_command = addFrankaEmulatorCommand(app, franka_emulator);
+  const EmulatorCommands emulators = addEmulatorCommands(app);
 
   try {
     app.parse(argc, argv);
@@ -101,11 +97,8 @@ int main(int argc, char** argv) {
     if (plugin_new_command->parsed()) {
       return pluginNewCommand(plugin_new, std::cout, std::cerr);
     }
-    if (ur_emulator_command->parsed()) {
-      return urEmulatorCommand(ur_emulator, std::cout, std::cerr);
-    }
-    if (franka_emulator_command->parsed()) {
-      return frankaEmulatorCommand(franka_emulator, std::cout, std::cerr);
+    if (emulators.parsed()) {
+      return emulators.run(std::cout, std::cerr);
     }
     return 2;
   } catch (const std::bad_alloc&) {

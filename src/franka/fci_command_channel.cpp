@@ -97,8 +97,7 @@ FciCommandChannel::~FciCommandChannel() {
   ::close(socket_);
 }
 
-std::uint32_t FciCommandChannel::send(fci::Command command,
-                                      std::span<const std::uint8_t> payload) {
+std::uint32_t FciCommandChannel::send(fci::Command command, std::span<const std::uint8_t> payload) {
   const std::lock_guard lock(send_mutex_);
   std::vector<std::uint8_t> message(fci::kHeaderBytes + payload.size());
   const std::uint32_t id = next_id_++;
@@ -163,11 +162,9 @@ bool FciCommandChannel::take(std::uint32_t command_id, FciResponse& response) {
   return true;
 }
 
-bool FciCommandChannel::await(std::uint32_t command_id, double timeout_s,
-                              FciResponse& response) {
+bool FciCommandChannel::await(std::uint32_t command_id, double timeout_s, FciResponse& response) {
   std::unique_lock lock(mutex_);
-  const auto deadline =
-      std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   for (;;) {
     auto found = responses_.find(command_id);
     if (found != responses_.end() && !found->second.empty()) {
@@ -175,7 +172,8 @@ bool FciCommandChannel::await(std::uint32_t command_id, double timeout_s,
       found->second.pop_front();
       return true;
     }
-    if (closed_.load(std::memory_order_acquire) || filed_.wait_until(lock, deadline) == std::cv_status::timeout) {
+    if (closed_.load(std::memory_order_acquire) ||
+        filed_.wait_until(lock, deadline) == std::cv_status::timeout) {
       found = responses_.find(command_id);
       if (found != responses_.end() && !found->second.empty()) {
         continue;
@@ -184,6 +182,5 @@ bool FciCommandChannel::await(std::uint32_t command_id, double timeout_s,
     }
   }
 }
-
 
 }  // namespace comply::franka

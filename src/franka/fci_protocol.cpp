@@ -12,16 +12,16 @@ static_assert(std::endian::native == std::endian::little,
               "the FCI's numbers are little-endian and are copied as they are");
 
 constexpr std::array<std::uint8_t, static_cast<std::size_t>(StateField::kCount)> kFieldLengths{
-    16, 16, 16, 16, 16, 16,    // O_T_EE .. NE_T_EE
-    1,  9,  3,  1,  9,  3,     // m_ee, I_ee, F_x_Cee, m_load, I_load, F_x_Cload
-    2,  2,                     // elbow, elbow_d
-    7,  7,  7,  7,  7,  7, 7, 7,  // tau_J .. ddq_d
-    7,  6,  7,  6,             // contact and collision flags
-    7,  6,  6,                 // external torque and wrench estimates
-    6,  3,                     // O_dP_EE_d, O_ddP_O
-    2,  2,  2,                 // elbow_c, delbow_c, ddelbow_c
-    16, 6,  6,                 // O_T_EE_c, O_dP_EE_c, O_ddP_EE_c
-    7,  7,                     // theta, dtheta
+    16, 16, 16, 16, 16, 16,        // O_T_EE .. NE_T_EE
+    1,  9,  3,  1,  9,  3,         // m_ee, I_ee, F_x_Cee, m_load, I_load, F_x_Cload
+    2,  2,                         // elbow, elbow_d
+    7,  7,  7,  7,  7,  7,  7, 7,  // tau_J .. ddq_d
+    7,  6,  7,  6,                 // contact and collision flags
+    7,  6,  6,                     // external torque and wrench estimates
+    6,  3,                         // O_dP_EE_d, O_ddP_O
+    2,  2,  2,                     // elbow_c, delbow_c, ddelbow_c
+    16, 6,  6,                     // O_T_EE_c, O_dP_EE_c, O_ddP_EE_c
+    7,  7,                         // theta, dtheta
 };
 
 constexpr std::array<std::size_t, kFieldLengths.size() + 1> fieldStarts() {
@@ -93,10 +93,18 @@ class ReadCursor {
 }  // namespace
 
 const char* commandName(Command command) noexcept {
-  static constexpr std::array<const char*, kCommandCount> kNames{
-      "Connect", "Move",         "StopMove", "SetCollisionBehavior", "SetJointImpedance",
-      "SetCartesianImpedance", "SetGuidingMode", "SetEEToK", "SetNEToEE", "SetLoad",
-      "AutomaticErrorRecovery", "LoadModelLibrary"};
+  static constexpr std::array<const char*, kCommandCount> kNames{"Connect",
+                                                                 "Move",
+                                                                 "StopMove",
+                                                                 "SetCollisionBehavior",
+                                                                 "SetJointImpedance",
+                                                                 "SetCartesianImpedance",
+                                                                 "SetGuidingMode",
+                                                                 "SetEEToK",
+                                                                 "SetNEToEE",
+                                                                 "SetLoad",
+                                                                 "AutomaticErrorRecovery",
+                                                                 "LoadModelLibrary"};
   const auto index = static_cast<std::uint32_t>(command);
   return index < kCommandCount ? kNames[index] : "unknown";
 }

@@ -79,13 +79,14 @@ class FciSession final : public FrankaSession {
     std::memcpy(connect.data(), &fci::kProtocolVersion, 2);
     std::memcpy(connect.data() + 2, &udp_port, 2);
     FciResponse response;
-    if (!channel_.await(channel_.send(fci::Command::kConnect, connect),
-                        options.connect_timeout_s, response)) {
+    if (!channel_.await(channel_.send(fci::Command::kConnect, connect), options.connect_timeout_s,
+                        response)) {
       throw hardware::BackendError("the Franka robot at " + options.robot_ip +
                                    " did not answer Connect");
     }
     version_ = response.version;
-    if (response.status == static_cast<std::uint8_t>(fci::ConnectStatus::kIncompatibleLibraryVersion)) {
+    if (response.status ==
+        static_cast<std::uint8_t>(fci::ConnectStatus::kIncompatibleLibraryVersion)) {
       throw hardware::BackendError(
           "the Franka robot at " + options.robot_ip + " speaks FCI protocol version " +
           std::to_string(version_) + "; comply's own client speaks " +
@@ -205,7 +206,7 @@ class FciSession final : public FrankaSession {
       return "no answer when the torque control finished";
     }
     return response.status == 0 ? std::string()
-                                 : "the torque control " + moveStatusText(response.status);
+                                : "the torque control " + moveStatusText(response.status);
   }
 
   std::string recover() override {
@@ -223,8 +224,8 @@ class FciSession final : public FrankaSession {
       case fci::RecoveryStatus::kEmergencyAborted:
         return "the user stop is pressed";
       default:
-        return "the robot refused the error recovery (status " +
-               std::to_string(response.status) + ")";
+        return "the robot refused the error recovery (status " + std::to_string(response.status) +
+               ")";
     }
   }
 

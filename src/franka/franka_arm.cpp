@@ -62,14 +62,13 @@ FrankaArm::FrankaArm(std::unique_ptr<FrankaSession> session, FrankaArmOptions op
   if (!session_) {
     throw hardware::BackendError("a Franka arm needs a session to its robot");
   }
-  if (const std::string why = session_->setCollisionThresholds(options_.collision);
-      !why.empty()) {
+  if (const std::string why = session_->setCollisionThresholds(options_.collision); !why.empty()) {
     throw hardware::BackendError("the Franka robot refused the collision thresholds: " + why);
   }
   if (!awaitSample()) {
-    throw hardware::BackendError(std::string("no state from the Franka robot: ") +
-                                 (session_->failure() != nullptr ? session_->failure()
-                                                                 : "none within link_timeout_s"));
+    throw hardware::BackendError(
+        std::string("no state from the Franka robot: ") +
+        (session_->failure() != nullptr ? session_->failure() : "none within link_timeout_s"));
   }
 }
 
@@ -114,8 +113,9 @@ bool FrankaArm::awaitSample() noexcept {
   const char* stop = stopText(sample_.errors, sample_.robot_mode);
   if (stop == nullptr && controlling_ && !sample_.torque_control) {
     // Ended from outside comply: by a reflex (its flags name it) or a stop request (none).
-    const bool named = std::any_of(sample_.last_motion_errors.begin(),
-                                   sample_.last_motion_errors.end(), [](bool flag) { return flag; });
+    const bool named =
+        std::any_of(sample_.last_motion_errors.begin(), sample_.last_motion_errors.end(),
+                    [](bool flag) { return flag; });
     stop = named ? stopText(sample_.last_motion_errors, fci::RobotMode::kReflex) : kControlEnded;
   }
   if (stop != nullptr) {

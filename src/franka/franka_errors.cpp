@@ -25,8 +25,7 @@ constexpr std::array<ErrorText, fci::kErrorCount> kErrors{{
      "joint_velocity_violation (a joint above its speed limit): reset to recover"},
     {"cartesian_velocity_violation",
      "cartesian_velocity_violation (the flange above its speed limit): reset to recover"},
-    {"force_control_safety_violation",
-     "force_control_safety_violation: reset to recover"},
+    {"force_control_safety_violation", "force_control_safety_violation: reset to recover"},
     {"joint_reflex",
      "reflex joint_reflex (a joint's external torque above its collision threshold): "
      "reset to recover; raise collision_torque_n_m for intended contact"},
@@ -84,16 +83,14 @@ constexpr std::array<ErrorText, fci::kErrorCount> kErrors{{
      "than the robot allows): reset"},
     {"joint_p2p_insufficient_torque_for_planning",
      "joint_p2p_insufficient_torque_for_planning: reset"},
-    {"tau_J_range_violation",
-     "tau_J_range_violation (a joint torque sensor out of range): reset"},
+    {"tau_J_range_violation", "tau_J_range_violation (a joint torque sensor out of range): reset"},
     {"instability_detected", "instability_detected: reset"},
     {"joint_move_in_wrong_direction", "joint_move_in_wrong_direction: reset"},
     {"cartesian_spline_motion_generator_violation",
      "cartesian_spline_motion_generator_violation: reset"},
     {"joint_via_motion_generator_planning_joint_limit_violation",
      "joint_via_motion_generator_planning_joint_limit_violation: reset"},
-    {"base_acceleration_initialization_timeout",
-     "base_acceleration_initialization_timeout: reset"},
+    {"base_acceleration_initialization_timeout", "base_acceleration_initialization_timeout: reset"},
     {"base_acceleration_invalid_reading", "base_acceleration_invalid_reading: reset"},
 }};
 

@@ -49,6 +49,9 @@ class FrankaEmulator::Impl {
   /// One request, with the mutex held; false ends the connection (a protocol error).
   bool handle(const fci::Header& header, std::span<const std::uint8_t> payload,
               const sockaddr_in& peer);
+  bool handleConnect(const fci::Header& header, std::span<const std::uint8_t> payload,
+                     const sockaddr_in& peer);
+  void handleSetter(const fci::Header& header, std::span<const std::uint8_t> payload);
   void handleMove(const fci::Header& header, std::span<const std::uint8_t> payload);
   void handleRecovery(const fci::Header& header);
   /// A response on the command connection (any thread; its own lock for the socket).

@@ -161,8 +161,7 @@ void FrankaEmulator::Impl::respond(fci::Command command, std::uint32_t id, std::
   }
 }
 
-bool FrankaEmulator::Impl::handle(const fci::Header& header,
-                                  std::span<const std::uint8_t> payload,
+bool FrankaEmulator::Impl::handle(const fci::Header& header, std::span<const std::uint8_t> payload,
                                   const sockaddr_in& peer) {
   if (static_cast<std::uint32_t>(header.command) >= fci::kCommandCount ||
       payload.size() != fci::requestPayloadBytes(header.command)) {
@@ -172,32 +171,9 @@ bool FrankaEmulator::Impl::handle(const fci::Header& header,
   if (header.command != fci::Command::kConnect && !connected) {
     return false;
   }
-  const bool moving = motion_.has_value() || pending_motion_.has_value();
-  const auto setter = [&](bool accepted) {
-    const auto status = moving ? fci::SetterStatus::kRejected
-                        : accepted ? fci::SetterStatus::kSuccess
-                                   : fci::SetterStatus::kInvalidArgument;
-    respond(header.command, header.command_id, static_cast<std::uint8_t>(status));
-  };
   switch (header.command) {
-    case fci::Command::kConnect: {
-      std::uint16_t version = 0;
-      std::uint16_t udp_port = 0;
-      std::memcpy(&version, payload.data(), 2);
-      std::memcpy(&udp_port, payload.data() + 2, 2);
-      if (version != fci::kProtocolVersion) {
-        respond(header.command, header.command_id,
-                static_cast<std::uint8_t>(fci::ConnectStatus::kIncompatibleLibraryVersion),
-                fci::kProtocolVersion);
-        return true;
-      }
-      client_udp_ = peer;
-      client_udp_.sin_port = htons(udp_port);
-      streaming_ = true;
-      ++stats_.connections;
-      respond(header.command, header.command_id, 0, fci::kProtocolVersion);
-      return true;
-    }
+    case fci::Command::kConnect:
+      return handleConnect(header, payload, peer);
     case fci::Command::kMove:
       handleMove(header, payload);
       return true;
@@ -208,35 +184,14 @@ bool FrankaEmulator::Impl::handle(const fci::Header& header,
       pending_motion_.reset();
       respond(header.command, header.command_id, 0);
       return true;
-    case fci::Command::kSetCollisionBehavior: {
-      const fci::CollisionThresholds thresholds = fci::getCollisionThresholds(
-          std::span<const std::uint8_t, fci::kCollisionRequestBytes>(payload.data(),
-                                                                     fci::kCollisionRequestBytes));
-      if (!moving) {
-        collision_ = thresholds;
-      }
-      setter(true);
-      return true;
-    }
-    case fci::Command::kSetJointImpedance: {
-      std::array<double, 7> stiffness{};
-      std::memcpy(stiffness.data(), payload.data(), sizeof stiffness);
-      bool valid = true;
-      for (const double k : stiffness) {
-        valid = valid && std::isfinite(k) && k >= 0.0 && k <= 14250.0;
-      }
-      if (valid && !moving) {
-        joint_stiffness_ = stiffness;
-      }
-      setter(valid);
-      return true;
-    }
+    case fci::Command::kSetCollisionBehavior:
+    case fci::Command::kSetJointImpedance:
     case fci::Command::kSetCartesianImpedance:
     case fci::Command::kSetGuidingMode:
     case fci::Command::kSetEEToK:
     case fci::Command::kSetNEToEE:
     case fci::Command::kSetLoad:
-      setter(true);  // taken; the emulator's plant does not use them
+      handleSetter(header, payload);
       return true;
     case fci::Command::kAutomaticErrorRecovery:
       handleRecovery(header);
@@ -248,11 +203,58 @@ bool FrankaEmulator::Impl::handle(const fci::Header& header,
   return false;
 }
 
+bool FrankaEmulator::Impl::handleConnect(const fci::Header& header,
+                                         std::span<const std::uint8_t> payload,
+                                         const sockaddr_in& peer) {
+  std::uint16_t version = 0;
+  std::uint16_t udp_port = 0;
+  std::memcpy(&version, payload.data(), 2);
+  std::memcpy(&udp_port, payload.data() + 2, 2);
+  if (version != fci::kProtocolVersion) {
+    respond(header.command, header.command_id,
+            static_cast<std::uint8_t>(fci::ConnectStatus::kIncompatibleLibraryVersion),
+            fci::kProtocolVersion);
+    return true;
+  }
+  client_udp_ = peer;
+  client_udp_.sin_port = htons(udp_port);
+  streaming_ = true;
+  ++stats_.connections;
+  respond(header.command, header.command_id, 0, fci::kProtocolVersion);
+  return true;
+}
+
+void FrankaEmulator::Impl::handleSetter(const fci::Header& header,
+                                        std::span<const std::uint8_t> payload) {
+  // The robot takes settings only between motions.
+  const bool moving = motion_.has_value() || pending_motion_.has_value();
+  bool valid = true;
+  if (header.command == fci::Command::kSetCollisionBehavior && !moving) {
+    collision_ =
+        fci::getCollisionThresholds(std::span<const std::uint8_t, fci::kCollisionRequestBytes>(
+            payload.data(), fci::kCollisionRequestBytes));
+  } else if (header.command == fci::Command::kSetJointImpedance) {
+    std::array<double, 7> stiffness{};
+    std::memcpy(stiffness.data(), payload.data(), sizeof stiffness);
+    for (const double k : stiffness) {
+      valid = valid && std::isfinite(k) && k >= 0.0 && k <= 14250.0;
+    }
+    if (valid && !moving) {
+      joint_stiffness_ = stiffness;
+    }
+  }
+  // The others are taken; the emulator's plant does not use them.
+  const auto status = moving  ? fci::SetterStatus::kRejected
+                      : valid ? fci::SetterStatus::kSuccess
+                              : fci::SetterStatus::kInvalidArgument;
+  respond(header.command, header.command_id, static_cast<std::uint8_t>(status));
+}
+
 void FrankaEmulator::Impl::handleMove(const fci::Header& header,
                                       std::span<const std::uint8_t> payload) {
-  const fci::MoveRequest move = fci::getMoveRequest(
-      std::span<const std::uint8_t, fci::kMoveRequestBytes>(payload.data(),
-                                                            fci::kMoveRequestBytes));
+  const fci::MoveRequest move =
+      fci::getMoveRequest(std::span<const std::uint8_t, fci::kMoveRequestBytes>(
+          payload.data(), fci::kMoveRequestBytes));
   fci::MoveStatus refusal = fci::MoveStatus::kMotionStarted;
   if (mode_ == fci::RobotMode::kReflex || mode_ == fci::RobotMode::kUserStopped) {
     refusal = fci::MoveStatus::kRejectedBySafetyFunction;

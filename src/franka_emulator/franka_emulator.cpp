@@ -51,7 +51,8 @@ FrankaEmulator::Impl::Impl(const FrankaEmulatorOptions& options)
   updateModel(model::Quantity::kMassMatrix | model::Quantity::kPose);
   for (int joint = 0; joint < 7; ++joint) {
     const auto j = static_cast<std::size_t>(joint);
-    joint_damping_[j] = 2.0 * std::sqrt(joint_stiffness_[j] * model_data_.mass_matrix(joint, joint));
+    joint_damping_[j] =
+        2.0 * std::sqrt(joint_stiffness_[j] * model_data_.mass_matrix(joint, joint));
   }
   listen();
   server_thread_ = std::jthread([this](const std::stop_token& stop) { serve(stop); });

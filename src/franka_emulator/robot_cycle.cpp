@@ -277,7 +277,8 @@ void FrankaEmulator::Impl::sendState() {
   }
   Eigen::Matrix<double, 7, 1> target;
   for (int joint = 0; joint < 7; ++joint) {
-    target[joint] = motion_ ? target_q_[static_cast<std::size_t>(joint)] : measured_.position[joint];
+    target[joint] =
+        motion_ ? target_q_[static_cast<std::size_t>(joint)] : measured_.position[joint];
   }
   put(fci::StateField::kQ, measured_.position);
   put(fci::StateField::kTheta, measured_.position);

@@ -38,8 +38,8 @@ class LibfrankaSession final : public franka::FrankaSession {
                realtime ? ::franka::RealtimeConfig::kEnforce : ::franka::RealtimeConfig::kIgnore) {
     version_ = robot_.serverVersion();
   } catch (const ::franka::Exception& error) {
-    throw hardware::BackendError("libfranka could not connect to the Franka robot at " +
-                                 robot_ip + ": " + error.what());
+    throw hardware::BackendError("libfranka could not connect to the Franka robot at " + robot_ip +
+                                 ": " + error.what());
   }
 
   ~LibfrankaSession() override {

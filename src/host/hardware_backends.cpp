@@ -66,7 +66,8 @@ HardwareBackend simulatedArm(const pipeline::WrapperConfig& config,
 }
 
 NamedRegistry<HardwareFactory>& registry() {
-  static NamedRegistry<HardwareFactory> instance({{"sim", simulatedArm}, {"ur", urArm}, {"franka", frankaArm}});
+  static NamedRegistry<HardwareFactory> instance(
+      {{"sim", simulatedArm}, {"ur", urArm}, {"franka", frankaArm}});
   return instance;
 }
 

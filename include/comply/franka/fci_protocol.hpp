@@ -62,7 +62,7 @@ enum class ConnectStatus : std::uint8_t { kSuccess = 0, kIncompatibleLibraryVers
 /// Commands without their own statuses: StopMove's first three and AutomaticErrorRecovery's.
 enum class CommandStatus : std::uint8_t {
   kSuccess = 0,
-  kRejected = 1,                   ///< not possible now
+  kRejected = 1,                  ///< not possible now
   kRejectedBySafetyFunction = 2,  ///< a safety function is active
 };
 /// The setters (collision behaviour, impedances, frames, load, guiding mode).
@@ -118,7 +118,8 @@ struct MoveRequest {
   std::array<double, 3> goal_deviation{};
 };
 inline constexpr std::size_t kMoveRequestBytes = 56;
-void putMoveRequest(std::span<std::uint8_t, kMoveRequestBytes> out, const MoveRequest& move) noexcept;
+void putMoveRequest(std::span<std::uint8_t, kMoveRequestBytes> out,
+                    const MoveRequest& move) noexcept;
 MoveRequest getMoveRequest(std::span<const std::uint8_t, kMoveRequestBytes> in) noexcept;
 
 /// SetCollisionBehavior's thresholds, in the order on the wire: joint torques [N m] while
@@ -168,16 +169,45 @@ enum class RobotMode : std::uint8_t {
 /// The state's arrays of doubles, in their order on the wire, each with its length in
 /// stateFieldLength(). Homogeneous transforms are 4x4, column-major.
 enum class StateField : std::uint8_t {
-  kO_T_EE, kO_T_EE_d, kF_T_EE, kEE_T_K, kF_T_NE, kNE_T_EE,  // NOLINT(readability-identifier-naming)
-  kM_ee, kI_ee, kF_x_Cee, kM_load, kI_load, kF_x_Cload,      // NOLINT(readability-identifier-naming)
-  kElbow, kElbow_d,                                          // NOLINT(readability-identifier-naming)
-  kTau_J, kTau_J_d, kDtau_J, kQ, kQ_d, kDq, kDq_d, kDdq_d,   // NOLINT(readability-identifier-naming)
-  kJointContact, kCartesianContact, kJointCollision, kCartesianCollision,
-  kTauExtHatFiltered, kO_F_ext_hat_K, kK_F_ext_hat_K,  // NOLINT(readability-identifier-naming)
-  kO_dP_EE_d, kO_ddP_O,                                 // NOLINT(readability-identifier-naming)
-  kElbow_c, kDelbow_c, kDdelbow_c,                      // NOLINT(readability-identifier-naming)
-  kO_T_EE_c, kO_dP_EE_c, kO_ddP_EE_c,                   // NOLINT(readability-identifier-naming)
-  kTheta, kDtheta,
+  kO_T_EE,
+  kO_T_EE_d,
+  kF_T_EE,
+  kEE_T_K,
+  kF_T_NE,
+  kNE_T_EE,  // NOLINT(readability-identifier-naming)
+  kM_ee,
+  kI_ee,
+  kF_x_Cee,
+  kM_load,
+  kI_load,
+  kF_x_Cload,  // NOLINT(readability-identifier-naming)
+  kElbow,
+  kElbow_d,  // NOLINT(readability-identifier-naming)
+  kTau_J,
+  kTau_J_d,
+  kDtau_J,
+  kQ,
+  kQ_d,
+  kDq,
+  kDq_d,
+  kDdq_d,  // NOLINT(readability-identifier-naming)
+  kJointContact,
+  kCartesianContact,
+  kJointCollision,
+  kCartesianCollision,
+  kTauExtHatFiltered,
+  kO_F_ext_hat_K,
+  kK_F_ext_hat_K,  // NOLINT(readability-identifier-naming)
+  kO_dP_EE_d,
+  kO_ddP_O,  // NOLINT(readability-identifier-naming)
+  kElbow_c,
+  kDelbow_c,
+  kDdelbow_c,  // NOLINT(readability-identifier-naming)
+  kO_T_EE_c,
+  kO_dP_EE_c,
+  kO_ddP_EE_c,  // NOLINT(readability-identifier-naming)
+  kTheta,
+  kDtheta,
   kCount,
 };
 /// The field's number of doubles.
@@ -201,11 +231,11 @@ struct RobotStateMessage {
     return std::span<double>(values).subspan(stateFieldStart(which), stateFieldLength(which));
   }
   [[nodiscard]] std::span<const double> field(StateField which) const noexcept {
-    return std::span<const double>(values).subspan(stateFieldStart(which),
-                                                   stateFieldLength(which));
+    return std::span<const double>(values).subspan(stateFieldStart(which), stateFieldLength(which));
   }
 };
-void putRobotState(std::span<std::uint8_t, kStateBytes> out, const RobotStateMessage& state) noexcept;
+void putRobotState(std::span<std::uint8_t, kStateBytes> out,
+                   const RobotStateMessage& state) noexcept;
 RobotStateMessage getRobotState(std::span<const std::uint8_t, kStateBytes> in) noexcept;
 
 /// The client's answer to one state: a motion generator's command and the external

@@ -18,7 +18,7 @@ namespace comply::franka {
 struct FciSessionOptions {
   std::string robot_ip;  ///< IPv4
   std::uint16_t command_port = fci::kCommandPort;
-  double connect_timeout_s = 5.0;   ///< TCP connect and every command's response [s]
+  double connect_timeout_s = 5.0;  ///< TCP connect and every command's response [s]
   /// The largest deviation from its path Move allows (libfranka's defaults for a torque control)
   std::array<double, 3> path_deviation{10.0, 3.12, 6.283185307179586};
 };

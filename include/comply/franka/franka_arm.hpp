@@ -45,12 +45,12 @@ fci::CollisionThresholds frankaCollisionThresholds(double collision_torque_n_m,
                                                    double collision_force_n);
 
 struct FrankaArmStats {
-  std::uint64_t states = 0;        ///< robot states read
+  std::uint64_t states = 0;  ///< robot states read
   /// Robot states between two reads under comply's torque control that the loop never saw
   std::uint64_t skipped = 0;
-  std::uint64_t controls = 0;      ///< torque controls started
-  std::uint64_t stops = 0;         ///< robot stops seen (errors, user stop, lost link)
-  std::uint64_t recoveries = 0;    ///< error recoveries run
+  std::uint64_t controls = 0;    ///< torque controls started
+  std::uint64_t stops = 0;       ///< robot stops seen (errors, user stop, lost link)
+  std::uint64_t recoveries = 0;  ///< error recoveries run
   std::uint64_t threshold_changes = 0;
   double worst_success_rate = 1.0;  ///< the robot's command success rate, lowest seen
 };

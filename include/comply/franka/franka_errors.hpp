@@ -18,8 +18,8 @@ std::string errorNames(const std::array<bool, fci::kErrorCount>& flags);
 
 /// The FAULT text for a robot that stopped with `flags` (its active errors, or what ended the
 /// motion) in `mode`, or nullptr when it runs. Static texts: the first flag set decides
-/// ("reflex joint_reflex (...): reset to recover; ..."); a mode without a flag has its own (user stop, guiding,
-/// not ready). Real-time: no allocation.
+/// ("reflex joint_reflex (...): reset to recover; ..."); a mode without a flag has its own (user
+/// stop, guiding, not ready). Real-time: no allocation.
 const char* stopText(const std::array<bool, fci::kErrorCount>& flags, fci::RobotMode mode) noexcept;
 
 }  // namespace comply::franka

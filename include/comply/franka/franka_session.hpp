@@ -20,10 +20,10 @@ namespace comply::franka {
 
 /// One state of the robot, as the arm reads it.
 struct FrankaSample {
-  std::uint64_t time_ms = 0;    ///< the robot's clock: one per state [ms]
-  double arrived_s = 0.0;       ///< hardware::monotonicSeconds() when it was received
-  std::array<double, 7> q{};    ///< [rad]
-  std::array<double, 7> dq{};   ///< [rad/s]
+  std::uint64_t time_ms = 0;      ///< the robot's clock: one per state [ms]
+  double arrived_s = 0.0;         ///< hardware::monotonicSeconds() when it was received
+  std::array<double, 7> q{};      ///< [rad]
+  std::array<double, 7> dq{};     ///< [rad/s]
   std::array<double, 7> tau_J{};  ///< the joints' torque sensors [N m]
   /// The robot's estimate of the external wrench at its stiffness frame, base frame, force
   /// first [N, N m], in the robot's sign: what the arm exerts on its surroundings.

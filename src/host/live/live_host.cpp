@@ -161,6 +161,15 @@ void printRecording(const HostRecording& recording, std::ostream& out) {
   out.unsetf(std::ios::floatfield);
 }
 
+/// Stops `recording` (nullptr: none) and says what it wrote.
+void stopRecording(HostRecording* recording, std::ostream& out) {
+  if (recording == nullptr) {
+    return;
+  }
+  recording->stop();
+  printRecording(*recording, out);
+}
+
 /// Just below `priority`, the control thread's: a command waits for the threads that receive it,
 /// not for the scheduler.
 int receivePriority(int priority) {
@@ -233,8 +242,7 @@ int runWith(const LiveHostOptions& options,
       robot, wrapper, *backend.clock,
       {.period_s = period_s, .cycles = cycles, .warm_ahead_s = 1e-6 * options.warm_ahead_us});
   loop.setObserver(&observer);
-  Intake<Command> intake(wrapper, observer, gate);
-  intake.setHardware(&robot);
+  Intake<Command> intake(wrapper, observer, gate, &robot);
   CommittedAnswers<Command> committed(wrapper, resolved->robot.base_frame);
   const std::unique_ptr<HostRecording> recording = openRecording(options, resolved, backend);
   if (recording != nullptr) {
@@ -285,10 +293,7 @@ int runWith(const LiveHostOptions& options,
   transport->flush(1.0);
   printSummary(observer.counters(), gate.counts(), loop.stats(), *transport, backend, out);
   printFaults(wrapper.diagnostics(), out);
-  if (recording != nullptr) {
-    recording->stop();
-    printRecording(*recording, out);
-  }
+  stopRecording(recording.get(), out);
   printView(view.get(), out);
   return 0;
 }

@@ -34,9 +34,10 @@ static_assert(static_cast<int>(transport::Reason::kQueueFull) ==
 template <typename Command>
 class Intake {
  public:
+  /// A reset first runs `hardware`'s own recovery (HardwareInterface::recover; nullptr: none).
   Intake(pipeline::Wrapper<Command>& wrapper, LiveObserver<Command>& observer,
-         pipeline::CommandGate& gate)
-      : wrapper_(wrapper), observer_(observer), gate_(gate) {}
+         pipeline::CommandGate& gate, hardware::HardwareInterface* hardware = nullptr)
+      : wrapper_(wrapper), observer_(observer), gate_(gate), hardware_(hardware) {}
 
   /// One receive: its commands and chunks in stamp order, then its requests, then the writers
   /// that went away (they no longer hold the command topics).
@@ -45,9 +46,6 @@ class Intake {
   void setRecording(HostRecording* recording) noexcept { recording_ = recording; }
   /// Every command and request is also shown there (nullptr: none).
   void setView(LiveView* view) noexcept { view_ = view; }
-  /// A reset first runs the robot's own recovery there (HardwareInterface::recover; nullptr:
-  /// none).
-  void setHardware(hardware::HardwareInterface* hardware) noexcept { hardware_ = hardware; }
 
  private:
   /// A command or chunk of either kind: recorded as received, then offered to the gate.

@@ -38,12 +38,11 @@ TEST(FciLoop, SixtySecondsOfStatesWithoutALostCycle) {
   }
   ASSERT_EQ(session->stopTorqueControl(), "");
   const FrankaEmulatorStats stats = robot.stats();
-  std::printf("states %llu, answered %llu, late %llu, lost %llu, gaps %llu, worst joint error %.4f rad\n",
-              static_cast<unsigned long long>(states),
-              static_cast<unsigned long long>(stats.answered),
-              static_cast<unsigned long long>(stats.late),
-              static_cast<unsigned long long>(stats.lost), static_cast<unsigned long long>(gaps),
-              worst_error);
+  std::printf(
+      "states %llu, answered %llu, late %llu, lost %llu, gaps %llu, worst joint error %.4f rad\n",
+      static_cast<unsigned long long>(states), static_cast<unsigned long long>(stats.answered),
+      static_cast<unsigned long long>(stats.late), static_cast<unsigned long long>(stats.lost),
+      static_cast<unsigned long long>(gaps), worst_error);
   EXPECT_EQ(gaps, 0U);
   EXPECT_EQ(stats.lost, 0U);
   EXPECT_EQ(stats.reflexes, 0U);

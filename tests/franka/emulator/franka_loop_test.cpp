@@ -28,19 +28,19 @@ TEST(FrankaLoop, ACartesianTargetOnTheRobotsTorqueControl) {
   FrankaRig rig(emulator);
   const MeasuredPose home = rig.wrapper.measuredPose();
   const Eigen::Vector3d target = home.tcp_position + Eigen::Vector3d(0.03, -0.02, 0.02);
-  ASSERT_TRUE(rig.wrapper
-                  .submit(poseCommand(target, home.tcp_orientation,
-                                      hardware::monotonicSeconds() + 10.0))
-                  .accepted);
+  ASSERT_TRUE(
+      rig.wrapper
+          .submit(poseCommand(target, home.tcp_orientation, hardware::monotonicSeconds() + 10.0))
+          .accepted);
   std::this_thread::sleep_for(std::chrono::seconds(3));
   const double error_m = (emulator.state().tcp.translation() - target).norm();
   const hardware::LoopStats loop = rig.loop.stats();
   const FrankaArmStats link = rig.arm().stats();
-  std::printf("target 4.1 cm away: TCP error %.2f mm after 3 s; %lu cycles, %lu skipped states, "
-              "%lu lost commands\n",
-              error_m * 1e3, static_cast<unsigned long>(loop.cycles),
-              static_cast<unsigned long>(link.skipped),
-              static_cast<unsigned long>(emulator.stats().lost));
+  std::printf(
+      "target 4.1 cm away: TCP error %.2f mm after 3 s; %lu cycles, %lu skipped states, "
+      "%lu lost commands\n",
+      error_m * 1e3, static_cast<unsigned long>(loop.cycles),
+      static_cast<unsigned long>(link.skipped), static_cast<unsigned long>(emulator.stats().lost));
   EXPECT_LT(error_m, 3e-3);
   EXPECT_EQ(rig.state(), pipeline::WrapperState::kActive);
   EXPECT_EQ(link.controls, 1U);
