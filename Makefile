@@ -78,12 +78,12 @@ test-asan: deps
 ASAN_CI_TARGETS = schema_test schema_realtime_test pipeline_unit_test wrapper_test \
 	wrapper_realtime_test triple_buffer_tsan_test model_unit_test model_reference_test \
 	model_parsed_urdf_test model_allocation_test transport_test record_test export_unit_test \
-	viewer_unit_test ur_unit_test \
+	viewer_unit_test ur_unit_test franka_unit_test \
 	fuzz_command_json fuzz_controller_yaml fuzz_dds_sample fuzz_urdf
 test-asan-ci:
 	@$(MAKE) --no-print-directory test-asan ASAN_TARGETS="$(ASAN_CI_TARGETS)" CTEST_ARGS="-L asan_ci"
 
-TSAN_TESTS ?= pipeline|wrapper|Diagnostics|transport|Live|live|triple_buffer|spsc|Recorder|McapFile|FoxgloveServer|ClientQueue|RtdeTcp|UrBackend
+TSAN_TESTS ?= pipeline|wrapper|Diagnostics|transport|Live|live|triple_buffer|spsc|Recorder|McapFile|FoxgloveServer|ClientQueue|RtdeTcp|UrBackend|FrankaArm|FciEmulator|FrankaLoop
 test-tsan: deps
 	@cmake -S . -B build-tsan $(SANITIZER_CONFIGURE) -DCOMPLY_SANITIZE=thread >/dev/null
 	@cmake --build build-tsan -j $(JOBS)

@@ -75,6 +75,12 @@ CLI::App* addFrankaEmulatorCommand(CLI::App& app, FrankaEmulatorCommandOptions& 
                    "states in a row without a command that end a motion")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
+  command
+      ->add_option("--answer-wait", options.answer_wait_s,
+                   "[s] a cycle waits for the client's command (0: not at all, as the robot); "
+                   "longer: a busy host's scheduling loses no command (it counts as late)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 5.0));
   command->add_option("--duration", options.duration_s, "[s] then stop (0: until Ctrl-C)");
   command
       ->add_option("--priority", options.priority,
@@ -101,6 +107,7 @@ int frankaEmulatorCommand(const FrankaEmulatorCommandOptions& options, std::ostr
   emulator_options.address = options.address;
   emulator_options.command_port = options.command_port;
   emulator_options.lost_in_a_row_limit = options.lost_limit;
+  emulator_options.answer_wait_s = options.answer_wait_s;
   emulator_options.priority = options.priority;
   for (const std::string& object : options.objects) {
     emulator_options.scene.objects.emplace_back(object);

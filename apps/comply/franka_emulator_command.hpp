@@ -20,6 +20,7 @@ struct FrankaEmulatorCommandOptions {
   std::vector<std::string> objects;  ///< MuJoCo fragments added to the world (a table)
   std::string tool;                  ///< a fragment on the TCP
   int lost_limit = 20;               ///< states in a row without a command
+  double answer_wait_s = 0.0;        ///< how long a cycle waits for the client's command
   double duration_s = 0.0;           ///< 0: until Ctrl-C
   int priority = 0;                  ///< SCHED_FIFO of its cycle (0: normal)
   /// A reflex after this many seconds [s] (0: none), naming this error; lose commands or drop

@@ -33,8 +33,9 @@ constexpr std::array<std::size_t, kFieldLengths.size() + 1> fieldStarts() {
 }
 constexpr auto kFieldStarts = fieldStarts();
 static_assert(kFieldStarts.back() == kStateDoubles);
-static_assert(8 + 8 * kStateDoubles + 2 + 2 * kErrorCount + 1 + 8 == kStateBytes);
-static_assert(8 + 8 * (7 + 7 + 16 + 6 + 2) + 2 + 8 * 7 + 1 == kCommandBytes);
+static_assert(8 + 8 * kStateDoubles + 2 + 2 * std::size_t{kErrorCount} + 1 + 8 == kStateBytes);
+static_assert(8 + sizeof(double) * (7 + 7 + 16 + 6 + 2) + 2 + sizeof(double) * 7 + 1 ==
+              kCommandBytes);
 
 /// Copies in and out of a byte span, front to back.
 class Cursor {
@@ -121,16 +122,16 @@ std::size_t requestPayloadBytes(Command command) noexcept {
     case Command::kSetCollisionBehavior:
       return kCollisionRequestBytes;
     case Command::kSetJointImpedance:
-      return 7 * 8;
+      return 7 * sizeof(double);
     case Command::kSetCartesianImpedance:
-      return 6 * 8;
+      return 6 * sizeof(double);
     case Command::kSetGuidingMode:
       return 7;  // six axes and the nullspace, one byte each
     case Command::kSetEEToK:
     case Command::kSetNEToEE:
-      return 16 * 8;
+      return 16 * sizeof(double);
     case Command::kSetLoad:
-      return 13 * 8;  // mass, centre of mass, inertia
+      return 13 * sizeof(double);  // mass, centre of mass, inertia
     case Command::kLoadModelLibrary:
       return 2;  // architecture, operating system
   }

@@ -266,7 +266,7 @@ std::string FrankaArm::recover() {
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
-  const std::string why = outcome == kFailed ? recovery_error_ : std::string();
+  std::string why = outcome == kFailed ? recovery_error_ : std::string();
   recovery_.store(kNone, std::memory_order_release);
   // The next states show whether the robot runs again (the reset's own check).
   const auto settle = std::chrono::steady_clock::now() + std::chrono::milliseconds(200);

@@ -258,12 +258,11 @@ void FrankaEmulator::Impl::handleMove(const fci::Header& header,
   fci::MoveStatus refusal = fci::MoveStatus::kMotionStarted;
   if (mode_ == fci::RobotMode::kReflex || mode_ == fci::RobotMode::kUserStopped) {
     refusal = fci::MoveStatus::kRejectedBySafetyFunction;
-  } else if (mode_ != fci::RobotMode::kIdle || motion_ || pending_motion_) {
-    refusal = fci::MoveStatus::kRejected;
-  } else if (move.generator != fci::MoveGenerator::kJointPosition &&
-             move.generator != fci::MoveGenerator::kJointVelocity) {
-    refusal = fci::MoveStatus::kRejected;  // the emulator has no Cartesian motion generators
-  } else if (move.controller == fci::MoveController::kCartesianImpedance) {
+  } else if (mode_ != fci::RobotMode::kIdle || motion_ || pending_motion_ ||
+             // The emulator has no Cartesian motion generators nor Cartesian impedance.
+             (move.generator != fci::MoveGenerator::kJointPosition &&
+              move.generator != fci::MoveGenerator::kJointVelocity) ||
+             move.controller == fci::MoveController::kCartesianImpedance) {
     refusal = fci::MoveStatus::kRejected;
   }
   if (refusal != fci::MoveStatus::kMotionStarted) {

@@ -29,7 +29,7 @@ timespec timespecOf(double seconds) {
 }
 
 void putTransform(std::span<double> out, const Eigen::Isometry3d& transform) {
-  const Eigen::Matrix4d matrix = transform.matrix();
+  const Eigen::Matrix4d& matrix = transform.matrix();
   std::copy(matrix.data(), matrix.data() + 16, out.begin());  // column-major, as on the wire
 }
 

@@ -135,7 +135,7 @@ struct CollisionThresholds {
   std::array<double, 6> force_contact_nominal{};
   std::array<double, 6> force_collision_nominal{};
 };
-inline constexpr std::size_t kCollisionRequestBytes = 52 * 8;
+inline constexpr std::size_t kCollisionRequestBytes = 52 * sizeof(double);
 void putCollisionThresholds(std::span<std::uint8_t, kCollisionRequestBytes> out,
                             const CollisionThresholds& thresholds) noexcept;
 CollisionThresholds getCollisionThresholds(
