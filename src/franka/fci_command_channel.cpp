@@ -16,34 +16,11 @@
 #include <cstring>
 #include <vector>
 
+#include "comply/franka/fci_stream.hpp"
 #include "comply/hardware/backend.hpp"
 
 namespace comply::franka {
 namespace {
-
-/// Reads exactly `bytes`, or false when the connection closed or `stop` was asked for.
-bool readExactly(int socket, std::uint8_t* out, std::size_t bytes, const std::stop_token& stop) {
-  std::size_t done = 0;
-  while (done < bytes) {
-    pollfd readable{socket, POLLIN, 0};
-    const int ready = ::poll(&readable, 1, 50);
-    if (stop.stop_requested()) {
-      return false;
-    }
-    if (ready <= 0) {
-      continue;
-    }
-    const ssize_t got = ::recv(socket, out + done, bytes - done, 0);
-    if (got <= 0) {
-      if (got < 0 && (errno == EINTR || errno == EAGAIN)) {
-        continue;
-      }
-      return false;
-    }
-    done += static_cast<std::size_t>(got);
-  }
-  return true;
-}
 
 int connectWithin(const std::string& address, std::uint16_t port, double timeout_s,
                   std::uint32_t& peer) {

@@ -11,34 +11,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include "comply/franka/fci_stream.hpp"
 #include "emulator_impl.hpp"
 
 namespace comply::franka {
 namespace {
-
-/// Reads exactly `bytes`; false when the client closed or the emulator stops.
-bool readExactly(int socket, std::uint8_t* out, std::size_t bytes, const std::stop_token& stop) {
-  std::size_t done = 0;
-  while (done < bytes) {
-    pollfd readable{socket, POLLIN, 0};
-    const int ready = ::poll(&readable, 1, 50);
-    if (stop.stop_requested()) {
-      return false;
-    }
-    if (ready <= 0) {
-      continue;
-    }
-    const ssize_t got = ::recv(socket, out + done, bytes - done, 0);
-    if (got <= 0) {
-      if (got < 0 && (errno == EINTR || errno == EAGAIN)) {
-        continue;
-      }
-      return false;
-    }
-    done += static_cast<std::size_t>(got);
-  }
-  return true;
-}
 
 sockaddr_in addressOf(const std::string& address, std::uint16_t port) {
   sockaddr_in where{};
