@@ -33,32 +33,36 @@ constexpr bool kPending = true;
 }  // namespace
 
 fci::CollisionThresholds frankaCollisionThresholds(double collision_torque_n_m,
-                                                   double collision_force_n) {
+                                                   double collision_force_n,
+                                                   double collision_flange_torque_n_m) {
+  if (collision_flange_torque_n_m < 0.0) {
+    collision_flange_torque_n_m = 0.1 * collision_force_n;
+  }
   if (!(collision_torque_n_m > 0.0) || !(collision_force_n > 0.0) ||
-      !std::isfinite(collision_torque_n_m) || !std::isfinite(collision_force_n)) {
+      !std::isfinite(collision_torque_n_m) || !std::isfinite(collision_force_n) ||
+      !std::isfinite(collision_flange_torque_n_m)) {
     throw hardware::BackendError("collision thresholds must be positive and finite (got " +
                                  std::to_string(collision_torque_n_m) + " N m, " +
                                  std::to_string(collision_force_n) + " N)");
   }
   fci::CollisionThresholds thresholds;
   const double contact_torque = 0.8 * collision_torque_n_m;
-  const double contact_force = 0.8 * collision_force_n;
   thresholds.torque_contact_acceleration.fill(contact_torque);
   thresholds.torque_contact_nominal.fill(contact_torque);
   thresholds.torque_collision_acceleration.fill(collision_torque_n_m);
   thresholds.torque_collision_nominal.fill(collision_torque_n_m);
   for (std::size_t axis = 0; axis < 6; ++axis) {
-    const double lever_m = axis < 3 ? 1.0 : 0.1;  // torques about the flange: force x 0.1 m
-    thresholds.force_contact_acceleration[axis] = contact_force * lever_m;
-    thresholds.force_contact_nominal[axis] = contact_force * lever_m;
-    thresholds.force_collision_acceleration[axis] = collision_force_n * lever_m;
-    thresholds.force_collision_nominal[axis] = collision_force_n * lever_m;
+    const double collision = axis < 3 ? collision_force_n : collision_flange_torque_n_m;
+    thresholds.force_contact_acceleration[axis] = 0.8 * collision;
+    thresholds.force_contact_nominal[axis] = 0.8 * collision;
+    thresholds.force_collision_acceleration[axis] = collision;
+    thresholds.force_collision_nominal[axis] = collision;
   }
   return thresholds;
 }
 
 FrankaArm::FrankaArm(std::unique_ptr<FrankaSession> session, FrankaArmOptions options)
-    : session_(std::move(session)), options_(options) {
+    : session_(std::move(session)), options_(options), base_(options.collision) {
   if (!session_) {
     throw hardware::BackendError("a Franka arm needs a session to its robot");
   }
@@ -157,18 +161,73 @@ void FrankaArm::carryOutRequests() noexcept {
     recovery_.store(recovery_error_.empty() ? kDone : kFailed, std::memory_order_release);
   }
   if (thresholds_pending_.load(std::memory_order_acquire) == kPending) {
-    const bool was_controlling = controlling_;
-    if (was_controlling) {
-      (void)session_->stopTorqueControl();  // the robot takes thresholds only between motions
-      controlling_ = false;
-    }
-    if (session_->setCollisionThresholds(thresholds_).empty()) {
+    base_ = thresholds_;
+    thresholds_pending_.store(false, std::memory_order_release);
+    applyThresholds(allowedThresholds());
+  } else if (contact_pending_) {
+    applyThresholds(allowedThresholds());
+  }
+  contact_pending_ = false;
+}
+
+void FrankaArm::applyThresholds(const fci::CollisionThresholds& thresholds) noexcept {
+  const bool was_controlling = controlling_;
+  if (was_controlling) {
+    (void)session_->stopTorqueControl();  // the robot takes thresholds only between motions
+    controlling_ = false;
+  }
+  try {
+    if (session_->setCollisionThresholds(thresholds).empty()) {
       threshold_changes_.fetch_add(1, std::memory_order_relaxed);
     }
-    thresholds_pending_.store(false, std::memory_order_release);
-    if (was_controlling && stop_ == nullptr) {
-      startControl();
+  } catch (...) {
+  }
+  if (was_controlling && stop_ == nullptr) {
+    startControl();
+  }
+}
+
+fci::CollisionThresholds FrankaArm::allowedThresholds() const {
+  // The base, each raised to contact_margin x the contact comply lets through.
+  fci::CollisionThresholds thresholds = base_;
+  const double margin = options_.contact_margin;
+  const auto raise = [](std::array<double, 7>& values, double at_least) {
+    for (double& value : values) {
+      value = std::max(value, at_least);
     }
+  };
+  raise(thresholds.torque_collision_acceleration,
+        margin * allowed_force_n_ * options_.contact_lever_m);
+  raise(thresholds.torque_collision_nominal, margin * allowed_force_n_ * options_.contact_lever_m);
+  raise(thresholds.torque_contact_acceleration,
+        0.8 * margin * allowed_force_n_ * options_.contact_lever_m);
+  raise(thresholds.torque_contact_nominal,
+        0.8 * margin * allowed_force_n_ * options_.contact_lever_m);
+  for (std::size_t axis = 0; axis < 6; ++axis) {
+    const double allowed = margin * (axis < 3 ? allowed_force_n_ : allowed_torque_n_m_);
+    thresholds.force_collision_acceleration[axis] =
+        std::max(thresholds.force_collision_acceleration[axis], allowed);
+    thresholds.force_collision_nominal[axis] =
+        std::max(thresholds.force_collision_nominal[axis], allowed);
+    thresholds.force_contact_acceleration[axis] =
+        std::max(thresholds.force_contact_acceleration[axis], 0.8 * allowed);
+    thresholds.force_contact_nominal[axis] =
+        std::max(thresholds.force_contact_nominal[axis], 0.8 * allowed);
+  }
+  return thresholds;
+}
+
+void FrankaArm::allowContact(double force_n, double torque_n_m) noexcept {
+  if (!std::isfinite(force_n) || !std::isfinite(torque_n_m)) {
+    return;
+  }
+  const auto changed = [](double now, double before) {
+    return std::abs(now - before) > 0.1 * std::max(std::abs(before), 1e-9);
+  };
+  if (changed(force_n, allowed_force_n_) || changed(torque_n_m, allowed_torque_n_m_)) {
+    allowed_force_n_ = force_n;
+    allowed_torque_n_m_ = torque_n_m;
+    contact_pending_ = true;
   }
 }
 

@@ -87,6 +87,11 @@ bool ControlLoop::runOnce() {
     const auto controller_start = SteadyClock::now();
     record.wrote = controller_.cycle(state_, options_.period_s, command_);
     record.controller_s = secondsBetween(controller_start, SteadyClock::now());
+    double allowed_force_n = 0.0;
+    double allowed_torque_n_m = 0.0;
+    if (controller_.contactAllowance(allowed_force_n, allowed_torque_n_m)) {
+      hardware_.allowContact(allowed_force_n, allowed_torque_n_m);
+    }
     if (record.wrote && !hardware_.writeCommand(command_)) {
       ++stats_.write_failures;
     }

@@ -17,6 +17,9 @@
 namespace comply::host {
 namespace {
 
+constexpr const char* kAbandoned =
+    "the link to the Franka robot was lost: start comply run again to connect";
+
 /// libfranka's error flags by name ("["joint_reflex", ...]") into the wire's order.
 std::array<bool, franka::fci::kErrorCount> flagsOf(const ::franka::Errors& errors) {
   std::array<bool, franka::fci::kErrorCount> flags{};
@@ -34,9 +37,10 @@ std::array<bool, franka::fci::kErrorCount> flagsOf(const ::franka::Errors& error
 class LibfrankaSession final : public franka::FrankaSession {
  public:
   LibfrankaSession(const std::string& robot_ip, bool realtime) try
-      : robot_(robot_ip,
-               realtime ? ::franka::RealtimeConfig::kEnforce : ::franka::RealtimeConfig::kIgnore) {
-    version_ = robot_.serverVersion();
+      : robot_(std::make_unique<::franka::Robot>(
+            robot_ip,
+            realtime ? ::franka::RealtimeConfig::kEnforce : ::franka::RealtimeConfig::kIgnore)) {
+    version_ = robot_->serverVersion();
   } catch (const ::franka::Exception& error) {
     throw hardware::BackendError("libfranka could not connect to the Franka robot at " + robot_ip +
                                  ": " + error.what());
@@ -51,6 +55,10 @@ class LibfrankaSession final : public franka::FrankaSession {
 
   bool read(franka::FrankaSample& sample, double timeout_s) noexcept override {
     (void)timeout_s;  // libfranka's own UDP timeout applies
+    if (!robot_) {
+      failure_ = failure_text_.data();
+      return false;
+    }
     try {
       ::franka::RobotState state;
       if (control_) {
@@ -60,10 +68,10 @@ class LibfrankaSession final : public franka::FrankaSession {
           // The robot ended the motion (a reflex, a limit): its state names why.
           noteFailure(error.what());
           endControl();
-          state = robot_.readOnce();
+          state = robot_->readOnce();
         }
       } else {
-        state = robot_.readOnce();
+        state = robot_->readOnce();
       }
       toSample(state, sample);
       failure_ = nullptr;
@@ -71,7 +79,7 @@ class LibfrankaSession final : public franka::FrankaSession {
     } catch (const std::exception& error) {
       noteFailure(error.what());
       failure_ = failure_text_.data();
-      endControl();
+      abandon();
       return false;
     }
   }
@@ -95,9 +103,12 @@ class LibfrankaSession final : public franka::FrankaSession {
   [[nodiscard]] const char* failure() const noexcept override { return failure_; }
 
   std::string startTorqueControl(franka::FrankaSample& first) override {
+    if (!robot_) {
+      return kAbandoned;
+    }
     try {
       if (!control_) {
-        control_ = robot_.startTorqueControl();
+        control_ = robot_->startTorqueControl();
       }
       toSample(control_->readOnce().first, first);
       return {};
@@ -122,9 +133,12 @@ class LibfrankaSession final : public franka::FrankaSession {
   }
 
   std::string recover() override {
+    if (!robot_) {
+      return kAbandoned;
+    }
     endControl();
     try {
-      robot_.automaticErrorRecovery();
+      robot_->automaticErrorRecovery();
       return {};
     } catch (const ::franka::Exception& error) {
       return error.what();
@@ -132,8 +146,11 @@ class LibfrankaSession final : public franka::FrankaSession {
   }
 
   std::string setCollisionThresholds(const franka::fci::CollisionThresholds& t) override {
+    if (!robot_) {
+      return kAbandoned;
+    }
     try {
-      robot_.setCollisionBehavior(t.torque_contact_acceleration, t.torque_collision_acceleration,
+      robot_->setCollisionBehavior(t.torque_contact_acceleration, t.torque_collision_acceleration,
                                   t.torque_contact_nominal, t.torque_collision_nominal,
                                   t.force_contact_acceleration, t.force_collision_acceleration,
                                   t.force_contact_nominal, t.force_collision_nominal);
@@ -169,11 +186,19 @@ class LibfrankaSession final : public franka::FrankaSession {
     }
   }
 
+  /// The connection is gone. libfranka's control object would cancel its motion over it when
+  /// destroyed, and that throws from a destructor (the process ends): it and the robot object
+  /// it locks are left undestroyed instead. Every later call fails; comply run must start again.
+  void abandon() noexcept {
+    (void)control_.release();  // NOLINT(bugprone-unused-return-value): deliberately leaked
+    (void)robot_.release();    // NOLINT(bugprone-unused-return-value)
+  }
+
   void noteFailure(const char* what) noexcept {
     std::strncpy(failure_text_.data(), what, failure_text_.size() - 1);
   }
 
-  ::franka::Robot robot_;
+  std::unique_ptr<::franka::Robot> robot_;  // nullptr once abandoned
   std::unique_ptr<::franka::ActiveControlBase> control_;
   std::uint16_t version_ = 0;
   std::array<char, 512> failure_text_{};

@@ -35,14 +35,22 @@ struct FrankaArmOptions {
   fci::CollisionThresholds collision;
   /// No state for this long [s]: the link is lost (a robotStop()).
   double link_timeout_s = 0.1;
+  /// The robot's collision thresholds stay this far above the contact comply's own reflex lets
+  /// through (allowContact), so that comply's reflex acts first [-].
+  double contact_margin = 1.5;
+  /// The lever [m] from a contact force at the TCP to the joint torque it makes, for the joint
+  /// thresholds (about the FR3's reach).
+  double contact_lever_m = 1.0;
   /// How long recover() waits for the robot [s].
   double recovery_timeout_s = 5.0;
 };
 
-/// Thresholds from one joint torque [N m] and one force [N] (torque about the flange: force
-/// times 0.1 m), as libfranka's examples set them: contact at 80 % of collision.
+/// Thresholds from one joint torque [N m] and one force [N], and a torque about the flange
+/// [N m] (negative: the force times 0.1 m), as libfranka's examples set them: contact at 80 % of
+/// collision.
 fci::CollisionThresholds frankaCollisionThresholds(double collision_torque_n_m,
-                                                   double collision_force_n);
+                                                   double collision_force_n,
+                                                   double collision_flange_torque_n_m = -1.0);
 
 struct FrankaArmStats {
   std::uint64_t states = 0;  ///< robot states read
@@ -79,6 +87,10 @@ class FrankaArm final : public hardware::HardwareInterface {
   bool hold() noexcept override;
   [[nodiscard]] bool compensatesGravity() const noexcept override { return true; }
   [[nodiscard]] std::string recover() override;
+  /// Keeps the collision thresholds contact_margin above the contact comply lets through
+  /// (never below the ones the arm started with or was last asked for); a change of more than
+  /// 10 % is taken at the next sample, the torque control ending and starting for it.
+  void allowContact(double force_n, double torque_n_m) noexcept override;
   [[nodiscard]] std::string summary() const override;
 
   /// Any thread: new collision thresholds, taken at the control thread's next sample (a torque
@@ -95,6 +107,9 @@ class FrankaArm final : public hardware::HardwareInterface {
 
  private:
   void carryOutRequests() noexcept;
+  /// Sets `thresholds`, ending a running torque control for it and starting it again.
+  void applyThresholds(const fci::CollisionThresholds& thresholds) noexcept;
+  [[nodiscard]] fci::CollisionThresholds allowedThresholds() const;
   void startControl() noexcept;
   void noteStop(const char* stop) noexcept;
 
@@ -113,6 +128,10 @@ class FrankaArm final : public hardware::HardwareInterface {
   std::string recovery_error_;        // written by the control thread before recovery_ = 3
   std::atomic<bool> thresholds_pending_{false};
   fci::CollisionThresholds thresholds_;  // written before thresholds_pending_ is set
+  fci::CollisionThresholds base_;        // control thread: the thresholds last asked for
+  double allowed_force_n_ = 0.0;         // control thread: the contact the robot's are set for
+  double allowed_torque_n_m_ = 0.0;
+  bool contact_pending_ = false;  // control thread: thresholds for a new allowance to set
   std::atomic<std::uint64_t> states_{0};
   std::atomic<std::uint64_t> skipped_{0};
   std::atomic<std::uint64_t> controls_{0};

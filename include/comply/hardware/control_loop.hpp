@@ -37,6 +37,14 @@ class CycleController {
   /// frozen sensor stream), so the hardware should hold it as well, with its brakes or its own
   /// position hold (HardwareInterface::hold), where it has them.
   [[nodiscard]] virtual bool wantsHold() const noexcept { return false; }
+  /// The contact the controller's own contact handling lets through now, largest force [N] and
+  /// torque [N m] (its reflex thresholds in force); false when it has none. Passed on to the
+  /// hardware after every cycle (HardwareInterface::allowContact).
+  virtual bool contactAllowance(double& force_n, double& torque_n_m) const noexcept {
+    (void)force_n;
+    (void)torque_n_m;
+    return false;
+  }
   /// Shortly before a cycle that follows a sleep (LoopOptions::warm_ahead_s): bring what the
   /// cycle reads back into the caches, from `last_state` (the state the last cycle read), without
   /// changing anything the next cycle computes. Real-time.

@@ -71,6 +71,16 @@ class HardwareInterface {
   /// calls it after every read() and hands it on in JointState::robot_stop. read() still returns
   /// the last state it has, so that the controller holds what it knows.
   [[nodiscard]] virtual const char* robotStop() noexcept { return nullptr; }
+  /// The contact the controller lets through now before its own contact reflex trips: the
+  /// largest force [N] and torque [N m] along any task axis (the file's thresholds, or a
+  /// command's for its phase). A robot with collision reflexes of its own keeps them above it, so
+  /// that contact the task intends does not stop the robot, and comply's reflex (a hold, a
+  /// retreat) acts first. Called after every cycle while the controller has a contact reflex.
+  /// Real-time.
+  virtual void allowContact(double force_n, double torque_n_m) noexcept {
+    (void)force_n;
+    (void)torque_n_m;
+  }
   /// Runs the robot's own recovery from a stop, where it has one that a client may start
   /// (libfranka's automatic error recovery after a reflex), and waits for it: "" when the robot
   /// takes commands again or had nothing to recover from, else why not. Not real-time: the live

@@ -199,6 +199,10 @@ class Controller {
   /// The reflex stage (contact_reflex.hpp): its thresholds in force, whether and on what it
   /// tripped. Real-time thread, or between cycles.
   [[nodiscard]] const ContactReflex& reflex() const noexcept { return reflex_; }
+  /// The largest contact force [N] and torque [N m] the contact reflex lets through now (its
+  /// thresholds in force: the file's, or a command's for its phase); false when the reflex is off.
+  /// Control thread.
+  bool contactAllowance(double& force_n, double& torque_n_m) const noexcept;
   /// The contact-speed stage (contact_speed.hpp): the speed limit along the TCP's motion, the
   /// mass that set it, the share of the law let through and the braking of the last cycle.
   [[nodiscard]] const ContactSpeed& contactSpeed() const noexcept { return contact_speed_; }

@@ -113,6 +113,9 @@ class Wrapper final : public hardware::CycleController {
   /// The output stage (the virtual arm of an admittance mode).
   [[nodiscard]] const OutputStage& output() const noexcept { return controller_.output(); }
   [[nodiscard]] bool wantsHold() const noexcept override { return controller_.holdRequested(); }
+  bool contactAllowance(double& force_n, double& torque_n_m) const noexcept override {
+    return controller_.contactAllowance(force_n, torque_n_m);
+  }
   void warm(const JointState& last_state) noexcept override { controller_.warm(last_state); }
 
   [[nodiscard]] DiagnosticsSnapshot diagnostics() const {

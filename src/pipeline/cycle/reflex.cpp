@@ -43,6 +43,20 @@ void scaleStiffness(CommandBus& bus, double fraction) noexcept {
 
 }  // namespace
 
+bool Controller::contactAllowance(double& force_n, double& torque_n_m) const noexcept {
+  if (!reflex_.enabled()) {
+    return false;
+  }
+  const ReflexThresholds thresholds = std::visit(
+      [this](const auto& typed) noexcept {
+        return reflex_.thresholds(typed.reflex_force, typed.reflex_torque);
+      },
+      active_);
+  force_n = thresholds.force_n.maxCoeff();
+  torque_n_m = thresholds.torque_nm.maxCoeff();
+  return true;
+}
+
 bool Controller::checkContact() noexcept {
   if (!reflex_.enabled()) {
     return true;

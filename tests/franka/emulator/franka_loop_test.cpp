@@ -106,5 +106,49 @@ TEST(FrankaLoop, RaisedCollisionThresholdsLetAnIntendedPushThrough) {
   emulator.push(Vector6d::Zero());
 }
 
+TEST(FrankaLoop, TheRobotsThresholdsFollowTheContactACommandLetsThrough) {
+  FrankaEmulator emulator(waitingEmulator());
+  pipeline::WrapperConfig config = frankaConfig();
+  config.reflex.enabled = true;  // comply's own contact reflex: the file's 20 N, at most 60 N
+  FrankaRig rig(emulator, {}, config);
+  const auto robotsForceThreshold = [&] {
+    return emulator.stats().collision.force_collision_nominal[2];
+  };
+  // The robot's thresholds sit 1.5 x above comply's reflex: comply's hold acts first.
+  ASSERT_TRUE(eventually([&] { return robotsForceThreshold() == 30.0; }, 2.0))
+      << robotsForceThreshold();
+  const MeasuredPose home = rig.wrapper.measuredPose();
+  const double start_s = hardware::monotonicSeconds();
+  CartesianCommand press =
+      poseCommand(home.tcp_position, home.tcp_orientation, start_s + 10.0);
+  press.fields = press.fields | CommandField::kReflex;
+  std::fill(std::begin(press.reflex_force), std::end(press.reflex_force), 50.0);
+  ASSERT_TRUE(rig.wrapper.submit(press).accepted);
+  ASSERT_TRUE(eventually([&] { return robotsForceThreshold() == 75.0; }, 2.0))
+      << robotsForceThreshold();
+  Vector6d push = Vector6d::Zero();
+  push[2] = -35.0;  // N: above the robot's default 20 N, within the phase's 50 N
+  emulator.push(push);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  EXPECT_EQ(emulator.stats().reflexes, 0U);
+  EXPECT_EQ(rig.wrapper.diagnostics().reflex_trips, 0U);
+  EXPECT_EQ(rig.state(), pipeline::WrapperState::kActive) << rig.wrapper.diagnostics().last_fault;
+  emulator.push(Vector6d::Zero());
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  // The phase ends: the file's 20 N again, the robot's 30 N. A 25 N push is comply's reflex's.
+  CartesianCommand after = poseCommand(home.tcp_position, home.tcp_orientation, start_s + 11.0);
+  after.fields = after.fields | CommandField::kReflex;  // 0: the file's thresholds
+  ASSERT_TRUE(rig.wrapper.submit(after).accepted);
+  ASSERT_TRUE(eventually([&] { return robotsForceThreshold() == 30.0; }, 2.0))
+      << robotsForceThreshold();
+  push[2] = -25.0;
+  emulator.push(push);
+  ASSERT_TRUE(eventually([&] { return rig.wrapper.diagnostics().reflex_trips >= 1; }, 2.0));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_EQ(emulator.stats().reflexes, 0U) << emulator.stats().last_reflex;
+  EXPECT_GE(rig.arm().stats().threshold_changes, 3U);
+  emulator.push(Vector6d::Zero());
+}
+
 }  // namespace
 }  // namespace comply::franka::test

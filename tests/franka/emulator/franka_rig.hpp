@@ -41,10 +41,16 @@ inline bool eventually(const std::function<bool()>& condition, double timeout_s)
   return true;
 }
 
+/// config/sim/cartesian_impedance.yaml on the FR3.
+inline pipeline::WrapperConfig frankaConfig() {
+  return host::simControllerConfig(
+      "fr3", "", (kSourceDir / "config" / "sim" / "cartesian_impedance.yaml").string());
+}
+
 struct FrankaRig {
-  FrankaRig(const FrankaEmulator& emulator, const std::vector<std::string>& extra_options = {})
-      : config(withRobotsGravity(host::simControllerConfig(
-            "fr3", "", (kSourceDir / "config" / "sim" / "cartesian_impedance.yaml").string()))),
+  FrankaRig(const FrankaEmulator& emulator, const std::vector<std::string>& extra_options = {},
+            pipeline::WrapperConfig controller = frankaConfig())
+      : config(withRobotsGravity(std::move(controller))),
         backend(makeBackend(emulator, config, extra_options)),
         wrapper(config),
         loop(*backend.hardware, wrapper, *backend.clock, {.period_s = 0.001}) {

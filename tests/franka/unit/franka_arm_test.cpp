@@ -301,6 +301,45 @@ TEST(FrankaArm, CollisionThresholdsChangeBetweenTwoTorqueControls) {
   EXPECT_TRUE(arm.requestCollisionThresholds(frankaCollisionThresholds(30.0, 30.0)));
 }
 
+TEST(FrankaArm, CollisionThresholdsStayAboveTheContactComplyLetsThrough) {
+  Script script;
+  FrankaArm arm = makeArm(script);  // 20 N m, 20 N
+  const std::array<double, 7> torque{};
+  ASSERT_TRUE(arm.write(torque));
+  ASSERT_TRUE(cycle(arm, torque));
+  // comply's reflex at the file's 10 N: the robot's 20 N stay (never below what it started with).
+  arm.allowContact(10.0, 2.0);
+  ASSERT_TRUE(cycle(arm, torque));
+  ASSERT_EQ(script.thresholds.size(), 2U);
+  EXPECT_DOUBLE_EQ(script.thresholds[1].force_collision_nominal[0], 20.0);
+  EXPECT_DOUBLE_EQ(script.thresholds[1].force_collision_nominal[3], 3.0);  // 1.5 x 2 N m
+  // A command raises it to 40 N for a pressing phase: the robot's go to 1.5 x 40 N, the joints'
+  // to 60 N over the 1 m lever; the torque control ends for it and starts again.
+  arm.allowContact(40.0, 2.0);
+  ASSERT_TRUE(cycle(arm, torque));
+  ASSERT_EQ(script.thresholds.size(), 3U);
+  EXPECT_DOUBLE_EQ(script.thresholds[2].force_collision_nominal[2], 60.0);
+  EXPECT_DOUBLE_EQ(script.thresholds[2].force_contact_nominal[2], 48.0);
+  EXPECT_DOUBLE_EQ(script.thresholds[2].torque_collision_nominal[0], 60.0);
+  EXPECT_EQ(script.stops, 2);
+  EXPECT_EQ(script.starts, 3);
+  // The same allowance every cycle, or one within 10 %, changes nothing.
+  for (int i = 0; i < 5; ++i) {
+    arm.allowContact(41.0, 2.1);
+    ASSERT_TRUE(cycle(arm, torque));
+  }
+  EXPECT_EQ(script.thresholds.size(), 3U);
+  // The phase ends: back to the robot's own.
+  arm.allowContact(10.0, 2.0);
+  ASSERT_TRUE(cycle(arm, torque));
+  ASSERT_EQ(script.thresholds.size(), 4U);
+  EXPECT_DOUBLE_EQ(script.thresholds[3].force_collision_nominal[2], 20.0);
+  EXPECT_DOUBLE_EQ(script.thresholds[3].torque_collision_nominal[0], 20.0);
+  arm.allowContact(std::nan(""), 1.0);  // never taken
+  ASSERT_TRUE(cycle(arm, torque));
+  EXPECT_EQ(script.thresholds.size(), 4U);
+}
+
 TEST(FrankaArm, RefusedThresholdsAtStartAreAnError) {
   Script script;
   script.refuse_thresholds = "invalid thresholds";
