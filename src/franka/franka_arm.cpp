@@ -21,6 +21,8 @@ constexpr const char* kControlEnded =
     "the robot ended comply's torque control (another client, Desk or a stop request): "
     "reset to start it again";
 
+constexpr double kRobotPeriodS = 0.001;
+
 // The requests of other threads (recovery_).
 constexpr int kNone = 0;
 constexpr int kAsked = 1;
@@ -95,7 +97,10 @@ bool FrankaArm::awaitSample() noexcept {
     fresh_ = true;
     started_ = false;
   } else {
-    fresh_ = session_->read(next, options_.link_timeout_s);
+    // Once the link is lost, a cycle waits one robot period for it, not the whole timeout: the
+    // loop goes on at the robot's rate (holding, in FAULT) and its duration stays its own.
+    const bool lost = stop_ == kLinkLost;
+    fresh_ = session_->read(next, lost ? kRobotPeriodS : options_.link_timeout_s);
   }
   if (!fresh_) {
     controlling_ = false;  // the robot ends a torque control it gets no torques for
@@ -377,7 +382,8 @@ void FrankaClock::waitUntil(double time_s) noexcept {
 
 double FrankaClock::lateness(double time_s) noexcept {
   (void)time_s;
-  return hardware::monotonicSeconds() - arm_.sampleArrival();
+  // From the state's arrival; a cycle without a new state (the link lost) is late for none.
+  return arm_.sampleFresh() ? hardware::monotonicSeconds() - arm_.sampleArrival() : 0.0;
 }
 
 }  // namespace comply::franka

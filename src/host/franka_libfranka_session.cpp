@@ -7,7 +7,9 @@
 #include <franka/robot.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
+#include <thread>
 
 #include "comply/franka/franka_errors.hpp"
 #include "comply/hardware/backend.hpp"
@@ -54,8 +56,10 @@ class LibfrankaSession final : public franka::FrankaSession {
   }
 
   bool read(franka::FrankaSample& sample, double timeout_s) noexcept override {
-    (void)timeout_s;  // libfranka's own UDP timeout applies
     if (!robot_) {
+      // Abandoned: no state comes; wait as a read would (libfranka's own timeout applies to a
+      // working link).
+      std::this_thread::sleep_for(std::chrono::duration<double>(timeout_s));
       failure_ = failure_text_.data();
       return false;
     }
@@ -151,9 +155,9 @@ class LibfrankaSession final : public franka::FrankaSession {
     }
     try {
       robot_->setCollisionBehavior(t.torque_contact_acceleration, t.torque_collision_acceleration,
-                                  t.torque_contact_nominal, t.torque_collision_nominal,
-                                  t.force_contact_acceleration, t.force_collision_acceleration,
-                                  t.force_contact_nominal, t.force_collision_nominal);
+                                   t.torque_contact_nominal, t.torque_collision_nominal,
+                                   t.force_contact_acceleration, t.force_collision_acceleration,
+                                   t.force_contact_nominal, t.force_collision_nominal);
       return {};
     } catch (const ::franka::Exception& error) {
       return error.what();

@@ -102,6 +102,8 @@ class FrankaArm final : public hardware::HardwareInterface {
   bool awaitSample() noexcept;
   [[nodiscard]] double sampleTime() const noexcept;
   [[nodiscard]] double sampleArrival() const noexcept { return sample_.arrived_s; }
+  /// The last awaitSample() brought a new state. Control thread.
+  [[nodiscard]] bool sampleFresh() const noexcept { return fresh_; }
   [[nodiscard]] FrankaArmStats stats() const noexcept;
   [[nodiscard]] const FrankaSession& session() const noexcept { return *session_; }
 
