@@ -119,8 +119,7 @@ TEST(FrankaLoop, TheRobotsThresholdsFollowTheContactACommandLetsThrough) {
       << robotsForceThreshold();
   const MeasuredPose home = rig.wrapper.measuredPose();
   const double start_s = hardware::monotonicSeconds();
-  CartesianCommand press =
-      poseCommand(home.tcp_position, home.tcp_orientation, start_s + 10.0);
+  CartesianCommand press = poseCommand(home.tcp_position, home.tcp_orientation, start_s + 10.0);
   press.fields = press.fields | CommandField::kReflex;
   std::fill(std::begin(press.reflex_force), std::end(press.reflex_force), 50.0);
   ASSERT_TRUE(rig.wrapper.submit(press).accepted);

@@ -44,6 +44,7 @@ TEST(FrankaRealtime, TheControlThreadNeitherAllocatesNorLocks) {
   FrankaEmulator emulator(testing::emulatorOptions(0.5));
   FrankaArmOptions options;
   options.collision = frankaCollisionThresholds(20.0, 20.0);
+  options.link_timeout_s = 0.6;  // the emulator waits up to 0.5 s for each command
   FrankaArm arm(testing::connect(emulator), options);
   FrankaClock clock(arm);
   HoldingController controller;

@@ -87,8 +87,11 @@ struct FrankaRig {
   static host::HardwareBackend makeBackend(const FrankaEmulator& emulator,
                                            const pipeline::WrapperConfig& config,
                                            const std::vector<std::string>& extra_options) {
+    // The emulator waits up to 0.5 s for each command before its next state (answer_wait_s): a
+    // host's stall of the control thread is not a lost link.
     std::vector<std::string> options{"robot_ip=127.0.0.1", "client=comply",
-                                     "command_port=" + std::to_string(emulator.commandPort())};
+                                     "command_port=" + std::to_string(emulator.commandPort()),
+                                     "link_timeout_s=0.6"};
     options.insert(options.end(), extra_options.begin(), extra_options.end());
     return host::makeHardware("franka", config, host::backendContext(config, 0.001, options));
   }

@@ -88,9 +88,11 @@ struct UrRig {
   static host::HardwareBackend makeBackend(const UrEmulator& emulator,
                                            const pipeline::WrapperConfig& config,
                                            const std::vector<std::string>& extra_options) {
-    std::vector<std::string> options{"robot_ip=127.0.0.1",
-                                     "rtde_port=" + std::to_string(emulator.rtdePort()),
-                                     "script_port=" + std::to_string(emulator.scriptPort())};
+    // The tests' emulator waits up to 0.5 s for an answer before its next package
+    // (answer_wait_s): a host's stall of the control thread is not a lost link.
+    std::vector<std::string> options{
+        "robot_ip=127.0.0.1", "rtde_port=" + std::to_string(emulator.rtdePort()),
+        "script_port=" + std::to_string(emulator.scriptPort()), "link_timeout_s=0.6"};
     options.insert(options.end(), extra_options.begin(), extra_options.end());
     return host::makeHardware("ur", config, host::backendContext(config, kUrPeriodS, options));
   }

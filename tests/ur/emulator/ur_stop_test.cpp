@@ -18,7 +18,10 @@ constexpr double kPushN = 30.0;  // along base y: 1 cm on the file's 3000 N/m
 
 class UrStop : public ::testing::Test {
  protected:
-  UrStop() : emulator(waitingOptions()), rig(emulator, urConfig(OutputMode::kPosition)) {}
+  // The backend's own link timeout (50 ms): a closed connection is found by it.
+  UrStop()
+      : emulator(waitingOptions()),
+        rig(emulator, urConfig(OutputMode::kPosition), {"link_timeout_s=0.05"}) {}
 
   static UrEmulatorOptions waitingOptions() {
     UrEmulatorOptions options = freePorts();
