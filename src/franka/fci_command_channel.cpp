@@ -98,6 +98,15 @@ std::uint32_t FciCommandChannel::send(fci::Command command, std::span<const std:
   return id;
 }
 
+std::optional<std::uint32_t> FciCommandChannel::trySend(
+    fci::Command command, std::span<const std::uint8_t> payload) noexcept {
+  try {
+    return send(command, payload);
+  } catch (...) {
+    return std::nullopt;
+  }
+}
+
 void FciCommandChannel::readResponses(const std::stop_token& stop) {
   std::array<std::uint8_t, fci::kHeaderBytes> header_bytes{};
   std::vector<std::uint8_t> payload;

@@ -8,6 +8,7 @@
 #include <deque>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <span>
 #include <string>
 #include <thread>
@@ -33,6 +34,9 @@ class FciCommandChannel {
   /// Sends one request with `payload` (its size the command's); returns its command id. Throws
   /// hardware::BackendError when the connection is gone.
   std::uint32_t send(fci::Command command, std::span<const std::uint8_t> payload);
+  /// The same without throwing: no id when it could not be sent.
+  std::optional<std::uint32_t> trySend(fci::Command command,
+                                       std::span<const std::uint8_t> payload) noexcept;
   /// The next response to `command_id` (Move has two: started, then finished), waiting up to
   /// `timeout_s`; false when none came or the connection closed (closed() then).
   bool await(std::uint32_t command_id, double timeout_s, FciResponse& response);

@@ -112,8 +112,8 @@ class FciSession final : public FrankaSession {
     bool got = false;
     for (;;) {
       // Everything already in: the newest state counts (older ones were missed).
-      while (receiveOne(MSG_DONTWAIT)) {
-        got = true;
+      for (Datagram datagram = receiveOne(); datagram != Datagram::kNone; datagram = receiveOne()) {
+        got = got || datagram == Datagram::kNewState;
       }
       if (got) {
         break;
@@ -158,8 +158,12 @@ class FciSession final : public FrankaSession {
     move.path_deviation = options_.path_deviation;
     move.goal_deviation = options_.path_deviation;
     fci::putMoveRequest(payload, move);
-    const std::uint32_t id = channel_.send(fci::Command::kMove, payload);
+    const std::optional<std::uint32_t> sent = channel_.trySend(fci::Command::kMove, payload);
     FciResponse response;
+    if (!sent) {
+      return kCommandLinkClosed;
+    }
+    const std::uint32_t id = *sent;
     if (!channel_.await(id, options_.connect_timeout_s, response)) {
       return "no answer to Move";
     }
@@ -211,8 +215,12 @@ class FciSession final : public FrankaSession {
 
   std::string recover() override {
     FciResponse response;
-    if (!channel_.await(channel_.send(fci::Command::kAutomaticErrorRecovery, {}),
-                        options_.connect_timeout_s, response)) {
+    const std::optional<std::uint32_t> sent =
+        channel_.trySend(fci::Command::kAutomaticErrorRecovery, {});
+    if (!sent) {
+      return kCommandLinkClosed;
+    }
+    if (!channel_.await(*sent, options_.connect_timeout_s, response)) {
       return "no answer to AutomaticErrorRecovery";
     }
     switch (static_cast<fci::RecoveryStatus>(response.status)) {
@@ -233,8 +241,12 @@ class FciSession final : public FrankaSession {
     std::array<std::uint8_t, fci::kCollisionRequestBytes> payload{};
     fci::putCollisionThresholds(payload, thresholds);
     FciResponse response;
-    if (!channel_.await(channel_.send(fci::Command::kSetCollisionBehavior, payload),
-                        options_.connect_timeout_s, response)) {
+    const std::optional<std::uint32_t> sent =
+        channel_.trySend(fci::Command::kSetCollisionBehavior, payload);
+    if (!sent) {
+      return kCommandLinkClosed;
+    }
+    if (!channel_.await(*sent, options_.connect_timeout_s, response)) {
       return "no answer to SetCollisionBehavior";
     }
     switch (static_cast<fci::SetterStatus>(response.status)) {
@@ -255,25 +267,31 @@ class FciSession final : public FrankaSession {
   }
 
  private:
-  /// One datagram, kept when it is a newer state than the last.
-  bool receiveOne(int flags) noexcept {
+  /// What receiveOne() found.
+  enum class Datagram : std::uint8_t { kNone, kIgnored, kNewState };
+
+  /// One datagram waiting, kept when it is a newer state than the last.
+  Datagram receiveOne() noexcept {
     sockaddr_in from{};
     socklen_t length = sizeof from;
-    const ssize_t got = ::recvfrom(udp_, datagram_.data(), datagram_.size(), flags,
+    const ssize_t got = ::recvfrom(udp_, datagram_.data(), datagram_.size(), MSG_DONTWAIT,
                                    reinterpret_cast<sockaddr*>(&from), &length);
+    if (got < 0) {
+      return Datagram::kNone;
+    }
     if (got != static_cast<ssize_t>(fci::kStateBytes)) {
-      return false;
+      return Datagram::kIgnored;  // not a state
     }
     const fci::RobotStateMessage state =
         fci::getRobotState(std::span<const std::uint8_t, fci::kStateBytes>(datagram_));
     if (state.message_id <= state_.message_id && have_state_) {
-      return true;  // an older one, overtaken
+      return Datagram::kIgnored;  // an older one, overtaken
     }
     state_ = state;
     have_state_ = true;
     robot_ = from;
     arrived_s_ = hardware::monotonicSeconds();
-    return true;
+    return Datagram::kNewState;
   }
 
   void toSample(FrankaSample& sample) const noexcept {

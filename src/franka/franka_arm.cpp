@@ -80,7 +80,10 @@ FrankaArm::FrankaArm(std::unique_ptr<FrankaSession> session, FrankaArmOptions op
 
 FrankaArm::~FrankaArm() {
   if (controlling_) {
-    (void)session_->stopTorqueControl();  // the robot holds the arm where it is
+    try {
+      (void)session_->stopTorqueControl();  // the robot holds the arm where it is
+    } catch (...) {
+    }
   }
 }
 
@@ -148,11 +151,11 @@ void FrankaArm::noteStop(const char* stop) noexcept {
 
 void FrankaArm::carryOutRequests() noexcept {
   if (recovery_.load(std::memory_order_acquire) == kAsked) {
-    if (controlling_) {
-      (void)session_->stopTorqueControl();
-      controlling_ = false;
-    }
     try {
+      if (controlling_) {
+        controlling_ = false;
+        (void)session_->stopTorqueControl();
+      }
       recovery_error_ = session_->recover();
     } catch (...) {
       recovery_error_ = "the recovery failed";
@@ -177,11 +180,11 @@ void FrankaArm::carryOutRequests() noexcept {
 
 void FrankaArm::applyThresholds(const fci::CollisionThresholds& thresholds) noexcept {
   const bool was_controlling = controlling_;
-  if (was_controlling) {
-    (void)session_->stopTorqueControl();  // the robot takes thresholds only between motions
-    controlling_ = false;
-  }
   try {
+    if (was_controlling) {
+      controlling_ = false;
+      (void)session_->stopTorqueControl();  // the robot takes thresholds only between motions
+    }
     if (session_->setCollisionThresholds(thresholds).empty()) {
       threshold_changes_.fetch_add(1, std::memory_order_relaxed);
     }
