@@ -64,6 +64,7 @@ void FrankaEmulator::Impl::receiveCommands() {
     in_motion = motion_.has_value() && streaming_;
   }
   const double give_up_s = last_send_s_ + std::max(options_.answer_wait_s, 0.0);
+  bool waited = false;  // the answer was not in when the cycle began
   for (;;) {
     while (true) {
       const ssize_t got = ::recv(udp_, datagram_.data(), datagram_.size(), MSG_DONTWAIT);
@@ -78,13 +79,16 @@ void FrankaEmulator::Impl::receiveCommands() {
       if (command.message_id == last_sent_id_) {
         command_ = command;
         answered_ = true;
+        // Late: waited for past the cycle's period (a command already in when a stalled cycle
+        // began is not the client's lateness).
+        late_ = waited && hardware::monotonicSeconds() > last_send_s_ + kPeriodS;
       }
     }
     const double now_s = hardware::monotonicSeconds();
     if (answered_ || !in_motion || now_s >= give_up_s) {
       return;
     }
-    late_ = now_s > last_send_s_ + kPeriodS;  // if it comes now, it is late
+    waited = true;
     pollfd readable{udp_, POLLIN, 0};
     (void)::poll(&readable, 1, std::max(1, static_cast<int>((give_up_s - now_s) * 1e3)));
   }
