@@ -75,20 +75,37 @@ class FciSession final : public FrankaSession {
         channel_(options.robot_ip, options.command_port, options.connect_timeout_s) {
     std::uint16_t udp_port = 0;
     udp_ = udpSocket(udp_port);
+    try {
+      connect(udp_port);
+    } catch (...) {
+      ::close(udp_);  // no destructor runs for an object that was never made
+      throw;
+    }
+  }
+
+  ~FciSession() override {
+    if (motion_id_ >= 0) {
+      (void)stopTorqueControl();
+    }
+    ::close(udp_);
+  }
+
+  /// Connect: the protocol version checked, the UDP port named.
+  void connect(std::uint16_t udp_port) {
     std::array<std::uint8_t, 4> connect{};
     std::memcpy(connect.data(), &fci::kProtocolVersion, 2);
     std::memcpy(connect.data() + 2, &udp_port, 2);
     FciResponse response;
-    if (!channel_.await(channel_.send(fci::Command::kConnect, connect), options.connect_timeout_s,
+    if (!channel_.await(channel_.send(fci::Command::kConnect, connect), options_.connect_timeout_s,
                         response)) {
-      throw hardware::BackendError("the Franka robot at " + options.robot_ip +
+      throw hardware::BackendError("the Franka robot at " + options_.robot_ip +
                                    " did not answer Connect");
     }
     version_ = response.version;
     if (response.status ==
         static_cast<std::uint8_t>(fci::ConnectStatus::kIncompatibleLibraryVersion)) {
       throw hardware::BackendError(
-          "the Franka robot at " + options.robot_ip + " speaks FCI protocol version " +
+          "the Franka robot at " + options_.robot_ip + " speaks FCI protocol version " +
           std::to_string(version_) + "; comply's own client speaks " +
           std::to_string(fci::kProtocolVersion) +
           " (robot system 5.5): use --hardware-option client=libfranka with a libfranka for "
@@ -98,13 +115,6 @@ class FciSession final : public FrankaSession {
       throw hardware::BackendError("the Franka robot refused Connect (status " +
                                    std::to_string(response.status) + ")");
     }
-  }
-
-  ~FciSession() override {
-    if (motion_id_ >= 0) {
-      (void)stopTorqueControl();
-    }
-    ::close(udp_);
   }
 
   bool read(FrankaSample& sample, double timeout_s) noexcept override {
