@@ -9,6 +9,7 @@
 #include <string>
 #include <thread>
 
+#include "../../support/eventually.hpp"
 #include "comply/franka/franka_arm.hpp"
 #include "comply/franka_emulator/franka_emulator.hpp"
 #include "comply/hardware/control_loop.hpp"
@@ -27,19 +28,7 @@ inline FrankaEmulatorOptions waitingEmulator() {
   return options;
 }
 
-/// Polls `condition` every 10 ms for up to `timeout_s`; its last value.
-inline bool eventually(const std::function<bool()>& condition, double timeout_s) {
-  const auto deadline = std::chrono::steady_clock::now() +
-                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                            std::chrono::duration<double>(timeout_s));
-  while (!condition()) {
-    if (std::chrono::steady_clock::now() > deadline) {
-      return false;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  return true;
-}
+using comply::testing::eventually;
 
 /// config/sim/cartesian_impedance.yaml on the FR3.
 inline pipeline::WrapperConfig frankaConfig() {

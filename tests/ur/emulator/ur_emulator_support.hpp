@@ -6,6 +6,7 @@
 #include <memory>
 #include <thread>
 
+#include "../../support/eventually.hpp"
 #include "comply/ur/ur_arm.hpp"
 #include "comply/ur_emulator/ur_emulator.hpp"
 
@@ -29,18 +30,6 @@ inline UrArmOptions armFor(const UrEmulator& emulator, OutputMode mode) {
   return options;
 }
 
-/// Polls `condition` every 10 ms for up to `timeout_s`; its last value.
-inline bool eventually(const std::function<bool()>& condition, double timeout_s) {
-  const auto deadline = std::chrono::steady_clock::now() +
-                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                            std::chrono::duration<double>(timeout_s));
-  while (!condition()) {
-    if (std::chrono::steady_clock::now() > deadline) {
-      return false;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  return true;
-}
+using comply::testing::eventually;
 
 }  // namespace comply::ur::test
