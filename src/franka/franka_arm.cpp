@@ -29,8 +29,10 @@ constexpr int kAsked = 1;
 constexpr int kDone = 2;
 constexpr int kFailed = 3;
 
-// thresholds_pending_.
-constexpr bool kPending = true;
+// thresholds_request_.
+constexpr int kNoRequest = 0;
+constexpr int kWriting = 1;
+constexpr int kWaiting = 2;
 
 }  // namespace
 
@@ -168,9 +170,9 @@ void FrankaArm::carryOutRequests() noexcept {
     }
     recovery_.store(recovery_error_.empty() ? kDone : kFailed, std::memory_order_release);
   }
-  if (thresholds_pending_.load(std::memory_order_acquire) == kPending) {
+  if (thresholds_request_.load(std::memory_order_acquire) == kWaiting) {
     base_ = thresholds_;
-    thresholds_pending_.store(false, std::memory_order_release);
+    thresholds_request_.store(kNoRequest, std::memory_order_release);
     applyThresholds(allowedThresholds());
   } else if (contact_pending_) {
     applyThresholds(allowedThresholds());
@@ -345,11 +347,12 @@ std::string FrankaArm::recover() {
 }
 
 bool FrankaArm::requestCollisionThresholds(const fci::CollisionThresholds& thresholds) noexcept {
-  if (thresholds_pending_.load(std::memory_order_acquire) == kPending) {
-    return false;
+  int idle = kNoRequest;
+  if (!thresholds_request_.compare_exchange_strong(idle, kWriting, std::memory_order_acquire)) {
+    return false;  // another request is being written or waits for the control thread
   }
   thresholds_ = thresholds;
-  thresholds_pending_.store(kPending, std::memory_order_release);
+  thresholds_request_.store(kWaiting, std::memory_order_release);
   return true;
 }
 

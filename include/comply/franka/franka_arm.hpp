@@ -94,7 +94,8 @@ class FrankaArm final : public hardware::HardwareInterface {
   [[nodiscard]] std::string summary() const override;
 
   /// Any thread: new collision thresholds, taken at the control thread's next sample (a torque
-  /// control running ends for it and starts again). False while an earlier change waits.
+  /// control running ends for it and starts again). False while an earlier change waits or
+  /// another thread's is being made.
   bool requestCollisionThresholds(const fci::CollisionThresholds& thresholds) noexcept;
 
   /// The control thread's clock: blocks until the robot's next state (at most link_timeout_s)
@@ -128,8 +129,10 @@ class FrankaArm final : public hardware::HardwareInterface {
   std::atomic<bool> stopped_{false};  // stop_ != nullptr, for recover()
   std::atomic<int> recovery_{0};      // 0 none, 1 asked, 2 done, 3 failed
   std::string recovery_error_;        // written by the control thread before recovery_ = 3
-  std::atomic<bool> thresholds_pending_{false};
-  fci::CollisionThresholds thresholds_;  // written before thresholds_pending_ is set
+  /// requestCollisionThresholds(): 0 none, 1 being written (one requester), 2 waiting for the
+  /// control thread.
+  std::atomic<int> thresholds_request_{0};
+  fci::CollisionThresholds thresholds_;  // written while thresholds_request_ is 1
   fci::CollisionThresholds base_;        // control thread: the thresholds last asked for
   double allowed_force_n_ = 0.0;         // control thread: the contact the robot's are set for
   double allowed_torque_n_m_ = 0.0;
