@@ -14,9 +14,9 @@ namespace comply::franka {
 namespace {
 
 constexpr const char* kLinkLost =
-    "the link to the Franka robot is lost: no state within link_timeout_s (the network, "
-    "the robot's FCI, or the robot switched off); the robot stops itself without comply's "
-    "torques";
+    "the link to the Franka robot is lost: no state within link_timeout_s, or its connection "
+    "closed (the network, the robot's FCI, or the robot switched off); the robot stops itself "
+    "without comply's torques";
 constexpr const char* kControlEnded =
     "the robot ended comply's torque control (another client, Desk or a stop request): "
     "reset to start it again";
