@@ -3,11 +3,11 @@
 
 #include "franka_backend.hpp"
 
-#include <charconv>
 #include <cmath>
 
 #include "comply/franka/fci_session.hpp"
 #include "comply/franka/franka_arm.hpp"
+#include "hardware_option.hpp"
 
 namespace comply::host {
 namespace {
@@ -16,15 +16,6 @@ constexpr const char* kOptions =
     "robot_ip=IPV4 (required), client=libfranka|comply, command_port (comply's client), "
     "realtime=enforce|ignore (libfranka's), collision_torque_n_m, collision_force_n, "
     "link_timeout_s";
-
-double numberOption(const std::string& key, const std::string& text) {
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
-    throw hardware::BackendError("--hardware-option " + key + "='" + text + "' is not a number");
-  }
-  return value;
-}
 
 struct FrankaOptions {
   franka::FciSessionOptions session;
@@ -46,12 +37,7 @@ FrankaOptions frankaOptions(const hardware::BackendContext& context) {
     } else if (key == "client" && (value == "libfranka" || value == "comply")) {
       options.client = value;
     } else if (key == "command_port") {
-      const double port = numberOption(key, value);
-      if (port < 1 || port > 65535 || port != std::floor(port)) {
-        throw hardware::BackendError("--hardware-option command_port=" + value +
-                                     " is not a TCP port (1 to 65535)");
-      }
-      options.session.command_port = static_cast<std::uint16_t>(port);
+      options.session.command_port = portOption(key, value);
     } else if (key == "realtime" && (value == "enforce" || value == "ignore")) {
       options.realtime = value == "enforce";
     } else if (key == "collision_torque_n_m") {

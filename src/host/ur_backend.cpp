@@ -2,10 +2,10 @@
 
 #include "ur_backend.hpp"
 
-#include <charconv>
 #include <cmath>
 
 #include "comply/ur/ur_arm.hpp"
+#include "hardware_option.hpp"
 
 namespace comply::host {
 namespace {
@@ -13,24 +13,6 @@ namespace {
 constexpr const char* kOptions =
     "robot_ip=IPV4 (required), rtde_port, script_port, register_offset, watchdog_s, "
     "servoj_lookahead_s, servoj_gain, speedj_acceleration, link_timeout_s";
-
-double numberOption(const std::string& key, const std::string& text) {
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
-    throw hardware::BackendError("--hardware-option " + key + "='" + text + "' is not a number");
-  }
-  return value;
-}
-
-std::uint16_t portOption(const std::string& key, const std::string& text) {
-  const double port = numberOption(key, text);
-  if (port < 1 || port > 65535 || port != std::floor(port)) {
-    throw hardware::BackendError("--hardware-option " + key + "=" + text +
-                                 " is not a TCP port (1 to 65535)");
-  }
-  return static_cast<std::uint16_t>(port);
-}
 
 ur::UrArmOptions armOptions(const hardware::BackendContext& context) {
   ur::UrArmOptions options;
