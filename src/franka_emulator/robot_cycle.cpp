@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 
 #include "comply/franka/franka_errors.hpp"
 #include "comply/hardware/loop_clock.hpp"
@@ -21,13 +20,6 @@ constexpr int kCommunicationConstraints = 25;  // the flag's index (franka_error
 constexpr int kJointReflex = 6;
 constexpr int kCartesianReflex = 7;
 
-timespec timespecOf(double seconds) {
-  timespec at{};
-  at.tv_sec = static_cast<time_t>(seconds);
-  at.tv_nsec = static_cast<long>((seconds - static_cast<double>(at.tv_sec)) * 1e9);
-  return at;
-}
-
 void putTransform(std::span<double> out, const Eigen::Isometry3d& transform) {
   const Eigen::Matrix4d& matrix = transform.matrix();
   std::copy(matrix.data(), matrix.data() + 16, out.begin());  // column-major, as on the wire
@@ -36,7 +28,8 @@ void putTransform(std::span<double> out, const Eigen::Isometry3d& transform) {
 }  // namespace
 
 void FrankaEmulator::Impl::runCycles(const std::stop_token& stop) {
-  double next_s = hardware::monotonicSeconds();
+  hardware::WallClock clock;  // an absolute deadline per cycle: no drift
+  double next_s = clock.now();
   while (!stop.stop_requested()) {
     receiveCommands();
     {
@@ -45,13 +38,11 @@ void FrankaEmulator::Impl::runCycles(const std::stop_token& stop) {
     }
     next_s += kPeriodS;
     // A stall of this thread is not caught up in a burst of states.
-    const double now_s = hardware::monotonicSeconds();
+    const double now_s = clock.now();
     if (now_s - next_s > kPeriodS) {
       next_s = now_s;
     }
-    const timespec at = timespecOf(next_s);
-    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &at, nullptr) == EINTR) {
-    }
+    clock.waitUntil(next_s);
   }
 }
 
@@ -190,7 +181,7 @@ void FrankaEmulator::Impl::enterReflex(int error_index) {
 }
 
 void FrankaEmulator::Impl::applyMotion(const fci::RobotCommandMessage* command) {
-  updateModel(model::Quantity::kGravity);
+  // The model is at the state measured last (checkReflexes), the one these drives act from.
   ActuatorCommand drives;
   drives.mode = OutputMode::kJointPd;
   drives.resize(7);
@@ -236,7 +227,9 @@ void FrankaEmulator::Impl::holdArm() {
 void FrankaEmulator::Impl::checkReflexes() {
   plant_->setExternalWrench(push_);
   external_wrench_ = plant_->toolContactWrench() + push_;
-  updateModel(model::Quantity::kJacobian | model::Quantity::kPose);
+  // Once per cycle, at the new state: the reflexes' Jacobian, the state's pose, and the gravity
+  // the next cycle's drives add.
+  updateModel(model::Quantity::kJacobian | model::Quantity::kPose | model::Quantity::kGravity);
   external_torque_ = model_data_.jacobian.transpose() * external_wrench_;
   if (mode_ != fci::RobotMode::kMove) {
     return;
@@ -275,10 +268,6 @@ void FrankaEmulator::Impl::sendState() {
       out[i] = values[static_cast<Eigen::Index>(i)];
     }
   };
-  Eigen::Matrix<double, 7, 1> commanded;
-  for (int joint = 0; joint < 7; ++joint) {
-    commanded[joint] = commanded_torque_[static_cast<std::size_t>(joint)];
-  }
   Eigen::Matrix<double, 7, 1> target;
   for (int joint = 0; joint < 7; ++joint) {
     target[joint] =
@@ -289,7 +278,7 @@ void FrankaEmulator::Impl::sendState() {
   put(fci::StateField::kDq, measured_.velocity);
   put(fci::StateField::kDtheta, measured_.velocity);
   put(fci::StateField::kTau_J, measured_.effort);
-  put(fci::StateField::kTau_J_d, commanded);
+  put(fci::StateField::kTau_J_d, commanded_torque_);
   put(fci::StateField::kQ_d, target);
   // The robot's sign: what the arm exerts on its surroundings (franka_session.hpp).
   const Vector6d exerted = -external_wrench_;

@@ -4,20 +4,12 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 
 #include "comply/hardware/loop_clock.hpp"
 #include "emulator_impl.hpp"
 
 namespace comply::ur {
 namespace {
-
-timespec timespecOf(double seconds) {
-  timespec at{};
-  at.tv_sec = static_cast<time_t>(seconds);
-  at.tv_nsec = static_cast<long>((seconds - static_cast<double>(at.tv_sec)) * 1e9);
-  return at;
-}
 
 /// A wake-up this late [s] is the host's stall, not a client's delay (awaitAnswer).
 constexpr double kStallS = 0.5e-3;
@@ -38,7 +30,8 @@ std::array<double, 6> sixOf(const JointVector& vector) {
 
 void UrEmulator::Impl::runCycles(const std::stop_token& stop) {
   const double period_s = options_.period_s;
-  double next_s = hardware::monotonicSeconds();
+  hardware::WallClock clock;  // an absolute deadline per cycle: no drift
+  double next_s = clock.now();
   while (!stop.stop_requested()) {
     awaitAnswer();
     {
@@ -49,13 +42,11 @@ void UrEmulator::Impl::runCycles(const std::stop_token& stop) {
     // A controller's cycle does not stall; this thread does, on a busy host. A cycle late by
     // less than a period starts at once (the rate stays 500 Hz); the cycles a longer stall missed
     // are not caught up in a burst, which would send the client packages back to back.
-    const double now_s = hardware::monotonicSeconds();
+    const double now_s = clock.now();
     if (now_s - next_s > period_s) {
       next_s = now_s;
     }
-    const timespec at = timespecOf(next_s);
-    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &at, nullptr) == EINTR) {
-    }
+    clock.waitUntil(next_s);
   }
 }
 
