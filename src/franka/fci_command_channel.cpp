@@ -5,59 +5,36 @@
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
-#include <poll.h>
-#include <sys/ioctl.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
-#include <cmath>
 #include <cstring>
 #include <vector>
 
 #include "comply/franka/fci_stream.hpp"
 #include "comply/hardware/backend.hpp"
+#include "comply/hardware/tcp_connect.hpp"
 
 namespace comply::franka {
 namespace {
 
 int connectWithin(const std::string& address, std::uint16_t port, double timeout_s,
                   std::uint32_t& peer) {
-  sockaddr_in target{};
-  target.sin_family = AF_INET;
-  target.sin_port = htons(port);
-  const std::string where = address + ":" + std::to_string(port);
-  if (::inet_pton(AF_INET, address.c_str(), &target.sin_addr) != 1) {
-    throw hardware::BackendError("robot_ip='" + address + "' is not an IPv4 address");
-  }
-  const int socket = ::socket(AF_INET, SOCK_STREAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  std::string why;
+  const int socket = hardware::connectTcp(address, port, timeout_s, why);
   if (socket < 0) {
-    throw hardware::BackendError("no TCP socket for the Franka robot at " + where);
+    throw hardware::BackendError("cannot connect to the Franka robot at " + address + ":" +
+                                 std::to_string(port) + ": " + why +
+                                 " (is FCI activated in Desk, and the address the robot's, not "
+                                 "its Desk's?)");
   }
-  if (::connect(socket, reinterpret_cast<const sockaddr*>(&target), sizeof target) != 0 &&
-      errno != EINPROGRESS) {
-    const std::string why = std::strerror(errno);
-    ::close(socket);
-    throw hardware::BackendError("cannot connect to the Franka robot at " + where + ": " + why);
-  }
-  pollfd writable{socket, POLLOUT, 0};
-  int error = 0;
-  socklen_t length = sizeof error;
-  if (::poll(&writable, 1, static_cast<int>(std::ceil(timeout_s * 1e3))) != 1 ||
-      ::getsockopt(socket, SOL_SOCKET, SO_ERROR, &error, &length) != 0 || error != 0) {
-    ::close(socket);
-    throw hardware::BackendError(
-        "cannot connect to the Franka robot at " + where + ": " +
-        (error != 0 ? std::string(std::strerror(error))
-                    : "no answer within " + std::to_string(timeout_s) + " s") +
-        " (is FCI activated in Desk, and the address the robot's, not its Desk's?)");
-  }
-  const int blocking = 0;
-  (void)::ioctl(socket, FIONBIO, &blocking);
   const int one = 1;
   (void)::setsockopt(socket, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-  peer = target.sin_addr.s_addr;
+  in_addr robot{};
+  (void)::inet_pton(AF_INET, address.c_str(), &robot);
+  peer = robot.s_addr;
   return socket;
 }
 

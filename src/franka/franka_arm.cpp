@@ -119,7 +119,6 @@ bool FrankaArm::awaitSample() noexcept {
   sample_ = next;
   sample_valid_ = true;
   states_.fetch_add(1, std::memory_order_relaxed);
-  sample_time_s_.store(static_cast<double>(sample_.time_ms) * 1e-3, std::memory_order_release);
   if (sample_.command_success_rate < worst_success_rate_.load(std::memory_order_relaxed) &&
       controlling_) {
     worst_success_rate_.store(sample_.command_success_rate, std::memory_order_relaxed);
@@ -357,7 +356,7 @@ bool FrankaArm::requestCollisionThresholds(const fci::CollisionThresholds& thres
 }
 
 double FrankaArm::sampleTime() const noexcept {
-  return sample_time_s_.load(std::memory_order_acquire);
+  return static_cast<double>(sample_.time_ms) * 1e-3;
 }
 
 FrankaArmStats FrankaArm::stats() const noexcept {

@@ -48,7 +48,7 @@ FrankaEmulator::Impl::Impl(const FrankaEmulatorOptions& options)
   measured_ = JointState::zero(7);
   plant_->read(measured_);
   // The joint impedance's damping: critical for each joint's own inertia at home.
-  updateModel(model::Quantity::kMassMatrix | model::Quantity::kPose);
+  updateModel(model::Quantity::kMassMatrix | model::Quantity::kPose | model::Quantity::kGravity);
   for (int joint = 0; joint < 7; ++joint) {
     const auto j = static_cast<std::size_t>(joint);
     joint_damping_[j] =

@@ -1,6 +1,6 @@
 // A TCP connection made within a time limit (tcp_connect.hpp).
 
-#include "tcp_connect.hpp"
+#include "comply/hardware/tcp_connect.hpp"
 
 #include <arpa/inet.h>
 #include <fcntl.h>
@@ -13,7 +13,7 @@
 #include <cmath>
 #include <cstring>
 
-namespace comply::ur {
+namespace comply::hardware {
 
 int connectTcp(const std::string& host, std::uint16_t port, double timeout_s, std::string& why) {
   sockaddr_in address{};
@@ -51,4 +51,4 @@ int connectTcp(const std::string& host, std::uint16_t port, double timeout_s, st
   return socket;
 }
 
-}  // namespace comply::ur
+}  // namespace comply::hardware

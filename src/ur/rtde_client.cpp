@@ -14,7 +14,7 @@
 #include <chrono>
 #include <cstring>
 
-#include "tcp_connect.hpp"
+#include "comply/hardware/tcp_connect.hpp"
 
 namespace comply::ur {
 namespace {
@@ -37,7 +37,7 @@ RtdeClient::RtdeClient(const std::string& host, std::uint16_t port, double timeo
     : timeout_s_(timeout_s) {
   const std::string where = host + ":" + std::to_string(port);
   std::string why;
-  socket_ = connectTcp(host, port, timeout_s, why);
+  socket_ = hardware::connectTcp(host, port, timeout_s, why);
   if (socket_ < 0) {
     throw RtdeError("RTDE: cannot connect to " + where + " within " + std::to_string(timeout_s) +
                     " s: " + why);

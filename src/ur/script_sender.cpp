@@ -13,7 +13,7 @@
 
 #include "comply/hardware/backend.hpp"
 #include "comply/hardware/loop_clock.hpp"
-#include "tcp_connect.hpp"
+#include "comply/hardware/tcp_connect.hpp"
 
 namespace comply::ur {
 
@@ -46,7 +46,7 @@ void sendScript(const std::string& host, std::uint16_t port, const std::string& 
                 double timeout_s) {
   const std::string where = host + ":" + std::to_string(port);
   std::string why;
-  const int socket = connectTcp(host, port, timeout_s, why);
+  const int socket = hardware::connectTcp(host, port, timeout_s, why);
   timeval limit{};
   limit.tv_sec = static_cast<time_t>(timeout_s);
   limit.tv_usec = static_cast<suseconds_t>((timeout_s - std::floor(timeout_s)) * 1e6);

@@ -101,6 +101,7 @@ class FrankaArm final : public hardware::HardwareInterface {
   /// The control thread's clock: blocks until the robot's next state (at most link_timeout_s)
   /// and keeps it for read(); first carries out what other threads asked for.
   bool awaitSample() noexcept;
+  /// The newest state's time on the robot's clock [s]. Control thread.
   [[nodiscard]] double sampleTime() const noexcept;
   [[nodiscard]] double sampleArrival() const noexcept { return sample_.arrived_s; }
   /// The last awaitSample() brought a new state. Control thread.
@@ -144,7 +145,6 @@ class FrankaArm final : public hardware::HardwareInterface {
   std::atomic<std::uint64_t> recoveries_{0};
   std::atomic<std::uint64_t> threshold_changes_{0};
   std::atomic<double> worst_success_rate_{1.0};
-  std::atomic<double> sample_time_s_{0.0};
 };
 
 /// The loop's clock: one cycle per robot state.
