@@ -141,7 +141,7 @@ bool Writer<Message>::flush(double timeout_s) {
 
 template <typename Message>
 Reader<Message>::Reader(Participant& participant, std::string_view host_name, int depth)
-    : Endpoint(participant, host_name, TopicOf<Message>::kTopic, false, depth) {
+    : Endpoint(participant, host_name, TopicOf<Message>::kTopic, false, depth), writers_(entity_) {
   waitset_ = dds_create_waitset(participant.handle());
   check(waitset_, "waitset");
   condition_ = dds_create_readcondition(entity_, DDS_ANY_STATE);
@@ -175,7 +175,7 @@ std::size_t Reader<Message>::take(std::vector<Sample<Message>>& out,
       }
       Sample<Message>& sample = out.emplace_back();
       sample.publisher = infos[i].publication_handle;
-      const Sender sender = senderOf(infos[i].publication_handle);
+      const WriterSender sender = writers_.senderOf(infos[i].publication_handle);
       sample.participant = sender.participant;
       sample.sender = sender.gid;
       wire::Wire<Message>::read(samples[i], sample);
@@ -187,57 +187,9 @@ std::size_t Reader<Message>::take(std::vector<Sample<Message>>& out,
     }
   }
   if (departed != nullptr) {
-    noteDepartures(*departed);
+    writers_.noteDepartures(*departed);
   }
   return taken;
-}
-
-template <typename Message>
-typename Reader<Message>::Sender Reader<Message>::senderOf(std::uint64_t publication) {
-  const auto known = senders_.find(publication);
-  if (known != senders_.end()) {
-    return known->second;
-  }
-  dds_builtintopic_endpoint_t* endpoint = dds_get_matched_publication_data(entity_, publication);
-  if (endpoint == nullptr) {
-    // Not known (yet): asked again next time rather than remembered as nobody, whose outcomes
-    // every client would take for its own.
-    return {};
-  }
-  Sender sender;
-  sender.participant = endpoint->participant_instance_handle;
-  std::memcpy(sender.gid.data(), endpoint->participant_key.v, sender.gid.size());
-  dds_builtintopic_free_endpoint(endpoint);
-  if (senders_.size() > 4096) {
-    senders_.clear();  // writers come and go; a long-lived host must not grow without bound
-  }
-  senders_.emplace(publication, sender);
-  return sender;
-}
-
-template <typename Message>
-void Reader<Message>::noteDepartures(std::vector<std::uint64_t>& departed) {
-  // A writer deleted (or whose process ended) is no longer matched. The matched set is compared,
-  // not the matched status's count: a writer leaving while another arrives nets no change. The
-  // set is listed only when the status says matching happened since the last call.
-  dds_subscription_matched_status_t status{};
-  if (dds_get_subscription_matched_status(entity_, &status) < 0 ||
-      (status.total_count == matches_seen_ && status.current_count == matched_.size())) {
-    return;
-  }
-  matches_seen_ = status.total_count;
-  std::array<dds_instance_handle_t, 64> handles{};
-  const dds_return_t count = dds_get_matched_publications(entity_, handles.data(), handles.size());
-  if (count < 0) {
-    return;
-  }
-  const auto now = std::span(handles.data(), std::min<std::size_t>(count, handles.size()));
-  for (const std::uint64_t before : matched_) {
-    if (std::find(now.begin(), now.end(), before) == now.end()) {
-      departed.push_back(before);
-    }
-  }
-  matched_.assign(now.begin(), now.end());
 }
 
 template <typename Message>

@@ -22,9 +22,9 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
-#include <unordered_map>
 #include <vector>
 
+#include "comply/transport/matched_writers.hpp"
 #include "comply/transport/messages.hpp"
 #include "comply/transport/participant.hpp"
 
@@ -126,19 +126,9 @@ class Reader final : public Endpoint {
   bool wait(double timeout_s);
 
  private:
-  void noteDepartures(std::vector<std::uint64_t>& departed);
-  struct Sender {
-    std::uint64_t participant = 0;  ///< its instance handle here
-    Gid gid{};                      ///< its GUID, as every peer knows it
-  };
-  /// The participant (process) of a matched writer, asked of DDS once per writer.
-  Sender senderOf(std::uint64_t publication);
-
   std::int32_t waitset_ = 0;
   std::int32_t condition_ = 0;
-  std::vector<std::uint64_t> matched_;                 ///< the writers matched when last asked
-  std::uint32_t matches_seen_ = 0;                     ///< the status's total match count then
-  std::unordered_map<std::uint64_t, Sender> senders_;  ///< writer -> its participant
+  MatchedWriters writers_;
 };
 
 /// Waits on several readers at once (the host's reader thread).
