@@ -17,7 +17,10 @@
 #             chunk, request and committed_request topics
 #   client    the reverse: commands the host, asks it, and reads what it publishes
 #   monitor   reads what the host publishes only (a dashboard, a recorder): cannot command
-#   all       every topic (the default; also what a ROS 2 node of the keystore may need)
+#   all       every topic (the default)
+# host, client and monitor also hold what every ROS 2 node publishes and reads besides its own
+# topics (the graph's ros_discovery_info, rosout, parameter events, its parameter services), so
+# an rclpy or rclcpp node runs under their enclaves too (ROS_SECURITY_ENCLAVE_OVERRIDE).
 # Keys are ECDSA P-256, certificates valid for 10 years. Needs the openssl command line.
 #
 # Usage: scripts/create-keystore.sh KEYSTORE ENCLAVE[=ROLE]...
@@ -88,6 +91,16 @@ topics() {
 }
 commands=(cartesian_command joint_command cartesian_chunk joint_chunk request committed_request)
 published=(state diagnostics committed)
+# What a ROS 2 node (rcl) creates for itself, as DDS names: without it rcl cannot create the node.
+parameter_services=(describe_parameters get_parameters get_parameter_types list_parameters
+                    set_parameters set_parameters_atomically)
+node_publish="<topic>ros_discovery_info</topic><topic>rt/rosout</topic>"
+node_publish+="<topic>rt/parameter_events</topic>"
+node_subscribe="<topic>ros_discovery_info</topic><topic>rt/parameter_events</topic>"
+for service in "${parameter_services[@]}"; do
+  node_publish+="<topic>rr/*/${service}Reply</topic>"
+  node_subscribe+="<topic>rq/*/${service}Request</topic>"
+done
 
 for argument in "$@"; do
   enclave=${argument%%=*}
@@ -100,8 +113,11 @@ for argument in "$@"; do
     all) publish="<topic>*</topic>"; subscribe="<topic>*</topic>" ;;
     *) echo "$0: role '$role' of $enclave is not one of host, client, monitor, all" >&2; exit 2 ;;
   esac
-  publish_rule=""
-  [ -n "$publish" ] && publish_rule="<publish><topics>$publish</topics></publish>"
+  if [ "$role" != all ]; then
+    publish+=$node_publish
+    subscribe+=$node_subscribe
+  fi
+  publish_rule="<publish><topics>$publish</topics></publish>"
   case $enclave in
     /*) ;;
     *) echo "$0: an enclave is a path from the root, such as /comply/host, not '$enclave'" >&2

@@ -11,6 +11,13 @@
 
 namespace comply::transport {
 
+bool MatchedWriters::isReader(std::int32_t entity) noexcept {
+  // Only a reader has a subscription-matched status; a writer is an illegal operation, anything
+  // else a bad parameter.
+  dds_subscription_matched_status_t status{};
+  return entity > 0 && dds_get_subscription_matched_status(entity, &status) == DDS_RETCODE_OK;
+}
+
 WriterSender MatchedWriters::senderOf(std::uint64_t publication) {
   const auto known = senders_.find(publication);
   if (known != senders_.end()) {
@@ -31,6 +38,10 @@ WriterSender MatchedWriters::senderOf(std::uint64_t publication) {
   }
   senders_.emplace(publication, sender);
   return sender;
+}
+
+bool MatchedWriters::isMatched(std::uint64_t publication) const noexcept {
+  return std::find(matched_.begin(), matched_.end(), publication) != matched_.end();
 }
 
 void MatchedWriters::noteDepartures(std::vector<std::uint64_t>& departed) {

@@ -28,6 +28,9 @@ class MatchedWriters {
   /// `reader`: a DDS reader entity (dds_entity_t) of this process.
   explicit MatchedWriters(std::int32_t reader) noexcept : reader_(reader) {}
 
+  /// True when `entity` is a DDS reader of this process (a handle from elsewhere is checked).
+  [[nodiscard]] static bool isReader(std::int32_t entity) noexcept;
+
   /// The participant of the matched writer `publication` (a publication handle), asked of DDS
   /// once per writer; all zero while DDS does not know it (asked again next time).
   WriterSender senderOf(std::uint64_t publication);
@@ -37,8 +40,9 @@ class MatchedWriters {
   /// status says matching happened since; the first call only learns the set.
   void noteDepartures(std::vector<std::uint64_t>& departed);
 
-  /// The publication handles matched at the last noteDepartures().
-  [[nodiscard]] const std::vector<std::uint64_t>& matched() const noexcept { return matched_; }
+  /// Whether `publication` was matched at the last noteDepartures(): a sample can outlive its
+  /// writer's match (a publisher that sent once and exited), and its sender has then left.
+  [[nodiscard]] bool isMatched(std::uint64_t publication) const noexcept;
 
  private:
   std::int32_t reader_ = 0;

@@ -9,6 +9,11 @@ controller_file:  comply's controller file (default: comply's config/sim/<contro
                   `robot:` is replaced by the robot argument
 kind:             cartesian | joint | auto (auto: joint when the plugin's name says so)
 update_rate:      controller manager rate [Hz]
+force_torque_sensor:  the wrist sensor's name for the controller (the MuJoCo hardware exports
+                  tcp_fts_sensor/force.x ... /torque.z); empty (default): none is read
+
+The plant is actuated as the controller file's output.mode says (torque unless it says
+otherwise): its <ros2_control> block then lists that mode's command interfaces.
 
 robot_state_publisher (and a joint_state_broadcaster for it) start when they are installed.
 """
@@ -39,7 +44,25 @@ def _robot_folder(robot, paths):
     raise RuntimeError(f"no comply robot '{robot}' in COMPLY_ROBOT_PATH or {paths['robots']}")
 
 
-def _robot_description(folder):
+# The command interfaces per joint of each output mode (comply_ros2_control/command_interfaces.hpp).
+_MODE_INTERFACES = {
+    'torque': ['effort'],
+    'joint_pd': ['position', 'velocity', 'effort', 'stiffness', 'damping'],
+    'position': ['position'],
+    'velocity': ['velocity'],
+}
+
+
+def _actuated_block(block, mode):
+    """The torque block for a plant actuated by `mode`: its command interfaces and parameter."""
+    if mode not in _MODE_INTERFACES:
+        raise RuntimeError(f"output.mode must be one of {', '.join(_MODE_INTERFACES)}, not '{mode}'")
+    interfaces = ''.join(f'<command_interface name="{kind}"/>' for kind in _MODE_INTERFACES[mode])
+    block = block.replace('<command_interface name="effort"/>', interfaces)
+    return block.replace('</hardware>', f'  <param name="actuation">{mode}</param>\n  </hardware>', 1)
+
+
+def _robot_description(folder, mode):
     with open(os.path.join(folder, 'robot.yaml')) as f:
         urdf_file = yaml.safe_load(f)['urdf']
     with open(os.path.join(folder, urdf_file)) as f:
@@ -50,7 +73,7 @@ def _robot_description(folder):
     if not os.path.isfile(block_file):
         raise RuntimeError(f'no ros2_control block for robot {name}: {block_file}')
     with open(block_file) as f:
-        block = f.read()
+        block = _actuated_block(f.read(), mode)
     end = urdf.rfind('</robot>')
     return urdf[:end] + block + urdf[end:]
 
@@ -62,7 +85,7 @@ def _temporary_yaml(content, prefix):
     return path
 
 
-def _controller_file(controller, controller_file, robot):
+def _controller_file(controller, controller_file, robot, sensor):
     with open(controller_file) as f:
         content = yaml.safe_load(f)
     if not isinstance(content, dict) or controller not in content:
@@ -70,6 +93,8 @@ def _controller_file(controller, controller_file, robot):
                            f"(its top-level keys: {', '.join(content or {})})")
     parameters = content[controller]['ros__parameters']
     parameters['robot'] = robot
+    if sensor:
+        parameters['force_torque_sensor.name'] = sensor
     return _temporary_yaml({controller: content[controller]}, f'comply_{controller}_'), parameters
 
 
@@ -88,7 +113,10 @@ def _launch(context):
     folder = _robot_folder(robot, paths)
     controller_file = arg('controller_file') or os.path.join(paths['config'], 'sim',
                                                              f'{controller}.yaml')
-    controller_yaml, parameters = _controller_file(controller, controller_file, robot)
+    controller_yaml, parameters = _controller_file(controller, controller_file, robot,
+                                                   arg('force_torque_sensor'))
+    mode = (parameters.get('output') or {}).get('mode') or parameters.get('output.mode') or 'torque'
+
     kind = arg('kind')
     if kind == 'auto':
         kind = 'joint' if 'joint' in str(parameters.get('plugin', '')) else 'cartesian'
@@ -102,7 +130,7 @@ def _launch(context):
     manager_yaml = _temporary_yaml({'controller_manager': {'ros__parameters': {
         'update_rate': int(arg('update_rate')), **managed}}}, 'comply_controller_manager_')
     # A dictionary reaches every node of the process: the controller reads the same URDF.
-    description = {'robot_description': _robot_description(folder)}
+    description = {'robot_description': _robot_description(folder, mode)}
     actions = [
         Node(package='controller_manager', executable='ros2_control_node', output='screen',
              parameters=[description, manager_yaml, controller_yaml]),
@@ -128,5 +156,6 @@ def generate_launch_description():
         DeclareLaunchArgument('controller_file', default_value=''),
         DeclareLaunchArgument('kind', default_value='auto'),
         DeclareLaunchArgument('update_rate', default_value='1000'),
+        DeclareLaunchArgument('force_torque_sensor', default_value=''),
         OpaqueFunction(function=_launch),
     ])

@@ -13,6 +13,7 @@
 #include "comply/pipeline/config_parameters.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/transport/message_copy.hpp"
+#include "comply_ros2_control/command_interfaces.hpp"
 #include "comply_ros2_control/comply_parameters.hpp"
 #include "comply_ros2_control/message_conversion.hpp"
 #include "comply_ros2_control/prefix_search.hpp"
@@ -56,41 +57,6 @@ std::size_t indexOfName(const std::vector<Loaned>& interfaces, const std::string
     }
   }
   throw std::runtime_error("no interface " + name + " was loaned (" + kSensorName + ")");
-}
-
-/// The command interfaces an output mode claims per joint, and the command field each carries.
-struct CommandInterface {
-  const char* kind;
-  comply::JointVector comply::ActuatorCommand::*field;
-};
-
-std::vector<CommandInterface> commandInterfacesOf(comply::OutputMode mode) {
-  using comply::ActuatorCommand;
-  switch (mode) {
-    case comply::OutputMode::kJointPd:
-      return {{"position", &ActuatorCommand::position},
-              {"velocity", &ActuatorCommand::velocity},
-              {"effort", &ActuatorCommand::effort},
-              {"stiffness", &ActuatorCommand::stiffness},
-              {"damping", &ActuatorCommand::damping}};
-    case comply::OutputMode::kPosition:
-      return {{"position", &ActuatorCommand::position}};
-    case comply::OutputMode::kVelocity:
-      return {{"velocity", &ActuatorCommand::velocity}};
-    case comply::OutputMode::kTorque:
-      break;
-  }
-  return {{"effort", &ActuatorCommand::effort}};
-}
-
-/// A publisher's GID folded into the gate's 64-bit writer identity (FNV-1a).
-template <typename Gid>
-std::uint64_t publisherId(const Gid& gid) {
-  std::uint64_t hash = 14695981039346656037ULL;
-  for (const auto byte : gid.data) {
-    hash = (hash ^ static_cast<std::uint8_t>(byte)) * 1099511628211ULL;
-  }
-  return hash == 0 ? 1 : hash;
 }
 
 }  // namespace
@@ -193,6 +159,9 @@ void ComplyController<Command>::createEndpoints() {
       [this](const std::shared_ptr<const ChunkMessage> message, const rclcpp::MessageInfo& info) {
         onChunk(*message, info);
       });
+  command_writers_.emplace(*command_subscription_);
+  chunk_writers_.emplace(*chunk_subscription_);
+  departed_.reserve(64);
   reset_service_ = node->create_service<std_srvs::srv::Trigger>(
       "~/reset_fault", [this](const std::shared_ptr<std_srvs::srv::Trigger::Request>,
                               std::shared_ptr<std_srvs::srv::Trigger::Response> response) {
@@ -227,7 +196,9 @@ CallbackReturn ComplyController<Command>::on_configure(const rclcpp_lifecycle::S
   } catch (const std::exception& error) {
     RCLCPP_ERROR(get_node()->get_logger(), "cannot configure: %s", error.what());
     release();
-    return CallbackReturn::ERROR;
+    // FAILURE, not ERROR: the controller stays unconfigured, and rclcpp_lifecycle does not run
+    // its error processing (whose log, "Error occurred while doing error handling.", misleads).
+    return CallbackReturn::FAILURE;
   }
   const int dof = wrapper_->dof();
   command_.resize(dof);
@@ -314,7 +285,7 @@ CallbackReturn ComplyController<Command>::on_activate(const rclcpp_lifecycle::St
     wrapper_->activate(state_);
   } catch (const std::exception& error) {
     RCLCPP_ERROR(get_node()->get_logger(), "cannot activate: %s", error.what());
-    return CallbackReturn::ERROR;
+    return CallbackReturn::FAILURE;  // stays inactive (see on_configure)
   }
   cycle_ = 0;
   previous_start_s_ = 0.0;
@@ -343,6 +314,8 @@ void ComplyController<Command>::release() {
   reset_service_.reset();
   tare_service_.reset();
   command_subscription_.reset();
+  command_writers_.reset();
+  chunk_writers_.reset();
   chunk_subscription_.reset();
   diagnostics_publisher_.reset();
   state_publisher_.reset();
@@ -430,7 +403,7 @@ void ComplyController<Command>::onCommand(const CommandMessage& message,
   }
   std::string malformed;
   const Command command = fromMessage(message, malformed);
-  offerToGate(message.header, info, malformed,
+  offerToGate(message.header, info, *command_writers_, malformed,
               [&](std::int64_t stamp_ns) { return wrapper_->submit(command, stamp_ns); });
 }
 
@@ -444,23 +417,27 @@ void ComplyController<Command>::onChunk(const ChunkMessage& message,
   std::string malformed;
   const comply::Chunk<Command> chunk = fromMessage(message, malformed);
   const double now_s = comply::stampSeconds(get_node()->now().nanoseconds());
-  offerToGate(message.header, info, malformed,
+  offerToGate(message.header, info, *chunk_writers_, malformed,
               [&](std::int64_t stamp_ns) { return wrapper_->submitChunk(chunk, now_s, stamp_ns); });
 }
 
 template <typename Command>
 template <typename Header, typename Submit>
 void ComplyController<Command>::offerToGate(const Header& header, const rclcpp::MessageInfo& info,
-                                            const std::string& malformed, Submit&& submit) {
+                                            WriterIdentity& writers, const std::string& malformed,
+                                            Submit&& submit) {
+  // A sender that left releases the topics before the next one is judged.
+  releaseDeparted(0);
+  const WriterOf writer = writers.of(info.get_rmw_message_info());
   comply::pipeline::Offer offer;
   offer.stamp_ns =
       static_cast<std::int64_t>(header.stamp.sec) * 1'000'000'000 + header.stamp.nanosec;
   offer.kind = std::is_same_v<Command, comply::CartesianCommand>
                    ? comply::pipeline::CommandKind::kCartesian
                    : comply::pipeline::CommandKind::kJoint;
-  offer.publisher = publisherId(info.get_rmw_message_info().publisher_gid);
-  // offer.sender stays all zero ("not known"): rmw_cyclonedds puts a local instance handle, not
-  // the writer's GUID, into a message's publisher_gid, so no client could recognise its commands.
+  offer.publisher = writer.publisher;
+  offer.participant = writer.participant;
+  offer.sender = writer.sender;
   offer.malformed = malformed;
   offer.now_ns = comply::monotonicNanoseconds();
   offer.clock_ns = get_node()->now().nanoseconds();  // the node's clock: ROS time, or /clock
@@ -472,6 +449,28 @@ void ComplyController<Command>::offerToGate(const Header& header, const rclcpp::
         get_node()->get_logger(), *get_node()->get_clock(), 1000,
         "command rejected (%s); every outcome, with its reason, is on ~/diagnostics",
         std::string(comply::pipeline::toString(refused)).c_str());
+  }
+  releaseDeparted(writer.publisher);
+}
+
+template <typename Command>
+void ComplyController<Command>::releaseDeparted(std::uint64_t just_heard) {
+  departed_.clear();
+  if (command_writers_->namesSenders() && chunk_writers_->namesSenders()) {
+    command_writers_->noteDepartures(departed_);
+    chunk_writers_->noteDepartures(departed_);
+    if (just_heard != 0 && !command_writers_->isMatched(just_heard) &&
+        !chunk_writers_->isMatched(just_heard)) {
+      departed_.push_back(just_heard);
+    }
+  } else if (gate_->publisher() != 0 && command_subscription_->get_publisher_count() == 0 &&
+             chunk_subscription_->get_publisher_count() == 0) {
+    departed_.push_back(gate_->publisher());  // no sender named: gone when no one publishes
+  }
+  for (const std::uint64_t publisher : departed_) {
+    if (const std::uint64_t chunk = gate_->releasePublisher(publisher); chunk != 0) {
+      wrapper_->dropWaitingChunk(chunk);
+    }
   }
 }
 
@@ -500,6 +499,7 @@ void ComplyController<Command>::publishDiagnostics() {
   if (!wrapper_) {
     return;
   }
+  releaseDeparted(0);
   gate_->settle();
   comply::transport::DiagnosticsMessage diagnostics = comply::host::diagnosticsMessage(
       wrapper_->diagnostics(), *loop_, nominal_period_s_, gate_->counts(), gate_->publisher(),

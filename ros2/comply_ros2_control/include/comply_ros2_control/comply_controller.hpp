@@ -45,6 +45,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <rclcpp/rclcpp.hpp>
 #include <std_srvs/srv/trigger.hpp>
 #include <string>
@@ -65,6 +66,7 @@
 #include "comply_msgs/msg/diagnostics.hpp"
 #include "comply_msgs/msg/joint_chunk.hpp"
 #include "comply_msgs/msg/joint_command.hpp"
+#include "comply_ros2_control/writer_identity.hpp"
 
 namespace comply_ros2_control {
 
@@ -108,10 +110,15 @@ class ComplyController : public controller_interface::ControllerInterface {
   void readState() noexcept;
   void onCommand(const CommandMessage& message, const rclcpp::MessageInfo& info);
   void onChunk(const ChunkMessage& message, const rclcpp::MessageInfo& info);
-  /// A command or chunk with `header` through the gate; `submit` hands it to the wrapper.
+  /// A command or chunk with `header`, taken by the subscription `writers` identifies the senders
+  /// of, through the gate; `submit` hands it to the wrapper.
   template <typename Header, typename Submit>
-  void offerToGate(const Header& header, const rclcpp::MessageInfo& info,
+  void offerToGate(const Header& header, const rclcpp::MessageInfo& info, WriterIdentity& writers,
                    const std::string& malformed, Submit&& submit);
+  /// Releases the command topics from a writer that left (`just_heard`: the writer of the message
+  /// just offered, which may have left before it was taken), and drops a chunk of its that waits
+  /// for its start, as `comply run` does. Under the endpoints mutex.
+  void releaseDeparted(std::uint64_t just_heard);
   void onResetFault(std_srvs::srv::Trigger::Response& response);
   /// After the cycle, on the real-time thread: timing and the state sample. No allocation.
   void afterCycle(const rclcpp::Time& time, bool wrote, double start_s) noexcept;
@@ -154,6 +161,9 @@ class ComplyController : public controller_interface::ControllerInterface {
 
   typename rclcpp::Subscription<CommandMessage>::SharedPtr command_subscription_;
   typename rclcpp::Subscription<ChunkMessage>::SharedPtr chunk_subscription_;
+  std::optional<WriterIdentity> command_writers_;
+  std::optional<WriterIdentity> chunk_writers_;
+  std::vector<std::uint64_t> departed_;
   rclcpp::Service<std_srvs::srv::Trigger>::SharedPtr reset_service_;
   rclcpp::Service<std_srvs::srv::Trigger>::SharedPtr tare_service_;
   rclcpp::TimerBase::SharedPtr state_timer_;
