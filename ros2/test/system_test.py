@@ -1,11 +1,16 @@
 """comply under ROS 2, end to end (make test-ros2; ROS 2 Humble sourced, the packages built).
 
-1. FR3 in the MuJoCo plant under ros2_control with the Cartesian controller (comply_bringup):
-   the controller is active; `ros2 topic pub --once` moves the TCP 2 cm and `ros2 topic echo`
-   shows it within 2 mm; a NaN command is rejected, its reason on ~/diagnostics, the arm holds;
-   comply's Python client (a process without ROS 2) commands it and `comply echo` reads it; the
-   controller's update() timing over at least 10,000 cycles.
-2. UR5e (6 joints) with the joint controller: a joint target, reached.
+1. FR3 in the MuJoCo plant under ros2_control with the Cartesian controller (comply_bringup),
+   its file's command_timeout_s 600 s (a sender let in was let in because the one before left,
+   never because its silence timed out) and recording to MCAP: the controller is active;
+   `ros2 topic pub --once` moves the TCP 2 cm and `ros2 topic echo` shows it within 2 mm; a NaN
+   command is rejected, its reason on ~/diagnostics, the arm holds; an unstamped one is refused;
+   comply's Python client (a process without ROS 2) commands it the moment the last `ros2 topic
+   pub` has left, and finds its own outcome by its sender; `comply echo` reads it; a chunk from
+   rclpy is played to its last waypoint; update() over at least 10,000 cycles: no overrun, its
+   timing from the recording's cycle records; the recording opens in `ros2 bag info`.
+2. UR5e (6 joints) with the joint controller in joint_pd (the plant's drives run the PD) and the
+   plant's wrist sensor: a joint target, reached; the state's contact wrench is the sensor's.
 3. A plain rclcpp node commands `comply run --sim` and reads its state.
 
 Usage: system_test.py COMPLY_CLI PYTHON_MODULE_DIR CONFIG_DIR
@@ -18,6 +23,7 @@ import random
 import signal
 import subprocess
 import sys
+import tempfile
 import time
 
 import yaml
@@ -25,6 +31,8 @@ import yaml
 CLI, PYTHON_DIR, CONFIG_DIR = sys.argv[1:4]
 DOMAIN = random.randint(1, 230)
 ENV = dict(os.environ, ROS_DOMAIN_ID=str(DOMAIN))
+WORK = tempfile.mkdtemp(prefix='comply_system_test_')
+BARE = {'PATH': '/usr/bin:/bin', 'PYTHONPATH': PYTHON_DIR, 'HOME': os.environ.get('HOME', '/')}
 results = []
 
 
@@ -69,14 +77,32 @@ def distance(a, b):
     return math.sqrt(sum((x - y) ** 2 for x, y in zip(a, b)))
 
 
+def controller_file(controller, changes, parameters=None):
+    """comply's config/sim/<controller>.yaml with `changes` (old text -> new) and `parameters`
+    added under ros__parameters, in a file of this run."""
+    with open(f'{CONFIG_DIR}/sim/{controller}.yaml') as original:
+        text = original.read()
+    for old, new in changes.items():
+        assert old in text, f'{old!r} not in {controller}.yaml'
+        text = text.replace(old, new)
+    content = yaml.safe_load(text)
+    content[controller]['ros__parameters'].update(parameters or {})
+    path = os.path.join(WORK, f'{controller}.yaml')
+    with open(path, 'w') as f:
+        yaml.safe_dump(content, f)
+    return path
+
+
 @contextlib.contextmanager
-def launched(robot, controller, check_name):
-    """comply_bringup for robot and controller; yields the controller's topic prefix and its first
-    state once it is active (the check check_name), else None; stops the launch on leaving."""
+def launched(robot, controller, check_name, *arguments):
+    """comply_bringup for robot and controller (and launch `arguments`); yields the controller's
+    topic prefix and its first state once it is active (the check check_name), else None; stops
+    the launch on leaving."""
     process = subprocess.Popen(
         ['ros2', 'launch', 'comply_bringup', 'comply.launch.py', f'robot:={robot}',
-         f'controller:={controller}'], env=ENV, stdout=open(f'launch_{robot}.log', 'w'),
-        stderr=subprocess.STDOUT, start_new_session=True)
+         f'controller:={controller}', *arguments], env=ENV,
+        stdout=open(f'launch_{robot}.log', 'w'), stderr=subprocess.STDOUT,
+        start_new_session=True)
 
     def active():
         code, text = ros2('control', 'list_controllers', timeout=20)
@@ -113,19 +139,70 @@ def cartesian_command(position, orientation, fields=1):
 
 
 def python_client_without_ros(name, target, orientation):
-    """comply's Python client in a process whose environment has no ROS 2 at all."""
+    """comply's Python client in a process whose environment has no ROS 2 at all: its first
+    command's outcome (found by its stamp and this client's sender), then whether it reached."""
     script = f'''
 import comply
 client = comply.Client(name={name!r}, domain={DOMAIN}, timeout=30.0)
-client.send_cartesian(position={list(target)!r}, orientation={list(orientation)!r})
+stamp = client.send_cartesian(position={list(target)!r}, orientation={list(orientation)!r})
+outcome = client.outcome(stamp, timeout=10.0)
+print("first command:", "no outcome" if outcome is None else
+      "applied" if outcome["applied"] else "refused " + outcome["message"])
 def near(state):
     return sum((a - b) ** 2 for a, b in zip(state["tcp_position"], {list(target)!r})) < 2e-3 ** 2
 print("reached" if client.wait_until(near, timeout=15.0) else "missed")
 '''
-    bare = {'PATH': '/usr/bin:/bin', 'PYTHONPATH': PYTHON_DIR, 'HOME': os.environ.get('HOME', '/')}
-    done = subprocess.run(['/usr/bin/python3', '-c', script], env=bare, capture_output=True,
+    done = subprocess.run(['/usr/bin/python3', '-c', script], env=BARE, capture_output=True,
                           text=True, timeout=90)
     return done.stdout.strip() + done.stderr.strip()[-400:]
+
+
+def rclpy_chunk(base, waypoints, orientation):
+    """An rclpy node publishes one CartesianChunk: `waypoints` 0.5 s apart from 0.5 s on."""
+    script = f'''
+import rclpy, time
+from rclpy.duration import Duration
+from comply_msgs.msg import CartesianChunk, CartesianCommand
+rclpy.init()
+node = rclpy.create_node("chunk_sender")
+publisher = node.create_publisher(CartesianChunk, "{base}/cartesian_chunk", 10)
+deadline = time.monotonic() + 10.0
+while publisher.get_subscription_count() == 0 and time.monotonic() < deadline:
+    time.sleep(0.05)
+now = node.get_clock().now()
+chunk = CartesianChunk()
+chunk.header.stamp = now.to_msg()
+chunk.fields = CartesianCommand.FIELD_POSITION
+for k, position in enumerate({waypoints!r}):
+    waypoint = CartesianCommand()
+    waypoint.header.stamp = (now + Duration(seconds=0.5 * (k + 1))).to_msg()
+    waypoint.position = position
+    waypoint.orientation = {list(orientation)!r}
+    chunk.waypoints.append(waypoint)
+publisher.publish(chunk)
+time.sleep(1.0)  # delivered before the node leaves
+print("published", len(chunk.waypoints), "waypoints")
+'''
+    done = subprocess.run(['python3', '-c', script], env=ENV, capture_output=True, text=True,
+                          timeout=60)
+    return done.returncode == 0, (done.stdout + done.stderr).strip()[-300:]
+
+
+def recorded_timing(path):
+    """update()'s compute time from every cycle record of the recording: count, p50, p99, max
+    [us], read by comply's Python reader (outside ROS 2)."""
+    script = f'''
+import numpy, comply
+cycles = comply.read_recording({path!r})["/cartesian_impedance/cycle"]
+us = numpy.asarray(cycles["compute_time"]) * 1e6
+print(len(us), numpy.percentile(us, 50), numpy.percentile(us, 99), us.max())
+'''
+    done = subprocess.run(['/usr/bin/python3', '-c', script], env=BARE, capture_output=True,
+                          text=True, timeout=120)
+    if done.returncode != 0:
+        raise RuntimeError(done.stderr.strip()[-300:])
+    count, p50, p99, peak = done.stdout.split()
+    return int(count), float(p50), float(p99), float(peak)
 
 
 def update_timing(topic):
@@ -144,7 +221,12 @@ def update_timing(topic):
 
 
 def fr3_cartesian():
-    with launched('fr3', 'cartesian_impedance', 'fr3: controller active') as started:
+    recording = os.path.join(WORK, 'fr3.mcap')
+    patient = controller_file('cartesian_impedance',
+                              {'command_timeout_s: 0.5': 'command_timeout_s: 600.0'},
+                              {'record': recording})
+    with launched('fr3', 'cartesian_impedance', 'fr3: controller active',
+                  f'controller_file:={patient}') as started:
         if not started:
             return
         base, state = started
@@ -178,9 +260,13 @@ def fr3_cartesian():
         check('fr3: an unstamped command is refused as stale', bool(stale),
               f"diagnostics: '{stale['last_rejection'] if stale else ''}'")
 
+        # The last `ros2 topic pub` has just left; with 600 s of command_timeout_s, only its
+        # departure lets the next sender in.
         target2 = [target[0] - 0.02, target[1], target[2]]
         outcome = python_client_without_ros('cartesian_impedance', target2, orientation)
-        check('fr3: Python client without ROS 2 commands it', outcome.startswith('reached'),
+        check('fr3: a sender that left releases the topics at once',
+              outcome.startswith('first command: applied'), outcome.splitlines()[0])
+        check('fr3: Python client without ROS 2 commands it', outcome.endswith('reached'),
               outcome)
         done = subprocess.run([CLI, 'echo', '--name', 'cartesian_impedance', '--domain',
                                str(DOMAIN), '--count', '1', '--json'], capture_output=True,
@@ -189,15 +275,36 @@ def fr3_cartesian():
         check('fr3: comply echo reads its state', done.returncode == 0 and bool(echoed) and
               '"tcp_position"' in echoed[0], (echoed[0][:120] if echoed else done.stderr[-200:]))
 
+        waypoints = [[target2[0], target2[1], target2[2] + 0.01 * (k + 1)] for k in range(3)]
+        sent, text = rclpy_chunk(base, waypoints, orientation)
+        played = settled_at(f'{base}/state', waypoints[-1], 2e-3) if sent else None
+        check('fr3: a chunk from rclpy is played', played is not None,
+              f'{text}; TCP {played[1] * 1e3:.2f} mm from the last waypoint' if played
+              else text)
+
         wait_for(lambda: update_timing(f'{base}/diagnostics')[0] >= 10000, 30)
         cycles, mean_us, p99_us, overruns = update_timing(f'{base}/diagnostics')
-        check('fr3: update() timing', cycles >= 10000,
-              f'{cycles} cycles: mean {mean_us:.1f} us, p99 {p99_us:.0f} us, '
-              f'{overruns} overruns')
+        check('fr3: update() never overran its period', cycles >= 10000 and overruns == 0,
+              f'{cycles} cycles, {overruns} overruns; histogram (10 us bins): mean '
+              f'{mean_us:.1f} us, p99 below {p99_us:.0f} us')
+    code, text = ros2('bag', 'info', '-s', 'mcap', recording, timeout=60)
+    check('fr3: the recording opens in ros2 bag info',
+          code == 0 and '/cartesian_impedance/cycle' in text,
+          ' '.join(line.strip() for line in text.splitlines()
+                   if 'cycle' in line or 'Messages' in line)[:300])
+    try:
+        count, p50, p99, peak = recorded_timing(recording)
+        check('fr3: update() timing from every recorded cycle', count >= 10000,
+              f'{count} cycles: p50 {p50:.1f} us, p99 {p99:.1f} us, max {peak:.1f} us')
+    except (RuntimeError, ValueError) as error:
+        check('fr3: update() timing from every recorded cycle', False, str(error))
 
 
 def ur5e_joint():
-    with launched('ur5e', 'joint_impedance', 'ur5e: joint controller active') as started:
+    # The plant's drives run the PD (joint_pd); the wrist sensor the MuJoCo hardware exports.
+    drives = controller_file('joint_impedance', {}, {'output': {'mode': 'joint_pd'}})
+    with launched('ur5e', 'joint_impedance', 'ur5e: joint controller active (joint_pd)',
+                  f'controller_file:={drives}', 'force_torque_sensor:=tcp_fts_sensor') as started:
         if not started:
             return
         base, state = started
@@ -216,6 +323,13 @@ def ur5e_joint():
         check('ur5e: ros2 topic pub moves the joints', reached is not None,
               f'largest joint error {reached[1] * 1e3:.2f} mrad, TCP at '
               f'{[round(x, 4) for x in reached[0]["tcp_position"]]}' if reached else 'not reached')
+        # At rest, unloaded: the sensor reads the tool's weight (UR5e: its flange only, a few N
+        # at most) and the state says the wrench is the sensor's.
+        sensed = echo(f'{base}/state')
+        check('ur5e: the wrist sensor is the state\'s contact wrench',
+              sensed['contact_wrench_source'] == 2,
+              f"source {sensed['contact_wrench_source']}, "
+              f"wrench {[round(x, 2) for x in sensed['contact_wrench']]}")
 
 
 def rclcpp_to_comply_run():

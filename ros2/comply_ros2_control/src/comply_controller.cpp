@@ -34,6 +34,7 @@ constexpr const char* kRobotDescription = "robot_description";
 constexpr const char* kSensorName = "force_torque_sensor.name";
 constexpr const char* kSensorInterfaces = "force_torque_sensor.interface_names";
 constexpr const char* kSensorFrame = "force_torque_sensor.frame";
+constexpr const char* kRecord = "record";  ///< an MCAP file to record to ("": none)
 constexpr std::size_t kCommandDepth = 1000;  ///< commands waiting for the executor, at most
 
 // The index in `interfaces` of "<joint>/<kind>"; throws naming the missing one.
@@ -77,6 +78,7 @@ CallbackReturn ComplyController<Command>::on_init() {
   auto_declare<std::string>(kSensorName, "");
   auto_declare<std::vector<std::string>>(kSensorInterfaces, {});
   auto_declare<std::string>(kSensorFrame, "tcp");
+  auto_declare<std::string>(kRecord, "");
   return CallbackReturn::SUCCESS;
 }
 
@@ -119,8 +121,8 @@ void ComplyController<Command>::resolve() {
       comply::model::loadRobotDescription(config.robot));
   robot->urdf_xml = node->get_parameter(kRobotDescription).as_string();
   comply::pipeline::completeForRobot(config, robot);
-  wrapper_ = std::make_unique<comply::pipeline::Wrapper<Command>>(
-      comply::pipeline::resolveController(config));
+  resolved_ = comply::pipeline::resolveController(config);
+  wrapper_ = std::make_unique<comply::pipeline::Wrapper<Command>>(resolved_);
   gate_ = std::make_unique<comply::pipeline::CommandGate>(
       comply::pipeline::gateOptions(config, std::is_same_v<Command, comply::CartesianCommand>));
   joints_ = config.joints;
@@ -181,10 +183,30 @@ void ComplyController<Command>::createEndpoints() {
         response->message =
             why.empty() ? "tare requested: the next cycle's reading is the zero" : why;
       });
+  openRecording();
   state_timer_ = node->create_wall_timer(std::chrono::duration<double>(1.0 / state_rate_hz),
                                          [this] { publishState(); });
   diagnostics_timer_ = node->create_wall_timer(
       std::chrono::duration<double>(1.0 / diagnostics_rate_hz), [this] { publishDiagnostics(); });
+}
+
+template <typename Command>
+void ComplyController<Command>::openRecording() {
+  const std::string path = get_node()->get_parameter(kRecord).as_string();
+  if (path.empty()) {
+    return;
+  }
+  try {
+    recording_ = std::make_unique<comply::host::HostRecording>(
+        path, resolved_, get_node()->get_name(),
+        comply::record::StringMap{{"host", "ros2_control"},
+                                  {"rate_hz", std::to_string(1.0 / nominal_period_s_)}},
+        // update() never waits for the disk: a full lane drops, and counts.
+        comply::host::HostRecordingOptions{.when_full = comply::record::WhenFull::kDrop});
+  } catch (const std::exception& error) {
+    throw std::runtime_error(std::string("parameter ") + kRecord + ": " + error.what());
+  }
+  RCLCPP_INFO(get_node()->get_logger(), "recording every cycle to %s", path.c_str());
 }
 
 template <typename Command>
@@ -319,10 +341,20 @@ void ComplyController<Command>::release() {
   chunk_subscription_.reset();
   diagnostics_publisher_.reset();
   state_publisher_.reset();
+  if (recording_) {
+    recording_->stop();
+    const comply::record::RecorderStats stats = recording_->stats();
+    RCLCPP_INFO(get_node()->get_logger(), "recorded %llu messages to %s, dropped %llu%s%s",
+                static_cast<unsigned long long>(stats.written), recording_->path().c_str(),
+                static_cast<unsigned long long>(stats.dropped),
+                stats.error.empty() ? "" : "; stopped early: ", stats.error.c_str());
+    recording_.reset();
+  }
   samples_.reset();
   sampler_.reset();
   loop_.reset();
   wrapper_.reset();
+  resolved_.reset();
   gate_.reset();
   joints_.clear();
 }
@@ -373,12 +405,20 @@ void ComplyController<Command>::afterCycle(const rclcpp::Time& time, bool wrote,
   // The controller manager schedules update(): its lateness is how much later than one nominal
   // period after the previous start this one started, on the steady clock (ROS time may be
   // simulated, and the manager's `period` is its own loop's).
+  const double lateness_s =
+      previous_start_s_ > 0.0 ? start_s - previous_start_s_ - nominal_period_s_ : 0.0;
   if (previous_start_s_ > 0.0) {
-    comply::host::LoopCounters::count(loop_->lateness,
-                                      start_s - previous_start_s_ - nominal_period_s_);
+    comply::host::LoopCounters::count(loop_->lateness, lateness_s);
   }
   previous_start_s_ = start_s;
   const double compute_s = comply::hardware::monotonicSeconds() - start_s;
+  if (recording_) {
+    // get_if: the bus holds the controller's kind, and std::get may throw.
+    if (const auto* in_force =
+            std::get_if<comply::pipeline::BusOf<Command>>(&wrapper_->controller().lawBus())) {
+      recording_->cycle<Command>(sample_, *in_force, compute_s, lateness_s);
+    }
+  }
   loop_->countCycle(compute_s, compute_s > nominal_period_s_);
 }
 
@@ -506,6 +546,16 @@ void ComplyController<Command>::publishDiagnostics() {
       get_node()->get_name(), comply::host::outcomeMessages(gate_->takeOutcomes()));
   diagnostics.header.stamp =
       comply::transport::Stamp::fromNanoseconds(get_node()->now().nanoseconds());
+  if (recording_) {
+    const comply::record::RecorderStats stats = recording_->stats();
+    diagnostics.records_dropped = stats.dropped;
+    diagnostics.recording =
+        stats.error.empty() ? recording_->path() : "stopped early: " + stats.error;
+    for (const comply::transport::CommandOutcomeMessage& outcome : diagnostics.outcomes) {
+      recording_->outcome(outcome);
+    }
+    recording_->diagnostics(diagnostics);
+  }
   comply_msgs::msg::Diagnostics message;
   comply::transport::copyMessage(diagnostics, message);
   diagnostics_publisher_->publish(message);

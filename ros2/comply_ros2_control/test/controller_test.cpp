@@ -13,6 +13,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <lifecycle_msgs/msg/state.hpp>
 #include <map>
@@ -21,8 +22,10 @@
 #include <optional>
 #include <rclcpp_lifecycle/lifecycle_node.hpp>
 #include <sstream>
+#include <unistd.h>
 
 #include "comply/model/robot_description.hpp"
+#include "comply/record/mcap_reader.hpp"
 #include "comply/pipeline/config.hpp"
 #include "comply/pipeline/config_parameters.hpp"
 #include "comply/schema/schema.hpp"
@@ -31,6 +34,7 @@
 #include "comply_msgs/msg/diagnostics.hpp"
 #include "comply_ros2_control/comply_controller.hpp"
 #include "comply_ros2_control/comply_parameters.hpp"
+#include "controller_harness.hpp"
 
 namespace {
 
@@ -74,108 +78,6 @@ void* aligned_alloc(std::size_t alignment, std::size_t size) {
 
 namespace comply_ros2_control {
 namespace {
-
-namespace hi = hardware_interface;
-
-const std::string kConfig = std::string(COMPLY_CONFIG_DIR) + "/sim/cartesian_impedance.yaml";
-
-std::string fileText(const std::string& path) {
-  std::ifstream file(path);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
-class ControllerHarness : public ::testing::Test {
- protected:
-  void SetUp() override {
-    rclcpp::init(0, nullptr);
-    std::vector<std::string> arguments{"--ros-args", "--params-file", kConfig};
-    if (with_sensor_) {
-      arguments.insert(arguments.end(), {"-p", "force_torque_sensor.name:=ft"});
-    }
-    if (output_mode_ != "torque") {
-      arguments.insert(arguments.end(), {"-p", "output.mode:=" + output_mode_});
-    }
-    const auto options = rclcpp::NodeOptions()
-                             .allow_undeclared_parameters(true)
-                             .automatically_declare_parameters_from_overrides(true)
-                             .arguments(arguments);
-    ASSERT_EQ(controller_.init("cartesian_impedance", "", options),
-              controller_interface::return_type::OK);
-    ASSERT_EQ(controller_.configure().id(), lifecycle_msgs::msg::State::PRIMARY_STATE_INACTIVE);
-    const auto robot = comply::model::loadRobotDescription("fr3");
-    dof_ = robot.joints.size();
-    values_.resize(3 * dof_);
-    command_values_.resize(commandKinds().size() * dof_);
-    for (std::size_t i = 0; i < dof_; ++i) {
-      values_[3 * i] = robot.home[i];
-      state_interfaces_.emplace_back(robot.joints[i], "position", &values_[3 * i]);
-      state_interfaces_.emplace_back(robot.joints[i], "velocity", &values_[3 * i + 1]);
-      state_interfaces_.emplace_back(robot.joints[i], "effort", &values_[3 * i + 2]);
-      for (std::size_t k = 0; k < commandKinds().size(); ++k) {
-        command_interfaces_.emplace_back(robot.joints[i], commandKinds()[k],
-                                         &command_values_[i * commandKinds().size() + k]);
-      }
-    }
-    if (with_sensor_) {
-      const char* axes[] = {"force.x", "force.y", "force.z", "torque.x", "torque.y", "torque.z"};
-      for (std::size_t k = 0; k < 6; ++k) {
-        state_interfaces_.emplace_back("ft", axes[k], &wrench_[k]);
-      }
-    }
-    std::vector<hi::LoanedStateInterface> loaned_states;
-    std::vector<hi::LoanedCommandInterface> loaned_commands;
-    // Loaned in an order of ros2_control's choosing: reversed here, the controller must map.
-    for (auto it = state_interfaces_.rbegin(); it != state_interfaces_.rend(); ++it) {
-      loaned_states.emplace_back(*it);
-    }
-    for (auto& command : command_interfaces_) {
-      loaned_commands.emplace_back(command);
-    }
-    controller_.assign_interfaces(std::move(loaned_commands), std::move(loaned_states));
-    ASSERT_EQ(controller_.get_node()->activate().id(),
-              lifecycle_msgs::msg::State::PRIMARY_STATE_ACTIVE);
-  }
-  void TearDown() override {
-    controller_.get_node()->deactivate();
-    controller_.release_interfaces();
-    rclcpp::shutdown();
-  }
-
-  /// The command interfaces of a joint, as the controller claims them in its output.mode.
-  std::vector<std::string> commandKinds() const {
-    if (output_mode_ == "joint_pd") {
-      return {"position", "velocity", "effort", "stiffness", "damping"};
-    }
-    if (output_mode_ == "position" || output_mode_ == "velocity") {
-      return {output_mode_};
-    }
-    return {"effort"};
-  }
-  /// Command interface `kind` of `joint` (index into commandKinds()).
-  double command(std::size_t joint, std::size_t kind) const {
-    return command_values_[joint * commandKinds().size() + kind];
-  }
-  double torque(std::size_t joint) const { return command(joint, 0); }
-  comply::JointState jointState() const {
-    auto state = comply::JointState::zero(static_cast<int>(dof_));
-    for (std::size_t i = 0; i < dof_; ++i) {
-      state.position[static_cast<Eigen::Index>(i)] = values_[3 * i];
-    }
-    return state;
-  }
-
-  CartesianController controller_;
-  bool with_sensor_ = false;  ///< a wrist sensor "ft" on ros2_control's force-torque interfaces
-  std::string output_mode_ = "torque";  ///< output.mode, and the command interfaces it claims
-  std::array<double, 6> wrench_{};      ///< its reading: force x y z [N], torque x y z [N m]
-  std::size_t dof_ = 0;
-  std::vector<double> values_;          // per joint: position, velocity, effort
-  std::vector<double> command_values_;  // per joint: commandKinds()
-  std::vector<hi::StateInterface> state_interfaces_;
-  std::vector<hi::CommandInterface> command_interfaces_;
-};
 
 TEST_F(ControllerHarness, WritesTheTorqueOfComplysWrapperOnTheSameFile) {
   comply::pipeline::Wrapper<comply::CartesianCommand> reference(
@@ -317,109 +219,6 @@ TEST_F(ControllerHarness, ResetFaultServiceLeavesFault) {
   }
 }
 
-using comply_msgs::msg::CartesianCommand;
-using comply_msgs::msg::CommandOutcome;
-using comply_msgs::msg::ControllerState;
-using comply_msgs::msg::Diagnostics;
-
-/// Two senders and a listener of the controller's topics, spun with it between cycles.
-class TopicHarness : public ControllerHarness {
- protected:
-  void SetUp() override {
-    ControllerHarness::SetUp();
-    listener_ = std::make_shared<rclcpp::Node>("listener");
-    second_sender_ = std::make_shared<rclcpp::Node>("second_sender");
-    const std::string topic = "/cartesian_impedance/cartesian_command";
-    sender_a_ = listener_->create_publisher<CartesianCommand>(topic, rclcpp::QoS(1000).reliable());
-    sender_b_ =
-        second_sender_->create_publisher<CartesianCommand>(topic, rclcpp::QoS(1000).reliable());
-    state_ = listener_->create_subscription<ControllerState>(
-        "/cartesian_impedance/state", rclcpp::SensorDataQoS(),
-        [this](const ControllerState& state) { states_.push_back(state); });
-    diagnostics_ = listener_->create_subscription<Diagnostics>(
-        "/cartesian_impedance/diagnostics", rclcpp::QoS(100).reliable(),
-        [this](const Diagnostics& diagnostics) {
-          diagnostics_received_.push_back(diagnostics);
-          outcomes_.insert(outcomes_.end(), diagnostics.outcomes.begin(),
-                           diagnostics.outcomes.end());
-        });
-    executor_ = std::make_unique<rclcpp::executors::SingleThreadedExecutor>();
-    executor_->add_node(controller_.get_node()->get_node_base_interface());
-    executor_->add_node(listener_);
-    executor_->add_node(second_sender_);
-    ASSERT_TRUE(runUntil([this] {
-      return sender_a_->get_subscription_count() > 0 && sender_b_->get_subscription_count() > 0 &&
-             !states_.empty() && !diagnostics_received_.empty();
-    })) << "the controller's topics were not discovered";
-  }
-  void TearDown() override {
-    executor_.reset();
-    state_.reset();
-    diagnostics_.reset();
-    sender_a_.reset();
-    sender_b_.reset();
-    listener_.reset();
-    second_sender_.reset();
-    ControllerHarness::TearDown();
-  }
-
-  /// Cycles on the node's clock, the executor spun between them, until `done` or 10 s.
-  template <typename Done>
-  bool runUntil(Done&& done) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-    while (std::chrono::steady_clock::now() < deadline) {
-      // A joint moving a little: a stream that never changes is a frozen sensor (FAULT).
-      values_[1] = 1e-3 * static_cast<double>(cycles_ % 7);
-      controller_.update(controller_.get_node()->now(), rclcpp::Duration(0, 1'000'000));
-      ++cycles_;
-      executor_->spin_some(std::chrono::milliseconds(1));
-      if (done()) {
-        return true;
-      }
-    }
-    return false;
-  }
-
-  /// The measured TCP pose as a command from `stamp`.
-  CartesianCommand holdCommand(const rclcpp::Time& stamp) const {
-    CartesianCommand command;
-    command.header.stamp = stamp;
-    command.fields = static_cast<std::uint32_t>(comply::CommandField::kPosition);
-    command.position = states_.back().tcp_position;
-    command.orientation = states_.back().tcp_orientation;
-    return command;
-  }
-
-  /// The outcome of the command from `stamp`, once the diagnostics brought it.
-  std::optional<CommandOutcome> outcomeOf(const rclcpp::Time& stamp, std::size_t nth = 0) {
-    runUntil([&] {
-      std::size_t seen = 0;
-      for (const CommandOutcome& outcome : outcomes_) {
-        seen += rclcpp::Time(outcome.stamp) == stamp ? 1 : 0;
-      }
-      return seen > nth;
-    });
-    for (const CommandOutcome& outcome : outcomes_) {
-      if (rclcpp::Time(outcome.stamp) == stamp && nth-- == 0) {
-        return outcome;
-      }
-    }
-    return std::nullopt;
-  }
-
-  std::unique_ptr<rclcpp::executors::SingleThreadedExecutor> executor_;  // after rclcpp::init
-  std::shared_ptr<rclcpp::Node> listener_;
-  std::shared_ptr<rclcpp::Node> second_sender_;
-  rclcpp::Publisher<CartesianCommand>::SharedPtr sender_a_;
-  rclcpp::Publisher<CartesianCommand>::SharedPtr sender_b_;
-  rclcpp::Subscription<ControllerState>::SharedPtr state_;
-  rclcpp::Subscription<Diagnostics>::SharedPtr diagnostics_;
-  std::vector<ControllerState> states_;
-  std::vector<Diagnostics> diagnostics_received_;
-  std::vector<CommandOutcome> outcomes_;
-  std::uint64_t cycles_ = 0;
-};
-
 // The cases comply run's gate is tested on (tests/pipeline/command_gate_test.cpp and
 // tests/live), here through ROS 2 topics: applied with the cycle that took it, an equal stamp
 // refused (stamps increase strictly), a second sender refused while the first is active, a burst
@@ -513,14 +312,9 @@ TEST_F(TopicHarness, StateAndDiagnosticsAreComplyRunsMessages) {
     started += count;
   }
   EXPECT_EQ(started, diagnostics.cycles - 1) << "every start after the first";
-  EXPECT_EQ(diagnostics.rejections.size(),
-            static_cast<std::size_t>(CommandOutcome::REASON_INVALID_STAMP) + 1);
+  EXPECT_EQ(diagnostics.rejections.size(), comply::pipeline::kCommandReasonCount)
+      << "one count per reason";
 }
-
-class SensorTopicHarness : public TopicHarness {
- protected:
-  SensorTopicHarness() { with_sensor_ = true; }
-};
 
 // A wrist force/torque sensor on ros2_control's interfaces (force_torque_sensor.name): its
 // reading is the state's contact wrench, reported as the sensor's; in the TCP frame it is the
@@ -620,6 +414,84 @@ TEST(ComplyParameters, AnUnknownParameterIsComplysErrorAndAValueOutOfRangeIsRefu
     EXPECT_NE(std::string(error.what()).find("command_timeout_s must be >= 0"), std::string::npos)
         << error.what();
   }
+  rclcpp::shutdown();
+}
+
+}  // namespace
+}  // namespace comply_ros2_control
+
+namespace comply_ros2_control {
+namespace {
+
+/// The controller recording to an MCAP file in a folder of its own (the `record` parameter).
+class RecordingHarness : public ControllerHarness {
+ protected:
+  RecordingHarness() {
+    folder_ = std::filesystem::temp_directory_path() /
+              ("comply_ros2_recording_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(folder_);
+    path_ = (folder_ / "run.mcap").string();
+    extra_parameters_ = {"record:=" + path_};
+  }
+  ~RecordingHarness() override { std::filesystem::remove_all(folder_); }
+
+  /// `cycles` updates on a moving joint (a repeated state would be a frozen sensor stream).
+  void run(int cycles) {
+    for (int cycle = 0; cycle < cycles; ++cycle) {
+      values_[1] = 1e-3 * (cycle % 7);
+      controller_.update(rclcpp::Time(0), rclcpp::Duration(0, 1'000'000));
+    }
+  }
+
+  std::filesystem::path folder_;
+  std::string path_;
+};
+
+// Every update() is a cycle record on /<name>/cycle, as `comply run --record` writes it: the
+// file closes when the controller is cleaned up, in the ROS 2 profile with the messages'
+// definitions, and holds exactly the cycles run.
+TEST_F(RecordingHarness, EveryCycleIsRecordedToMcap) {
+  constexpr int kCycles = 500;
+  run(kCycles);
+  controller_.get_node()->deactivate();
+  ASSERT_EQ(controller_.get_node()->cleanup().id(),
+            lifecycle_msgs::msg::State::PRIMARY_STATE_UNCONFIGURED);
+  std::map<std::uint16_t, std::uint64_t> counts;
+  const comply::record::McapContents contents = comply::record::readMcap(
+      path_, [&](const comply::record::McapMessageView& message) { ++counts[message.channel_id]; });
+  EXPECT_EQ(contents.profile, "ros2");
+  const auto cycle = std::find_if(contents.channels.begin(), contents.channels.end(),
+                                  [](const auto& c) { return c.topic == "/cartesian_impedance/cycle"; });
+  ASSERT_NE(cycle, contents.channels.end());
+  EXPECT_EQ(cycle->schema_name, "comply_msgs/msg/CycleRecord");
+  EXPECT_EQ(cycle->schema_encoding, "ros2msg");
+  EXPECT_FALSE(cycle->schema_data.empty());
+  EXPECT_EQ(counts[cycle->id], static_cast<std::uint64_t>(kCycles));
+}
+
+// Recording costs update() no allocation: a cycle is copied into a lane the writer drains.
+TEST_F(RecordingHarness, UpdateAllocatesNothingWhileRecording) {
+  run(100);
+  allocations = 0;
+  counting = true;
+  run(2000);
+  counting = false;
+  EXPECT_EQ(allocations.load(), 0);
+}
+
+// A path in a folder that does not exist: configure fails naming the parameter and the file,
+// and the controller stays unconfigured (not finalized).
+TEST(RecordingParameter, AnUnwritablePathRefusesConfigure) {
+  rclcpp::init(0, nullptr);
+  CartesianController controller;
+  const auto options = rclcpp::NodeOptions()
+                           .allow_undeclared_parameters(true)
+                           .automatically_declare_parameters_from_overrides(true)
+                           .arguments({"--ros-args", "--params-file", kConfig, "-p",
+                                       "record:=/nonexistent-folder/run.mcap"});
+  ASSERT_EQ(controller.init("cartesian_impedance", "", options),
+            controller_interface::return_type::OK);
+  EXPECT_EQ(controller.configure().id(), lifecycle_msgs::msg::State::PRIMARY_STATE_UNCONFIGURED);
   rclcpp::shutdown();
 }
 

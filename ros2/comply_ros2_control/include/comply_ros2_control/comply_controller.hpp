@@ -38,6 +38,12 @@
 //   force_torque_sensor.interface_names  or six full names (force x y z, torque x y z)
 //   force_torque_sensor.frame            tcp (default: the sensor's axes, aligned with the TCP,
 //                                        turned with it every cycle) or base
+// A recording (docs/recording.md), by the parameter `record` (a file path; "" none): the cycle
+// record of every update() (/<name>/cycle, with the gains and task frame in force), every
+// command's outcome, the chunks' timing and the diagnostics, written to MCAP as
+// `comply run --record` writes them, by a writer thread of its own; update() only copies the
+// cycle into a lane, never waits (a full lane drops the record and counts it in ~/diagnostics).
+//
 // The command and state topics and types are those of `comply run`, so comply's Python client
 // and `comply send` / `comply echo` talk to either host.
 
@@ -57,6 +63,7 @@
 #include "comply/core/state.hpp"
 #include "comply/core/triple_buffer.hpp"
 #include "comply/host/diagnostics_message.hpp"
+#include "comply/host/host_recording.hpp"
 #include "comply/host/state_sample.hpp"
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
@@ -107,6 +114,8 @@ class ComplyController : public controller_interface::ControllerInterface {
   bool mapInterfaces();
   /// The force_torque_sensor.* parameters into sensor_interfaces_; throws on a bad one.
   void resolveSensor();
+  /// The `record` parameter's recording (none when it is empty); throws naming a bad path.
+  void openRecording();
   void readState() noexcept;
   void onCommand(const CommandMessage& message, const rclcpp::MessageInfo& info);
   void onChunk(const ChunkMessage& message, const rclcpp::MessageInfo& info);
@@ -127,7 +136,9 @@ class ComplyController : public controller_interface::ControllerInterface {
   void publishState();
   void publishDiagnostics();
 
+  std::shared_ptr<const comply::pipeline::ResolvedController> resolved_;
   std::unique_ptr<comply::pipeline::Wrapper<Command>> wrapper_;
+  std::unique_ptr<comply::host::HostRecording> recording_;  ///< the `record` parameter's; or none
   std::vector<std::string> joints_;
   // Index of each joint's interface in state_interfaces_ / command_interfaces_, in joints_ order:
   // ros2_control loans them in its own order.

@@ -1,0 +1,164 @@
+// What `comply run` does with its senders and sensors, under ros2_control: a sender that leaves
+// releases the command topics at once (not after command_timeout_s), every outcome names the
+// process that sent the command (checked against the ROS graph's own record of the writer), and a
+// wrist sensor is read from the interface names vendors' drivers export.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "controller_harness.hpp"
+
+namespace comply_ros2_control {
+namespace {
+
+/// The topics held for 10 s of a sender's silence: far longer than any departure takes to notice.
+class LongTimeoutTopicHarness : public TopicHarness {
+ protected:
+  LongTimeoutTopicHarness() { extra_parameters_ = {"command_timeout_s:=10.0"}; }
+};
+
+// A second process (its own participant) holds the topics; the first is refused as
+// other_publisher. The holder's writer is deleted: the next command of the first is applied at
+// once, where comply's gate would otherwise make it wait out command_timeout_s.
+TEST_F(LongTimeoutTopicHarness, ASenderThatLeavesReleasesTheTopicsAtOnce) {
+  ASSERT_EQ(controller_.get_node()->get_parameter("command_timeout_s").as_double(), 10.0);
+  const rclcpp::Time held = controller_.get_node()->now();
+  sender_b_->publish(holdCommand(held));
+  const auto applied = outcomeOf(held);
+  ASSERT_TRUE(applied);
+  EXPECT_EQ(applied->outcome, CommandOutcome::OUTCOME_APPLIED);
+  const rclcpp::Time refused = controller_.get_node()->now();
+  sender_a_->publish(holdCommand(refused));
+  const auto other = outcomeOf(refused);
+  ASSERT_TRUE(other);
+  EXPECT_EQ(other->reason, CommandOutcome::REASON_OTHER_PUBLISHER);
+
+  sender_b_.reset();  // the writer is deleted: its process leaves the topics
+  const auto left = std::chrono::steady_clock::now();
+  std::optional<CommandOutcome> taken;
+  while (!taken && std::chrono::steady_clock::now() - left < std::chrono::seconds(5)) {
+    const rclcpp::Time stamp = controller_.get_node()->now();
+    sender_a_->publish(holdCommand(stamp));
+    const auto outcome = outcomeOf(stamp);
+    ASSERT_TRUE(outcome);
+    if (outcome->outcome == CommandOutcome::OUTCOME_APPLIED) {
+      taken = outcome;
+    } else {
+      EXPECT_EQ(outcome->reason, CommandOutcome::REASON_OTHER_PUBLISHER);
+    }
+  }
+  const double waited_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - left).count();
+  ASSERT_TRUE(taken) << "the topics were not released within 5 s of the holder leaving";
+  EXPECT_LT(waited_s, 5.0) << "released by the departure, not by command_timeout_s (10 s)";
+}
+
+/// The writer GUID the ROS graph records for the publisher of `node_name` on `topic`.
+std::optional<std::array<std::uint8_t, RMW_GID_STORAGE_SIZE>> writerGid(rclcpp::Node& observer,
+                                                                        const std::string& topic,
+                                                                        const std::string& node_name) {
+  for (const rclcpp::TopicEndpointInfo& info : observer.get_publishers_info_by_topic(topic)) {
+    if (info.node_name() == node_name) {
+      return info.endpoint_gid();
+    }
+  }
+  return std::nullopt;
+}
+
+// Each outcome names its sender as `comply run`'s do: the sending participant's GUID, the
+// writer's GUID prefix with the participant's entity id 0x000001c1. The ROS graph (from DDS
+// discovery, independently of the controller) gives each writer's GUID; two processes differ.
+TEST_F(TopicHarness, EveryOutcomeNamesTheProcessThatSentIt) {
+  const std::string topic = "/cartesian_impedance/cartesian_command";
+  std::optional<std::array<std::uint8_t, RMW_GID_STORAGE_SIZE>> gid_a, gid_b;
+  ASSERT_TRUE(runUntil([&] {
+    gid_a = writerGid(*listener_, topic, "listener");
+    gid_b = writerGid(*listener_, topic, "second_sender");
+    return gid_a && gid_b;
+  })) << "the graph never listed both writers";
+  const rclcpp::Time stamp = controller_.get_node()->now();
+  // One stamp from both: the sender tells the two outcomes apart.
+  sender_a_->publish(holdCommand(stamp));
+  sender_b_->publish(holdCommand(stamp));
+  ASSERT_TRUE(outcomeOf(stamp, 1));
+  std::vector<CommandOutcome> both;
+  std::copy_if(outcomes_.begin(), outcomes_.end(), std::back_inserter(both),
+               [&](const CommandOutcome& o) { return rclcpp::Time(o.stamp) == stamp; });
+  ASSERT_EQ(both.size(), 2U);
+  const auto expected = [](const std::array<std::uint8_t, RMW_GID_STORAGE_SIZE>& writer) {
+    std::array<std::uint8_t, 16> participant{};
+    std::copy_n(writer.begin(), 12, participant.begin());
+    participant[14] = 0x01;
+    participant[15] = 0xc1;
+    return participant;
+  };
+  const auto sender = [](const CommandOutcome& o) {
+    std::array<std::uint8_t, 16> id{};
+    std::copy(o.sender.begin(), o.sender.end(), id.begin());
+    return id;
+  };
+  const auto by_a = std::find_if(both.begin(), both.end(), [&](const CommandOutcome& o) {
+    return o.outcome == CommandOutcome::OUTCOME_APPLIED;
+  });
+  const auto by_b = std::find_if(both.begin(), both.end(), [&](const CommandOutcome& o) {
+    return o.reason == CommandOutcome::REASON_OTHER_PUBLISHER;
+  });
+  ASSERT_NE(by_a, both.end());
+  ASSERT_NE(by_b, both.end());
+  EXPECT_EQ(sender(*by_a), expected(*gid_a));
+  EXPECT_EQ(sender(*by_b), expected(*gid_b));
+  EXPECT_NE(sender(*by_a), sender(*by_b));
+}
+
+/// A wrist sensor named as a vendor's driver exports it: the controller's parameter and the six
+/// state interfaces of the hardware.
+struct VendorSensor {
+  const char* label;
+  const char* parameter;
+  std::vector<std::string> interfaces;
+};
+
+class VendorSensorHarness : public TopicHarness,
+                            public ::testing::WithParamInterface<VendorSensor> {
+ protected:
+  VendorSensorHarness() {
+    sensor_parameter_ = GetParam().parameter;
+    sensor_interfaces_ = GetParam().interfaces;
+  }
+};
+
+// The reading reaches the state as the sensor's contact wrench, axis for axis, whatever the
+// interfaces are called.
+TEST_P(VendorSensorHarness, TheSensorIsReadUnderItsVendorsNames) {
+  wrench_ = {2.0, -1.0, 7.5, 0.05, -0.1, 0.2};
+  ASSERT_TRUE(runUntil([&] {
+    return states_.back().contact_wrench_source == ControllerState::WRENCH_SOURCE_SENSOR &&
+           std::abs(states_.back().contact_wrench_tcp[2] - 7.5) < 1e-9;
+  })) << "the sensor's reading never reached the state";
+  for (std::size_t k = 0; k < 6; ++k) {
+    EXPECT_NEAR(states_.back().contact_wrench_tcp[k], wrench_[k], 1e-9) << "axis " << k;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Names, VendorSensorHarness,
+    ::testing::Values(
+        // UR's driver (and comply's MuJoCo hardware): ros2_control's force-torque names.
+        VendorSensor{"tcp_fts_sensor", "force_torque_sensor.name:=tcp_fts_sensor",
+                     {"tcp_fts_sensor/force.x", "tcp_fts_sensor/force.y",
+                      "tcp_fts_sensor/force.z", "tcp_fts_sensor/torque.x",
+                      "tcp_fts_sensor/torque.y", "tcp_fts_sensor/torque.z"}},
+        // Six names of a driver's own, in the order force x y z, torque x y z.
+        VendorSensor{"interface_names",
+                     "force_torque_sensor.interface_names:=[wrist/fx, wrist/fy, wrist/fz, "
+                     "wrist/tx, wrist/ty, wrist/tz]",
+                     {"wrist/fx", "wrist/fy", "wrist/fz", "wrist/tx", "wrist/ty", "wrist/tz"}}),
+    [](const auto& info) { return std::string(info.param.label); });
+
+}  // namespace
+}  // namespace comply_ros2_control
