@@ -161,8 +161,13 @@ void ComplyController<Command>::createEndpoints() {
       [this](const std::shared_ptr<const ChunkMessage> message, const rclcpp::MessageInfo& info) {
         onChunk(*message, info);
       });
+  request_subscription_ = node->create_subscription<comply_msgs::msg::Request>(
+      "~/request", rclcpp::QoS(100).reliable(),
+      [this](const std::shared_ptr<const comply_msgs::msg::Request> message,
+             const rclcpp::MessageInfo& info) { onRequest(*message, info); });
   command_writers_.emplace(*command_subscription_);
   chunk_writers_.emplace(*chunk_subscription_);
+  request_writers_.emplace(*request_subscription_);
   departed_.reserve(64);
   reset_service_ = node->create_service<std_srvs::srv::Trigger>(
       "~/reset_fault", [this](const std::shared_ptr<std_srvs::srv::Trigger::Request>,
@@ -338,6 +343,8 @@ void ComplyController<Command>::release() {
   command_subscription_.reset();
   command_writers_.reset();
   chunk_writers_.reset();
+  request_writers_.reset();
+  request_subscription_.reset();
   chunk_subscription_.reset();
   diagnostics_publisher_.reset();
   state_publisher_.reset();
@@ -531,6 +538,70 @@ void ComplyController<Command>::onResetFault(std_srvs::srv::Trigger::Response& r
                      : diagnostics.reflex_latched
                          ? "reset requested: the contact reflex's hold ends at the measured pose"
                          : "not in FAULT: nothing to reset (stamp floor cleared)";
+}
+
+template <typename Command>
+void ComplyController<Command>::onRequest(const comply_msgs::msg::Request& message,
+                                          const rclcpp::MessageInfo& info) {
+  const std::lock_guard<std::mutex> lock(endpoints_mutex_);
+  if (!wrapper_) {
+    return;
+  }
+  releaseDeparted(0);
+  // Every request has an outcome, as under `comply run`: its sender learns whether it was
+  // carried out or why not.
+  const WriterOf writer = request_writers_->of(info.get_rmw_message_info());
+  const std::uint32_t nanosec = message.header.stamp.nanosec;
+  const std::int64_t stamp_ns =
+      static_cast<std::int64_t>(message.header.stamp.sec) * 1'000'000'000 + nanosec;
+  const auto settle = [&](comply::pipeline::CommandReason reason, std::string refusal) {
+    gate_->settleRequest(stamp_ns, writer.sender, reason, std::move(refusal), nanosec);
+  };
+  if (nanosec >= 1'000'000'000U) {
+    const std::string why = "invalid_stamp: header.stamp.nanosec " + std::to_string(nanosec) +
+                            " is out of range (0 to 999999999)";
+    gate_->noteRefusal("request refused: " + why);
+    settle(comply::pipeline::CommandReason::kInvalidStamp, why);
+    return;
+  }
+  if (message.request == comply_msgs::msg::Request::REQUEST_PROBE) {
+    settle(comply::pipeline::CommandReason::kNone, "");  // nothing to do, nothing to refuse
+    return;
+  }
+  // While one process commands the arm, another cannot reset it or tare its sensor.
+  std::string why;
+  if (!gate_->admitRequest(writer.participant, comply::monotonicNanoseconds(), why)) {
+    settle(comply::pipeline::CommandReason::kOtherPublisher, why);
+    return;
+  }
+  const std::string refused = carryOut(message.request);
+  if (!refused.empty()) {
+    gate_->noteRefusal(refused);
+  }
+  settle(comply::pipeline::CommandReason::kNone, refused);
+}
+
+template <typename Command>
+std::string ComplyController<Command>::carryOut(std::uint8_t request) {
+  using comply_msgs::msg::Request;
+  const std::string name = get_node()->get_name();
+  switch (request) {
+    case Request::REQUEST_ACTIVATE:
+    case Request::REQUEST_DEACTIVATE:
+      return std::string(request == Request::REQUEST_ACTIVATE ? "activate" : "deactivate") +
+             ": the controller manager activates and deactivates a ros2_control controller (ros2 "
+             "control switch_controllers --" +
+             (request == Request::REQUEST_ACTIVATE ? "activate " : "deactivate ") + name + ")";
+    case Request::REQUEST_RESET:
+      // Either way it clears the stamp floor; the cycle decides whether FAULT is left.
+      return wrapper_->reset() != 0 ? "" : "reset: the intake queue is full, send it again";
+    case Request::REQUEST_TARE: {
+      const std::string why_not = wrapper_->tare();
+      return why_not.empty() ? "" : "tare: " + why_not;
+    }
+    default:
+      return "request " + std::to_string(request) + " is not one this host knows";
+  }
 }
 
 template <typename Command>

@@ -27,6 +27,10 @@
 //                  as `comply run` builds it (comply::host::diagnosticsMessage): the compute time
 //                  of update() and its start lateness as histograms, the overruns, and the outcome
 //                  of every command received since the previous message
+//   ~/request      comply_msgs/Request, as `comply run` answers it, each answered by an outcome on
+//                  ~/diagnostics: probe (what comply's clients send first), reset, tare; activate
+//                  and deactivate are refused, naming the controller manager's command; reset and
+//                  tare held to the publisher rule
 //   ~/reset_fault  std_srvs/Trigger: leave FAULT
 //   ~/tare         std_srvs/Trigger: the wrist force/torque reading becomes its zero (refused
 //                  while no force-torque state interface has given a reading)
@@ -73,6 +77,7 @@
 #include "comply_msgs/msg/diagnostics.hpp"
 #include "comply_msgs/msg/joint_chunk.hpp"
 #include "comply_msgs/msg/joint_command.hpp"
+#include "comply_msgs/msg/request.hpp"
 #include "comply_ros2_control/writer_identity.hpp"
 
 namespace comply_ros2_control {
@@ -129,6 +134,9 @@ class ComplyController : public controller_interface::ControllerInterface {
   /// for its start, as `comply run` does. Under the endpoints mutex.
   void releaseDeparted(std::uint64_t just_heard);
   void onResetFault(std_srvs::srv::Trigger::Response& response);
+  void onRequest(const comply_msgs::msg::Request& message, const rclcpp::MessageInfo& info);
+  /// What `request` (not a probe) does here; "" when carried out, else why not.
+  std::string carryOut(std::uint8_t request);
   /// After the cycle, on the real-time thread: timing and the state sample. No allocation.
   void afterCycle(const rclcpp::Time& time, bool wrote, double start_s) noexcept;
   /// Everything configure made, in the order its users need it gone (timers first).
@@ -174,6 +182,8 @@ class ComplyController : public controller_interface::ControllerInterface {
   typename rclcpp::Subscription<ChunkMessage>::SharedPtr chunk_subscription_;
   std::optional<WriterIdentity> command_writers_;
   std::optional<WriterIdentity> chunk_writers_;
+  rclcpp::Subscription<comply_msgs::msg::Request>::SharedPtr request_subscription_;
+  std::optional<WriterIdentity> request_writers_;
   std::vector<std::uint64_t> departed_;
   rclcpp::Service<std_srvs::srv::Trigger>::SharedPtr reset_service_;
   rclcpp::Service<std_srvs::srv::Trigger>::SharedPtr tare_service_;
