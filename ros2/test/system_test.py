@@ -10,7 +10,8 @@
    rclpy is played to its last waypoint; update() over at least 10,000 cycles, every one timed
    (overruns reported), its exact timing from the recording's cycle records; the recording opens
    in `ros2 bag info`.
-2. UR5e (6 joints) with the joint controller in joint_pd (the plant's drives run the PD) and the
+2. A controller file with an unknown option: refused at configure, the option named, no
+   misleading error-processing line. UR5e (6 joints) with the joint controller in joint_pd (the plant's drives run the PD) and the
    plant's wrist sensor: a joint target, reached; the state's contact wrench is the sensor's.
 3. A plain rclcpp node commands `comply run --sim` and reads its state.
 4. SROS2: a keystore made by `ros2 security create_keystore / create_enclave`; the ros2_control
@@ -416,6 +417,32 @@ def fr3_cartesian():
         check('fr3: update() timing from every recorded cycle', False, str(error))
 
 
+def refused_file():
+    """A controller file with an unknown option: the controller stays unconfigured, the log
+    names the option, and rclcpp_lifecycle's misleading error-processing line is not there."""
+    bad = controller_file('cartesian_impedance',
+                          {'command_timeout_s: 0.5': 'command_timeout_s: 0.5\n    no_such_option: 3'})
+    log = os.path.join(WORK, 'launch_refused.log')
+    process = subprocess.Popen(
+        ['ros2', 'launch', 'comply_bringup', 'comply.launch.py', 'robot:=fr3',
+         'controller:=cartesian_impedance', f'controller_file:={bad}'], env=ENV,
+        stdout=open(log, 'w'), stderr=subprocess.STDOUT, start_new_session=True)
+    try:
+        text = wait_for(lambda: (lambda t: t if 'Failed to configure' in t else None)(
+            open(log).read()), 60) or open(log).read()
+    finally:
+        os.killpg(process.pid, signal.SIGINT)
+        try:
+            process.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
+    named = [line for line in text.splitlines() if 'cannot configure' in line]
+    check('a refused controller file: refused once, naming the option',
+          'Failed to configure' in text and bool(named) and 'no_such_option' in named[0] and
+          'Error occurred while doing error handling' not in text,
+          named[0].split(']: ', 1)[-1][:160] if named else text[-200:])
+
+
 def ur5e_joint():
     # The plant's drives run the PD (joint_pd); the wrist sensor the MuJoCo hardware exports.
     drives = controller_file('joint_impedance', {}, {'output': {'mode': 'joint_pd'}})
@@ -466,7 +493,8 @@ def rclcpp_to_comply_run():
 
 def main():
     print(f'ROS_DOMAIN_ID {DOMAIN}', flush=True)
-    for scenario in (fr3_cartesian, ur5e_joint, rclcpp_to_comply_run, sros2, keystore_roles):
+    for scenario in (fr3_cartesian, refused_file, ur5e_joint, rclcpp_to_comply_run, sros2,
+                     keystore_roles):
         try:
             scenario()
         except Exception as error:  # noqa: BLE001 - report and go on to the next scenario

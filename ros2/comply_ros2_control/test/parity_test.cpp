@@ -1,7 +1,9 @@
-// What `comply run` does with its senders and sensors, under ros2_control: a sender that leaves
-// releases the command topics at once (not after command_timeout_s), every outcome names the
-// process that sent the command (checked against the ROS graph's own record of the writer), and a
-// wrist sensor is read from the interface names vendors' drivers export.
+// What `comply run` does with its senders, sensors and safety stages, under ros2_control: a
+// sender that leaves releases the command topics at once (not after command_timeout_s), every
+// outcome names the process that sent the command (checked against the ROS graph's own record of
+// the writer), a wrist sensor is read from the interface names vendors' drivers export, the
+// motion governor brakes a fast joint, an overspeed FAULT brakes the arm, and a reset request on
+// ~/request holds the measured pose.
 
 #include <gtest/gtest.h>
 
@@ -11,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "comply_msgs/msg/request.hpp"
 #include "controller_harness.hpp"
 
 namespace comply_ros2_control {
@@ -159,6 +162,81 @@ INSTANTIATE_TEST_SUITE_P(
                      "wrist/tx, wrist/ty, wrist/tz]",
                      {"wrist/fx", "wrist/fy", "wrist/fz", "wrist/tx", "wrist/ty", "wrist/tz"}}),
     [](const auto& info) { return std::string(info.param.label); });
+
+/// Joint 1 of the FR3 turning at `speed_rad_per_s` for `cycles` cycles (its position following),
+/// the executor spun between them; the last diagnostics and state the listener received.
+class MotionHarness : public TopicHarness {
+ protected:
+  void turn(double speed_rad_per_s, int cycles) {
+    for (int cycle = 0; cycle < cycles; ++cycle) {
+      values_[0] += speed_rad_per_s * 0.001;
+      values_[1] = speed_rad_per_s;
+      controller_.update(controller_.get_node()->now(), rclcpp::Duration(0, 1'000'000));
+      ++cycles_;
+      executor_->spin_some(std::chrono::milliseconds(1));
+    }
+  }
+  /// Diagnostics received after this call began, once `done` holds for one (or 10 s).
+  template <typename Done>
+  std::optional<Diagnostics> diagnosticsWhen(Done&& done) {
+    const std::size_t seen = diagnostics_received_.size();
+    std::optional<Diagnostics> found;
+    runUntil([&] {
+      for (std::size_t i = seen; i < diagnostics_received_.size(); ++i) {
+        if (done(diagnostics_received_[i])) {
+          found = diagnostics_received_[i];
+          return true;
+        }
+      }
+      return false;
+    });
+    return found;
+  }
+};
+
+// The FR3's joint 1 at 2.0 rad/s: past 0.85 of its governed speed (0.8 x 2.62 rad/s), below the
+// overspeed FAULT (2.62). The governor brakes it: its torque opposes the motion, the controller
+// stays active, and ~/diagnostics counts the cycles it acted in.
+TEST_F(MotionHarness, TheGovernorBrakesAFastJoint) {
+  turn(2.0, 30);
+  EXPECT_LT(torque(0), 0.0) << "joint 1's torque opposes its motion";
+  const auto diagnostics = diagnosticsWhen([](const Diagnostics& d) { return d.governor_hits > 0; });
+  ASSERT_TRUE(diagnostics) << "the governor never acted";
+  EXPECT_EQ(diagnostics->state, ControllerState::STATE_ACTIVE);
+  EXPECT_EQ(diagnostics->faults, 0U);
+}
+
+// Joint 1 at 3.0 rad/s, past its URDF speed: the overspeed FAULT, and the stop brakes the arm
+// (the torque opposes the motion). A reset request on ~/request (comply run's request, from a
+// ROS 2 node) is answered on ~/diagnostics, leaves FAULT, and the reference is the measured pose.
+TEST_F(MotionHarness, AnOverspeedFaultBrakesAndAResetRequestHoldsTheMeasuredPose) {
+  turn(3.0, 20);
+  const auto faulted =
+      diagnosticsWhen([](const Diagnostics& d) { return d.state == ControllerState::STATE_FAULT; });
+  ASSERT_TRUE(faulted) << "no FAULT at 3 rad/s";
+  EXPECT_FALSE(faulted->last_fault.empty());
+  turn(3.0, 5);
+  EXPECT_LT(torque(0), 0.0) << "the FAULT's stop brakes joint 1";
+
+  values_[1] = 0.0;  // at rest again, where the reset finds it
+  auto requester = listener_->create_publisher<comply_msgs::msg::Request>(
+      "/cartesian_impedance/request", rclcpp::QoS(10).reliable());
+  ASSERT_TRUE(runUntil([&] { return requester->get_subscription_count() > 0; }));
+  comply_msgs::msg::Request reset;
+  reset.header.stamp = controller_.get_node()->now();
+  reset.request = comply_msgs::msg::Request::REQUEST_RESET;
+  requester->publish(reset);
+  const auto answered = outcomeOf(rclcpp::Time(reset.header.stamp));
+  ASSERT_TRUE(answered) << "the reset request was not answered";
+  EXPECT_EQ(answered->outcome, CommandOutcome::OUTCOME_APPLIED) << answered->message;
+  ASSERT_TRUE(runUntil([&] {
+    return !states_.empty() && states_.back().state == ControllerState::STATE_ACTIVE;
+  })) << "still in FAULT after the reset";
+  const ControllerState& state = states_.back();
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_NEAR(state.reference_position[k], state.tcp_position[k], 1e-6) << "axis " << k;
+  }
+}
 
 }  // namespace
 }  // namespace comply_ros2_control
