@@ -14,7 +14,7 @@
 #include "comply/sim/simulated_clock.hpp"
 #include "comply/sim/simulated_robot.hpp"
 #include "comply/transport/cdr.hpp"
-#include "live_committed.hpp"
+#include "comply/host/committed_answers.hpp"
 
 namespace {
 

@@ -9,15 +9,16 @@
 #include <sstream>
 #include <thread>
 
+#include "comply/core/clock.hpp"
 #include "comply/core/realtime_scheduling.hpp"
 #include "comply/hardware/control_loop.hpp"
+#include "comply/host/committed_answers.hpp"
 #include "comply/host/diagnostics_message.hpp"
 #include "comply/host/hardware_backends.hpp"
 #include "comply/host/live_view.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/resolved_controller.hpp"
 #include "comply/transport/host_transport.hpp"
-#include "live_committed.hpp"
 #include "live_intake.hpp"
 #include "live_observer.hpp"
 #include "realtime_grant.hpp"
@@ -37,7 +38,9 @@ void readerThread(transport::HostTransport& transport, Intake<Command>& intake,
     inbox.clear();
     transport.receive(inbox, 0.1);
     intake.take(inbox);
-    committed.answer(inbox.committed_requests, transport);
+    for (const auto& request : inbox.committed_requests) {
+      transport.publish(committed.answer(request, wallClockNanoseconds()));
+    }
   }
 }
 

@@ -1,6 +1,6 @@
-// The live host's answers to committed requests (see live_committed.hpp).
+// A host's answers to committed requests (see committed_answers.hpp).
 
-#include "live_committed.hpp"
+#include "comply/host/committed_answers.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -61,15 +61,6 @@ std::string committedRequestRefusal(
 }
 
 template <typename Command>
-void CommittedAnswers<Command>::answer(
-    const std::vector<transport::Sample<transport::CommittedRequestMessage>>& requests,
-    transport::HostTransport& transport) {
-  for (const auto& sample : requests) {
-    transport.publish(answer(sample, wallClockNanoseconds()));
-  }
-}
-
-template <typename Command>
 const transport::CommittedMessage& CommittedAnswers<Command>::answer(
     const transport::Sample<transport::CommittedRequestMessage>& sample, std::int64_t clock_ns) {
   constexpr bool kCartesian = std::is_same_v<Command, CartesianCommand>;
@@ -99,8 +90,8 @@ const transport::CommittedMessage& CommittedAnswers<Command>::answer(
         observation_ns + std::llround(static_cast<double>(k) * sample.message.dt_s * 1e9);
     times_s_[k] = stampSeconds(times_ns_[k]);
   }
-  // The host's clock as the intake gives it to a chunk (live_intake.cpp): the same mapping onto
-  // the controller's clock.
+  // The host's clock as its intake gives it to a chunk (Wrapper::submitChunk's host_time_s): the
+  // same mapping onto the controller's clock.
   out.known = wrapper_.predict(times_s_, stampSeconds(clock_ns), predicted_);
   auto& list = [&]() -> auto& {
     if constexpr (kCartesian) {

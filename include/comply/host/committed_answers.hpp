@@ -1,15 +1,14 @@
 #pragma once
-// The live host's answers to committed requests (comply_msgs/CommittedRequest): the reference its
-// cycles will write at the times asked for if no new command arrives, from the wrapper's own
-// prediction (pipeline::Wrapper::predict), on the reader's thread. Never on the cycle's: the cycle
-// does no work for them.
+// A host's answers to committed requests (comply_msgs/CommittedRequest): the reference its cycles
+// will write at the times asked for if no new command arrives, from the wrapper's own prediction
+// (pipeline::Wrapper::predict), on a thread that takes requests (`comply run`'s reader, a ROS 2
+// controller's executor). Never on the cycle's: the cycle does no work for them.
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "comply/pipeline/wrapper.hpp"
-#include "comply/transport/host_transport.hpp"
 #include "comply/transport/messages.hpp"
 
 namespace comply::host {
@@ -25,9 +24,6 @@ class CommittedAnswers {
   CommittedAnswers(pipeline::Wrapper<Command>& wrapper, std::string frame_id)
       : wrapper_(wrapper), frame_id_(std::move(frame_id)) {}
 
-  /// Answers each request on `transport`, one answer per request, in arrival order.
-  void answer(const std::vector<transport::Sample<transport::CommittedRequestMessage>>& requests,
-              transport::HostTransport& transport);
   /// The answer to `sample` with the host's clock reading `clock_ns` [ns since the epoch] now (the
   /// wall clock, which a chunk's times are on): valid until the next call. Its times map onto the
   /// controller's clock as the intake maps a chunk's (Wrapper::submitChunk's host_time_s).
