@@ -156,7 +156,14 @@ print("first command:", "no outcome" if outcome is None else
       "applied" if outcome["applied"] else "refused " + outcome["message"])
 def near(state):
     return sum((a - b) ** 2 for a, b in zip(state["tcp_position"], {list(target)!r})) < 2e-3 ** 2
-print("reached" if client.wait_until(near, timeout=15.0) else "missed")
+reached = client.wait_until(near, timeout=15.0)
+state = client.state(timeout=5.0)
+prefix = client.committed(state["stamp"], 0.1, 4, timeout=5.0)
+error = max(sum((a - b) ** 2 for a, b in zip(row, {list(target)!r})) ** 0.5
+            for row in prefix["position"])
+print(f"committed: {{len(prefix['time'])}} times, known {{prefix['known']}}, "
+      f"{{error * 1e3:.2f}} mm from the target at most")
+print("reached" if reached else "missed")
 '''
     done = subprocess.run(['/usr/bin/python3', '-c', script], env=BARE, capture_output=True,
                           text=True, timeout=90)
@@ -382,7 +389,10 @@ def fr3_cartesian():
         check('fr3: a sender that left releases the topics at once',
               outcome.startswith('first command: applied'), outcome.splitlines()[0])
         check('fr3: Python client without ROS 2 commands it', outcome.endswith('reached'),
-              outcome)
+              outcome.splitlines()[-1])
+        committed = [line for line in outcome.splitlines() if line.startswith('committed:')]
+        check('fr3: Client.committed() is answered by the controller',
+              bool(committed) and '4 times, known True' in committed[0], (committed or [outcome])[0])
         done = subprocess.run([CLI, 'echo', '--name', 'cartesian_impedance', '--domain',
                                str(DOMAIN), '--count', '1', '--json'], capture_output=True,
                               text=True, timeout=30)

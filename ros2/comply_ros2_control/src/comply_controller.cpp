@@ -165,9 +165,19 @@ void ComplyController<Command>::createEndpoints() {
       "~/request", rclcpp::QoS(100).reliable(),
       [this](const std::shared_ptr<const comply_msgs::msg::Request> message,
              const rclcpp::MessageInfo& info) { onRequest(*message, info); });
+  // comply run's QoS for both (ROS 2's default: reliable, keep last 10).
+  committed_publisher_ =
+      node->create_publisher<comply_msgs::msg::Committed>("~/committed", rclcpp::QoS(10).reliable());
+  committed_subscription_ = node->create_subscription<comply_msgs::msg::CommittedRequest>(
+      "~/committed_request", rclcpp::QoS(10).reliable(),
+      [this](const std::shared_ptr<const comply_msgs::msg::CommittedRequest> message,
+             const rclcpp::MessageInfo& info) { onCommittedRequest(*message, info); });
+  committed_ = std::make_unique<comply::host::CommittedAnswers<Command>>(
+      *wrapper_, resolved_->robot.base_frame);
   command_writers_.emplace(*command_subscription_);
   chunk_writers_.emplace(*chunk_subscription_);
   request_writers_.emplace(*request_subscription_);
+  committed_writers_.emplace(*committed_subscription_);
   departed_.reserve(64);
   reset_service_ = node->create_service<std_srvs::srv::Trigger>(
       "~/reset_fault", [this](const std::shared_ptr<std_srvs::srv::Trigger::Request>,
@@ -345,6 +355,10 @@ void ComplyController<Command>::release() {
   chunk_writers_.reset();
   request_writers_.reset();
   request_subscription_.reset();
+  committed_writers_.reset();
+  committed_subscription_.reset();
+  committed_publisher_.reset();
+  committed_.reset();
   chunk_subscription_.reset();
   diagnostics_publisher_.reset();
   state_publisher_.reset();
@@ -579,6 +593,24 @@ void ComplyController<Command>::onRequest(const comply_msgs::msg::Request& messa
     gate_->noteRefusal(refused);
   }
   settle(comply::pipeline::CommandReason::kNone, refused);
+}
+
+template <typename Command>
+void ComplyController<Command>::onCommittedRequest(
+    const comply_msgs::msg::CommittedRequest& message, const rclcpp::MessageInfo& info) {
+  const std::lock_guard<std::mutex> lock(endpoints_mutex_);
+  if (!wrapper_) {
+    return;
+  }
+  comply::transport::Sample<comply::transport::CommittedRequestMessage> sample;
+  sample.message = fromMessage(message);
+  const WriterOf writer = committed_writers_->of(info.get_rmw_message_info());
+  sample.publisher = writer.publisher;
+  sample.participant = writer.participant;
+  sample.sender = writer.sender;
+  // The node's clock: a chunk's times are on it (onChunk), and so are the times asked for.
+  toMessage(committed_->answer(sample, get_node()->now().nanoseconds()), committed_message_);
+  committed_publisher_->publish(committed_message_);
 }
 
 template <typename Command>

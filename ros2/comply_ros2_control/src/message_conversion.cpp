@@ -1,5 +1,6 @@
 #include "comply_ros2_control/message_conversion.hpp"
 
+#include <algorithm>
 #include <string>
 #include <type_traits>
 
@@ -36,12 +37,42 @@ void fromField(const MessageValue& in, Value& value, const char* name, std::stri
   }
 }
 
+template <FieldKind K, typename Value, typename MessageValue>
+void toField(const Value& value, MessageValue& out) {
+  if constexpr (K == FieldKind::kQuaternion) {
+    comply::schema::toXyzw(value, out.data());
+  } else if constexpr (K == FieldKind::kBlock3) {
+    comply::schema::toRowMajor(value, out.data());
+  } else if constexpr (K == FieldKind::kEnum) {
+    out = static_cast<MessageValue>(value);
+  } else if constexpr (K == FieldKind::kJointVector) {
+    out.assign(value.data(), value.data() + value.size());
+  } else {
+    for (Eigen::Index i = 0; i < value.size(); ++i) {
+      out[static_cast<std::size_t>(i)] = value[i];
+    }
+  }
+}
+
+builtin_interfaces::msg::Time rosTime(const comply::transport::Stamp& stamp) {
+  builtin_interfaces::msg::Time time;
+  time.sec = stamp.sec;
+  time.nanosec = stamp.nanosec;
+  return time;
+}
+
+comply::transport::Stamp stampOf(const builtin_interfaces::msg::Time& time) {
+  return {time.sec, time.nanosec};
+}
+
 double seconds(const builtin_interfaces::msg::Time& stamp) {
   return comply::stampSeconds(static_cast<std::int64_t>(stamp.sec) * 1'000'000'000 + stamp.nanosec);
 }
 
 #define COMPLY_ROS_FROM(name, group, kind, type, unit, constraint, role, init, doc) \
   fromField<FieldKind::kind>(message.name, command.name, #name, malformed);
+#define COMPLY_ROS_TO(name, group, kind, type, unit, constraint, role, init, doc) \
+  toField<FieldKind::kind>(command.name, message.name);
 
 }  // namespace
 
@@ -62,6 +93,49 @@ Command commandFromMessage(const Message& message, std::string& malformed) {
 }
 
 }  // namespace
+
+void toMessage(const comply::CartesianCommand& command, comply_msgs::msg::CartesianCommand& message) {
+  message.fields = static_cast<std::uint32_t>(command.fields);
+  COMPLY_CARTESIAN_COMMAND_FIELDS(COMPLY_ROS_TO)
+}
+
+void toMessage(const comply::JointCommand& command, comply_msgs::msg::JointCommand& message) {
+  message.fields = static_cast<std::uint32_t>(command.fields);
+  COMPLY_JOINT_COMMAND_FIELDS(COMPLY_ROS_TO)
+}
+
+comply::transport::CommittedRequestMessage fromMessage(
+    const comply_msgs::msg::CommittedRequest& message) {
+  comply::transport::CommittedRequestMessage request;
+  request.header.stamp = stampOf(message.header.stamp);
+  request.header.frame_id = message.header.frame_id;
+  request.observation = stampOf(message.observation);
+  request.dt_s = message.dt;
+  request.count = message.count;
+  return request;
+}
+
+void toMessage(const comply::transport::CommittedMessage& answer,
+               comply_msgs::msg::Committed& message) {
+  message.header.stamp = rosTime(answer.header.stamp);
+  message.header.frame_id = answer.header.frame_id;
+  message.request_stamp = rosTime(answer.request_stamp);
+  std::copy(answer.sender.begin(), answer.sender.end(), message.sender.begin());
+  message.command_kind = static_cast<std::uint8_t>(answer.command_kind);
+  message.answered = answer.answered;
+  message.known = answer.known;
+  message.message = answer.message;
+  const auto copyList = [](const auto& from, auto& to) {
+    to.resize(from.size());
+    for (std::size_t k = 0; k < from.size(); ++k) {
+      to[k].header.stamp = rosTime(from[k].header.stamp);
+      to[k].header.frame_id = from[k].header.frame_id;
+      toMessage(from[k].command, to[k]);
+    }
+  };
+  copyList(answer.cartesian, message.cartesian);
+  copyList(answer.joint, message.joint);
+}
 
 comply::CartesianCommand fromMessage(const comply_msgs::msg::CartesianCommand& message,
                                      std::string& malformed) {

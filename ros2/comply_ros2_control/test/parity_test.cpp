@@ -13,6 +13,8 @@
 #include <utility>
 #include <vector>
 
+#include "comply_msgs/msg/committed.hpp"
+#include "comply_msgs/msg/committed_request.hpp"
 #include "comply_msgs/msg/request.hpp"
 #include "controller_harness.hpp"
 
@@ -116,6 +118,57 @@ TEST_F(TopicHarness, EveryOutcomeNamesTheProcessThatSentIt) {
   EXPECT_EQ(sender(*by_a), expected(*gid_a));
   EXPECT_EQ(sender(*by_b), expected(*gid_b));
   EXPECT_NE(sender(*by_a), sender(*by_b));
+}
+
+// The committed prefix over ROS 2 (docs/policies.md): a ROS 2 node asks what the controller will
+// execute at observation + k dt; the answer names the request's stamp and sender, one entry per
+// time stamped exactly, and the reference of the command in force (a hold at the measured pose).
+TEST_F(TopicHarness, TheCommittedPrefixIsAnsweredOverRos2) {
+  const rclcpp::Time held = controller_.get_node()->now();
+  const CartesianCommand hold = holdCommand(held);
+  sender_a_->publish(hold);
+  ASSERT_TRUE(outcomeOf(held));
+  std::vector<comply_msgs::msg::Committed> answers;
+  auto answer_subscription = listener_->create_subscription<comply_msgs::msg::Committed>(
+      "/cartesian_impedance/committed", rclcpp::QoS(10).reliable(),
+      [&](const comply_msgs::msg::Committed& answer) { answers.push_back(answer); });
+  auto asker = listener_->create_publisher<comply_msgs::msg::CommittedRequest>(
+      "/cartesian_impedance/committed_request", rclcpp::QoS(10).reliable());
+  ASSERT_TRUE(runUntil([&] {
+    return asker->get_subscription_count() > 0 && answer_subscription->get_publisher_count() > 0;
+  }));
+  comply_msgs::msg::CommittedRequest request;
+  request.header.stamp = controller_.get_node()->now();
+  request.observation = states_.back().header.stamp;
+  request.dt = 0.1;
+  request.count = 5;
+  asker->publish(request);
+  ASSERT_TRUE(runUntil([&] { return !answers.empty(); })) << "no answer on ~/committed";
+  const comply_msgs::msg::Committed& answer = answers.back();
+  EXPECT_TRUE(answer.answered) << answer.message;
+  EXPECT_TRUE(answer.known);
+  EXPECT_EQ(rclcpp::Time(answer.request_stamp), rclcpp::Time(request.header.stamp));
+  EXPECT_EQ(answer.header.frame_id, "fr3_link0");
+  EXPECT_NE(answer.sender, decltype(answer.sender){}) << "the answer names its sender";
+  ASSERT_EQ(answer.cartesian.size(), 5U);
+  EXPECT_TRUE(answer.joint.empty());
+  for (std::size_t k = 0; k < 5; ++k) {
+    const auto expected =
+        rclcpp::Time(request.observation) + rclcpp::Duration(0, static_cast<std::uint32_t>(k * 100'000'000));
+    EXPECT_EQ(rclcpp::Time(answer.cartesian[k].header.stamp), expected) << "entry " << k;
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      EXPECT_NEAR(answer.cartesian[k].position[axis], hold.position[axis], 1e-9)
+          << "entry " << k << ", axis " << axis;
+    }
+  }
+
+  // A request comply's rules refuse is answered too, naming the field.
+  request.header.stamp = controller_.get_node()->now();
+  request.count = 0;
+  asker->publish(request);
+  ASSERT_TRUE(runUntil([&] { return answers.size() >= 2; }));
+  EXPECT_FALSE(answers.back().answered);
+  EXPECT_NE(answers.back().message.find("count is 0"), std::string::npos) << answers.back().message;
 }
 
 /// A wrist sensor named as a vendor's driver exports it: the controller's parameter and the six

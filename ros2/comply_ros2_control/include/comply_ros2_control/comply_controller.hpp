@@ -31,6 +31,10 @@
 //                  ~/diagnostics: probe (what comply's clients send first), reset, tare; activate
 //                  and deactivate are refused, naming the controller manager's command; reset and
 //                  tare held to the publisher rule
+//   ~/committed_request -> ~/committed   comply_msgs/CommittedRequest and its answer, Committed:
+//                  what the controller will execute at the times asked for if no new command
+//                  arrives (docs/policies.md), from `comply run`'s code (comply/host/
+//                  committed_answers.hpp), on the node's clock, the answer naming its sender
 //   ~/reset_fault  std_srvs/Trigger: leave FAULT
 //   ~/tare         std_srvs/Trigger: the wrist force/torque reading becomes its zero (refused
 //                  while no force-torque state interface has given a reading)
@@ -66,6 +70,7 @@
 #include "comply/core/commands.hpp"
 #include "comply/core/state.hpp"
 #include "comply/core/triple_buffer.hpp"
+#include "comply/host/committed_answers.hpp"
 #include "comply/host/diagnostics_message.hpp"
 #include "comply/host/host_recording.hpp"
 #include "comply/host/state_sample.hpp"
@@ -73,6 +78,8 @@
 #include "comply/pipeline/wrapper.hpp"
 #include "comply_msgs/msg/cartesian_chunk.hpp"
 #include "comply_msgs/msg/cartesian_command.hpp"
+#include "comply_msgs/msg/committed.hpp"
+#include "comply_msgs/msg/committed_request.hpp"
 #include "comply_msgs/msg/controller_state.hpp"
 #include "comply_msgs/msg/diagnostics.hpp"
 #include "comply_msgs/msg/joint_chunk.hpp"
@@ -135,6 +142,8 @@ class ComplyController : public controller_interface::ControllerInterface {
   void releaseDeparted(std::uint64_t just_heard);
   void onResetFault(std_srvs::srv::Trigger::Response& response);
   void onRequest(const comply_msgs::msg::Request& message, const rclcpp::MessageInfo& info);
+  void onCommittedRequest(const comply_msgs::msg::CommittedRequest& message,
+                          const rclcpp::MessageInfo& info);
   /// What `request` (not a probe) does here; "" when carried out, else why not.
   std::string carryOut(std::uint8_t request);
   /// After the cycle, on the real-time thread: timing and the state sample. No allocation.
@@ -184,6 +193,11 @@ class ComplyController : public controller_interface::ControllerInterface {
   std::optional<WriterIdentity> chunk_writers_;
   rclcpp::Subscription<comply_msgs::msg::Request>::SharedPtr request_subscription_;
   std::optional<WriterIdentity> request_writers_;
+  rclcpp::Subscription<comply_msgs::msg::CommittedRequest>::SharedPtr committed_subscription_;
+  std::optional<WriterIdentity> committed_writers_;
+  rclcpp::Publisher<comply_msgs::msg::Committed>::SharedPtr committed_publisher_;
+  std::unique_ptr<comply::host::CommittedAnswers<Command>> committed_;
+  comply_msgs::msg::Committed committed_message_;  ///< reused: its lists keep their room
   std::vector<std::uint64_t> departed_;
   rclcpp::Service<std_srvs::srv::Trigger>::SharedPtr reset_service_;
   rclcpp::Service<std_srvs::srv::Trigger>::SharedPtr tare_service_;

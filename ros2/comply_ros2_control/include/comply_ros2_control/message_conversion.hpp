@@ -1,15 +1,18 @@
 #pragma once
-// comply_msgs commands and chunks as comply's values. They go field by field through comply's
-// schema table (the .msg files are generated from it), so a field added to the table needs no code
-// here. The messages the controllers publish go the other way through the message tables
-// (comply/transport/message_copy.hpp).
+// comply_msgs commands and chunks as comply's values, and back. They go field by field through
+// comply's schema table (the .msg files are generated from it), so a field added to the table
+// needs no code here. The state and diagnostics the controllers publish go through the message
+// tables (comply/transport/message_copy.hpp); the committed request and its answer through both.
 
 #include <string>
 
 #include "comply/core/chunk.hpp"
 #include "comply/core/commands.hpp"
+#include "comply/transport/messages.hpp"
 #include "comply_msgs/msg/cartesian_chunk.hpp"
 #include "comply_msgs/msg/cartesian_command.hpp"
+#include "comply_msgs/msg/committed.hpp"
+#include "comply_msgs/msg/committed_request.hpp"
 #include "comply_msgs/msg/joint_chunk.hpp"
 #include "comply_msgs/msg/joint_command.hpp"
 
@@ -27,5 +30,16 @@ comply::JointCommand fromMessage(const comply_msgs::msg::JointCommand& message,
 comply::CartesianChunk fromMessage(const comply_msgs::msg::CartesianChunk& message,
                                    std::string& malformed);
 comply::JointChunk fromMessage(const comply_msgs::msg::JointChunk& message, std::string& malformed);
+
+/// A command as its message, every field through its kind's table (header untouched).
+void toMessage(const comply::CartesianCommand& command, comply_msgs::msg::CartesianCommand& message);
+void toMessage(const comply::JointCommand& command, comply_msgs::msg::JointCommand& message);
+
+/// A committed request as every host takes it (comply::host::CommittedAnswers).
+comply::transport::CommittedRequestMessage fromMessage(
+    const comply_msgs::msg::CommittedRequest& message);
+/// The answer to a committed request as its message; `message`'s lists are reused.
+void toMessage(const comply::transport::CommittedMessage& answer,
+               comply_msgs::msg::Committed& message);
 
 }  // namespace comply_ros2_control
