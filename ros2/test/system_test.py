@@ -23,6 +23,7 @@ Usage: system_test.py COMPLY_CLI PYTHON_MODULE_DIR CONFIG_DIR
 """
 
 import contextlib
+import json
 import math
 import os
 import random
@@ -309,6 +310,36 @@ def keystore_roles():
         host.wait(timeout=20)
 
 
+SOURCE = os.path.dirname(CONFIG_DIR)
+
+
+def foxglove_viewer(url, topics):
+    """Messages per topic a Foxglove client (Foxglove's own WebSocket client and ROS 2
+    deserializer, tests/viewer/node_viewer.mjs) decoded from `url` in 3 s."""
+    done = subprocess.run(['node', '--experimental-websocket',
+                           os.path.join(SOURCE, 'tests', 'viewer', 'node_viewer.mjs'), url, '3000',
+                           *topics], capture_output=True, text=True, timeout=120)
+    try:
+        return yaml.safe_load(done.stdout.strip().splitlines()[-1])
+    except (IndexError, yaml.YAMLError):
+        return {'error': (done.stdout + done.stderr).strip()[-200:]}
+
+
+def foxglove_read(path):
+    """The recording read by the MCAP project's TypeScript reader (tests/record/read_mcap.mjs):
+    its cycle records and any message it could not decode."""
+    done = subprocess.run(['node', os.path.join(SOURCE, 'tests', 'record', 'read_mcap.mjs'), path,
+                           '--messages', '20'], capture_output=True, text=True, timeout=300)
+    if done.returncode != 0:
+        return {'error': done.stderr.strip()[-200:]}
+    content = json.loads(done.stdout)
+    errors = [m for kept in content.get('messages', {}).values() for m in kept
+              if m.get('decode_error')]
+    return {'cycles': int(content.get('counts', {}).get('/cartesian_impedance/cycle', 0)),
+            'decoded': sum(len(kept) for kept in content.get('messages', {}).values()),
+            'errors': len(errors)}
+
+
 def recorded_timing(path):
     """update()'s compute time from every cycle record of the recording: count, p50, p99, max
     [us], read by comply's Python reader (outside ROS 2)."""
@@ -344,9 +375,10 @@ def update_timing(topic):
 
 def fr3_cartesian():
     recording = os.path.join(WORK, 'fr3.mcap')
+    view_port = random.randint(20000, 40000)
     patient = controller_file('cartesian_impedance',
                               {'command_timeout_s: 0.5': 'command_timeout_s: 600.0'},
-                              {'record': recording})
+                              {'record': recording, 'foxglove': f'127.0.0.1:{view_port}'})
     with launched('fr3', 'cartesian_impedance', 'fr3: controller active',
                   f'controller_file:={patient}') as started:
         if not started:
@@ -407,6 +439,11 @@ def fr3_cartesian():
               f'{text}; TCP {played[1] * 1e3:.2f} mm from the last waypoint' if played
               else text)
 
+        viewed = foxglove_viewer(f'ws://127.0.0.1:{view_port}', [f'{base}/cycle', f'{base}/state',
+                                                                 f'{base}/outcome'])
+        check('fr3: the live view serves the controller to Foxglove\'s client',
+              viewed.get(f'{base}/cycle', 0) > 0 and viewed.get(f'{base}/state', 0) > 0, viewed)
+
         wait_for(lambda: update_timing(f'{base}/diagnostics')[0] >= 10000, 30)
         cycles, mean_us, p99_us, overruns, timed = update_timing(f'{base}/diagnostics')
         # What the controller does: every update() timed and an overrun counted as one; how many
@@ -419,6 +456,10 @@ def fr3_cartesian():
           code == 0 and '/cartesian_impedance/cycle' in text,
           ' '.join(line.strip() for line in text.splitlines()
                    if 'cycle' in line or 'Messages' in line)[:300])
+    read = foxglove_read(recording)
+    check('fr3: the recording reads with the MCAP project\'s and Foxglove\'s readers',
+          read.get('cycles', 0) > 0 and read.get('decoded', 0) > 0 and not read.get('errors'),
+          read)
     try:
         count, p50, p99, peak = recorded_timing(recording)
         check('fr3: update() timing from every recorded cycle', count >= 10000,

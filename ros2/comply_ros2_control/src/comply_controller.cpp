@@ -35,6 +35,7 @@ constexpr const char* kSensorName = "force_torque_sensor.name";
 constexpr const char* kSensorInterfaces = "force_torque_sensor.interface_names";
 constexpr const char* kSensorFrame = "force_torque_sensor.frame";
 constexpr const char* kRecord = "record";  ///< an MCAP file to record to ("": none)
+constexpr const char* kFoxglove = "foxglove";  ///< the live view's [ADDRESS:]PORT ("": none)
 constexpr std::size_t kCommandDepth = 1000;  ///< commands waiting for the executor, at most
 
 // The index in `interfaces` of "<joint>/<kind>"; throws naming the missing one.
@@ -79,6 +80,7 @@ CallbackReturn ComplyController<Command>::on_init() {
   auto_declare<std::vector<std::string>>(kSensorInterfaces, {});
   auto_declare<std::string>(kSensorFrame, "tcp");
   auto_declare<std::string>(kRecord, "");
+  auto_declare<std::string>(kFoxglove, "");
   return CallbackReturn::SUCCESS;
 }
 
@@ -199,6 +201,7 @@ void ComplyController<Command>::createEndpoints() {
             why.empty() ? "tare requested: the next cycle's reading is the zero" : why;
       });
   openRecording();
+  openView();
   state_timer_ = node->create_wall_timer(std::chrono::duration<double>(1.0 / state_rate_hz),
                                          [this] { publishState(); });
   diagnostics_timer_ = node->create_wall_timer(
@@ -222,6 +225,33 @@ void ComplyController<Command>::openRecording() {
     throw std::runtime_error(std::string("parameter ") + kRecord + ": " + error.what());
   }
   RCLCPP_INFO(get_node()->get_logger(), "recording every cycle to %s", path.c_str());
+}
+
+template <typename Command>
+void ComplyController<Command>::openView() {
+  const std::string address = get_node()->get_parameter(kFoxglove).as_string();
+  if (address.empty()) {
+    return;
+  }
+  try {
+    view_ = std::make_unique<comply::host::LiveView>(comply::host::parseViewAddress(address),
+                                                     resolved_, get_node()->get_name());
+  } catch (const std::exception& error) {
+    throw std::runtime_error(std::string("parameter ") + kFoxglove + ": " + error.what());
+  }
+  RCLCPP_INFO(get_node()->get_logger(), "live view: open %s in Foxglove", view_->url().c_str());
+}
+
+template <typename Command>
+template <typename Message>
+void ComplyController<Command>::noteReceived(const Message& message) {
+  const comply::transport::Stamp now = comply::transport::Stamp::now();
+  if (recording_) {
+    recording_->received(message, now);
+  }
+  if (view_) {
+    view_->received(message, now);
+  }
 }
 
 template <typename Command>
@@ -362,6 +392,7 @@ void ComplyController<Command>::release() {
   chunk_subscription_.reset();
   diagnostics_publisher_.reset();
   state_publisher_.reset();
+  view_.reset();  // its thread reads the wrapper's resolved controller: gone first
   if (recording_) {
     recording_->stop();
     const comply::record::RecorderStats stats = recording_->stats();
@@ -433,11 +464,16 @@ void ComplyController<Command>::afterCycle(const rclcpp::Time& time, bool wrote,
   }
   previous_start_s_ = start_s;
   const double compute_s = comply::hardware::monotonicSeconds() - start_s;
-  if (recording_) {
+  if (recording_ || view_) {
     // get_if: the bus holds the controller's kind, and std::get may throw.
     if (const auto* in_force =
             std::get_if<comply::pipeline::BusOf<Command>>(&wrapper_->controller().lawBus())) {
-      recording_->cycle<Command>(sample_, *in_force, compute_s, lateness_s);
+      if (recording_) {
+        recording_->cycle<Command>(sample_, *in_force, compute_s, lateness_s);
+      }
+      if (view_) {
+        view_->cycle<Command>(sample_, *in_force, compute_s, lateness_s);
+      }
     }
   }
   loop_->countCycle(compute_s, compute_s > nominal_period_s_);
@@ -464,6 +500,9 @@ void ComplyController<Command>::onCommand(const CommandMessage& message,
   }
   std::string malformed;
   const Command command = fromMessage(message, malformed);
+  if (malformed.empty() && (recording_ || view_)) {
+    noteReceived(comply::transport::CommandMessageOf<Command>{headerOf(message.header), command});
+  }
   offerToGate(message.header, info, *command_writers_, malformed,
               [&](std::int64_t stamp_ns) { return wrapper_->submit(command, stamp_ns); });
 }
@@ -477,6 +516,9 @@ void ComplyController<Command>::onChunk(const ChunkMessage& message,
   }
   std::string malformed;
   const comply::Chunk<Command> chunk = fromMessage(message, malformed);
+  if (malformed.empty() && (recording_ || view_)) {
+    noteReceived(comply::transport::ChunkMessageOf<Command>{headerOf(message.header), chunk});
+  }
   const double now_s = comply::stampSeconds(get_node()->now().nanoseconds());
   offerToGate(message.header, info, *chunk_writers_, malformed,
               [&](std::int64_t stamp_ns) { return wrapper_->submitChunk(chunk, now_s, stamp_ns); });
@@ -565,6 +607,12 @@ void ComplyController<Command>::onRequest(const comply_msgs::msg::Request& messa
   // Every request has an outcome, as under `comply run`: its sender learns whether it was
   // carried out or why not.
   const WriterOf writer = request_writers_->of(info.get_rmw_message_info());
+  if (recording_ || view_) {
+    comply::transport::RequestMessage received;
+    received.header = headerOf(message.header);
+    received.request = static_cast<comply::transport::RequestType>(message.request);
+    noteReceived(received);
+  }
   const std::uint32_t nanosec = message.header.stamp.nanosec;
   const std::int64_t stamp_ns =
       static_cast<std::int64_t>(message.header.stamp.sec) * 1'000'000'000 + nanosec;
@@ -658,6 +706,12 @@ void ComplyController<Command>::publishDiagnostics() {
       recording_->outcome(outcome);
     }
     recording_->diagnostics(diagnostics);
+  }
+  if (view_) {
+    for (const comply::transport::CommandOutcomeMessage& outcome : diagnostics.outcomes) {
+      view_->outcome(outcome);
+    }
+    view_->diagnostics(diagnostics);
   }
   comply_msgs::msg::Diagnostics message;
   comply::transport::copyMessage(diagnostics, message);

@@ -116,14 +116,15 @@ void declareOptions(rclcpp_lifecycle::LifecycleNode& node) {
 bool isRosSideParameter(const std::string& name) {
   // ros2_control's own (update_rate; is_async and thread_priority in newer releases) and this
   // controller's.
-  static constexpr std::array<std::string_view, 8> kRosSide = {"use_sim_time",
+  static constexpr std::array<std::string_view, 9> kRosSide = {"use_sim_time",
                                                                "update_rate",
                                                                "is_async",
                                                                "thread_priority",
                                                                "robot_description",
                                                                "state_publish_rate_hz",
                                                                "diagnostics_publish_rate_hz",
-                                                               "record"};
+                                                               "record",
+                                                               "foxglove"};
   for (const auto ros_side : kRosSide) {
     if (name == ros_side) {
       return true;

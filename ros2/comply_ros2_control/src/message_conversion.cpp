@@ -104,6 +104,10 @@ void toMessage(const comply::JointCommand& command, comply_msgs::msg::JointComma
   COMPLY_JOINT_COMMAND_FIELDS(COMPLY_ROS_TO)
 }
 
+comply::transport::Header headerOf(const std_msgs::msg::Header& header) {
+  return {stampOf(header.stamp), header.frame_id};
+}
+
 comply::transport::CommittedRequestMessage fromMessage(
     const comply_msgs::msg::CommittedRequest& message) {
   comply::transport::CommittedRequestMessage request;

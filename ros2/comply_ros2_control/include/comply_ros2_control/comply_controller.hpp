@@ -52,6 +52,10 @@
 // `comply run --record` writes them, by a writer thread of its own; update() only copies the
 // cycle into a lane, never waits (a full lane drops the record and counts it in ~/diagnostics).
 //
+// The live view (docs/live-view.md), by the parameter `foxglove` ("[ADDRESS:]PORT"; "" none): the
+// Foxglove WebSocket server of `comply run --foxglove`, fed by update() wait-free, with the cycle,
+// state, commands, outcomes, the robot and its stiffness drawn in 3D.
+//
 // The command and state topics and types are those of `comply run`, so comply's Python client
 // and `comply send` / `comply echo` talk to either host.
 
@@ -73,6 +77,7 @@
 #include "comply/host/committed_answers.hpp"
 #include "comply/host/diagnostics_message.hpp"
 #include "comply/host/host_recording.hpp"
+#include "comply/host/live_view.hpp"
 #include "comply/host/state_sample.hpp"
 #include "comply/pipeline/command_gate.hpp"
 #include "comply/pipeline/wrapper.hpp"
@@ -128,6 +133,11 @@ class ComplyController : public controller_interface::ControllerInterface {
   void resolveSensor();
   /// The `record` parameter's recording (none when it is empty); throws naming a bad path.
   void openRecording();
+  /// The `foxglove` parameter's live view (none when it is empty); throws naming a bad address.
+  void openView();
+  /// A message as received, into the recording and the live view (either may be absent).
+  template <typename Message>
+  void noteReceived(const Message& message);
   void readState() noexcept;
   void onCommand(const CommandMessage& message, const rclcpp::MessageInfo& info);
   void onChunk(const ChunkMessage& message, const rclcpp::MessageInfo& info);
@@ -156,6 +166,7 @@ class ComplyController : public controller_interface::ControllerInterface {
   std::shared_ptr<const comply::pipeline::ResolvedController> resolved_;
   std::unique_ptr<comply::pipeline::Wrapper<Command>> wrapper_;
   std::unique_ptr<comply::host::HostRecording> recording_;  ///< the `record` parameter's; or none
+  std::unique_ptr<comply::host::LiveView> view_;             ///< the `foxglove` parameter's; or none
   std::vector<std::string> joints_;
   // Index of each joint's interface in state_interfaces_ / command_interfaces_, in joints_ order:
   // ros2_control loans them in its own order.

@@ -35,6 +35,9 @@ comply::JointChunk fromMessage(const comply_msgs::msg::JointChunk& message, std:
 void toMessage(const comply::CartesianCommand& command, comply_msgs::msg::CartesianCommand& message);
 void toMessage(const comply::JointCommand& command, comply_msgs::msg::JointCommand& message);
 
+/// A message header as comply's transport holds it.
+comply::transport::Header headerOf(const std_msgs::msg::Header& header);
+
 /// A committed request as every host takes it (comply::host::CommittedAnswers).
 comply::transport::CommittedRequestMessage fromMessage(
     const comply_msgs::msg::CommittedRequest& message);
