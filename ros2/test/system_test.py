@@ -36,6 +36,8 @@ import time
 import yaml
 
 CLI, PYTHON_DIR, CONFIG_DIR = sys.argv[1:4]
+SOURCE = os.path.dirname(CONFIG_DIR)
+SENSOR_OFFSET = [1.5, -2.0, 4.0, 0.1, -0.2, 0.3]  # the simulated sensor's own offset [N, N m]
 DOMAIN = random.randint(1, 230)
 ENV = dict(os.environ, ROS_DOMAIN_ID=str(DOMAIN))
 WORK = tempfile.mkdtemp(prefix='comply_system_test_')
@@ -288,7 +290,7 @@ def keystore_roles():
     role an rclpy node commands `comply run`; under `monitor` it reads the state but cannot even
     create a command publisher."""
     keystore = os.path.join(WORK, 'comply_keystore')
-    script = os.path.join(os.path.dirname(CONFIG_DIR), 'scripts', 'create-keystore.sh')
+    script = os.path.join(SOURCE, 'scripts', 'create-keystore.sh')
     subprocess.run([script, keystore, '/comply/host=host', '/comply/client=client',
                     '/comply/ui=monitor'], check=True, capture_output=True, timeout=60)
     host = subprocess.Popen([CLI, 'run', '--config', f'{CONFIG_DIR}/sim/cartesian_impedance.yaml',
@@ -308,9 +310,6 @@ def keystore_roles():
     finally:
         host.send_signal(signal.SIGINT)
         host.wait(timeout=20)
-
-
-SOURCE = os.path.dirname(CONFIG_DIR)
 
 
 def foxglove_viewer(url, topics):
@@ -498,7 +497,8 @@ def ur5e_joint():
     # The plant's drives run the PD (joint_pd); the wrist sensor the MuJoCo hardware exports.
     drives = controller_file('joint_impedance', {}, {'output': {'mode': 'joint_pd'}})
     with launched('ur5e', 'joint_impedance', 'ur5e: joint controller active (joint_pd)',
-                  f'controller_file:={drives}', 'force_torque_sensor:=tcp_fts_sensor') as started:
+                  f'controller_file:={drives}', 'force_torque_sensor:=tcp_fts_sensor',
+                  f'wrench_sensor_offset:={" ".join(map(str, SENSOR_OFFSET))}') as started:
         if not started:
             return
         base, state = started
@@ -517,13 +517,20 @@ def ur5e_joint():
         check('ur5e: ros2 topic pub moves the joints', reached is not None,
               f'largest joint error {reached[1] * 1e3:.2f} mrad, TCP at '
               f'{[round(x, 4) for x in reached[0]["tcp_position"]]}' if reached else 'not reached')
-        # At rest, unloaded: the sensor reads the tool's weight (UR5e: its flange only, a few N
-        # at most) and the state says the wrench is the sensor's.
+        # At rest, with no tool (the TCP is massless): the plant's sensor reads its own offset, in
+        # its axes, as the state's contact wrench in the TCP frame; a tare (~/tare) removes it.
         sensed = echo(f'{base}/state')
-        check('ur5e: the wrist sensor is the state\'s contact wrench',
-              sensed['contact_wrench_source'] == 2,
-              f"source {sensed['contact_wrench_source']}, "
-              f"wrench {[round(x, 2) for x in sensed['contact_wrench']]}")
+        error = max(abs(a - b) for a, b in zip(sensed['contact_wrench_tcp'], SENSOR_OFFSET))
+        check('ur5e: the plant\'s wrist sensor is the state\'s contact wrench',
+              sensed['contact_wrench_source'] == 2 and error < 1e-6,
+              f"source {sensed['contact_wrench_source']}, in the TCP frame "
+              f"{[round(x, 3) for x in sensed['contact_wrench_tcp']]}")
+        code, text = ros2('service', 'call', f'{base}/tare', 'std_srvs/srv/Trigger', timeout=30)
+        tared = wait_for(lambda: (lambda s: s if max(map(abs, s['contact_wrench_tcp'])) < 1e-6
+                                  else None)(echo(f'{base}/state')), 10)
+        check('ur5e: ~/tare makes the reading the zero', code == 0 and tared is not None,
+              f"after the tare {[round(x, 6) for x in tared['contact_wrench_tcp']]}" if tared
+              else text.strip()[-200:])
 
 
 def rclcpp_to_comply_run():

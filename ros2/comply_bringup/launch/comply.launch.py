@@ -11,6 +11,8 @@ kind:             cartesian | joint | auto (auto: joint when the plugin's name s
 update_rate:      controller manager rate [Hz]
 force_torque_sensor:  the wrist sensor's name for the controller (the MuJoCo hardware exports
                   tcp_fts_sensor/force.x ... /torque.z); empty (default): none is read
+wrench_sensor_offset:  the simulated sensor's own offset, six numbers "fx fy fz tx ty tz" in its
+                  axes [N, N m] (what a tare removes); empty (default): none
 
 The plant is actuated as the controller file's output.mode says (torque unless it says
 otherwise): its <ros2_control> block then lists that mode's command interfaces.
@@ -53,16 +55,20 @@ _MODE_INTERFACES = {
 }
 
 
-def _actuated_block(block, mode):
-    """The torque block for a plant actuated by `mode`: its command interfaces and parameter."""
+def _actuated_block(block, mode, offset):
+    """The torque block for a plant actuated by `mode`: its command interfaces and parameter; and
+    the sensor's `offset` (six numbers as text, or empty)."""
     if mode not in _MODE_INTERFACES:
         raise RuntimeError(f"output.mode must be one of {', '.join(_MODE_INTERFACES)}, not '{mode}'")
     interfaces = ''.join(f'<command_interface name="{kind}"/>' for kind in _MODE_INTERFACES[mode])
     block = block.replace('<command_interface name="effort"/>', interfaces)
-    return block.replace('</hardware>', f'  <param name="actuation">{mode}</param>\n  </hardware>', 1)
+    parameters = f'  <param name="actuation">{mode}</param>\n'
+    if offset:
+        parameters += f'    <param name="wrench_sensor_offset">{offset}</param>\n'
+    return block.replace('</hardware>', parameters + '  </hardware>', 1)
 
 
-def _robot_description(folder, mode):
+def _robot_description(folder, mode, offset):
     with open(os.path.join(folder, 'robot.yaml')) as f:
         urdf_file = yaml.safe_load(f)['urdf']
     with open(os.path.join(folder, urdf_file)) as f:
@@ -73,7 +79,7 @@ def _robot_description(folder, mode):
     if not os.path.isfile(block_file):
         raise RuntimeError(f'no ros2_control block for robot {name}: {block_file}')
     with open(block_file) as f:
-        block = _actuated_block(f.read(), mode)
+        block = _actuated_block(f.read(), mode, offset)
     end = urdf.rfind('</robot>')
     return urdf[:end] + block + urdf[end:]
 
@@ -130,7 +136,8 @@ def _launch(context):
     manager_yaml = _temporary_yaml({'controller_manager': {'ros__parameters': {
         'update_rate': int(arg('update_rate')), **managed}}}, 'comply_controller_manager_')
     # A dictionary reaches every node of the process: the controller reads the same URDF.
-    description = {'robot_description': _robot_description(folder, mode)}
+    description = {'robot_description': _robot_description(folder, mode,
+                                                          arg('wrench_sensor_offset'))}
     actions = [
         Node(package='controller_manager', executable='ros2_control_node', output='screen',
              parameters=[description, manager_yaml, controller_yaml]),
@@ -157,5 +164,6 @@ def generate_launch_description():
         DeclareLaunchArgument('kind', default_value='auto'),
         DeclareLaunchArgument('update_rate', default_value='1000'),
         DeclareLaunchArgument('force_torque_sensor', default_value=''),
+        DeclareLaunchArgument('wrench_sensor_offset', default_value=''),
         OpaqueFunction(function=_launch),
     ])

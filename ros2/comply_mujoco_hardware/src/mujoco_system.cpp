@@ -7,6 +7,7 @@
 #include <pluginlib/class_list_macros.hpp>
 #include <rclcpp/rclcpp.hpp>
 #include <span>
+#include <sstream>
 #include <stdexcept>
 
 #include "comply/model/robot_description.hpp"
@@ -44,6 +45,28 @@ double positiveNumber(const hi::HardwareInfo& info, const std::string& name, dou
 
 constexpr const char* kWrenchAxes[] = {"force.x",  "force.y",  "force.z",
                                        "torque.x", "torque.y", "torque.z"};
+
+/// Six numbers separated by spaces (force x y z [N], torque x y z [N m]); zero when not given.
+comply::Vector6d sixNumbers(const hi::HardwareInfo& info, const std::string& name) {
+  const std::string text = parameter(info, name, "");
+  comply::Vector6d values = comply::Vector6d::Zero();
+  if (text.empty()) {
+    return values;
+  }
+  std::istringstream in(text);
+  for (Eigen::Index k = 0; k < 6; ++k) {
+    if (!(in >> values[k]) || !std::isfinite(values[k])) {
+      throw std::invalid_argument("hardware parameter " + name + ": '" + text +
+                                  "' is not six finite numbers (force x y z, torque x y z)");
+    }
+  }
+  std::string rest;
+  if (in >> rest) {
+    throw std::invalid_argument("hardware parameter " + name + ": '" + text +
+                                "' has more than six numbers");
+  }
+  return values;
+}
 
 bool hasInterface(const std::vector<hi::InterfaceInfo>& interfaces, const std::string& name) {
   return std::any_of(interfaces.begin(), interfaces.end(),
@@ -132,6 +155,7 @@ MujocoSystem::CallbackReturn MujocoSystem::on_init(const hi::HardwareInfo& info)
     mapJoints(robot.joints);
     comply::sim::PlantOptions options;
     options.actuation = actuation_;
+    options.wrench_sensor_offset = sixNumbers(info, "wrench_sensor_offset");
     options.control_period_s = positiveNumber(info, "period_s", 0.001);
     options.substeps = static_cast<int>(positiveNumber(info, "substeps", 1.0));
     plant_ = std::make_unique<comply::sim::SimulatedRobot>(robot, options);

@@ -9,6 +9,9 @@
 //     <param name="substeps">1</param>          physics steps per period
 //     <param name="actuation">torque</param>    what the drives take: torque (default), joint_pd,
 //                                               position or velocity (docs/output-modes.md)
+//     <param name="wrench_sensor_offset">0 0 0 0 0 0</param>   the wrist sensor's own offset in
+//                                               its axes, force then torque [N, N m]: what a
+//                                               tare removes (default none)
 //   </hardware>
 //   <sensor name="tcp_fts_sensor">              optional: the wrist force/torque sensor, its
 //     <state_interface name="force.x"/> ...     state interfaces force.x ... torque.z in the
