@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "comply/hardware/control_loop.hpp"
+#include "comply/host/committed_answers.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply/pipeline/wrapper.hpp"
 #include "comply/sim/simulated_clock.hpp"
 #include "comply/sim/simulated_robot.hpp"
 #include "comply/transport/cdr.hpp"
-#include "comply/host/committed_answers.hpp"
 
 namespace {
 

@@ -1,10 +1,8 @@
-// The live host's answer to a committed request (include/comply/host/committed_answers.hpp), through the
-// wrapper on the FR3 with the host's clock on the cycle's grid: the answer, made between two
-// cycles, is what the cycles then write at the times asked for (within 1e-9 m), each entry stamped
-// with its time; a request it cannot answer is refused naming the field, and one of the joint
-// controller fills the joint list.
-
-#include "comply/host/committed_answers.hpp"
+// The live host's answer to a committed request (include/comply/host/committed_answers.hpp),
+// through the wrapper on the FR3 with the host's clock on the cycle's grid: the answer, made
+// between two cycles, is what the cycles then write at the times asked for (within 1e-9 m), each
+// entry stamped with its time; a request it cannot answer is refused naming the field, and one of
+// the joint controller fills the joint list.
 
 #include <gtest/gtest.h>
 
@@ -13,6 +11,7 @@
 #include <limits>
 #include <string>
 
+#include "comply/host/committed_answers.hpp"
 #include "resting_fr3.hpp"
 #include "wrapper_support.hpp"
 

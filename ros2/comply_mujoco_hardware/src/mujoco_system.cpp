@@ -85,8 +85,8 @@ void MujocoSystem::checkInterfaces() const {
     if (listed != wanted) {
       throw std::invalid_argument("joint '" + joint.name + "': a plant actuated by " +
                                   std::string(comply::toString(actuation_)) +
-                                  " takes the command interfaces " + wanted + " (in this order), not " +
-                                  (listed.empty() ? "none" : listed) +
+                                  " takes the command interfaces " + wanted +
+                                  " (in this order), not " + (listed.empty() ? "none" : listed) +
                                   " (hardware parameter actuation; docs/ros2.md)");
     }
     for (const char* kind : {"position", "velocity", "effort"}) {

@@ -34,9 +34,9 @@ constexpr const char* kRobotDescription = "robot_description";
 constexpr const char* kSensorName = "force_torque_sensor.name";
 constexpr const char* kSensorInterfaces = "force_torque_sensor.interface_names";
 constexpr const char* kSensorFrame = "force_torque_sensor.frame";
-constexpr const char* kRecord = "record";  ///< an MCAP file to record to ("": none)
+constexpr const char* kRecord = "record";      ///< an MCAP file to record to ("": none)
 constexpr const char* kFoxglove = "foxglove";  ///< the live view's [ADDRESS:]PORT ("": none)
-constexpr std::size_t kCommandDepth = 1000;  ///< commands waiting for the executor, at most
+constexpr std::size_t kCommandDepth = 1000;    ///< commands waiting for the executor, at most
 
 // The index in `interfaces` of "<joint>/<kind>"; throws naming the missing one.
 template <typename Loaned>
@@ -168,8 +168,8 @@ void ComplyController<Command>::createEndpoints() {
       [this](const std::shared_ptr<const comply_msgs::msg::Request> message,
              const rclcpp::MessageInfo& info) { onRequest(*message, info); });
   // comply run's QoS for both (ROS 2's default: reliable, keep last 10).
-  committed_publisher_ =
-      node->create_publisher<comply_msgs::msg::Committed>("~/committed", rclcpp::QoS(10).reliable());
+  committed_publisher_ = node->create_publisher<comply_msgs::msg::Committed>(
+      "~/committed", rclcpp::QoS(10).reliable());
   committed_subscription_ = node->create_subscription<comply_msgs::msg::CommittedRequest>(
       "~/committed_request", rclcpp::QoS(10).reliable(),
       [this](const std::shared_ptr<const comply_msgs::msg::CommittedRequest> message,

@@ -94,7 +94,8 @@ Command commandFromMessage(const Message& message, std::string& malformed) {
 
 }  // namespace
 
-void toMessage(const comply::CartesianCommand& command, comply_msgs::msg::CartesianCommand& message) {
+void toMessage(const comply::CartesianCommand& command,
+               comply_msgs::msg::CartesianCommand& message) {
   message.fields = static_cast<std::uint32_t>(command.fields);
   COMPLY_CARTESIAN_COMMAND_FIELDS(COMPLY_ROS_TO)
 }

@@ -1,7 +1,8 @@
 #include "comply_ros2_control/writer_identity.hpp"
 
-#include <cstring>
 #include <rcl/subscription.h>
+
+#include <cstring>
 #include <string_view>
 
 namespace comply_ros2_control {

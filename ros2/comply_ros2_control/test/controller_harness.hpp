@@ -154,8 +154,8 @@ class TopicHarness : public ControllerHarness {
     // (the listener shares the controller's). Its publishers need no spinning.
     second_context_ = std::make_shared<rclcpp::Context>();
     second_context_->init(0, nullptr);
-    second_sender_ = std::make_shared<rclcpp::Node>(
-        "second_sender", rclcpp::NodeOptions().context(second_context_));
+    second_sender_ = std::make_shared<rclcpp::Node>("second_sender",
+                                                    rclcpp::NodeOptions().context(second_context_));
     const std::string topic = "/cartesian_impedance/cartesian_command";
     sender_a_ = listener_->create_publisher<CartesianCommand>(topic, rclcpp::QoS(1000).reliable());
     sender_b_ =
@@ -253,6 +253,5 @@ class SensorTopicHarness : public TopicHarness {
  protected:
   SensorTopicHarness() { withSensor(); }
 };
-
 
 }  // namespace comply_ros2_control

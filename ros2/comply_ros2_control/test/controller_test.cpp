@@ -6,6 +6,7 @@
 // its rules, and the state and diagnostics are `comply run`'s messages.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -22,12 +23,11 @@
 #include <optional>
 #include <rclcpp_lifecycle/lifecycle_node.hpp>
 #include <sstream>
-#include <unistd.h>
 
 #include "comply/model/robot_description.hpp"
-#include "comply/record/mcap_reader.hpp"
 #include "comply/pipeline/config.hpp"
 #include "comply/pipeline/config_parameters.hpp"
+#include "comply/record/mcap_reader.hpp"
 #include "comply/schema/schema.hpp"
 #include "comply_msgs/msg/cartesian_command.hpp"
 #include "comply_msgs/msg/controller_state.hpp"
@@ -460,8 +460,9 @@ TEST_F(RecordingHarness, EveryCycleIsRecordedToMcap) {
   const comply::record::McapContents contents = comply::record::readMcap(
       path_, [&](const comply::record::McapMessageView& message) { ++counts[message.channel_id]; });
   EXPECT_EQ(contents.profile, "ros2");
-  const auto cycle = std::find_if(contents.channels.begin(), contents.channels.end(),
-                                  [](const auto& c) { return c.topic == "/cartesian_impedance/cycle"; });
+  const auto cycle =
+      std::find_if(contents.channels.begin(), contents.channels.end(),
+                   [](const auto& c) { return c.topic == "/cartesian_impedance/cycle"; });
   ASSERT_NE(cycle, contents.channels.end());
   EXPECT_EQ(cycle->schema_name, "comply_msgs/msg/CycleRecord");
   EXPECT_EQ(cycle->schema_encoding, "ros2msg");

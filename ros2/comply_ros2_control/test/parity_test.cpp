@@ -64,9 +64,8 @@ TEST_F(LongTimeoutTopicHarness, ASenderThatLeavesReleasesTheTopicsAtOnce) {
 }
 
 /// The writer GUID the ROS graph records for the publisher of `node_name` on `topic`.
-std::optional<std::array<std::uint8_t, RMW_GID_STORAGE_SIZE>> writerGid(rclcpp::Node& observer,
-                                                                        const std::string& topic,
-                                                                        const std::string& node_name) {
+std::optional<std::array<std::uint8_t, RMW_GID_STORAGE_SIZE>> writerGid(
+    rclcpp::Node& observer, const std::string& topic, const std::string& node_name) {
   for (const rclcpp::TopicEndpointInfo& info : observer.get_publishers_info_by_topic(topic)) {
     if (info.node_name() == node_name) {
       return info.endpoint_gid();
@@ -153,8 +152,8 @@ TEST_F(TopicHarness, TheCommittedPrefixIsAnsweredOverRos2) {
   ASSERT_EQ(answer.cartesian.size(), 5U);
   EXPECT_TRUE(answer.joint.empty());
   for (std::size_t k = 0; k < 5; ++k) {
-    const auto expected =
-        rclcpp::Time(request.observation) + rclcpp::Duration(0, static_cast<std::uint32_t>(k * 100'000'000));
+    const auto expected = rclcpp::Time(request.observation) +
+                          rclcpp::Duration(0, static_cast<std::uint32_t>(k * 100'000'000));
     EXPECT_EQ(rclcpp::Time(answer.cartesian[k].header.stamp), expected) << "entry " << k;
     for (std::size_t axis = 0; axis < 3; ++axis) {
       EXPECT_NEAR(answer.cartesian[k].position[axis], hold.position[axis], 1e-9)
@@ -205,10 +204,11 @@ INSTANTIATE_TEST_SUITE_P(
     Names, VendorSensorHarness,
     ::testing::Values(
         // UR's driver (and comply's MuJoCo hardware): ros2_control's force-torque names.
-        VendorSensor{"tcp_fts_sensor", "force_torque_sensor.name:=tcp_fts_sensor",
-                     {"tcp_fts_sensor/force.x", "tcp_fts_sensor/force.y",
-                      "tcp_fts_sensor/force.z", "tcp_fts_sensor/torque.x",
-                      "tcp_fts_sensor/torque.y", "tcp_fts_sensor/torque.z"}},
+        VendorSensor{
+            "tcp_fts_sensor",
+            "force_torque_sensor.name:=tcp_fts_sensor",
+            {"tcp_fts_sensor/force.x", "tcp_fts_sensor/force.y", "tcp_fts_sensor/force.z",
+             "tcp_fts_sensor/torque.x", "tcp_fts_sensor/torque.y", "tcp_fts_sensor/torque.z"}},
         // Six names of a driver's own, in the order force x y z, torque x y z.
         VendorSensor{"interface_names",
                      "force_torque_sensor.interface_names:=[wrist/fx, wrist/fy, wrist/fz, "
@@ -253,7 +253,8 @@ class MotionHarness : public TopicHarness {
 TEST_F(MotionHarness, TheGovernorBrakesAFastJoint) {
   turn(2.0, 30);
   EXPECT_LT(torque(0), 0.0) << "joint 1's torque opposes its motion";
-  const auto diagnostics = diagnosticsWhen([](const Diagnostics& d) { return d.governor_hits > 0; });
+  const auto diagnostics =
+      diagnosticsWhen([](const Diagnostics& d) { return d.governor_hits > 0; });
   ASSERT_TRUE(diagnostics) << "the governor never acted";
   EXPECT_EQ(diagnostics->state, ControllerState::STATE_ACTIVE);
   EXPECT_EQ(diagnostics->faults, 0U);

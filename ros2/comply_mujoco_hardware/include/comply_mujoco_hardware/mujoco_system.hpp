@@ -60,7 +60,7 @@ class MujocoSystem final : public hardware_interface::SystemInterface {
   std::vector<double> position_, velocity_, effort_;
   comply::OutputMode actuation_ = comply::OutputMode::kTorque;
   std::vector<comply_ros2_control::CommandInterface> fields_;  // the actuation's, per joint
-  std::vector<double> command_;  // joint i, field k at i * fields_.size() + k
+  std::vector<double> command_;    // joint i, field k at i * fields_.size() + k
   comply::ActuatorCommand drive_;  // the plant's command, in plant joint order
   std::size_t robot_dof_ = 0;
   std::array<double, 6> wrench_{};  // the wrist sensor: force then torque, TCP axes [N, N m]

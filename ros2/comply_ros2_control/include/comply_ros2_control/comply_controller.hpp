@@ -166,7 +166,7 @@ class ComplyController : public controller_interface::ControllerInterface {
   std::shared_ptr<const comply::pipeline::ResolvedController> resolved_;
   std::unique_ptr<comply::pipeline::Wrapper<Command>> wrapper_;
   std::unique_ptr<comply::host::HostRecording> recording_;  ///< the `record` parameter's; or none
-  std::unique_ptr<comply::host::LiveView> view_;             ///< the `foxglove` parameter's; or none
+  std::unique_ptr<comply::host::LiveView> view_;            ///< the `foxglove` parameter's; or none
   std::vector<std::string> joints_;
   // Index of each joint's interface in state_interfaces_ / command_interfaces_, in joints_ order:
   // ros2_control loans them in its own order.

@@ -32,7 +32,8 @@ comply::CartesianChunk fromMessage(const comply_msgs::msg::CartesianChunk& messa
 comply::JointChunk fromMessage(const comply_msgs::msg::JointChunk& message, std::string& malformed);
 
 /// A command as its message, every field through its kind's table (header untouched).
-void toMessage(const comply::CartesianCommand& command, comply_msgs::msg::CartesianCommand& message);
+void toMessage(const comply::CartesianCommand& command,
+               comply_msgs::msg::CartesianCommand& message);
 void toMessage(const comply::JointCommand& command, comply_msgs::msg::JointCommand& message);
 
 /// A message header as comply's transport holds it.

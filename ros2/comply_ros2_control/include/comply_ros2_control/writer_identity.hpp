@@ -12,10 +12,11 @@
 //
 // Not thread-safe: the controller asks under its endpoints mutex.
 
+#include <rmw/types.h>
+
 #include <cstdint>
 #include <optional>
 #include <rclcpp/subscription_base.hpp>
-#include <rmw/types.h>
 #include <vector>
 
 #include "comply/transport/matched_writers.hpp"
