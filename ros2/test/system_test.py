@@ -270,19 +270,11 @@ def sros2():
             check('sros2: an rclpy node with an enclave commands the controller', ok, text)
             ok, text = rclpy_probe('cartesian_impedance', secure(keystore, None), 8)
             check('sros2: an rclpy node without one is shut out', not ok, text)
-    host = subprocess.Popen([CLI, 'run', '--config', f'{CONFIG_DIR}/sim/cartesian_impedance.yaml',
-                             '--robot', 'fr3', '--sim', '--domain', str(DOMAIN), '--name',
-                             'secure_host', '--duration', '90', '--security',
-                             os.path.join(keystore, 'enclaves', 'comply', 'host')],
-                            stdout=open('secure_host.log', 'w'), stderr=subprocess.STDOUT)
-    try:
+    with comply_run('secure_host', os.path.join(keystore, 'enclaves', 'comply', 'host')):
         ok, text = rclpy_probe('secure_host', secure(keystore, '/comply/client'), 30)
         check('sros2: an rclpy node with an enclave commands comply run', ok, text)
         ok, text = rclpy_probe('secure_host', secure(keystore, None), 8)
         check('sros2: an rclpy node without one is shut out of comply run', not ok, text)
-    finally:
-        host.send_signal(signal.SIGINT)
-        host.wait(timeout=20)
 
 
 def keystore_roles():
@@ -293,12 +285,7 @@ def keystore_roles():
     script = os.path.join(SOURCE, 'scripts', 'create-keystore.sh')
     subprocess.run([script, keystore, '/comply/host=host', '/comply/client=client',
                     '/comply/ui=monitor'], check=True, capture_output=True, timeout=60)
-    host = subprocess.Popen([CLI, 'run', '--config', f'{CONFIG_DIR}/sim/cartesian_impedance.yaml',
-                             '--robot', 'fr3', '--sim', '--domain', str(DOMAIN), '--name',
-                             'role_host', '--duration', '90', '--security',
-                             os.path.join(keystore, 'enclaves', 'comply', 'host')],
-                            stdout=open('role_host.log', 'w'), stderr=subprocess.STDOUT)
-    try:
+    with comply_run('role_host', os.path.join(keystore, 'enclaves', 'comply', 'host')):
         ok, text = rclpy_probe('role_host', secure(keystore, '/comply/client'), 30)
         check('keystore roles: an rclpy node as client commands comply run', ok, text)
         monitor = secure(keystore, '/comply/ui')
@@ -307,9 +294,6 @@ def keystore_roles():
         check('keystore roles: an rclpy node as monitor reads the state, cannot command',
               bool(read.get('joint_names')) and not ok and 'Failed to create publisher' in text,
               text.splitlines()[-1][:160] if text else '')
-    finally:
-        host.send_signal(signal.SIGINT)
-        host.wait(timeout=20)
 
 
 def foxglove_viewer(url, topics):
@@ -533,20 +517,28 @@ def ur5e_joint():
               else text.strip()[-200:])
 
 
-def rclcpp_to_comply_run():
-    host = subprocess.Popen([CLI, 'run', '--config', f'{CONFIG_DIR}/sim/cartesian_impedance.yaml',
-                             '--robot', 'fr3', '--sim', '--domain', str(DOMAIN), '--name',
-                             'rclcpp_probe_host', '--duration', '60'], stdout=subprocess.DEVNULL,
-                            stderr=subprocess.STDOUT)
+@contextlib.contextmanager
+def comply_run(name, security=None):
+    """`comply run --sim` of the FR3 as host `name` (on the enclave folder `security`) for as long
+    as the block runs; its output in <name>.log."""
+    arguments = [CLI, 'run', '--config', f'{CONFIG_DIR}/sim/cartesian_impedance.yaml', '--robot',
+                 'fr3', '--sim', '--domain', str(DOMAIN), '--name', name, '--duration', '90']
+    host = subprocess.Popen(arguments + (['--security', security] if security else []),
+                            stdout=open(f'{name}.log', 'w'), stderr=subprocess.STDOUT)
     try:
+        yield
+    finally:
+        host.send_signal(signal.SIGINT)
+        host.wait(timeout=20)
+
+
+def rclcpp_to_comply_run():
+    with comply_run('rclcpp_probe_host'):
         done = subprocess.run(['ros2', 'run', 'comply_ros2_control', 'comply_rclcpp_probe',
                                'rclcpp_probe_host', '30'], env=ENV, capture_output=True,
                               text=True, timeout=60)
         check('rclcpp node commands comply run --sim', done.returncode == 0,
               (done.stdout + done.stderr).strip()[-300:])
-    finally:
-        host.send_signal(signal.SIGINT)
-        host.wait(timeout=20)
 
 
 def main():

@@ -172,6 +172,33 @@ TEST(OptionDeclarations, FlatParametersReadAsTheSameOptionsInAFile) {
   EXPECT_EQ(from_parameters.name, kName);
 }
 
+// Walls and boxes, lists of maps no ROS 2 parameter holds, come as the YAML text of the list and
+// read as the file's list: the same planes and boxes, and their errors named as in a file.
+TEST(ConfigParameters, WallsAndBoxesComeAsTheYamlTextOfTheirList) {
+  std::vector<FlatParameter> parameters = required();
+  parameters.push_back(
+      {"walls", std::string("[{point: [0.65, 0.0, 0.0], normal: [1.0, 0.0, 0.0]}, "
+                            "{point: [0, 0, 0.05], normal: [0, 0, -1]}]")});
+  parameters.push_back({"boxes", std::string("[{min: [0.2, -0.4, 0.05], max: [0.7, 0.4, 0.8]}]")});
+  const WrapperConfig config = parseWrapperParameters(parameters, kSource, kName);
+  ASSERT_EQ(config.walls.planes.size(), 2U);
+  EXPECT_EQ(config.walls.planes[0].point, Eigen::Vector3d(0.65, 0.0, 0.0));
+  EXPECT_EQ(config.walls.planes[1].normal, Eigen::Vector3d(0.0, 0.0, -1.0));
+  ASSERT_EQ(config.walls.boxes.size(), 1U);
+  EXPECT_EQ(config.walls.boxes[0].max, Eigen::Vector3d(0.7, 0.4, 0.8));
+
+  parameters.back() = {"boxes", std::string("[{min: [0.2, -0.4, 0.05]")};
+  EXPECT_THROW(parseWrapperParameters(parameters, kSource, kName), InputError);
+  parameters.back() = {"boxes", std::string("[{min: [0.7, -0.4, 0.05], max: [0.2, 0.4, 0.8]}]")};
+  try {
+    parseWrapperParameters(parameters, kSource, kName);
+    FAIL() << "a box with min above max was read";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("boxes[0].min: must be below max"), std::string::npos)
+        << error.what();
+  }
+}
+
 InputError refusal(const std::vector<FlatParameter>& extra) {
   std::vector<FlatParameter> parameters = required();
   parameters.insert(parameters.end(), extra.begin(), extra.end());

@@ -170,6 +170,30 @@ TEST_F(TopicHarness, TheCommittedPrefixIsAnsweredOverRos2) {
   EXPECT_NE(answers.back().message.find("count is 0"), std::string::npos) << answers.back().message;
 }
 
+/// A virtual wall 1 cm in front of the FR3's TCP at home (x = 0.307 m), given as ROS 2 parameters
+/// hold it: the YAML text of the file's list.
+class WallHarness : public TopicHarness {
+ protected:
+  WallHarness() { extra_parameters_ = {"walls:='[{point: [0.317, 0, 0], normal: [1, 0, 0]}]'"}; }
+};
+
+// The walls of a controller file under ros2_control: the state reports them and the TCP's
+// distance to the nearest; a target beyond the wall has the law's reference moved back inside,
+// counted on ~/diagnostics.
+TEST_F(WallHarness, AWallHoldsTheReferenceInside) {
+  ASSERT_TRUE(runUntil([&] { return !states_.empty() && states_.back().walls; }));
+  EXPECT_NEAR(states_.back().wall_distance, 0.01, 1e-3);
+  const rclcpp::Time stamp = controller_.get_node()->now();
+  CartesianCommand beyond = holdCommand(stamp);
+  beyond.position[0] += 0.05;
+  sender_a_->publish(beyond);
+  const auto outcome = outcomeOf(stamp);
+  ASSERT_TRUE(outcome);
+  EXPECT_EQ(outcome->outcome, CommandOutcome::OUTCOME_APPLIED) << outcome->message;
+  ASSERT_TRUE(runUntil([&] { return diagnostics_received_.back().wall_reference_hits > 0; }))
+      << "the reference beyond the wall was never moved back";
+}
+
 /// A wrist sensor named as a vendor's driver exports it: the controller's parameter and the six
 /// state interfaces of the hardware.
 struct VendorSensor {

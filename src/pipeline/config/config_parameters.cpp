@@ -65,6 +65,27 @@ YAML::Node yamlOf(const ParameterValue& value) {
       value);
 }
 
+/// The lists of maps a controller file may hold (walls, boxes): ROS 2 parameters hold no list of
+/// maps, so these come as the YAML text of the list (`walls: "[{point: [0.65, 0, 0], normal:
+/// [1, 0, 0]}]"`), read as the file's list would be.
+bool isYamlList(const std::string& name) {
+  return name == "walls" || name == "boxes";
+}
+
+YAML::Node yamlList(const FlatParameter& parameter, const std::string& source,
+                    const std::string& key) {
+  const auto* text = std::get_if<std::string>(&parameter.value);
+  if (text == nullptr) {
+    return yamlOf(parameter.value);
+  }
+  try {
+    return YAML::Load(*text);
+  } catch (const YAML::Exception& error) {
+    throw InputError(InputErrc::kInvalidValue, source, key,
+                     "is not the YAML text of a list (" + error.msg + ")");
+  }
+}
+
 /// The nested mapping a controller file holds under ros__parameters, from dotted names.
 YAML::Node nest(const std::vector<FlatParameter>& parameters, const std::string& source,
                 const std::string& controller_name) {
@@ -94,7 +115,8 @@ YAML::Node nest(const std::vector<FlatParameter>& parameters, const std::string&
       throw InputError(InputErrc::kInconsistent, source, key,
                        "has a value and parameters under it");
     }
-    node[path.back()] = yamlOf(parameter.value);
+    node[path.back()] = isYamlList(parameter.name) ? yamlList(parameter, source, key)
+                                                   : yamlOf(parameter.value);
   }
   return root;
 }
