@@ -9,10 +9,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "comply_msgs/msg/cartesian_chunk.hpp"
 #include "comply_msgs/msg/committed.hpp"
 #include "comply_msgs/msg/committed_request.hpp"
 #include "comply_msgs/msg/request.hpp"
@@ -168,6 +170,44 @@ TEST_F(TopicHarness, TheCommittedPrefixIsAnsweredOverRos2) {
   ASSERT_TRUE(runUntil([&] { return answers.size() >= 2; }));
   EXPECT_FALSE(answers.back().answered);
   EXPECT_NE(answers.back().message.find("count is 0"), std::string::npos) << answers.back().message;
+}
+
+// A chunk planned for an observation, over ROS 2: its outcome carries its timing record as under
+// `comply run` (chunks.md): it took over, when, from which cycle, and how many of its waypoints
+// were already past by then, the delay measured in the chunk's own steps.
+TEST_F(TopicHarness, AChunksOutcomeCarriesItsMeasuredDelay) {
+  auto chunks = listener_->create_publisher<comply_msgs::msg::CartesianChunk>(
+      "/cartesian_impedance/cartesian_chunk", rclcpp::QoS(10).reliable());
+  ASSERT_TRUE(runUntil([&] { return chunks->get_subscription_count() > 0; }));
+  const ControllerState observed = states_.back();
+  const rclcpp::Time observation(observed.header.stamp);
+  comply_msgs::msg::CartesianChunk chunk;
+  chunk.header.stamp = controller_.get_node()->now();
+  chunk.fields = static_cast<std::uint32_t>(comply::CommandField::kPosition);
+  chunk.observation = observed.header.stamp;
+  for (int k = 0; k < 20; ++k) {  // 50 ms apart from the observation on: a hold, timed
+    CartesianCommand waypoint = holdCommand(observation + rclcpp::Duration(0, k * 50'000'000));
+    chunk.waypoints.push_back(waypoint);
+  }
+  chunks->publish(chunk);
+  const auto outcome = outcomeOf(rclcpp::Time(chunk.header.stamp));
+  ASSERT_TRUE(outcome);
+  ASSERT_EQ(outcome->outcome, CommandOutcome::OUTCOME_APPLIED) << outcome->message;
+  ASSERT_EQ(outcome->chunk.size(), 1U) << "no timing record with the chunk's outcome";
+  const comply_msgs::msg::ChunkTiming& timing = outcome->chunk[0];
+  EXPECT_EQ(timing.end, comply_msgs::msg::ChunkTiming::END_TOOK_OVER);
+  EXPECT_EQ(timing.waypoints, 20U);
+  EXPECT_GT(timing.takeover_cycle, 0U);
+  EXPECT_GE(rclcpp::Time(timing.takeover), rclcpp::Time(timing.received));
+  // The record's times come back from the controller's clock, which this harness advances by the
+  // nominal 1 ms per update() while the executor spins in between: within a few ms of the node's.
+  EXPECT_NEAR((rclcpp::Time(timing.observation) - observation).seconds(), 0.0, 5e-3);
+  // Sent after the observation, taken over later still: at least waypoint 0 was past, and the
+  // count is the delay in the chunk's 50 ms steps.
+  const double delay_s = (rclcpp::Time(timing.takeover) - observation).seconds();
+  EXPECT_GE(timing.waypoints_past, 1U);
+  EXPECT_NEAR(static_cast<double>(timing.waypoints_past), std::ceil(delay_s / 0.05), 1.0)
+      << "delay " << delay_s << " s";
 }
 
 /// A virtual wall 1 cm in front of the FR3's TCP at home (x = 0.307 m), given as ROS 2 parameters
