@@ -37,59 +37,136 @@ static_assert(8 + 8 * kStateDoubles + 2 + 2 * std::size_t{kErrorCount} + 1 + 8 =
 static_assert(8 + sizeof(double) * (7 + 7 + 16 + 6 + 2) + 2 + sizeof(double) * 7 + 1 ==
               kCommandBytes);
 
-/// Copies in and out of a byte span, front to back.
-class Cursor {
+/// Writes a message's fields into a byte span, front to back. It and Reader take the same calls,
+/// so each message's layout is one list of fields (the *Fields templates below), for both ways.
+class Writer {
  public:
-  explicit Cursor(std::uint8_t* bytes) : bytes_(bytes) {}
+  explicit Writer(std::uint8_t* bytes) : bytes_(bytes) {}
   template <typename Value>
-  void put(const Value& value) noexcept {
+  void field(const Value& value) noexcept {
     std::memcpy(bytes_ + at_, &value, sizeof(Value));
     at_ += sizeof(Value);
   }
+  /// A flag byte: 1 or 0.
+  void field(const bool& flag) noexcept { field(static_cast<std::uint8_t>(flag ? 1 : 0)); }
   template <typename Value, std::size_t N>
-  void putAll(const std::array<Value, N>& values) noexcept {
+  void field(const std::array<Value, N>& values) noexcept {
     for (const Value& value : values) {
-      put(value);
+      field(value);
     }
   }
-  [[nodiscard]] std::size_t at() const noexcept { return at_; }
+  /// An enumeration as the integer of type Wire the protocol sends it as.
+  template <typename Wire, typename Enum>
+  void as(const Enum& value) noexcept {
+    field(static_cast<Wire>(value));
+  }
 
  private:
   std::uint8_t* bytes_;
   std::size_t at_ = 0;
 };
 
-class ReadCursor {
+class Reader {
  public:
-  explicit ReadCursor(const std::uint8_t* bytes) : bytes_(bytes) {}
+  explicit Reader(const std::uint8_t* bytes) : bytes_(bytes) {}
   template <typename Value>
-  void get(Value& value) noexcept {
+  void field(Value& value) noexcept {
     std::memcpy(&value, bytes_ + at_, sizeof(Value));
     at_ += sizeof(Value);
   }
-  template <typename Value, std::size_t N>
-  void getAll(std::array<Value, N>& values) noexcept {
-    for (Value& value : values) {
-      get(value);
-    }
-  }
   /// A flag byte: anything but 0 is true (a bool's other bit patterns are not read as a bool).
-  void getFlag(bool& flag) noexcept {
+  void field(bool& flag) noexcept {
     std::uint8_t byte = 0;
-    get(byte);
+    field(byte);
     flag = byte != 0;
   }
-  template <std::size_t N>
-  void getFlags(std::array<bool, N>& flags) noexcept {
-    for (bool& flag : flags) {
-      getFlag(flag);
+  template <typename Value, std::size_t N>
+  void field(std::array<Value, N>& values) noexcept {
+    for (Value& value : values) {
+      field(value);
     }
+  }
+  template <typename Wire, typename Enum>
+  void as(Enum& value) noexcept {
+    Wire wire{};
+    field(wire);
+    value = static_cast<Enum>(wire);
   }
 
  private:
   const std::uint8_t* bytes_;
   std::size_t at_ = 0;
 };
+
+// Each message's fields in wire order; `Message` is const when written.
+template <typename Cursor, typename Message>
+void headerFields(Cursor& cursor, Message& header) noexcept {
+  cursor.template as<std::uint32_t>(header.command);
+  cursor.field(header.command_id);
+  cursor.field(header.size);
+}
+
+template <typename Cursor, typename Message>
+void moveFields(Cursor& cursor, Message& move) noexcept {
+  cursor.template as<std::uint32_t>(move.controller);
+  cursor.template as<std::uint32_t>(move.generator);
+  cursor.field(move.path_deviation);
+  cursor.field(move.goal_deviation);
+}
+
+template <typename Cursor, typename Message>
+void thresholdFields(Cursor& cursor, Message& thresholds) noexcept {
+  cursor.field(thresholds.torque_contact_acceleration);
+  cursor.field(thresholds.torque_collision_acceleration);
+  cursor.field(thresholds.torque_contact_nominal);
+  cursor.field(thresholds.torque_collision_nominal);
+  cursor.field(thresholds.force_contact_acceleration);
+  cursor.field(thresholds.force_collision_acceleration);
+  cursor.field(thresholds.force_contact_nominal);
+  cursor.field(thresholds.force_collision_nominal);
+}
+
+template <typename Cursor, typename Message>
+void stateFields(Cursor& cursor, Message& state) noexcept {
+  cursor.field(state.message_id);
+  cursor.field(state.values);
+  cursor.template as<std::uint8_t>(state.generator);
+  cursor.template as<std::uint8_t>(state.controller);
+  cursor.field(state.errors);
+  cursor.field(state.reflex_reason);
+  cursor.template as<std::uint8_t>(state.robot_mode);
+  cursor.field(state.control_command_success_rate);
+}
+
+template <typename Cursor, typename Message>
+void commandFields(Cursor& cursor, Message& command) noexcept {
+  cursor.field(command.message_id);
+  cursor.field(command.q_c);
+  cursor.field(command.dq_c);
+  cursor.field(command.O_T_EE_c);
+  cursor.field(command.O_dP_EE_c);
+  cursor.field(command.elbow_c);
+  cursor.field(command.valid_elbow);
+  cursor.field(command.motion_finished);
+  cursor.field(command.tau_J_d);
+  cursor.field(command.torque_finished);
+}
+
+/// `message` into `out` by its field list.
+template <typename Message, std::size_t Bytes, typename Fields>
+void encode(std::span<std::uint8_t, Bytes> out, const Message& message, Fields&& fields) noexcept {
+  Writer writer(out.data());
+  fields(writer, message);
+}
+
+/// The message `in` holds, by its field list.
+template <typename Message, std::size_t Bytes, typename Fields>
+Message decode(std::span<const std::uint8_t, Bytes> in, Fields&& fields) noexcept {
+  Reader reader(in.data());
+  Message message;
+  fields(reader, message);
+  return message;
+}
 
 }  // namespace
 
@@ -143,74 +220,27 @@ std::size_t responsePayloadBytes(Command command) noexcept {
 }
 
 void putHeader(std::span<std::uint8_t, kHeaderBytes> out, const Header& header) noexcept {
-  Cursor cursor(out.data());
-  cursor.put(static_cast<std::uint32_t>(header.command));
-  cursor.put(header.command_id);
-  cursor.put(header.size);
+  encode(out, header, [](auto& cursor, auto& message) { headerFields(cursor, message); });
 }
-
 Header getHeader(std::span<const std::uint8_t, kHeaderBytes> in) noexcept {
-  ReadCursor cursor(in.data());
-  std::uint32_t command = 0;
-  Header header;
-  cursor.get(command);
-  cursor.get(header.command_id);
-  cursor.get(header.size);
-  header.command = static_cast<Command>(command);
-  return header;
+  return decode<Header>(in, [](auto& cursor, auto& message) { headerFields(cursor, message); });
 }
-
 void putMoveRequest(std::span<std::uint8_t, kMoveRequestBytes> out,
                     const MoveRequest& move) noexcept {
-  Cursor cursor(out.data());
-  cursor.put(static_cast<std::uint32_t>(move.controller));
-  cursor.put(static_cast<std::uint32_t>(move.generator));
-  cursor.putAll(move.path_deviation);
-  cursor.putAll(move.goal_deviation);
+  encode(out, move, [](auto& cursor, auto& message) { moveFields(cursor, message); });
 }
-
 MoveRequest getMoveRequest(std::span<const std::uint8_t, kMoveRequestBytes> in) noexcept {
-  ReadCursor cursor(in.data());
-  std::uint32_t controller = 0;
-  std::uint32_t generator = 0;
-  MoveRequest move;
-  cursor.get(controller);
-  cursor.get(generator);
-  cursor.getAll(move.path_deviation);
-  cursor.getAll(move.goal_deviation);
-  move.controller = static_cast<MoveController>(controller);
-  move.generator = static_cast<MoveGenerator>(generator);
-  return move;
+  return decode<MoveRequest>(in, [](auto& cursor, auto& message) { moveFields(cursor, message); });
 }
-
 void putCollisionThresholds(std::span<std::uint8_t, kCollisionRequestBytes> out,
                             const CollisionThresholds& thresholds) noexcept {
-  Cursor cursor(out.data());
-  cursor.putAll(thresholds.torque_contact_acceleration);
-  cursor.putAll(thresholds.torque_collision_acceleration);
-  cursor.putAll(thresholds.torque_contact_nominal);
-  cursor.putAll(thresholds.torque_collision_nominal);
-  cursor.putAll(thresholds.force_contact_acceleration);
-  cursor.putAll(thresholds.force_collision_acceleration);
-  cursor.putAll(thresholds.force_contact_nominal);
-  cursor.putAll(thresholds.force_collision_nominal);
+  encode(out, thresholds, [](auto& cursor, auto& message) { thresholdFields(cursor, message); });
 }
-
 CollisionThresholds getCollisionThresholds(
     std::span<const std::uint8_t, kCollisionRequestBytes> in) noexcept {
-  ReadCursor cursor(in.data());
-  CollisionThresholds thresholds;
-  cursor.getAll(thresholds.torque_contact_acceleration);
-  cursor.getAll(thresholds.torque_collision_acceleration);
-  cursor.getAll(thresholds.torque_contact_nominal);
-  cursor.getAll(thresholds.torque_collision_nominal);
-  cursor.getAll(thresholds.force_contact_acceleration);
-  cursor.getAll(thresholds.force_collision_acceleration);
-  cursor.getAll(thresholds.force_contact_nominal);
-  cursor.getAll(thresholds.force_collision_nominal);
-  return thresholds;
+  return decode<CollisionThresholds>(
+      in, [](auto& cursor, auto& message) { thresholdFields(cursor, message); });
 }
-
 std::size_t stateFieldLength(StateField field) noexcept {
   return kFieldLengths[static_cast<std::size_t>(field)];
 }
@@ -221,70 +251,18 @@ std::size_t stateFieldStart(StateField field) noexcept {
 
 void putRobotState(std::span<std::uint8_t, kStateBytes> out,
                    const RobotStateMessage& state) noexcept {
-  Cursor cursor(out.data());
-  cursor.put(state.message_id);
-  cursor.putAll(state.values);
-  cursor.put(static_cast<std::uint8_t>(state.generator));
-  cursor.put(static_cast<std::uint8_t>(state.controller));
-  for (const bool flag : state.errors) {
-    cursor.put(static_cast<std::uint8_t>(flag ? 1 : 0));
-  }
-  for (const bool flag : state.reflex_reason) {
-    cursor.put(static_cast<std::uint8_t>(flag ? 1 : 0));
-  }
-  cursor.put(static_cast<std::uint8_t>(state.robot_mode));
-  cursor.put(state.control_command_success_rate);
+  encode(out, state, [](auto& cursor, auto& message) { stateFields(cursor, message); });
 }
-
 RobotStateMessage getRobotState(std::span<const std::uint8_t, kStateBytes> in) noexcept {
-  ReadCursor cursor(in.data());
-  RobotStateMessage state;
-  cursor.get(state.message_id);
-  cursor.getAll(state.values);
-  std::uint8_t generator = 0;
-  std::uint8_t controller = 0;
-  std::uint8_t robot_mode = 0;
-  cursor.get(generator);
-  cursor.get(controller);
-  cursor.getFlags(state.errors);
-  cursor.getFlags(state.reflex_reason);
-  cursor.get(robot_mode);
-  cursor.get(state.control_command_success_rate);
-  state.generator = static_cast<GeneratorMode>(generator);
-  state.controller = static_cast<ControllerMode>(controller);
-  state.robot_mode = static_cast<RobotMode>(robot_mode);
-  return state;
+  return decode<RobotStateMessage>(
+      in, [](auto& cursor, auto& message) { stateFields(cursor, message); });
 }
-
 void putRobotCommand(std::span<std::uint8_t, kCommandBytes> out,
                      const RobotCommandMessage& command) noexcept {
-  Cursor cursor(out.data());
-  cursor.put(command.message_id);
-  cursor.putAll(command.q_c);
-  cursor.putAll(command.dq_c);
-  cursor.putAll(command.O_T_EE_c);
-  cursor.putAll(command.O_dP_EE_c);
-  cursor.putAll(command.elbow_c);
-  cursor.put(static_cast<std::uint8_t>(command.valid_elbow ? 1 : 0));
-  cursor.put(static_cast<std::uint8_t>(command.motion_finished ? 1 : 0));
-  cursor.putAll(command.tau_J_d);
-  cursor.put(static_cast<std::uint8_t>(command.torque_finished ? 1 : 0));
+  encode(out, command, [](auto& cursor, auto& message) { commandFields(cursor, message); });
 }
-
 RobotCommandMessage getRobotCommand(std::span<const std::uint8_t, kCommandBytes> in) noexcept {
-  ReadCursor cursor(in.data());
-  RobotCommandMessage command;
-  cursor.get(command.message_id);
-  cursor.getAll(command.q_c);
-  cursor.getAll(command.dq_c);
-  cursor.getAll(command.O_T_EE_c);
-  cursor.getAll(command.O_dP_EE_c);
-  cursor.getAll(command.elbow_c);
-  cursor.getFlag(command.valid_elbow);
-  cursor.getFlag(command.motion_finished);
-  cursor.getAll(command.tau_J_d);
-  cursor.getFlag(command.torque_finished);
-  return command;
+  return decode<RobotCommandMessage>(
+      in, [](auto& cursor, auto& message) { commandFields(cursor, message); });
 }
-
 }  // namespace comply::franka::fci
