@@ -3,9 +3,9 @@
 #include "franka_emulator_command.hpp"
 
 #include <CLI/CLI.hpp>
+#include <atomic>
 #include <chrono>
 #include <ostream>
-#include <thread>
 
 #include "comply/franka/franka_errors.hpp"
 #include "comply/franka_emulator/franka_emulator.hpp"
@@ -62,14 +62,9 @@ CLI::App* addFrankaEmulatorCommand(CLI::App& app, FrankaEmulatorCommandOptions& 
       "franka-emulator",
       "a Franka robot's FCI (protocol 7) emulated on the MuJoCo FR3, for --hardware franka or "
       "libfranka programs without a robot");
-  command->add_option("--address", options.address, "IPv4 address to listen on")
-      ->capture_default_str();
+  addEmulatorCommonOptions(*command, options.common, "its cycle");
   command->add_option("--command-port", options.command_port, "FCI command port (0: any free)")
       ->capture_default_str();
-  command->add_option("--object", options.objects, "MuJoCo fragment added to the world")
-      ->check(CLI::ExistingFile);
-  command->add_option("--tool", options.tool, "MuJoCo fragment on the TCP")
-      ->check(CLI::ExistingFile);
   command
       ->add_option("--lost-limit", options.lost_limit,
                    "states in a row without a command that end a motion")
@@ -81,12 +76,6 @@ CLI::App* addFrankaEmulatorCommand(CLI::App& app, FrankaEmulatorCommandOptions& 
                    "longer: a busy host's scheduling loses no command (it counts as late)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 5.0));
-  command->add_option("--duration", options.duration_s, "[s] then stop (0: until Ctrl-C)");
-  command
-      ->add_option("--priority", options.priority,
-                   "SCHED_FIFO priority of its cycle (0: normal; refused quietly where not "
-                   "permitted)")
-      ->check(CLI::Range(0, 99));
   command->add_option("--reflex-at", options.reflex_at_s, "[s] a reflex then (0: none)");
   command->add_option("--reflex", options.reflex, "the reflex's error name")->capture_default_str();
   command->add_option("--lose-at", options.lose_at_s, "[s] commands lost then (0: none)");
@@ -104,28 +93,20 @@ int frankaEmulatorCommand(const FrankaEmulatorCommandOptions& options, std::ostr
     return 2;
   }
   franka::FrankaEmulatorOptions emulator_options;
-  emulator_options.address = options.address;
+  emulator_options.address = options.common.address;
   emulator_options.command_port = options.command_port;
   emulator_options.lost_in_a_row_limit = options.lost_limit;
   emulator_options.answer_wait_s = options.answer_wait_s;
-  emulator_options.priority = options.priority;
-  for (const std::string& object : options.objects) {
-    emulator_options.scene.objects.emplace_back(object);
-  }
-  emulator_options.scene.tool = options.tool;
-  std::atomic<bool>& stop = stopOnSignals();
+  emulator_options.priority = options.common.priority;
+  emulator_options.scene = options.common.scene();
+  const std::atomic<bool>& stop = stopOnSignals();
   franka::FrankaEmulator emulator(emulator_options);
   out << "comply franka-emulator: an FR3 (FCI protocol " << franka::fci::kProtocolVersion << ") on "
-      << options.address << ":" << emulator.commandPort() << "\n"
+      << options.common.address << ":" << emulator.commandPort() << "\n"
       << std::flush;
-  const auto start = std::chrono::steady_clock::now();
-  auto next_status = start + std::chrono::seconds(1);
   bool reflexed = false;
   bool lost = false;
-  while (!stop.load()) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    const auto now = std::chrono::steady_clock::now();
-    const double elapsed_s = std::chrono::duration<double>(now - start).count();
+  const auto inject = [&](double elapsed_s) {
     if (!reflexed && options.reflex_at_s > 0.0 && elapsed_s >= options.reflex_at_s) {
       emulator.reflex(reflex);
       reflexed = true;
@@ -137,15 +118,9 @@ int frankaEmulatorCommand(const FrankaEmulatorCommandOptions& options, std::ostr
       out << "comply franka-emulator: the next " << options.lose_count << " commands lost\n"
           << std::flush;
     }
-    if (now >= next_status) {
-      printStatus(emulator, out);
-      next_status += std::chrono::seconds(1);
-    }
-    if (options.duration_s > 0.0 && elapsed_s >= options.duration_s) {
-      break;
-    }
-  }
-  printStatus(emulator, out);
+  };
+  serveUntilStopped(stop, options.common.duration_s, std::chrono::milliseconds(20), inject,
+                    [&] { printStatus(emulator, out); });
   return 0;
 }
 

@@ -6,7 +6,8 @@
 #include <cstdint>
 #include <iosfwd>
 #include <string>
-#include <vector>
+
+#include "emulator_serving.hpp"
 
 namespace CLI {
 class App;
@@ -15,14 +16,10 @@ class App;
 namespace comply::app {
 
 struct FrankaEmulatorCommandOptions {
-  std::string address = "127.0.0.1";
+  EmulatorCommonOptions common;  ///< address, scene, duration, priority (of its cycle)
   std::uint16_t command_port = 1337;
-  std::vector<std::string> objects;  ///< MuJoCo fragments added to the world (a table)
-  std::string tool;                  ///< a fragment on the TCP
-  int lost_limit = 20;               ///< states in a row without a command
-  double answer_wait_s = 0.0;        ///< how long a cycle waits for the client's command
-  double duration_s = 0.0;           ///< 0: until Ctrl-C
-  int priority = 0;                  ///< SCHED_FIFO of its cycle (0: normal)
+  int lost_limit = 20;         ///< states in a row without a command
+  double answer_wait_s = 0.0;  ///< how long a cycle waits for the client's command
   /// A reflex after this many seconds [s] (0: none), naming this error; lose commands or drop
   /// states then. For by-hand checks of a client's error handling.
   double reflex_at_s = 0.0;

@@ -6,7 +6,8 @@
 #include <cstdint>
 #include <iosfwd>
 #include <string>
-#include <vector>
+
+#include "emulator_serving.hpp"
 
 namespace CLI {
 class App;
@@ -15,17 +16,13 @@ class App;
 namespace comply::app {
 
 struct UrEmulatorCommandOptions {
-  std::string address = "127.0.0.1";
+  EmulatorCommonOptions common;  ///< address, scene, duration, priority (cycle and RTDE threads)
   std::uint16_t rtde_port = 30004;
   std::uint16_t script_port = 30002;
   std::uint16_t dashboard_port = 29999;
   std::string version = "5.23.0";
-  std::vector<std::string> objects;  ///< MuJoCo fragments added to the world (a table)
-  std::string tool;                  ///< a fragment on the TCP
   double force_limit_n = 150.0;
   double unlock_delay_s = 5.0;
-  double duration_s = 0.0;  ///< 0: until Ctrl-C
-  int priority = 0;         ///< SCHED_FIFO of its cycle and RTDE threads (0: normal)
 };
 
 CLI::App* addUrEmulatorCommand(CLI::App& app, UrEmulatorCommandOptions& options);
