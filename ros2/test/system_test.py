@@ -103,29 +103,35 @@ def controller_file(controller, changes, parameters=None):
 
 
 @contextlib.contextmanager
-def launched(robot, controller, check_name, *arguments, env=None):
-    """comply_bringup for robot and controller (and launch `arguments`); yields the controller's
-    topic prefix and its first state once it is active (the check check_name), else None; stops
-    the launch on leaving."""
+def bringup(robot, controller, log, *arguments, env=None):
+    """comply_bringup for robot and controller (and launch `arguments`), its output in `log`, for
+    as long as the block runs."""
     process = subprocess.Popen(
         ['ros2', 'launch', 'comply_bringup', 'comply.launch.py', f'robot:={robot}',
-         f'controller:={controller}', *arguments], env=env or ENV,
-        stdout=open(f'launch_{robot}.log', 'w'), stderr=subprocess.STDOUT,
-        start_new_session=True)
-
-    def active():
-        code, text = ros2('control', 'list_controllers', timeout=20, env=env)
-        return code == 0 and controller in text and 'active' in text.split(controller, 1)[1]
+         f'controller:={controller}', *arguments], env=env or ENV, stdout=open(log, 'w'),
+        stderr=subprocess.STDOUT, start_new_session=True)
     try:
-        became_active = bool(wait_for(active, 90, 1.0))
-        check(check_name, became_active, 'ros2 control list_controllers')
-        yield (f'/{controller}', echo(f'/{controller}/state', env=env)) if became_active else None
+        yield
     finally:
         os.killpg(process.pid, signal.SIGINT)
         try:
             process.wait(timeout=20)
         except subprocess.TimeoutExpired:
             os.killpg(process.pid, signal.SIGKILL)
+
+
+@contextlib.contextmanager
+def launched(robot, controller, check_name, *arguments, env=None):
+    """comply_bringup for robot and controller (and launch `arguments`); yields the controller's
+    topic prefix and its first state once it is active (the check check_name), else None; stops
+    the launch on leaving."""
+    def active():
+        code, text = ros2('control', 'list_controllers', timeout=20, env=env)
+        return code == 0 and controller in text and 'active' in text.split(controller, 1)[1]
+    with bringup(robot, controller, f'launch_{robot}.log', *arguments, env=env):
+        became_active = bool(wait_for(active, 90, 1.0))
+        check(check_name, became_active, 'ros2 control list_controllers')
+        yield (f'/{controller}', echo(f'/{controller}/state', env=env)) if became_active else None
 
 
 def settled_at(topic, target, tolerance_m, timeout=20):
@@ -457,19 +463,9 @@ def refused_file():
     bad = controller_file('cartesian_impedance',
                           {'command_timeout_s: 0.5': 'command_timeout_s: 0.5\n    no_such_option: 3'})
     log = os.path.join(WORK, 'launch_refused.log')
-    process = subprocess.Popen(
-        ['ros2', 'launch', 'comply_bringup', 'comply.launch.py', 'robot:=fr3',
-         'controller:=cartesian_impedance', f'controller_file:={bad}'], env=ENV,
-        stdout=open(log, 'w'), stderr=subprocess.STDOUT, start_new_session=True)
-    try:
+    with bringup('fr3', 'cartesian_impedance', log, f'controller_file:={bad}'):
         text = wait_for(lambda: (lambda t: t if 'Failed to configure' in t else None)(
             open(log).read()), 60) or open(log).read()
-    finally:
-        os.killpg(process.pid, signal.SIGINT)
-        try:
-            process.wait(timeout=20)
-        except subprocess.TimeoutExpired:
-            os.killpg(process.pid, signal.SIGKILL)
     named = [line for line in text.splitlines() if 'cannot configure' in line]
     check('a refused controller file: refused once, naming the option',
           'Failed to configure' in text and bool(named) and 'no_such_option' in named[0] and

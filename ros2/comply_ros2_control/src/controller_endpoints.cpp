@@ -143,7 +143,7 @@ void ComplyController<Command>::publishDiagnostics() {
   if (!wrapper_) {
     return;
   }
-  releaseDeparted(0);
+  releaseDeparted();
   gate_->settle();
   comply::transport::DiagnosticsMessage diagnostics = comply::host::diagnosticsMessage(
       wrapper_->diagnostics(), *loop_, nominal_period_s_, gate_->counts(), gate_->publisher(),

@@ -64,7 +64,7 @@ void ComplyController<Command>::offerToGate(const Header& header, const rclcpp::
                                             WriterIdentity& writers, const std::string& malformed,
                                             Submit&& submit) {
   // A sender that left releases the topics before the next one is judged.
-  releaseDeparted(0);
+  releaseDeparted();
   const WriterOf writer = writers.of(info.get_rmw_message_info());
   comply::pipeline::Offer offer;
   offer.stamp_ns =
@@ -87,27 +87,36 @@ void ComplyController<Command>::offerToGate(const Header& header, const rclcpp::
         "command rejected (%s); every outcome, with its reason, is on ~/diagnostics",
         std::string(comply::pipeline::toString(refused)).c_str());
   }
-  releaseDeparted(writer.publisher);
+  releaseIfGone(writer.publisher);
 }
 
 template <typename Command>
-void ComplyController<Command>::releaseDeparted(std::uint64_t just_heard) {
+void ComplyController<Command>::releaseDeparted() {
   departed_.clear();
   if (command_writers_->namesSenders() && chunk_writers_->namesSenders()) {
     command_writers_->noteDepartures(departed_);
     chunk_writers_->noteDepartures(departed_);
-    if (just_heard != 0 && !command_writers_->isMatched(just_heard) &&
-        !chunk_writers_->isMatched(just_heard)) {
-      departed_.push_back(just_heard);
-    }
   } else if (gate_->publisher() != 0 && command_subscription_->get_publisher_count() == 0 &&
              chunk_subscription_->get_publisher_count() == 0) {
     departed_.push_back(gate_->publisher());  // no sender named: gone when no one publishes
   }
   for (const std::uint64_t publisher : departed_) {
-    if (const std::uint64_t chunk = gate_->releasePublisher(publisher); chunk != 0) {
-      wrapper_->dropWaitingChunk(chunk);
-    }
+    releaseWriter(publisher);
+  }
+}
+
+template <typename Command>
+void ComplyController<Command>::releaseIfGone(std::uint64_t publisher) {
+  if (command_writers_->namesSenders() && chunk_writers_->namesSenders() &&
+      !command_writers_->isMatched(publisher) && !chunk_writers_->isMatched(publisher)) {
+    releaseWriter(publisher);
+  }
+}
+
+template <typename Command>
+void ComplyController<Command>::releaseWriter(std::uint64_t publisher) {
+  if (const std::uint64_t chunk = gate_->releasePublisher(publisher); chunk != 0) {
+    wrapper_->dropWaitingChunk(chunk);
   }
 }
 
@@ -137,7 +146,7 @@ void ComplyController<Command>::onRequest(const comply_msgs::msg::Request& messa
   if (!wrapper_) {
     return;
   }
-  releaseDeparted(0);
+  releaseDeparted();
   // Every request has an outcome, as under `comply run`: its sender learns whether it was
   // carried out or why not.
   const WriterOf writer = request_writers_->of(info.get_rmw_message_info());
@@ -225,7 +234,9 @@ std::string ComplyController<Command>::carryOut(std::uint8_t request) {
       const ComplyController<Command>::CommandMessage&, const rclcpp::MessageInfo&);               \
   template void ComplyController<Command>::onChunk(const ComplyController<Command>::ChunkMessage&, \
                                                    const rclcpp::MessageInfo&);                    \
-  template void ComplyController<Command>::releaseDeparted(std::uint64_t);                         \
+  template void ComplyController<Command>::releaseDeparted();                                      \
+  template void ComplyController<Command>::releaseIfGone(std::uint64_t);                           \
+  template void ComplyController<Command>::releaseWriter(std::uint64_t);                           \
   template void ComplyController<Command>::onResetFault(std_srvs::srv::Trigger::Response&);        \
   template void ComplyController<Command>::onRequest(const comply_msgs::msg::Request&,             \
                                                      const rclcpp::MessageInfo&);                  \

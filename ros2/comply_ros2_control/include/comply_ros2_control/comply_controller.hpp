@@ -146,10 +146,13 @@ class ComplyController : public controller_interface::ControllerInterface {
   template <typename Header, typename Submit>
   void offerToGate(const Header& header, const rclcpp::MessageInfo& info, WriterIdentity& writers,
                    const std::string& malformed, Submit&& submit);
-  /// Releases the command topics from a writer that left (`just_heard`: the writer of the message
-  /// just offered, which may have left before it was taken), and drops a chunk of its that waits
-  /// for its start, as `comply run` does. Under the endpoints mutex.
-  void releaseDeparted(std::uint64_t just_heard);
+  /// Releases the command topics from every writer that left since the last call, and drops a
+  /// chunk of its that waits for its start, as `comply run` does. Under the endpoints mutex.
+  void releaseDeparted();
+  /// The same for `publisher`, the writer of the message just offered, if it had already left
+  /// when releaseDeparted() last listed the writers (it sent, then exited).
+  void releaseIfGone(std::uint64_t publisher);
+  void releaseWriter(std::uint64_t publisher);
   void onResetFault(std_srvs::srv::Trigger::Response& response);
   void onRequest(const comply_msgs::msg::Request& message, const rclcpp::MessageInfo& info);
   void onCommittedRequest(const comply_msgs::msg::CommittedRequest& message,
