@@ -3,13 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <hardware_interface/types/hardware_interface_type_values.hpp>
+#include <iterator>
 #include <limits>
+#include <optional>
 #include <pluginlib/class_list_macros.hpp>
 #include <rclcpp/rclcpp.hpp>
 #include <span>
 #include <sstream>
 #include <stdexcept>
 
+#include "comply/core/number_text.hpp"
 #include "comply/model/robot_description.hpp"
 #include "comply_ros2_control/command_interfaces.hpp"
 #include "comply_ros2_control/prefix_search.hpp"
@@ -30,17 +33,12 @@ double positiveNumber(const hi::HardwareInfo& info, const std::string& name, dou
   if (text.empty()) {
     return fallback;
   }
-  std::size_t used = 0;
-  double value = std::numeric_limits<double>::quiet_NaN();
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-  }
-  if (used != text.size() || !(value > 0.0) || !std::isfinite(value)) {
+  const std::optional<double> value = comply::finiteNumber(text);
+  if (!value || !(*value > 0.0)) {
     throw std::invalid_argument("hardware parameter " + name + ": '" + text +
                                 "' is not a positive number");
   }
-  return value;
+  return *value;
 }
 
 constexpr const char* kWrenchAxes[] = {"force.x",  "force.y",  "force.z",
@@ -53,17 +51,15 @@ comply::Vector6d sixNumbers(const hi::HardwareInfo& info, const std::string& nam
   if (text.empty()) {
     return values;
   }
-  std::istringstream in(text);
-  for (Eigen::Index k = 0; k < 6; ++k) {
-    if (!(in >> values[k]) || !std::isfinite(values[k])) {
-      throw std::invalid_argument("hardware parameter " + name + ": '" + text +
-                                  "' is not six finite numbers (force x y z, torque x y z)");
-    }
+  std::istringstream words(text);
+  std::vector<std::string> numbers{std::istream_iterator<std::string>(words), {}};
+  for (std::size_t k = 0; k < numbers.size() && k < 6; ++k) {
+    const std::optional<double> value = comply::finiteNumber(numbers[k]);
+    values[static_cast<Eigen::Index>(k)] = value.value_or(std::nan(""));
   }
-  std::string rest;
-  if (in >> rest) {
+  if (numbers.size() != 6 || !values.allFinite()) {
     throw std::invalid_argument("hardware parameter " + name + ": '" + text +
-                                "' has more than six numbers");
+                                "' is not six finite numbers (force x y z, torque x y z)");
   }
   return values;
 }
